@@ -1,0 +1,30 @@
+#pragma once
+// Node clouds for meshfree Galerkin: a regular lattice inside the body, nodes along every
+// boundary piece, and optional boxes of finer spacing (local refinement).
+#include "meshfree/core/types.hpp"
+#include "meshfree/geometry/domain.hpp"
+#include <vector>
+
+namespace mf::geometry {
+
+struct Refinement {
+  BoundingBox box;
+  double spacing = 0.0;
+};
+
+struct NodeCloud {
+  std::vector<Vec2> x;          // positions
+  std::vector<double> spacing;  // local nominal spacing at each node
+  std::vector<double> volume;   // nodal volume (area) used by the RK construction
+};
+
+/// Generates nodes with spacing `spacing`, finer inside each refinement box. Nodes are sorted
+/// in horizontal strips (row-major by lattice cell) so that contiguous ranges are compact in
+/// space, which keeps the matrix bandwidth and the MPI partition boundaries small.
+NodeCloud generate_nodes(const Domain& domain, double spacing,
+                         const std::vector<Refinement>& refinements);
+
+/// Local spacing at p: the finest refinement box that contains p, else the base spacing.
+double local_spacing(const Vec2& p, double spacing, const std::vector<Refinement>& refinements);
+
+} // namespace mf::geometry

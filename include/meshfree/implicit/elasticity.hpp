@@ -1,0 +1,59 @@
+#pragma once
+// Galerkin weak form of plane elasticity with penalty essential conditions (the thesis'
+// eq. 2-49; Belytschko, Lu & Gu 1994 eq. 26 with the penalty in place of multipliers):
+//   K_IJ = int_Omega B_I^T C B_J t dOmega + int_Gamma_u phi_I alpha S phi_J t dGamma,
+//   f_I  = int_Gamma_t phi_I tbar t dGamma + int_Gamma_u phi_I alpha S ubar t dGamma
+//          + int_Omega phi_I b t dOmega,
+// with S the diagonal selector of the constrained components. Contributions leave through
+// callbacks so that the same loops serve any matrix back end.
+#include "meshfree/core/types.hpp"
+#include "meshfree/implicit/meshfree_space.hpp"
+#include <functional>
+#include <vector>
+
+namespace mf::implicit {
+
+/// Adds a dense (2n x 2n, row-major) block on the 2 DOFs of each of n nodes.
+using MatrixAdder = std::function<void(const int* nodes, int n, const double* block)>;
+/// Adds a 2n vector on the 2 DOFs of each of n nodes.
+using VectorAdder = std::function<void(const int* nodes, int n, const double* values)>;
+
+/// Row r of `table` is integrated with weight[r] (already times thickness where it applies).
+void add_stiffness(const ShapeTable& table, const std::vector<double>& weight, const Mat3& C,
+                   const MatrixAdder& add);
+
+/// Penalty stiffness alpha * phi_I phi_J on the components selected by `mask` (1 or 0 each),
+/// and the matching right-hand side alpha * phi_I * ubar[r].
+void add_penalty(const ShapeTable& table, const std::vector<double>& weight, const Vec2& mask,
+                 double alpha, const std::vector<Vec2>& ubar, const MatrixAdder& add_matrix,
+                 const VectorAdder& add_vector);
+
+/// Load vector phi_I * load[r] (traction or body force density).
+void add_load(const ShapeTable& table, const std::vector<double>& weight,
+              const std::vector<Vec2>& load, const VectorAdder& add);
+
+/// Strain-displacement product at table row r: eps = sum_I B_I d_I, Voigt [xx, yy, 2xy].
+inline Vec3 strain_at(const ShapeTable& t, int r, const std::vector<double>& d) {
+  Vec3 e = Vec3::Zero();
+  for (int k = t.offset[r]; k < t.offset[r + 1]; ++k) {
+    const int I = t.node[k];
+    const Vec2& g = t.dphi[k];
+    e(0) += g.x() * d[2 * I];
+    e(1) += g.y() * d[2 * I + 1];
+    e(2) += g.y() * d[2 * I] + g.x() * d[2 * I + 1];
+  }
+  return e;
+}
+
+/// Approximated displacement at table row r: u^h = sum_I phi_I d_I (not the nodal parameter:
+/// meshfree shape functions are not interpolating).
+inline Vec2 displacement_at(const ShapeTable& t, int r, const std::vector<double>& d) {
+  Vec2 u = Vec2::Zero();
+  for (int k = t.offset[r]; k < t.offset[r + 1]; ++k) {
+    const int I = t.node[k];
+    u += t.phi[k] * Vec2(d[2 * I], d[2 * I + 1]);
+  }
+  return u;
+}
+
+} // namespace mf::implicit

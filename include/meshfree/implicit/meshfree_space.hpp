@@ -1,0 +1,57 @@
+#pragma once
+// The discrete function space of a meshfree Galerkin model: the nodes, their supports, the
+// shape-function settings, and a search grid to find the nodes that cover a point.
+#include "meshfree/core/types.hpp"
+#include "meshfree/geometry/node_generation.hpp"
+#include "meshfree/kernels/shape_functions.hpp"
+#include "meshfree/neighbors/point_grid.hpp"
+#include <vector>
+
+namespace mf::implicit {
+
+/// Compressed rows: row r holds index[offset[r] .. offset[r+1]).
+struct Csr {
+  std::vector<int> offset{0};
+  std::vector<int> index;
+  int rows() const { return static_cast<int>(offset.size()) - 1; }
+  int size(int r) const { return offset[r + 1] - offset[r]; }
+};
+
+/// Shape functions and gradients at a list of points, in compressed rows.
+struct ShapeTable {
+  std::vector<int> offset{0};
+  std::vector<int> node;
+  std::vector<double> phi;
+  std::vector<Vec2> dphi;
+  int rows() const { return static_cast<int>(offset.size()) - 1; }
+};
+
+class MeshfreeSpace {
+public:
+  /// `dilation` scales each node's local spacing into its support radius (per direction).
+  MeshfreeSpace(geometry::NodeCloud cloud, const kernels::ShapeSettings& settings, const Vec2& dilation);
+
+  int node_count() const { return static_cast<int>(cloud_.x.size()); }
+  const geometry::NodeCloud& nodes() const { return cloud_; }
+  const std::vector<Vec2>& radius() const { return radius_; }
+  const kernels::ShapeSettings& settings() const { return settings_; }
+  kernels::NodeView view() const { return {cloud_.x.data(), radius_.data(), cloud_.volume.data()}; }
+
+  /// Nodes whose support covers x, in increasing index order.
+  void nodes_covering(const Vec2& x, std::vector<int>& out) const;
+  /// Support lists of many points (OpenMP-parallel).
+  Csr support_lists(const std::vector<Vec2>& points) const;
+  /// Shape functions at points[rows[k]] using their support lists; throws mf::Error naming the
+  /// first point where the moment matrix is singular.
+  ShapeTable shape_table(const std::vector<Vec2>& points, const std::vector<int>& rows,
+                         const Csr& support, bool gradients) const;
+
+private:
+  geometry::NodeCloud cloud_;
+  std::vector<Vec2> radius_;
+  kernels::ShapeSettings settings_;
+  neighbors::PointGrid grid_;
+  double max_radius_ = 0.0;
+};
+
+} // namespace mf::implicit

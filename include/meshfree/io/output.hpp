@@ -1,0 +1,62 @@
+#pragma once
+// Run outputs (DESIGN.md, "the run contract"): fields.h5 + fields.xmf (ParaView reads the .xmf),
+// history.csv, line_<name>.csv and summary.json. Files are written under temporary names and
+// renamed only when the run has succeeded, so a failed run never leaves a result that looks good.
+#include "meshfree/core/types.hpp"
+#include <map>
+#include <string>
+#include <vector>
+
+namespace mf::io {
+
+/// Point fields of one output step: scalars (one value per point) and 2D vectors (written as
+/// 3-component vectors with z = 0 so that ParaView can warp by them).
+struct FieldStep {
+  double time = 0.0;
+  std::vector<std::pair<std::string, std::vector<double>>> scalars;
+  std::vector<std::pair<std::string, std::vector<Vec2>>> vectors;
+};
+
+/// Collects output files in a directory; nothing appears under the final names until commit().
+class OutputDirectory {
+public:
+  explicit OutputDirectory(std::string dir);
+  ~OutputDirectory(); // removes uncommitted temporary files
+  const std::string& dir() const { return dir_; }
+
+  /// Removes results of an earlier run (fields.*, history.csv, summary.json, line_*.csv).
+  void clear_previous() const;
+  void write_fields(const std::vector<Vec2>& points, const std::vector<FieldStep>& steps);
+  /// CSV with a header row; every row has header.size() values.
+  void write_csv(const std::string& file, const std::vector<std::string>& header,
+                 const std::vector<std::vector<double>>& rows);
+  void write_text(const std::string& file, const std::string& text);
+  /// Renames every temporary file to its final name.
+  void commit();
+
+private:
+  std::string temp_path(const std::string& file);
+  std::string dir_;
+  std::vector<std::string> pending_; // final file names
+};
+
+/// Minimal JSON object builder for summary.json (keys keep insertion order).
+class Json {
+public:
+  Json& set(const std::string& key, double v);
+  Json& set(const std::string& key, long v);
+  Json& set(const std::string& key, int v) { return set(key, static_cast<long>(v)); }
+  Json& set(const std::string& key, const std::string& v);
+  Json& set(const std::string& key, const char* v) { return set(key, std::string(v)); }
+  Json& set(const std::string& key, bool v);
+  Json& set(const std::string& key, const Json& object);
+  Json& set(const std::string& key, const std::vector<double>& v);
+  std::string str(int indent = 0) const;
+
+private:
+  std::vector<std::pair<std::string, std::string>> items_; // key, encoded value
+  std::vector<std::pair<std::string, Json>> objects_;
+  std::vector<std::pair<std::string, int>> order_; // key, 0 = scalar, 1 = object
+};
+
+} // namespace mf::io

@@ -1,0 +1,93 @@
+#pragma once
+// A validated, typed problem description (what a problem YAML file says).
+#include "meshfree/core/types.hpp"
+#include "meshfree/geometry/domain.hpp"
+#include "meshfree/geometry/node_generation.hpp"
+#include "meshfree/kernels/shape_functions.hpp"
+#include "meshfree/materials/elastic.hpp"
+#include "meshfree/verification/exact_solutions.hpp"
+#include <optional>
+#include <string>
+#include <vector>
+#include <yaml-cpp/yaml.h>
+
+namespace mf::io {
+
+enum class Analysis { ElasticStatic, ModelProblem1D };
+
+struct DiscretisationSpec {
+  double spacing = 0.0;
+  std::vector<geometry::Refinement> refinement;
+  kernels::ShapeSettings shape;
+  Vec2 dilation{2.0, 2.0};   // support radius = dilation * local spacing
+  int order = 3;             // Gauss points per direction in a background cell
+  double cell_size = 0.0;    // background cell size (default: spacing)
+  int cut_levels = 2;        // subdivisions of cells cut by the boundary
+  int boundary_order = 3;    // Gauss points per boundary part
+};
+
+/// Which boundary pieces a condition acts on: named pieces, optionally clipped to a box.
+struct BoundarySelector {
+  std::vector<std::string> names;
+  std::optional<BoundingBox> box;
+};
+
+struct BoundaryCondition {
+  std::string name;
+  std::string key_path; // e.g. "boundary[0]", for messages
+  BoundarySelector on;
+  // Displacement (penalty) constraint on the components with mask = 1.
+  bool constrains = false;
+  Vec2 mask{0.0, 0.0};
+  Vec2 value{0.0, 0.0};
+  bool value_from_exact = false;
+  double penalty = 0.0; // absolute alpha
+  // Traction (force per area of the edge face; times thickness gives force per length).
+  bool loads = false;
+  Vec2 traction{0.0, 0.0};
+  bool traction_from_exact = false;
+};
+
+struct LineSpec {
+  std::string name;
+  Vec2 from{0.0, 0.0}, to{0.0, 0.0};
+  int points = 0;
+};
+
+/// y'' + f = 0 on [0, L], y(0) = y(L) = 0, with f = A (k pi / L)^2 sin(k pi x / L) + B x; the
+/// exact solution is y = A sin(k pi x / L) + B x (L^2 - x^2) / 6.
+struct ModelProblem1D {
+  double length = 1.0;
+  double sine_amplitude = 1.0;
+  double sine_waves = 1.0;
+  double linear = 0.0;
+  double penalty = 0.0;
+};
+
+struct ProblemSpec {
+  std::string name;
+  std::string description;
+  std::string units;
+  Analysis analysis = Analysis::ElasticStatic;
+  materials::PlaneModel model = materials::PlaneModel::PlaneStress;
+  double thickness = 1.0;
+  materials::IsotropicElastic material;
+  geometry::Domain domain = geometry::Domain::rectangle({0.0, 0.0}, {1.0, 1.0});
+  DiscretisationSpec discretisation;
+  std::vector<BoundaryCondition> boundary;
+  Vec2 body_force{0.0, 0.0}; // force per volume
+  std::optional<verification::ExactSolution> exact;
+  std::vector<LineSpec> lines;
+  ModelProblem1D model_1d;
+};
+
+/// Reads and validates a problem file. `overrides` are "key.path=value" strings applied first.
+/// Throws mf::Error with the key path of the first problem found.
+ProblemSpec read_problem(const std::string& path, const std::vector<std::string>& overrides = {});
+ProblemSpec parse_problem(YAML::Node root);
+
+/// The pieces of the boundary a selector picks; throws naming `key_path` if none.
+std::vector<geometry::Curve> select_boundary(const geometry::Domain& domain,
+                                             const BoundarySelector& on, const std::string& key_path);
+
+} // namespace mf::io

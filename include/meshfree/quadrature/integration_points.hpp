@@ -1,0 +1,32 @@
+#pragma once
+// Integration points for meshfree Galerkin: Gauss points on a background grid of cells over the
+// body (Belytschko, Lu & Gu 1994; the thesis' section 2-3), and Gauss points along boundary
+// pieces for tractions and penalty constraints.
+#include "meshfree/core/types.hpp"
+#include "meshfree/geometry/domain.hpp"
+#include <vector>
+
+namespace mf::quadrature {
+
+struct DomainPoints {
+  std::vector<Vec2> x;
+  std::vector<double> weight; // area weight
+  std::vector<int> cell;      // background cell the point came from
+  int cell_count = 0;
+};
+
+struct BoundaryPoints {
+  std::vector<Vec2> x;
+  std::vector<double> weight; // length weight
+  std::vector<Vec2> normal;   // outward unit normal
+};
+
+/// Background cells of size `cell_size` anchored at the lower-left corner of the body's bounding
+/// box, `order` x `order` Gauss points per cell. A cell cut by the boundary is split into four,
+/// `cut_levels` times; at the finest level only the points inside the body are kept.
+DomainPoints domain_points(const geometry::Domain& domain, double cell_size, int order, int cut_levels);
+
+/// Gauss points of `order` on each of `pieces` split into parts of length about `part_length`.
+BoundaryPoints boundary_points(const std::vector<geometry::Curve>& pieces, double part_length, int order);
+
+} // namespace mf::quadrature

@@ -1,0 +1,70 @@
+#pragma once
+// The one place the code meets PETSc. PetscSession initialises PETSc (and MPI) for the lifetime
+// of a run; BlockLinearSystem is a distributed sparse system with 2 DOFs per node.
+#include <memory>
+#include <mpi.h>
+#include <string>
+#include <vector>
+
+namespace mf::solvers {
+
+class PetscSession {
+public:
+  /// Passes argc/argv to PETSc so that options after the program's own arguments apply.
+  PetscSession(int* argc, char*** argv);
+  ~PetscSession();
+  PetscSession(const PetscSession&) = delete;
+  PetscSession& operator=(const PetscSession&) = delete;
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  MPI_Comm comm() const { return MPI_COMM_WORLD; }
+
+private:
+  int rank_ = 0, size_ = 1;
+};
+
+/// Contiguous block of node indices owned by `rank` out of `n` nodes on `size` ranks.
+struct OwnedRange {
+  int begin = 0, end = 0;
+  bool owns(int node) const { return node >= begin && node < end; }
+};
+OwnedRange owned_nodes(int n, int rank, int size);
+/// Rank that owns `node` under owned_nodes.
+int owner_of(int node, int n, int size);
+
+struct SolveReport {
+  int iterations = 0;
+  int converged_reason = 0;
+  std::string reason_name;
+  double residual_norm = 0.0;
+  std::string solver; // KSP and PC type, and the factorisation package where one is used
+};
+
+class BlockLinearSystem {
+public:
+  /// d_nnz / o_nnz: for each owned node, how many nodes it couples to inside / outside the
+  /// owned range (exact preallocation of the blocks).
+  BlockLinearSystem(MPI_Comm comm, int node_count, int block_size, OwnedRange owned,
+                    const std::vector<int>& d_nnz, const std::vector<int>& o_nnz);
+  ~BlockLinearSystem();
+  BlockLinearSystem(const BlockLinearSystem&) = delete;
+  BlockLinearSystem& operator=(const BlockLinearSystem&) = delete;
+
+  /// Adds a dense (bs*n)^2 row-major block on nodes[0..n); any rank may add to any row.
+  void add_matrix(const int* nodes, int n, const double* values);
+  void add_vector(const int* nodes, int n, const double* values);
+  void assemble();
+  /// Solves with KSP. The default is a sparse direct solve (MUMPS LU); every KSP/PC option
+  /// given on the command line overrides it.
+  SolveReport solve();
+  /// The whole solution vector on every rank.
+  std::vector<double> solution_everywhere() const;
+  /// Number of stored matrix entries over all ranks.
+  double global_nonzeros() const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+} // namespace mf::solvers

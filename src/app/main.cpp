@@ -1,0 +1,154 @@
+// meshfree command line (DESIGN.md, "the run contract"):
+//   meshfree run PROBLEM.yaml [--out DIR] [--set key.path=value ...] [-- PETSc options]
+//   meshfree check PROBLEM.yaml [--set key.path=value ...]
+#include "meshfree/app/elastic_static.hpp"
+#include "meshfree/app/model_problem_1d.hpp"
+#include "meshfree/core/log.hpp"
+#include "meshfree/geometry/node_generation.hpp"
+#include "meshfree/io/problem_spec.hpp"
+#include "meshfree/quadrature/integration_points.hpp"
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage:\n"
+    "  meshfree run PROBLEM.yaml [--out DIR] [--set key.path=value ...] [-- PETSc options]\n"
+    "  meshfree check PROBLEM.yaml [--set key.path=value ...]\n"
+    "\n"
+    "run    solves the problem and writes fields.h5/.xmf, history.csv, line_*.csv and\n"
+    "       summary.json into DIR (default out/<problem name>/)\n"
+    "check  validates the problem file and prints the discretisation it would use\n"
+    "Options after '--' go to PETSc, e.g. -- -ksp_type cg -pc_type gamg -ksp_view\n";
+
+struct Command {
+  std::string verb, problem, out_dir;
+  std::vector<std::string> overrides;
+  std::vector<char*> petsc_argv; // program name + everything after "--"
+};
+
+Command parse(int argc, char** argv) {
+  Command c;
+  c.petsc_argv.push_back(argv[0]);
+  int i = 1;
+  for (; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--") {
+      for (++i; i < argc; ++i) c.petsc_argv.push_back(argv[i]);
+      break;
+    }
+    if (a == "-h" || a == "--help") mf::fail("help");
+    if (a == "--out" || a == "--set") {
+      MF_REQUIRE(i + 1 < argc, a, " needs a value");
+      (a == "--out" ? c.out_dir : (c.overrides.emplace_back(), c.overrides.back())) = argv[++i];
+    } else if (c.verb.empty()) {
+      c.verb = a;
+    } else if (c.problem.empty()) {
+      c.problem = a;
+    } else {
+      mf::fail("unexpected argument '", a, "'");
+    }
+  }
+  MF_REQUIRE(c.verb == "run" || c.verb == "check", c.verb.empty() ? "no command given" : "unknown command '" + c.verb + "'");
+  MF_REQUIRE(!c.problem.empty(), "no problem file given");
+  return c;
+}
+
+int check(const Command& c) {
+  const mf::io::ProblemSpec spec = mf::io::read_problem(c.problem, c.overrides);
+  std::cout << "problem " << spec.name << ": valid\n";
+  if (spec.analysis == mf::io::Analysis::ModelProblem1D) {
+    std::cout << "  1D model problem on [0, " << spec.model_1d.length << "], spacing "
+              << spec.discretisation.spacing << "\n";
+    return 0;
+  }
+  const auto& d = spec.discretisation;
+  const auto nodes = mf::geometry::generate_nodes(spec.domain, d.spacing, d.refinement);
+  const auto pts = mf::quadrature::domain_points(spec.domain, d.cell_size, d.order, d.cut_levels);
+  std::cout << "  method: " << mf::app::describe_method(d) << "\n"
+            << "  nodes: " << nodes.x.size() << " (" << 2 * nodes.x.size() << " DOFs)\n"
+            << "  integration: " << pts.cell_count << " cells, " << pts.x.size() << " points\n";
+  for (const auto& bc : spec.boundary) {
+    double len = 0.0;
+    for (const auto& p : mf::io::select_boundary(spec.domain, bc.on, bc.key_path)) len += p.length();
+    std::cout << "  boundary " << bc.name << ": " << (bc.constrains ? "displacement" : "traction")
+              << " on length " << len << "\n";
+  }
+  return 0;
+}
+
+int run(Command& c) {
+  int pargc = static_cast<int>(c.petsc_argv.size());
+  c.petsc_argv.push_back(nullptr);
+  char** pargv = c.petsc_argv.data();
+  mf::solvers::PetscSession session(&pargc, &pargv);
+  mf::io::ProblemSpec spec;
+  try {
+    spec = mf::io::read_problem(c.problem, c.overrides);
+  } catch (const mf::Error& e) {
+    if (session.rank() == 0) std::cerr << "meshfree: " << e.what() << std::endl;
+    return 2;
+  }
+  const std::string dir = c.out_dir.empty() ? "out/" + spec.name : c.out_dir;
+  std::unique_ptr<mf::io::OutputDirectory> out;
+  try {
+    if (session.rank() == 0) {
+      out = std::make_unique<mf::io::OutputDirectory>(dir);
+      out->clear_previous();
+    }
+    mf::log::info("problem ", spec.name, ": ", spec.description);
+    if (spec.analysis == mf::io::Analysis::ModelProblem1D) {
+      if (session.rank() == 0) {
+        const auto r = mf::app::solve_model_problem_1d(spec);
+        mf::app::write_model_1d_outputs(spec, r, *out);
+      }
+    } else {
+      mf::app::ElasticResult r = mf::app::solve_elastic_static(spec, session);
+      {
+        mf::PhaseTimer::Scope scope(r.timer, "output");
+        if (out) mf::app::write_elastic_outputs(spec, r, session, *out);
+      }
+      std::string phases;
+      for (const auto& [name, s] : r.timer.phases()) phases += " " + name + " " + std::to_string(s) + " s;";
+      mf::log::info("wall time per phase:", phases);
+    }
+    if (out) {
+      out->commit();
+      mf::log::info("results in ", std::filesystem::absolute(dir).string());
+    }
+  } catch (const mf::Error& e) {
+    std::cerr << "meshfree: run failed on rank " << session.rank() << ": " << e.what() << std::endl;
+    if (out) {
+      mf::io::Json summary;
+      summary.set("problem", spec.name).set("status", "failed").set("error", e.what());
+      out.reset(); // drop partial files
+      mf::io::OutputDirectory failed(dir);
+      failed.write_text("summary.json", summary.str() + "\n");
+      failed.commit();
+    }
+    if (session.size() > 1) MPI_Abort(MPI_COMM_WORLD, 1);
+    return 1;
+  }
+  return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  Command c;
+  try {
+    c = parse(argc, argv);
+  } catch (const mf::Error& e) {
+    const bool help = std::strcmp(e.what(), "help") == 0;
+    (help ? std::cout : std::cerr) << (help ? "" : std::string("meshfree: ") + e.what() + "\n") << kUsage;
+    return help ? 0 : 2;
+  }
+  try {
+    return c.verb == "check" ? check(c) : run(c);
+  } catch (const mf::Error& e) {
+    std::cerr << "meshfree: " << e.what() << std::endl;
+    return 2;
+  }
+}

@@ -1,0 +1,210 @@
+#include "meshfree/io/key_reader.hpp"
+#include <sstream>
+
+namespace mf::io {
+
+namespace {
+std::string show(const YAML::Node& n) {
+  if (!n.IsDefined() || n.IsNull()) return "nothing";
+  YAML::Emitter e;
+  e << YAML::Flow << n;
+  return e.c_str();
+}
+} // namespace
+
+KeyReader::KeyReader(YAML::Node node, std::string path) : node_(std::move(node)), path_(std::move(path)) {
+  if (!node_.IsMap()) fail(path_.empty() ? "document" : path_, ": expected a map of keys, got ", show(node_));
+}
+
+void KeyReader::error(const std::string& key, const std::string& message) const {
+  fail(path_of(key), ": ", message);
+}
+
+bool KeyReader::has(const std::string& key) const {
+  return node_[key].IsDefined() && !node_[key].IsNull();
+}
+
+YAML::Node KeyReader::get(const std::string& key) {
+  used_.insert(key);
+  const YAML::Node n = node_[key];
+  if (!n.IsDefined() || n.IsNull()) error(key, "required value is missing");
+  return n;
+}
+
+YAML::Node KeyReader::raw(const std::string& key) { return get(key); }
+
+double KeyReader::to_number(const YAML::Node& n, const std::string& key) const {
+  if (!n.IsScalar()) error(key, "expected a number, got " + show(n));
+  try {
+    std::size_t pos = 0;
+    const std::string s = n.Scalar();
+    const double v = std::stod(s, &pos);
+    if (pos != s.size() || !std::isfinite(v)) throw std::invalid_argument(s);
+    return v;
+  } catch (const std::exception&) {
+    error(key, "expected a number, got " + show(n));
+  }
+}
+
+double KeyReader::number(const std::string& key) { return to_number(get(key), key); }
+
+double KeyReader::number(const std::string& key, double fallback) {
+  used_.insert(key);
+  return has(key) ? number(key) : fallback;
+}
+
+double KeyReader::positive(const std::string& key) {
+  const double v = number(key);
+  if (!(v > 0.0)) {
+    std::ostringstream os;
+    os.precision(10);
+    os << "expected a positive number, got " << v;
+    error(key, os.str());
+  }
+  return v;
+}
+
+double KeyReader::positive(const std::string& key, double fallback) {
+  used_.insert(key);
+  return has(key) ? positive(key) : fallback;
+}
+
+int KeyReader::integer(const std::string& key, int fallback, int lo, int hi) {
+  used_.insert(key);
+  if (!has(key)) return fallback;
+  const double v = number(key);
+  if (v != static_cast<double>(static_cast<long>(v)) || v < lo || v > hi)
+    error(key, "expected an integer from " + std::to_string(lo) + " to " + std::to_string(hi) +
+                   ", got " + show(node_[key]));
+  return static_cast<int>(v);
+}
+
+std::string KeyReader::text(const std::string& key) {
+  const YAML::Node n = get(key);
+  if (!n.IsScalar()) error(key, "expected a string, got " + show(n));
+  return n.Scalar();
+}
+
+std::string KeyReader::text(const std::string& key, const std::string& fallback) {
+  used_.insert(key);
+  return has(key) ? text(key) : fallback;
+}
+
+std::string KeyReader::choice(const std::string& key, const std::vector<std::string>& choices,
+                              const std::string& fallback) {
+  const std::string v = fallback.empty() ? text(key) : text(key, fallback);
+  for (const auto& c : choices)
+    if (c == v) return v;
+  std::string list;
+  for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;
+  error(key, "expected one of [" + list + "], got '" + v + "'");
+}
+
+Vec2 KeyReader::vec2(const std::string& key) {
+  const YAML::Node n = get(key);
+  if (!n.IsSequence() || n.size() != 2) error(key, "expected a pair [a, b], got " + show(n));
+  return {to_number(n[0], key), to_number(n[1], key)};
+}
+
+Vec2 KeyReader::scalar_or_vec2(const std::string& key, const Vec2& fallback) {
+  used_.insert(key);
+  if (!has(key)) return fallback;
+  const YAML::Node n = node_[key];
+  if (n.IsScalar()) {
+    const double v = positive(key);
+    return {v, v};
+  }
+  const Vec2 v = vec2(key);
+  if (!(v.x() > 0.0 && v.y() > 0.0)) error(key, "expected positive numbers, got " + show(n));
+  return v;
+}
+
+std::vector<Vec2> KeyReader::vec2_list(const std::string& key) {
+  const YAML::Node n = get(key);
+  if (!n.IsSequence()) error(key, "expected a list of pairs, got " + show(n));
+  std::vector<Vec2> out;
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    const std::string k = key + "[" + std::to_string(i) + "]";
+    if (!n[i].IsSequence() || n[i].size() != 2) error(k, "expected a pair [x, y], got " + show(n[i]));
+    out.emplace_back(to_number(n[i][0], k), to_number(n[i][1], k));
+  }
+  return out;
+}
+
+KeyReader KeyReader::map(const std::string& key) {
+  const YAML::Node n = get(key);
+  if (!n.IsMap()) error(key, "expected a map of keys, got " + show(n));
+  return KeyReader(n, path_of(key));
+}
+
+std::optional<KeyReader> KeyReader::optional_map(const std::string& key) {
+  used_.insert(key);
+  if (!has(key)) return std::nullopt;
+  return map(key);
+}
+
+std::vector<KeyReader> KeyReader::map_list(const std::string& key) {
+  used_.insert(key);
+  std::vector<KeyReader> out;
+  if (!has(key)) return out;
+  const YAML::Node n = node_[key];
+  if (!n.IsSequence()) error(key, "expected a list, got " + show(n));
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    const std::string k = path_of(key) + "[" + std::to_string(i) + "]";
+    if (!n[i].IsMap()) fail(k, ": expected a map of keys, got ", show(n[i]));
+    out.emplace_back(n[i], k);
+  }
+  return out;
+}
+
+void KeyReader::finish() const {
+  for (const auto& kv : node_) {
+    const std::string key = kv.first.as<std::string>();
+    if (!used_.count(key)) {
+      std::string known;
+      for (const auto& u : used_) known += (known.empty() ? "" : ", ") + u;
+      fail(path_of(key), ": unknown key (known here: ", known, ")");
+    }
+  }
+}
+
+void apply_override(YAML::Node& root, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  MF_REQUIRE(eq != std::string::npos && eq > 0, "--set expects key.path=value, got '", assignment, "'");
+  const std::string path = assignment.substr(0, eq);
+  YAML::Node value;
+  try {
+    value = YAML::Load(assignment.substr(eq + 1));
+  } catch (const YAML::Exception& e) {
+    fail("--set ", path, ": cannot parse the value: ", e.what());
+  }
+  std::vector<std::string> parts;
+  std::stringstream ss(path);
+  for (std::string p; std::getline(ss, p, '.');) parts.push_back(p);
+  // Walk with fresh handles (yaml-cpp node assignment rebinds, so keep a chain of copies).
+  std::vector<YAML::Node> chain{root};
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    YAML::Node cur = chain.back();
+    const std::string& p = parts[i];
+    YAML::Node next;
+    if (cur.IsSequence()) {
+      const std::size_t idx = std::stoul(p);
+      MF_REQUIRE(idx < cur.size(), "--set ", path, ": index ", idx, " is out of range");
+      next = cur[idx];
+    } else {
+      if (!cur[p].IsDefined() || cur[p].IsNull()) cur[p] = YAML::Node(YAML::NodeType::Map);
+      next = cur[p];
+    }
+    chain.push_back(next);
+  }
+  YAML::Node last = chain.back();
+  if (last.IsSequence()) {
+    const std::size_t idx = std::stoul(parts.back());
+    MF_REQUIRE(idx < last.size(), "--set ", path, ": index ", idx, " is out of range");
+    last[idx] = value;
+  } else {
+    last[parts.back()] = value;
+  }
+}
+
+} // namespace mf::io

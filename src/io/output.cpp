@@ -1,0 +1,201 @@
+#include "meshfree/io/output.hpp"
+#include "meshfree/core/error.hpp"
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <hdf5.h>
+#include <iomanip>
+#include <sstream>
+
+namespace mf::io {
+
+namespace fs = std::filesystem;
+
+OutputDirectory::OutputDirectory(std::string dir) : dir_(std::move(dir)) {
+  std::error_code ec;
+  fs::create_directories(dir_, ec);
+  MF_REQUIRE(!ec, dir_, ": cannot create the output directory: ", ec.message());
+}
+
+OutputDirectory::~OutputDirectory() {
+  for (const auto& f : pending_) {
+    std::error_code ec;
+    fs::remove(fs::path(dir_) / (f + ".partial"), ec);
+  }
+}
+
+void OutputDirectory::clear_previous() const {
+  for (const auto& entry : fs::directory_iterator(dir_)) {
+    const std::string name = entry.path().filename().string();
+    const bool ours = name == "fields.h5" || name == "fields.xmf" || name == "history.csv" ||
+                      name == "summary.json" || (name.rfind("line_", 0) == 0 && entry.path().extension() == ".csv");
+    if (ours) fs::remove(entry.path());
+  }
+}
+
+std::string OutputDirectory::temp_path(const std::string& file) {
+  pending_.push_back(file);
+  return (fs::path(dir_) / (file + ".partial")).string();
+}
+
+void OutputDirectory::write_text(const std::string& file, const std::string& text) {
+  std::ofstream out(temp_path(file));
+  MF_REQUIRE(out.good(), dir_, "/", file, ": cannot write");
+  out << text;
+}
+
+void OutputDirectory::write_csv(const std::string& file, const std::vector<std::string>& header,
+                                const std::vector<std::vector<double>>& rows) {
+  std::ostringstream os;
+  for (std::size_t i = 0; i < header.size(); ++i) os << (i ? "," : "") << header[i];
+  os << "\n" << std::setprecision(12);
+  for (const auto& row : rows) {
+    MF_ASSERT(row.size() == header.size());
+    for (std::size_t i = 0; i < row.size(); ++i) os << (i ? "," : "") << row[i];
+    os << "\n";
+  }
+  write_text(file, os.str());
+}
+
+namespace {
+
+void write_dataset(hid_t file, const std::string& name, const std::vector<double>& data, hsize_t rows,
+                   hsize_t cols) {
+  hsize_t dims[2] = {rows, cols};
+  const hid_t space = H5Screate_simple(cols > 1 ? 2 : 1, dims, nullptr);
+  const hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
+  H5Pset_create_intermediate_group(lcpl, 1);
+  const hid_t set = H5Dcreate2(file, name.c_str(), H5T_NATIVE_DOUBLE, space, lcpl, H5P_DEFAULT, H5P_DEFAULT);
+  MF_REQUIRE(set >= 0, "HDF5: cannot create dataset ", name);
+  MF_REQUIRE(H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) >= 0,
+             "HDF5: cannot write dataset ", name);
+  H5Dclose(set);
+  H5Pclose(lcpl);
+  H5Sclose(space);
+}
+
+std::string data_item(const std::string& h5, const std::string& set, std::size_t rows, int cols) {
+  std::ostringstream os;
+  os << "<DataItem Dimensions=\"" << rows;
+  if (cols > 1) os << " " << cols;
+  os << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5 << ":" << set << "</DataItem>";
+  return os.str();
+}
+
+} // namespace
+
+void OutputDirectory::write_fields(const std::vector<Vec2>& points, const std::vector<FieldStep>& steps) {
+  const std::string h5_temp = temp_path("fields.h5");
+  const hid_t file = H5Fcreate(h5_temp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  MF_REQUIRE(file >= 0, h5_temp, ": cannot create the HDF5 file");
+  const std::size_t n = points.size();
+  std::vector<double> xyz(3 * n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) xyz[3 * i] = points[i].x(), xyz[3 * i + 1] = points[i].y();
+  write_dataset(file, "/geometry/coordinates", xyz, n, 3);
+
+  std::ostringstream x;
+  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
+    << "  <Grid Name=\"points\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (std::size_t s = 0; s < steps.size(); ++s) {
+    std::ostringstream group;
+    group << "/step_" << std::setw(6) << std::setfill('0') << s;
+    x << "   <Grid Name=\"step_" << s << "\" GridType=\"Uniform\">\n"
+      << "    <Time Value=\"" << std::setprecision(12) << steps[s].time << "\"/>\n"
+      << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\" NodesPerElement=\"1\"/>\n"
+      << "    <Geometry GeometryType=\"XYZ\">" << data_item("fields.h5", "/geometry/coordinates", n, 3)
+      << "</Geometry>\n";
+    for (const auto& [name, v] : steps[s].scalars) {
+      MF_ASSERT(v.size() == n);
+      write_dataset(file, group.str() + "/" + name, v, n, 1);
+      x << "    <Attribute Name=\"" << name << "\" AttributeType=\"Scalar\" Center=\"Node\">"
+        << data_item("fields.h5", group.str() + "/" + name, n, 1) << "</Attribute>\n";
+    }
+    for (const auto& [name, v] : steps[s].vectors) {
+      MF_ASSERT(v.size() == n);
+      std::vector<double> d(3 * n, 0.0);
+      for (std::size_t i = 0; i < n; ++i) d[3 * i] = v[i].x(), d[3 * i + 1] = v[i].y();
+      write_dataset(file, group.str() + "/" + name, d, n, 3);
+      x << "    <Attribute Name=\"" << name << "\" AttributeType=\"Vector\" Center=\"Node\">"
+        << data_item("fields.h5", group.str() + "/" + name, n, 3) << "</Attribute>\n";
+    }
+    x << "   </Grid>\n";
+  }
+  x << "  </Grid>\n </Domain>\n</Xdmf>\n";
+  H5Fclose(file);
+  write_text("fields.xmf", x.str());
+}
+
+void OutputDirectory::commit() {
+  for (const auto& f : pending_) {
+    const fs::path from = fs::path(dir_) / (f + ".partial");
+    fs::rename(from, fs::path(dir_) / f);
+  }
+  pending_.clear();
+}
+
+namespace {
+std::string encode(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\', out += c;
+    else if (c == '\n') out += "\\n";
+    else if (static_cast<unsigned char>(c) < 0x20) out += ' ';
+    else out += c;
+  }
+  return out + "\"";
+}
+std::string encode(double v) {
+  if (!std::isfinite(v)) return "null";
+  std::ostringstream os;
+  os << std::setprecision(12) << v;
+  return os.str();
+}
+} // namespace
+
+Json& Json::set(const std::string& key, double v) {
+  items_.emplace_back(key, encode(v));
+  order_.emplace_back(key, 0);
+  return *this;
+}
+Json& Json::set(const std::string& key, long v) {
+  items_.emplace_back(key, std::to_string(v));
+  order_.emplace_back(key, 0);
+  return *this;
+}
+Json& Json::set(const std::string& key, const std::string& v) {
+  items_.emplace_back(key, encode(v));
+  order_.emplace_back(key, 0);
+  return *this;
+}
+Json& Json::set(const std::string& key, bool v) {
+  items_.emplace_back(key, v ? "true" : "false");
+  order_.emplace_back(key, 0);
+  return *this;
+}
+Json& Json::set(const std::string& key, const std::vector<double>& v) {
+  std::string s = "[";
+  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + encode(v[i]);
+  items_.emplace_back(key, s + "]");
+  order_.emplace_back(key, 0);
+  return *this;
+}
+Json& Json::set(const std::string& key, const Json& object) {
+  objects_.emplace_back(key, object);
+  order_.emplace_back(key, 1);
+  return *this;
+}
+
+std::string Json::str(int indent) const {
+  const std::string pad(indent + 2, ' ');
+  std::string out = "{\n";
+  std::size_t si = 0, oi = 0;
+  for (std::size_t k = 0; k < order_.size(); ++k) {
+    out += pad + encode(order_[k].first) + ": ";
+    out += order_[k].second == 0 ? items_[si++].second : objects_[oi++].second.str(indent + 2);
+    out += k + 1 < order_.size() ? ",\n" : "\n";
+  }
+  return out + std::string(indent, ' ') + "}";
+}
+
+} // namespace mf::io

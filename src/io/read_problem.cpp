@@ -1,0 +1,331 @@
+#include "meshfree/io/key_reader.hpp"
+#include "meshfree/io/problem_spec.hpp"
+#include <fstream>
+
+namespace mf::io {
+
+namespace {
+
+materials::PlaneModel read_model(KeyReader& r, double& thickness) {
+  KeyReader m = r.map("model");
+  const std::string type = m.choice("type", {"plane_stress", "plane_strain"}, "plane_stress");
+  thickness = m.positive("thickness", 1.0);
+  m.finish();
+  return type == "plane_stress" ? materials::PlaneModel::PlaneStress : materials::PlaneModel::PlaneStrain;
+}
+
+materials::IsotropicElastic read_material(KeyReader& r) {
+  KeyReader m = r.map("material");
+  materials::IsotropicElastic mat;
+  mat.E = m.positive("E");
+  mat.nu = m.number("nu");
+  if (!(mat.nu > -1.0 && mat.nu < 0.5)) m.error("nu", "expected a Poisson's ratio in (-1, 0.5), got " + std::to_string(mat.nu));
+  m.finish();
+  return mat;
+}
+
+BoundingBox read_box(KeyReader& r, const std::string& key) {
+  const std::vector<Vec2> corners = r.vec2_list(key);
+  if (corners.size() != 2) r.error(key, "expected two corners [[x0, y0], [x1, y1]]");
+  BoundingBox b{corners[0].cwiseMin(corners[1]), corners[0].cwiseMax(corners[1])};
+  return b;
+}
+
+geometry::Domain read_geometry(KeyReader& r) {
+  KeyReader g = r.map("geometry");
+  const bool rect = g.has("rectangle"), poly = g.has("polygon");
+  if (rect == poly) g.error("rectangle", "give exactly one of 'rectangle' or 'polygon'");
+  geometry::Domain d = geometry::Domain::rectangle({0, 0}, {1, 1});
+  if (rect) {
+    KeyReader rr = g.map("rectangle");
+    const Vec2 origin = rr.has("origin") ? rr.vec2("origin") : Vec2(0.0, 0.0);
+    rr.allow("origin");
+    const Vec2 size = rr.vec2("size");
+    if (!(size.x() > 0.0 && size.y() > 0.0)) rr.error("size", "expected positive width and height");
+    rr.finish();
+    d = geometry::Domain::rectangle(origin, size);
+  } else {
+    KeyReader pr = g.map("polygon");
+    std::vector<Vec2> v = pr.vec2_list("vertices");
+    std::vector<std::string> names;
+    if (pr.has("edge_names")) {
+      YAML::Node n = pr.raw("edge_names");
+      if (!n.IsSequence() || n.size() != v.size())
+        pr.error("edge_names", "expected a list of " + std::to_string(v.size()) + " names");
+      for (const auto& e : n) names.push_back(e.as<std::string>());
+    }
+    pr.allow("edge_names");
+    pr.finish();
+    try {
+      d = geometry::Domain::polygon(v, names);
+    } catch (const Error& e) {
+      fail(pr.path_of("vertices"), ": ", e.what());
+    }
+  }
+  for (KeyReader& h : g.map_list("holes")) {
+    geometry::Circle c;
+    c.center = h.vec2("center");
+    c.radius = h.positive("radius");
+    c.name = h.text("name", "");
+    h.finish();
+    d.add_hole(c);
+  }
+  g.finish();
+  return d;
+}
+
+kernels::WindowType window_type(const std::string& s) {
+  if (s == "cubic_spline") return kernels::WindowType::CubicSpline;
+  if (s == "quartic_spline") return kernels::WindowType::QuarticSpline;
+  return kernels::WindowType::Gaussian;
+}
+
+DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox& bounds) {
+  KeyReader d = r.map("discretisation");
+  DiscretisationSpec s;
+  s.spacing = d.positive("spacing");
+  for (KeyReader& f : d.map_list("refinement")) {
+    geometry::Refinement ref;
+    ref.box = read_box(f, "box");
+    ref.spacing = f.positive("spacing");
+    if (ref.spacing >= s.spacing) f.error("spacing", "a refinement must be finer than discretisation.spacing");
+    f.finish();
+    s.refinement.push_back(ref);
+  }
+  const std::string approx = d.choice("approximation", {"rk", "mls"}, "rk");
+  s.shape.approximation = approx == "rk" ? kernels::Approximation::ReproducingKernel
+                                         : kernels::Approximation::MovingLeastSquares;
+  s.shape.basis = d.choice("basis", {"linear", "quadratic"}, "linear") == "linear" ? kernels::Basis::Linear
+                                                                                   : kernels::Basis::Quadratic;
+  s.shape.window.type = window_type(d.choice("window", {"cubic_spline", "quartic_spline", "gaussian"}, "cubic_spline"));
+  s.shape.window.gaussian_shape = d.positive("gaussian_shape", 0.4);
+  s.shape.support = d.choice("support", {"circular", "rectangular"}, "circular") == "circular"
+                        ? kernels::SupportShape::Circular
+                        : kernels::SupportShape::Rectangular;
+  s.shape.dim = dim;
+  s.shape.mls_origin = 0.5 * (bounds.lo + bounds.hi);
+  s.shape.mls_scale = 0.5 * bounds.size().maxCoeff();
+  const double default_dilation = s.shape.basis == kernels::Basis::Quadratic ? 3.0 : 2.0;
+  s.dilation = d.scalar_or_vec2("dilation", Vec2(default_dilation, default_dilation));
+  const double min_dilation = s.shape.basis == kernels::Basis::Quadratic ? 2.0 : 1.0;
+  if (s.dilation.minCoeff() <= min_dilation)
+    d.error("dilation", "must exceed " + std::to_string(min_dilation) +
+                            " so that every point is covered by enough nodes for the basis");
+  if (auto q = d.optional_map("quadrature")) {
+    s.order = q->integer("order", 3, 1, 10);
+    s.cell_size = q->positive("cell_size", s.spacing);
+    s.cut_levels = q->integer("cut_levels", 2, 0, 6);
+    s.boundary_order = q->integer("boundary_order", s.order, 1, 10);
+    q->finish();
+  } else {
+    s.cell_size = s.spacing;
+    s.boundary_order = s.order;
+  }
+  d.finish();
+  return s;
+}
+
+BoundarySelector read_selector(KeyReader& bc) {
+  BoundarySelector sel;
+  YAML::Node on = bc.raw("on");
+  if (on.IsScalar()) {
+    sel.names.push_back(on.Scalar());
+    return sel;
+  }
+  KeyReader o(on, bc.path_of("on"));
+  if (o.has("edge")) sel.names.push_back(o.text("edge"));
+  if (o.has("edges")) {
+    YAML::Node e = o.raw("edges");
+    if (!e.IsSequence()) o.error("edges", "expected a list of boundary names");
+    for (const auto& n : e) sel.names.push_back(n.as<std::string>());
+  }
+  o.allow("edge");
+  o.allow("edges");
+  if (o.has("box")) sel.box = read_box(o, "box");
+  o.allow("box");
+  o.finish();
+  if (sel.names.empty() && !sel.box) o.error("edge", "name the boundary pieces ('edge' or 'edges') or give a 'box'");
+  return sel;
+}
+
+BoundaryCondition read_condition(KeyReader& bc, double default_alpha) {
+  BoundaryCondition c;
+  c.key_path = bc.path();
+  c.name = bc.text("name");
+  c.on = read_selector(bc);
+  if (bc.has("displacement")) {
+    c.constrains = true;
+    YAML::Node n = bc.raw("displacement");
+    if (n.IsScalar() && n.Scalar() == "exact") {
+      c.value_from_exact = true;
+      c.mask = Vec2(1.0, 1.0);
+    } else {
+      KeyReader u(n, bc.path_of("displacement"));
+      if (u.has("x")) c.mask.x() = 1.0, c.value.x() = u.number("x");
+      if (u.has("y")) c.mask.y() = 1.0, c.value.y() = u.number("y");
+      u.allow("x");
+      u.allow("y");
+      if (u.has("exact")) {
+        const std::string comps = u.choice("exact", {"x", "y", "xy"}, "xy");
+        c.value_from_exact = true;
+        c.mask = Vec2(comps.find('x') != std::string::npos, comps.find('y') != std::string::npos);
+      }
+      u.allow("exact");
+      u.finish();
+      if (c.mask.isZero()) bc.error("displacement", "constrain at least one of x, y (or say 'exact')");
+    }
+    c.penalty = bc.positive("penalty", default_alpha);
+  }
+  if (!c.constrains && bc.has("penalty")) bc.error("penalty", "a penalty needs a 'displacement' condition");
+  bc.allow("penalty");
+  if (bc.has("traction")) {
+    c.loads = true;
+    YAML::Node n = bc.raw("traction");
+    if (n.IsScalar() && n.Scalar() == "exact") c.traction_from_exact = true;
+    else c.traction = bc.vec2("traction");
+  }
+  bc.allow("traction");
+  if (c.constrains == c.loads) bc.error("name", "a boundary condition needs exactly one of 'displacement' or 'traction'");
+  bc.finish();
+  return c;
+}
+
+std::optional<verification::ExactSolution> read_exact(KeyReader& r) {
+  auto e = r.optional_map("exact");
+  if (!e) return std::nullopt;
+  const std::string kind = e->choice("solution", {"timoshenko_beam", "kirsch", "linear"}, "");
+  verification::ExactSolution out;
+  if (kind == "timoshenko_beam") {
+    verification::TimoshenkoBeam b;
+    b.P = e->number("P");
+    b.L = e->positive("L");
+    b.D = e->positive("D");
+    out = b;
+  } else if (kind == "kirsch") {
+    verification::KirschPlate k;
+    k.a = e->positive("radius");
+    k.sigma0 = e->number("sigma0");
+    out = k;
+  } else {
+    verification::LinearField f;
+    f.u0 = e->vec2("u0");
+    const std::vector<Vec2> g = e->vec2_list("gradient");
+    if (g.size() != 2) e->error("gradient", "expected [[dux/dx, dux/dy], [duy/dx, duy/dy]]");
+    f.G << g[0].x(), g[0].y(), g[1].x(), g[1].y();
+    out = f;
+  }
+  e->finish();
+  return out;
+}
+
+} // namespace
+
+std::vector<geometry::Curve> select_boundary(const geometry::Domain& domain, const BoundarySelector& on,
+                                             const std::string& key_path) {
+  std::vector<geometry::Curve> out;
+  const auto all = domain.boundary();
+  for (const auto& name : on.names) {
+    bool known = false;
+    for (const auto& c : all) known = known || c.name == name;
+    if (!known) {
+      std::string names;
+      for (const auto& c : all)
+        if (names.find(c.name) == std::string::npos) names += (names.empty() ? "" : ", ") + c.name;
+      fail(key_path, ".on: no boundary piece is named '", name, "' (the body's pieces: ", names, ")");
+    }
+  }
+  for (const auto& c : all) {
+    const bool named = on.names.empty() ||
+                       std::find(on.names.begin(), on.names.end(), c.name) != on.names.end();
+    if (!named) continue;
+    if (!on.box) {
+      out.push_back(c);
+      continue;
+    }
+    const double tol = 1e-9 * (domain.bounds().size().maxCoeff());
+    for (const auto& [t0, t1] : geometry::kept_intervals(c, [&](const Vec2& p) { return on.box->contains(p, tol); }))
+      out.push_back(c.piece(t0, t1));
+  }
+  double length = 0.0;
+  for (const auto& c : out) length += c.length();
+  if (out.empty() || length <= 0.0) fail(key_path, ".on: selects no part of the boundary");
+  return out;
+}
+
+ProblemSpec parse_problem(YAML::Node root) {
+  KeyReader r(root, "");
+  ProblemSpec p;
+  p.name = r.text("name");
+  if (p.name.empty() || p.name.find_first_of("/\\ ") != std::string::npos)
+    r.error("name", "expected a non-empty name without spaces or slashes, got '" + p.name + "'");
+  p.description = r.text("description", "");
+  p.units = r.text("units", "");
+  const std::string analysis = r.choice("analysis", {"elastic_static", "model_problem_1d"}, "");
+  p.analysis = analysis == "elastic_static" ? Analysis::ElasticStatic : Analysis::ModelProblem1D;
+
+  if (p.analysis == Analysis::ModelProblem1D) {
+    KeyReader m = r.map("problem_1d");
+    p.model_1d.length = m.positive("length");
+    p.model_1d.sine_amplitude = m.number("sine_amplitude", 1.0);
+    p.model_1d.sine_waves = m.positive("sine_waves", 1.0);
+    p.model_1d.linear = m.number("linear", 0.0);
+    m.finish();
+    const BoundingBox line{{0.0, 0.0}, {p.model_1d.length, 0.0}};
+    p.discretisation = read_discretisation(r, 1, line);
+    p.model_1d.penalty = r.positive("penalty", 1e6 / p.discretisation.spacing);
+    r.finish();
+    return p;
+  }
+
+  p.model = read_model(r, p.thickness);
+  p.material = read_material(r);
+  p.domain = read_geometry(r);
+  p.discretisation = read_discretisation(r, 2, p.domain.bounds());
+  p.exact = read_exact(r);
+  if (r.has("body_force")) p.body_force = r.vec2("body_force");
+  r.allow("body_force");
+  // Default penalty: alpha = 1e6 E / h, stiff enough that the constraint error is ~1e-6 of the
+  // boundary displacement scale, and far from the round-off limit of a direct solve.
+  const double default_alpha = 1e6 * p.material.E / p.discretisation.spacing;
+  for (KeyReader& bc : r.map_list("boundary")) {
+    p.boundary.push_back(read_condition(bc, default_alpha));
+    const BoundaryCondition& c = p.boundary.back();
+    if ((c.value_from_exact || c.traction_from_exact) && !p.exact)
+      bc.error(c.constrains ? "displacement" : "traction", "'exact' needs an 'exact' section in the problem");
+    select_boundary(p.domain, c.on, c.key_path); // rejects selectors that pick nothing
+  }
+  if (p.boundary.empty()) r.error("boundary", "at least one boundary condition is required");
+  bool constrained = false;
+  for (const auto& c : p.boundary) constrained = constrained || c.constrains;
+  if (!constrained) r.error("boundary", "no displacement condition: the body is free to move as a rigid body");
+
+  if (auto out = r.optional_map("output")) {
+    for (KeyReader& l : out->map_list("lines")) {
+      LineSpec s;
+      s.name = l.text("name");
+      s.from = l.vec2("from");
+      s.to = l.vec2("to");
+      s.points = l.integer("points", 51, 2, 1000000);
+      l.finish();
+      p.lines.push_back(s);
+    }
+    out->finish();
+  }
+  r.finish();
+  return p;
+}
+
+ProblemSpec read_problem(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path);
+  MF_REQUIRE(in.good(), path, ": cannot open the problem file");
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::Exception& e) {
+    fail(path, ": not valid YAML: ", e.what());
+  }
+  for (const auto& o : overrides) apply_override(root, o);
+  return parse_problem(root);
+}
+
+} // namespace mf::io

@@ -1,0 +1,90 @@
+#include "meshfree/quadrature/integration_points.hpp"
+#include "meshfree/core/error.hpp"
+#include "meshfree/core/gauss_legendre.hpp"
+#include <cmath>
+
+namespace mf::quadrature {
+
+namespace {
+
+/// Adds the Gauss points of `box` that lie in the body; splits cells the boundary cuts.
+void integrate_cell(const geometry::Domain& domain, const BoundingBox& box, const GaussRule& g,
+                    int levels_left, int cell_id, DomainPoints& out) {
+  const Vec2 half = 0.5 * box.size();
+  const Vec2 mid = box.lo + half;
+  const int n = static_cast<int>(g.points.size());
+  // Sample corners and Gauss points: a mixed verdict means the boundary crosses the cell.
+  int inside = 0, total = 0;
+  for (int j = 0; j <= 1; ++j)
+    for (int i = 0; i <= 1; ++i, ++total)
+      inside += domain.contains(box.lo + Vec2(i * box.size().x(), j * box.size().y())) ? 1 : 0;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i, ++total)
+      inside += domain.contains(mid + Vec2(g.points[i] * half.x(), g.points[j] * half.y())) ? 1 : 0;
+  bool cut = inside > 0 && inside < total;
+  for (const auto& h : domain.holes()) { // a hole may touch the cell between the samples
+    const Vec2 nearest = h.center.cwiseMax(box.lo).cwiseMin(box.hi);
+    const double far = ((h.center - mid).cwiseAbs() + half).norm(); // farthest corner
+    if ((nearest - h.center).norm() < h.radius && far > h.radius) cut = true;
+  }
+  if (cut && levels_left > 0) {
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i) {
+        BoundingBox sub{box.lo + Vec2(i * half.x(), j * half.y()), Vec2::Zero()};
+        sub.hi = sub.lo + half;
+        integrate_cell(domain, sub, g, levels_left - 1, cell_id, out);
+      }
+    return;
+  }
+  if (inside == 0 && !cut) return;
+  const double jac = half.x() * half.y();
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const Vec2 p = mid + Vec2(g.points[i] * half.x(), g.points[j] * half.y());
+      if (!domain.contains(p)) continue;
+      out.x.push_back(p);
+      out.weight.push_back(g.weights[i] * g.weights[j] * jac);
+      out.cell.push_back(cell_id);
+    }
+}
+
+} // namespace
+
+DomainPoints domain_points(const geometry::Domain& domain, double cell_size, int order, int cut_levels) {
+  MF_REQUIRE(cell_size > 0.0, "integration cell size must be positive, got ", cell_size);
+  MF_REQUIRE(cut_levels >= 0 && cut_levels <= 6, "cut-cell levels must be in [0, 6], got ", cut_levels);
+  const GaussRule& g = gauss_legendre(order);
+  const BoundingBox bb = domain.bounds();
+  const int nx = std::max(1, static_cast<int>(std::ceil(bb.size().x() / cell_size - 1e-9)));
+  const int ny = std::max(1, static_cast<int>(std::ceil(bb.size().y() / cell_size - 1e-9)));
+  const Vec2 h(bb.size().x() / nx, bb.size().y() / ny); // cells fit the box exactly
+  DomainPoints out;
+  out.cell_count = nx * ny;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      BoundingBox box{bb.lo + Vec2(i * h.x(), j * h.y()), Vec2::Zero()};
+      box.hi = box.lo + h;
+      integrate_cell(domain, box, g, cut_levels, j * nx + i, out);
+    }
+  return out;
+}
+
+BoundaryPoints boundary_points(const std::vector<geometry::Curve>& pieces, double part_length, int order) {
+  MF_REQUIRE(part_length > 0.0, "boundary part length must be positive, got ", part_length);
+  const GaussRule& g = gauss_legendre(order);
+  BoundaryPoints out;
+  for (const auto& c : pieces) {
+    const int parts = std::max(1, static_cast<int>(std::ceil(c.length() / part_length - 1e-9)));
+    const double dt = 1.0 / parts;
+    for (int p = 0; p < parts; ++p)
+      for (std::size_t q = 0; q < g.points.size(); ++q) {
+        const double t = (p + 0.5 * (g.points[q] + 1.0)) * dt;
+        out.x.push_back(c.point(t));
+        out.weight.push_back(g.weights[q] * 0.5 * dt * c.speed());
+        out.normal.push_back(c.outward_normal(t));
+      }
+  }
+  return out;
+}
+
+} // namespace mf::quadrature
