@@ -116,11 +116,12 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec, const solvers::P
   std::vector<ConditionPoints> bcs(spec.boundary.size());
   {
     PhaseTimer::Scope scope(timer, "quadrature");
-    dp = quadrature::domain_points(spec.domain, disc.cell_size, disc.order, disc.cut_levels);
+    const quadrature::CellSizing sizing{disc.spacing, disc.refinement, disc.cell_size / disc.spacing};
+    dp = quadrature::domain_points(spec.domain, disc.cell_size, disc.order, disc.cut_levels, sizing);
     for (std::size_t b = 0; b < spec.boundary.size(); ++b) {
       bcs[b].bc = &spec.boundary[b];
       const auto pieces = io::select_boundary(spec.domain, spec.boundary[b].on, spec.boundary[b].key_path);
-      bcs[b].points = quadrature::boundary_points(pieces, disc.cell_size, disc.boundary_order);
+      bcs[b].points = quadrature::boundary_points(pieces, disc.cell_size, disc.boundary_order, sizing);
       R.boundary_points += static_cast<int>(bcs[b].points.x.size());
     }
   }

@@ -161,7 +161,7 @@ std::vector<std::pair<double, double>> kept_intervals(const Curve& curve,
 
 std::vector<Curve> Domain::boundary() const {
   std::vector<Curve> curves;
-  const double tol = 1e-9;
+  const double tol = 1e-14;
   auto outside_holes = [&](const Vec2& p, const Circle* except) {
     for (const auto& h : holes_)
       if (&h != except && (p - h.center).norm() < h.radius * (1.0 - tol)) return false;

@@ -14,6 +14,20 @@ double local_spacing(const Vec2& p, double spacing, const std::vector<Refinement
   return h;
 }
 
+std::vector<Curve> split_at_refinements(const Curve& c, const std::vector<Refinement>& refinements) {
+  std::vector<double> cuts{0.0, 1.0};
+  for (const auto& r : refinements)
+    for (const auto& [t0, t1] : kept_intervals(c, [&](const Vec2& p) { return r.box.contains(p); })) {
+      cuts.push_back(t0);
+      cuts.push_back(t1);
+    }
+  std::sort(cuts.begin(), cuts.end());
+  std::vector<Curve> parts;
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i)
+    if (cuts[i + 1] - cuts[i] > 1e-12) parts.push_back(c.piece(cuts[i], cuts[i + 1]));
+  return parts;
+}
+
 namespace {
 
 /// Appends lattice points of spacing h anchored at `anchor`, restricted to `box`, that `keep`.
@@ -48,14 +62,15 @@ NodeCloud generate_nodes(const Domain& domain, double spacing,
   // 1. Boundary nodes: each piece divided evenly at about the local spacing.
   std::vector<Vec2> bnd;
   std::vector<double> bnd_h;
-  for (const Curve& c : domain.boundary()) {
+  for (const Curve& whole : domain.boundary())
+    for (const Curve& c : split_at_refinements(whole, refinements)) {
     const double h = local_spacing(c.point(0.5), spacing, refinements);
     const int n = std::max(1, static_cast<int>(std::ceil(c.length() / h - 1e-9)));
     for (int k = 0; k <= n; ++k) {
       bnd.push_back(c.point(static_cast<double>(k) / n));
       bnd_h.push_back(h);
     }
-  }
+    }
 
   // 2. Interior lattice: base spacing outside refinement boxes, fine spacing inside them.
   std::vector<Vec2> lat;

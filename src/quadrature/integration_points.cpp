@@ -9,9 +9,18 @@ namespace {
 
 /// Adds the Gauss points of `box` that lie in the body; splits cells the boundary cuts.
 void integrate_cell(const geometry::Domain& domain, const BoundingBox& box, const GaussRule& g,
-                    int levels_left, int cell_id, DomainPoints& out) {
+                    int levels_left, int cell_id, const CellSizing& sizing, DomainPoints& out) {
   const Vec2 half = 0.5 * box.size();
   const Vec2 mid = box.lo + half;
+  if (sizing.spacing > 0.0 && box.size().maxCoeff() > sizing.size_at(box) * (1.0 + 1e-9)) {
+    for (int j = 0; j < 2; ++j) // refined nodes need refined integration
+      for (int i = 0; i < 2; ++i) {
+        BoundingBox sub{box.lo + Vec2(i * half.x(), j * half.y()), Vec2::Zero()};
+        sub.hi = sub.lo + half;
+        integrate_cell(domain, sub, g, levels_left, cell_id, sizing, out);
+      }
+    return;
+  }
   const int n = static_cast<int>(g.points.size());
   // Sample corners and Gauss points: a mixed verdict means the boundary crosses the cell.
   int inside = 0, total = 0;
@@ -32,7 +41,7 @@ void integrate_cell(const geometry::Domain& domain, const BoundingBox& box, cons
       for (int i = 0; i < 2; ++i) {
         BoundingBox sub{box.lo + Vec2(i * half.x(), j * half.y()), Vec2::Zero()};
         sub.hi = sub.lo + half;
-        integrate_cell(domain, sub, g, levels_left - 1, cell_id, out);
+        integrate_cell(domain, sub, g, levels_left - 1, cell_id, sizing, out);
       }
     return;
   }
@@ -50,7 +59,17 @@ void integrate_cell(const geometry::Domain& domain, const BoundingBox& box, cons
 
 } // namespace
 
-DomainPoints domain_points(const geometry::Domain& domain, double cell_size, int order, int cut_levels) {
+double CellSizing::size_at(const BoundingBox& box) const {
+  double h = spacing;
+  for (const auto& r : refinement)
+    if (box.lo.x() < r.box.hi.x() && box.hi.x() > r.box.lo.x() && box.lo.y() < r.box.hi.y() &&
+        box.hi.y() > r.box.lo.y())
+      h = std::min(h, r.spacing);
+  return ratio * h;
+}
+
+DomainPoints domain_points(const geometry::Domain& domain, double cell_size, int order, int cut_levels,
+                           const CellSizing& sizing) {
   MF_REQUIRE(cell_size > 0.0, "integration cell size must be positive, got ", cell_size);
   MF_REQUIRE(cut_levels >= 0 && cut_levels <= 6, "cut-cell levels must be in [0, 6], got ", cut_levels);
   const GaussRule& g = gauss_legendre(order);
@@ -64,26 +83,33 @@ DomainPoints domain_points(const geometry::Domain& domain, double cell_size, int
     for (int i = 0; i < nx; ++i) {
       BoundingBox box{bb.lo + Vec2(i * h.x(), j * h.y()), Vec2::Zero()};
       box.hi = box.lo + h;
-      integrate_cell(domain, box, g, cut_levels, j * nx + i, out);
+      integrate_cell(domain, box, g, cut_levels, j * nx + i, sizing, out);
     }
   return out;
 }
 
-BoundaryPoints boundary_points(const std::vector<geometry::Curve>& pieces, double part_length, int order) {
+BoundaryPoints boundary_points(const std::vector<geometry::Curve>& pieces, double part_length, int order,
+                               const CellSizing& sizing) {
   MF_REQUIRE(part_length > 0.0, "boundary part length must be positive, got ", part_length);
   const GaussRule& g = gauss_legendre(order);
   BoundaryPoints out;
-  for (const auto& c : pieces) {
-    const int parts = std::max(1, static_cast<int>(std::ceil(c.length() / part_length - 1e-9)));
-    const double dt = 1.0 / parts;
-    for (int p = 0; p < parts; ++p)
-      for (std::size_t q = 0; q < g.points.size(); ++q) {
-        const double t = (p + 0.5 * (g.points[q] + 1.0)) * dt;
-        out.x.push_back(c.point(t));
-        out.weight.push_back(g.weights[q] * 0.5 * dt * c.speed());
-        out.normal.push_back(c.outward_normal(t));
+  for (const auto& whole : pieces)
+    for (const auto& c : geometry::split_at_refinements(whole, sizing.refinement)) {
+      double length = part_length;
+      if (sizing.spacing > 0.0) {
+        const Vec2 m = c.point(0.5);
+        length = std::min(length, sizing.size_at({m, m}));
       }
-  }
+      const int parts = std::max(1, static_cast<int>(std::ceil(c.length() / length - 1e-9)));
+      const double dt = 1.0 / parts;
+      for (int p = 0; p < parts; ++p)
+        for (std::size_t q = 0; q < g.points.size(); ++q) {
+          const double t = (p + 0.5 * (g.points[q] + 1.0)) * dt;
+          out.x.push_back(c.point(t));
+          out.weight.push_back(g.weights[q] * 0.5 * dt * c.speed());
+          out.normal.push_back(c.outward_normal(t));
+        }
+    }
   return out;
 }
 

@@ -24,6 +24,10 @@ struct NodeCloud {
 NodeCloud generate_nodes(const Domain& domain, double spacing,
                          const std::vector<Refinement>& refinements);
 
+/// A boundary piece cut where it enters or leaves a refinement box, so that each part has one
+/// local spacing.
+std::vector<Curve> split_at_refinements(const Curve& c, const std::vector<Refinement>& refinements);
+
 /// Local spacing at p: the finest refinement box that contains p, else the base spacing.
 double local_spacing(const Vec2& p, double spacing, const std::vector<Refinement>& refinements);
 

@@ -4,6 +4,7 @@
 // pieces for tractions and penalty constraints.
 #include "meshfree/core/types.hpp"
 #include "meshfree/geometry/domain.hpp"
+#include "meshfree/geometry/node_generation.hpp"
 #include <vector>
 
 namespace mf::quadrature {
@@ -21,12 +22,25 @@ struct BoundaryPoints {
   std::vector<Vec2> normal;   // outward unit normal
 };
 
-/// Background cells of size `cell_size` anchored at the lower-left corner of the body's bounding
-/// box, `order` x `order` Gauss points per cell. A cell cut by the boundary is split into four,
-/// `cut_levels` times; at the finest level only the points inside the body are kept.
-DomainPoints domain_points(const geometry::Domain& domain, double cell_size, int order, int cut_levels);
+/// How fine the integration must be where the nodes are refined: cells (and boundary parts)
+/// are at most `ratio` times the local node spacing.
+struct CellSizing {
+  double spacing = 0.0; // base node spacing
+  std::vector<geometry::Refinement> refinement;
+  double ratio = 1.0;   // cell size / node spacing
+  double size_at(const BoundingBox& box) const;
+};
 
-/// Gauss points of `order` on each of `pieces` split into parts of length about `part_length`.
-BoundaryPoints boundary_points(const std::vector<geometry::Curve>& pieces, double part_length, int order);
+/// Background cells of size `cell_size` anchored at the lower-left corner of the body's bounding
+/// box, `order` x `order` Gauss points per cell. A cell that overlaps a refinement box is split
+/// into four until it is no larger than `sizing` asks; a cell cut by the boundary is split into
+/// four `cut_levels` more times, and at the finest level only the points inside the body are kept.
+DomainPoints domain_points(const geometry::Domain& domain, double cell_size, int order, int cut_levels,
+                           const CellSizing& sizing = {});
+
+/// Gauss points of `order` on each of `pieces` split into parts of length about `part_length`
+/// (shorter where `sizing` asks for it).
+BoundaryPoints boundary_points(const std::vector<geometry::Curve>& pieces, double part_length, int order,
+                               const CellSizing& sizing = {});
 
 } // namespace mf::quadrature

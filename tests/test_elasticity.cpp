@@ -1,0 +1,101 @@
+// Galerkin elasticity against exact solutions: patch test, convergence rates on Timoshenko's
+// beam and Kirsch's plate, equilibrium of reactions, and the 1D model problem.
+#include "meshfree/app/elastic_static.hpp"
+#include "meshfree/app/model_problem_1d.hpp"
+#include "test_support.hpp"
+#include <catch2/catch.hpp>
+#include <iostream>
+
+using namespace mf;
+
+namespace {
+
+struct Study {
+  std::vector<double> h, l2, energy;
+};
+
+Study study(const std::string& problem, const std::vector<double>& spacings,
+            const std::vector<std::string>& extra = {}) {
+  Study s;
+  for (double h : spacings) {
+    std::vector<std::string> o = extra;
+    o.push_back("discretisation.spacing=" + std::to_string(h));
+    const auto r = app::solve_elastic_static(load_problem(problem, o), test_session());
+    s.h.push_back(h);
+    s.l2.push_back(r.error_l2);
+    s.energy.push_back(r.error_energy);
+    std::cout << problem << " h=" << h << " nodes=" << r.nodes << " e_L2=" << r.error_l2
+              << " e_energy=" << r.error_energy << "\n";
+  }
+  return s;
+}
+
+} // namespace
+
+TEST_CASE("patch test: a linear field is reproduced and the error falls with the Gauss order", "[elasticity]") {
+  std::vector<double> energy;
+  for (int order : {2, 4, 6, 8}) {
+    const auto r = app::solve_elastic_static(
+        load_problem("patch_test", {"discretisation.quadrature.order=" + std::to_string(order)}), test_session());
+    energy.push_back(r.error_energy);
+    CHECK(r.error_l2 < 1e-4);
+  }
+  for (std::size_t i = 1; i < energy.size(); ++i) CHECK(energy[i] < energy[i - 1]);
+  CHECK(energy.back() < 5e-6);
+}
+
+TEST_CASE("Timoshenko beam: energy error falls at least as h^0.9, L2 as h^1.8", "[elasticity][convergence]") {
+  const Study s = study("cantilever_timoshenko", {3.0, 1.5, 0.75, 0.375});
+  const double re = convergence_rate(s.h, s.energy), rl = convergence_rate(s.h, s.l2);
+  std::cout << "Timoshenko rates: energy " << re << ", L2 " << rl << "\n";
+  CHECK(re >= 0.9);
+  CHECK(rl >= 1.8);
+  CHECK(s.energy.back() < 0.01);
+}
+
+TEST_CASE("Kirsch plate with a hole: energy error falls at least as h^0.9, L2 as h^1.8", "[elasticity][convergence]") {
+  const Study s = study("plate_hole_kirsch", {0.5, 0.25, 0.125, 0.0625});
+  const double re = convergence_rate(s.h, s.energy), rl = convergence_rate(s.h, s.l2);
+  std::cout << "Kirsch rates: energy " << re << ", L2 " << rl << "\n";
+  CHECK(re >= 0.9);
+  CHECK(rl >= 1.8);
+  CHECK(s.energy.back() < 0.01);
+}
+
+TEST_CASE("quadratic basis: Timoshenko energy error converges faster than with the linear basis", "[elasticity][convergence]") {
+  const Study s = study("cantilever_timoshenko", {3.0, 1.5, 0.75}, {"discretisation.basis=quadratic", "discretisation.dilation=3.0"});
+  const double re = convergence_rate(s.h, s.energy);
+  std::cout << "Timoshenko quadratic-basis energy rate " << re << "\n";
+  CHECK(re >= 1.8);
+}
+
+TEST_CASE("MLS (EFG) shape functions give the same answer as RK on a uniform lattice", "[elasticity]") {
+  const auto rk = app::solve_elastic_static(load_problem("cantilever_timoshenko"), test_session());
+  const auto mls = app::solve_elastic_static(load_problem("cantilever_timoshenko", {"discretisation.approximation=mls"}), test_session());
+  CHECK(mls.error_energy == Approx(rk.error_energy).epsilon(1e-3));
+}
+
+TEST_CASE("plate in tension: the clamp reaction balances the applied load", "[elasticity]") {
+  const auto r = app::solve_elastic_static(load_problem("plate_tension"), test_session());
+  REQUIRE(r.boundary.size() == 2);
+  CHECK(r.boundary[1].force.y() == Approx(1000.0).epsilon(1e-12));
+  CHECK(r.boundary[0].force.y() == Approx(-1000.0).epsilon(1e-8));
+  CHECK(std::abs(r.boundary[0].force.x()) < 1e-8);
+  CHECK(r.violation_relative < 1e-5);
+}
+
+TEST_CASE("1D model problem y'' + f = 0: L2 error falls as h^2, H1 as h", "[elasticity][convergence]") {
+  std::vector<double> h, l2, h1;
+  for (double s : {0.1, 0.05, 0.025, 0.0125}) {
+    const auto spec = load_problem("ode_1d", {"discretisation.spacing=" + std::to_string(s)});
+    const auto r = app::solve_model_problem_1d(spec);
+    h.push_back(s);
+    l2.push_back(r.error_l2);
+    h1.push_back(r.error_h1);
+  }
+  const double rl = convergence_rate(h, l2), rh = convergence_rate(h, h1);
+  std::cout << "1D model problem rates: L2 " << rl << ", H1 " << rh << "\n";
+  CHECK(rl >= 1.8);
+  CHECK(rh >= 0.9);
+  CHECK(l2.back() < 1e-4);
+}

@@ -1,0 +1,114 @@
+// Geometry, node generation, neighbour search and integration points.
+#include "meshfree/core/gauss_legendre.hpp"
+#include "meshfree/geometry/node_generation.hpp"
+#include "meshfree/neighbors/point_grid.hpp"
+#include "meshfree/quadrature/integration_points.hpp"
+#include <catch2/catch.hpp>
+#include <cmath>
+
+using namespace mf;
+
+namespace {
+geometry::Domain quarter_plate_with_hole() {
+  geometry::Domain d = geometry::Domain::rectangle({0, 0}, {5, 5});
+  d.add_hole({{0, 0}, 1.0, "hole"});
+  return d;
+}
+double length_of(const std::vector<geometry::Curve>& cs, const std::string& name) {
+  double l = 0.0;
+  for (const auto& c : cs)
+    if (c.name == name) l += c.length();
+  return l;
+}
+} // namespace
+
+TEST_CASE("Gauss-Legendre rules integrate polynomials of degree 2n-1 exactly", "[quadrature]") {
+  for (int n = 1; n <= 10; ++n) {
+    const GaussRule& g = gauss_legendre(n);
+    for (int p = 0; p <= 2 * n - 1; ++p) {
+      double s = 0.0;
+      for (int q = 0; q < n; ++q) s += g.weights[q] * std::pow(g.points[q], p);
+      const double exact = p % 2 ? 0.0 : 2.0 / (p + 1);
+      CHECK(std::abs(s - exact) < 1e-14);
+    }
+  }
+}
+
+TEST_CASE("boundary of a plate with a hole: clipped edges and the arc inside the plate", "[geometry]") {
+  const auto b = quarter_plate_with_hole().boundary();
+  CHECK(length_of(b, "left") == Approx(4.0).epsilon(1e-12));
+  CHECK(length_of(b, "bottom") == Approx(4.0).epsilon(1e-12));
+  CHECK(length_of(b, "right") == Approx(5.0).epsilon(1e-12));
+  CHECK(length_of(b, "hole") == Approx(M_PI / 2).epsilon(1e-12));
+  for (const auto& c : b)
+    if (c.name == "hole") { // outward normal of the body points into the hole
+      const Vec2 p = c.point(0.5);
+      CHECK((c.outward_normal(0.5) + p.normalized()).norm() < 1e-12);
+    }
+}
+
+TEST_CASE("polygon orientation is normalised and edge names follow their edges", "[geometry]") {
+  const auto d = geometry::Domain::polygon({{0, 0}, {0, 1}, {2, 1}, {2, 0}}, {"west", "north", "east", "south"});
+  for (const auto& c : d.boundary()) {
+    const Vec2 mid = c.point(0.5), n = c.outward_normal(0.5);
+    if (c.name == "west") CHECK((mid - Vec2(0, 0.5)).norm() < 1e-12);
+    if (c.name == "west") CHECK((n - Vec2(-1, 0)).norm() < 1e-12);
+    if (c.name == "north") CHECK((n - Vec2(0, 1)).norm() < 1e-12);
+  }
+}
+
+TEST_CASE("node generation: lattice, boundary nodes, no near-duplicates, local refinement", "[geometry]") {
+  const auto rect = geometry::Domain::rectangle({0, 0}, {2, 1});
+  CHECK(geometry::generate_nodes(rect, 0.1, {}).x.size() == 21u * 11u);
+
+  const auto d = quarter_plate_with_hole();
+  const auto cloud = geometry::generate_nodes(d, 0.25, {{{{0, 0}, {2, 2}}, 0.125}});
+  double min_gap = 1e300;
+  const neighbors::PointGrid grid(cloud.x, 0.25);
+  for (std::size_t i = 0; i < cloud.x.size(); ++i) {
+    CHECK(d.contains(cloud.x[i], 1e-9));
+    grid.for_each_within(cloud.x[i], 0.25, [&](int j) {
+      if (j != static_cast<int>(i)) min_gap = std::min(min_gap, (cloud.x[i] - cloud.x[j]).norm() / cloud.spacing[i]);
+    });
+  }
+  CHECK(min_gap > 0.3);
+  int fine = 0;
+  for (double h : cloud.spacing) fine += h == 0.125;
+  CHECK(fine > 150); // the refined 2 x 2 box minus the hole holds about 16 x 16 - 50 fine nodes
+}
+
+TEST_CASE("cell-list neighbour search finds exactly the points a brute-force search finds", "[neighbors]") {
+  std::vector<Vec2> pts;
+  for (int i = 0; i < 2000; ++i) pts.emplace_back(std::fmod(i * 0.618034, 1.0), std::fmod(i * 0.414214, 1.0) * 0.5);
+  const neighbors::PointGrid grid(pts, 0.05);
+  for (const Vec2 x : {Vec2(0.5, 0.25), Vec2(0.0, 0.0), Vec2(1.02, 0.3)}) {
+    std::vector<int> found, brute;
+    grid.for_each_within(x, 0.07, [&](int i) { found.push_back(i); });
+    for (int i = 0; i < 2000; ++i)
+      if ((pts[i] - x).norm() <= 0.07) brute.push_back(i);
+    std::sort(found.begin(), found.end());
+    CHECK(found == brute);
+  }
+}
+
+TEST_CASE("integration points cover the area of a plate with a hole; cut-cell refinement converges", "[quadrature]") {
+  const auto d = quarter_plate_with_hole();
+  const double exact = 25.0 - M_PI / 4.0;
+  double previous = 1e300;
+  // Points outside the body are dropped, so the error is that of the area the finest cut cells
+  // straddle: it halves with each level on average (with some cancellation at odd levels).
+  for (int levels : {0, 2, 4}) {
+    const auto p = quadrature::domain_points(d, 0.25, 3, levels);
+    double area = 0.0;
+    for (double w : p.weight) area += w;
+    const double err = std::abs(area - exact);
+    INFO("cut levels " << levels << ": area error " << err);
+    CHECK(err < previous);
+    previous = err;
+  }
+  CHECK(previous < 2e-4);
+  const auto b = quadrature::boundary_points(d.boundary(), 0.25, 3);
+  double perimeter = 0.0;
+  for (double w : b.weight) perimeter += w;
+  CHECK(perimeter == Approx(4 + 4 + 5 + 5 + M_PI / 2).epsilon(1e-12));
+}

@@ -1,0 +1,76 @@
+// Input validation: each bad input is one error that names the key path.
+#include "meshfree/io/key_reader.hpp"
+#include "meshfree/io/problem_spec.hpp"
+#include <catch2/catch.hpp>
+
+using namespace mf;
+
+namespace {
+const char* kGood = R"(
+name: t
+analysis: elastic_static
+model: {type: plane_stress, thickness: 1}
+material: {E: 2.0e5, nu: 0.3}
+geometry:
+  rectangle: {size: [2, 1]}
+discretisation: {spacing: 0.25}
+boundary:
+  - {name: clamp, on: left, displacement: {x: 0, y: 0}}
+  - {name: pull, on: right, traction: [1, 0]}
+)";
+
+std::string error_of(const std::string& assignment) {
+  YAML::Node root = YAML::Load(kGood);
+  try {
+    if (!assignment.empty()) io::apply_override(root, assignment);
+    io::parse_problem(root);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+} // namespace
+
+TEST_CASE("a valid problem parses with the documented defaults", "[input]") {
+  const io::ProblemSpec p = io::parse_problem(YAML::Load(kGood));
+  CHECK(p.discretisation.dilation.x() == 2.0);
+  CHECK(p.discretisation.order == 3);
+  CHECK(p.discretisation.cell_size == 0.25);
+  CHECK(p.boundary.size() == 2);
+  CHECK(p.boundary[0].penalty == Approx(1e6 * 2.0e5 / 0.25));
+  CHECK(p.boundary[0].mask == Vec2(1, 1));
+}
+
+TEST_CASE("bad inputs are rejected with the key path and the value", "[input]") {
+  CHECK(error_of("material.E=-2e5") == "material.E: expected a positive number, got -200000");
+  CHECK(error_of("material.E=abc") == "material.E: expected a number, got abc");
+  CHECK(error_of("discretisation.spacing=0") == "discretisation.spacing: expected a positive number, got 0");
+  CHECK_THAT(error_of("discretisation.spcing=0.1"), Catch::StartsWith("discretisation.spcing: unknown key"));
+  CHECK_THAT(error_of("discretisation.window=bspline"),
+             Catch::Contains("discretisation.window: expected one of [cubic_spline, quartic_spline, gaussian], got 'bspline'"));
+  CHECK(error_of("boundary.0.on=north") == "boundary[0].on: no boundary piece is named 'north' (the body's pieces: bottom, right, top, left)");
+  CHECK(error_of("boundary.1.on={edge: right, box: [[5, 5], [6, 6]]}") == "boundary[1].on: selects no part of the boundary");
+  CHECK(error_of("model.type=shell") == "model.type: expected one of [plane_stress, plane_strain], got 'shell'");
+  CHECK(error_of("geometry.rectangle.size=[1]") == "geometry.rectangle.size: expected a pair [a, b], got [1]");
+  CHECK_THAT(error_of("material.nu=0.5"), Catch::StartsWith("material.nu: expected a Poisson's ratio in (-1, 0.5)"));
+  CHECK(error_of("boundary.0.displacement={}") == "boundary[0].displacement: constrain at least one of x, y (or say 'exact')");
+}
+
+TEST_CASE("missing required values and missing constraints are errors", "[input]") {
+  YAML::Node root = YAML::Load(kGood);
+  root["material"].remove("E");
+  CHECK_THROWS_WITH(io::parse_problem(root), "material.E: required value is missing");
+  YAML::Node free = YAML::Load(kGood);
+  free["boundary"] = YAML::Load("[{name: pull, on: right, traction: [1, 0]}]");
+  CHECK_THROWS_WITH(io::parse_problem(free), Catch::Contains("boundary: no displacement condition"));
+}
+
+TEST_CASE("--set overrides reach nested maps and list items", "[input]") {
+  YAML::Node root = YAML::Load(kGood);
+  io::apply_override(root, "discretisation.spacing=0.125");
+  io::apply_override(root, "boundary.1.traction=[2, 0]");
+  const io::ProblemSpec p = io::parse_problem(root);
+  CHECK(p.discretisation.spacing == 0.125);
+  CHECK(p.boundary[1].traction == Vec2(2, 0));
+  CHECK_THROWS_WITH(io::apply_override(root, "boundary.7.name=x"), Catch::Contains("index 7 is out of range"));
+}
