@@ -65,7 +65,7 @@ TEST_CASE("missing required values and missing constraints are errors", "[input]
   CHECK_THROWS_WITH(io::parse_problem(free), Catch::Contains("boundary: no displacement condition"));
 }
 
-TEST_CASE("--set overrides reach nested maps and list items", "[input]") {
+TEST_CASE("command-line overrides reach nested maps and list items", "[input]") {
   YAML::Node root = YAML::Load(kGood);
   io::apply_override(root, "discretisation.spacing=0.125");
   io::apply_override(root, "boundary.1.traction=[2, 0]");

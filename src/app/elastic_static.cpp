@@ -116,7 +116,8 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec, const solvers::P
   std::vector<ConditionPoints> bcs(spec.boundary.size());
   {
     PhaseTimer::Scope scope(timer, "quadrature");
-    const quadrature::CellSizing sizing{disc.spacing, disc.refinement, disc.cell_size / disc.spacing};
+    const quadrature::CellSizing sizing{disc.spacing, disc.refinement, disc.cell_size / disc.spacing,
+                                        disc.dilation.maxCoeff()};
     dp = quadrature::domain_points(spec.domain, disc.cell_size, disc.order, disc.cut_levels, sizing);
     for (std::size_t b = 0; b < spec.boundary.size(); ++b) {
       bcs[b].bc = &spec.boundary[b];

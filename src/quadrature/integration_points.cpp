@@ -61,10 +61,12 @@ void integrate_cell(const geometry::Domain& domain, const BoundingBox& box, cons
 
 double CellSizing::size_at(const BoundingBox& box) const {
   double h = spacing;
-  for (const auto& r : refinement)
-    if (box.lo.x() < r.box.hi.x() && box.hi.x() > r.box.lo.x() && box.lo.y() < r.box.hi.y() &&
-        box.hi.y() > r.box.lo.y())
+  for (const auto& r : refinement) {
+    const double m = reach * r.spacing;
+    if (box.lo.x() < r.box.hi.x() + m && box.hi.x() > r.box.lo.x() - m &&
+        box.lo.y() < r.box.hi.y() + m && box.hi.y() > r.box.lo.y() - m)
       h = std::min(h, r.spacing);
+  }
   return ratio * h;
 }
 

@@ -28,6 +28,9 @@ struct CellSizing {
   double spacing = 0.0; // base node spacing
   std::vector<geometry::Refinement> refinement;
   double ratio = 1.0;   // cell size / node spacing
+  /// Support radius / spacing: the supports of refined nodes reach this many fine spacings
+  /// out of their box, and the cells there must resolve them too.
+  double reach = 0.0;
   double size_at(const BoundingBox& box) const;
 };
 

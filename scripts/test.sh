@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# Set-up and the whole test suite: installs what is missing, builds (Release), runs ctest.
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+"$ROOT/scripts/setup.sh"
+cd "$ROOT/build"
+ctest --output-on-failure --timeout 900 "$@"

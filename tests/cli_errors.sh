@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Bad input: one clear message naming the key, a non-zero exit, and no result files left.
+set -u
+MF="$1"; ROOT="$2"
+WORK="$(mktemp -d)"; trap 'rm -rf "$WORK"' EXIT
+fails=0
+expect_error() { # expect_error "message fragment" args...
+  local want="$1"; shift
+  local out="$WORK/out"
+  rm -rf "$out"
+  msg="$("$MF" run "$@" --out "$out" 2>&1 >/dev/null)"; rc=$?
+  if [ $rc -eq 0 ]; then echo "FAIL (exit 0): $*"; fails=$((fails+1)); return; fi
+  if ! grep -qF -- "$want" <<<"$msg"; then echo "FAIL (message '$msg' lacks '$want'): $*"; fails=$((fails+1)); return; fi
+  if [ -n "$(ls -A "$out" 2>/dev/null)" ]; then echo "FAIL (left files in $out): $*"; fails=$((fails+1)); return; fi
+  echo "ok: $want"
+}
+P="$ROOT/problems/plate_tension.yaml"
+expect_error "discretisation.spacing: expected a positive number, got -0.1" "$P" --set discretisation.spacing=-0.1
+expect_error "material.E: expected a number, got steel" "$P" --set material.E=steel
+expect_error "discretisation.colour: unknown key" "$P" --set discretisation.colour=red
+expect_error "boundary[0].on: selects no part of the boundary" "$P" --set 'boundary.0.on={edge: bottom, box: [[5, 5], [6, 6]]}'
+expect_error "boundary[1].on: no boundary piece is named 'roof'" "$P" --set boundary.1.on=roof
+expect_error "cannot open the problem file" "$WORK/missing.yaml"
+printf 'name: x\nanalysis: elastic_static\n' > "$WORK/incomplete.yaml"
+expect_error "model: required value is missing" "$WORK/incomplete.yaml"
+# usage errors
+"$MF" 2>/dev/null; [ $? -eq 2 ] && echo "ok: no command -> exit 2" || { echo "FAIL: no command"; fails=$((fails+1)); }
+"$MF" check "$P" >/dev/null || { echo "FAIL: check on a good problem"; fails=$((fails+1)); }
+[ $fails -eq 0 ] && echo "all bad inputs rejected" || exit 1
