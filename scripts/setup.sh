@@ -4,8 +4,9 @@
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
+# libopenblas0-pthread replaces the reference BLAS under MUMPS (5x faster factorisations).
 PACKAGES=(build-essential cmake pkg-config petsc-dev libhdf5-openmpi-dev libeigen3-dev
-          libsuitesparse-dev catch2 libyaml-cpp-dev libnanoflann-dev openmpi-bin
+          libsuitesparse-dev libopenblas0-pthread catch2 libyaml-cpp-dev libnanoflann-dev openmpi-bin
           calculix-ccx python3 python3-numpy python3-matplotlib python3-h5py)
 missing=()
 for p in "${PACKAGES[@]}"; do

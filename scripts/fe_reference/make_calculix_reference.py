@@ -45,7 +45,7 @@ Method (details and results: reference/calculix/README.md)
   O(h) there (printed as a diagnostic, 1/20..1/80).  Its reference uses
   base spacing h0 = 1/20, 1/40, 1/80 plus tensor-product grading towards
   x = 1 and y = 0: inside a distance Lg = 0.25 extra mesh lines at
-  1 +- Lg (k/N)^4 and Lg (k/N)^4 (N = ceil(4 Lg / h0)), with all lines at
+  1 +- Lg (k/N)^4 and Lg (k/N)^4 (k = 2..N-1, N = ceil(4 Lg / h0)), with all lines at
   multiples of h0 and of 1/40 kept.
 * Cross-check (numpy): an independent 2-D plane-stress CPS8 code (3x3 Gauss,
   consistent 1/6-4/6-1/6 edge loads) solved on the coarsest reference mesh.
@@ -86,11 +86,14 @@ REPO_ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file_
 OUT_ROOT = os.path.join(REPO_ROOT, "reference", "calculix")
 
 PROBLEMS = [
+    # levels: 1/h of the reference sequence (uniform, or base size h0 of the
+    # graded meshes when `grading` is given); the last level is the reference.
     dict(name="plate_tension", width=1, clamp_xmax=1.0,
-         levels=[20, 40, 80, 160], grading=None, uniform_diag_levels=[]),
+         levels=[20, 40, 80, 160], grading=None, uniform_diag_levels=[],
+         graded_diag=dict(n=40, x=[0.0, 1.0], y=[0.0])),
     dict(name="plate_asymmetric", width=2, clamp_xmax=1.0,
          levels=[20, 40, 80], grading=dict(x=[1.0], y=[0.0]),
-         uniform_diag_levels=[20, 40, 80]),
+         uniform_diag_levels=[20, 40, 80], graded_diag=None),
 ]
 
 
@@ -104,7 +107,7 @@ def uniform_lines(length, n):
 def graded_lines(length, n, singular, lg=GRADE_LG, beta=GRADE_BETA):
     """Lines at multiples of 1/n (and of 1/40) plus, within distance lg of
     each coordinate in `singular`, the points s +- lg (k/N)^beta,
-    N = ceil(beta lg n).  The graded point nearest to each kept (protected)
+    k = 2..N-1, N = ceil(beta lg n).  The graded point nearest to each kept (protected)
     line is replaced by that line, so no slivers are created."""
     base = uniform_lines(length, n)
     protected = sorted(set(base) | set(uniform_lines(length, SAMPLE_DEN)))
@@ -112,7 +115,10 @@ def graded_lines(length, n, singular, lg=GRADE_LG, beta=GRADE_BETA):
     nn = int(math.ceil(beta * lg * n - 1e-9))
     for s in singular:
         for sgn in (-1.0, 1.0):
-            g = [s + sgn * lg * (k / nn) ** beta for k in range(1, nn)]
+            # k = 1 is skipped: it would make the first two cells differ by
+            # a factor 2^beta - 1 = 15 (from k = 2 on adjacent cells differ
+            # by at most ~4)
+            g = [s + sgn * lg * (k / nn) ** beta for k in range(2, nn)]
             g = [p for p in g if 0.0 < p < length]
             if not g:
                 continue
@@ -206,11 +212,12 @@ class Mesh:
         return min(d)
 
 
-def make_mesh(prob, n, graded):
+def make_mesh(prob, n, graded, grading=None):
     w = prob["width"]
-    if graded and prob["grading"]:
-        xl = graded_lines(w, n, prob["grading"]["x"])
-        yl = graded_lines(1, n, prob["grading"]["y"])
+    grading = grading or prob["grading"]
+    if graded and grading:
+        xl = graded_lines(w, n, grading["x"])
+        yl = graded_lines(1, n, grading["y"])
         label = "h0=1/%d graded" % n
     else:
         xl, yl = uniform_lines(w, n), uniform_lines(1, n)
@@ -221,6 +228,13 @@ def make_mesh(prob, n, graded):
 # --------------------------------------------------------------------------
 # CalculiX deck
 # --------------------------------------------------------------------------
+def fmt_coord(v):
+    """Shortest round-trip repr; CalculiX fields hold at most 20 characters,
+    longer ones are rounded to 14 significant digits."""
+    s = repr(float(v))
+    return s if len(s) <= 20 else "%.13e" % v
+
+
 def write_list(f, ids, per_line=16):
     for k in range(0, len(ids), per_line):
         f.write(", ".join(str(v) for v in ids[k:k + per_line]) + ",\n")
@@ -256,7 +270,7 @@ def write_deck(path, prob, mesh, material="ortho", thickness=THICKNESS):
         f.write("*HEADING\n%s %s\n" % (prob["name"], mesh.label))
         f.write("*NODE, NSET=NALL\n")
         for nid, i, j in mesh.nodes():
-            f.write("%d, %.17g, %.17g\n" % (nid, mesh.xs[i], mesh.ys[j]))
+            f.write("%d, %s, %s\n" % (nid, fmt_coord(mesh.xs[i]), fmt_coord(mesh.ys[j])))
         f.write("*ELEMENT, TYPE=CPS8, ELSET=EALL\n")
         for eid, conn in mesh.elements():
             f.write("%d, %s\n" % (eid, ", ".join(str(c) for c in conn)))
@@ -567,6 +581,15 @@ def main():
             else:
                 for r in results:
                     uni[int(round(1 / r["mesh"].min_size()))] = r
+            gd = prob["graded_diag"]
+            if gd:
+                mesh = make_mesh(prob, gd["n"], True, gd)
+                r = solve_ccx(prob, mesh, work, "G%d" % gd["n"])
+                d = [line_diff(r["lines"][key], finest["lines"][key]) for key in ("y07", "top")]
+                print("  diagnostic: graded mesh %s towards the clamped corners (%d x %d, "
+                      "%.1fs), difference to the reference: y07 ux %.2e uy %.2e, "
+                      "top ux %.2e uy %.2e" % (mesh.label, mesh.nx, mesh.ny, r["wall"],
+                                               d[0][0], d[0][1], d[1][0], d[1][1]))
             n = 40
             base = uni[n]
             print("  diagnostic: isotropic material on the same h=1/%d mesh, "

@@ -164,7 +164,7 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec, const solvers::P
   }
 
   // 5. Assembly of K d = f.
-  solvers::BlockLinearSystem system(session.comm(), N, 2, own, d_nnz, o_nnz);
+  solvers::BlockLinearSystem system(session.comm(), N, 2, own, d_nnz, o_nnz, /*spd=*/true);
   const auto add_matrix = [&](const int* nodes, int n, const double* v) { system.add_matrix(nodes, n, v); };
   const auto add_vector = [&](const int* nodes, int n, const double* v) { system.add_vector(nodes, n, v); };
   const Mat3 C = materials::elastic_matrix(spec.material, spec.model);

@@ -43,9 +43,10 @@ struct SolveReport {
 class BlockLinearSystem {
 public:
   /// d_nnz / o_nnz: for each owned node, how many nodes it couples to inside / outside the
-  /// owned range (exact preallocation of the blocks).
+  /// owned range (exact preallocation of the blocks). A symmetric positive definite system
+  /// (elasticity with enough constraints) is factorised by Cholesky, any other by LU.
   BlockLinearSystem(MPI_Comm comm, int node_count, int block_size, OwnedRange owned,
-                    const std::vector<int>& d_nnz, const std::vector<int>& o_nnz);
+                    const std::vector<int>& d_nnz, const std::vector<int>& o_nnz, bool spd);
   ~BlockLinearSystem();
   BlockLinearSystem(const BlockLinearSystem&) = delete;
   BlockLinearSystem& operator=(const BlockLinearSystem&) = delete;
@@ -54,8 +55,8 @@ public:
   void add_matrix(const int* nodes, int n, const double* values);
   void add_vector(const int* nodes, int n, const double* values);
   void assemble();
-  /// Solves with KSP. The default is a sparse direct solve (MUMPS LU); every KSP/PC option
-  /// given on the command line overrides it.
+  /// Solves with KSP. The default is a sparse direct solve with MUMPS (Cholesky or LU); every
+  /// KSP/PC option given on the command line overrides it.
   SolveReport solve();
   /// The whole solution vector on every rank.
   std::vector<double> solution_everywhere() const;
