@@ -32,11 +32,13 @@ Study study(const std::string& problem, const std::vector<double>& spacings,
 
 } // namespace
 
-TEST_CASE("patch test: a linear field is reproduced and the error falls with the Gauss order", "[elasticity]") {
+TEST_CASE("patch test: a linear field is reproduced and the error falls with the Gauss order",
+          "[elasticity]") {
   std::vector<double> energy;
   for (int order : {2, 4, 6, 8}) {
     const auto r = app::solve_elastic_static(
-        load_problem("patch_test", {"discretisation.quadrature.order=" + std::to_string(order)}), test_session());
+        load_problem("patch_test", {"discretisation.quadrature.order=" + std::to_string(order)}),
+        test_session());
     energy.push_back(r.error_energy);
     CHECK(r.error_l2 < 1e-4);
   }
@@ -44,7 +46,8 @@ TEST_CASE("patch test: a linear field is reproduced and the error falls with the
   CHECK(energy.back() < 5e-6);
 }
 
-TEST_CASE("Timoshenko beam: energy error falls at least as h^0.9, L2 as h^1.8", "[elasticity][convergence]") {
+TEST_CASE("Timoshenko beam: energy error falls at least as h^0.9, L2 as h^1.8",
+          "[elasticity][convergence]") {
   const Study s = study("cantilever_timoshenko", {3.0, 1.5, 0.75, 0.375});
   const double re = convergence_rate(s.h, s.energy), rl = convergence_rate(s.h, s.l2);
   std::cout << "Timoshenko rates: energy " << re << ", L2 " << rl << "\n";
@@ -53,7 +56,8 @@ TEST_CASE("Timoshenko beam: energy error falls at least as h^0.9, L2 as h^1.8", 
   CHECK(s.energy.back() < 0.01);
 }
 
-TEST_CASE("Kirsch plate with a hole: energy error falls at least as h^0.9, L2 as h^1.8", "[elasticity][convergence]") {
+TEST_CASE("Kirsch plate with a hole: energy error falls at least as h^0.9, L2 as h^1.8",
+          "[elasticity][convergence]") {
   const Study s = study("plate_hole_kirsch", {0.5, 0.25, 0.125, 0.0625});
   const double re = convergence_rate(s.h, s.energy), rl = convergence_rate(s.h, s.l2);
   std::cout << "Kirsch rates: energy " << re << ", L2 " << rl << "\n";
@@ -62,16 +66,20 @@ TEST_CASE("Kirsch plate with a hole: energy error falls at least as h^0.9, L2 as
   CHECK(s.energy.back() < 0.01);
 }
 
-TEST_CASE("quadratic basis: Timoshenko energy error converges faster than with the linear basis", "[elasticity][convergence]") {
-  const Study s = study("cantilever_timoshenko", {3.0, 1.5, 0.75}, {"discretisation.basis=quadratic", "discretisation.dilation=3.0"});
+TEST_CASE("quadratic basis: Timoshenko energy error converges faster than with the linear basis",
+          "[elasticity][convergence]") {
+  const Study s = study("cantilever_timoshenko", {3.0, 1.5, 0.75},
+                        {"discretisation.basis=quadratic", "discretisation.dilation=3.0"});
   const double re = convergence_rate(s.h, s.energy);
   std::cout << "Timoshenko quadratic-basis energy rate " << re << "\n";
   CHECK(re >= 1.8);
 }
 
-TEST_CASE("MLS (EFG) shape functions give the same answer as RK on a uniform lattice", "[elasticity]") {
+TEST_CASE("MLS (EFG) shape functions give the same answer as RK on a uniform lattice",
+          "[elasticity]") {
   const auto rk = app::solve_elastic_static(load_problem("cantilever_timoshenko"), test_session());
-  const auto mls = app::solve_elastic_static(load_problem("cantilever_timoshenko", {"discretisation.approximation=mls"}), test_session());
+  const auto mls = app::solve_elastic_static(
+      load_problem("cantilever_timoshenko", {"discretisation.approximation=mls"}), test_session());
   CHECK(mls.error_energy == Approx(rk.error_energy).epsilon(1e-3));
 }
 
@@ -84,7 +92,8 @@ TEST_CASE("plate in tension: the clamp reaction balances the applied load", "[el
   CHECK(r.violation_relative < 1e-5);
 }
 
-TEST_CASE("1D model problem y'' + f = 0: L2 error falls as h^2, H1 as h", "[elasticity][convergence]") {
+TEST_CASE("1D model problem y'' + f = 0: L2 error falls as h^2, H1 as h",
+          "[elasticity][convergence]") {
   std::vector<double> h, l2, h1;
   for (double s : {0.1, 0.05, 0.025, 0.0125}) {
     const auto spec = load_problem("ode_1d", {"discretisation.spacing=" + std::to_string(s)});

@@ -11,14 +11,20 @@ void check_consistent(const verification::ExactSolution& s, const materials::Iso
   const Mat3 C = materials::elastic_matrix(m, materials::PlaneModel::PlaneStress);
   const double h = 1e-5;
   for (const Vec2& x : points) {
-    const Vec2 dx = (verification::exact_displacement(s, m, x + Vec2(h, 0)) - verification::exact_displacement(s, m, x - Vec2(h, 0))) / (2 * h);
-    const Vec2 dy = (verification::exact_displacement(s, m, x + Vec2(0, h)) - verification::exact_displacement(s, m, x - Vec2(0, h))) / (2 * h);
+    const Vec2 dx = (verification::exact_displacement(s, m, x + Vec2(h, 0)) -
+                     verification::exact_displacement(s, m, x - Vec2(h, 0))) /
+                    (2 * h);
+    const Vec2 dy = (verification::exact_displacement(s, m, x + Vec2(0, h)) -
+                     verification::exact_displacement(s, m, x - Vec2(0, h))) /
+                    (2 * h);
     const Vec3 sigma = verification::exact_stress(s, m, x);
     const Vec3 from_u = C * Vec3(dx.x(), dy.y(), dx.y() + dy.x());
     CHECK((from_u - sigma).norm() < 1e-6 * sigma.norm() + 1e-9);
     // div sigma = 0
-    const Vec3 sxp = verification::exact_stress(s, m, x + Vec2(h, 0)), sxm = verification::exact_stress(s, m, x - Vec2(h, 0));
-    const Vec3 syp = verification::exact_stress(s, m, x + Vec2(0, h)), sym = verification::exact_stress(s, m, x - Vec2(0, h));
+    const Vec3 sxp = verification::exact_stress(s, m, x + Vec2(h, 0)),
+               sxm = verification::exact_stress(s, m, x - Vec2(h, 0));
+    const Vec3 syp = verification::exact_stress(s, m, x + Vec2(0, h)),
+               sym = verification::exact_stress(s, m, x - Vec2(0, h));
     const double fx = (sxp(0) - sxm(0) + syp(2) - sym(2)) / (2 * h);
     const double fy = (sxp(2) - sxm(2) + syp(1) - sym(1)) / (2 * h);
     CHECK(std::hypot(fx, fy) < 1e-5 * (sigma.norm() + 1.0));
@@ -26,7 +32,8 @@ void check_consistent(const verification::ExactSolution& s, const materials::Iso
 }
 } // namespace
 
-TEST_CASE("Timoshenko beam: stress is C grad u, equilibrium holds, end shear resultant is P", "[exact]") {
+TEST_CASE("Timoshenko beam: stress is C grad u, equilibrium holds, end shear resultant is P",
+          "[exact]") {
   const verification::TimoshenkoBeam b{1000.0, 48.0, 12.0};
   const materials::IsotropicElastic m{3e7, 0.3};
   check_consistent(b, m, {{1.0, 2.0}, {24.0, -5.0}, {40.0, 0.3}});

@@ -57,10 +57,12 @@ void compare(const std::string& problem) {
 
 } // namespace
 
-TEST_CASE("square plate in tension agrees with CalculiX within 1% along y = 0.7 and the top", "[fe_reference]") {
+TEST_CASE("square plate in tension agrees with CalculiX within 1% along y = 0.7 and the top",
+          "[fe_reference]") {
   compare("plate_tension");
 }
 
-TEST_CASE("asymmetric 2 x 1 plate agrees with CalculiX within 1% along y = 0.7 and the top", "[fe_reference]") {
+TEST_CASE("asymmetric 2 x 1 plate agrees with CalculiX within 1% along y = 0.7 and the top",
+          "[fe_reference]") {
   compare("plate_asymmetric");
 }

@@ -34,7 +34,8 @@ TEST_CASE("Gauss-Legendre rules integrate polynomials of degree 2n-1 exactly", "
   }
 }
 
-TEST_CASE("boundary of a plate with a hole: clipped edges and the arc inside the plate", "[geometry]") {
+TEST_CASE("boundary of a plate with a hole: clipped edges and the arc inside the plate",
+          "[geometry]") {
   const auto b = quarter_plate_with_hole().boundary();
   CHECK(length_of(b, "left") == Approx(4.0).epsilon(1e-12));
   CHECK(length_of(b, "bottom") == Approx(4.0).epsilon(1e-12));
@@ -48,7 +49,8 @@ TEST_CASE("boundary of a plate with a hole: clipped edges and the arc inside the
 }
 
 TEST_CASE("polygon orientation is normalised and edge names follow their edges", "[geometry]") {
-  const auto d = geometry::Domain::polygon({{0, 0}, {0, 1}, {2, 1}, {2, 0}}, {"west", "north", "east", "south"});
+  const auto d = geometry::Domain::polygon({{0, 0}, {0, 1}, {2, 1}, {2, 0}},
+                                           {"west", "north", "east", "south"});
   for (const auto& c : d.boundary()) {
     const Vec2 mid = c.point(0.5), n = c.outward_normal(0.5);
     if (c.name == "west") CHECK((mid - Vec2(0, 0.5)).norm() < 1e-12);
@@ -57,7 +59,8 @@ TEST_CASE("polygon orientation is normalised and edge names follow their edges",
   }
 }
 
-TEST_CASE("node generation: lattice, boundary nodes, no near-duplicates, local refinement", "[geometry]") {
+TEST_CASE("node generation: lattice, boundary nodes, no near-duplicates, local refinement",
+          "[geometry]") {
   const auto rect = geometry::Domain::rectangle({0, 0}, {2, 1});
   CHECK(geometry::generate_nodes(rect, 0.1, {}).x.size() == 21u * 11u);
 
@@ -68,7 +71,8 @@ TEST_CASE("node generation: lattice, boundary nodes, no near-duplicates, local r
   for (std::size_t i = 0; i < cloud.x.size(); ++i) {
     CHECK(d.contains(cloud.x[i], 1e-9));
     grid.for_each_within(cloud.x[i], 0.25, [&](int j) {
-      if (j != static_cast<int>(i)) min_gap = std::min(min_gap, (cloud.x[i] - cloud.x[j]).norm() / cloud.spacing[i]);
+      if (j != static_cast<int>(i))
+        min_gap = std::min(min_gap, (cloud.x[i] - cloud.x[j]).norm() / cloud.spacing[i]);
     });
   }
   CHECK(min_gap > 0.3);
@@ -77,11 +81,13 @@ TEST_CASE("node generation: lattice, boundary nodes, no near-duplicates, local r
   CHECK(fine > 150); // the refined 2 x 2 box minus the hole holds about 16 x 16 - 50 fine nodes
 }
 
-TEST_CASE("cell-list neighbour search finds exactly the points a brute-force search finds", "[neighbors]") {
+TEST_CASE("cell-list neighbour search finds exactly the points a brute-force search finds",
+          "[neighbors]") {
   std::vector<Vec2> pts;
-  for (int i = 0; i < 2000; ++i) pts.emplace_back(std::fmod(i * 0.618034, 1.0), std::fmod(i * 0.414214, 1.0) * 0.5);
+  for (int i = 0; i < 2000; ++i)
+    pts.emplace_back(std::fmod(i * 0.618034, 1.0), std::fmod(i * 0.414214, 1.0) * 0.5);
   const neighbors::PointGrid grid(pts, 0.05);
-  for (const Vec2 x : {Vec2(0.5, 0.25), Vec2(0.0, 0.0), Vec2(1.02, 0.3)}) {
+  for (const Vec2& x : {Vec2(0.5, 0.25), Vec2(0.0, 0.0), Vec2(1.02, 0.3)}) {
     std::vector<int> found, brute;
     grid.for_each_within(x, 0.07, [&](int i) { found.push_back(i); });
     for (int i = 0; i < 2000; ++i)
@@ -91,7 +97,8 @@ TEST_CASE("cell-list neighbour search finds exactly the points a brute-force sea
   }
 }
 
-TEST_CASE("integration points cover the area of a plate with a hole; cut-cell refinement converges", "[quadrature]") {
+TEST_CASE("integration points cover the area of a plate with a hole; cut-cell refinement converges",
+          "[quadrature]") {
   const auto d = quarter_plate_with_hole();
   const double exact = 25.0 - M_PI / 4.0;
   double previous = 1e300;

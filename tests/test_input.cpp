@@ -39,21 +39,36 @@ TEST_CASE("a valid problem parses with the documented defaults", "[input]") {
   CHECK(p.boundary.size() == 2);
   CHECK(p.boundary[0].penalty == Approx(1e6 * 2.0e5 / 0.25));
   CHECK(p.boundary[0].mask == Vec2(1, 1));
+  YAML::Node root = YAML::Load(kGood);
+  io::apply_override(root, "boundary.0.penalty_scale=1e3");
+  CHECK(io::parse_problem(root).boundary[0].penalty == Approx(1e3 * 2.0e5 / 0.25));
+  io::apply_override(root, "boundary.0.penalty=1e12");
+  CHECK_THROWS_WITH(io::parse_problem(root),
+                    Catch::StartsWith("boundary[0].penalty_scale: give either"));
 }
 
 TEST_CASE("bad inputs are rejected with the key path and the value", "[input]") {
   CHECK(error_of("material.E=-2e5") == "material.E: expected a positive number, got -200000");
   CHECK(error_of("material.E=abc") == "material.E: expected a number, got abc");
-  CHECK(error_of("discretisation.spacing=0") == "discretisation.spacing: expected a positive number, got 0");
-  CHECK_THAT(error_of("discretisation.spcing=0.1"), Catch::StartsWith("discretisation.spcing: unknown key"));
+  CHECK(error_of("discretisation.spacing=0") ==
+        "discretisation.spacing: expected a positive number, got 0");
+  CHECK_THAT(error_of("discretisation.spcing=0.1"),
+             Catch::StartsWith("discretisation.spcing: unknown key"));
   CHECK_THAT(error_of("discretisation.window=bspline"),
-             Catch::Contains("discretisation.window: expected one of [cubic_spline, quartic_spline, gaussian], got 'bspline'"));
-  CHECK(error_of("boundary.0.on=north") == "boundary[0].on: no boundary piece is named 'north' (the body's pieces: bottom, right, top, left)");
-  CHECK(error_of("boundary.1.on={edge: right, box: [[5, 5], [6, 6]]}") == "boundary[1].on: selects no part of the boundary");
-  CHECK(error_of("model.type=shell") == "model.type: expected one of [plane_stress, plane_strain], got 'shell'");
-  CHECK(error_of("geometry.rectangle.size=[1]") == "geometry.rectangle.size: expected a pair [a, b], got [1]");
-  CHECK_THAT(error_of("material.nu=0.5"), Catch::StartsWith("material.nu: expected a Poisson's ratio in (-1, 0.5)"));
-  CHECK(error_of("boundary.0.displacement={}") == "boundary[0].displacement: constrain at least one of x, y (or say 'exact')");
+             Catch::Contains("discretisation.window: expected one of [cubic_spline, "
+                             "quartic_spline, gaussian], got 'bspline'"));
+  CHECK(error_of("boundary.0.on=north") == "boundary[0].on: no boundary piece is named 'north' "
+                                           "(the body's pieces: bottom, right, top, left)");
+  CHECK(error_of("boundary.1.on={edge: right, box: [[5, 5], [6, 6]]}") ==
+        "boundary[1].on: selects no part of the boundary");
+  CHECK(error_of("model.type=shell") ==
+        "model.type: expected one of [plane_stress, plane_strain], got 'shell'");
+  CHECK(error_of("geometry.rectangle.size=[1]") ==
+        "geometry.rectangle.size: expected a pair [a, b], got [1]");
+  CHECK_THAT(error_of("material.nu=0.5"),
+             Catch::StartsWith("material.nu: expected a Poisson's ratio in (-1, 0.5)"));
+  CHECK(error_of("boundary.0.displacement={}") ==
+        "boundary[0].displacement: constrain at least one of x, y (or say 'exact')");
 }
 
 TEST_CASE("missing required values and missing constraints are errors", "[input]") {
@@ -62,7 +77,8 @@ TEST_CASE("missing required values and missing constraints are errors", "[input]
   CHECK_THROWS_WITH(io::parse_problem(root), "material.E: required value is missing");
   YAML::Node free = YAML::Load(kGood);
   free["boundary"] = YAML::Load("[{name: pull, on: right, traction: [1, 0]}]");
-  CHECK_THROWS_WITH(io::parse_problem(free), Catch::Contains("boundary: no displacement condition"));
+  CHECK_THROWS_WITH(io::parse_problem(free),
+                    Catch::Contains("boundary: no displacement condition"));
 }
 
 TEST_CASE("command-line overrides reach nested maps and list items", "[input]") {
@@ -72,5 +88,6 @@ TEST_CASE("command-line overrides reach nested maps and list items", "[input]") 
   const io::ProblemSpec p = io::parse_problem(root);
   CHECK(p.discretisation.spacing == 0.125);
   CHECK(p.boundary[1].traction == Vec2(2, 0));
-  CHECK_THROWS_WITH(io::apply_override(root, "boundary.7.name=x"), Catch::Contains("index 7 is out of range"));
+  CHECK_THROWS_WITH(io::apply_override(root, "boundary.7.name=x"),
+                    Catch::Contains("index 7 is out of range"));
 }

@@ -9,7 +9,9 @@ namespace {
 mf::solvers::PetscSession* g_session = nullptr;
 }
 
-const mf::solvers::PetscSession& test_session() { return *g_session; }
+const mf::solvers::PetscSession& test_session() {
+  return *g_session;
+}
 
 int main(int argc, char** argv) {
   int pargc = 1;

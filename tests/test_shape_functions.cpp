@@ -44,7 +44,8 @@ struct FieldError {
   double value = 0.0, gradient = 0.0, boundary_value = 0.0;
 };
 
-/// Max error of the approximation of f (and its gradient) over the sample points, from nodal values.
+/// Max error of the approximation of f (and its gradient) over the sample points, from nodal
+/// values.
 FieldError approximation_error(const implicit::MeshfreeSpace& space, int dim,
                                const std::function<double(const Vec2&)>& f,
                                const std::function<Vec2(const Vec2&)>& grad) {
@@ -65,7 +66,8 @@ FieldError approximation_error(const implicit::MeshfreeSpace& space, int dim,
     const double ev = std::abs(v - f(pts[r]));
     e.value = std::max(e.value, ev);
     e.gradient = std::max(e.gradient, dim == 1 ? std::abs(g.x() - ge.x()) : (g - ge).norm());
-    const bool on_boundary = pts[r].x() == 0.0 || pts[r].x() == 1.0 || (dim == 2 && (pts[r].y() == 0.0 || pts[r].y() == 1.0));
+    const bool on_boundary = pts[r].x() == 0.0 || pts[r].x() == 1.0 ||
+                             (dim == 2 && (pts[r].y() == 0.0 || pts[r].y() == 1.0));
     if (on_boundary) e.boundary_value = std::max(e.boundary_value, ev);
   }
   return e;
@@ -85,7 +87,9 @@ kernels::ShapeSettings settings(Approximation a, Basis b, WindowType w, SupportS
 
 const auto linear_f = [](const Vec2& x) { return 1.0 + 2.0 * x.x() + x.y(); };
 const auto linear_g = [](const Vec2&) { return Vec2(2.0, 1.0); };
-const auto quad_f = [](const Vec2& x) { return 2.0 * x.x() * x.x() + x.y() * x.y() - x.x() * x.y() + 0.5; };
+const auto quad_f = [](const Vec2& x) {
+  return 2.0 * x.x() * x.x() + x.y() * x.y() - x.x() * x.y() + 0.5;
+};
 const auto quad_g = [](const Vec2& x) { return Vec2(4.0 * x.x() - x.y(), 2.0 * x.y() - x.x()); };
 
 } // namespace
@@ -97,28 +101,32 @@ TEST_CASE("RK and MLS with a linear basis reproduce linear fields and their grad
       for (auto window : {WindowType::CubicSpline, WindowType::QuarticSpline, WindowType::Gaussian})
         for (auto support : {SupportShape::Circular, SupportShape::Rectangular})
           for (double jitter : {0.0, 0.3}) {
-            const implicit::MeshfreeSpace space(lattice(dim, 11, jitter),
-                                                settings(approx, Basis::Linear, window, support, dim), Vec2(2.0, 2.0));
+            const implicit::MeshfreeSpace space(
+                lattice(dim, 11, jitter), settings(approx, Basis::Linear, window, support, dim),
+                Vec2(2.0, 2.0));
             const FieldError e = approximation_error(space, dim, linear_f, linear_g);
-            INFO("dim " << dim << " approx " << int(approx) << " window " << int(window) << " support "
-                        << int(support) << " jitter " << jitter);
+            INFO("dim " << dim << " approx " << int(approx) << " window " << int(window)
+                        << " support " << int(support) << " jitter " << jitter);
             CHECK(e.value < 1e-12);
             CHECK(e.gradient < 1e-10);
           }
 }
 
-TEST_CASE("RK with a quadratic basis reproduces quadratic fields to round-off; linear does not", "[kernels]") {
+TEST_CASE("RK with a quadratic basis reproduces quadratic fields to round-off; linear does not",
+          "[kernels]") {
   for (int dim : {1, 2}) {
     const implicit::MeshfreeSpace quad(lattice(dim, 11, 0.2),
                                        settings(Approximation::ReproducingKernel, Basis::Quadratic,
-                                                WindowType::CubicSpline, SupportShape::Circular, dim),
+                                                WindowType::CubicSpline, SupportShape::Circular,
+                                                dim),
                                        Vec2(3.0, 3.0));
     const FieldError eq = approximation_error(quad, dim, quad_f, quad_g);
     CHECK(eq.value < 1e-11);
     CHECK(eq.gradient < 1e-9);
     const implicit::MeshfreeSpace lin(lattice(dim, 11, 0.2),
                                       settings(Approximation::ReproducingKernel, Basis::Linear,
-                                               WindowType::CubicSpline, SupportShape::Circular, dim),
+                                               WindowType::CubicSpline, SupportShape::Circular,
+                                               dim),
                                       Vec2(2.0, 2.0));
     CHECK(approximation_error(lin, dim, quad_f, quad_g).value > 1e-4);
   }
@@ -127,8 +135,9 @@ TEST_CASE("RK with a quadratic basis reproduces quadratic fields to round-off; l
 TEST_CASE("plain SPH kernel sums miss linear fields at the boundary, RK does not", "[kernels]") {
   for (int dim : {1, 2}) {
     const implicit::MeshfreeSpace sph(lattice(dim, 11),
-                                      settings(Approximation::Sph, Basis::Linear, WindowType::CubicSpline,
-                                               SupportShape::Circular, dim),
+                                      settings(Approximation::Sph, Basis::Linear,
+                                               WindowType::CubicSpline, SupportShape::Circular,
+                                               dim),
                                       Vec2(2.0, 2.0));
     const FieldError e = approximation_error(sph, dim, linear_f, linear_g);
     // The field ranges over [1, 4]; at a boundary SPH loses about half of the kernel mass.
@@ -140,8 +149,15 @@ TEST_CASE("MLS (EFG) and RK shape functions coincide for uniform nodal volumes",
   const auto cloud = lattice(2, 9, 0.25);
   for (auto basis : {Basis::Linear, Basis::Quadratic}) {
     const double dil = basis == Basis::Linear ? 2.2 : 3.0;
-    const implicit::MeshfreeSpace rk(cloud, settings(Approximation::ReproducingKernel, basis, WindowType::QuarticSpline, SupportShape::Circular, 2), Vec2(dil, dil));
-    const implicit::MeshfreeSpace mls(cloud, settings(Approximation::MovingLeastSquares, basis, WindowType::QuarticSpline, SupportShape::Circular, 2), Vec2(dil, dil));
+    const implicit::MeshfreeSpace rk(cloud,
+                                     settings(Approximation::ReproducingKernel, basis,
+                                              WindowType::QuarticSpline, SupportShape::Circular, 2),
+                                     Vec2(dil, dil));
+    const implicit::MeshfreeSpace mls(cloud,
+                                      settings(Approximation::MovingLeastSquares, basis,
+                                               WindowType::QuarticSpline, SupportShape::Circular,
+                                               2),
+                                      Vec2(dil, dil));
     const auto pts = sample_points(2);
     std::vector<int> rows(pts.size());
     for (std::size_t i = 0; i < pts.size(); ++i) rows[i] = static_cast<int>(i);
@@ -150,7 +166,8 @@ TEST_CASE("MLS (EFG) and RK shape functions coincide for uniform nodal volumes",
     REQUIRE(a.node == b.node);
     double dmax = 0.0;
     for (std::size_t k = 0; k < a.phi.size(); ++k)
-      dmax = std::max({dmax, std::abs(a.phi[k] - b.phi[k]), (a.dphi[k] - b.dphi[k]).norm() * 0.125});
+      dmax =
+          std::max({dmax, std::abs(a.phi[k] - b.phi[k]), (a.dphi[k] - b.dphi[k]).norm() * 0.125});
     CHECK(dmax < 1e-9);
   }
 }
@@ -187,7 +204,10 @@ TEST_CASE("analytic shape-function gradients match central differences", "[kerne
 }
 
 TEST_CASE("too few nodes in a support is reported with the point", "[kernels]") {
-  const implicit::MeshfreeSpace space(lattice(2, 5), settings(Approximation::ReproducingKernel, Basis::Quadratic, WindowType::CubicSpline, SupportShape::Circular, 2), Vec2(1.1, 1.1));
+  const implicit::MeshfreeSpace space(lattice(2, 5),
+                                      settings(Approximation::ReproducingKernel, Basis::Quadratic,
+                                               WindowType::CubicSpline, SupportShape::Circular, 2),
+                                      Vec2(1.1, 1.1));
   const std::vector<Vec2> pts{{0.5, 0.5}};
   CHECK_THROWS_WITH(space.shape_table(pts, {0}, space.support_lists(pts), true),
                     Catch::Contains("shape functions are undefined at (0.5, 0.5)"));

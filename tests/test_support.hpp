@@ -11,7 +11,8 @@ inline std::string source_path(const std::string& relative) {
   return std::string(MESHFREE_SOURCE_DIR) + "/" + relative;
 }
 
-inline mf::io::ProblemSpec load_problem(const std::string& name, const std::vector<std::string>& overrides = {}) {
+inline mf::io::ProblemSpec load_problem(const std::string& name,
+                                        const std::vector<std::string>& overrides = {}) {
   return mf::io::read_problem(source_path("problems/" + name + ".yaml"), overrides);
 }
 

@@ -29,35 +29,37 @@ Vec2 traction(const Vec3& s, const Vec2& n) {
 
 /// Prescribed displacement or traction at the given rows of a condition's points.
 std::vector<Vec2> condition_values(const io::ProblemSpec& spec, const io::BoundaryCondition& bc,
-                                   const quadrature::BoundaryPoints& pts, const std::vector<int>& rows) {
-  const materials::IsotropicElastic m = materials::plane_stress_equivalent(spec.material, spec.model);
+                                   const quadrature::BoundaryPoints& pts,
+                                   const std::vector<int>& rows) {
+  const materials::IsotropicElastic m =
+      materials::plane_stress_equivalent(spec.material, spec.model);
   std::vector<Vec2> out;
   for (int r : rows) {
     if (bc.constrains)
-      out.push_back(bc.value_from_exact ? verification::exact_displacement(*spec.exact, m, pts.x[r]) : bc.value);
+      out.push_back(bc.value_from_exact ? verification::exact_displacement(*spec.exact, m, pts.x[r])
+                                        : bc.value);
     else
-      out.push_back(bc.traction_from_exact
-                        ? traction(verification::exact_stress(*spec.exact, m, pts.x[r]), pts.normal[r])
-                        : bc.traction);
+      out.push_back(
+          bc.traction_from_exact
+              ? traction(verification::exact_stress(*spec.exact, m, pts.x[r]), pts.normal[r])
+              : bc.traction);
   }
   return out;
 }
 
-/// Rows of `support` this rank integrates: a point belongs to the owner of the lowest-numbered
-/// node that covers it, so each rank's points sit over its own strip of nodes.
-std::vector<int> owned_rows(const Csr& support, int node_count, const solvers::PetscSession& s) {
+/// Rows of `support` this rank integrates. Each group of rows (a background cell, or a single
+/// boundary point when `group` is empty) belongs to the owner of the lowest-numbered node that
+/// covers any of its points, so each rank integrates whole cells over its own strip of nodes.
+std::vector<int> owned_rows(const Csr& support, const std::vector<int>& group, int groups,
+                            int node_count, const solvers::PetscSession& s) {
+  const auto group_of = [&](int r) { return group.empty() ? r : group[r]; };
+  std::vector<int> lowest(group.empty() ? support.rows() : groups, node_count);
+  for (int r = 0; r < support.rows(); ++r) // lists are sorted: the first node is the lowest
+    lowest[group_of(r)] = std::min(lowest[group_of(r)], support.index[support.offset[r]]);
   std::vector<int> rows;
-  for (int r = 0; r < support.rows(); ++r) {
-    const int first = support.index[support.offset[r]]; // lists are sorted
-    if (solvers::owner_of(first, node_count, s.size()) == s.rank()) rows.push_back(r);
-  }
+  for (int r = 0; r < support.rows(); ++r)
+    if (solvers::owner_of(lowest[group_of(r)], node_count, s.size()) == s.rank()) rows.push_back(r);
   return rows;
-}
-
-std::vector<Vec2> gather(const std::vector<Vec2>& all, const std::vector<int>& rows) {
-  std::vector<Vec2> out(rows.size());
-  for (std::size_t k = 0; k < rows.size(); ++k) out[k] = all[rows[k]];
-  return out;
 }
 
 /// Fields at arbitrary points (nodes, line samples): u^h, stress, szz.
@@ -84,15 +86,18 @@ void evaluate_fields(const implicit::MeshfreeSpace& space, const io::ProblemSpec
 std::string describe_method(const io::DiscretisationSpec& d) {
   const auto& s = d.shape;
   std::string m = s.approximation == kernels::Approximation::ReproducingKernel ? "RK" : "MLS/EFG";
-  m += s.basis == kernels::Basis::Linear ? " Galerkin, linear basis, " : " Galerkin, quadratic basis, ";
+  m += s.basis == kernels::Basis::Linear ? " Galerkin, linear basis, "
+                                         : " Galerkin, quadratic basis, ";
   m += s.window.type == kernels::WindowType::CubicSpline     ? "cubic B-spline"
        : s.window.type == kernels::WindowType::QuarticSpline ? "quartic spline"
                                                              : "truncated Gaussian";
-  m += s.support == kernels::SupportShape::Circular ? " window, circular supports" : " window, rectangular supports";
+  m += s.support == kernels::SupportShape::Circular ? " window, circular supports"
+                                                    : " window, rectangular supports";
   return m;
 }
 
-ElasticResult solve_elastic_static(const io::ProblemSpec& spec, const solvers::PetscSession& session) {
+ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
+                                   const solvers::PetscSession& session) {
   ElasticResult R;
   const io::DiscretisationSpec& disc = spec.discretisation;
   const double t = spec.thickness;
@@ -103,7 +108,8 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec, const solvers::P
   {
     PhaseTimer::Scope scope(timer, "nodes");
     space = std::make_unique<implicit::MeshfreeSpace>(
-        geometry::generate_nodes(spec.domain, disc.spacing, disc.refinement), disc.shape, disc.dilation);
+        geometry::generate_nodes(spec.domain, disc.spacing, disc.refinement), disc.shape,
+        disc.dilation);
   }
   const int N = space->node_count();
   R.nodes = N;
@@ -116,13 +122,16 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec, const solvers::P
   std::vector<ConditionPoints> bcs(spec.boundary.size());
   {
     PhaseTimer::Scope scope(timer, "quadrature");
-    const quadrature::CellSizing sizing{disc.spacing, disc.refinement, disc.cell_size / disc.spacing,
-                                        disc.dilation.maxCoeff()};
-    dp = quadrature::domain_points(spec.domain, disc.cell_size, disc.order, disc.cut_levels, sizing);
+    const quadrature::CellSizing sizing{disc.spacing, disc.refinement,
+                                        disc.cell_size / disc.spacing, disc.dilation.maxCoeff()};
+    dp =
+        quadrature::domain_points(spec.domain, disc.cell_size, disc.order, disc.cut_levels, sizing);
     for (std::size_t b = 0; b < spec.boundary.size(); ++b) {
       bcs[b].bc = &spec.boundary[b];
-      const auto pieces = io::select_boundary(spec.domain, spec.boundary[b].on, spec.boundary[b].key_path);
-      bcs[b].points = quadrature::boundary_points(pieces, disc.cell_size, disc.boundary_order, sizing);
+      const auto pieces =
+          io::select_boundary(spec.domain, spec.boundary[b].on, spec.boundary[b].key_path);
+      bcs[b].points =
+          quadrature::boundary_points(pieces, disc.cell_size, disc.boundary_order, sizing);
       R.boundary_points += static_cast<int>(bcs[b].points.x.size());
     }
   }
@@ -148,8 +157,8 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec, const solvers::P
       MF_REQUIRE(dsupport.size(r) > 0, "integration point (", dp.x[r].x(), ", ", dp.x[r].y(),
                  ") is covered by no node: raise discretisation.dilation");
     implicit::coupling_counts(lists, N, own.begin, own.end, d_nnz, o_nnz);
-    dmine = owned_rows(dsupport, N, session);
-    for (auto& c : bcs) c.mine = owned_rows(c.support, N, session);
+    dmine = owned_rows(dsupport, dp.cell, dp.cell_count, N, session);
+    for (auto& c : bcs) c.mine = owned_rows(c.support, {}, 0, N, session);
   }
   R.mean_support = static_cast<double>(dsupport.index.size()) / std::max(1, dsupport.rows());
 
@@ -165,10 +174,15 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec, const solvers::P
 
   // 5. Assembly of K d = f.
   solvers::BlockLinearSystem system(session.comm(), N, 2, own, d_nnz, o_nnz, /*spd=*/true);
-  const auto add_matrix = [&](const int* nodes, int n, const double* v) { system.add_matrix(nodes, n, v); };
-  const auto add_vector = [&](const int* nodes, int n, const double* v) { system.add_vector(nodes, n, v); };
+  const auto add_matrix = [&](const int* nodes, int n, const double* v) {
+    system.add_matrix(nodes, n, v);
+  };
+  const auto add_vector = [&](const int* nodes, int n, const double* v) {
+    system.add_vector(nodes, n, v);
+  };
   const Mat3 C = materials::elastic_matrix(spec.material, spec.model);
-  const materials::IsotropicElastic exact_mat = materials::plane_stress_equivalent(spec.material, spec.model);
+  const materials::IsotropicElastic exact_mat =
+      materials::plane_stress_equivalent(spec.material, spec.model);
   {
     PhaseTimer::Scope scope(timer, "assembly");
     std::vector<double> w(dmine.size());
@@ -183,13 +197,16 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec, const solvers::P
       for (int r : bcs[b].mine) bw.push_back(pts.weight[r] * t);
       bcs[b].values = condition_values(spec, bc, pts, bcs[b].mine);
       const auto& val = bcs[b].values;
-      if (bc.constrains) implicit::add_penalty(btables[b], bw, bc.mask, bc.penalty, val, add_matrix, add_vector);
-      else implicit::add_load(btables[b], bw, val, add_vector);
+      if (bc.constrains)
+        implicit::add_penalty(btables[b], bw, bc.mask, bc.penalty, val, add_matrix, add_vector);
+      else
+        implicit::add_load(btables[b], bw, val, add_vector);
     }
     system.assemble();
   }
   R.matrix_nonzeros = system.global_nonzeros();
-  log::info("matrix: ", R.dofs, " x ", R.dofs, ", ", static_cast<long>(R.matrix_nonzeros), " nonzeros");
+  log::info("matrix: ", R.dofs, " x ", R.dofs, ", ", static_cast<long>(R.matrix_nonzeros),
+            " nonzeros");
 
   // 6. Solve.
   {
@@ -197,7 +214,8 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec, const solvers::P
     R.solve = system.solve();
     R.parameters = system.solution_everywhere();
   }
-  log::info("solved with ", R.solve.solver, ": ", R.solve.reason_name, ", relative residual ", R.solve.residual_norm);
+  log::info("solved with ", R.solve.solver, ": ", R.solve.reason_name, ", relative residual ",
+            R.solve.residual_norm);
 
   // 7. Post-processing: errors against the exact solution, reactions, constraint violation,
   // fields at the nodes and on sample lines.
@@ -205,7 +223,8 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec, const solvers::P
     PhaseTimer::Scope scope(timer, "postprocess");
     const auto& d = R.parameters;
     for (double v : d)
-      MF_REQUIRE(std::isfinite(v), "the solution contains NaN or Inf: the system is singular; check the boundary conditions");
+      MF_REQUIRE(std::isfinite(v), "the solution contains NaN or Inf: the system is singular; "
+                                   "check the boundary conditions");
     if (spec.exact) {
       double sums[4] = {0, 0, 0, 0}; // |e_u|^2, |u|^2, e_eps.C.e_eps, eps.C.eps
       const Mat3 Cinv = C.inverse();
@@ -235,7 +254,8 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec, const solvers::P
       for (int k = 0; k < btables[b].rows(); ++k) {
         const double w = pts.weight[bcs[b].mine[k]] * t;
         if (bc.constrains) {
-          const Vec2 gap = (implicit::displacement_at(btables[b], k, d) - bcs[b].values[k]).cwiseProduct(bc.mask);
+          const Vec2 gap = (implicit::displacement_at(btables[b], k, d) - bcs[b].values[k])
+                               .cwiseProduct(bc.mask);
           local[0] -= bc.penalty * w * gap.x(); // penalty force on the body
           local[1] -= bc.penalty * w * gap.y();
           local[2] = std::max(local[2], gap.norm());
@@ -279,7 +299,8 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec, const solvers::P
 void write_elastic_outputs(const io::ProblemSpec& spec, const ElasticResult& r,
                            const solvers::PetscSession& session, io::OutputDirectory& out) {
   if (session.rank() != 0) return;
-  const materials::IsotropicElastic exact_mat = materials::plane_stress_equivalent(spec.material, spec.model);
+  const materials::IsotropicElastic exact_mat =
+      materials::plane_stress_equivalent(spec.material, spec.model);
   io::FieldStep step;
   step.time = 1.0;
   std::vector<double> sxx, syy, sxy, vm, vol, rad;
@@ -290,22 +311,32 @@ void write_elastic_outputs(const io::ProblemSpec& spec, const ElasticResult& r,
     vm.push_back(materials::von_mises(r.node_stress[i], r.node_szz[i]));
   }
   std::vector<Vec2> params(r.node_x.size());
-  for (std::size_t i = 0; i < params.size(); ++i) params[i] = Vec2(r.parameters[2 * i], r.parameters[2 * i + 1]);
+  for (std::size_t i = 0; i < params.size(); ++i)
+    params[i] = Vec2(r.parameters[2 * i], r.parameters[2 * i + 1]);
   step.vectors = {{"displacement", r.node_u}, {"nodal_parameters", params}};
-  step.scalars = {{"stress_xx", sxx}, {"stress_yy", syy}, {"stress_xy", sxy}, {"stress_zz", r.node_szz}, {"von_mises", vm}};
+  step.scalars = {{"stress_xx", sxx},
+                  {"stress_yy", syy},
+                  {"stress_xy", sxy},
+                  {"stress_zz", r.node_szz},
+                  {"von_mises", vm}};
   if (spec.exact) {
     std::vector<Vec2> ue;
-    for (const auto& x : r.node_x) ue.push_back(verification::exact_displacement(*spec.exact, exact_mat, x));
+    for (const auto& x : r.node_x)
+      ue.push_back(verification::exact_displacement(*spec.exact, exact_mat, x));
     step.vectors.emplace_back("displacement_exact", ue);
   }
   out.write_fields(r.node_x, {step});
 
   for (const auto& [name, s] : r.lines) {
-    std::vector<std::string> header{"s", "x", "y", "ux", "uy", "stress_xx", "stress_yy", "stress_xy"};
-    if (spec.exact) header.insert(header.end(), {"ux_exact", "uy_exact", "stress_xx_exact", "stress_yy_exact", "stress_xy_exact"});
+    std::vector<std::string> header{"s",  "x",         "y",         "ux",
+                                    "uy", "stress_xx", "stress_yy", "stress_xy"};
+    if (spec.exact)
+      header.insert(header.end(), {"ux_exact", "uy_exact", "stress_xx_exact", "stress_yy_exact",
+                                   "stress_xy_exact"});
     std::vector<std::vector<double>> rows;
     for (std::size_t k = 0; k < s.x.size(); ++k) {
-      std::vector<double> row{s.s[k], s.x[k].x(), s.x[k].y(), s.u[k].x(), s.u[k].y(), s.stress[k](0), s.stress[k](1), s.stress[k](2)};
+      std::vector<double> row{s.s[k],     s.x[k].x(),     s.x[k].y(),     s.u[k].x(),
+                              s.u[k].y(), s.stress[k](0), s.stress[k](1), s.stress[k](2)};
       if (spec.exact) {
         const Vec2 ue = verification::exact_displacement(*spec.exact, exact_mat, s.x[k]);
         const Vec3 se = verification::exact_stress(*spec.exact, exact_mat, s.x[k]);
@@ -333,30 +364,49 @@ void write_elastic_outputs(const io::ProblemSpec& spec, const ElasticResult& r,
   out.write_csv("history.csv", header, {row});
 
   io::Json counts, times, results, bnd, solver;
-  counts.set("nodes", r.nodes).set("dofs", r.dofs).set("background_cells", r.cells)
-      .set("domain_points", r.domain_points).set("boundary_points", r.boundary_points)
-      .set("mean_nodes_per_point", r.mean_support).set("matrix_nonzeros", r.matrix_nonzeros)
-      .set("steps", 1).set("newton_iterations", 0);
+  counts.set("nodes", r.nodes)
+      .set("dofs", r.dofs)
+      .set("background_cells", r.cells)
+      .set("domain_points", r.domain_points)
+      .set("boundary_points", r.boundary_points)
+      .set("mean_nodes_per_point", r.mean_support)
+      .set("matrix_nonzeros", r.matrix_nonzeros)
+      .set("steps", 1)
+      .set("newton_iterations", 0);
   for (const auto& [name, sec] : r.timer.phases()) times.set(name, sec);
   times.set("total", r.timer.total());
-  solver.set("type", r.solve.solver).set("iterations", r.solve.iterations)
-      .set("reason", r.solve.reason_name).set("relative_residual", r.solve.residual_norm);
+  solver.set("type", r.solve.solver)
+      .set("iterations", r.solve.iterations)
+      .set("reason", r.solve.reason_name)
+      .set("relative_residual", r.solve.residual_norm);
   for (const auto& b : r.boundary) {
     io::Json j;
     j.set("kind", b.constraint ? "displacement" : "traction");
-    j.set(b.constraint ? "reaction" : "applied_force", std::vector<double>{b.force.x(), b.force.y()});
+    j.set(b.constraint ? "reaction" : "applied_force",
+          std::vector<double>{b.force.x(), b.force.y()});
     if (b.constraint) j.set("violation_max", b.violation_max);
     bnd.set(b.name, j);
   }
-  results.set("max_displacement", umax).set("max_von_mises", vmmax)
+  results.set("max_displacement", umax)
+      .set("max_von_mises", vmmax)
       .set("constraint_violation_max", r.violation_max)
-      .set("constraint_violation_relative", r.violation_relative).set("boundary", bnd);
-  if (spec.exact) results.set("error_l2_relative", r.error_l2).set("error_energy_relative", r.error_energy);
+      .set("constraint_violation_relative", r.violation_relative)
+      .set("boundary", bnd);
+  if (spec.exact)
+    results.set("error_l2_relative", r.error_l2).set("error_energy_relative", r.error_energy);
   io::Json summary;
-  summary.set("problem", spec.name).set("description", spec.description).set("units", spec.units)
-      .set("analysis", "elastic_static").set("method", describe_method(spec.discretisation))
-      .set("status", "completed").set("mpi_ranks", session.size()).set("openmp_threads", omp_get_max_threads())
-      .set("counts", counts).set("solver", solver).set("time_s", times).set("results", results);
+  summary.set("problem", spec.name)
+      .set("description", spec.description)
+      .set("units", spec.units)
+      .set("analysis", "elastic_static")
+      .set("method", describe_method(spec.discretisation))
+      .set("status", "completed")
+      .set("mpi_ranks", session.size())
+      .set("openmp_threads", omp_get_max_threads())
+      .set("counts", counts)
+      .set("solver", solver)
+      .set("time_s", times)
+      .set("results", results);
   out.write_text("summary.json", summary.str() + "\n");
 }
 

@@ -51,7 +51,8 @@ Command parse(int argc, char** argv) {
       mf::fail("unexpected argument '", a, "'");
     }
   }
-  MF_REQUIRE(c.verb == "run" || c.verb == "check", c.verb.empty() ? "no command given" : "unknown command '" + c.verb + "'");
+  MF_REQUIRE(c.verb == "run" || c.verb == "check",
+             c.verb.empty() ? "no command given" : "unknown command '" + c.verb + "'");
   MF_REQUIRE(!c.problem.empty(), "no problem file given");
   return c;
 }
@@ -66,14 +67,16 @@ int check(const Command& c) {
   }
   const auto& d = spec.discretisation;
   const auto nodes = mf::geometry::generate_nodes(spec.domain, d.spacing, d.refinement);
-  const auto pts = mf::quadrature::domain_points(spec.domain, d.cell_size, d.order, d.cut_levels,
-                                                 {d.spacing, d.refinement, d.cell_size / d.spacing, d.dilation.maxCoeff()});
+  const auto pts = mf::quadrature::domain_points(
+      spec.domain, d.cell_size, d.order, d.cut_levels,
+      {d.spacing, d.refinement, d.cell_size / d.spacing, d.dilation.maxCoeff()});
   std::cout << "  method: " << mf::app::describe_method(d) << "\n"
             << "  nodes: " << nodes.x.size() << " (" << 2 * nodes.x.size() << " DOFs)\n"
             << "  integration: " << pts.cell_count << " cells, " << pts.x.size() << " points\n";
   for (const auto& bc : spec.boundary) {
     double len = 0.0;
-    for (const auto& p : mf::io::select_boundary(spec.domain, bc.on, bc.key_path)) len += p.length();
+    for (const auto& p : mf::io::select_boundary(spec.domain, bc.on, bc.key_path))
+      len += p.length();
     std::cout << "  boundary " << bc.name << ": " << (bc.constrains ? "displacement" : "traction")
               << " on length " << len << "\n";
   }
@@ -112,7 +115,8 @@ int run(Command& c) {
         if (out) mf::app::write_elastic_outputs(spec, r, session, *out);
       }
       std::string phases;
-      for (const auto& [name, s] : r.timer.phases()) phases += " " + name + " " + std::to_string(s) + " s;";
+      for (const auto& [name, s] : r.timer.phases())
+        phases += " " + name + " " + std::to_string(s) + " s;";
       mf::log::info("wall time per phase:", phases);
     }
     if (out) {
@@ -143,7 +147,8 @@ int main(int argc, char** argv) {
     c = parse(argc, argv);
   } catch (const mf::Error& e) {
     const bool help = std::strcmp(e.what(), "help") == 0;
-    (help ? std::cout : std::cerr) << (help ? "" : std::string("meshfree: ") + e.what() + "\n") << kUsage;
+    (help ? std::cout : std::cerr)
+        << (help ? "" : std::string("meshfree: ") + e.what() + "\n") << kUsage;
     return help ? 0 : 2;
   }
   try {

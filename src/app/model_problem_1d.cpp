@@ -15,7 +15,8 @@ double model_1d_exact(const io::ModelProblem1D& p, double x) {
 
 double model_1d_exact_slope(const io::ModelProblem1D& p, double x) {
   const double k = p.sine_waves * M_PI / p.length;
-  return p.sine_amplitude * k * std::cos(k * x) + p.linear * (p.length * p.length - 3.0 * x * x) / 6.0;
+  return p.sine_amplitude * k * std::cos(k * x) +
+         p.linear * (p.length * p.length - 3.0 * x * x) / 6.0;
 }
 
 double model_1d_source(const io::ModelProblem1D& p, double x) { // f = -y''
@@ -129,7 +130,8 @@ Model1DResult solve_model_problem_1d(const io::ProblemSpec& spec) {
   return R;
 }
 
-void write_model_1d_outputs(const io::ProblemSpec& spec, const Model1DResult& r, io::OutputDirectory& out) {
+void write_model_1d_outputs(const io::ProblemSpec& spec, const Model1DResult& r,
+                            io::OutputDirectory& out) {
   std::vector<std::vector<double>> rows;
   for (std::size_t k = 0; k < r.x.size(); ++k)
     rows.push_back({r.x[k], r.y[k], r.y_exact[k], r.dy[k], r.dy_exact[k]});
@@ -141,17 +143,25 @@ void write_model_1d_outputs(const io::ProblemSpec& spec, const Model1DResult& r,
   step.time = 1.0;
   step.scalars = {{"y", r.y}, {"y_exact", r.y_exact}};
   out.write_fields(pts, {step});
-  out.write_csv("history.csv", {"step", "error_l2_relative", "error_h1_relative", "error_max_relative"},
+  out.write_csv("history.csv",
+                {"step", "error_l2_relative", "error_h1_relative", "error_max_relative"},
                 {{1.0, r.error_l2, r.error_h1, r.error_max}});
   io::Json counts, times, results;
   counts.set("nodes", r.nodes).set("quadrature_points", r.points).set("dofs", r.nodes);
   for (const auto& [name, sec] : r.timer.phases()) times.set(name, sec);
   times.set("total", r.timer.total());
-  results.set("error_l2_relative", r.error_l2).set("error_h1_relative", r.error_h1).set("error_max_relative", r.error_max);
+  results.set("error_l2_relative", r.error_l2)
+      .set("error_h1_relative", r.error_h1)
+      .set("error_max_relative", r.error_max);
   io::Json summary;
-  summary.set("problem", spec.name).set("description", spec.description).set("analysis", "model_problem_1d")
-      .set("method", describe_method(spec.discretisation)).set("status", "completed")
-      .set("counts", counts).set("time_s", times).set("results", results);
+  summary.set("problem", spec.name)
+      .set("description", spec.description)
+      .set("analysis", "model_problem_1d")
+      .set("method", describe_method(spec.discretisation))
+      .set("status", "completed")
+      .set("counts", counts)
+      .set("time_s", times)
+      .set("results", results);
   out.write_text("summary.json", summary.str() + "\n");
 }
 

@@ -37,8 +37,9 @@ Curve Curve::piece(double t0, double t1) const {
 
 Domain Domain::rectangle(const Vec2& origin, const Vec2& size) {
   MF_REQUIRE(size.x() > 0.0 && size.y() > 0.0, "rectangle size must be positive");
-  return polygon({origin, origin + Vec2(size.x(), 0.0), origin + size, origin + Vec2(0.0, size.y())},
-                 {"bottom", "right", "top", "left"});
+  return polygon(
+      {origin, origin + Vec2(size.x(), 0.0), origin + size, origin + Vec2(0.0, size.y())},
+      {"bottom", "right", "top", "left"});
 }
 
 Domain Domain::polygon(std::vector<Vec2> vertices, std::vector<std::string> edge_names) {
@@ -128,8 +129,8 @@ bool Domain::contains(const Vec2& p, double tol) const {
   return true;
 }
 
-std::vector<std::pair<double, double>> kept_intervals(const Curve& curve,
-                                                      const std::function<bool(const Vec2&)>& keep) {
+std::vector<std::pair<double, double>>
+kept_intervals(const Curve& curve, const std::function<bool(const Vec2&)>& keep) {
   constexpr int samples = 512;
   std::vector<std::pair<double, double>> out;
   auto transition = [&](double lo, double hi, bool keep_lo) {
@@ -146,8 +147,10 @@ std::vector<std::pair<double, double>> kept_intervals(const Curve& curve,
     const bool now = keep(curve.point(t));
     if (now != prev) {
       const double tc = transition(static_cast<double>(k - 1) / samples, t, prev);
-      if (prev) out.emplace_back(start, tc);
-      else start = tc;
+      if (prev)
+        out.emplace_back(start, tc);
+      else
+        start = tc;
       prev = now;
     }
   }
@@ -174,7 +177,8 @@ std::vector<Curve> Domain::boundary() const {
     c.name = edge_names_[i];
     c.a = vertices_[i];
     c.b = vertices_[(i + 1) % n];
-    for (const auto& [t0, t1] : kept_intervals(c, [&](const Vec2& p) { return outside_holes(p, nullptr); }))
+    for (const auto& [t0, t1] :
+         kept_intervals(c, [&](const Vec2& p) { return outside_holes(p, nullptr); }))
       curves.push_back(c.piece(t0, t1));
   }
   for (const auto& h : holes_) {

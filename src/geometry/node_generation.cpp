@@ -14,10 +14,12 @@ double local_spacing(const Vec2& p, double spacing, const std::vector<Refinement
   return h;
 }
 
-std::vector<Curve> split_at_refinements(const Curve& c, const std::vector<Refinement>& refinements) {
+std::vector<Curve> split_at_refinements(const Curve& c,
+                                        const std::vector<Refinement>& refinements) {
   std::vector<double> cuts{0.0, 1.0};
   for (const auto& r : refinements)
-    for (const auto& [t0, t1] : kept_intervals(c, [&](const Vec2& p) { return r.box.contains(p); })) {
+    for (const auto& [t0, t1] :
+         kept_intervals(c, [&](const Vec2& p) { return r.box.contains(p); })) {
       cuts.push_back(t0);
       cuts.push_back(t1);
     }
@@ -64,12 +66,12 @@ NodeCloud generate_nodes(const Domain& domain, double spacing,
   std::vector<double> bnd_h;
   for (const Curve& whole : domain.boundary())
     for (const Curve& c : split_at_refinements(whole, refinements)) {
-    const double h = local_spacing(c.point(0.5), spacing, refinements);
-    const int n = std::max(1, static_cast<int>(std::ceil(c.length() / h - 1e-9)));
-    for (int k = 0; k <= n; ++k) {
-      bnd.push_back(c.point(static_cast<double>(k) / n));
-      bnd_h.push_back(h);
-    }
+      const double h = local_spacing(c.point(0.5), spacing, refinements);
+      const int n = std::max(1, static_cast<int>(std::ceil(c.length() / h - 1e-9)));
+      for (int k = 0; k <= n; ++k) {
+        bnd.push_back(c.point(static_cast<double>(k) / n));
+        bnd_h.push_back(h);
+      }
     }
 
   // 2. Interior lattice: base spacing outside refinement boxes, fine spacing inside them.
@@ -80,15 +82,17 @@ NodeCloud generate_nodes(const Domain& domain, double spacing,
       if (r.box.contains(p, -1e-9 * spacing)) return true;
     return false;
   };
-  add_lattice(bb.lo, spacing, bb,
-              [&](const Vec2& p) { return domain.contains(p) && !in_any_box(p); }, lat, lat_h);
+  add_lattice(
+      bb.lo, spacing, bb, [&](const Vec2& p) { return domain.contains(p) && !in_any_box(p); }, lat,
+      lat_h);
   for (const auto& r : refinements) {
     MF_REQUIRE(r.spacing > 0.0, "refinement spacing must be positive, got ", r.spacing);
-    add_lattice(bb.lo, r.spacing, r.box,
-                [&](const Vec2& p) {
-                  return domain.contains(p) && local_spacing(p, spacing, refinements) == r.spacing;
-                },
-                lat, lat_h);
+    add_lattice(
+        bb.lo, r.spacing, r.box,
+        [&](const Vec2& p) {
+          return domain.contains(p) && local_spacing(p, spacing, refinements) == r.spacing;
+        },
+        lat, lat_h);
   }
 
   // 3. Merge: boundary nodes first (deduplicated among themselves), then lattice nodes that

@@ -70,8 +70,9 @@ ShapeTable MeshfreeSpace::shape_table(const std::vector<Vec2>& points, const std
     const int* nb = support.index.data() + support.offset[p];
     const int count = support.size(p);
     std::copy(nb, nb + count, t.node.begin() + t.offset[k]);
-    const bool ok = kernels::evaluate_shape(settings_, v, points[p], nb, count, t.phi.data() + t.offset[k],
-                                            gradients ? t.dphi.data() + t.offset[k] : nullptr);
+    const bool ok =
+        kernels::evaluate_shape(settings_, v, points[p], nb, count, t.phi.data() + t.offset[k],
+                                gradients ? t.dphi.data() + t.offset[k] : nullptr);
     if (!ok) {
       int expected = -1;
       failed.compare_exchange_strong(expected, p);

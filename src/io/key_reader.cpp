@@ -12,8 +12,10 @@ std::string show(const YAML::Node& n) {
 }
 } // namespace
 
-KeyReader::KeyReader(YAML::Node node, std::string path) : node_(std::move(node)), path_(std::move(path)) {
-  if (!node_.IsMap()) fail(path_.empty() ? "document" : path_, ": expected a map of keys, got ", show(node_));
+KeyReader::KeyReader(YAML::Node node, std::string path)
+    : node_(std::move(node)), path_(std::move(path)) {
+  if (!node_.IsMap())
+    fail(path_.empty() ? "document" : path_, ": expected a map of keys, got ", show(node_));
 }
 
 void KeyReader::error(const std::string& key, const std::string& message) const {
@@ -31,7 +33,9 @@ YAML::Node KeyReader::get(const std::string& key) {
   return n;
 }
 
-YAML::Node KeyReader::raw(const std::string& key) { return get(key); }
+YAML::Node KeyReader::raw(const std::string& key) {
+  return get(key);
+}
 
 double KeyReader::to_number(const YAML::Node& n, const std::string& key) const {
   if (!n.IsScalar()) error(key, "expected a number, got " + show(n));
@@ -46,7 +50,9 @@ double KeyReader::to_number(const YAML::Node& n, const std::string& key) const {
   }
 }
 
-double KeyReader::number(const std::string& key) { return to_number(get(key), key); }
+double KeyReader::number(const std::string& key) {
+  return to_number(get(key), key);
+}
 
 double KeyReader::number(const std::string& key, double fallback) {
   used_.insert(key);
@@ -125,7 +131,8 @@ std::vector<Vec2> KeyReader::vec2_list(const std::string& key) {
   std::vector<Vec2> out;
   for (std::size_t i = 0; i < n.size(); ++i) {
     const std::string k = key + "[" + std::to_string(i) + "]";
-    if (!n[i].IsSequence() || n[i].size() != 2) error(k, "expected a pair [x, y], got " + show(n[i]));
+    if (!n[i].IsSequence() || n[i].size() != 2)
+      error(k, "expected a pair [x, y], got " + show(n[i]));
     out.emplace_back(to_number(n[i][0], k), to_number(n[i][1], k));
   }
   return out;
@@ -170,7 +177,8 @@ void KeyReader::finish() const {
 
 void apply_override(YAML::Node& root, const std::string& assignment) {
   const auto eq = assignment.find('=');
-  MF_REQUIRE(eq != std::string::npos && eq > 0, "--set expects key.path=value, got '", assignment, "'");
+  MF_REQUIRE(eq != std::string::npos && eq > 0, "--set expects key.path=value, got '", assignment,
+             "'");
   const std::string path = assignment.substr(0, eq);
   YAML::Node value;
   try {

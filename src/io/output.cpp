@@ -29,7 +29,8 @@ void OutputDirectory::clear_previous() const {
   for (const auto& entry : fs::directory_iterator(dir_)) {
     const std::string name = entry.path().filename().string();
     const bool ours = name == "fields.h5" || name == "fields.xmf" || name == "history.csv" ||
-                      name == "summary.json" || (name.rfind("line_", 0) == 0 && entry.path().extension() == ".csv");
+                      name == "summary.json" ||
+                      (name.rfind("line_", 0) == 0 && entry.path().extension() == ".csv");
     if (ours) fs::remove(entry.path());
   }
 }
@@ -60,13 +61,14 @@ void OutputDirectory::write_csv(const std::string& file, const std::vector<std::
 
 namespace {
 
-void write_dataset(hid_t file, const std::string& name, const std::vector<double>& data, hsize_t rows,
-                   hsize_t cols) {
+void write_dataset(hid_t file, const std::string& name, const std::vector<double>& data,
+                   hsize_t rows, hsize_t cols) {
   hsize_t dims[2] = {rows, cols};
   const hid_t space = H5Screate_simple(cols > 1 ? 2 : 1, dims, nullptr);
   const hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
   H5Pset_create_intermediate_group(lcpl, 1);
-  const hid_t set = H5Dcreate2(file, name.c_str(), H5T_NATIVE_DOUBLE, space, lcpl, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t set =
+      H5Dcreate2(file, name.c_str(), H5T_NATIVE_DOUBLE, space, lcpl, H5P_DEFAULT, H5P_DEFAULT);
   MF_REQUIRE(set >= 0, "HDF5: cannot create dataset ", name);
   MF_REQUIRE(H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) >= 0,
              "HDF5: cannot write dataset ", name);
@@ -79,13 +81,15 @@ std::string data_item(const std::string& h5, const std::string& set, std::size_t
   std::ostringstream os;
   os << "<DataItem Dimensions=\"" << rows;
   if (cols > 1) os << " " << cols;
-  os << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5 << ":" << set << "</DataItem>";
+  os << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5 << ":" << set
+     << "</DataItem>";
   return os.str();
 }
 
 } // namespace
 
-void OutputDirectory::write_fields(const std::vector<Vec2>& points, const std::vector<FieldStep>& steps) {
+void OutputDirectory::write_fields(const std::vector<Vec2>& points,
+                                   const std::vector<FieldStep>& steps) {
   const std::string h5_temp = temp_path("fields.h5");
   const hid_t file = H5Fcreate(h5_temp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   MF_REQUIRE(file >= 0, h5_temp, ": cannot create the HDF5 file");
@@ -102,9 +106,10 @@ void OutputDirectory::write_fields(const std::vector<Vec2>& points, const std::v
     group << "/step_" << std::setw(6) << std::setfill('0') << s;
     x << "   <Grid Name=\"step_" << s << "\" GridType=\"Uniform\">\n"
       << "    <Time Value=\"" << std::setprecision(12) << steps[s].time << "\"/>\n"
-      << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\" NodesPerElement=\"1\"/>\n"
-      << "    <Geometry GeometryType=\"XYZ\">" << data_item("fields.h5", "/geometry/coordinates", n, 3)
-      << "</Geometry>\n";
+      << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n
+      << "\" NodesPerElement=\"1\"/>\n"
+      << "    <Geometry GeometryType=\"XYZ\">"
+      << data_item("fields.h5", "/geometry/coordinates", n, 3) << "</Geometry>\n";
     for (const auto& [name, v] : steps[s].scalars) {
       MF_ASSERT(v.size() == n);
       write_dataset(file, group.str() + "/" + name, v, n, 1);
@@ -138,10 +143,14 @@ namespace {
 std::string encode(const std::string& s) {
   std::string out = "\"";
   for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\', out += c;
-    else if (c == '\n') out += "\\n";
-    else if (static_cast<unsigned char>(c) < 0x20) out += ' ';
-    else out += c;
+    if (c == '"' || c == '\\')
+      out += '\\', out += c;
+    else if (c == '\n')
+      out += "\\n";
+    else if (static_cast<unsigned char>(c) < 0x20)
+      out += ' ';
+    else
+      out += c;
   }
   return out + "\"";
 }

@@ -11,7 +11,8 @@ materials::PlaneModel read_model(KeyReader& r, double& thickness) {
   const std::string type = m.choice("type", {"plane_stress", "plane_strain"}, "plane_stress");
   thickness = m.positive("thickness", 1.0);
   m.finish();
-  return type == "plane_stress" ? materials::PlaneModel::PlaneStress : materials::PlaneModel::PlaneStrain;
+  return type == "plane_stress" ? materials::PlaneModel::PlaneStress
+                                : materials::PlaneModel::PlaneStrain;
 }
 
 materials::IsotropicElastic read_material(KeyReader& r) {
@@ -19,7 +20,8 @@ materials::IsotropicElastic read_material(KeyReader& r) {
   materials::IsotropicElastic mat;
   mat.E = m.positive("E");
   mat.nu = m.number("nu");
-  if (!(mat.nu > -1.0 && mat.nu < 0.5)) m.error("nu", "expected a Poisson's ratio in (-1, 0.5), got " + std::to_string(mat.nu));
+  if (!(mat.nu > -1.0 && mat.nu < 0.5))
+    m.error("nu", "expected a Poisson's ratio in (-1, 0.5), got " + std::to_string(mat.nu));
   m.finish();
   return mat;
 }
@@ -88,16 +90,19 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
     geometry::Refinement ref;
     ref.box = read_box(f, "box");
     ref.spacing = f.positive("spacing");
-    if (ref.spacing >= s.spacing) f.error("spacing", "a refinement must be finer than discretisation.spacing");
+    if (ref.spacing >= s.spacing)
+      f.error("spacing", "a refinement must be finer than discretisation.spacing");
     f.finish();
     s.refinement.push_back(ref);
   }
   const std::string approx = d.choice("approximation", {"rk", "mls"}, "rk");
   s.shape.approximation = approx == "rk" ? kernels::Approximation::ReproducingKernel
                                          : kernels::Approximation::MovingLeastSquares;
-  s.shape.basis = d.choice("basis", {"linear", "quadratic"}, "linear") == "linear" ? kernels::Basis::Linear
-                                                                                   : kernels::Basis::Quadratic;
-  s.shape.window.type = window_type(d.choice("window", {"cubic_spline", "quartic_spline", "gaussian"}, "cubic_spline"));
+  s.shape.basis = d.choice("basis", {"linear", "quadratic"}, "linear") == "linear"
+                      ? kernels::Basis::Linear
+                      : kernels::Basis::Quadratic;
+  s.shape.window.type = window_type(
+      d.choice("window", {"cubic_spline", "quartic_spline", "gaussian"}, "cubic_spline"));
   s.shape.window.gaussian_shape = d.positive("gaussian_shape", 0.4);
   s.shape.support = d.choice("support", {"circular", "rectangular"}, "circular") == "circular"
                         ? kernels::SupportShape::Circular
@@ -144,11 +149,14 @@ BoundarySelector read_selector(KeyReader& bc) {
   if (o.has("box")) sel.box = read_box(o, "box");
   o.allow("box");
   o.finish();
-  if (sel.names.empty() && !sel.box) o.error("edge", "name the boundary pieces ('edge' or 'edges') or give a 'box'");
+  if (sel.names.empty() && !sel.box)
+    o.error("edge", "name the boundary pieces ('edge' or 'edges') or give a 'box'");
   return sel;
 }
 
-BoundaryCondition read_condition(KeyReader& bc, double default_alpha) {
+/// `stiffness_scale` = E / h: the penalty is alpha = penalty_scale * E / h unless an absolute
+/// `penalty` is given (the thesis uses alpha = 1e12 with E = 2e5 MPa).
+BoundaryCondition read_condition(KeyReader& bc, double stiffness_scale) {
   BoundaryCondition c;
   c.key_path = bc.path();
   c.name = bc.text("name");
@@ -172,20 +180,30 @@ BoundaryCondition read_condition(KeyReader& bc, double default_alpha) {
       }
       u.allow("exact");
       u.finish();
-      if (c.mask.isZero()) bc.error("displacement", "constrain at least one of x, y (or say 'exact')");
+      if (c.mask.isZero())
+        bc.error("displacement", "constrain at least one of x, y (or say 'exact')");
     }
-    c.penalty = bc.positive("penalty", default_alpha);
+    if (bc.has("penalty") && bc.has("penalty_scale"))
+      bc.error("penalty_scale",
+               "give either 'penalty' (absolute) or 'penalty_scale' (times E/h), not both");
+    c.penalty = bc.has("penalty") ? bc.positive("penalty")
+                                  : bc.positive("penalty_scale", 1e6) * stiffness_scale;
   }
-  if (!c.constrains && bc.has("penalty")) bc.error("penalty", "a penalty needs a 'displacement' condition");
-  bc.allow("penalty");
+  for (const char* key : {"penalty", "penalty_scale"}) {
+    if (!c.constrains && bc.has(key)) bc.error(key, "a penalty needs a 'displacement' condition");
+    bc.allow(key);
+  }
   if (bc.has("traction")) {
     c.loads = true;
     YAML::Node n = bc.raw("traction");
-    if (n.IsScalar() && n.Scalar() == "exact") c.traction_from_exact = true;
-    else c.traction = bc.vec2("traction");
+    if (n.IsScalar() && n.Scalar() == "exact")
+      c.traction_from_exact = true;
+    else
+      c.traction = bc.vec2("traction");
   }
   bc.allow("traction");
-  if (c.constrains == c.loads) bc.error("name", "a boundary condition needs exactly one of 'displacement' or 'traction'");
+  if (c.constrains == c.loads)
+    bc.error("name", "a boundary condition needs exactly one of 'displacement' or 'traction'");
   bc.finish();
   return c;
 }
@@ -220,7 +238,8 @@ std::optional<verification::ExactSolution> read_exact(KeyReader& r) {
 
 } // namespace
 
-std::vector<geometry::Curve> select_boundary(const geometry::Domain& domain, const BoundarySelector& on,
+std::vector<geometry::Curve> select_boundary(const geometry::Domain& domain,
+                                             const BoundarySelector& on,
                                              const std::string& key_path) {
   std::vector<geometry::Curve> out;
   const auto all = domain.boundary();
@@ -231,19 +250,21 @@ std::vector<geometry::Curve> select_boundary(const geometry::Domain& domain, con
       std::string names;
       for (const auto& c : all)
         if (names.find(c.name) == std::string::npos) names += (names.empty() ? "" : ", ") + c.name;
-      fail(key_path, ".on: no boundary piece is named '", name, "' (the body's pieces: ", names, ")");
+      fail(key_path, ".on: no boundary piece is named '", name, "' (the body's pieces: ", names,
+           ")");
     }
   }
   for (const auto& c : all) {
-    const bool named = on.names.empty() ||
-                       std::find(on.names.begin(), on.names.end(), c.name) != on.names.end();
+    const bool named =
+        on.names.empty() || std::find(on.names.begin(), on.names.end(), c.name) != on.names.end();
     if (!named) continue;
     if (!on.box) {
       out.push_back(c);
       continue;
     }
     const double tol = 1e-9 * (domain.bounds().size().maxCoeff());
-    for (const auto& [t0, t1] : geometry::kept_intervals(c, [&](const Vec2& p) { return on.box->contains(p, tol); }))
+    for (const auto& [t0, t1] :
+         geometry::kept_intervals(c, [&](const Vec2& p) { return on.box->contains(p, tol); }))
       out.push_back(c.piece(t0, t1));
   }
   double length = 0.0;
@@ -286,18 +307,20 @@ ProblemSpec parse_problem(YAML::Node root) {
   r.allow("body_force");
   // Default penalty: alpha = 1e6 E / h, stiff enough that the constraint error is ~1e-6 of the
   // boundary displacement scale, and far from the round-off limit of a direct solve.
-  const double default_alpha = 1e6 * p.material.E / p.discretisation.spacing;
+  const double stiffness_scale = p.material.E / p.discretisation.spacing;
   for (KeyReader& bc : r.map_list("boundary")) {
-    p.boundary.push_back(read_condition(bc, default_alpha));
+    p.boundary.push_back(read_condition(bc, stiffness_scale));
     const BoundaryCondition& c = p.boundary.back();
     if ((c.value_from_exact || c.traction_from_exact) && !p.exact)
-      bc.error(c.constrains ? "displacement" : "traction", "'exact' needs an 'exact' section in the problem");
+      bc.error(c.constrains ? "displacement" : "traction",
+               "'exact' needs an 'exact' section in the problem");
     select_boundary(p.domain, c.on, c.key_path); // rejects selectors that pick nothing
   }
   if (p.boundary.empty()) r.error("boundary", "at least one boundary condition is required");
   bool constrained = false;
   for (const auto& c : p.boundary) constrained = constrained || c.constrains;
-  if (!constrained) r.error("boundary", "no displacement condition: the body is free to move as a rigid body");
+  if (!constrained)
+    r.error("boundary", "no displacement condition: the body is free to move as a rigid body");
 
   if (auto out = r.optional_map("output")) {
     for (KeyReader& l : out->map_list("lines")) {

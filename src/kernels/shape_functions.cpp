@@ -8,7 +8,8 @@ namespace mf::kernels {
 namespace {
 
 /// Window value and its gradient with respect to the evaluation point x.
-inline double window_with_gradient(const ShapeSettings& s, const Vec2& d, const Vec2& a, Vec2& grad) {
+inline double window_with_gradient(const ShapeSettings& s, const Vec2& d, const Vec2& a,
+                                   Vec2& grad) {
   const Window& w = s.window;
   if (s.dim == 1) {
     const double z = std::abs(d.x()) / a.x();
@@ -29,7 +30,8 @@ inline double window_with_gradient(const ShapeSettings& s, const Vec2& d, const 
 
 /// Complete polynomial basis in xi and its derivatives d/dxi, d/deta.
 /// 1D: [1, xi, xi^2]; 2D: [1, xi, eta, xi^2, xi*eta, eta^2] (Pascal's triangle, eq. 2-4).
-inline void basis(int dim, bool quadratic, const Vec2& xi, BasisVec& h, BasisVec& hx, BasisVec& hy) {
+inline void basis(int dim, bool quadratic, const Vec2& xi, BasisVec& h, BasisVec& hx,
+                  BasisVec& hy) {
   const double x = xi.x(), y = xi.y();
   if (dim == 1) {
     const int m = quadratic ? 3 : 2;
@@ -127,8 +129,8 @@ bool evaluate_rk(const ShapeSettings& s, const NodeView& nodes, const Vec2& x, c
   return true;
 }
 
-bool evaluate_mls(const ShapeSettings& s, const NodeView& nodes, const Vec2& x, const int* nb, int n,
-                  double* phi, Vec2* dphi) {
+bool evaluate_mls(const ShapeSettings& s, const NodeView& nodes, const Vec2& x, const int* nb,
+                  int n, double* phi, Vec2* dphi) {
   const int m = s.basis_size();
   const bool quad = s.basis == Basis::Quadratic;
   const double inv = 1.0 / s.mls_scale;
@@ -170,8 +172,8 @@ bool evaluate_mls(const ShapeSettings& s, const NodeView& nodes, const Vec2& x, 
   return true;
 }
 
-bool evaluate_sph(const ShapeSettings& s, const NodeView& nodes, const Vec2& x, const int* nb, int n,
-                  double* phi, Vec2* dphi) {
+bool evaluate_sph(const ShapeSettings& s, const NodeView& nodes, const Vec2& x, const int* nb,
+                  int n, double* phi, Vec2* dphi) {
   for (int k = 0; k < n; ++k) {
     const int I = nb[k];
     Vec2 gw;
@@ -187,7 +189,8 @@ bool evaluate_sph(const ShapeSettings& s, const NodeView& nodes, const Vec2& x, 
 
 double window_integral(const ShapeSettings& s, const Vec2& a) {
   if (s.dim == 1) return 2.0 * a.x() * integral_01(s.window, 0);
-  if (s.support == SupportShape::Circular) return 2.0 * M_PI * a.x() * a.x() * integral_01(s.window, 1);
+  if (s.support == SupportShape::Circular)
+    return 2.0 * M_PI * a.x() * a.x() * integral_01(s.window, 1);
   const double i0 = integral_01(s.window, 0);
   return 4.0 * a.x() * a.y() * i0 * i0;
 }

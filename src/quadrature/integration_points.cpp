@@ -70,10 +70,11 @@ double CellSizing::size_at(const BoundingBox& box) const {
   return ratio * h;
 }
 
-DomainPoints domain_points(const geometry::Domain& domain, double cell_size, int order, int cut_levels,
-                           const CellSizing& sizing) {
+DomainPoints domain_points(const geometry::Domain& domain, double cell_size, int order,
+                           int cut_levels, const CellSizing& sizing) {
   MF_REQUIRE(cell_size > 0.0, "integration cell size must be positive, got ", cell_size);
-  MF_REQUIRE(cut_levels >= 0 && cut_levels <= 6, "cut-cell levels must be in [0, 6], got ", cut_levels);
+  MF_REQUIRE(cut_levels >= 0 && cut_levels <= 6, "cut-cell levels must be in [0, 6], got ",
+             cut_levels);
   const GaussRule& g = gauss_legendre(order);
   const BoundingBox bb = domain.bounds();
   const int nx = std::max(1, static_cast<int>(std::ceil(bb.size().x() / cell_size - 1e-9)));
@@ -90,8 +91,8 @@ DomainPoints domain_points(const geometry::Domain& domain, double cell_size, int
   return out;
 }
 
-BoundaryPoints boundary_points(const std::vector<geometry::Curve>& pieces, double part_length, int order,
-                               const CellSizing& sizing) {
+BoundaryPoints boundary_points(const std::vector<geometry::Curve>& pieces, double part_length,
+                               int order, const CellSizing& sizing) {
   MF_REQUIRE(part_length > 0.0, "boundary part length must be positive, got ", part_length);
   const GaussRule& g = gauss_legendre(order);
   BoundaryPoints out;

@@ -18,7 +18,9 @@ PetscSession::PetscSession(int* argc, char*** argv) {
   log::rank() = rank_;
 }
 
-PetscSession::~PetscSession() { PetscFinalize(); }
+PetscSession::~PetscSession() {
+  PetscFinalize();
+}
 
 OwnedRange owned_nodes(int n, int rank, int size) {
   const int base = n / size, extra = n % size;
@@ -41,8 +43,9 @@ struct BlockLinearSystem::Impl {
   std::vector<PetscInt> idx; // scratch for block indices
 };
 
-BlockLinearSystem::BlockLinearSystem(MPI_Comm comm, int node_count, int block_size, OwnedRange owned,
-                                     const std::vector<int>& d_nnz, const std::vector<int>& o_nnz, bool spd)
+BlockLinearSystem::BlockLinearSystem(MPI_Comm comm, int node_count, int block_size,
+                                     OwnedRange owned, const std::vector<int>& d_nnz,
+                                     const std::vector<int>& o_nnz, bool spd)
     : impl_(std::make_unique<Impl>()) {
   impl_->bs = block_size;
   impl_->spd = spd;
@@ -70,13 +73,15 @@ BlockLinearSystem::~BlockLinearSystem() {
 
 void BlockLinearSystem::add_matrix(const int* nodes, int n, const double* values) {
   impl_->idx.assign(nodes, nodes + n);
-  check(MatSetValuesBlocked(impl_->A, n, impl_->idx.data(), n, impl_->idx.data(), values, ADD_VALUES),
-        "MatSetValuesBlocked");
+  check(
+      MatSetValuesBlocked(impl_->A, n, impl_->idx.data(), n, impl_->idx.data(), values, ADD_VALUES),
+      "MatSetValuesBlocked");
 }
 
 void BlockLinearSystem::add_vector(const int* nodes, int n, const double* values) {
   impl_->idx.assign(nodes, nodes + n);
-  check(VecSetValuesBlocked(impl_->b, n, impl_->idx.data(), values, ADD_VALUES), "VecSetValuesBlocked");
+  check(VecSetValuesBlocked(impl_->b, n, impl_->idx.data(), values, ADD_VALUES),
+        "VecSetValuesBlocked");
 }
 
 void BlockLinearSystem::assemble() {
@@ -101,6 +106,13 @@ SolveReport BlockLinearSystem::solve() {
   check(KSPGetPC(s.ksp, &pc), "KSPGetPC");
   check(PCSetType(pc, s.spd ? PCCHOLESKY : PCLU), "PCSetType");
   check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+  // MUMPS sizes its work space from an estimate plus ICNTL(14) percent (PETSc's default 20);
+  // distributed Cholesky of penalty-constrained matrices can exceed that (INFOG(1) = -9), so
+  // allow 100 percent unless the user chose a value.
+  PetscBool set = PETSC_FALSE;
+  check(PetscOptionsHasName(nullptr, nullptr, "-mat_mumps_icntl_14", &set), "PetscOptionsHasName");
+  if (!set)
+    check(PetscOptionsSetValue(nullptr, "-mat_mumps_icntl_14", "100"), "PetscOptionsSetValue");
   check(KSPSetFromOptions(s.ksp), "KSPSetFromOptions");
   check(KSPSolve(s.ksp, s.b, s.x), "KSPSolve");
 
@@ -129,8 +141,13 @@ SolveReport BlockLinearSystem::solve() {
   check(VecNorm(s.b, NORM_2, &bn), "VecNorm");
   check(VecDestroy(&res), "VecDestroy");
   r.residual_norm = bn > 0.0 ? rn / bn : rn;
-  MF_REQUIRE(reason > 0, "linear solve failed: KSP stopped with ", r.reason_name, " after ",
-             r.iterations, " iterations (solver ", r.solver, ")");
+  if (reason <= 0) {
+    PCFailedReason pcr = PC_NOERROR;
+    PCGetFailedReasonRank(pc, &pcr);
+    fail("linear solve failed: KSP stopped with ", r.reason_name, " after ", r.iterations,
+         " iterations (solver ", r.solver, ", preconditioner: ", PCFailedReasons[pcr],
+         "); a factorisation that fails usually means the body is not held against rigid motion");
+  }
   MF_REQUIRE(std::isfinite(r.residual_norm), "linear solve produced a non-finite solution (solver ",
              r.solver, ")");
   return r;

@@ -40,7 +40,8 @@ std::vector<double> approximate(const implicit::MeshfreeSpace& space, const std:
   const auto t = space.shape_table(pts, rows, space.support_lists(pts), false);
   std::vector<double> out(pts.size(), 0.0);
   for (int r = 0; r < t.rows(); ++r)
-    for (int k = t.offset[r]; k < t.offset[r + 1]; ++k) out[r] += t.phi[k] * f(space.nodes().x[t.node[k]]);
+    for (int k = t.offset[r]; k < t.offset[r + 1]; ++k)
+      out[r] += t.phi[k] * f(space.nodes().x[t.node[k]]);
   return out;
 }
 
@@ -68,11 +69,13 @@ int main(int argc, char** argv) {
       std::vector<Vec2> pts;
       const int m = c.dim == 1 ? 201 : 41;
       for (int j = 0; j < (c.dim == 1 ? 1 : m); ++j)
-        for (int i = 0; i < m; ++i) pts.emplace_back(i / (m - 1.0), c.dim == 1 ? 0.0 : j / (m - 1.0));
+        for (int i = 0; i < m; ++i)
+          pts.emplace_back(i / (m - 1.0), c.dim == 1 ? 0.0 : j / (m - 1.0));
       std::vector<std::vector<double>> columns;
-      for (auto [approx, basis] : {std::pair{kernels::Approximation::Sph, kernels::Basis::Linear},
-                                   std::pair{kernels::Approximation::ReproducingKernel, kernels::Basis::Linear},
-                                   std::pair{kernels::Approximation::ReproducingKernel, kernels::Basis::Quadratic}}) {
+      for (auto [approx, basis] :
+           {std::pair{kernels::Approximation::Sph, kernels::Basis::Linear},
+            std::pair{kernels::Approximation::ReproducingKernel, kernels::Basis::Linear},
+            std::pair{kernels::Approximation::ReproducingKernel, kernels::Basis::Quadratic}}) {
         s.approximation = approx;
         s.basis = basis;
         const double dil = basis == kernels::Basis::Quadratic ? 3.0 : 2.0;
@@ -81,8 +84,10 @@ int main(int argc, char** argv) {
       }
       std::vector<std::vector<double>> rows;
       for (std::size_t i = 0; i < pts.size(); ++i)
-        rows.push_back({pts[i].x(), pts[i].y(), c.f(pts[i]), columns[0][i], columns[1][i], columns[2][i]});
-      out.write_csv("approx_" + c.name + ".csv", {"x", "y", "exact", "sph", "rk_linear", "rk_quadratic"}, rows);
+        rows.push_back(
+            {pts[i].x(), pts[i].y(), c.f(pts[i]), columns[0][i], columns[1][i], columns[2][i]});
+      out.write_csv("approx_" + c.name + ".csv",
+                    {"x", "y", "exact", "sph", "rk_linear", "rk_quadratic"}, rows);
     }
     out.commit();
   } catch (const Error& e) {

@@ -46,7 +46,8 @@ struct Stress {
   Vec3 operator()(const KirschPlate& k) const {
     const double r = x.norm(), th = std::atan2(x.y(), x.x());
     const double a2 = k.a * k.a / (r * r), a4 = a2 * a2, s0 = k.sigma0;
-    const double c2 = std::cos(2 * th), c4 = std::cos(4 * th), s2 = std::sin(2 * th), s4 = std::sin(4 * th);
+    const double c2 = std::cos(2 * th), c4 = std::cos(4 * th), s2 = std::sin(2 * th),
+                 s4 = std::sin(4 * th);
     return {s0 * (1.0 - a2 * (1.5 * c2 + c4) + 1.5 * a4 * c4),
             s0 * (-a2 * (0.5 * c2 - c4) - 1.5 * a4 * c4),
             s0 * (-a2 * (0.5 * s2 + s4) + 1.5 * a4 * s4)};
@@ -59,7 +60,8 @@ struct Stress {
 
 } // namespace
 
-Vec2 exact_displacement(const ExactSolution& s, const materials::IsotropicElastic& m, const Vec2& x) {
+Vec2 exact_displacement(const ExactSolution& s, const materials::IsotropicElastic& m,
+                        const Vec2& x) {
   return std::visit(Displacement{m, x}, s);
 }
 

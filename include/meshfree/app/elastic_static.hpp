@@ -11,7 +11,7 @@
 namespace mf::app {
 
 struct LineSample {
-  std::vector<double> s;                 // distance along the line
+  std::vector<double> s; // distance along the line
   std::vector<Vec2> x, u;
   std::vector<Vec3> stress;
 };
@@ -26,10 +26,10 @@ struct BoundaryReport {
 struct ElasticResult {
   int nodes = 0, dofs = 0, domain_points = 0, boundary_points = 0, cells = 0;
   double matrix_nonzeros = 0.0, mean_support = 0.0;
-  std::vector<double> parameters;            // nodal parameters d (every rank)
-  std::vector<Vec2> node_x, node_u;          // rank 0: nodes and u^h at them
-  std::vector<Vec3> node_stress;             // rank 0
-  std::vector<double> node_szz;              // rank 0
+  std::vector<double> parameters;                        // nodal parameters d (every rank)
+  std::vector<Vec2> node_x, node_u;                      // rank 0: nodes and u^h at them
+  std::vector<Vec3> node_stress;                         // rank 0
+  std::vector<double> node_szz;                          // rank 0
   std::vector<std::pair<std::string, LineSample>> lines; // rank 0
   std::vector<BoundaryReport> boundary;
   double error_l2 = std::numeric_limits<double>::quiet_NaN();     // relative, vs exact
@@ -41,7 +41,8 @@ struct ElasticResult {
 
 /// Solves the problem. Every rank returns the global numbers; node and line fields are filled
 /// on rank 0 only.
-ElasticResult solve_elastic_static(const io::ProblemSpec& spec, const solvers::PetscSession& session);
+ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
+                                   const solvers::PetscSession& session);
 
 /// Writes fields.h5/.xmf, history.csv, line_*.csv and summary.json (rank 0).
 void write_elastic_outputs(const io::ProblemSpec& spec, const ElasticResult& r,

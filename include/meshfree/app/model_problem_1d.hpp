@@ -12,7 +12,7 @@ namespace mf::app {
 struct Model1DResult {
   int nodes = 0, points = 0;
   std::vector<double> x, y, y_exact, dy, dy_exact; // on a fine sampling of [0, L]
-  double error_l2 = 0.0, error_h1 = 0.0;          // relative, from the Gauss points
+  double error_l2 = 0.0, error_h1 = 0.0;           // relative, from the Gauss points
   double error_max = 0.0;                          // max |y^h - y| / max |y| on the sampling
   PhaseTimer timer;
 };
@@ -22,6 +22,7 @@ double model_1d_exact_slope(const io::ModelProblem1D& p, double x);
 double model_1d_source(const io::ModelProblem1D& p, double x);
 
 Model1DResult solve_model_problem_1d(const io::ProblemSpec& spec);
-void write_model_1d_outputs(const io::ProblemSpec& spec, const Model1DResult& r, io::OutputDirectory& out);
+void write_model_1d_outputs(const io::ProblemSpec& spec, const Model1DResult& r,
+                            io::OutputDirectory& out);
 
 } // namespace mf::app

@@ -20,8 +20,8 @@ public:
     Scope(PhaseTimer& timer, std::string name)
         : timer_(timer), name_(std::move(name)), start_(std::chrono::steady_clock::now()) {}
     ~Scope() {
-      timer_.add(name_, std::chrono::duration<double>(std::chrono::steady_clock::now() - start_)
-                            .count());
+      timer_.add(name_,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());
     }
     Scope(const Scope&) = delete;
     Scope& operator=(const Scope&) = delete;

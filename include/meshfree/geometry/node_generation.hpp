@@ -13,9 +13,9 @@ struct Refinement {
 };
 
 struct NodeCloud {
-  std::vector<Vec2> x;          // positions
-  std::vector<double> spacing;  // local nominal spacing at each node
-  std::vector<double> volume;   // nodal volume (area) used by the RK construction
+  std::vector<Vec2> x;         // positions
+  std::vector<double> spacing; // local nominal spacing at each node
+  std::vector<double> volume;  // nodal volume (area) used by the RK construction
 };
 
 /// Generates nodes with spacing `spacing`, finer inside each refinement box. Nodes are sorted

@@ -29,7 +29,8 @@ struct ShapeTable {
 class MeshfreeSpace {
 public:
   /// `dilation` scales each node's local spacing into its support radius (per direction).
-  MeshfreeSpace(geometry::NodeCloud cloud, const kernels::ShapeSettings& settings, const Vec2& dilation);
+  MeshfreeSpace(geometry::NodeCloud cloud, const kernels::ShapeSettings& settings,
+                const Vec2& dilation);
 
   int node_count() const { return static_cast<int>(cloud_.x.size()); }
   const geometry::NodeCloud& nodes() const { return cloud_; }

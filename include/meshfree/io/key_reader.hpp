@@ -17,7 +17,9 @@ public:
   KeyReader(YAML::Node node, std::string path);
 
   const std::string& path() const { return path_; }
-  std::string path_of(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  std::string path_of(const std::string& key) const {
+    return path_.empty() ? key : path_ + "." + key;
+  }
   bool has(const std::string& key) const;
   /// Marks an optional key as known without reading it.
   void allow(const std::string& key) { used_.insert(key); }

@@ -19,11 +19,11 @@ struct DiscretisationSpec {
   double spacing = 0.0;
   std::vector<geometry::Refinement> refinement;
   kernels::ShapeSettings shape;
-  Vec2 dilation{2.0, 2.0};   // support radius = dilation * local spacing
-  int order = 3;             // Gauss points per direction in a background cell
-  double cell_size = 0.0;    // background cell size (default: spacing)
-  int cut_levels = 2;        // subdivisions of cells cut by the boundary
-  int boundary_order = 3;    // Gauss points per boundary part
+  Vec2 dilation{2.0, 2.0}; // support radius = dilation * local spacing
+  int order = 3;           // Gauss points per direction in a background cell
+  double cell_size = 0.0;  // background cell size (default: spacing)
+  int cut_levels = 2;      // subdivisions of cells cut by the boundary
+  int boundary_order = 3;  // Gauss points per boundary part
 };
 
 /// Which boundary pieces a condition acts on: named pieces, optionally clipped to a box.
@@ -88,6 +88,7 @@ ProblemSpec parse_problem(YAML::Node root);
 
 /// The pieces of the boundary a selector picks; throws naming `key_path` if none.
 std::vector<geometry::Curve> select_boundary(const geometry::Domain& domain,
-                                             const BoundarySelector& on, const std::string& key_path);
+                                             const BoundarySelector& on,
+                                             const std::string& key_path);
 
 } // namespace mf::io

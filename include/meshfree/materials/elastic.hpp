@@ -34,9 +34,9 @@ inline double out_of_plane_stress(const IsotropicElastic& m, PlaneModel model, c
 /// Von Mises equivalent stress from in-plane components and szz.
 inline double von_mises(const Vec3& s, double szz) {
   const double sxx = s(0), syy = s(1), sxy = s(2);
-  return std::sqrt(0.5 * ((sxx - syy) * (sxx - syy) + (syy - szz) * (syy - szz) +
-                          (szz - sxx) * (szz - sxx)) +
-                   3.0 * sxy * sxy);
+  return std::sqrt(
+      0.5 * ((sxx - syy) * (sxx - syy) + (syy - szz) * (syy - szz) + (szz - sxx) * (szz - sxx)) +
+      3.0 * sxy * sxy);
 }
 
 /// Material constants that turn plane-strain elasticity into the plane-stress form used by

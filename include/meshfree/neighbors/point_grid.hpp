@@ -40,16 +40,20 @@ public:
   std::size_t size() const { return points_.size(); }
 
 private:
-  int cell_x(double x) const { return clamp_index(static_cast<int>((x - origin_.x()) / cell_), nx_); }
-  int cell_y(double y) const { return clamp_index(static_cast<int>((y - origin_.y()) / cell_), ny_); }
+  int cell_x(double x) const {
+    return clamp_index(static_cast<int>((x - origin_.x()) / cell_), nx_);
+  }
+  int cell_y(double y) const {
+    return clamp_index(static_cast<int>((y - origin_.y()) / cell_), ny_);
+  }
   static int clamp_index(int i, int n) { return i < 0 ? 0 : (i >= n ? n - 1 : i); }
 
   Vec2 origin_{0.0, 0.0};
   double cell_ = 1.0;
   int nx_ = 0, ny_ = 0;
-  std::vector<int> start_;    // CSR offsets per cell
-  std::vector<Vec2> points_;  // points sorted by cell
-  std::vector<int> index_;    // original index of each sorted point
+  std::vector<int> start_;   // CSR offsets per cell
+  std::vector<Vec2> points_; // points sorted by cell
+  std::vector<int> index_;   // original index of each sorted point
   std::vector<Vec2> original_;
 };
 

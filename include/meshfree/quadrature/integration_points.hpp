@@ -27,7 +27,7 @@ struct BoundaryPoints {
 struct CellSizing {
   double spacing = 0.0; // base node spacing
   std::vector<geometry::Refinement> refinement;
-  double ratio = 1.0;   // cell size / node spacing
+  double ratio = 1.0; // cell size / node spacing
   /// Support radius / spacing: the supports of refined nodes reach this many fine spacings
   /// out of their box, and the cells there must resolve them too.
   double reach = 0.0;
@@ -38,12 +38,12 @@ struct CellSizing {
 /// box, `order` x `order` Gauss points per cell. A cell that overlaps a refinement box is split
 /// into four until it is no larger than `sizing` asks; a cell cut by the boundary is split into
 /// four `cut_levels` more times, and at the finest level only the points inside the body are kept.
-DomainPoints domain_points(const geometry::Domain& domain, double cell_size, int order, int cut_levels,
-                           const CellSizing& sizing = {});
+DomainPoints domain_points(const geometry::Domain& domain, double cell_size, int order,
+                           int cut_levels, const CellSizing& sizing = {});
 
 /// Gauss points of `order` on each of `pieces` split into parts of length about `part_length`
 /// (shorter where `sizing` asks for it).
-BoundaryPoints boundary_points(const std::vector<geometry::Curve>& pieces, double part_length, int order,
-                               const CellSizing& sizing = {});
+BoundaryPoints boundary_points(const std::vector<geometry::Curve>& pieces, double part_length,
+                               int order, const CellSizing& sizing = {});
 
 } // namespace mf::quadrature

@@ -29,7 +29,8 @@ using ExactSolution = std::variant<TimoshenkoBeam, KirschPlate, LinearField>;
 
 /// Material for the exact solution: already converted to plane stress with
 /// materials::plane_stress_equivalent where the model is plane strain.
-Vec2 exact_displacement(const ExactSolution& s, const materials::IsotropicElastic& m, const Vec2& x);
+Vec2 exact_displacement(const ExactSolution& s, const materials::IsotropicElastic& m,
+                        const Vec2& x);
 /// Exact stress [sxx, syy, sxy].
 Vec3 exact_stress(const ExactSolution& s, const materials::IsotropicElastic& m, const Vec2& x);
 
