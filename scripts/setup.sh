@@ -6,7 +6,7 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
 # libopenblas0-pthread replaces the reference BLAS under MUMPS (5x faster factorisations).
 PACKAGES=(build-essential cmake pkg-config petsc-dev libhdf5-openmpi-dev libeigen3-dev
-          libsuitesparse-dev libopenblas0-pthread catch2 libyaml-cpp-dev libnanoflann-dev openmpi-bin
+          libsuitesparse-dev libopenblas0-pthread catch2 libyaml-cpp-dev openmpi-bin
           calculix-ccx python3 python3-numpy python3-matplotlib python3-h5py)
 missing=()
 for p in "${PACKAGES[@]}"; do
@@ -17,7 +17,7 @@ if [ ${#missing[@]} -gt 0 ]; then
   SUDO=""
   [ "$(id -u)" -ne 0 ] && SUDO="sudo"
   $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}"
 else
   echo "[setup] all Debian packages present"
 fi

@@ -13,12 +13,22 @@ namespace {
 using implicit::Csr;
 using implicit::ShapeTable;
 
+/// The points a rank integrates: every point whose support holds one of its nodes, so that its
+/// block rows are complete without communication (points near a partition boundary are
+/// integrated by both neighbours, each keeping its own rows). `counted` marks the points whose
+/// lowest-numbered node it owns: sums over the body (errors, reactions) take those only, so
+/// each point counts once.
+struct RankPoints {
+  std::vector<int> rows;
+  std::vector<char> counted;
+};
+
 /// Integration points of one boundary condition and their support lists.
 struct ConditionPoints {
   const io::BoundaryCondition* bc = nullptr;
   quadrature::BoundaryPoints points;
   Csr support;
-  std::vector<int> mine;    // rows this rank integrates
+  RankPoints mine;          // points this rank integrates
   std::vector<Vec2> values; // ubar or traction at each of those rows
 };
 
@@ -47,19 +57,19 @@ std::vector<Vec2> condition_values(const io::ProblemSpec& spec, const io::Bounda
   return out;
 }
 
-/// Rows of `support` this rank integrates. Each group of rows (a background cell, or a single
-/// boundary point when `group` is empty) belongs to the owner of the lowest-numbered node that
-/// covers any of its points, so each rank integrates whole cells over its own strip of nodes.
-std::vector<int> owned_rows(const Csr& support, const std::vector<int>& group, int groups,
-                            int node_count, const solvers::PetscSession& s) {
-  const auto group_of = [&](int r) { return group.empty() ? r : group[r]; };
-  std::vector<int> lowest(group.empty() ? support.rows() : groups, node_count);
-  for (int r = 0; r < support.rows(); ++r) // lists are sorted: the first node is the lowest
-    lowest[group_of(r)] = std::min(lowest[group_of(r)], support.index[support.offset[r]]);
-  std::vector<int> rows;
-  for (int r = 0; r < support.rows(); ++r)
-    if (solvers::owner_of(lowest[group_of(r)], node_count, s.size()) == s.rank()) rows.push_back(r);
-  return rows;
+RankPoints rank_points(const Csr& support, solvers::OwnedRange own, int node_count,
+                       const solvers::PetscSession& s) {
+  RankPoints p;
+  for (int r = 0; r < support.rows(); ++r) {
+    const int* first = support.index.data() + support.offset[r];
+    const int* last = support.index.data() + support.offset[r + 1];
+    // lists are sorted, so the lowest node is the first one
+    if (std::any_of(first, last, [&](int I) { return own.owns(I); })) {
+      p.rows.push_back(r);
+      p.counted.push_back(solvers::owner_of(*first, node_count, s.size()) == s.rank());
+    }
+  }
+  return p;
 }
 
 /// Fields at arbitrary points (nodes, line samples): u^h, stress, szz.
@@ -143,8 +153,8 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
   // 3. Neighbours: support lists of every point, and the exact matrix pattern of owned rows.
   const solvers::OwnedRange own = solvers::owned_nodes(N, session.rank(), session.size());
   Csr dsupport;
-  std::vector<int> dmine;
-  std::vector<int> d_nnz, o_nnz;
+  RankPoints dmine;
+  implicit::RowPattern pattern;
   {
     PhaseTimer::Scope scope(timer, "neighbours");
     dsupport = space->support_lists(dp.x);
@@ -156,9 +166,9 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
     for (int r = 0; r < dsupport.rows(); ++r)
       MF_REQUIRE(dsupport.size(r) > 0, "integration point (", dp.x[r].x(), ", ", dp.x[r].y(),
                  ") is covered by no node: raise discretisation.dilation");
-    implicit::coupling_counts(lists, N, own.begin, own.end, d_nnz, o_nnz);
-    dmine = owned_rows(dsupport, dp.cell, dp.cell_count, N, session);
-    for (auto& c : bcs) c.mine = owned_rows(c.support, {}, 0, N, session);
+    pattern = implicit::coupling_pattern(lists, N, own.begin, own.end);
+    dmine = rank_points(dsupport, own, N, session);
+    for (auto& c : bcs) c.mine = rank_points(c.support, own, N, session);
   }
   R.mean_support = static_cast<double>(dsupport.index.size()) / std::max(1, dsupport.rows());
 
@@ -167,52 +177,58 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
   std::vector<ShapeTable> btables(bcs.size());
   {
     PhaseTimer::Scope scope(timer, "shape_functions");
-    dtable = space->shape_table(dp.x, dmine, dsupport, true);
+    dtable = space->shape_table(dp.x, dmine.rows, dsupport, true);
     for (std::size_t b = 0; b < bcs.size(); ++b)
-      btables[b] = space->shape_table(bcs[b].points.x, bcs[b].mine, bcs[b].support, false);
+      btables[b] = space->shape_table(bcs[b].points.x, bcs[b].mine.rows, bcs[b].support, false);
   }
 
   // 5. Assembly of K d = f.
-  solvers::BlockLinearSystem system(session.comm(), N, 2, own, d_nnz, o_nnz, /*spd=*/true);
+  implicit::BlockRows rows(std::move(pattern));
   const auto add_matrix = [&](const int* nodes, int n, const double* v) {
-    system.add_matrix(nodes, n, v);
+    rows.add_matrix(nodes, n, v);
   };
   const auto add_vector = [&](const int* nodes, int n, const double* v) {
-    system.add_vector(nodes, n, v);
+    rows.add_vector(nodes, n, v);
   };
   const Mat3 C = materials::elastic_matrix(spec.material, spec.model);
   const materials::IsotropicElastic exact_mat =
       materials::plane_stress_equivalent(spec.material, spec.model);
   {
     PhaseTimer::Scope scope(timer, "assembly");
-    std::vector<double> w(dmine.size());
-    for (std::size_t k = 0; k < dmine.size(); ++k) w[k] = dp.weight[dmine[k]] * t;
+    std::vector<double> w(dmine.rows.size());
+    for (std::size_t k = 0; k < w.size(); ++k) w[k] = dp.weight[dmine.rows[k]] * t;
     implicit::add_stiffness(dtable, w, C, add_matrix);
     if (!spec.body_force.isZero())
-      implicit::add_load(dtable, w, std::vector<Vec2>(dmine.size(), spec.body_force), add_vector);
+      implicit::add_load(dtable, w, std::vector<Vec2>(w.size(), spec.body_force), add_vector);
     for (std::size_t b = 0; b < bcs.size(); ++b) {
       const io::BoundaryCondition& bc = *bcs[b].bc;
       const auto& pts = bcs[b].points;
       std::vector<double> bw;
-      for (int r : bcs[b].mine) bw.push_back(pts.weight[r] * t);
-      bcs[b].values = condition_values(spec, bc, pts, bcs[b].mine);
+      for (int r : bcs[b].mine.rows) bw.push_back(pts.weight[r] * t);
+      bcs[b].values = condition_values(spec, bc, pts, bcs[b].mine.rows);
       const auto& val = bcs[b].values;
       if (bc.constrains)
         implicit::add_penalty(btables[b], bw, bc.mask, bc.penalty, val, add_matrix, add_vector);
       else
         implicit::add_load(btables[b], bw, val, add_vector);
     }
-    system.assemble();
   }
-  R.matrix_nonzeros = system.global_nonzeros();
+  std::unique_ptr<solvers::BlockLinearSystem> system;
+  {
+    PhaseTimer::Scope scope(timer, "solver_setup");
+    const implicit::RowPattern& p = rows.pattern();
+    system = std::make_unique<solvers::BlockLinearSystem>(
+        session.comm(), N, own, p.offset, p.column, rows.values(), rows.rhs(), /*spd=*/true);
+  }
+  R.matrix_nonzeros = system->global_nonzeros();
   log::info("matrix: ", R.dofs, " x ", R.dofs, ", ", static_cast<long>(R.matrix_nonzeros),
             " nonzeros");
 
   // 6. Solve.
   {
     PhaseTimer::Scope scope(timer, "solve");
-    R.solve = system.solve();
-    R.parameters = system.solution_everywhere();
+    R.solve = system->solve();
+    R.parameters = system->solution_everywhere();
   }
   log::info("solved with ", R.solve.solver, ": ", R.solve.reason_name, ", relative residual ",
             R.solve.residual_norm);
@@ -229,8 +245,9 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
       double sums[4] = {0, 0, 0, 0}; // |e_u|^2, |u|^2, e_eps.C.e_eps, eps.C.eps
       const Mat3 Cinv = C.inverse();
       for (int k = 0; k < dtable.rows(); ++k) {
-        const Vec2& x = dp.x[dmine[k]];
-        const double w = dp.weight[dmine[k]];
+        if (!dmine.counted[k]) continue;
+        const Vec2& x = dp.x[dmine.rows[k]];
+        const double w = dp.weight[dmine.rows[k]];
         const Vec2 ue = verification::exact_displacement(*spec.exact, exact_mat, x);
         const Vec3 ee = Cinv * verification::exact_stress(*spec.exact, exact_mat, x);
         const Vec2 eu = implicit::displacement_at(dtable, k, d) - ue;
@@ -252,7 +269,8 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
       double local[3] = {0, 0, 0};
       const auto& pts = bcs[b].points;
       for (int k = 0; k < btables[b].rows(); ++k) {
-        const double w = pts.weight[bcs[b].mine[k]] * t;
+        if (!bcs[b].mine.counted[k]) continue;
+        const double w = pts.weight[bcs[b].mine.rows[k]] * t;
         if (bc.constrains) {
           const Vec2 gap = (implicit::displacement_at(btables[b], k, d) - bcs[b].values[k])
                                .cwiseProduct(bc.mask);

@@ -1,9 +1,11 @@
 #include "meshfree/implicit/coupling.hpp"
+#include "meshfree/core/error.hpp"
+#include <algorithm>
 
 namespace mf::implicit {
 
-void coupling_counts(const std::vector<const Csr*>& lists, int node_count, int begin, int end,
-                     std::vector<int>& inside, std::vector<int>& outside) {
+RowPattern coupling_pattern(const std::vector<const Csr*>& lists, int node_count, int begin,
+                            int end) {
   const int owned = end - begin;
   // Transpose: for each owned node, the (list, row) pairs whose support contains it.
   std::vector<int> start(owned + 1, 0);
@@ -21,10 +23,13 @@ void coupling_counts(const std::vector<const Csr*>& lists, int node_count, int b
         if (node >= begin && node < end) rows[fill[node - begin]++] = {l, r};
       }
   }
-  inside.assign(owned, 0);
-  outside.assign(owned, 0);
+  RowPattern p;
+  p.begin = begin;
+  p.end = end;
+  p.offset.assign(owned + 1, 0);
   std::vector<int> stamp(node_count, -1);
-  for (int i = 0; i < owned; ++i)
+  for (int i = 0; i < owned; ++i) {
+    const std::size_t row_start = p.column.size();
     for (int k = start[i]; k < start[i + 1]; ++k) {
       const Csr& c = *lists[rows[k].first];
       const int r = rows[k].second;
@@ -32,9 +37,48 @@ void coupling_counts(const std::vector<const Csr*>& lists, int node_count, int b
         const int J = c.index[q];
         if (stamp[J] == i) continue;
         stamp[J] = i;
-        (J >= begin && J < end ? inside[i] : outside[i])++;
+        p.column.push_back(J);
       }
     }
+    std::sort(p.column.begin() + static_cast<long>(row_start), p.column.end());
+    p.offset[i + 1] = static_cast<int>(p.column.size());
+  }
+  return p;
+}
+
+BlockRows::BlockRows(RowPattern pattern)
+    : pattern_(std::move(pattern)), values_(4 * pattern_.column.size(), 0.0),
+      rhs_(2 * static_cast<std::size_t>(pattern_.rows()), 0.0) {}
+
+void BlockRows::add_matrix(const int* nodes, int n, const double* block) {
+  const int stride = 2 * n;
+  for (int a = 0; a < n; ++a) {
+    const int I = nodes[a];
+    if (I < pattern_.begin || I >= pattern_.end) continue;
+    const int row = I - pattern_.begin;
+    // Both the row's columns and `nodes` are sorted: one merge pass finds every block.
+    int k = pattern_.offset[row];
+    const int k_end = pattern_.offset[row + 1];
+    for (int b = 0; b < n; ++b) {
+      while (k < k_end && pattern_.column[k] < nodes[b]) ++k;
+      MF_ASSERT(k < k_end && pattern_.column[k] == nodes[b]);
+      double* v = values_.data() + 4 * static_cast<std::size_t>(k);
+      const double* src = block + (2 * a) * stride + 2 * b;
+      v[0] += src[0];
+      v[1] += src[1];
+      v[2] += src[stride];
+      v[3] += src[stride + 1];
+    }
+  }
+}
+
+void BlockRows::add_vector(const int* nodes, int n, const double* values) {
+  for (int a = 0; a < n; ++a) {
+    const int I = nodes[a];
+    if (I < pattern_.begin || I >= pattern_.end) continue;
+    rhs_[2 * (I - pattern_.begin)] += values[2 * a];
+    rhs_[2 * (I - pattern_.begin) + 1] += values[2 * a + 1];
+  }
 }
 
 } // namespace mf::implicit

@@ -38,30 +38,52 @@ struct BlockLinearSystem::Impl {
   Mat A = nullptr;
   Vec b = nullptr, x = nullptr;
   KSP ksp = nullptr;
-  int bs = 2;
   bool spd = false;
-  std::vector<PetscInt> idx; // scratch for block indices
 };
 
-BlockLinearSystem::BlockLinearSystem(MPI_Comm comm, int node_count, int block_size,
-                                     OwnedRange owned, const std::vector<int>& d_nnz,
-                                     const std::vector<int>& o_nnz, bool spd)
+BlockLinearSystem::BlockLinearSystem(MPI_Comm comm, int node_count, OwnedRange owned,
+                                     const std::vector<int>& row_offset,
+                                     const std::vector<int>& columns,
+                                     const std::vector<double>& blocks,
+                                     const std::vector<double>& rhs, bool spd)
     : impl_(std::make_unique<Impl>()) {
-  impl_->bs = block_size;
   impl_->spd = spd;
-  const PetscInt local = static_cast<PetscInt>(owned.end - owned.begin) * block_size;
-  const PetscInt global = static_cast<PetscInt>(node_count) * block_size;
+  const int rows = owned.end - owned.begin;
+  MF_REQUIRE(static_cast<int>(row_offset.size()) == rows + 1 &&
+                 blocks.size() == 4 * columns.size() && static_cast<int>(rhs.size()) == 2 * rows,
+             "BlockLinearSystem: inconsistent block rows");
+  // Scalar CSR: block row I gives rows 2I and 2I+1, block column J columns 2J and 2J+1.
+  std::vector<PetscInt> ia(2 * rows + 1, 0), ja(4 * columns.size());
+  std::vector<PetscScalar> va(4 * columns.size());
+  std::size_t pos = 0;
+  for (int i = 0; i < rows; ++i)
+    for (int c = 0; c < 2; ++c) {
+      for (int k = row_offset[i]; k < row_offset[i + 1]; ++k) {
+        ja[pos] = 2 * static_cast<PetscInt>(columns[k]);
+        ja[pos + 1] = ja[pos] + 1;
+        va[pos] = blocks[4 * k + 2 * c];
+        va[pos + 1] = blocks[4 * k + 2 * c + 1];
+        pos += 2;
+      }
+      ia[2 * i + c + 1] = static_cast<PetscInt>(pos);
+    }
+  const PetscInt local = 2 * static_cast<PetscInt>(rows),
+                 global = 2 * static_cast<PetscInt>(node_count);
   check(MatCreate(comm, &impl_->A), "MatCreate");
   check(MatSetSizes(impl_->A, local, local, global, global), "MatSetSizes");
+  check(MatSetBlockSize(impl_->A, 2), "MatSetBlockSize");
   check(MatSetType(impl_->A, MATAIJ), "MatSetType");
-  check(MatSetBlockSize(impl_->A, block_size), "MatSetBlockSize");
-  std::vector<PetscInt> dn(d_nnz.begin(), d_nnz.end()), on(o_nnz.begin(), o_nnz.end());
-  check(MatXAIJSetPreallocation(impl_->A, block_size, dn.data(), on.data(), nullptr, nullptr),
-        "MatXAIJSetPreallocation");
-  // Exact preallocation: a new nonzero outside the pattern is a bug, not a slow path.
-  check(MatSetOption(impl_->A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
+  // Each call is ignored by the other matrix type, so one of them sets pattern and values.
+  check(MatSeqAIJSetPreallocationCSR(impl_->A, ia.data(), ja.data(), va.data()),
+        "MatSeqAIJSetPreallocationCSR");
+  check(MatMPIAIJSetPreallocationCSR(impl_->A, ia.data(), ja.data(), va.data()),
+        "MatMPIAIJSetPreallocationCSR");
+  if (spd) check(MatSetOption(impl_->A, MAT_SPD, PETSC_TRUE), "MatSetOption(MAT_SPD)");
   check(MatCreateVecs(impl_->A, &impl_->x, &impl_->b), "MatCreateVecs");
-  check(VecSet(impl_->b, 0.0), "VecSet");
+  PetscScalar* bv;
+  check(VecGetArray(impl_->b, &bv), "VecGetArray");
+  std::copy(rhs.begin(), rhs.end(), bv);
+  check(VecRestoreArray(impl_->b, &bv), "VecRestoreArray");
 }
 
 BlockLinearSystem::~BlockLinearSystem() {
@@ -69,27 +91,6 @@ BlockLinearSystem::~BlockLinearSystem() {
   if (impl_->A) MatDestroy(&impl_->A);
   if (impl_->b) VecDestroy(&impl_->b);
   if (impl_->x) VecDestroy(&impl_->x);
-}
-
-void BlockLinearSystem::add_matrix(const int* nodes, int n, const double* values) {
-  impl_->idx.assign(nodes, nodes + n);
-  check(
-      MatSetValuesBlocked(impl_->A, n, impl_->idx.data(), n, impl_->idx.data(), values, ADD_VALUES),
-      "MatSetValuesBlocked");
-}
-
-void BlockLinearSystem::add_vector(const int* nodes, int n, const double* values) {
-  impl_->idx.assign(nodes, nodes + n);
-  check(VecSetValuesBlocked(impl_->b, n, impl_->idx.data(), values, ADD_VALUES),
-        "VecSetValuesBlocked");
-}
-
-void BlockLinearSystem::assemble() {
-  check(MatAssemblyBegin(impl_->A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-  check(MatAssemblyEnd(impl_->A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-  if (impl_->spd) check(MatSetOption(impl_->A, MAT_SPD, PETSC_TRUE), "MatSetOption(MAT_SPD)");
-  check(VecAssemblyBegin(impl_->b), "VecAssemblyBegin");
-  check(VecAssemblyEnd(impl_->b), "VecAssemblyEnd");
 }
 
 SolveReport BlockLinearSystem::solve() {

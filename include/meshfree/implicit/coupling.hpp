@@ -6,9 +6,37 @@
 
 namespace mf::implicit {
 
-/// For each node in [begin, end), how many distinct nodes it couples to inside and outside
-/// [begin, end) (itself included), over the support lists of every point in `lists`.
-void coupling_counts(const std::vector<const Csr*>& lists, int node_count, int begin, int end,
-                     std::vector<int>& inside, std::vector<int>& outside);
+/// The block rows [begin, end) of the matrix: for row I, the sorted nodes it couples to.
+struct RowPattern {
+  int begin = 0, end = 0;
+  std::vector<int> offset{0}; // per owned row
+  std::vector<int> column;    // global node indices, sorted within each row
+  int rows() const { return end - begin; }
+};
+
+/// Pattern of rows [begin, end) over the support lists of every point in `lists`.
+RowPattern coupling_pattern(const std::vector<const Csr*>& lists, int node_count, int begin,
+                            int end);
+
+/// Dense 2x2-block rows of a sparse matrix with a fixed pattern, and the matching right-hand
+/// side, for the rows [pattern.begin, pattern.end). Contributions to other rows are dropped:
+/// the rank that owns them integrates the same points.
+class BlockRows {
+public:
+  explicit BlockRows(RowPattern pattern);
+  /// Adds a (2n x 2n, row-major) block on nodes[0..n), which must be sorted.
+  void add_matrix(const int* nodes, int n, const double* block);
+  void add_vector(const int* nodes, int n, const double* values);
+
+  const RowPattern& pattern() const { return pattern_; }
+  /// 2x2 blocks, row-major within a block, in pattern order.
+  const std::vector<double>& values() const { return values_; }
+  const std::vector<double>& rhs() const { return rhs_; }
+
+private:
+  RowPattern pattern_;
+  std::vector<double> values_;
+  std::vector<double> rhs_;
+};
 
 } // namespace mf::implicit

@@ -40,21 +40,20 @@ struct SolveReport {
   std::string solver; // KSP and PC type, and the factorisation package where one is used
 };
 
+/// A distributed sparse system with 2 DOFs per node, built in one step from the owned block
+/// rows: row_offset/columns give, for each owned node, the sorted global nodes it couples to;
+/// blocks holds one row-major 2x2 block per (row, column) pair; rhs two values per owned node.
 class BlockLinearSystem {
 public:
-  /// d_nnz / o_nnz: for each owned node, how many nodes it couples to inside / outside the
-  /// owned range (exact preallocation of the blocks). A symmetric positive definite system
-  /// (elasticity with enough constraints) is factorised by Cholesky, any other by LU.
-  BlockLinearSystem(MPI_Comm comm, int node_count, int block_size, OwnedRange owned,
-                    const std::vector<int>& d_nnz, const std::vector<int>& o_nnz, bool spd);
+  /// A symmetric positive definite system (elasticity held against rigid motion) is factorised
+  /// by Cholesky, any other by LU.
+  BlockLinearSystem(MPI_Comm comm, int node_count, OwnedRange owned,
+                    const std::vector<int>& row_offset, const std::vector<int>& columns,
+                    const std::vector<double>& blocks, const std::vector<double>& rhs, bool spd);
   ~BlockLinearSystem();
   BlockLinearSystem(const BlockLinearSystem&) = delete;
   BlockLinearSystem& operator=(const BlockLinearSystem&) = delete;
 
-  /// Adds a dense (bs*n)^2 row-major block on nodes[0..n); any rank may add to any row.
-  void add_matrix(const int* nodes, int n, const double* values);
-  void add_vector(const int* nodes, int n, const double* values);
-  void assemble();
   /// Solves with KSP. The default is a sparse direct solve with MUMPS (Cholesky or LU); every
   /// KSP/PC option given on the command line overrides it.
   SolveReport solve();
