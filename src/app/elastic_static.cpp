@@ -163,9 +163,13 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
       c.support = space->support_lists(c.points.x);
       if (c.bc->constrains) lists.push_back(&c.support);
     }
-    for (int r = 0; r < dsupport.rows(); ++r)
-      MF_REQUIRE(dsupport.size(r) > 0, "integration point (", dp.x[r].x(), ", ", dp.x[r].y(),
-                 ") is covered by no node: raise discretisation.dilation");
+    const auto require_covered = [](const Csr& support, const std::vector<Vec2>& x) {
+      for (int r = 0; r < support.rows(); ++r)
+        MF_REQUIRE(support.size(r) > 0, "integration point (", x[r].x(), ", ", x[r].y(),
+                   ") is covered by no node: raise discretisation.dilation");
+    };
+    require_covered(dsupport, dp.x);
+    for (const auto& c : bcs) require_covered(c.support, c.points.x);
     pattern = implicit::coupling_pattern(lists, N, own.begin, own.end);
     dmine = rank_points(dsupport, own, N, session);
     for (auto& c : bcs) c.mine = rank_points(c.support, own, N, session);
@@ -177,9 +181,11 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
   std::vector<ShapeTable> btables(bcs.size());
   {
     PhaseTimer::Scope scope(timer, "shape_functions");
-    dtable = space->shape_table(dp.x, dmine.rows, dsupport, true);
-    for (std::size_t b = 0; b < bcs.size(); ++b)
-      btables[b] = space->shape_table(bcs[b].points.x, bcs[b].mine.rows, bcs[b].support, false);
+    session.collective([&] {
+      dtable = space->shape_table(dp.x, dmine.rows, dsupport, true);
+      for (std::size_t b = 0; b < bcs.size(); ++b)
+        btables[b] = space->shape_table(bcs[b].points.x, bcs[b].mine.rows, bcs[b].support, false);
+    });
   }
 
   // 5. Assembly of K d = f.
@@ -290,7 +296,8 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
       R.violation_max = std::max(R.violation_max, rep.violation_max);
       R.boundary.push_back(rep);
     }
-    if (session.rank() == 0) {
+    session.collective([&] {
+      if (session.rank() != 0) return;
       R.node_x = space->nodes().x;
       evaluate_fields(*space, spec, R.node_x, d, R.node_u, R.node_stress, R.node_szz);
       double umax = 0.0;
@@ -309,7 +316,7 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
         if (!s.x.empty()) evaluate_fields(*space, spec, s.x, d, s.u, s.stress, szz);
         R.lines.emplace_back(line.name, std::move(s));
       }
-    }
+    });
   }
   return R;
 }

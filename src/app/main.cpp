@@ -91,7 +91,7 @@ int run(Command& c) {
   mf::io::ProblemSpec spec;
   try {
     spec = mf::io::read_problem(c.problem, c.overrides);
-  } catch (const mf::Error& e) {
+  } catch (const std::exception& e) {
     if (session.rank() == 0) std::cerr << "meshfree: " << e.what() << std::endl;
     return 2;
   }
@@ -123,17 +123,27 @@ int run(Command& c) {
       out->commit();
       mf::log::info("results in ", std::filesystem::absolute(dir).string());
     }
-  } catch (const mf::Error& e) {
-    std::cerr << "meshfree: run failed on rank " << session.rank() << ": " << e.what() << std::endl;
+  } catch (const std::exception& e) {
+    // A CollectiveError reached every rank: each returns normally. Any other error may have
+    // reached this rank only, and the others would wait for it forever: abort them.
+    const bool everywhere = dynamic_cast<const mf::solvers::CollectiveError*>(&e) != nullptr;
+    if (session.rank() == 0 || !everywhere)
+      std::cerr << "meshfree: run failed"
+                << (everywhere ? "" : " on rank " + std::to_string(session.rank())) << ": "
+                << e.what() << std::endl;
     if (out) {
       mf::io::Json summary;
       summary.set("problem", spec.name).set("status", "failed").set("error", e.what());
       out.reset(); // drop partial files
-      mf::io::OutputDirectory failed(dir);
-      failed.write_text("summary.json", summary.str() + "\n");
-      failed.commit();
+      try {
+        mf::io::OutputDirectory failed(dir);
+        failed.write_text("summary.json", summary.str() + "\n");
+        failed.commit();
+      } catch (const std::exception& again) {
+        std::cerr << "meshfree: cannot record the failure: " << again.what() << std::endl;
+      }
     }
-    if (session.size() > 1) MPI_Abort(MPI_COMM_WORLD, 1);
+    if (session.size() > 1 && !everywhere) MPI_Abort(MPI_COMM_WORLD, 1);
     return 1;
   }
   return 0;
@@ -153,7 +163,7 @@ int main(int argc, char** argv) {
   }
   try {
     return c.verb == "check" ? check(c) : run(c);
-  } catch (const mf::Error& e) {
+  } catch (const std::exception& e) {
     std::cerr << "meshfree: " << e.what() << std::endl;
     return 2;
   }

@@ -1,4 +1,5 @@
 #include "meshfree/io/key_reader.hpp"
+#include <cmath>
 #include <sstream>
 
 namespace mf::io {
@@ -79,7 +80,7 @@ int KeyReader::integer(const std::string& key, int fallback, int lo, int hi) {
   used_.insert(key);
   if (!has(key)) return fallback;
   const double v = number(key);
-  if (v != static_cast<double>(static_cast<long>(v)) || v < lo || v > hi)
+  if (v < lo || v > hi || v != std::floor(v))
     error(key, "expected an integer from " + std::to_string(lo) + " to " + std::to_string(hi) +
                    ", got " + show(node_[key]));
   return static_cast<int>(v);
@@ -166,7 +167,9 @@ std::vector<KeyReader> KeyReader::map_list(const std::string& key) {
 
 void KeyReader::finish() const {
   for (const auto& kv : node_) {
-    const std::string key = kv.first.as<std::string>();
+    if (!kv.first.IsScalar())
+      fail(path_.empty() ? "document" : path_, ": keys must be plain names, got ", show(kv.first));
+    const std::string key = kv.first.Scalar();
     if (!used_.count(key)) {
       std::string known;
       for (const auto& u : used_) known += (known.empty() ? "" : ", ") + u;
@@ -174,6 +177,18 @@ void KeyReader::finish() const {
     }
   }
 }
+
+namespace {
+/// A list index from an override path, or an error naming the path.
+std::size_t list_index(const std::string& part, std::size_t size, const std::string& path) {
+  if (part.empty() || part.find_first_not_of("0123456789") != std::string::npos)
+    fail("--set ", path, ": '", part, "' indexes a list and must be a number");
+  const std::size_t idx = std::stoul(part);
+  if (idx >= size)
+    fail("--set ", path, ": index ", idx, " is out of range (the list has ", size, " items)");
+  return idx;
+}
+} // namespace
 
 void apply_override(YAML::Node& root, const std::string& assignment) {
   const auto eq = assignment.find('=');
@@ -191,27 +206,28 @@ void apply_override(YAML::Node& root, const std::string& assignment) {
   for (std::string p; std::getline(ss, p, '.');) parts.push_back(p);
   // Walk with fresh handles (yaml-cpp node assignment rebinds, so keep a chain of copies).
   std::vector<YAML::Node> chain{root};
-  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+  for (std::size_t i = 0; i < parts.size(); ++i) {
     YAML::Node cur = chain.back();
     const std::string& p = parts[i];
-    YAML::Node next;
+    const bool last = i + 1 == parts.size();
     if (cur.IsSequence()) {
-      const std::size_t idx = std::stoul(p);
-      MF_REQUIRE(idx < cur.size(), "--set ", path, ": index ", idx, " is out of range");
-      next = cur[idx];
+      const std::size_t idx = list_index(p, cur.size(), path);
+      if (last)
+        cur[idx] = value;
+      else
+        chain.push_back(cur[idx]);
+    } else if (cur.IsMap() || cur.IsNull() || !cur.IsDefined()) {
+      if (last) {
+        cur[p] = value;
+      } else {
+        if (!cur[p].IsDefined() || cur[p].IsNull()) cur[p] = YAML::Node(YAML::NodeType::Map);
+        chain.push_back(cur[p]);
+      }
     } else {
-      if (!cur[p].IsDefined() || cur[p].IsNull()) cur[p] = YAML::Node(YAML::NodeType::Map);
-      next = cur[p];
+      std::string prefix;
+      for (std::size_t k = 0; k < i; ++k) prefix += (k ? "." : "") + parts[k];
+      fail("--set ", path, ": '", prefix, "' holds a single value, not a map or a list");
     }
-    chain.push_back(next);
-  }
-  YAML::Node last = chain.back();
-  if (last.IsSequence()) {
-    const std::size_t idx = std::stoul(parts.back());
-    MF_REQUIRE(idx < last.size(), "--set ", path, ": index ", idx, " is out of range");
-    last[idx] = value;
-  } else {
-    last[parts.back()] = value;
   }
 }
 

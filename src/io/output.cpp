@@ -1,5 +1,6 @@
 #include "meshfree/io/output.hpp"
 #include "meshfree/core/error.hpp"
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -36,6 +37,8 @@ void OutputDirectory::clear_previous() const {
 }
 
 std::string OutputDirectory::temp_path(const std::string& file) {
+  MF_REQUIRE(std::find(pending_.begin(), pending_.end(), file) == pending_.end(), dir_, "/", file,
+             ": written twice in one run");
   pending_.push_back(file);
   return (fs::path(dir_) / (file + ".partial")).string();
 }
@@ -132,9 +135,13 @@ void OutputDirectory::write_fields(const std::vector<Vec2>& points,
 }
 
 void OutputDirectory::commit() {
+  // summary.json goes last: a directory without it is not a finished run.
+  std::stable_partition(pending_.begin(), pending_.end(),
+                        [](const std::string& f) { return f != "summary.json"; });
   for (const auto& f : pending_) {
-    const fs::path from = fs::path(dir_) / (f + ".partial");
-    fs::rename(from, fs::path(dir_) / f);
+    std::error_code ec;
+    fs::rename(fs::path(dir_) / (f + ".partial"), fs::path(dir_) / f, ec);
+    MF_REQUIRE(!ec, dir_, "/", f, ": cannot move the result into place: ", ec.message());
   }
   pending_.clear();
 }

@@ -6,6 +6,15 @@ namespace mf::io {
 
 namespace {
 
+/// Names end up in file names and CSV/JSON keys: letters, digits, '_' and '-' only.
+void check_name(KeyReader& r, const std::string& key, const std::string& name, bool may_be_empty) {
+  if (name.empty() && may_be_empty) return;
+  if (name.empty() ||
+      name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") !=
+          std::string::npos)
+    r.error(key, "expected a name of letters, digits, '_' or '-', got '" + name + "'");
+}
+
 materials::PlaneModel read_model(KeyReader& r, double& thickness) {
   KeyReader m = r.map("model");
   const std::string type = m.choice("type", {"plane_stress", "plane_strain"}, "plane_stress");
@@ -54,7 +63,10 @@ geometry::Domain read_geometry(KeyReader& r) {
       YAML::Node n = pr.raw("edge_names");
       if (!n.IsSequence() || n.size() != v.size())
         pr.error("edge_names", "expected a list of " + std::to_string(v.size()) + " names");
-      for (const auto& e : n) names.push_back(e.as<std::string>());
+      for (const auto& e : n) {
+        if (!e.IsScalar()) pr.error("edge_names", "expected a list of names");
+        names.push_back(e.Scalar());
+      }
     }
     pr.allow("edge_names");
     pr.finish();
@@ -69,8 +81,17 @@ geometry::Domain read_geometry(KeyReader& r) {
     c.center = h.vec2("center");
     c.radius = h.positive("radius");
     c.name = h.text("name", "");
+    check_name(h, "name", c.name, true);
     h.finish();
     d.add_hole(c);
+    bool outline_left = false;
+    for (const auto& piece : d.boundary())
+      outline_left = outline_left || piece.kind == geometry::Curve::Kind::Segment;
+    if (!outline_left) h.error("radius", "the hole covers the whole body");
+    const std::string name = d.holes().back().name;
+    bool cuts = false;
+    for (const auto& piece : d.boundary()) cuts = cuts || piece.name == name;
+    if (!cuts) h.error("center", "the hole '" + name + "' does not cut the body");
   }
   g.finish();
   return d;
@@ -92,6 +113,12 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
     ref.spacing = f.positive("spacing");
     if (ref.spacing >= s.spacing)
       f.error("spacing", "a refinement must be finer than discretisation.spacing");
+    const Vec2 lo = ref.box.lo.cwiseMax(bounds.lo), hi = ref.box.hi.cwiseMin(bounds.hi);
+    const Vec2 extent = (hi - lo).cwiseMax(Vec2::Zero());
+    const double nodes = (extent.x() / ref.spacing + 1.0) * (extent.y() / ref.spacing + 1.0);
+    if (nodes > 2e7)
+      f.error("spacing", detail::concat("puts about ", static_cast<float>(nodes),
+                                        " nodes in the box; one run is meant for at most 2e7"));
     f.finish();
     s.refinement.push_back(ref);
   }
@@ -117,10 +144,10 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
     d.error("dilation", "must exceed " + std::to_string(min_dilation) +
                             " so that every point is covered by enough nodes for the basis");
   if (auto q = d.optional_map("quadrature")) {
-    s.order = q->integer("order", 3, 1, 10);
+    s.order = q->integer("order", 3, 2, 10);
     s.cell_size = q->positive("cell_size", s.spacing);
     s.cut_levels = q->integer("cut_levels", 2, 0, 6);
-    s.boundary_order = q->integer("boundary_order", s.order, 1, 10);
+    s.boundary_order = q->integer("boundary_order", s.order, 2, 10);
     q->finish();
   } else {
     s.cell_size = s.spacing;
@@ -142,7 +169,10 @@ BoundarySelector read_selector(KeyReader& bc) {
   if (o.has("edges")) {
     YAML::Node e = o.raw("edges");
     if (!e.IsSequence()) o.error("edges", "expected a list of boundary names");
-    for (const auto& n : e) sel.names.push_back(n.as<std::string>());
+    for (const auto& n : e) {
+      if (!n.IsScalar()) o.error("edges", "expected a list of boundary names");
+      sel.names.push_back(n.Scalar());
+    }
   }
   o.allow("edge");
   o.allow("edges");
@@ -160,6 +190,7 @@ BoundaryCondition read_condition(KeyReader& bc, double stiffness_scale) {
   BoundaryCondition c;
   c.key_path = bc.path();
   c.name = bc.text("name");
+  check_name(bc, "name", c.name, false);
   c.on = read_selector(bc);
   if (bc.has("displacement")) {
     c.constrains = true;
@@ -173,6 +204,8 @@ BoundaryCondition read_condition(KeyReader& bc, double stiffness_scale) {
       if (u.has("y")) c.mask.y() = 1.0, c.value.y() = u.number("y");
       u.allow("x");
       u.allow("y");
+      if (u.has("exact") && (u.has("x") || u.has("y")))
+        u.error("exact", "give either prescribed values (x, y) or 'exact', not both");
       if (u.has("exact")) {
         const std::string comps = u.choice("exact", {"x", "y", "xy"}, "xy");
         c.value_from_exact = true;
@@ -277,8 +310,7 @@ ProblemSpec parse_problem(YAML::Node root) {
   KeyReader r(root, "");
   ProblemSpec p;
   p.name = r.text("name");
-  if (p.name.empty() || p.name.find_first_of("/\\ ") != std::string::npos)
-    r.error("name", "expected a non-empty name without spaces or slashes, got '" + p.name + "'");
+  check_name(r, "name", p.name, false);
   p.description = r.text("description", "");
   p.units = r.text("units", "");
   const std::string analysis = r.choice("analysis", {"elastic_static", "model_problem_1d"}, "");
@@ -311,6 +343,9 @@ ProblemSpec parse_problem(YAML::Node root) {
   for (KeyReader& bc : r.map_list("boundary")) {
     p.boundary.push_back(read_condition(bc, stiffness_scale));
     const BoundaryCondition& c = p.boundary.back();
+    for (std::size_t k = 0; k + 1 < p.boundary.size(); ++k)
+      if (p.boundary[k].name == c.name)
+        bc.error("name", "'" + c.name + "' is used by " + p.boundary[k].key_path + " already");
     if ((c.value_from_exact || c.traction_from_exact) && !p.exact)
       bc.error(c.constrains ? "displacement" : "traction",
                "'exact' needs an 'exact' section in the problem");
@@ -329,6 +364,14 @@ ProblemSpec parse_problem(YAML::Node root) {
       s.from = l.vec2("from");
       s.to = l.vec2("to");
       s.points = l.integer("points", 51, 2, 1000000);
+      check_name(l, "name", s.name, false);
+      for (const auto& other : p.lines)
+        if (other.name == s.name) l.error("name", "another line is named '" + s.name + "'");
+      bool inside = false;
+      for (int k = 0; k < s.points && !inside; ++k)
+        inside = p.domain.contains(
+            s.from + (s.to - s.from) * (static_cast<double>(k) / (s.points - 1)), 1e-9);
+      if (!inside) l.error("from", "no sample point of the line lies in the body");
       l.finish();
       p.lines.push_back(s);
     }
@@ -348,7 +391,11 @@ ProblemSpec read_problem(const std::string& path, const std::vector<std::string>
     fail(path, ": not valid YAML: ", e.what());
   }
   for (const auto& o : overrides) apply_override(root, o);
-  return parse_problem(root);
+  try {
+    return parse_problem(root);
+  } catch (const YAML::Exception& e) {
+    fail(path, ": malformed input: ", e.what());
+  }
 }
 
 } // namespace mf::io

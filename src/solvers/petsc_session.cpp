@@ -22,6 +22,25 @@ PetscSession::~PetscSession() {
   PetscFinalize();
 }
 
+void PetscSession::collective(const std::function<void()>& work) const {
+  std::string message;
+  try {
+    work();
+  } catch (const CollectiveError&) {
+    throw;
+  } catch (const std::exception& e) {
+    message = e.what();
+  }
+  int mine = message.empty() ? size_ : rank_, first = size_;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  if (first == size_) return;
+  int length = static_cast<int>(message.size());
+  MPI_Bcast(&length, 1, MPI_INT, first, MPI_COMM_WORLD);
+  message.resize(length);
+  MPI_Bcast(message.data(), length, MPI_CHAR, first, MPI_COMM_WORLD);
+  throw CollectiveError(size_ > 1 ? message + " (on rank " + std::to_string(first) + ")" : message);
+}
+
 OwnedRange owned_nodes(int n, int rank, int size) {
   const int base = n / size, extra = n % size;
   const int begin = rank * base + std::min(rank, extra);

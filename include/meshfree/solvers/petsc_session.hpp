@@ -1,12 +1,20 @@
 #pragma once
 // The one place the code meets PETSc. PetscSession initialises PETSc (and MPI) for the lifetime
 // of a run; BlockLinearSystem is a distributed sparse system with 2 DOFs per node.
+#include "meshfree/core/error.hpp"
+#include <functional>
 #include <memory>
 #include <mpi.h>
 #include <string>
 #include <vector>
 
 namespace mf::solvers {
+
+/// An error that every rank has seen (see PetscSession::collective).
+class CollectiveError : public Error {
+public:
+  using Error::Error;
+};
 
 class PetscSession {
 public:
@@ -18,6 +26,11 @@ public:
   int rank() const { return rank_; }
   int size() const { return size_; }
   MPI_Comm comm() const { return MPI_COMM_WORLD; }
+
+  /// Runs `work` on every rank; if it fails on any rank, every rank throws a CollectiveError
+  /// with the message of the lowest failing rank, so no rank is left waiting in a later
+  /// collective call. Use it around work that can fail on some ranks only.
+  void collective(const std::function<void()>& work) const;
 
 private:
   int rank_ = 0, size_ = 1;
