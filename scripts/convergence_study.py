@@ -30,10 +30,13 @@ def main():
     ap.add_argument("--meshfree", default=str(ROOT / "build" / "meshfree"))
     ap.add_argument("--out", default=str(ROOT / "out" / "convergence"))
     ap.add_argument("--quick", action="store_true", help="four spacings per study instead of five")
+    ap.add_argument("--min-energy-rate", type=float, default=None,
+                    help="exit non-zero if an energy-norm rate is below this")
+    ap.add_argument("--min-l2-rate", type=float, default=None, help="exit non-zero if an L2 rate is below this")
     args = ap.parse_args()
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    rows, fig_rows = [], {}
+    rows, fig_rows, failures = [], {}, []
     for problem, spacings in STUDIES.items():
         if args.quick:
             spacings = spacings[:4]
@@ -55,6 +58,10 @@ def main():
         print(f"{problem}: rate L2 {rate_l2:.2f}, energy {rate_en:.2f} "
               f"(finest h = {h[-1]:g}: L2 {l2[-1]:.2e}, energy {en[-1]:.2e})")
         fig_rows[problem] = (h, l2, en, rate_l2, rate_en)
+        if args.min_energy_rate is not None and rate_en < args.min_energy_rate:
+            failures.append(f"{problem}: energy rate {rate_en:.2f} < {args.min_energy_rate}")
+        if args.min_l2_rate is not None and rate_l2 < args.min_l2_rate:
+            failures.append(f"{problem}: L2 rate {rate_l2:.2f} < {args.min_l2_rate}")
     with open(out / "convergence.csv", "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["problem", "spacing", "nodes", "error_l2_relative", "error_energy_relative", "wall_time_s"])
@@ -73,6 +80,8 @@ def main():
     fig.tight_layout()
     fig.savefig(out / "convergence.png", dpi=110)
     print(f"wrote {out / 'convergence.csv'} and {out / 'convergence.png'}")
+    if failures:
+        raise SystemExit("; ".join(failures))
 
 
 if __name__ == "__main__":

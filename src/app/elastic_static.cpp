@@ -95,7 +95,9 @@ void evaluate_fields(const implicit::MeshfreeSpace& space, const io::ProblemSpec
 
 std::string describe_method(const io::DiscretisationSpec& d) {
   const auto& s = d.shape;
-  std::string m = s.approximation == kernels::Approximation::ReproducingKernel ? "RK" : "MLS/EFG";
+  std::string m = s.approximation == kernels::Approximation::ReproducingKernel    ? "RK"
+                  : s.approximation == kernels::Approximation::MovingLeastSquares ? "MLS/EFG"
+                                                                                  : "SPH";
   m += s.basis == kernels::Basis::Linear ? " Galerkin, linear basis, "
                                          : " Galerkin, quadratic basis, ";
   m += s.window.type == kernels::WindowType::CubicSpline     ? "cubic B-spline"

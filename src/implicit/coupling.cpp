@@ -56,13 +56,15 @@ void BlockRows::add_matrix(const int* nodes, int n, const double* block) {
     const int I = nodes[a];
     if (I < pattern_.begin || I >= pattern_.end) continue;
     const int row = I - pattern_.begin;
-    // Both the row's columns and `nodes` are sorted: one merge pass finds every block.
-    int k = pattern_.offset[row];
-    const int k_end = pattern_.offset[row + 1];
+    // Both the row's columns and `nodes` are sorted: each search starts where the last ended.
+    // Binary, because a coarse node next to a refined region couples to thousands of nodes.
+    const int* col = pattern_.column.data();
+    const int* k_end = col + pattern_.offset[row + 1];
+    const int* k = col + pattern_.offset[row];
     for (int b = 0; b < n; ++b) {
-      while (k < k_end && pattern_.column[k] < nodes[b]) ++k;
-      MF_ASSERT(k < k_end && pattern_.column[k] == nodes[b]);
-      double* v = values_.data() + 4 * static_cast<std::size_t>(k);
+      k = std::lower_bound(k, k_end, nodes[b]);
+      MF_ASSERT(k < k_end && *k == nodes[b]);
+      double* v = values_.data() + 4 * static_cast<std::size_t>(k - col);
       const double* src = block + (2 * a) * stride + 2 * b;
       v[0] += src[0];
       v[1] += src[1];

@@ -2,6 +2,8 @@
 #include "meshfree/core/error.hpp"
 #include <algorithm>
 #include <atomic>
+#include <cmath>
+#include <omp.h>
 
 namespace mf::implicit {
 
@@ -10,45 +12,72 @@ MeshfreeSpace::MeshfreeSpace(geometry::NodeCloud cloud, const kernels::ShapeSett
     : cloud_(std::move(cloud)), settings_(settings) {
   MF_REQUIRE(!cloud_.x.empty(), "the discretisation has no nodes");
   radius_.resize(cloud_.x.size());
+  double largest = 0.0;
   for (std::size_t i = 0; i < cloud_.x.size(); ++i) {
     radius_[i] = cloud_.spacing[i] * dilation;
-    max_radius_ = std::max(max_radius_, radius_[i].maxCoeff());
+    largest = std::max(largest, radius_[i].maxCoeff());
   }
-  grid_ = neighbors::PointGrid(cloud_.x, max_radius_);
+  std::vector<int> group_of(cloud_.x.size());
+  int groups = 1;
+  for (std::size_t i = 0; i < cloud_.x.size(); ++i) {
+    group_of[i] =
+        std::min(30, static_cast<int>(std::floor(std::log2(largest / radius_[i].maxCoeff()))));
+    groups = std::max(groups, group_of[i] + 1);
+  }
+  std::vector<RadiusGroup> all(groups);
+  for (std::size_t i = 0; i < cloud_.x.size(); ++i) {
+    RadiusGroup& g = all[group_of[i]];
+    g.node.push_back(static_cast<int>(i));
+    g.max_radius = std::max(g.max_radius, radius_[i].maxCoeff());
+  }
+  for (RadiusGroup& g : all) {
+    if (g.node.empty()) continue;
+    std::vector<Vec2> x;
+    for (int i : g.node) x.push_back(cloud_.x[i]);
+    g.grid = neighbors::PointGrid(x, g.max_radius);
+    groups_.push_back(std::move(g));
+  }
 }
 
 void MeshfreeSpace::nodes_covering(const Vec2& x, std::vector<int>& out) const {
   out.clear();
   const auto v = view();
-  grid_.for_each_in_box(x - Vec2(max_radius_, max_radius_), x + Vec2(max_radius_, max_radius_),
-                        [&](int I) {
-                          if (kernels::covers(settings_, v, I, x)) out.push_back(I);
-                        });
+  for (const RadiusGroup& g : groups_) {
+    const Vec2 reach(g.max_radius, g.max_radius);
+    g.grid.for_each_in_box(x - reach, x + reach, [&](int k) {
+      const int I = g.node[k];
+      if (kernels::covers(settings_, v, I, x)) out.push_back(I);
+    });
+  }
   std::sort(out.begin(), out.end());
 }
 
 Csr MeshfreeSpace::support_lists(const std::vector<Vec2>& points) const {
   const int n = static_cast<int>(points.size());
-  Csr csr;
-  csr.offset.assign(n + 1, 0);
+  // One pass: each thread fills its own contiguous block of points, then the blocks are joined.
+  std::vector<std::vector<int>> counts, lists;
 #pragma omp parallel
   {
-    std::vector<int> nb;
-#pragma omp for schedule(static)
-    for (int p = 0; p < n; ++p) {
-      nodes_covering(points[p], nb);
-      csr.offset[p + 1] = static_cast<int>(nb.size());
-    }
 #pragma omp single
     {
-      for (int p = 0; p < n; ++p) csr.offset[p + 1] += csr.offset[p];
-      csr.index.resize(csr.offset[n]);
+      counts.resize(omp_get_num_threads());
+      lists.resize(omp_get_num_threads());
     }
-#pragma omp for schedule(static)
-    for (int p = 0; p < n; ++p) {
+    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+    const int begin = static_cast<int>(static_cast<long>(n) * t / nt);
+    const int end = static_cast<int>(static_cast<long>(n) * (t + 1) / nt);
+    std::vector<int> nb;
+    for (int p = begin; p < end; ++p) {
       nodes_covering(points[p], nb);
-      std::copy(nb.begin(), nb.end(), csr.index.begin() + csr.offset[p]);
+      counts[t].push_back(static_cast<int>(nb.size()));
+      lists[t].insert(lists[t].end(), nb.begin(), nb.end());
     }
+  }
+  Csr csr;
+  csr.offset.reserve(n + 1);
+  for (std::size_t t = 0; t < counts.size(); ++t) {
+    for (int c : counts[t]) csr.offset.push_back(csr.offset.back() + c);
+    csr.index.insert(csr.index.end(), lists[t].begin(), lists[t].end());
   }
   return csr;
 }
@@ -73,9 +102,10 @@ ShapeTable MeshfreeSpace::shape_table(const std::vector<Vec2>& points, const std
     const bool ok =
         kernels::evaluate_shape(settings_, v, points[p], nb, count, t.phi.data() + t.offset[k],
                                 gradients ? t.dphi.data() + t.offset[k] : nullptr);
-    if (!ok) {
-      int expected = -1;
-      failed.compare_exchange_strong(expected, p);
+    if (!ok) { // keep the lowest failing point, so the message does not depend on threads
+      int seen = failed.load();
+      while ((seen < 0 || p < seen) && !failed.compare_exchange_weak(seen, p)) {
+      }
     }
   }
   if (failed >= 0) {

@@ -135,8 +135,6 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
                         ? kernels::SupportShape::Circular
                         : kernels::SupportShape::Rectangular;
   s.shape.dim = dim;
-  s.shape.mls_origin = 0.5 * (bounds.lo + bounds.hi);
-  s.shape.mls_scale = 0.5 * bounds.size().maxCoeff();
   const double default_dilation = s.shape.basis == kernels::Basis::Quadratic ? 3.0 : 2.0;
   s.dilation = d.scalar_or_vec2("dilation", Vec2(default_dilation, default_dilation));
   const double min_dilation = s.shape.basis == kernels::Basis::Quadratic ? 2.0 : 1.0;

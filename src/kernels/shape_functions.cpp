@@ -133,14 +133,20 @@ bool evaluate_mls(const ShapeSettings& s, const NodeView& nodes, const Vec2& x, 
                   int n, double* phi, Vec2* dphi) {
   const int m = s.basis_size();
   const bool quad = s.basis == Basis::Quadratic;
-  const double inv = 1.0 / s.mls_scale;
+  // p is written in a frame centred at the evaluation point and scaled by the largest support,
+  // both held fixed while differentiating: a complete polynomial basis spans the same space in
+  // any such frame, so the shape functions are unchanged and A stays well conditioned however
+  // fine the nodes (a global frame loses digits as (L/h)^4 for the quadratic basis).
+  double scale = 0.0;
+  for (int k = 0; k < n; ++k) scale = std::max(scale, nodes.radius[nb[k]].maxCoeff());
+  const double inv = 1.0 / scale;
   BasisMat A = BasisMat::Zero(m, m), Ax = BasisMat::Zero(m, m), Ay = BasisMat::Zero(m, m);
   BasisVec p, px, py, pI, unused1, unused2;
   for (int k = 0; k < n; ++k) {
     const int I = nb[k];
     Vec2 gw;
     const double w = window_with_gradient(s, x - nodes.x[I], nodes.radius[I], gw);
-    basis(s.dim, quad, (nodes.x[I] - s.mls_origin) * inv, pI, unused1, unused2);
+    basis(s.dim, quad, (nodes.x[I] - x) * inv, pI, unused1, unused2);
     const BasisMat pp = pI * pI.transpose();
     A.noalias() += w * pp;
     if (dphi) {
@@ -150,7 +156,7 @@ bool evaluate_mls(const ShapeSettings& s, const NodeView& nodes, const Vec2& x, 
   }
   const Eigen::LLT<BasisMat> llt(A);
   if (!usable(llt)) return false;
-  basis(s.dim, quad, (x - s.mls_origin) * inv, p, px, py);
+  basis(s.dim, quad, Vec2::Zero(), p, px, py); // p(x) and its derivatives at the frame origin
   const BasisVec gamma = llt.solve(p);
   BasisVec gx, gy;
   if (dphi) {
@@ -161,7 +167,7 @@ bool evaluate_mls(const ShapeSettings& s, const NodeView& nodes, const Vec2& x, 
     const int I = nb[k];
     Vec2 gw;
     const double w = window_with_gradient(s, x - nodes.x[I], nodes.radius[I], gw);
-    basis(s.dim, quad, (nodes.x[I] - s.mls_origin) * inv, pI, unused1, unused2);
+    basis(s.dim, quad, (nodes.x[I] - x) * inv, pI, unused1, unused2);
     const double c = gamma.dot(pI);
     phi[k] = c * w;
     if (dphi) {

@@ -48,11 +48,19 @@ public:
                          const Csr& support, bool gradients) const;
 
 private:
+  /// Nodes whose support radii lie within a factor of 2 of each other, with a cell list sized
+  /// for them: a query searches each group only as far as its own largest support, so a
+  /// refined region does not make every query scan the reach of the coarsest supports.
+  struct RadiusGroup {
+    double max_radius = 0.0;
+    std::vector<int> node;
+    neighbors::PointGrid grid;
+  };
+
   geometry::NodeCloud cloud_;
   std::vector<Vec2> radius_;
   kernels::ShapeSettings settings_;
-  neighbors::PointGrid grid_;
-  double max_radius_ = 0.0;
+  std::vector<RadiusGroup> groups_;
 };
 
 } // namespace mf::implicit

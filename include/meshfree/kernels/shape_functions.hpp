@@ -24,10 +24,6 @@ struct ShapeSettings {
   Window window;
   SupportShape support = SupportShape::Circular;
   int dim = 2; // 1: only x is used; nodes lie on y = 0
-  /// MLS only: the global frame in which p(x) is written, (x - origin) / scale, to keep A
-  /// well conditioned without changing the construction.
-  Vec2 mls_origin{0.0, 0.0};
-  double mls_scale = 1.0;
 
   int basis_size() const {
     if (approximation == Approximation::Sph) return 1;

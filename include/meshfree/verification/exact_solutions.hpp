@@ -6,7 +6,8 @@
 
 namespace mf::verification {
 
-/// Cantilever x in [0, L], y in [-D/2, D/2], end load P (downward shear on x = L), unit
+/// Cantilever x in [0, L], y in [-D/2, D/2], end load P (parabolic shear with resultant +P
+/// along y on x = L), unit
 /// thickness; Timoshenko & Goodier (1970) section 21, in the form of Belytschko, Lu & Gu
 /// (1994) eqs. (41)-(42) with the origin at the clamped end.
 struct TimoshenkoBeam {
