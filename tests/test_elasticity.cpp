@@ -83,7 +83,11 @@ TEST_CASE("MLS (EFG) shape functions give the same answer as RK on a uniform lat
   CHECK(mls.error_energy == Approx(rk.error_energy).epsilon(1e-3));
 }
 
-TEST_CASE("plate in tension: the clamp reaction balances the applied load", "[elasticity]") {
+// The balance holds for any solution of K d = f (the shape-function gradients sum to zero, so
+// internal forces cancel): this checks the reaction bookkeeping and the solve, not the mechanics,
+// which the CalculiX comparison and the exact solutions check.
+TEST_CASE("plate in tension: the reaction from the penalty forces balances the applied load",
+          "[elasticity]") {
   const auto r = app::solve_elastic_static(load_problem("plate_tension"), test_session());
   REQUIRE(r.boundary.size() == 2);
   CHECK(r.boundary[1].force.y() == Approx(1000.0).epsilon(1e-12));

@@ -100,6 +100,18 @@ void OutputDirectory::write_fields(const std::vector<Vec2>& points,
   std::vector<double> xyz(3 * n, 0.0);
   for (std::size_t i = 0; i < n; ++i) xyz[3 * i] = points[i].x(), xyz[3 * i + 1] = points[i].y();
   write_dataset(file, "/geometry/coordinates", xyz, n, 3);
+  { // Polyvertex connectivity: point i is vertex i
+    std::vector<int> vertex(n);
+    for (std::size_t i = 0; i < n; ++i) vertex[i] = static_cast<int>(i);
+    hsize_t dims[1] = {n};
+    const hid_t space = H5Screate_simple(1, dims, nullptr);
+    const hid_t set = H5Dcreate2(file, "/geometry/vertices", H5T_NATIVE_INT, space, H5P_DEFAULT,
+                                 H5P_DEFAULT, H5P_DEFAULT);
+    MF_REQUIRE(set >= 0 && H5Dwrite(set, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, vertex.data()) >= 0,
+               "HDF5: cannot write /geometry/vertices");
+    H5Dclose(set);
+    H5Sclose(space);
+  }
 
   std::ostringstream x;
   x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
@@ -110,7 +122,10 @@ void OutputDirectory::write_fields(const std::vector<Vec2>& points,
     x << "   <Grid Name=\"step_" << s << "\" GridType=\"Uniform\">\n"
       << "    <Time Value=\"" << std::setprecision(12) << steps[s].time << "\"/>\n"
       << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n
-      << "\" NodesPerElement=\"1\"/>\n"
+      << "\" NodesPerElement=\"1\">"
+      << "<DataItem Dimensions=\"" << n
+      << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">fields.h5:/geometry/vertices</DataItem>"
+      << "</Topology>\n"
       << "    <Geometry GeometryType=\"XYZ\">"
       << data_item("fields.h5", "/geometry/coordinates", n, 3) << "</Geometry>\n";
     for (const auto& [name, v] : steps[s].scalars) {

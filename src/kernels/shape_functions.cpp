@@ -89,6 +89,8 @@ bool evaluate_rk(const ShapeSettings& s, const NodeView& nodes, const Vec2& x, c
     const Vec2 d = x - nodes.x[I];
     Vec2 gw;
     const double w = window_with_gradient(s, d, nodes.radius[I], gw);
+    phi[k] = w; // kept for the second pass, which overwrites it with the shape function
+    if (dphi) dphi[k] = gw;
     basis(s.dim, quad, d * inv, h, hx, hy);
     hx *= inv;
     hy *= inv;
@@ -113,8 +115,8 @@ bool evaluate_rk(const ShapeSettings& s, const NodeView& nodes, const Vec2& x, c
   for (int k = 0; k < n; ++k) {
     const int I = nb[k];
     const Vec2 d = x - nodes.x[I];
-    Vec2 gw;
-    const double w = window_with_gradient(s, d, nodes.radius[I], gw);
+    const double w = phi[k];
+    const Vec2 gw = dphi ? dphi[k] : Vec2::Zero();
     basis(s.dim, quad, d * inv, h, hx, hy);
     hx *= inv;
     hy *= inv;
