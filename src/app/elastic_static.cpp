@@ -1,4 +1,5 @@
 #include "meshfree/app/elastic_static.hpp"
+#include "meshfree/app/galerkin_model.hpp"
 #include "meshfree/core/log.hpp"
 #include "meshfree/implicit/coupling.hpp"
 #include "meshfree/implicit/elasticity.hpp"
@@ -12,65 +13,6 @@ namespace {
 
 using implicit::Csr;
 using implicit::ShapeTable;
-
-/// The points a rank integrates: every point whose support holds one of its nodes, so that its
-/// block rows are complete without communication (points near a partition boundary are
-/// integrated by both neighbours, each keeping its own rows). `counted` marks the points whose
-/// lowest-numbered node it owns: sums over the body (errors, reactions) take those only, so
-/// each point counts once.
-struct RankPoints {
-  std::vector<int> rows;
-  std::vector<char> counted;
-};
-
-/// Integration points of one boundary condition and their support lists.
-struct ConditionPoints {
-  const io::BoundaryCondition* bc = nullptr;
-  quadrature::BoundaryPoints points;
-  Csr support;
-  RankPoints mine;          // points this rank integrates
-  std::vector<Vec2> values; // ubar or traction at each of those rows
-};
-
-/// Traction sigma . n from Voigt stress [sxx, syy, sxy].
-Vec2 traction(const Vec3& s, const Vec2& n) {
-  return {s(0) * n.x() + s(2) * n.y(), s(2) * n.x() + s(1) * n.y()};
-}
-
-/// Prescribed displacement or traction at the given rows of a condition's points.
-std::vector<Vec2> condition_values(const io::ProblemSpec& spec, const io::BoundaryCondition& bc,
-                                   const quadrature::BoundaryPoints& pts,
-                                   const std::vector<int>& rows) {
-  const materials::IsotropicElastic m =
-      materials::plane_stress_equivalent(spec.material, spec.model);
-  std::vector<Vec2> out;
-  for (int r : rows) {
-    if (bc.constrains)
-      out.push_back(bc.value_from_exact ? verification::exact_displacement(*spec.exact, m, pts.x[r])
-                                        : bc.value);
-    else
-      out.push_back(
-          bc.traction_from_exact
-              ? traction(verification::exact_stress(*spec.exact, m, pts.x[r]), pts.normal[r])
-              : bc.traction);
-  }
-  return out;
-}
-
-RankPoints rank_points(const Csr& support, solvers::OwnedRange own, int node_count,
-                       const solvers::PetscSession& s) {
-  RankPoints p;
-  for (int r = 0; r < support.rows(); ++r) {
-    const int* first = support.index.data() + support.offset[r];
-    const int* last = support.index.data() + support.offset[r + 1];
-    // lists are sorted, so the lowest node is the first one
-    if (std::any_of(first, last, [&](int I) { return own.owns(I); })) {
-      p.rows.push_back(r);
-      p.counted.push_back(solvers::owner_of(*first, node_count, s.size()) == s.rank());
-    }
-  }
-  return p;
-}
 
 /// Fields at arbitrary points (nodes, line samples): u^h, stress, szz.
 void evaluate_fields(const implicit::MeshfreeSpace& space, const io::ProblemSpec& spec,
@@ -108,218 +50,160 @@ std::string describe_method(const io::DiscretisationSpec& d) {
   return m;
 }
 
-ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
-                                   const solvers::PetscSession& session) {
-  ElasticResult R;
-  const io::DiscretisationSpec& disc = spec.discretisation;
-  const double t = spec.thickness;
+namespace {
 
-  // 1. Nodes and their supports.
-  PhaseTimer& timer = R.timer;
-  std::unique_ptr<implicit::MeshfreeSpace> space;
-  {
-    PhaseTimer::Scope scope(timer, "nodes");
-    space = std::make_unique<implicit::MeshfreeSpace>(
-        geometry::generate_nodes(spec.domain, disc.spacing, disc.refinement), disc.shape,
-        disc.dilation);
-  }
-  const int N = space->node_count();
-  R.nodes = N;
-  R.dofs = 2 * N;
-  log::info("nodes: ", N, " (", R.dofs, " DOFs), ", describe_method(disc));
-
-  // 2. Integration points: background cells over the body, Gauss points on loaded and
-  // constrained boundary pieces.
-  quadrature::DomainPoints dp;
-  std::vector<ConditionPoints> bcs(spec.boundary.size());
-  {
-    PhaseTimer::Scope scope(timer, "quadrature");
-    const quadrature::CellSizing sizing{disc.spacing, disc.refinement,
-                                        disc.cell_size / disc.spacing, disc.dilation.maxCoeff()};
-    dp =
-        quadrature::domain_points(spec.domain, disc.cell_size, disc.order, disc.cut_levels, sizing);
-    for (std::size_t b = 0; b < spec.boundary.size(); ++b) {
-      bcs[b].bc = &spec.boundary[b];
-      const auto pieces =
-          io::select_boundary(spec.domain, spec.boundary[b].on, spec.boundary[b].key_path);
-      bcs[b].points =
-          quadrature::boundary_points(pieces, disc.cell_size, disc.boundary_order, sizing);
-      R.boundary_points += static_cast<int>(bcs[b].points.x.size());
-    }
-  }
-  R.domain_points = static_cast<int>(dp.x.size());
-  R.cells = dp.cell_count;
-  log::info("integration: ", R.cells, " background cells, ", R.domain_points, " domain points, ",
-            R.boundary_points, " boundary points");
-
-  // 3. Neighbours: support lists of every point, and the exact matrix pattern of owned rows.
-  const solvers::OwnedRange own = solvers::owned_nodes(N, session.rank(), session.size());
-  Csr dsupport;
-  RankPoints dmine;
-  implicit::RowPattern pattern;
-  {
-    PhaseTimer::Scope scope(timer, "neighbours");
-    dsupport = space->support_lists(dp.x);
-    std::vector<const Csr*> lists{&dsupport};
-    for (auto& c : bcs) {
-      c.support = space->support_lists(c.points.x);
-      if (c.bc->constrains) lists.push_back(&c.support);
-    }
-    const auto require_covered = [](const Csr& support, const std::vector<Vec2>& x) {
-      for (int r = 0; r < support.rows(); ++r)
-        MF_REQUIRE(support.size(r) > 0, "integration point (", x[r].x(), ", ", x[r].y(),
-                   ") is covered by no node: raise discretisation.dilation");
-    };
-    require_covered(dsupport, dp.x);
-    for (const auto& c : bcs) require_covered(c.support, c.points.x);
-    pattern = implicit::coupling_pattern(lists, N, own.begin, own.end);
-    dmine = rank_points(dsupport, own, N, session);
-    for (auto& c : bcs) c.mine = rank_points(c.support, own, N, session);
-  }
-  R.mean_support = static_cast<double>(dsupport.index.size()) / std::max(1, dsupport.rows());
-
-  // 4. Shape functions at this rank's points.
-  ShapeTable dtable;
-  std::vector<ShapeTable> btables(bcs.size());
-  {
-    PhaseTimer::Scope scope(timer, "shape_functions");
-    session.collective([&] {
-      dtable = space->shape_table(dp.x, dmine.rows, dsupport, true);
-      for (std::size_t b = 0; b < bcs.size(); ++b)
-        btables[b] = space->shape_table(bcs[b].points.x, bcs[b].mine.rows, bcs[b].support, false);
-    });
-  }
-
-  // 5. Assembly of K d = f.
-  implicit::BlockRows rows(std::move(pattern));
+/// K d = f: the Galerkin stiffness, body force, penalty terms and tractions of this rank's rows.
+implicit::BlockRows assemble_elastic(const io::ProblemSpec& spec, const GalerkinModel& m) {
+  implicit::BlockRows rows(m.pattern);
   const auto add_matrix = [&](const int* nodes, int n, const double* v) {
     rows.add_matrix(nodes, n, v);
   };
   const auto add_vector = [&](const int* nodes, int n, const double* v) {
     rows.add_vector(nodes, n, v);
   };
+  implicit::add_stiffness(m.domain_table, m.domain_weight,
+                          materials::elastic_matrix(spec.material, spec.model), add_matrix);
+  if (!spec.body_force.isZero())
+    implicit::add_load(m.domain_table, m.domain_weight,
+                       std::vector<Vec2>(m.domain_weight.size(), spec.body_force), add_vector);
+  for (const ConditionPoints& c : m.conditions) {
+    if (c.bc->constrains)
+      implicit::add_penalty(c.table, c.weight, c.bc->mask, c.bc->penalty, c.values, add_matrix,
+                            add_vector);
+    else
+      implicit::add_load(c.table, c.weight, c.values, add_vector);
+  }
+  return rows;
+}
+
+/// Relative L2 and energy-norm errors against the exact solution, over the whole body.
+std::pair<double, double> exact_errors(const io::ProblemSpec& spec, const GalerkinModel& m,
+                                       const std::vector<double>& d,
+                                       const solvers::PetscSession& session) {
   const Mat3 C = materials::elastic_matrix(spec.material, spec.model);
+  const Mat3 Cinv = C.inverse();
   const materials::IsotropicElastic exact_mat =
       materials::plane_stress_equivalent(spec.material, spec.model);
-  {
-    PhaseTimer::Scope scope(timer, "assembly");
-    std::vector<double> w(dmine.rows.size());
-    for (std::size_t k = 0; k < w.size(); ++k) w[k] = dp.weight[dmine.rows[k]] * t;
-    implicit::add_stiffness(dtable, w, C, add_matrix);
-    if (!spec.body_force.isZero())
-      implicit::add_load(dtable, w, std::vector<Vec2>(w.size(), spec.body_force), add_vector);
-    for (std::size_t b = 0; b < bcs.size(); ++b) {
-      const io::BoundaryCondition& bc = *bcs[b].bc;
-      const auto& pts = bcs[b].points;
-      std::vector<double> bw;
-      for (int r : bcs[b].mine.rows) bw.push_back(pts.weight[r] * t);
-      bcs[b].values = condition_values(spec, bc, pts, bcs[b].mine.rows);
-      const auto& val = bcs[b].values;
-      if (bc.constrains)
-        implicit::add_penalty(btables[b], bw, bc.mask, bc.penalty, val, add_matrix, add_vector);
-      else
-        implicit::add_load(btables[b], bw, val, add_vector);
+  double sums[4] = {0, 0, 0, 0}; // |e_u|^2, |u|^2, e_eps.C.e_eps, eps.C.eps
+  for (int k = 0; k < m.domain_table.rows(); ++k) {
+    if (!m.domain_mine.counted[k]) continue;
+    const Vec2& x = m.domain.x[m.domain_mine.rows[k]];
+    const double w = m.domain.weight[m.domain_mine.rows[k]];
+    const Vec2 ue = verification::exact_displacement(*spec.exact, exact_mat, x);
+    const Vec3 ee = Cinv * verification::exact_stress(*spec.exact, exact_mat, x);
+    const Vec2 eu = implicit::displacement_at(m.domain_table, k, d) - ue;
+    const Vec3 eps = implicit::strain_at(m.domain_table, k, d) - ee;
+    sums[0] += w * eu.squaredNorm();
+    sums[1] += w * ue.squaredNorm();
+    sums[2] += w * eps.dot(C * eps);
+    sums[3] += w * ee.dot(C * ee);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, sums, 4, MPI_DOUBLE, MPI_SUM, session.comm());
+  return {std::sqrt(sums[0] / sums[1]), std::sqrt(sums[2] / sums[3])};
+}
+
+/// Reaction (penalty force on the body) and largest constraint gap of a displacement
+/// condition, or the applied force of a traction condition.
+BoundaryReport boundary_report(const ConditionPoints& c, const std::vector<double>& d,
+                               const solvers::PetscSession& session) {
+  const io::BoundaryCondition& bc = *c.bc;
+  BoundaryReport rep;
+  rep.name = bc.name;
+  rep.constraint = bc.constrains;
+  double force[2] = {0, 0}, gap_max = 0.0;
+  for (int k = 0; k < c.table.rows(); ++k) {
+    if (!c.mine.counted[k]) continue;
+    if (bc.constrains) {
+      const Vec2 gap =
+          (implicit::displacement_at(c.table, k, d) - c.values[k]).cwiseProduct(bc.mask);
+      force[0] -= bc.penalty * c.weight[k] * gap.x();
+      force[1] -= bc.penalty * c.weight[k] * gap.y();
+      gap_max = std::max(gap_max, gap.norm());
+    } else {
+      force[0] += c.weight[k] * c.values[k].x();
+      force[1] += c.weight[k] * c.values[k].y();
     }
   }
+  MPI_Allreduce(MPI_IN_PLACE, force, 2, MPI_DOUBLE, MPI_SUM, session.comm());
+  MPI_Allreduce(MPI_IN_PLACE, &gap_max, 1, MPI_DOUBLE, MPI_MAX, session.comm());
+  rep.force = Vec2(force[0], force[1]);
+  rep.violation_max = gap_max;
+  return rep;
+}
+
+/// u^h and stresses at the nodes and along the sample lines (on the calling rank).
+void sample_fields(const io::ProblemSpec& spec, const GalerkinModel& m, ElasticResult& R) {
+  const auto& d = R.parameters;
+  R.node_x = m.space->nodes().x;
+  evaluate_fields(*m.space, spec, R.node_x, d, R.node_u, R.node_stress, R.node_szz);
+  for (const auto& line : spec.lines) {
+    LineSample s;
+    for (int k = 0; k < line.points; ++k) {
+      const double f = static_cast<double>(k) / (line.points - 1);
+      const Vec2 x = line.from + f * (line.to - line.from);
+      if (!spec.domain.contains(x, 1e-9)) continue;
+      s.x.push_back(x);
+      s.s.push_back(f * (line.to - line.from).norm());
+    }
+    std::vector<double> szz;
+    evaluate_fields(*m.space, spec, s.x, d, s.u, s.stress, szz);
+    R.lines.emplace_back(line.name, std::move(s));
+  }
+}
+
+} // namespace
+
+ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
+                                   const solvers::PetscSession& session) {
+  ElasticResult R;
+  const GalerkinModel m = build_galerkin_model(spec, session, R.timer);
+  R.nodes = m.node_count();
+  R.dofs = 2 * R.nodes;
+  R.domain_points = static_cast<int>(m.domain.x.size());
+  R.cells = m.domain.cell_count;
+  for (const auto& c : m.conditions) R.boundary_points += static_cast<int>(c.points.x.size());
+  R.mean_support =
+      static_cast<double>(m.domain_support.index.size()) / std::max(1, m.domain_support.rows());
+  log::info("integration: ", R.cells, " background cells, ", R.domain_points, " domain points, ",
+            R.boundary_points, " boundary points");
+
   std::unique_ptr<solvers::BlockLinearSystem> system;
   {
-    PhaseTimer::Scope scope(timer, "solver_setup");
+    PhaseTimer::Scope scope(R.timer, "assembly");
+    const implicit::BlockRows rows = assemble_elastic(spec, m);
     const implicit::RowPattern& p = rows.pattern();
-    system = std::make_unique<solvers::BlockLinearSystem>(
-        session.comm(), N, own, p.offset, p.column, rows.values(), rows.rhs(), /*spd=*/true);
+    system = std::make_unique<solvers::BlockLinearSystem>(session.comm(), R.nodes, m.own, p.offset,
+                                                          p.column, rows.values(), rows.rhs(),
+                                                          /*spd=*/true);
   }
   R.matrix_nonzeros = system->global_nonzeros();
   log::info("matrix: ", R.dofs, " x ", R.dofs, ", ", static_cast<long>(R.matrix_nonzeros),
             " nonzeros");
-
-  // 6. Solve.
   {
-    PhaseTimer::Scope scope(timer, "solve");
+    PhaseTimer::Scope scope(R.timer, "solve");
     R.solve = system->solve();
     R.parameters = system->solution_everywhere();
   }
   log::info("solved with ", R.solve.solver, ": ", R.solve.reason_name, ", relative residual ",
             R.solve.residual_norm);
+  for (double v : R.parameters)
+    MF_REQUIRE(std::isfinite(v), "the solution contains NaN or Inf: the system is singular; "
+                                 "check the boundary conditions");
 
-  // 7. Post-processing: errors against the exact solution, reactions, constraint violation,
-  // fields at the nodes and on sample lines.
-  {
-    PhaseTimer::Scope scope(timer, "postprocess");
-    const auto& d = R.parameters;
-    for (double v : d)
-      MF_REQUIRE(std::isfinite(v), "the solution contains NaN or Inf: the system is singular; "
-                                   "check the boundary conditions");
-    if (spec.exact) {
-      double sums[4] = {0, 0, 0, 0}; // |e_u|^2, |u|^2, e_eps.C.e_eps, eps.C.eps
-      const Mat3 Cinv = C.inverse();
-      for (int k = 0; k < dtable.rows(); ++k) {
-        if (!dmine.counted[k]) continue;
-        const Vec2& x = dp.x[dmine.rows[k]];
-        const double w = dp.weight[dmine.rows[k]];
-        const Vec2 ue = verification::exact_displacement(*spec.exact, exact_mat, x);
-        const Vec3 ee = Cinv * verification::exact_stress(*spec.exact, exact_mat, x);
-        const Vec2 eu = implicit::displacement_at(dtable, k, d) - ue;
-        const Vec3 eps = implicit::strain_at(dtable, k, d) - ee;
-        sums[0] += w * eu.squaredNorm();
-        sums[1] += w * ue.squaredNorm();
-        sums[2] += w * eps.dot(C * eps);
-        sums[3] += w * ee.dot(C * ee);
-      }
-      MPI_Allreduce(MPI_IN_PLACE, sums, 4, MPI_DOUBLE, MPI_SUM, session.comm());
-      R.error_l2 = std::sqrt(sums[0] / sums[1]);
-      R.error_energy = std::sqrt(sums[2] / sums[3]);
-    }
-    for (std::size_t b = 0; b < bcs.size(); ++b) {
-      const io::BoundaryCondition& bc = *bcs[b].bc;
-      BoundaryReport rep;
-      rep.name = bc.name;
-      rep.constraint = bc.constrains;
-      double local[3] = {0, 0, 0};
-      const auto& pts = bcs[b].points;
-      for (int k = 0; k < btables[b].rows(); ++k) {
-        if (!bcs[b].mine.counted[k]) continue;
-        const double w = pts.weight[bcs[b].mine.rows[k]] * t;
-        if (bc.constrains) {
-          const Vec2 gap = (implicit::displacement_at(btables[b], k, d) - bcs[b].values[k])
-                               .cwiseProduct(bc.mask);
-          local[0] -= bc.penalty * w * gap.x(); // penalty force on the body
-          local[1] -= bc.penalty * w * gap.y();
-          local[2] = std::max(local[2], gap.norm());
-        } else { // applied force: the integral of the traction
-          local[0] += w * bcs[b].values[k].x();
-          local[1] += w * bcs[b].values[k].y();
-        }
-      }
-      double global[2];
-      MPI_Allreduce(local, global, 2, MPI_DOUBLE, MPI_SUM, session.comm());
-      MPI_Allreduce(MPI_IN_PLACE, &local[2], 1, MPI_DOUBLE, MPI_MAX, session.comm());
-      rep.force = Vec2(global[0], global[1]);
-      rep.violation_max = local[2];
-      R.violation_max = std::max(R.violation_max, rep.violation_max);
-      R.boundary.push_back(rep);
-    }
-    session.collective([&] {
-      if (session.rank() != 0) return;
-      R.node_x = space->nodes().x;
-      evaluate_fields(*space, spec, R.node_x, d, R.node_u, R.node_stress, R.node_szz);
-      double umax = 0.0;
-      for (const auto& u : R.node_u) umax = std::max(umax, u.norm());
-      R.violation_relative = umax > 0.0 ? R.violation_max / umax : 0.0;
-      for (const auto& line : spec.lines) {
-        LineSample s;
-        for (int k = 0; k < line.points; ++k) {
-          const double f = static_cast<double>(k) / (line.points - 1);
-          const Vec2 x = line.from + f * (line.to - line.from);
-          if (!spec.domain.contains(x, 1e-9)) continue;
-          s.x.push_back(x);
-          s.s.push_back(f * (line.to - line.from).norm());
-        }
-        std::vector<double> szz;
-        if (!s.x.empty()) evaluate_fields(*space, spec, s.x, d, s.u, s.stress, szz);
-        R.lines.emplace_back(line.name, std::move(s));
-      }
-    });
+  PhaseTimer::Scope scope(R.timer, "postprocess");
+  if (spec.exact)
+    std::tie(R.error_l2, R.error_energy) = exact_errors(spec, m, R.parameters, session);
+  for (const auto& c : m.conditions) {
+    R.boundary.push_back(boundary_report(c, R.parameters, session));
+    R.violation_max = std::max(R.violation_max, R.boundary.back().violation_max);
   }
+  session.collective([&] {
+    if (session.rank() != 0) return;
+    sample_fields(spec, m, R);
+    double umax = 0.0;
+    for (const auto& u : R.node_u) umax = std::max(umax, u.norm());
+    R.violation_relative = umax > 0.0 ? R.violation_max / umax : 0.0;
+  });
   return R;
 }
 

@@ -1,0 +1,57 @@
+#pragma once
+// The solution-independent part of a meshfree Galerkin analysis on one rank: nodes and their
+// supports, integration points in the body and on the boundary conditions, the points this rank
+// integrates with their shape functions, and the pattern of its block rows. The elastic solve
+// assembles on it once; a nonlinear solve would assemble on it every iteration.
+#include "meshfree/core/timer.hpp"
+#include "meshfree/implicit/coupling.hpp"
+#include "meshfree/implicit/meshfree_space.hpp"
+#include "meshfree/io/problem_spec.hpp"
+#include "meshfree/quadrature/integration_points.hpp"
+#include "meshfree/solvers/petsc_session.hpp"
+#include <memory>
+#include <vector>
+
+namespace mf::app {
+
+/// The points a rank integrates: every point whose support holds one of its nodes, so that its
+/// block rows are complete without communication (points near a partition boundary are
+/// integrated by both neighbours, each keeping its own rows). `counted[k]` marks the points
+/// whose lowest-numbered node it owns: sums over the body (errors, reactions) take only those,
+/// so that each point counts once over all ranks.
+struct RankPoints {
+  std::vector<int> rows;
+  std::vector<char> counted;
+};
+
+/// Integration points of one boundary condition, as integrated by this rank.
+struct ConditionPoints {
+  const io::BoundaryCondition* bc = nullptr;
+  quadrature::BoundaryPoints points; // all of the condition's points
+  implicit::Csr support;             // support lists of all of them
+  RankPoints mine;
+  implicit::ShapeTable table; // rows: mine.rows (values only, no gradients)
+  std::vector<double> weight; // length weight times thickness, per table row
+  std::vector<Vec2> values;   // prescribed displacement or traction, per table row
+};
+
+struct GalerkinModel {
+  std::unique_ptr<implicit::MeshfreeSpace> space;
+  solvers::OwnedRange own;
+  quadrature::DomainPoints domain;
+  implicit::Csr domain_support;
+  RankPoints domain_mine;
+  implicit::ShapeTable domain_table; // rows: domain_mine.rows, with gradients
+  std::vector<double> domain_weight; // area weight times thickness, per table row
+  std::vector<ConditionPoints> conditions;
+  implicit::RowPattern pattern; // block rows of the owned nodes
+
+  int node_count() const { return space->node_count(); }
+};
+
+/// Builds the model; phases "nodes", "quadrature", "neighbours" and "shape_functions" go to
+/// `timer`. Errors on any rank reach every rank.
+GalerkinModel build_galerkin_model(const io::ProblemSpec& spec,
+                                   const solvers::PetscSession& session, PhaseTimer& timer);
+
+} // namespace mf::app
