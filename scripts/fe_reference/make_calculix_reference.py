@@ -2,7 +2,8 @@
 """Regenerate the CalculiX finite-element reference solutions for two
 linear-elastic plane-stress plates.
 
-Run from the repository root, without arguments:
+Run from the repository root, without arguments (CALCULIX_REFERENCE_OUT=DIR writes the
+results into DIR instead of reference/calculix):
 
     /usr/bin/python3 scripts/fe_reference/make_calculix_reference.py
 
@@ -90,7 +91,9 @@ NTHREADS = int(os.environ.get("CCX_REF_THREADS", "1"))
 
 REPO_ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                          "..", ".."))
-OUT_ROOT = os.path.join(REPO_ROOT, "reference", "calculix")
+# CALCULIX_REFERENCE_OUT writes elsewhere (the test suite remakes the reference in a temporary
+# folder and compares it with the committed one).
+OUT_ROOT = os.environ.get("CALCULIX_REFERENCE_OUT", os.path.join(REPO_ROOT, "reference", "calculix"))
 
 PROBLEMS = [
     # levels: 1/h of the reference sequence (uniform, or base size h0 of the
