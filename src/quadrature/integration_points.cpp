@@ -7,18 +7,26 @@ namespace mf::quadrature {
 
 namespace {
 
+/// Calls f(quarter) for the four quarters of `box`.
+template <class F> void for_each_quarter(const BoundingBox& box, F&& f) {
+  const Vec2 half = 0.5 * box.size();
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      const Vec2 lo = box.lo + Vec2(i * half.x(), j * half.y());
+      f(BoundingBox{lo, lo + half});
+    }
+}
+
 /// Adds the Gauss points of `box` that lie in the body; splits cells the boundary cuts.
 void integrate_cell(const geometry::Domain& domain, const BoundingBox& box, const GaussRule& g,
                     int levels_left, int cell_id, const CellSizing& sizing, DomainPoints& out) {
   const Vec2 half = 0.5 * box.size();
   const Vec2 mid = box.lo + half;
   if (sizing.spacing > 0.0 && box.size().maxCoeff() > sizing.size_at(box) * (1.0 + 1e-9)) {
-    for (int j = 0; j < 2; ++j) // refined nodes need refined integration
-      for (int i = 0; i < 2; ++i) {
-        BoundingBox sub{box.lo + Vec2(i * half.x(), j * half.y()), Vec2::Zero()};
-        sub.hi = sub.lo + half;
-        integrate_cell(domain, sub, g, levels_left, cell_id, sizing, out);
-      }
+    // refined nodes need refined integration
+    for_each_quarter(box, [&](const BoundingBox& q) {
+      integrate_cell(domain, q, g, levels_left, cell_id, sizing, out);
+    });
     return;
   }
   const int n = static_cast<int>(g.points.size());
@@ -37,12 +45,9 @@ void integrate_cell(const geometry::Domain& domain, const BoundingBox& box, cons
     if ((nearest - h.center).norm() < h.radius && far > h.radius) cut = true;
   }
   if (cut && levels_left > 0) {
-    for (int j = 0; j < 2; ++j)
-      for (int i = 0; i < 2; ++i) {
-        BoundingBox sub{box.lo + Vec2(i * half.x(), j * half.y()), Vec2::Zero()};
-        sub.hi = sub.lo + half;
-        integrate_cell(domain, sub, g, levels_left - 1, cell_id, sizing, out);
-      }
+    for_each_quarter(box, [&](const BoundingBox& q) {
+      integrate_cell(domain, q, g, levels_left - 1, cell_id, sizing, out);
+    });
     return;
   }
   if (inside == 0 && !cut) return;
