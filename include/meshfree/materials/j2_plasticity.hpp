@@ -1,0 +1,91 @@
+#pragma once
+// J2 (von Mises) plasticity with isotropic and linear kinematic hardening, backward Euler, as
+// pure functions: parameters, total strain and committed history in; stress, algorithmic
+// (consistent) tangent and trial history out. Nothing here knows about nodes or particles.
+//
+//  - 3D: radial return and its consistent tangent (Simo & Hughes 1998, Boxes 3.1-3.2; Simo &
+//    Taylor 1985), with a local Newton iteration on the consistency parameter for nonlinear
+//    isotropic hardening.
+//  - Plane strain: the 3D update with eps_zz = 0.
+//  - Plane stress: the 3D update with a Newton iteration on eps_zz until sigma_zz = 0, and the
+//    tangent condensed exactly: C_ps = C_pp - C_pz C_zp / C_zz (the "strain iteration" form of
+//    the plane-stress return; it is the same backward-Euler solution as Simo & Taylor's
+//    projected return, and it carries kinematic hardening without approximation).
+//
+// Voigt order 3D [xx, yy, zz, yz, xz, xy], 2D [xx, yy, xy]; engineering shear strains.
+#include "meshfree/core/types.hpp"
+#include <variant>
+#include <vector>
+
+namespace mf::materials {
+
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+
+/// Isotropic hardening laws: the uniaxial yield stress as a function of the equivalent plastic
+/// strain alpha.
+struct PerfectPlastic {};
+struct LinearHardening {
+  double H = 0.0; // sigma_y = sigma0 + H alpha
+};
+/// Saturation (Voce) plus linear: sigma_y = sigma0 + H alpha + (sinf - sigma0)(1 - exp(-delta
+/// alpha)).
+struct VoceHardening {
+  double H = 0.0, sigma_inf = 0.0, delta = 0.0;
+};
+/// Power law (Swift): sigma_y = K (eps0 + alpha)^n; sigma0 is then K eps0^n.
+struct SwiftHardening {
+  double K = 0.0, eps0 = 0.0, n = 0.0;
+};
+/// Piecewise-linear table of (alpha, sigma_y), alpha increasing from 0; beyond the last point the
+/// last slope continues.
+struct TableHardening {
+  std::vector<double> alpha, sigma;
+};
+using IsotropicHardening =
+    std::variant<PerfectPlastic, LinearHardening, VoceHardening, SwiftHardening, TableHardening>;
+
+struct J2Parameters {
+  double E = 0.0, nu = 0.0;
+  double sigma0 = 0.0; // initial yield stress (ignored by Swift and table laws, which define it)
+  IsotropicHardening hardening = PerfectPlastic{};
+  double H_kinematic = 0.0; // linear (Prager) kinematic modulus: uniaxial slope adds H_kinematic
+};
+
+/// Committed history at a material point.
+struct J2State {
+  Vec6 plastic_strain = Vec6::Zero(); // engineering shear components
+  Vec6 back_stress = Vec6::Zero();    // deviatoric, stress-like
+  double alpha = 0.0;                 // equivalent plastic strain
+};
+
+struct J2Result3D {
+  Vec6 stress = Vec6::Zero();
+  Mat6 tangent = Mat6::Zero();
+  J2State state;
+  bool plastic = false;
+};
+
+struct J2Result2D {
+  Vec3 stress = Vec3::Zero(); // [xx, yy, xy]
+  double stress_zz = 0.0;
+  double strain_zz = 0.0; // total eps_zz (0 in plane strain)
+  Mat3 tangent = Mat3::Zero();
+  J2State state;
+  bool plastic = false;
+};
+
+/// Uniaxial yield stress and its slope at alpha.
+double yield_stress(const J2Parameters& p, double alpha);
+double yield_slope(const J2Parameters& p, double alpha);
+
+J2Result3D j2_update_3d(const J2Parameters& p, const Vec6& strain, const J2State& committed);
+J2Result2D j2_update_plane_strain(const J2Parameters& p, const Vec3& strain,
+                                  const J2State& committed);
+J2Result2D j2_update_plane_stress(const J2Parameters& p, const Vec3& strain,
+                                  const J2State& committed);
+
+/// Von Mises stress of a 3D stress vector.
+double von_mises_3d(const Vec6& s);
+
+} // namespace mf::materials
