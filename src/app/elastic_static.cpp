@@ -15,13 +15,10 @@ using implicit::Csr;
 using implicit::ShapeTable;
 
 /// Fields at arbitrary points (nodes, line samples): u^h, stress, szz.
-void evaluate_fields(const implicit::MeshfreeSpace& space, const io::ProblemSpec& spec,
+void evaluate_fields(const GalerkinModel& m, const io::ProblemSpec& spec,
                      const std::vector<Vec2>& x, const std::vector<double>& d, std::vector<Vec2>& u,
                      std::vector<Vec3>& stress, std::vector<double>& szz) {
-  const Csr support = space.support_lists(x);
-  std::vector<int> all(x.size());
-  for (std::size_t i = 0; i < x.size(); ++i) all[i] = static_cast<int>(i);
-  const ShapeTable t = space.shape_table(x, all, support, true);
+  const ShapeTable t = shapes_at(m, x, true);
   const Mat3 C = materials::elastic_matrix(spec.material, spec.model);
   u.resize(x.size());
   stress.resize(x.size());
@@ -52,30 +49,6 @@ std::string describe_method(const io::DiscretisationSpec& d) {
 
 namespace {
 
-/// K d = f: the Galerkin stiffness, body force, penalty terms and tractions of this rank's rows.
-implicit::BlockRows assemble_elastic(const io::ProblemSpec& spec, const GalerkinModel& m) {
-  implicit::BlockRows rows(m.pattern);
-  const auto add_matrix = [&](const int* nodes, int n, const double* v) {
-    rows.add_matrix(nodes, n, v);
-  };
-  const auto add_vector = [&](const int* nodes, int n, const double* v) {
-    rows.add_vector(nodes, n, v);
-  };
-  implicit::add_stiffness(m.domain_table, m.domain_weight,
-                          materials::elastic_matrix(spec.material, spec.model), add_matrix);
-  if (!spec.body_force.isZero())
-    implicit::add_load(m.domain_table, m.domain_weight,
-                       std::vector<Vec2>(m.domain_weight.size(), spec.body_force), add_vector);
-  for (const ConditionPoints& c : m.conditions) {
-    if (c.bc->constrains)
-      implicit::add_penalty(c.table, c.weight, c.bc->mask, c.bc->penalty, c.values, add_matrix,
-                            add_vector);
-    else
-      implicit::add_load(c.table, c.weight, c.values, add_vector);
-  }
-  return rows;
-}
-
 /// Relative L2 and energy-norm errors against the exact solution, over the whole body.
 std::pair<double, double> exact_errors(const io::ProblemSpec& spec, const GalerkinModel& m,
                                        const std::vector<double>& d,
@@ -102,40 +75,11 @@ std::pair<double, double> exact_errors(const io::ProblemSpec& spec, const Galerk
   return {std::sqrt(sums[0] / sums[1]), std::sqrt(sums[2] / sums[3])};
 }
 
-/// Reaction (penalty force on the body) and largest constraint gap of a displacement
-/// condition, or the applied force of a traction condition.
-BoundaryReport boundary_report(const ConditionPoints& c, const std::vector<double>& d,
-                               const solvers::PetscSession& session) {
-  const io::BoundaryCondition& bc = *c.bc;
-  BoundaryReport rep;
-  rep.name = bc.name;
-  rep.constraint = bc.constrains;
-  double force[2] = {0, 0}, gap_max = 0.0;
-  for (int k = 0; k < c.table.rows(); ++k) {
-    if (!c.mine.counted[k]) continue;
-    if (bc.constrains) {
-      const Vec2 gap =
-          (implicit::displacement_at(c.table, k, d) - c.values[k]).cwiseProduct(bc.mask);
-      force[0] -= bc.penalty * c.weight[k] * gap.x();
-      force[1] -= bc.penalty * c.weight[k] * gap.y();
-      gap_max = std::max(gap_max, gap.norm());
-    } else {
-      force[0] += c.weight[k] * c.values[k].x();
-      force[1] += c.weight[k] * c.values[k].y();
-    }
-  }
-  MPI_Allreduce(MPI_IN_PLACE, force, 2, MPI_DOUBLE, MPI_SUM, session.comm());
-  MPI_Allreduce(MPI_IN_PLACE, &gap_max, 1, MPI_DOUBLE, MPI_MAX, session.comm());
-  rep.force = Vec2(force[0], force[1]);
-  rep.violation_max = gap_max;
-  return rep;
-}
-
 /// u^h and stresses at the nodes and along the sample lines (on the calling rank).
 void sample_fields(const io::ProblemSpec& spec, const GalerkinModel& m, ElasticResult& R) {
   const auto& d = R.parameters;
-  R.node_x = m.space->nodes().x;
-  evaluate_fields(*m.space, spec, R.node_x, d, R.node_u, R.node_stress, R.node_szz);
+  R.node_x = m.node_positions();
+  evaluate_fields(m, spec, R.node_x, d, R.node_u, R.node_stress, R.node_szz);
   for (const auto& line : spec.lines) {
     LineSample s;
     for (int k = 0; k < line.points; ++k) {
@@ -146,7 +90,7 @@ void sample_fields(const io::ProblemSpec& spec, const GalerkinModel& m, ElasticR
       s.s.push_back(f * (line.to - line.from).norm());
     }
     std::vector<double> szz;
-    evaluate_fields(*m.space, spec, s.x, d, s.u, s.stress, szz);
+    evaluate_fields(m, spec, s.x, d, s.u, s.stress, szz);
     R.lines.emplace_back(line.name, std::move(s));
   }
 }
@@ -170,7 +114,8 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
   std::unique_ptr<solvers::BlockLinearSystem> system;
   {
     PhaseTimer::Scope scope(R.timer, "assembly");
-    const implicit::BlockRows rows = assemble_elastic(spec, m);
+    const implicit::BlockRows rows =
+        assemble_linear_elastic(spec, m, std::vector<double>(spec.boundary.size() + 1, 1.0));
     const implicit::RowPattern& p = rows.pattern();
     system = std::make_unique<solvers::BlockLinearSystem>(session.comm(), R.nodes, m.own, p.offset,
                                                           p.column, rows.values(), rows.rhs(),
@@ -194,7 +139,7 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
   if (spec.exact)
     std::tie(R.error_l2, R.error_energy) = exact_errors(spec, m, R.parameters, session);
   for (const auto& c : m.conditions) {
-    R.boundary.push_back(boundary_report(c, R.parameters, session));
+    R.boundary.push_back(boundary_report(c, R.parameters, 1.0, session));
     R.violation_max = std::max(R.violation_max, R.boundary.back().violation_max);
   }
   session.collective([&] {

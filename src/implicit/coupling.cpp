@@ -74,6 +74,25 @@ void BlockRows::add_matrix(const int* nodes, int n, const double* block) {
   }
 }
 
+void BlockRows::clear() {
+  std::fill(values_.begin(), values_.end(), 0.0);
+  std::fill(rhs_.begin(), rhs_.end(), 0.0);
+}
+
+void BlockRows::multiply_add(const std::vector<double>& d, double* r) const {
+  for (int i = 0; i < pattern_.rows(); ++i) {
+    double sx = 0.0, sy = 0.0;
+    for (int k = pattern_.offset[i]; k < pattern_.offset[i + 1]; ++k) {
+      const double* b = values_.data() + 4 * static_cast<std::size_t>(k);
+      const double dx = d[2 * pattern_.column[k]], dy = d[2 * pattern_.column[k] + 1];
+      sx += b[0] * dx + b[1] * dy;
+      sy += b[2] * dx + b[3] * dy;
+    }
+    r[2 * i] += sx;
+    r[2 * i + 1] += sy;
+  }
+}
+
 void BlockRows::add_vector(const int* nodes, int n, const double* values) {
   for (int a = 0; a < n; ++a) {
     const int I = nodes[a];

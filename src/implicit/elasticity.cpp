@@ -2,34 +2,19 @@
 
 namespace mf::implicit {
 
-void add_stiffness(const ShapeTable& t, const std::vector<double>& weight, const Mat3& C,
-                   const MatrixAdder& add) {
-  std::vector<double> K;
-  std::vector<Eigen::Matrix<double, 3, 2>> CB; // C * B_J for each node of the point
+void add_internal_force(const ShapeTable& t, const std::vector<double>& weight,
+                        const std::vector<Vec3>& stress, const VectorAdder& add) {
+  std::vector<double> f;
   for (int r = 0; r < t.rows(); ++r) {
     const int n = t.offset[r + 1] - t.offset[r];
-    const int* nodes = t.node.data() + t.offset[r];
     const Vec2* g = t.dphi.data() + t.offset[r];
-    const double w = weight[r];
-    K.assign(4 * n * n, 0.0);
-    CB.resize(n);
-    for (int j = 0; j < n; ++j) {
-      Eigen::Matrix<double, 3, 2> B;
-      B << g[j].x(), 0.0, 0.0, g[j].y(), g[j].y(), g[j].x();
-      CB[j] = w * C * B;
-    }
+    const Vec3 ws = weight[r] * stress[r];
+    f.resize(2 * n);
     for (int i = 0; i < n; ++i) {
-      Eigen::Matrix<double, 3, 2> Bi;
-      Bi << g[i].x(), 0.0, 0.0, g[i].y(), g[i].y(), g[i].x();
-      for (int j = 0; j < n; ++j) {
-        const Mat2 kij = Bi.transpose() * CB[j];
-        double* row0 = K.data() + (2 * i) * (2 * n) + 2 * j;
-        double* row1 = row0 + 2 * n;
-        row0[0] = kij(0, 0), row0[1] = kij(0, 1);
-        row1[0] = kij(1, 0), row1[1] = kij(1, 1);
-      }
+      f[2 * i] = g[i].x() * ws(0) + g[i].y() * ws(2);
+      f[2 * i + 1] = g[i].y() * ws(1) + g[i].x() * ws(2);
     }
-    add(nodes, n, K.data());
+    add(t.node.data() + t.offset[r], n, f.data());
   }
 }
 

@@ -1,5 +1,6 @@
 #include "meshfree/io/key_reader.hpp"
 #include "meshfree/io/problem_spec.hpp"
+#include <cmath>
 #include <fstream>
 
 namespace mf::io {
@@ -24,13 +25,95 @@ materials::PlaneModel read_model(KeyReader& r, double& thickness) {
                                 : materials::PlaneModel::PlaneStrain;
 }
 
-materials::IsotropicElastic read_material(KeyReader& r) {
+/// The isotropic hardening law of material.plasticity.hardening; sets j.sigma0 for the laws that
+/// define the initial yield stress themselves (Swift, table).
+void read_hardening(KeyReader& p, materials::J2Parameters& j) {
+  const bool has_yield = p.has("yield_stress");
+  std::string type = "perfect";
+  std::optional<KeyReader> h;
+  if (p.has("hardening")) {
+    YAML::Node n = p.raw("hardening");
+    if (n.IsScalar()) {
+      type = n.Scalar();
+      if (type != "perfect")
+        p.error("hardening", "'" + type +
+                                 "' needs parameters: give a map {type: linear|voce|swift|table, "
+                                 "...}, or 'perfect'");
+    } else {
+      h.emplace(n, p.path_of("hardening"));
+      type = h->choice("type", {"perfect", "linear", "voce", "swift", "table"}, "");
+    }
+  }
+  const bool defines_yield = type == "swift" || type == "table";
+  if (defines_yield && has_yield)
+    p.error("yield_stress", "the " + type + " law sets the initial yield stress itself; remove it");
+  if (!defines_yield) j.sigma0 = p.positive("yield_stress");
+  p.allow("yield_stress");
+  const auto non_negative = [](KeyReader& k, const std::string& key) {
+    const double v = k.number(key);
+    if (v < 0.0) k.error(key, "expected a number >= 0, got " + detail::concat(v));
+    return v;
+  };
+  if (type == "linear") {
+    j.hardening = materials::LinearHardening{non_negative(*h, "H")};
+  } else if (type == "voce") {
+    materials::VoceHardening v;
+    v.H = non_negative(*h, "H");
+    v.sigma_inf = h->positive("sigma_inf");
+    v.delta = h->positive("delta");
+    j.hardening = v;
+  } else if (type == "swift") {
+    materials::SwiftHardening w;
+    w.K = h->positive("K");
+    w.eps0 = h->positive("eps0");
+    w.n = h->positive("n");
+    if (w.n > 1.0) h->error("n", "expected an exponent in (0, 1], got " + detail::concat(w.n));
+    j.hardening = w;
+    j.sigma0 = w.K * std::pow(w.eps0, w.n);
+  } else if (type == "table") {
+    materials::TableHardening t;
+    for (const Vec2& pt : h->vec2_list("points")) {
+      t.alpha.push_back(pt.x());
+      t.sigma.push_back(pt.y());
+    }
+    if (t.alpha.size() < 2)
+      h->error("points", "expected at least two [equivalent plastic strain, yield stress] pairs");
+    if (t.alpha.front() != 0.0)
+      h->error("points", "the first point must be at equivalent plastic strain 0, got " +
+                             detail::concat(t.alpha.front()));
+    for (std::size_t k = 0; k < t.alpha.size(); ++k) {
+      if (k > 0 && !(t.alpha[k] > t.alpha[k - 1]))
+        h->error("points", "equivalent plastic strains must increase, got " +
+                               detail::concat(t.alpha[k - 1]) + " then " +
+                               detail::concat(t.alpha[k]));
+      if (!(t.sigma[k] > 0.0))
+        h->error("points", "yield stresses must be positive, got " + detail::concat(t.sigma[k]));
+    }
+    j.sigma0 = t.sigma.front();
+    j.hardening = t;
+  }
+  if (h) h->finish();
+}
+
+materials::IsotropicElastic read_material(KeyReader& r,
+                                          std::optional<materials::J2Parameters>& plasticity) {
   KeyReader m = r.map("material");
   materials::IsotropicElastic mat;
   mat.E = m.positive("E");
   mat.nu = m.number("nu");
   if (!(mat.nu > -1.0 && mat.nu < 0.5))
     m.error("nu", "expected a Poisson's ratio in (-1, 0.5), got " + std::to_string(mat.nu));
+  if (auto p = m.optional_map("plasticity")) {
+    materials::J2Parameters j;
+    j.E = mat.E;
+    j.nu = mat.nu;
+    read_hardening(*p, j);
+    j.H_kinematic = p->number("kinematic_modulus", 0.0);
+    if (j.H_kinematic < 0.0)
+      p->error("kinematic_modulus", "expected a number >= 0, got " + detail::concat(j.H_kinematic));
+    p->finish();
+    plasticity = j;
+  }
   m.finish();
   return mat;
 }
@@ -103,9 +186,24 @@ kernels::WindowType window_type(const std::string& s) {
   return kernels::WindowType::Gaussian;
 }
 
-DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox& bounds) {
+DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox& bounds,
+                                       const std::string& base_dir) {
   KeyReader d = r.map("discretisation");
   DiscretisationSpec s;
+  s.method =
+      d.choice("method", {"meshfree", "fem"}, "meshfree") == "fem" ? Method::Fem : Method::Meshfree;
+  if (auto f = d.optional_map("fem")) {
+    s.fem.element = f->choice("element", {"t3", "q4", "q8"}, "q8");
+    if (f->has("mesh")) {
+      const std::string mesh = f->text("mesh");
+      s.fem.mesh = !mesh.empty() && mesh.front() == '/' ? mesh : base_dir + mesh;
+      std::ifstream probe(s.fem.mesh);
+      if (!probe.good()) f->error("mesh", "cannot open the mesh file '" + s.fem.mesh + "'");
+    }
+    f->allow("mesh");
+    s.fem.order = f->integer("order", 0, 1, 10);
+    f->finish();
+  }
   s.spacing = d.positive("spacing");
   for (KeyReader& f : d.map_list("refinement")) {
     geometry::Refinement ref;
@@ -267,6 +365,67 @@ std::optional<verification::ExactSolution> read_exact(KeyReader& r) {
   return out;
 }
 
+/// steps: [{name, increments, load_factor, factors: {condition: target}}]; see LoadStep.
+std::vector<LoadStep> read_steps(KeyReader& r, const std::vector<BoundaryCondition>& boundary) {
+  std::vector<LoadStep> steps;
+  const std::size_t n = boundary.size() + 1; // the body force is the last factor
+  std::vector<double> current(n, 0.0);
+  std::vector<KeyReader> list = r.map_list("steps");
+  if (list.empty())
+    r.error("steps", "an elastoplastic analysis needs a load schedule: a list of "
+                     "{name, load_factor, increments}");
+  for (KeyReader& k : list) {
+    LoadStep s;
+    s.name = k.text("name");
+    check_name(k, "name", s.name, false);
+    for (const auto& other : steps)
+      if (other.name == s.name) k.error("name", "another step is named '" + s.name + "'");
+    s.increments = k.integer("increments", 1, 1, 1000000);
+    std::vector<char> named(n, 0);
+    s.target = current;
+    if (auto f = k.optional_map("factors")) {
+      for (std::size_t c = 0; c < n; ++c) {
+        const std::string key = c < boundary.size() ? boundary[c].name : "body_force";
+        if (f->has(key)) {
+          s.target[c] = f->number(key);
+          named[c] = 1;
+        }
+      }
+      try {
+        f->finish();
+      } catch (const Error& e) {
+        fail(e.what(), " (factors name boundary conditions or 'body_force')");
+      }
+    }
+    if (k.has("load_factor")) {
+      const double lf = k.number("load_factor");
+      for (std::size_t c = 0; c < n; ++c)
+        if (!named[c]) s.target[c] = lf;
+    } else if (!k.has("factors")) {
+      k.error("load_factor", "give the step's target 'load_factor' or 'factors'");
+    }
+    k.allow("load_factor");
+    k.finish();
+    current = s.target;
+    steps.push_back(s);
+  }
+  return steps;
+}
+
+NonlinearSpec read_nonlinear(KeyReader& r) {
+  NonlinearSpec s;
+  if (auto n = r.optional_map("nonlinear")) {
+    s.tolerance = n->positive("tolerance", s.tolerance);
+    if (s.tolerance >= 1e-2)
+      n->error("tolerance", "a relative residual tolerance below 1e-2 is needed, got " +
+                                detail::concat(s.tolerance));
+    s.max_iterations = n->integer("max_iterations", s.max_iterations, 1, 200);
+    s.max_cutbacks = n->integer("max_cutbacks", s.max_cutbacks, 0, 30);
+    n->finish();
+  }
+  return s;
+}
+
 } // namespace
 
 std::vector<geometry::Curve> select_boundary(const geometry::Domain& domain,
@@ -304,15 +463,18 @@ std::vector<geometry::Curve> select_boundary(const geometry::Domain& domain,
   return out;
 }
 
-ProblemSpec parse_problem(YAML::Node root) {
+ProblemSpec parse_problem(YAML::Node root, const std::string& base_dir) {
   KeyReader r(root, "");
   ProblemSpec p;
   p.name = r.text("name");
   check_name(r, "name", p.name, false);
   p.description = r.text("description", "");
   p.units = r.text("units", "");
-  const std::string analysis = r.choice("analysis", {"elastic_static", "model_problem_1d"}, "");
-  p.analysis = analysis == "elastic_static" ? Analysis::ElasticStatic : Analysis::ModelProblem1D;
+  const std::string analysis =
+      r.choice("analysis", {"elastic_static", "elastoplastic_static", "model_problem_1d"}, "");
+  p.analysis = analysis == "elastic_static"         ? Analysis::ElasticStatic
+               : analysis == "elastoplastic_static" ? Analysis::ElastoplasticStatic
+                                                    : Analysis::ModelProblem1D;
 
   if (p.analysis == Analysis::ModelProblem1D) {
     KeyReader m = r.map("problem_1d");
@@ -322,16 +484,22 @@ ProblemSpec parse_problem(YAML::Node root) {
     p.model_1d.linear = m.number("linear", 0.0);
     m.finish();
     const BoundingBox line{{0.0, 0.0}, {p.model_1d.length, 0.0}};
-    p.discretisation = read_discretisation(r, 1, line);
+    p.discretisation = read_discretisation(r, 1, line, base_dir);
     p.model_1d.penalty = r.positive("penalty", 1e6 / p.discretisation.spacing);
     r.finish();
     return p;
   }
 
   p.model = read_model(r, p.thickness);
-  p.material = read_material(r);
+  p.material = read_material(r, p.plasticity);
   p.domain = read_geometry(r);
-  p.discretisation = read_discretisation(r, 2, p.domain.bounds());
+  p.discretisation = read_discretisation(r, 2, p.domain.bounds(), base_dir);
+  if (p.discretisation.method == Method::Fem && p.discretisation.fem.mesh.empty() &&
+      (p.domain.vertices().size() != 4 || !p.domain.holes().empty() ||
+       std::abs(p.domain.area_estimate() - p.domain.bounds().size().prod()) >
+           1e-12 * p.domain.bounds().size().prod()))
+    fail("discretisation.fem.mesh: required for a body that is not a plain rectangle (a "
+         "structured mesh is generated only for rectangles)");
   p.exact = read_exact(r);
   if (r.has("body_force")) p.body_force = r.vec2("body_force");
   r.allow("body_force");
@@ -355,7 +523,35 @@ ProblemSpec parse_problem(YAML::Node root) {
   if (!constrained)
     r.error("boundary", "no displacement condition: the body is free to move as a rigid body");
 
+  const bool plastic = p.analysis == Analysis::ElastoplasticStatic;
+  if (plastic && !p.plasticity)
+    r.error("material", "analysis elastoplastic_static needs material.plasticity");
+  if (!plastic && p.plasticity)
+    r.error("material", "material.plasticity is used only by analysis elastoplastic_static");
+  if (plastic) {
+    p.steps = read_steps(r, p.boundary);
+    p.nonlinear = read_nonlinear(r);
+  } else {
+    for (const char* key : {"steps", "nonlinear"})
+      if (r.has(key)) r.error(key, "used only by analysis elastoplastic_static");
+  }
+
   if (auto out = r.optional_map("output")) {
+    for (KeyReader& m : out->map_list("monitors")) {
+      if (!plastic) m.error("name", "monitors are recorded only by analysis elastoplastic_static");
+      MonitorSpec s;
+      s.name = m.text("name");
+      check_name(m, "name", s.name, false);
+      s.at = m.vec2("at");
+      for (const auto& other : p.monitors)
+        if (other.name == s.name) m.error("name", "another monitor is named '" + s.name + "'");
+      if (!p.domain.contains(s.at, 1e-9 * p.domain.bounds().size().maxCoeff()))
+        m.error("at",
+                "the point (" + detail::concat(s.at.x(), ", ", s.at.y()) + ") is not in the body");
+      m.finish();
+      p.monitors.push_back(s);
+    }
+    p.fields_every = out->integer("fields_every", 1, 1, 1000000);
     for (KeyReader& l : out->map_list("lines")) {
       LineSpec s;
       s.name = l.text("name");
@@ -390,7 +586,8 @@ ProblemSpec read_problem(const std::string& path, const std::vector<std::string>
   }
   for (const auto& o : overrides) apply_override(root, o);
   try {
-    return parse_problem(root);
+    const std::size_t slash = path.find_last_of('/');
+    return parse_problem(root, slash == std::string::npos ? "" : path.substr(0, slash + 1));
   } catch (const YAML::Exception& e) {
     fail(path, ": malformed input: ", e.what());
   }

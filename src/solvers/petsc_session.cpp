@@ -1,15 +1,12 @@
 #include "meshfree/solvers/petsc_session.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/core/log.hpp"
+#include "petsc_detail.hpp"
 #include <petscksp.h>
 
 namespace mf::solvers {
 
-namespace {
-void check(PetscErrorCode ierr, const char* what) {
-  if (ierr) fail("PETSc error ", static_cast<int>(ierr), " in ", what);
-}
-} // namespace
+using detail::check;
 
 PetscSession::PetscSession(int* argc, char*** argv) {
   check(PetscInitialize(argc, argv, nullptr, nullptr), "PetscInitialize");
@@ -67,36 +64,9 @@ BlockLinearSystem::BlockLinearSystem(MPI_Comm comm, int node_count, OwnedRange o
                                      const std::vector<double>& rhs, bool spd)
     : impl_(std::make_unique<Impl>()) {
   impl_->spd = spd;
-  const int rows = owned.end - owned.begin;
-  MF_REQUIRE(static_cast<int>(row_offset.size()) == rows + 1 &&
-                 blocks.size() == 4 * columns.size() && static_cast<int>(rhs.size()) == 2 * rows,
-             "BlockLinearSystem: inconsistent block rows");
-  // Scalar CSR: block row I gives rows 2I and 2I+1, block column J columns 2J and 2J+1.
-  std::vector<PetscInt> ia(2 * rows + 1, 0), ja(4 * columns.size());
-  std::vector<PetscScalar> va(4 * columns.size());
-  std::size_t pos = 0;
-  for (int i = 0; i < rows; ++i)
-    for (int c = 0; c < 2; ++c) {
-      for (int k = row_offset[i]; k < row_offset[i + 1]; ++k) {
-        ja[pos] = 2 * static_cast<PetscInt>(columns[k]);
-        ja[pos + 1] = ja[pos] + 1;
-        va[pos] = blocks[4 * k + 2 * c];
-        va[pos + 1] = blocks[4 * k + 2 * c + 1];
-        pos += 2;
-      }
-      ia[2 * i + c + 1] = static_cast<PetscInt>(pos);
-    }
-  const PetscInt local = 2 * static_cast<PetscInt>(rows),
-                 global = 2 * static_cast<PetscInt>(node_count);
-  check(MatCreate(comm, &impl_->A), "MatCreate");
-  check(MatSetSizes(impl_->A, local, local, global, global), "MatSetSizes");
-  check(MatSetBlockSize(impl_->A, 2), "MatSetBlockSize");
-  check(MatSetType(impl_->A, MATAIJ), "MatSetType");
-  // Each call is ignored by the other matrix type, so one of them sets pattern and values.
-  check(MatSeqAIJSetPreallocationCSR(impl_->A, ia.data(), ja.data(), va.data()),
-        "MatSeqAIJSetPreallocationCSR");
-  check(MatMPIAIJSetPreallocationCSR(impl_->A, ia.data(), ja.data(), va.data()),
-        "MatMPIAIJSetPreallocationCSR");
+  MF_REQUIRE(static_cast<int>(rhs.size()) == 2 * (owned.end - owned.begin),
+             "BlockLinearSystem: inconsistent right-hand side");
+  impl_->A = detail::create_block_matrix(comm, node_count, owned, row_offset, columns, blocks);
   if (spd) check(MatSetOption(impl_->A, MAT_SPD, PETSC_TRUE), "MatSetOption(MAT_SPD)");
   check(MatCreateVecs(impl_->A, &impl_->x, &impl_->b), "MatCreateVecs");
   PetscScalar* bv;
@@ -118,21 +88,9 @@ SolveReport BlockLinearSystem::solve() {
   check(PetscObjectGetComm(reinterpret_cast<PetscObject>(s.A), &comm), "PetscObjectGetComm");
   check(KSPCreate(comm, &s.ksp), "KSPCreate");
   check(KSPSetOperators(s.ksp, s.A, s.A), "KSPSetOperators");
-  // Default: a sparse direct solve with MUMPS. Penalty terms (alpha ~ 1e12) make the matrix too
-  // ill-conditioned for unpreconditioned Krylov methods, so direct is the safe default;
-  // Cholesky on SPD systems takes about 3/4 of the time of LU (80,000 DOFs: 2.9 s against 3.8 s).
-  check(KSPSetType(s.ksp, KSPPREONLY), "KSPSetType");
+  detail::set_direct_solver(s.ksp, s.spd);
   PC pc;
   check(KSPGetPC(s.ksp, &pc), "KSPGetPC");
-  check(PCSetType(pc, s.spd ? PCCHOLESKY : PCLU), "PCSetType");
-  check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
-  // MUMPS sizes its work space from an estimate plus ICNTL(14) percent (PETSc's default 20);
-  // distributed Cholesky of penalty-constrained matrices can exceed that (INFOG(1) = -9), so
-  // allow 100 percent unless the user chose a value.
-  PetscBool set = PETSC_FALSE;
-  check(PetscOptionsHasName(nullptr, nullptr, "-mat_mumps_icntl_14", &set), "PetscOptionsHasName");
-  if (!set)
-    check(PetscOptionsSetValue(nullptr, "-mat_mumps_icntl_14", "100"), "PetscOptionsSetValue");
   check(KSPSetFromOptions(s.ksp), "KSPSetFromOptions");
   check(KSPSolve(s.ksp, s.b, s.x), "KSPSolve");
 
@@ -144,13 +102,7 @@ SolveReport BlockLinearSystem::solve() {
   r.iterations = static_cast<int>(its);
   r.converged_reason = static_cast<int>(reason);
   r.reason_name = KSPConvergedReasons[reason];
-  KSPType kt;
-  PCType pt;
-  check(KSPGetType(s.ksp, &kt), "KSPGetType");
-  check(PCGetType(pc, &pt), "PCGetType");
-  r.solver = std::string(kt) + "/" + pt;
-  MatSolverType st = nullptr;
-  if (PCFactorGetMatSolverType(pc, &st) == 0 && st) r.solver += "/" + std::string(st);
+  r.solver = detail::describe(s.ksp);
   // True residual |b - A x| / |b|, whatever the KSP reports.
   Vec res;
   check(VecDuplicate(s.b, &res), "VecDuplicate");

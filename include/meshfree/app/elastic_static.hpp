@@ -1,5 +1,6 @@
 #pragma once
 // Linear elastic static analysis with meshfree Galerkin (RK or MLS shape functions).
+#include "meshfree/app/galerkin_model.hpp"
 #include "meshfree/core/timer.hpp"
 #include "meshfree/io/output.hpp"
 #include "meshfree/io/problem_spec.hpp"
@@ -14,13 +15,6 @@ struct LineSample {
   std::vector<double> s; // distance along the line
   std::vector<Vec2> x, u;
   std::vector<Vec3> stress;
-};
-
-struct BoundaryReport {
-  std::string name;
-  bool constraint = false;
-  Vec2 force{0.0, 0.0};       // reaction (constraint) or applied load, on the body
-  double violation_max = 0.0; // max |u^h - ubar| over the constraint's Gauss points
 };
 
 struct ElasticResult {

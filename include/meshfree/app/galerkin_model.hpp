@@ -47,11 +47,35 @@ struct GalerkinModel {
   implicit::RowPattern pattern; // block rows of the owned nodes
 
   int node_count() const { return space->node_count(); }
+  const std::vector<Vec2>& node_positions() const { return space->nodes().x; }
+};
+
+/// What a boundary condition does to the body after a solve.
+struct BoundaryReport {
+  std::string name;
+  bool constraint = false;
+  Vec2 force{0.0, 0.0};       // reaction (constraint) or applied load, on the body
+  double violation_max = 0.0; // max |u^h - ubar| over the constraint's Gauss points
 };
 
 /// Builds the model; phases "nodes", "quadrature", "neighbours" and "shape_functions" go to
 /// `timer`. Errors on any rank reach every rank.
 GalerkinModel build_galerkin_model(const io::ProblemSpec& spec,
                                    const solvers::PetscSession& session, PhaseTimer& timer);
+
+/// Shape functions (and gradients) of the model's approximation at arbitrary points of the body,
+/// evaluated on the calling rank.
+implicit::ShapeTable shapes_at(const GalerkinModel& m, const std::vector<Vec2>& x, bool gradients);
+
+/// K d = f for linear elasticity: the stiffness, penalty terms, tractions and body force of this
+/// rank's rows, with each condition's value (and the body force, the last entry) times its factor.
+implicit::BlockRows assemble_linear_elastic(const io::ProblemSpec& spec, const GalerkinModel& m,
+                                            const std::vector<double>& factors);
+
+/// Reaction (the penalty force on the body) and largest gap of a displacement condition whose
+/// prescribed value is scaled by `factor`, or the applied force of a traction condition, summed
+/// over every rank.
+BoundaryReport boundary_report(const ConditionPoints& c, const std::vector<double>& d,
+                               double factor, const solvers::PetscSession& session);
 
 } // namespace mf::app

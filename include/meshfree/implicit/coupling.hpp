@@ -28,6 +28,11 @@ public:
   void add_matrix(const int* nodes, int n, const double* block);
   void add_vector(const int* nodes, int n, const double* values);
 
+  /// Zeroes every value and right-hand side entry; the pattern stays.
+  void clear();
+  /// r[2 i + c] += sum_J (block_IJ d_J)_c over the owned rows i; `d` is the full-length vector.
+  void multiply_add(const std::vector<double>& d, double* r) const;
+
   const RowPattern& pattern() const { return pattern_; }
   /// 2x2 blocks, row-major within a block, in pattern order.
   const std::vector<double>& values() const { return values_; }

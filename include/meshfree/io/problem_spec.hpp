@@ -5,6 +5,7 @@
 #include "meshfree/geometry/node_generation.hpp"
 #include "meshfree/kernels/shape_functions.hpp"
 #include "meshfree/materials/elastic.hpp"
+#include "meshfree/materials/j2_plasticity.hpp"
 #include "meshfree/verification/exact_solutions.hpp"
 #include <optional>
 #include <string>
@@ -13,9 +14,23 @@
 
 namespace mf::io {
 
-enum class Analysis { ElasticStatic, ModelProblem1D };
+enum class Analysis { ElasticStatic, ElastoplasticStatic, ModelProblem1D };
+
+/// Meshfree Galerkin (RK/MLS nodes on background cells) or finite elements on a mesh; both feed
+/// the same assembly, material and solver.
+enum class Method { Meshfree, Fem };
+
+/// Finite-element settings (used when the method is fem).
+struct FemSpec {
+  std::string element = "q8"; // t3 | q4 | q8
+  std::string mesh;           // gmsh .msh file (absolute path); empty: a structured mesh of the
+                              // rectangle with elements of the discretisation's spacing
+  int order = 0;              // Gauss points per direction (0: the element's default)
+};
 
 struct DiscretisationSpec {
+  Method method = Method::Meshfree;
+  FemSpec fem;
   double spacing = 0.0;
   std::vector<geometry::Refinement> refinement;
   kernels::ShapeSettings shape;
@@ -48,6 +63,28 @@ struct BoundaryCondition {
   bool traction_from_exact = false;
 };
 
+/// A named step of a load schedule: over `increments` equal increments, the factor of every
+/// boundary condition (and of the body force, the last entry) moves linearly from its value at the
+/// end of the previous step (0 before the first) to `target`. A condition's prescribed
+/// displacement or traction is its value times its factor.
+struct LoadStep {
+  std::string name;
+  int increments = 1;
+  std::vector<double> target; // per boundary condition, then the body force
+};
+
+/// Newton settings and the automatic cut-back of increments that do not converge.
+struct NonlinearSpec {
+  double tolerance = 1e-9; // |R| <= tolerance * |F|
+  int max_iterations = 20;
+  int max_cutbacks = 8; // an increment is halved at most this many times in a row
+};
+
+struct MonitorSpec {
+  std::string name;
+  Vec2 at{0.0, 0.0};
+};
+
 struct LineSpec {
   std::string name;
   Vec2 from{0.0, 0.0}, to{0.0, 0.0};
@@ -72,19 +109,25 @@ struct ProblemSpec {
   materials::PlaneModel model = materials::PlaneModel::PlaneStress;
   double thickness = 1.0;
   materials::IsotropicElastic material;
+  std::optional<materials::J2Parameters> plasticity; // material.plasticity (E and nu from above)
   geometry::Domain domain = geometry::Domain::rectangle({0.0, 0.0}, {1.0, 1.0});
   DiscretisationSpec discretisation;
   std::vector<BoundaryCondition> boundary;
   Vec2 body_force{0.0, 0.0}; // force per volume
   std::optional<verification::ExactSolution> exact;
   std::vector<LineSpec> lines;
+  std::vector<MonitorSpec> monitors;
+  int fields_every = 1; // write fields every this many converged increments (and the last)
+  std::vector<LoadStep> steps;
+  NonlinearSpec nonlinear;
   ModelProblem1D model_1d;
 };
 
 /// Reads and validates a problem file. `overrides` are "key.path=value" strings applied first.
 /// Throws mf::Error with the key path of the first problem found.
 ProblemSpec read_problem(const std::string& path, const std::vector<std::string>& overrides = {});
-ProblemSpec parse_problem(YAML::Node root);
+/// `base_dir` (ending in '/', or empty) resolves relative paths in the file, e.g. mesh files.
+ProblemSpec parse_problem(YAML::Node root, const std::string& base_dir = "");
 
 /// The pieces of the boundary a selector picks; throws naming `key_path` if none.
 std::vector<geometry::Curve> select_boundary(const geometry::Domain& domain,

@@ -1,0 +1,70 @@
+#pragma once
+// Newton-Raphson on a distributed system with 2 DOFs per node through PETSc SNES. The caller
+// supplies the residual and the Jacobian as block rows on the exact pattern of the owned nodes
+// (the same rows the elastic solver assembles); SNES does the iteration (newtonls with a line
+// search by default), KSP the linear solves (MUMPS by default); every -snes_/-ksp_/-pc_ option
+// on the command line overrides the defaults.
+#include "meshfree/solvers/petsc_session.hpp"
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mf::solvers {
+
+struct NewtonSettings {
+  /// Converged when |R| <= tolerance * |F|, with F the force scale the residual reports
+  /// (internal and external forces together), after at least one iteration unless |R| is
+  /// already below it.
+  double tolerance = 1e-9;
+  int max_iterations = 20;
+};
+
+struct NewtonReport {
+  bool converged = false;
+  int iterations = 0;
+  int linear_iterations = 0;
+  std::string reason;           // SNES converged reason, e.g. CONVERGED_FNORM_ABS
+  std::string failure;          // what went wrong in a residual or Jacobian evaluation, if anything
+  std::vector<double> residual; // |R| at the start and after each iteration
+  std::vector<double> scale;    // the force scale |F| at the same points
+};
+
+/// Residual R(d) on the owned rows (2 values per owned node) and this rank's share of |F|^2.
+/// `d` has the full length 2N; the entries of the nodes named in `needed` (and the owned ones)
+/// hold the current iterate. Throwing an exception marks the point as outside the domain of the
+/// residual (a failed return mapping, a NaN): SNES then stops and the message is reported.
+using ResidualFunction =
+    std::function<void(const std::vector<double>& d, double* residual, double& scale_squared)>;
+/// Jacobian dR/dd as 2x2 blocks in the order of the block-row pattern.
+using JacobianFunction =
+    std::function<void(const std::vector<double>& d, std::vector<double>& blocks)>;
+
+class NonlinearBlockSystem {
+public:
+  /// `row_offset`/`columns`: for each owned node, the sorted global nodes it couples to.
+  /// `needed`: the nodes whose values the residual and Jacobian read (besides the owned ones).
+  NonlinearBlockSystem(MPI_Comm comm, int node_count, OwnedRange owned, std::vector<int> row_offset,
+                       std::vector<int> columns, const std::vector<int>& needed,
+                       ResidualFunction residual, JacobianFunction jacobian);
+  ~NonlinearBlockSystem();
+  NonlinearBlockSystem(const NonlinearBlockSystem&) = delete;
+  NonlinearBlockSystem& operator=(const NonlinearBlockSystem&) = delete;
+
+  /// Newton from the guess in `d` (owned entries read); on return `d` holds the last iterate
+  /// in the owned and needed entries, whether or not it converged.
+  NewtonReport solve(std::vector<double>& d, const NewtonSettings& settings);
+
+  /// The owned entries of `d` collected into the full vector on rank 0 (empty on other ranks).
+  std::vector<double> gather_on_root(const std::vector<double>& d) const;
+
+  /// "newtonls(bt) + preonly/cholesky/mumps".
+  std::string description() const;
+
+  struct Impl; // PETSc objects and the callbacks' state (defined in the source file)
+
+private:
+  std::unique_ptr<Impl> impl_;
+};
+
+} // namespace mf::solvers

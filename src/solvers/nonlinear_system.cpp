@@ -1,0 +1,260 @@
+#include "meshfree/solvers/nonlinear_system.hpp"
+#include "petsc_detail.hpp"
+#include <cmath>
+#include <petscsnes.h>
+
+namespace mf::solvers {
+
+using detail::check;
+
+struct NonlinearBlockSystem::Impl {
+  MPI_Comm comm;
+  int node_count = 0;
+  OwnedRange owned;
+  std::vector<int> row_offset, columns;
+  ResidualFunction residual;
+  JacobianFunction jacobian;
+
+  SNES snes = nullptr;
+  Mat J = nullptr;
+  Vec x = nullptr, r = nullptr;
+  Vec ghost = nullptr;               // sequential: the needed entries
+  VecScatter pull = nullptr;         // x -> ghost
+  std::vector<PetscInt> ghost_index; // global DOF of each ghost entry
+
+  std::vector<double> d;      // full-length iterate seen by the callbacks
+  std::vector<double> blocks; // Jacobian values in pattern order
+  double scale = 0.0;         // force scale of the last residual evaluation
+  double tolerance = 1e-9;
+  int max_iterations = 20;
+  NewtonReport report;
+
+  /// Copies the owned and needed entries of X into d.
+  void pull_values(Vec X) {
+    check(VecScatterBegin(pull, X, ghost, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+    check(VecScatterEnd(pull, X, ghost, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+    const PetscScalar* g;
+    check(VecGetArrayRead(ghost, &g), "VecGetArrayRead");
+    for (std::size_t k = 0; k < ghost_index.size(); ++k) d[ghost_index[k]] = g[k];
+    check(VecRestoreArrayRead(ghost, &g), "VecRestoreArrayRead");
+  }
+
+  /// Records a failure on this rank; returns true if any rank failed (collective).
+  bool any_failed(const std::string& message) {
+    int mine = message.empty() ? 0 : 1, any = 0;
+    MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, comm);
+    if (mine && report.failure.empty()) report.failure = message;
+    if (any && report.failure.empty()) report.failure = "an evaluation failed on another rank";
+    return any != 0;
+  }
+};
+
+namespace {
+
+PetscErrorCode form_function(SNES snes, Vec X, Vec F, void* ctx) {
+  auto& s = *static_cast<NonlinearBlockSystem::Impl*>(ctx);
+  s.pull_values(X);
+  PetscScalar* f;
+  PetscCall(VecGetArray(F, &f));
+  double sums[1] = {0.0};
+  std::string failure;
+  try {
+    s.residual(s.d, f, sums[0]);
+  } catch (const std::exception& e) {
+    failure = e.what();
+  }
+  PetscCall(VecRestoreArray(F, &f));
+  MPI_Allreduce(MPI_IN_PLACE, sums, 1, MPI_DOUBLE, MPI_SUM, s.comm);
+  s.scale = std::sqrt(sums[0]);
+  if (s.any_failed(failure)) PetscCall(SNESSetFunctionDomainError(snes));
+  return 0;
+}
+
+PetscErrorCode form_jacobian(SNES snes, Vec X, Mat, Mat P, void* ctx) {
+  auto& s = *static_cast<NonlinearBlockSystem::Impl*>(ctx);
+  s.pull_values(X);
+  std::string failure;
+  try {
+    s.jacobian(s.d, s.blocks);
+  } catch (const std::exception& e) {
+    failure = e.what();
+  }
+  if (s.any_failed(failure)) {
+    PetscCall(SNESSetJacobianDomainError(snes));
+    return 0;
+  }
+  detail::set_block_values(P, s.owned, s.row_offset, s.columns, s.blocks);
+  return 0;
+}
+
+/// Force-based test: |R| <= tolerance * |F| (the residual callback reports |F|). SNES's default
+/// test compares with |R| at the start of the step, which under displacement control through
+/// penalty terms is dominated by alpha * (jump of the prescribed value) and says nothing about
+/// equilibrium.
+PetscErrorCode converged(SNES, PetscInt it, PetscReal, PetscReal, PetscReal fnorm,
+                         SNESConvergedReason* reason, void* ctx) {
+  auto& s = *static_cast<NonlinearBlockSystem::Impl*>(ctx);
+  s.report.residual.push_back(fnorm);
+  s.report.scale.push_back(s.scale);
+  *reason = SNES_CONVERGED_ITERATING;
+  if (!std::isfinite(fnorm))
+    *reason = SNES_DIVERGED_FNORM_NAN;
+  else if (fnorm <= s.tolerance * s.scale)
+    *reason = SNES_CONVERGED_FNORM_ABS;
+  else if (it >= s.max_iterations)
+    *reason = SNES_DIVERGED_MAX_IT;
+  return 0;
+}
+
+} // namespace
+
+NonlinearBlockSystem::NonlinearBlockSystem(MPI_Comm comm, int node_count, OwnedRange owned,
+                                           std::vector<int> row_offset, std::vector<int> columns,
+                                           const std::vector<int>& needed,
+                                           ResidualFunction residual, JacobianFunction jacobian)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& s = *impl_;
+  s.comm = comm;
+  s.node_count = node_count;
+  s.owned = owned;
+  s.row_offset = std::move(row_offset);
+  s.columns = std::move(columns);
+  s.residual = std::move(residual);
+  s.jacobian = std::move(jacobian);
+  s.d.assign(2 * static_cast<std::size_t>(node_count), 0.0);
+  s.blocks.assign(4 * s.columns.size(), 0.0);
+
+  s.J = detail::create_block_matrix(comm, node_count, owned, s.row_offset, s.columns, {});
+  // The consistent tangent of associative plasticity plus the penalty terms is symmetric.
+  check(MatSetOption(s.J, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption(MAT_SYMMETRIC)");
+  check(MatCreateVecs(s.J, &s.x, &s.r), "MatCreateVecs");
+
+  // The entries the callbacks read: owned nodes and the needed ones, without repeats.
+  std::vector<char> mark(node_count, 0);
+  for (int I = owned.begin; I < owned.end; ++I) mark[I] = 1;
+  for (int I : needed) {
+    MF_REQUIRE(I >= 0 && I < node_count, "NonlinearBlockSystem: needed node out of range");
+    mark[I] = 1;
+  }
+  for (int I = 0; I < node_count; ++I)
+    if (mark[I]) {
+      s.ghost_index.push_back(2 * static_cast<PetscInt>(I));
+      s.ghost_index.push_back(2 * static_cast<PetscInt>(I) + 1);
+    }
+  IS is;
+  check(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(s.ghost_index.size()),
+                        s.ghost_index.data(), PETSC_COPY_VALUES, &is),
+        "ISCreateGeneral");
+  check(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(s.ghost_index.size()), &s.ghost),
+        "VecCreateSeq");
+  check(VecScatterCreate(s.x, is, s.ghost, nullptr, &s.pull), "VecScatterCreate");
+  check(ISDestroy(&is), "ISDestroy");
+
+  check(SNESCreate(comm, &s.snes), "SNESCreate");
+  check(SNESSetType(s.snes, SNESNEWTONLS), "SNESSetType");
+  check(SNESSetFunction(s.snes, s.r, form_function, &s), "SNESSetFunction");
+  check(SNESSetJacobian(s.snes, s.J, s.J, form_jacobian, &s), "SNESSetJacobian");
+  check(SNESSetConvergenceTest(s.snes, converged, &s, nullptr), "SNESSetConvergenceTest");
+  KSP ksp;
+  check(SNESGetKSP(s.snes, &ksp), "SNESGetKSP");
+  detail::set_direct_solver(ksp, /*symmetric=*/true);
+  check(SNESSetFromOptions(s.snes), "SNESSetFromOptions");
+}
+
+NonlinearBlockSystem::~NonlinearBlockSystem() {
+  Impl& s = *impl_;
+  if (s.snes) SNESDestroy(&s.snes);
+  if (s.pull) VecScatterDestroy(&s.pull);
+  if (s.ghost) VecDestroy(&s.ghost);
+  if (s.J) MatDestroy(&s.J);
+  if (s.x) VecDestroy(&s.x);
+  if (s.r) VecDestroy(&s.r);
+}
+
+NewtonReport NonlinearBlockSystem::solve(std::vector<double>& d, const NewtonSettings& settings) {
+  Impl& s = *impl_;
+  MF_REQUIRE(d.size() == s.d.size(), "NonlinearBlockSystem::solve: wrong vector length");
+  s.tolerance = settings.tolerance;
+  s.max_iterations = settings.max_iterations;
+  s.report = NewtonReport{};
+  // Maximum iterations as a SNES setting too, so that SNES itself stops there.
+  check(SNESSetTolerances(s.snes, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT,
+                          settings.max_iterations, PETSC_DEFAULT),
+        "SNESSetTolerances");
+  PetscScalar* xv;
+  check(VecGetArray(s.x, &xv), "VecGetArray");
+  std::copy(d.begin() + 2 * s.owned.begin, d.begin() + 2 * s.owned.end, xv);
+  check(VecRestoreArray(s.x, &xv), "VecRestoreArray");
+
+  check(SNESSolve(s.snes, nullptr, s.x), "SNESSolve");
+
+  SNESConvergedReason reason;
+  check(SNESGetConvergedReason(s.snes, &reason), "SNESGetConvergedReason");
+  PetscInt its = 0, lits = 0;
+  check(SNESGetIterationNumber(s.snes, &its), "SNESGetIterationNumber");
+  check(SNESGetLinearSolveIterations(s.snes, &lits), "SNESGetLinearSolveIterations");
+  s.report.converged = reason > 0;
+  s.report.iterations = static_cast<int>(its);
+  s.report.linear_iterations = static_cast<int>(lits);
+  s.report.reason = SNESConvergedReasons[reason];
+  if (reason == SNES_DIVERGED_LINEAR_SOLVE) {
+    KSP ksp;
+    PC pc;
+    check(SNESGetKSP(s.snes, &ksp), "SNESGetKSP");
+    check(KSPGetPC(ksp, &pc), "KSPGetPC");
+    PCFailedReason pcr = PC_NOERROR;
+    PCGetFailedReasonRank(pc, &pcr);
+    int code = static_cast<int>(pcr);
+    MPI_Allreduce(MPI_IN_PLACE, &code, 1, MPI_INT, MPI_MAX, s.comm);
+    if (code != PC_NOERROR)
+      s.report.reason += std::string(" (") + PCFailedReasons[code] +
+                         (code == PC_FACTOR_NUMERIC_ZEROPIVOT || code == PC_FACTOR_OTHER
+                              ? ": the tangent is singular, as at a limit load under load control)"
+                              : ")");
+  }
+  s.pull_values(s.x);
+  for (std::size_t k = 0; k < s.ghost_index.size(); ++k)
+    d[s.ghost_index[k]] = s.d[s.ghost_index[k]];
+  return s.report;
+}
+
+std::vector<double> NonlinearBlockSystem::gather_on_root(const std::vector<double>& d) const {
+  const Impl& s = *impl_;
+  Vec local;
+  check(VecDuplicate(s.x, &local), "VecDuplicate");
+  PetscScalar* lv;
+  check(VecGetArray(local, &lv), "VecGetArray");
+  std::copy(d.begin() + 2 * s.owned.begin, d.begin() + 2 * s.owned.end, lv);
+  check(VecRestoreArray(local, &lv), "VecRestoreArray");
+  VecScatter scatter;
+  Vec all;
+  check(VecScatterCreateToZero(local, &scatter, &all), "VecScatterCreateToZero");
+  check(VecScatterBegin(scatter, local, all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+  check(VecScatterEnd(scatter, local, all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+  PetscInt n;
+  check(VecGetLocalSize(all, &n), "VecGetLocalSize");
+  const PetscScalar* a;
+  check(VecGetArrayRead(all, &a), "VecGetArrayRead");
+  std::vector<double> out(a, a + n);
+  check(VecRestoreArrayRead(all, &a), "VecRestoreArrayRead");
+  VecScatterDestroy(&scatter);
+  VecDestroy(&all);
+  VecDestroy(&local);
+  return out;
+}
+
+std::string NonlinearBlockSystem::description() const {
+  SNESType st;
+  check(SNESGetType(impl_->snes, &st), "SNESGetType");
+  std::string out = st;
+  SNESLineSearch ls;
+  if (SNESGetLineSearch(impl_->snes, &ls) == 0) {
+    SNESLineSearchType lt;
+    if (SNESLineSearchGetType(ls, &lt) == 0 && lt) out += "(" + std::string(lt) + ")";
+  }
+  KSP ksp;
+  check(SNESGetKSP(impl_->snes, &ksp), "SNESGetKSP");
+  return out + " + " + detail::describe(ksp);
+}
+
+} // namespace mf::solvers

@@ -1,0 +1,33 @@
+#pragma once
+// Pieces shared by the PETSc wrappers of this module; included by src/solvers/*.cpp only.
+#include "meshfree/core/error.hpp"
+#include "meshfree/solvers/petsc_session.hpp"
+#include <petscksp.h>
+#include <vector>
+
+namespace mf::solvers::detail {
+
+inline void check(PetscErrorCode ierr, const char* what) {
+  if (ierr) fail("PETSc error ", static_cast<int>(ierr), " in ", what);
+}
+
+/// A distributed AIJ matrix (block size 2) with the exact pattern of the owned block rows:
+/// block row I gives scalar rows 2I and 2I+1, block column J columns 2J and 2J+1. `blocks` holds
+/// one row-major 2x2 block per (row, column) pair, or is empty for zeros.
+Mat create_block_matrix(MPI_Comm comm, int node_count, OwnedRange owned,
+                        const std::vector<int>& row_offset, const std::vector<int>& columns,
+                        const std::vector<double>& blocks);
+
+/// Overwrites the values of a matrix made by create_block_matrix (same pattern), then assembles it.
+void set_block_values(Mat A, OwnedRange owned, const std::vector<int>& row_offset,
+                      const std::vector<int>& columns, const std::vector<double>& blocks);
+
+/// The default linear solver: a sparse direct factorisation by MUMPS (Cholesky for symmetric
+/// matrices, LDL^T when they may be indefinite, LU otherwise), set before the command-line
+/// options so that every -ksp_/-pc_ option overrides it.
+void set_direct_solver(KSP ksp, bool symmetric);
+
+/// "preonly/cholesky/mumps": KSP type, PC type and factorisation package.
+std::string describe(KSP ksp);
+
+} // namespace mf::solvers::detail
