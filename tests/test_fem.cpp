@@ -577,19 +577,23 @@ TEST_CASE("point locator and shapes at arbitrary points", "[fem]") {
     INFO("mesh " << k);
     const fem::Mesh& m = meshes[k];
     const fem::PointLocator loc(m);
-    // Points: the integration points of a finer rule (inside by construction), plus random
-    // points for the plate.
-    std::vector<Vec2> pts = fem::domain_points(m, 4).x;
+    // Points: the integration points of a finer rule (strictly inside a known element), plus
+    // random points for the plate.
+    const fem::PointShapes inner = fem::domain_points(m, 4);
+    std::vector<Vec2> pts = inner.x;
     if (k >= 2)
       while (pts.size() < 3000) {
         const Vec2 p(5 * u(rng), 5 * u(rng));
         if (p.norm() > 1.02) pts.push_back(p);
       }
     double mapped = 0, value = 0, grad = 0, outside = 0;
-    for (const Vec2& p : pts) {
+    int wrong = 0;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const Vec2& p = pts[i];
       int e = -1;
       Vec2 xi;
       REQUIRE(loc.locate(p, e, xi));
+      if (i < inner.x.size()) wrong += e != inner.element[i];
       mapped = std::max(mapped, (fem::map_to_physical(m, e, xi) - p).norm());
       if (m.type == ElementType::T3)
         outside = std::max({outside, -xi.x(), -xi.y(), xi.sum() - 1});
@@ -609,6 +613,7 @@ TEST_CASE("point locator and shapes at arbitrary points", "[fem]") {
       value = std::max(value, std::abs(v - f(pts[q])));
       grad = std::max(grad, (g - Vec2(2, -3)).norm());
     }
+    CHECK(wrong == 0);
     CHECK(mapped < 1e-12);
     CHECK(outside < 1e-9);
     CHECK(value < 1e-12);
