@@ -2,6 +2,7 @@
 //   meshfree run PROBLEM.yaml [--out DIR] [--set key.path=value ...] [-- PETSc options]
 //   meshfree check PROBLEM.yaml [--set key.path=value ...]
 #include "meshfree/app/elastic_static.hpp"
+#include "meshfree/app/elastoplastic_static.hpp"
 #include "meshfree/app/model_problem_1d.hpp"
 #include "meshfree/core/log.hpp"
 #include "meshfree/geometry/node_generation.hpp"
@@ -83,6 +84,13 @@ int check(const Command& c) {
   return 0;
 }
 
+void log_phases(const mf::PhaseTimer& timer) {
+  std::string phases;
+  for (const auto& [name, s] : timer.phases())
+    phases += " " + name + " " + std::to_string(s) + " s;";
+  mf::log::info("wall time per phase:", phases);
+}
+
 int run(Command& c) {
   int pargc = static_cast<int>(c.petsc_argv.size());
   c.petsc_argv.push_back(nullptr);
@@ -96,6 +104,7 @@ int run(Command& c) {
     return 2;
   }
   const std::string dir = c.out_dir.empty() ? "out/" + spec.name : c.out_dir;
+  int exit_code = 0;
   std::unique_ptr<mf::io::OutputDirectory> out;
   try {
     if (session.rank() == 0) {
@@ -108,16 +117,22 @@ int run(Command& c) {
         const auto r = mf::app::solve_model_problem_1d(spec);
         mf::app::write_model_1d_outputs(spec, r, *out);
       }
+    } else if (spec.analysis == mf::io::Analysis::ElastoplasticStatic) {
+      mf::app::ElastoplasticResult r =
+          mf::app::solve_elastoplastic_static(spec, session, out.get());
+      {
+        mf::PhaseTimer::Scope scope(r.timer, "output");
+        if (out) mf::app::write_elastoplastic_outputs(spec, r, session, *out);
+      }
+      log_phases(r.timer);
+      if (r.status != "completed") exit_code = 3;
     } else {
       mf::app::ElasticResult r = mf::app::solve_elastic_static(spec, session);
       {
         mf::PhaseTimer::Scope scope(r.timer, "output");
         if (out) mf::app::write_elastic_outputs(spec, r, session, *out);
       }
-      std::string phases;
-      for (const auto& [name, s] : r.timer.phases())
-        phases += " " + name + " " + std::to_string(s) + " s;";
-      mf::log::info("wall time per phase:", phases);
+      log_phases(r.timer);
     }
     if (out) {
       out->commit();
@@ -146,7 +161,7 @@ int run(Command& c) {
     if (session.size() > 1 && !everywhere) MPI_Abort(MPI_COMM_WORLD, 1);
     return 1;
   }
-  return 0;
+  return exit_code;
 }
 
 } // namespace

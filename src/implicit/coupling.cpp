@@ -79,6 +79,12 @@ void BlockRows::clear() {
   std::fill(rhs_.begin(), rhs_.end(), 0.0);
 }
 
+void BlockRows::set_values(const std::vector<double>& values) {
+  MF_REQUIRE(values.size() == values_.size(), "BlockRows::set_values: pattern mismatch");
+  values_ = values;
+  std::fill(rhs_.begin(), rhs_.end(), 0.0);
+}
+
 void BlockRows::multiply_add(const std::vector<double>& d, double* r) const {
   for (int i = 0; i < pattern_.rows(); ++i) {
     double sx = 0.0, sy = 0.0;

@@ -29,9 +29,12 @@ OutputDirectory::~OutputDirectory() {
 void OutputDirectory::clear_previous() const {
   for (const auto& entry : fs::directory_iterator(dir_)) {
     const std::string name = entry.path().filename().string();
-    const bool ours = name == "fields.h5" || name == "fields.xmf" || name == "history.csv" ||
-                      name == "summary.json" ||
-                      (name.rfind("line_", 0) == 0 && entry.path().extension() == ".csv");
+    const std::string ext = entry.path().extension().string();
+    const std::string stem = entry.path().stem().string();
+    const bool ours =
+        ((stem == "fields" || stem == "gauss_points") && (ext == ".h5" || ext == ".xmf")) ||
+        name == "history.csv" || name == "summary.json" ||
+        (name.rfind("line_", 0) == 0 && entry.path().extension() == ".csv");
     if (ours) fs::remove(entry.path());
   }
 }
@@ -93,60 +96,108 @@ std::string data_item(const std::string& h5, const std::string& set, std::size_t
 
 void OutputDirectory::write_fields(const std::vector<Vec2>& points,
                                    const std::vector<FieldStep>& steps) {
-  const std::string h5_temp = temp_path("fields.h5");
+  FieldSeries series(*this, "fields", points);
+  for (const FieldStep& step : steps) series.add_step(step);
+  series.close();
+}
+
+namespace {
+
+void write_int_dataset(hid_t file, const std::string& name, const std::vector<int>& data,
+                       hsize_t rows, hsize_t cols) {
+  hsize_t dims[2] = {rows, cols};
+  const hid_t space = H5Screate_simple(cols > 1 ? 2 : 1, dims, nullptr);
+  const hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
+  H5Pset_create_intermediate_group(lcpl, 1);
+  const hid_t set =
+      H5Dcreate2(file, name.c_str(), H5T_NATIVE_INT, space, lcpl, H5P_DEFAULT, H5P_DEFAULT);
+  MF_REQUIRE(set >= 0 &&
+                 H5Dwrite(set, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) >= 0,
+             "HDF5: cannot write dataset ", name);
+  H5Dclose(set);
+  H5Pclose(lcpl);
+  H5Sclose(space);
+}
+
+} // namespace
+
+FieldSeries::FieldSeries(OutputDirectory& out, const std::string& stem,
+                         const std::vector<Vec2>& points, const GridCells& cells)
+    : out_(out), stem_(stem), points_(points.size()) {
+  const std::string h5_temp = out_.temp_path(stem_ + ".h5");
+  const std::string h5 = stem_ + ".h5";
   const hid_t file = H5Fcreate(h5_temp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   MF_REQUIRE(file >= 0, h5_temp, ": cannot create the HDF5 file");
+  file_ = file;
   const std::size_t n = points.size();
   std::vector<double> xyz(3 * n, 0.0);
   for (std::size_t i = 0; i < n; ++i) xyz[3 * i] = points[i].x(), xyz[3 * i + 1] = points[i].y();
   write_dataset(file, "/geometry/coordinates", xyz, n, 3);
-  { // Polyvertex connectivity: point i is vertex i
+  std::ostringstream g;
+  if (cells.nodes_per_cell == 0) { // Polyvertex: point i is vertex i
     std::vector<int> vertex(n);
     for (std::size_t i = 0; i < n; ++i) vertex[i] = static_cast<int>(i);
-    hsize_t dims[1] = {n};
-    const hid_t space = H5Screate_simple(1, dims, nullptr);
-    const hid_t set = H5Dcreate2(file, "/geometry/vertices", H5T_NATIVE_INT, space, H5P_DEFAULT,
-                                 H5P_DEFAULT, H5P_DEFAULT);
-    MF_REQUIRE(set >= 0 && H5Dwrite(set, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, vertex.data()) >= 0,
-               "HDF5: cannot write /geometry/vertices");
-    H5Dclose(set);
-    H5Sclose(space);
+    write_int_dataset(file, "/geometry/vertices", vertex, n, 1);
+    g << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n
+      << "\" NodesPerElement=\"1\">"
+      << "<DataItem Dimensions=\"" << n << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">"
+      << h5 << ":/geometry/vertices</DataItem></Topology>\n";
+  } else {
+    const std::size_t ne = cells.connectivity.size() / cells.nodes_per_cell;
+    write_int_dataset(file, "/geometry/cells", cells.connectivity, ne, cells.nodes_per_cell);
+    g << "    <Topology TopologyType=\"" << cells.xdmf_type << "\" NumberOfElements=\"" << ne
+      << "\">"
+      << "<DataItem Dimensions=\"" << ne << " " << cells.nodes_per_cell
+      << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5
+      << ":/geometry/cells</DataItem></Topology>\n";
   }
+  g << "    <Geometry GeometryType=\"XYZ\">" << data_item(h5, "/geometry/coordinates", n, 3)
+    << "</Geometry>\n";
+  grid_ = g.str();
+}
 
+FieldSeries::~FieldSeries() {
+  if (file_ >= 0) H5Fclose(file_);
+}
+
+void FieldSeries::add_step(const FieldStep& step) {
+  MF_REQUIRE(file_ >= 0, stem_, ".h5: the series is closed");
+  const std::string h5 = stem_ + ".h5";
+  const std::size_t n = points_;
+  std::ostringstream group;
+  group << "/step_" << std::setw(6) << std::setfill('0') << steps_;
+  std::ostringstream x;
+  x << "   <Grid Name=\"step_" << steps_ << "\" GridType=\"Uniform\">\n"
+    << "    <Time Value=\"" << std::setprecision(12) << step.time << "\"/>\n"
+    << grid_;
+  for (const auto& [name, v] : step.scalars) {
+    MF_ASSERT(v.size() == n);
+    write_dataset(file_, group.str() + "/" + name, v, n, 1);
+    x << "    <Attribute Name=\"" << name << "\" AttributeType=\"Scalar\" Center=\"Node\">"
+      << data_item(h5, group.str() + "/" + name, n, 1) << "</Attribute>\n";
+  }
+  for (const auto& [name, v] : step.vectors) {
+    MF_ASSERT(v.size() == n);
+    std::vector<double> d(3 * n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) d[3 * i] = v[i].x(), d[3 * i + 1] = v[i].y();
+    write_dataset(file_, group.str() + "/" + name, d, n, 3);
+    x << "    <Attribute Name=\"" << name << "\" AttributeType=\"Vector\" Center=\"Node\">"
+      << data_item(h5, group.str() + "/" + name, n, 3) << "</Attribute>\n";
+  }
+  x << "   </Grid>\n";
+  xml_ += x.str();
+  ++steps_;
+}
+
+void FieldSeries::close() {
+  if (file_ < 0) return;
+  MF_REQUIRE(H5Fclose(file_) >= 0, stem_, ".h5: cannot close the HDF5 file");
+  file_ = -1;
   std::ostringstream x;
   x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
-    << "  <Grid Name=\"points\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-  for (std::size_t s = 0; s < steps.size(); ++s) {
-    std::ostringstream group;
-    group << "/step_" << std::setw(6) << std::setfill('0') << s;
-    x << "   <Grid Name=\"step_" << s << "\" GridType=\"Uniform\">\n"
-      << "    <Time Value=\"" << std::setprecision(12) << steps[s].time << "\"/>\n"
-      << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n
-      << "\" NodesPerElement=\"1\">"
-      << "<DataItem Dimensions=\"" << n
-      << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">fields.h5:/geometry/vertices</DataItem>"
-      << "</Topology>\n"
-      << "    <Geometry GeometryType=\"XYZ\">"
-      << data_item("fields.h5", "/geometry/coordinates", n, 3) << "</Geometry>\n";
-    for (const auto& [name, v] : steps[s].scalars) {
-      MF_ASSERT(v.size() == n);
-      write_dataset(file, group.str() + "/" + name, v, n, 1);
-      x << "    <Attribute Name=\"" << name << "\" AttributeType=\"Scalar\" Center=\"Node\">"
-        << data_item("fields.h5", group.str() + "/" + name, n, 1) << "</Attribute>\n";
-    }
-    for (const auto& [name, v] : steps[s].vectors) {
-      MF_ASSERT(v.size() == n);
-      std::vector<double> d(3 * n, 0.0);
-      for (std::size_t i = 0; i < n; ++i) d[3 * i] = v[i].x(), d[3 * i + 1] = v[i].y();
-      write_dataset(file, group.str() + "/" + name, d, n, 3);
-      x << "    <Attribute Name=\"" << name << "\" AttributeType=\"Vector\" Center=\"Node\">"
-        << data_item("fields.h5", group.str() + "/" + name, n, 3) << "</Attribute>\n";
-    }
-    x << "   </Grid>\n";
-  }
-  x << "  </Grid>\n </Domain>\n</Xdmf>\n";
-  H5Fclose(file);
-  write_text("fields.xmf", x.str());
+    << "  <Grid Name=\"" << stem_ << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n"
+    << xml_ << "  </Grid>\n </Domain>\n</Xdmf>\n";
+  out_.write_text(stem_ + ".xmf", x.str());
 }
 
 void OutputDirectory::commit() {

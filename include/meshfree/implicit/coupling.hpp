@@ -30,6 +30,8 @@ public:
 
   /// Zeroes every value and right-hand side entry; the pattern stays.
   void clear();
+  /// Replaces the values (same pattern) and zeroes the right-hand side.
+  void set_values(const std::vector<double>& values);
   /// r[2 i + c] += sum_J (block_IJ d_J)_c over the owned rows i; `d` is the full-length vector.
   void multiply_add(const std::vector<double>& d, double* r) const;
 

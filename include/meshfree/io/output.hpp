@@ -17,6 +17,17 @@ struct FieldStep {
   std::vector<std::pair<std::string, std::vector<Vec2>>> vectors;
 };
 
+/// Cells of the grid a field series lives on: none (the points alone, an XDMF Polyvertex grid),
+/// or the elements of a finite-element mesh, one XDMF topology type ("Triangle",
+/// "Quadrilateral", "Quadrilateral_8") with `nodes_per_cell` point indices per cell.
+struct GridCells {
+  std::string xdmf_type;
+  int nodes_per_cell = 0;
+  std::vector<int> connectivity;
+};
+
+class FieldSeries;
+
 /// Collects output files in a directory; nothing appears under the final names until commit().
 class OutputDirectory {
 public:
@@ -26,6 +37,7 @@ public:
 
   /// Removes results of an earlier run (fields.*, history.csv, summary.json, line_*.csv).
   void clear_previous() const;
+  /// fields.h5 + fields.xmf with every step at once.
   void write_fields(const std::vector<Vec2>& points, const std::vector<FieldStep>& steps);
   /// CSV with a header row; every row has header.size() values.
   void write_csv(const std::string& file, const std::vector<std::string>& header,
@@ -35,9 +47,33 @@ public:
   void commit();
 
 private:
+  friend class FieldSeries;
   std::string temp_path(const std::string& file);
   std::string dir_;
   std::vector<std::string> pending_; // final file names
+};
+
+/// Fields written step by step as a run goes (long runs do not keep every step in memory):
+/// <stem>.h5 holds the data, <stem>.xmf (written by close()) makes it a ParaView time series.
+class FieldSeries {
+public:
+  FieldSeries(OutputDirectory& out, const std::string& stem, const std::vector<Vec2>& points,
+              const GridCells& cells = {});
+  ~FieldSeries();
+  FieldSeries(const FieldSeries&) = delete;
+  FieldSeries& operator=(const FieldSeries&) = delete;
+  void add_step(const FieldStep& step);
+  void close();
+  int steps() const { return steps_; }
+
+private:
+  OutputDirectory& out_;
+  std::string stem_;
+  long file_ = -1; // hid_t
+  std::size_t points_ = 0;
+  int steps_ = 0;
+  std::string grid_; // the XDMF topology and geometry of every step
+  std::string xml_;
 };
 
 /// Minimal JSON object builder for summary.json (keys keep insertion order).

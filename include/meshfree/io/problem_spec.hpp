@@ -75,7 +75,7 @@ struct LoadStep {
 
 /// Newton settings and the automatic cut-back of increments that do not converge.
 struct NonlinearSpec {
-  double tolerance = 1e-9; // |R| <= tolerance * |F|
+  double tolerance = 1e-8; // |R| <= tolerance * |F|
   int max_iterations = 20;
   int max_cutbacks = 8; // an increment is halved at most this many times in a row
 };

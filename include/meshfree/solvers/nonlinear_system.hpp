@@ -14,9 +14,9 @@ namespace mf::solvers {
 
 struct NewtonSettings {
   /// Converged when |R| <= tolerance * |F|, with F the force scale the residual reports
-  /// (internal and external forces together), after at least one iteration unless |R| is
-  /// already below it.
-  double tolerance = 1e-9;
+  /// (internal and external forces together); see the source for the round-off floor that
+  /// penalty terms put under |R|.
+  double tolerance = 1e-8;
   int max_iterations = 20;
 };
 
