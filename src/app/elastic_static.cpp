@@ -33,6 +33,11 @@ void evaluate_fields(const GalerkinModel& m, const io::ProblemSpec& spec,
 } // namespace
 
 std::string describe_method(const io::DiscretisationSpec& d) {
+  if (d.method == io::Method::Fem) {
+    std::string e = d.fem.element;
+    for (char& c : e) c = static_cast<char>(std::toupper(c));
+    return "FE " + e + (d.fem.mesh.empty() ? " on a structured mesh" : " on " + d.fem.mesh);
+  }
   const auto& s = d.shape;
   std::string m = s.approximation == kernels::Approximation::ReproducingKernel    ? "RK"
                   : s.approximation == kernels::Approximation::MovingLeastSquares ? "MLS/EFG"
@@ -145,6 +150,7 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
   session.collective([&] {
     if (session.rank() != 0) return;
     sample_fields(spec, m, R);
+    R.output_cells = output_cells(m);
     double umax = 0.0;
     for (const auto& u : R.node_u) umax = std::max(umax, u.norm());
     R.violation_relative = umax > 0.0 ? R.violation_max / umax : 0.0;
@@ -181,7 +187,7 @@ void write_elastic_outputs(const io::ProblemSpec& spec, const ElasticResult& r,
       ue.push_back(verification::exact_displacement(*spec.exact, exact_mat, x));
     step.vectors.emplace_back("displacement_exact", ue);
   }
-  out.write_fields(r.node_x, {step});
+  out.write_fields(r.node_x, {step}, r.output_cells);
 
   for (const auto& [name, s] : r.lines) {
     std::vector<std::string> header{"s",  "x",         "y",         "ux",

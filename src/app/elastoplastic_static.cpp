@@ -432,7 +432,9 @@ ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
       line_tables.push_back(shapes_at(m, x, false));
       line_points.emplace_back(&line, std::move(x));
     }
-    if (out) fields = std::make_unique<io::FieldSeries>(*out, "fields", m.node_positions());
+    if (out)
+      fields =
+          std::make_unique<io::FieldSeries>(*out, "fields", m.node_positions(), output_cells(m));
   });
   GaussOutput gauss(m, session, root ? out : nullptr);
   for (const auto& [line, x] : line_points)

@@ -56,7 +56,9 @@ void require_covered(const implicit::Csr& support, const std::vector<Vec2>& x) {
 
 } // namespace
 
-GalerkinModel build_galerkin_model(const io::ProblemSpec& spec,
+namespace {
+
+GalerkinModel build_meshfree_model(const io::ProblemSpec& spec,
                                    const solvers::PetscSession& session, PhaseTimer& timer) {
   const io::DiscretisationSpec& disc = spec.discretisation;
   GalerkinModel m;
@@ -122,11 +124,192 @@ GalerkinModel build_galerkin_model(const io::ProblemSpec& spec,
   return m;
 }
 
+/// Distance from p to a boundary piece.
+double distance_to(const geometry::Curve& c, const Vec2& p) {
+  if (c.kind == geometry::Curve::Kind::Segment) {
+    const Vec2 ab = c.b - c.a;
+    const double t = std::clamp((p - c.a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+    return (c.a + t * ab - p).norm();
+  }
+  const Vec2 r = p - c.center;
+  const double lo = std::min(c.theta0, c.theta1), hi = std::max(c.theta0, c.theta1);
+  const double phi = std::atan2(r.y(), r.x());
+  for (double turn : {-2.0, 0.0, 2.0}) {
+    const double a = phi + turn * M_PI;
+    if (a >= lo && a <= hi) return std::abs(r.norm() - c.radius);
+  }
+  return std::min((p - c.point(0.0)).norm(), (p - c.point(1.0)).norm());
+}
+
+/// The mesh of a finite-element discretisation: the gmsh file, or a structured mesh of the
+/// rectangle with elements of the discretisation's spacing; nodes renumbered for locality.
+fem::Mesh fe_mesh(const io::ProblemSpec& spec) {
+  const io::DiscretisationSpec& disc = spec.discretisation;
+  const std::string& e = disc.fem.element;
+  const fem::ElementType type = e == "t3"   ? fem::ElementType::T3
+                                : e == "q4" ? fem::ElementType::Q4
+                                            : fem::ElementType::Q8;
+  fem::Mesh mesh;
+  if (disc.fem.mesh.empty()) {
+    const BoundingBox b = spec.domain.bounds();
+    const Vec2 size = b.size();
+    const int nx = std::max(1, static_cast<int>(std::lround(size.x() / disc.spacing)));
+    const int ny = std::max(1, static_cast<int>(std::lround(size.y() / disc.spacing)));
+    mesh = fem::structured_rectangle(b.lo, size, nx, ny, type);
+  } else {
+    mesh = fem::read_gmsh(disc.fem.mesh);
+    if (mesh.type != type)
+      fail("discretisation.fem.element: '", e, "', but the mesh ", disc.fem.mesh, " holds ",
+           fem::element_name(mesh.type), " elements");
+    const double tol = 1e-6 * fem::characteristic_size(mesh);
+    for (const Vec2& x : mesh.x)
+      if (!spec.domain.contains(x, tol))
+        fail("discretisation.fem.mesh: node (", x.x(), ", ", x.y(), ") of ", disc.fem.mesh,
+             " lies outside the body the geometry section describes");
+  }
+  fem::sort_nodes_for_locality(mesh, fem::characteristic_size(mesh));
+  return mesh;
+}
+
+/// Copies the rows `rows` of a point set's shapes into a ShapeTable.
+implicit::ShapeTable table_rows(const std::vector<int>& offset, const std::vector<int>& node,
+                                const std::vector<double>& phi, const std::vector<Vec2>* dphi,
+                                const std::vector<int>& rows) {
+  implicit::ShapeTable t;
+  for (int r : rows) {
+    for (int k = offset[r]; k < offset[r + 1]; ++k) {
+      t.node.push_back(node[k]);
+      t.phi.push_back(phi[k]);
+      if (dphi) t.dphi.push_back((*dphi)[k]);
+    }
+    t.offset.push_back(static_cast<int>(t.node.size()));
+  }
+  return t;
+}
+
+GalerkinModel build_fem_model(const io::ProblemSpec& spec, const solvers::PetscSession& session,
+                              PhaseTimer& timer) {
+  const io::DiscretisationSpec& disc = spec.discretisation;
+  GalerkinModel m;
+  {
+    PhaseTimer::Scope scope(timer, "nodes");
+    m.fe = std::make_unique<FeDiscretisation>();
+    session.collective([&] { m.fe->mesh = fe_mesh(spec); });
+    m.fe->locator = std::make_unique<fem::PointLocator>(m.fe->mesh);
+  }
+  const fem::Mesh& mesh = m.fe->mesh;
+  const int N = m.node_count();
+  log::info("nodes: ", N, " (", 2 * N, " DOFs), ", describe_method(disc), ", ",
+            mesh.element_count(), " elements");
+
+  m.conditions.resize(spec.boundary.size());
+  fem::PointShapes domain;
+  std::vector<fem::EdgePoints> edge_sets(spec.boundary.size());
+  const int order = disc.fem.order > 0 ? disc.fem.order : fem::default_order(mesh.type);
+  {
+    PhaseTimer::Scope scope(timer, "quadrature");
+    session.collective([&] { domain = fem::domain_points(mesh, order); });
+    m.domain.x = domain.x;
+    m.domain.weight = domain.weight;
+    m.domain.cell = domain.element;
+    m.domain.cell_count = mesh.element_count();
+    // The mesh edges on each condition's boundary pieces: all of an edge's nodes lie on one piece.
+    const std::vector<fem::BoundaryEdge> edges = fem::boundary_edges(mesh);
+    const double tol = 1e-6 * fem::characteristic_size(mesh);
+    const int edge_order = disc.fem.order > 0 ? disc.fem.order : fem::default_edge_order(mesh.type);
+    for (std::size_t b = 0; b < spec.boundary.size(); ++b) {
+      const io::BoundaryCondition& bc = spec.boundary[b];
+      const auto pieces = io::select_boundary(spec.domain, bc.on, bc.key_path);
+      std::vector<fem::BoundaryEdge> chosen;
+      double length = 0.0, wanted = 0.0;
+      for (const auto& piece : pieces) wanted += piece.length();
+      for (const fem::BoundaryEdge& e : edges)
+        for (const auto& piece : pieces) {
+          bool on = true;
+          for (int k = 0; k < e.count && on; ++k)
+            on = distance_to(piece, mesh.x[e.nodes[k]]) <= tol;
+          if (on) {
+            chosen.push_back(e);
+            length += (mesh.x[e.nodes[1]] - mesh.x[e.nodes[0]]).norm();
+            break;
+          }
+        }
+      if (std::abs(length - wanted) > 1e-3 * wanted)
+        fail(bc.key_path, ".on: the mesh edges on the selected boundary are ", length,
+             " long, the boundary pieces ", wanted,
+             ": the mesh does not follow the geometry there (or a box cuts an element edge)");
+      const fem::EdgePoints& ep = edge_sets[b] = fem::edge_points(mesh, chosen, edge_order);
+      ConditionPoints& c = m.conditions[b];
+      c.bc = &bc;
+      c.points.x = ep.x;
+      c.points.weight = ep.weight;
+      c.points.normal = ep.normal;
+      c.support.offset = ep.offset;
+      c.support.index = ep.node;
+    }
+  }
+
+  m.own = solvers::owned_nodes(N, session.rank(), session.size());
+  {
+    PhaseTimer::Scope scope(timer, "neighbours");
+    m.domain_support.offset = domain.offset;
+    m.domain_support.index = domain.node;
+    std::vector<const implicit::Csr*> coupling{&m.domain_support};
+    for (auto& c : m.conditions) {
+      if (c.bc->constrains) coupling.push_back(&c.support);
+      c.mine = rank_points(c.support, m.own, N, session);
+    }
+    m.domain_mine = rank_points(m.domain_support, m.own, N, session);
+    m.pattern = implicit::coupling_pattern(coupling, N, m.own.begin, m.own.end);
+  }
+
+  {
+    PhaseTimer::Scope scope(timer, "shape_functions");
+    m.domain_table =
+        table_rows(domain.offset, domain.node, domain.phi, &domain.dphi, m.domain_mine.rows);
+    for (int r : m.domain_mine.rows) m.domain_weight.push_back(m.domain.weight[r] * spec.thickness);
+    for (std::size_t b = 0; b < m.conditions.size(); ++b) {
+      ConditionPoints& c = m.conditions[b];
+      const fem::EdgePoints& ep = edge_sets[b];
+      c.table = table_rows(ep.offset, ep.node, ep.phi, nullptr, c.mine.rows);
+      for (int r : c.mine.rows) c.weight.push_back(c.points.weight[r] * spec.thickness);
+      c.values = condition_values(spec, *c.bc, c.points, c.mine.rows);
+    }
+  }
+  return m;
+}
+
+} // namespace
+
+GalerkinModel build_galerkin_model(const io::ProblemSpec& spec,
+                                   const solvers::PetscSession& session, PhaseTimer& timer) {
+  return spec.discretisation.method == io::Method::Fem ? build_fem_model(spec, session, timer)
+                                                       : build_meshfree_model(spec, session, timer);
+}
+
+io::GridCells output_cells(const GalerkinModel& m) {
+  io::GridCells cells;
+  if (!m.fe) return cells;
+  const fem::Mesh& mesh = m.fe->mesh;
+  cells.xdmf_type = mesh.type == fem::ElementType::T3   ? "Triangle"
+                    : mesh.type == fem::ElementType::Q4 ? "Quadrilateral"
+                                                        : "Quadrilateral_8";
+  cells.nodes_per_cell = mesh.nodes_per_element();
+  cells.connectivity = mesh.connectivity;
+  return cells;
+}
+
 } // namespace mf::app
 
 namespace mf::app {
 
 implicit::ShapeTable shapes_at(const GalerkinModel& m, const std::vector<Vec2>& x, bool gradients) {
+  if (m.fe) {
+    const fem::PointShapes p = fem::shapes_at(m.fe->mesh, *m.fe->locator, x, gradients);
+    std::vector<int> all(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) all[i] = static_cast<int>(i);
+    return table_rows(p.offset, p.node, p.phi, gradients ? &p.dphi : nullptr, all);
+  }
   const implicit::Csr support = m.space->support_lists(x);
   require_covered(support, x);
   std::vector<int> all(x.size());

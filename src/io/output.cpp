@@ -95,8 +95,8 @@ std::string data_item(const std::string& h5, const std::string& set, std::size_t
 } // namespace
 
 void OutputDirectory::write_fields(const std::vector<Vec2>& points,
-                                   const std::vector<FieldStep>& steps) {
-  FieldSeries series(*this, "fields", points);
+                                   const std::vector<FieldStep>& steps, const GridCells& cells) {
+  FieldSeries series(*this, "fields", points, cells);
   for (const FieldStep& step : steps) series.add_step(step);
   series.close();
 }

@@ -29,6 +29,7 @@ struct ElasticResult {
   double error_l2 = std::numeric_limits<double>::quiet_NaN();     // relative, vs exact
   double error_energy = std::numeric_limits<double>::quiet_NaN(); // relative, vs exact
   double violation_max = 0.0, violation_relative = 0.0;
+  io::GridCells output_cells; // rank 0: the elements of a finite-element model
   solvers::SolveReport solve;
   PhaseTimer timer;
 };

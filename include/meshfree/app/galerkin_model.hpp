@@ -4,8 +4,11 @@
 // integrates with their shape functions, and the pattern of its block rows. The elastic solve
 // assembles on it once; a nonlinear solve would assemble on it every iteration.
 #include "meshfree/core/timer.hpp"
+#include "meshfree/fem/elements.hpp"
+#include "meshfree/fem/mesh.hpp"
 #include "meshfree/implicit/coupling.hpp"
 #include "meshfree/implicit/meshfree_space.hpp"
+#include "meshfree/io/output.hpp"
 #include "meshfree/io/problem_spec.hpp"
 #include "meshfree/quadrature/integration_points.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
@@ -35,8 +38,15 @@ struct ConditionPoints {
   std::vector<Vec2> values;   // prescribed displacement or traction, per table row
 };
 
+/// A finite-element mesh and the locator that finds where a point lies in it.
+struct FeDiscretisation {
+  fem::Mesh mesh;
+  std::unique_ptr<fem::PointLocator> locator; // points into `mesh`
+};
+
 struct GalerkinModel {
-  std::unique_ptr<implicit::MeshfreeSpace> space;
+  std::unique_ptr<implicit::MeshfreeSpace> space; // meshfree nodes and supports, or
+  std::unique_ptr<FeDiscretisation> fe;           // a finite-element mesh
   solvers::OwnedRange own;
   quadrature::DomainPoints domain;
   implicit::Csr domain_support;
@@ -46,8 +56,8 @@ struct GalerkinModel {
   std::vector<ConditionPoints> conditions;
   implicit::RowPattern pattern; // block rows of the owned nodes
 
-  int node_count() const { return space->node_count(); }
-  const std::vector<Vec2>& node_positions() const { return space->nodes().x; }
+  int node_count() const { return fe ? fe->mesh.node_count() : space->node_count(); }
+  const std::vector<Vec2>& node_positions() const { return fe ? fe->mesh.x : space->nodes().x; }
 };
 
 /// What a boundary condition does to the body after a solve.
@@ -58,10 +68,14 @@ struct BoundaryReport {
   double violation_max = 0.0; // max |u^h - ubar| over the constraint's Gauss points
 };
 
-/// Builds the model; phases "nodes", "quadrature", "neighbours" and "shape_functions" go to
-/// `timer`. Errors on any rank reach every rank.
+/// Builds the model, meshfree or finite elements as the discretisation says; phases "nodes",
+/// "quadrature", "neighbours" and "shape_functions" go to `timer`. Errors on any rank reach every
+/// rank.
 GalerkinModel build_galerkin_model(const io::ProblemSpec& spec,
                                    const solvers::PetscSession& session, PhaseTimer& timer);
+
+/// Cells for field output: the elements of a finite-element model, none (points) for meshfree.
+io::GridCells output_cells(const GalerkinModel& m);
 
 /// Shape functions (and gradients) of the model's approximation at arbitrary points of the body,
 /// evaluated on the calling rank.

@@ -38,7 +38,8 @@ public:
   /// Removes results of an earlier run (fields.*, history.csv, summary.json, line_*.csv).
   void clear_previous() const;
   /// fields.h5 + fields.xmf with every step at once.
-  void write_fields(const std::vector<Vec2>& points, const std::vector<FieldStep>& steps);
+  void write_fields(const std::vector<Vec2>& points, const std::vector<FieldStep>& steps,
+                    const GridCells& cells = {});
   /// CSV with a header row; every row has header.size() values.
   void write_csv(const std::string& file, const std::vector<std::string>& header,
                  const std::vector<std::vector<double>>& rows);
