@@ -89,11 +89,12 @@ public:
   double residual_seconds() const { return residual_seconds_; }
   double jacobian_seconds() const { return jacobian_seconds_; }
 
-  /// The history of the converged increment becomes the start of the next one.
-  void commit() {
-    states_.committed = states_.trial;
-    states_valid_ = false;
-  }
+  /// The history of the converged increment becomes the start of the next one. The trial
+  /// response at the converged d stays valid: its stress is what the new history gives there
+  /// too, and its tangent, the consistent tangent of the converged increment, is the predictor
+  /// for the next one. Recomputed from the new history, every plastic point would sit exactly on
+  /// its yield surface and round-off would choose between the elastic and the plastic tangent.
+  void commit() { states_.committed = states_.trial; }
 
   void residual(const std::vector<double>& d, double* r, double& scale_squared) {
     const auto t0 = Clock::now();
