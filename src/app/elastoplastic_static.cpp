@@ -365,11 +365,21 @@ struct GaussOutput {
   }
 };
 
+/// True for a condition whose factor changes something: a nonzero prescribed displacement or
+/// traction (a clamp's factor does not matter).
+bool drives(const io::BoundaryCondition& bc) {
+  if (bc.value_from_exact || bc.traction_from_exact) return true;
+  return bc.constrains ? !bc.value.cwiseProduct(bc.mask).isZero() : !bc.traction.isZero();
+}
+
+/// "pull 0.002, tension 308": the factors of the conditions that drive the body.
 std::string factors_text(const io::ProblemSpec& spec, const std::vector<double>& f) {
   std::string s;
   for (std::size_t c = 0; c < spec.boundary.size(); ++c)
-    s += (s.empty() ? "" : ", ") + spec.boundary[c].name + " " + detail::concat(f[c]);
-  return s;
+    if (drives(spec.boundary[c]))
+      s += (s.empty() ? "" : ", ") + spec.boundary[c].name + " " + detail::concat(f[c]);
+  if (!spec.body_force.isZero()) s += (s.empty() ? "" : ", ") + detail::concat("body_force ", f.back());
+  return s.empty() ? "no load" : s;
 }
 
 } // namespace
@@ -586,13 +596,12 @@ ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
         record_increment(std::move(rec), write_fields);
       }
       const IncrementRecord& done = R.increments.back();
-      log::info("  step '", step.name, "' ", static_cast<int>(std::lround(tau * step.increments)),
-                "/", step.increments, " (", factors_text(spec, f), "): ", rep.iterations,
-                " Newton iterations, |R|/|F| ",
+      log::info("  step '", step.name, "' at ", tau, " (", factors_text(spec, f), "): ",
+                rep.iterations, " Newton iterations, |R|/|F| ",
                 rep.residual.back() / std::max(rep.scale.back(), 1e-300), ", plastic points ",
                 done.plastic_points, ", max plastic strain ", done.max_plastic_strain);
-      // Regrow a cut increment after two easy ones, up to the nominal size.
-      if (cuts > 0 && rep.iterations <= 6 && ++easy >= 2) {
+      // A cut increment grows back, doubling after every two easy ones, up to the nominal size.
+      if (dtau < nominal && rep.iterations <= 6 && ++easy >= 2) {
         dtau = std::min(nominal, 2.0 * dtau);
         easy = 0;
       }

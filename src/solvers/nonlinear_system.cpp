@@ -91,8 +91,9 @@ PetscErrorCode form_jacobian(SNES snes, Vec X, Mat, Mat P, void* ctx) {
 /// test compares with |R| at the start of the step, which under displacement control through
 /// penalty terms is dominated by alpha * (jump of the prescribed value) and says nothing about
 /// equilibrium. Penalty terms also put a floor under |R|: the constraint gap is known only to
-/// round-off of u, times alpha; once a Newton correction changes d by less than 1e-10 of its
-/// size and |R| is within 1e3 of the tolerance, the iterate is as converged as it can get.
+/// round-off of u, times alpha (near 1e-8 |F| with alpha = 1e6 E/h on a plate at its limit
+/// load); once a Newton correction changes d by less than 1e-8 of its size (SNES's own step
+/// tolerance) and |R| is within 1e3 of the tolerance, the iterate is as converged as it can get.
 PetscErrorCode converged(SNES, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm,
                          SNESConvergedReason* reason, void* ctx) {
   auto& s = *static_cast<NonlinearBlockSystem::Impl*>(ctx);
@@ -103,7 +104,7 @@ PetscErrorCode converged(SNES, PetscInt it, PetscReal xnorm, PetscReal snorm, Pe
     *reason = SNES_DIVERGED_FNORM_NAN;
   else if (fnorm <= s.tolerance * s.scale)
     *reason = SNES_CONVERGED_FNORM_ABS;
-  else if (it > 0 && snorm <= 1e-10 * xnorm && fnorm <= 1e3 * s.tolerance * s.scale)
+  else if (it > 0 && snorm <= 1e-8 * xnorm && fnorm <= 1e3 * s.tolerance * s.scale)
     *reason = SNES_CONVERGED_SNORM_RELATIVE;
   else if (it >= s.max_iterations)
     *reason = SNES_DIVERGED_MAX_IT;
@@ -159,6 +160,14 @@ NonlinearBlockSystem::NonlinearBlockSystem(MPI_Comm comm, int node_count, OwnedR
   check(SNESSetFunction(s.snes, s.r, form_function, &s), "SNESSetFunction");
   check(SNESSetJacobian(s.snes, s.J, s.J, form_jacobian, &s), "SNESSetJacobian");
   check(SNESSetConvergenceTest(s.snes, converged, &s, nullptr), "SNESSetConvergenceTest");
+  // Backward-Euler J2 makes each increment the stationarity condition of an incremental
+  // potential, so the critical-point line search fits: it seeks a zero of the directional
+  // derivative along the Newton step. The default backtracking (bt) demands a decrease of |R|
+  // at every step and rejects the non-monotone but convergent full steps of Newton in a
+  // perfectly plastic plateau (plate_plastic_limit: bt stops after 8 cut-backs, cp completes).
+  SNESLineSearch ls;
+  check(SNESGetLineSearch(s.snes, &ls), "SNESGetLineSearch");
+  check(SNESLineSearchSetType(ls, SNESLINESEARCHCP), "SNESLineSearchSetType");
   KSP ksp;
   check(SNESGetKSP(s.snes, &ksp), "SNESGetKSP");
   detail::set_direct_solver(ksp, /*symmetric=*/true);

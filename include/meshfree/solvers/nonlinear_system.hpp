@@ -58,7 +58,7 @@ public:
   /// The owned entries of `d` collected into the full vector on rank 0 (empty on other ranks).
   std::vector<double> gather_on_root(const std::vector<double>& d) const;
 
-  /// "newtonls(bt) + preonly/cholesky/mumps".
+  /// "newtonls(cp) + preonly/cholesky/mumps".
   std::string description() const;
 
   struct Impl; // PETSc objects and the callbacks' state (defined in the source file)
