@@ -7,7 +7,8 @@ Run from the repository root:
     /usr/bin/python3 scripts/fe_reference/make_calculix_plastic_reference.py
     /usr/bin/python3 scripts/fe_reference/make_calculix_plastic_reference.py --quick
 
-Full run: all mesh levels and checks, writes reference/calculix_plastic/.
+Full run: all mesh levels and checks, writes reference/calculix_plastic/
+(about 30 min on 2 cores; --quick about 45 s).
 --quick: remakes only the coarsest level of every problem in a temporary
 folder and compares it with the committed curve_level0.csv files; prints
 "quick check: max relative difference ..." and exits 1 if any value differs
@@ -52,8 +53,11 @@ Method (details and results: reference/calculix_plastic/README.md)
   Checks: the coarsest mesh of every problem is rerun with t_s/10, and its
   elastic unit-load solution is compared with the orthotropic-trick
   solution of the elastic recipe.
-* *STATIC, DIRECT with fixed equal increments, tight Newton tolerances
-  (*CONTROLS), output per increment with *NODE PRINT to the .dat file.
+* *STATIC with automatic incrementation: the largest increment is one record
+  spacing and *TIME POINTS end an increment exactly at every record (fixed
+  DIRECT increments diverge with the thin slab in the increment where a
+  large region yields at once); tight Newton tolerances (*CONTROLS); output
+  at the records with *NODE PRINT to the .dat file.
 * Convergence: >= 3 mesh levels per problem (coarser levels compared with
   the finest at every increment), and the increments halved once on the
   middle level.
@@ -541,7 +545,8 @@ def scaled_steps(prob, factor):
 
 
 def write_deck(path, prob, mesh, mode="plastic", thickness=None, inc_factor=1):
-    """mode 'plastic': the load path of the problem, fixed increments.
+    """mode 'plastic': the load path of the problem, recorded at equal steps
+    (inc_factor = 2 halves the record spacing and the largest increment).
     mode 'elastic': linear isotropic material (no *PLASTIC), one increment
     at unit load factor (q = 1 or v = 1), stresses at the integration points.
     mode 'ortho': as 'elastic' but with the plane-stress stiffness written
