@@ -1,11 +1,14 @@
 #!/usr/bin/python3
 """Compares two meshfree runs and exits non-zero if they differ by more than --rtol: every field
-of the last step in fields.h5 (relative to that field's largest magnitude) and every number under
-"results" in summary.json (errors, reactions, constraint violations; relative to its magnitude).
+of the last step in fields.h5 (relative to that field's largest magnitude), every column of
+history.csv (relative to the column's largest magnitude; solver iteration counts and residuals
+excepted) and every number under "results" in summary.json (relative to the largest magnitude of
+its section, e.g. all reactions of a condition, or all monitor displacements).
 
     scripts/compare_runs.py OUT_A OUT_B [--rtol 1e-8]
 """
 import argparse
+import csv
 import json
 import sys
 
@@ -24,9 +27,14 @@ def main():
             sys.exit("the two runs have different nodes")
         step = sorted(k for k in fa.keys() if k.startswith("step_"))[-1]
         worst = 0.0
+        # Stress components are measured against the largest of them (szz of plane stress is
+        # round-off around zero).
+        stress_scale = max([np.abs(fa[step][n][...]).max() for n in fa[step]
+                            if n.startswith("stress_") or n == "von_mises"] or [0.0])
         for name in fa[step]:
             x, y = fa[step][name][...], fb[step][name][...]
-            scale = max(np.abs(x).max(), 1e-300)
+            own = np.abs(x).max()
+            scale = max(stress_scale if name.startswith("stress_") else own, 1e-300)
             rel = np.abs(x - y).max() / scale
             worst = max(worst, rel)
             print(f"{step}/{name}: max relative difference {rel:.3e}")
@@ -42,22 +50,60 @@ def main():
 
     ra = dict(numbers(json.loads(open(f"{args.a}/summary.json").read())["results"]))
     rb = dict(numbers(json.loads(open(f"{args.b}/summary.json").read())["results"]))
+    solver_keys = ("newton_iterations", "equilibrium_error")  # iteration counts, round-off
+    ra = {k: v for k, v in ra.items() if not any(s in k for s in solver_keys)}
+    rb = {k: v for k, v in rb.items() if not any(s in k for s in solver_keys)}
     if ra.keys() != rb.keys():
         sys.exit("the two summaries report different results")
-    force_scale = max([abs(v) for k, v in ra.items() if k.startswith("boundary.") and "violation" not in k] or [1.0])
+
+    def section(key):
+        return ".".join(key.split(".")[:2])
+
+    sections = {}
+    for k, v in ra.items():
+        if "violation" not in k:
+            sections[section(k)] = max(sections.get(section(k), 0.0), abs(v))
     for key in ra:
         # Round-off of a quantity that is zero (a reaction component, a constraint violation of
-        # 1e-9) is measured against its natural scale: the largest force, the largest displacement.
+        # 1e-9) is measured against its natural scale: the largest of its kind, the largest
+        # displacement.
         if "violation" in key:
             scale = ra.get("max_displacement", 1.0)
-        elif key.startswith("boundary."):
-            scale = force_scale
         else:
-            scale = max(abs(ra[key]), 1e-300)
+            scale = max(sections[section(key)], 1e-300)
         rel = abs(ra[key] - rb[key]) / scale
         worst = max(worst, rel)
         if rel > args.rtol:
             print(f"summary {key}: {ra[key]:.12g} against {rb[key]:.12g} (relative {rel:.3e})")
+
+    try:
+        ha = list(csv.DictReader(open(f"{args.a}/history.csv")))
+        hb = list(csv.DictReader(open(f"{args.b}/history.csv")))
+    except FileNotFoundError:
+        ha = hb = []
+    if len(ha) != len(hb):
+        sys.exit(f"history.csv: {len(ha)} rows against {len(hb)}")
+    solver = {"newton_iterations", "cutbacks", "residual_relative", "equilibrium_error",
+              "solver_iterations"}
+    def kind(col):  # forces and displacements are measured against the largest of their kind
+        return ("force" if col.startswith(("reaction_", "load_")) else
+                "displacement" if col.startswith(("ux_", "uy_")) else col)
+
+    columns = [c for c in (ha[0].keys() if ha else []) if c not in solver]
+    kinds = {}
+    for col in columns:
+        kinds[kind(col)] = max(kinds.get(kind(col), 0.0),
+                               max(abs(float(r[col])) for r in ha))
+    for col in columns:
+        x = np.array([float(r[col]) for r in ha])
+        y = np.array([float(r[col]) for r in hb])
+        scale = max(kinds[kind(col)], 1e-300)
+        rel = np.abs(x - y).max() / scale
+        worst = max(worst, rel)
+        if rel > args.rtol:
+            print(f"history.csv {col}: relative difference {rel:.3e}")
+    if ha:
+        print(f"history.csv: {len(ha)} rows compared")
     print(f"summary.json results: {len(ra)} numbers compared")
     if worst > args.rtol:
         sys.exit(f"runs differ by {worst:.3e} > {args.rtol:.1e}")

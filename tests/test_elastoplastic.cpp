@@ -80,3 +80,63 @@ TEST_CASE("a bar in uniaxial stress follows the closed-form cyclic response", "[
   CHECK(fe_q8 < 1e-7);
   CHECK(meshfree < 1e-6);
 }
+
+TEST_CASE("Newton with the consistent tangent converges quadratically in plastic increments",
+          "[elastoplastic]") {
+  // The Voce cantilever in steady plastic flow. Penalties 1e4 E/h (not 1e6) lower the round-off
+  // floor that penalty terms put under |R| (alpha |u| eps_machine), so that three iterates lie
+  // well above it.
+  const auto spec = load_problem("beam_voce_bending",
+                                 {"boundary.0.penalty_scale=1e4", "boundary.1.penalty_scale=1e4",
+                                  "nonlinear.tolerance=1e-10", "steps.0.increments=25"});
+  const auto r = app::solve_elastoplastic_static(spec, test_session(), nullptr);
+  REQUIRE(r.status == "completed");
+  int checked = 0;
+  double lowest = 1e300, largest_C = 0.0;
+  for (std::size_t i = 1; i < r.increments.size(); ++i) {
+    const auto& inc = r.increments[i];
+    if (inc.plastic_points == 0) continue;
+    CHECK(inc.newton.iterations <= 6);
+    // The last three relative residuals that are all at least 1e-7 (25 times the floor): the
+    // quadratic constant C = e_k+1 / e_k^2 stays of order one where Newton converges
+    // quadratically (linear convergence at rate 0.1 from 1e-3 would give 100), and the order
+    // estimate p = log(e_k+1 / e_k) / log(e_k / e_k-1) tends to 2 (less before the asymptote).
+    std::vector<double> e;
+    for (std::size_t k = 1; k < inc.newton.residual.size(); ++k)
+      e.push_back(inc.newton.residual[k] / inc.newton.scale[k]);
+    for (std::size_t k = e.size(); k-- > 2;) {
+      if (e[k] < 1e-7) continue;
+      const double p = std::log(e[k] / e[k - 1]) / std::log(e[k - 1] / e[k - 2]);
+      const double C = e[k] / (e[k - 1] * e[k - 1]);
+      lowest = std::min(lowest, p);
+      largest_C = std::max(largest_C, C);
+      ++checked;
+      INFO("increment " << i << ": relative residuals " << e[k - 2] << ", " << e[k - 1] << ", "
+                        << e[k] << ", order " << p << ", C " << C);
+      CHECK(p >= 1.5);
+      CHECK(C <= 50.0);
+      break;
+    }
+  }
+  std::cout << "Newton: " << checked << " plastic increments with three iterates above 1e-7; "
+            << "lowest order of convergence " << lowest << ", largest quadratic constant "
+            << largest_C << "\n";
+  CHECK(checked >= 8);
+}
+
+TEST_CASE("a load beyond the limit load stops the run with the reason and keeps what converged",
+          "[elastoplastic]") {
+  // The thesis plate collapses at q = sigma_y * width = 310 N/mm; ask for 320.
+  const auto spec = load_problem("plate_plastic_thesis",
+                                 {"discretisation.spacing=0.1", "steps.1.load_factor=320",
+                                  "steps.1.increments=4", "nonlinear.max_cutbacks=4"});
+  const auto r = app::solve_elastoplastic_static(spec, test_session(), nullptr);
+  CHECK(r.status == "stopped");
+  CHECK_THAT(r.stop_reason, Catch::Contains("step 'plastic'") && Catch::Contains("limit load") &&
+                                Catch::Contains("did not converge"));
+  // Every kept increment converged, and the last is near the limit load (this coarse model's
+  // limit lies slightly above 310: a displacement method overestimates collapse loads).
+  for (const auto& inc : r.increments) CHECK(inc.newton.converged);
+  CHECK(r.increments.back().factors[1] > 300.0);
+  CHECK(r.increments.back().factors[1] < 313.0);
+}

@@ -196,6 +196,22 @@ double von_mises(const Vec3& s, double szz) {
   return materials::von_mises(s, szz);
 }
 
+/// The largest of the candidates (value, position) over every rank.
+PeakStress peak(double value, const Vec2& at, double sigma_y, const solvers::PetscSession& session) {
+  struct {
+    double value;
+    int rank;
+  } mine{value, session.rank()}, top{0.0, 0};
+  MPI_Allreduce(&mine, &top, 1, MPI_DOUBLE_INT, MPI_MAXLOC, session.comm());
+  double x[2] = {at.x(), at.y()};
+  MPI_Bcast(x, 2, MPI_DOUBLE, top.rank, session.comm());
+  PeakStress p;
+  p.von_mises = top.value;
+  p.at = Vec2(x[0], x[1]);
+  if (top.value > 0.0) p.fraction = sigma_y / top.value;
+  return p;
+}
+
 /// First yield under the first step's loading (see ElasticLimit).
 ElasticLimit elastic_limit(const io::ProblemSpec& spec, const GalerkinModel& m,
                            const solvers::PetscSession& session) {
@@ -208,40 +224,29 @@ ElasticLimit elastic_limit(const io::ProblemSpec& spec, const GalerkinModel& m,
   system.solve();
   const std::vector<double> d = system.solution_everywhere();
   const Mat3 C = materials::elastic_matrix(spec.material, spec.model);
-  struct {
-    double value;
-    int index;
-  } best{-1.0, -1}; // over this rank's counted points, then the nodes (rank 0)
-  std::vector<Vec2> where;
+  const auto vm_at = [&](const implicit::ShapeTable& t, int k) {
+    const Vec3 s = C * implicit::strain_at(t, k, d);
+    return von_mises(s, materials::out_of_plane_stress(spec.material, spec.model, s));
+  };
+  const double sigma_y = spec.plasticity->sigma0;
+  double best = -1.0;
+  Vec2 where(0.0, 0.0);
   for (int k = 0; k < m.domain_table.rows(); ++k) {
-    if (!m.domain_mine.counted[k]) continue;
-    const Vec3 s = C * implicit::strain_at(m.domain_table, k, d);
-    const double vm = von_mises(s, materials::out_of_plane_stress(spec.material, spec.model, s));
-    if (vm > best.value) best = {vm, static_cast<int>(where.size())};
-    where.push_back(m.domain.x[m.domain_mine.rows[k]]);
+    const double vm = vm_at(m.domain_table, k);
+    if (m.domain_mine.counted[k] && vm > best)
+      best = vm, where = m.domain.x[m.domain_mine.rows[k]];
   }
+  lim.gauss_points = peak(best, where, sigma_y, session);
+  best = -1.0;
   if (session.rank() == 0) {
     const implicit::ShapeTable t = shapes_at(m, m.node_positions(), true);
     for (int k = 0; k < t.rows(); ++k) {
-      const Vec3 s = C * implicit::strain_at(t, k, d);
-      const double vm = von_mises(s, materials::out_of_plane_stress(spec.material, spec.model, s));
-      if (vm > best.value) best = {vm, static_cast<int>(where.size())};
-      where.push_back(m.node_positions()[k]);
+      const double vm = vm_at(t, k);
+      if (vm > best) best = vm, where = m.node_positions()[k];
     }
   }
-  struct {
-    double value;
-    int rank;
-  } mine{best.value, session.rank()}, top{0.0, 0};
-  MPI_Allreduce(&mine, &top, 1, MPI_DOUBLE_INT, MPI_MAXLOC, session.comm());
-  double at[2] = {0.0, 0.0};
-  if (session.rank() == top.rank && best.index >= 0)
-    at[0] = where[best.index].x(), at[1] = where[best.index].y();
-  MPI_Bcast(at, 2, MPI_DOUBLE, top.rank, session.comm());
-  lim.max_von_mises = top.value;
-  lim.at = Vec2(at[0], at[1]);
-  lim.fraction = top.value > 0.0 ? spec.plasticity->sigma0 / top.value
-                                 : std::numeric_limits<double>::infinity();
+  lim.nodes = peak(best, where, sigma_y, session);
+  lim.fraction = lim.nodes.fraction;
   for (double f : target) lim.factors.push_back(lim.fraction * f);
   for (std::size_t b = 0; b < m.conditions.size(); ++b) {
     BoundaryReport r = boundary_report(m.conditions[b], d, target[b], session);
@@ -407,9 +412,12 @@ ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
     PhaseTimer::Scope scope(R.timer, "elastic_limit");
     session.collective([&] { R.elastic_limit = elastic_limit(spec, m, session); });
     const ElasticLimit& e = R.elastic_limit;
-    log::info("first yield at ", e.fraction, " of step '", spec.steps.front().name, "' (factors ",
-              factors_text(spec, e.factors), "), von Mises ", e.max_von_mises,
-              " at its end, largest at (", e.at.x(), ", ", e.at.y(), ")");
+    const PeakStress& g = e.gauss_points;
+    const PeakStress& n = e.nodes;
+    log::info("first yield at ", e.fraction, " of step '", spec.steps.front().name, "' (",
+              factors_text(spec, e.factors), "); elastic von Mises at its end: ", g.von_mises,
+              " at the Gauss point (", g.at.x(), ", ", g.at.y(), "), ", n.von_mises,
+              " at the node (", n.at.x(), ", ", n.at.y(), ")");
   }
 
   ElastoplasticSystem problem(spec, m);
@@ -690,11 +698,18 @@ void write_elastoplastic_outputs(const io::ProblemSpec& spec, const Elastoplasti
     lim_forces.set(spec.boundary[c].name,
                    std::vector<double>{e.boundary[c].force.x(), e.boundary[c].force.y()});
   }
+  const auto peak_json = [](const PeakStress& p) {
+    io::Json j;
+    j.set("max_von_mises_at_first_step_end", p.von_mises)
+        .set("at", std::vector<double>{p.at.x(), p.at.y()})
+        .set("fraction_of_first_step", p.fraction);
+    return j;
+  };
   limit.set("fraction_of_first_step", e.fraction)
       .set("factors", lim_factors)
       .set("forces", lim_forces)
-      .set("max_von_mises_at_first_step_end", e.max_von_mises)
-      .set("at", std::vector<double>{e.at.x(), e.at.y()});
+      .set("gauss_points", peak_json(e.gauss_points))
+      .set("nodes", peak_json(e.nodes));
 
   const IncrementRecord& fin = r.increments.back();
   io::Json fin_factors, fin_forces, fin_monitors;

@@ -178,12 +178,18 @@ J2Result2D j2_update_plane_stress(const J2Parameters& p, const Vec3& strain,
   double ezz = ep(2) - p.nu / (1.0 - p.nu) * ((strain(0) - ep(0)) + (strain(1) - ep(1)));
   J2Result3D r3;
   const double scale = std::max(p.sigma0, yield_stress(p, committed.alpha));
+  // Newton on eps_zz: quadratic until sigma_zz reaches the round-off of the 3D return (about
+  // 1e-15 of the stress, times the conditioning of the plastic tangent); it stops there, or when
+  // the correction no longer changes eps_zz.
+  const double strain_size = std::max(strain.cwiseAbs().maxCoeff(), std::abs(ezz));
   for (int it = 0;; ++it) {
     r3 = j2_update_3d(p, embed(strain, ezz), committed);
     if (std::abs(r3.stress(2)) <= 1e-12 * scale) break;
+    const double step = r3.stress(2) / r3.tangent(2, 2);
+    if (std::abs(step) <= 1e-15 * strain_size && std::abs(r3.stress(2)) <= 1e-8 * scale) break;
     if (it == 50)
       fail("plane-stress return did not converge in 50 iterations (sigma_zz = ", r3.stress(2), ")");
-    ezz -= r3.stress(2) / r3.tangent(2, 2);
+    ezz -= step;
   }
   J2Result2D r = reduce(r3, ezz);
   // Static condensation of sigma_zz = 0: d eps_zz = -C_zp d eps_p / C_zz.

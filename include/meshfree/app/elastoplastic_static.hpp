@@ -32,14 +32,25 @@ struct IncrementRecord {
   double equilibrium_error = 0.0; // |sum of reactions and loads| / sum of their magnitudes
 };
 
+/// The largest von Mises stress of the elastic solution at the end of the first step, over one
+/// kind of point.
+struct PeakStress {
+  double von_mises = 0.0;
+  Vec2 at{0.0, 0.0};
+  double fraction = std::numeric_limits<double>::infinity(); // sigma_y0 / von_mises
+};
+
 /// First yield under the first step's loading, from a linear elastic solve (loads are
-/// proportional within a step, so the elastic stresses scale with the load factor).
+/// proportional within a step, so the elastic stresses scale with the load factor). First yield
+/// is where the stress at a node reaches sigma_y0: nodes lie inside the body and on its
+/// boundary, where stress concentrations peak. The peak over the Gauss points, which lie inside
+/// and near the boundary are the least accurate points of a meshfree stress field, is reported
+/// beside it.
 struct ElasticLimit {
+  PeakStress gauss_points, nodes;
   double fraction = std::numeric_limits<double>::quiet_NaN(); // of the first step's targets
   std::vector<double> factors;                                // at first yield
-  double max_von_mises = 0.0;                                 // at the first step's targets
-  Vec2 at{0.0, 0.0};                    // where it is largest (a Gauss point or a node)
-  std::vector<BoundaryReport> boundary; // reactions and loads at first yield
+  std::vector<BoundaryReport> boundary;                       // reactions and loads there
 };
 
 struct ElastoplasticResult {
