@@ -36,7 +36,9 @@ PROBLEMS = {
     "plate_plastic_thesis": dict(
         control=("factor_tension", "q", "edge load q [N/mm]"), driver="tension",
         responses=[("u_y at (0.5, 1) [mm]", "uy_top_centre", "uy_05_1"),
-                   ("u_x at (1, 1) [mm]", "ux_top_right", "ux_1_1")]),
+                   ("u_x at (1, 1) [mm]", "ux_top_right", "ux_1_1")],
+        # The thesis' Fig. 4-26: u_x along the top edge at q = 308 and 308.25 (increments 4, 5).
+        lines=[("top", 4, "line_top_308.csv"), ("top", 5, "line_top_30825.csv")]),
     "plate_plastic_limit": dict(
         control=("factor_pull", "v", "top displacement v [mm]"), driver="pull",
         responses=[("force on the top edge [N]", "reaction_pull_y", "force_top")]),
@@ -113,6 +115,23 @@ def compare(problem, runs, out_dir):
             print(f"{problem}: {label}: {method} vs CalculiX, largest difference "
                   f"{d:.3e} of max |CalculiX| = {scale:.6g} over {len(rx)} points")
         curves.append(entry)
+    for method, folder in runs.items():
+        with open(os.path.join(folder, "summary.json")) as f:
+            summary = json.load(f)
+        counts, times = summary["counts"], summary["time_s"]
+        hist = read_csv(os.path.join(folder, "history.csv"))[1:]
+        its = [int(float(h["newton_iterations"])) for h in hist]
+        parts = times.get("newton_parts", {})
+        print(f"{problem} ({method}): {counts['nodes']} nodes, {counts['domain_points']} "
+              f"integration points, {counts['increments']} increments, Newton iterations "
+              f"{sum(its)} (mean {sum(its) / max(len(its), 1):.2f}, most {max(its, default=0)}), "
+              f"{counts['cutbacks']} cut-backs; wall time {times['total']:.2f} s: model "
+              f"{sum(times.get(k, 0.0) for k in ('nodes', 'quadrature', 'neighbours', 'shape_functions')):.2f}, "
+              f"first yield {times.get('elastic_limit', 0.0):.2f}, Newton {times.get('newton', 0.0):.2f} "
+              f"(residual {parts.get('residual_and_return_mapping', 0.0):.2f}, Jacobian "
+              f"{parts.get('jacobian_assembly', 0.0):.2f}, linear solves "
+              f"{parts.get('linear_solves_and_other', 0.0):.2f}), output "
+              f"{times.get('increment_output', 0.0) + times.get('output', 0.0):.2f}")
     if len(runs) == 2:
         for label, hist_col, ref_col in spec["responses"]:
             a = read_csv(os.path.join(runs["meshfree"], "history.csv"))
@@ -126,6 +145,21 @@ def compare(problem, runs, out_dir):
                 if other is not None:
                     d = max(d, abs(float(h[hist_col]) - other) / scale)
             print(f"{problem}: {label}: meshfree vs in-code FE, largest difference {d:.3e}")
+    for line, increment, ref_file in spec.get("lines", []):
+        ref_line = read_csv(os.path.join(ROOT, "reference", "calculix_plastic", problem, ref_file))
+        for method, folder in runs.items():
+            ours = [r for r in read_csv(os.path.join(folder, f"line_{line}.csv"))
+                    if int(float(r["increment"])) == increment]
+            if len(ours) != len(ref_line):
+                raise SystemExit(f"{problem} ({method}): line {line} has {len(ours)} points at "
+                                 f"increment {increment}, the reference {len(ref_line)}")
+            for comp in ("ux", "uy"):
+                scale = max(abs(float(r[comp])) for r in ref_line)
+                d = max(abs(float(a[comp]) - float(b[comp])) for a, b in zip(ours, ref_line))
+                worst[(method, f"{comp} along {line} ({ref_file})")] = d / scale
+                print(f"{problem}: {comp} along the {line} line at increment {increment}: {method} "
+                      f"vs CalculiX, largest difference {d / scale:.3e} of max |CalculiX| = "
+                      f"{scale:.6g}")
     if spec.get("elastic_limit"):
         levels = read_csv(os.path.join(ROOT, "reference", "calculix_plastic", problem,
                                        "elastic_limit.csv"))

@@ -32,6 +32,30 @@ expect_error "discretisation.refinement[0].spacing: puts about" "$P" --set 'disc
 expect_error "boundary[1].name: 'clamp' is used by boundary[0] already" "$P" --set boundary.1.name=clamp
 expect_error "name: expected a name of letters, digits" "$P" --set name=a/b
 expect_error "discretisation.quadrature.order: expected an integer from 2 to 10, got 1e30" "$P" --set discretisation.quadrature.order=1e30
+# Elastoplastic inputs: plasticity, hardening laws, the load schedule, finite elements.
+Q="$ROOT/problems/plate_plastic_thesis.yaml"
+expect_error "material.plasticity.yield_stress: expected a positive number, got -310" "$Q" --set material.plasticity.yield_stress=-310
+expect_error "material.plasticity.hardening.type: expected one of" "$Q" --set 'material.plasticity.hardening={type: cubic}'
+expect_error "material.plasticity.hardening: 'linear' needs parameters" "$Q" --set material.plasticity.hardening=linear
+expect_error "material.plasticity.hardening.H: expected a number >= 0, got -5" "$Q" --set 'material.plasticity.hardening={type: linear, H: -5}'
+expect_error "material.plasticity.yield_stress: the swift law sets the initial yield stress itself" "$Q" --set 'material.plasticity.hardening={type: swift, K: 500, eps0: 0.01, n: 0.2}'
+expect_error "material.plasticity.hardening.points: equivalent plastic strains must increase" "$Q" --set 'material.plasticity={hardening: {type: table, points: [[0, 300], [0.1, 320], [0.05, 330]]}}'
+expect_error "material.plasticity.hardening.points: the first point must be at equivalent plastic strain 0" "$Q" --set 'material.plasticity={hardening: {type: table, points: [[0.1, 300], [0.2, 320]]}}'
+expect_error "material: analysis elastoplastic_static needs material.plasticity" "$Q" --set 'material={E: 2.0e5, nu: 0.1}'
+expect_error "material: material.plasticity is used only by analysis elastoplastic_static" "$Q" --set analysis=elastic_static
+expect_error "steps[1].name: another step is named 'elastic'" "$Q" --set steps.1.name=elastic
+expect_error "steps[0].increments: expected an integer from 1 to 1000000, got 0" "$Q" --set steps.0.increments=0
+expect_error "steps[0].factors.roof: unknown key" "$Q" --set 'steps.0.factors={roof: 2}'
+expect_error "steps[0].load_factor: give the step's target 'load_factor' or 'factors'" "$Q" --set 'steps.0={name: a, increments: 2}'
+expect_error "steps: an elastoplastic analysis needs a load schedule" "$Q" --set 'steps=[]'
+expect_error "nonlinear.tolerance: a relative residual tolerance below 1e-2 is needed, got 0.5" "$Q" --set nonlinear.tolerance=0.5
+expect_error "output.monitors[0].at: the point (5, 5) is not in the body" "$Q" --set 'output.monitors.0.at=[5, 5]'
+expect_error "discretisation.method: expected one of" "$Q" --set discretisation.method=bem
+expect_error "discretisation.fem.element: expected one of" "$Q" --set discretisation.method=fem --set discretisation.fem.element=q9
+expect_error "discretisation.fem.mesh: cannot open the mesh file" "$Q" --set discretisation.method=fem --set discretisation.fem.mesh=missing.msh
+expect_error "discretisation.fem.mesh: required for a body that is not a plain rectangle" "$ROOT/problems/plate_hole_kirsch.yaml" --set discretisation.method=fem
+expect_error "holds Q8 elements" "$ROOT/problems/perforated_strip.yaml" --set discretisation.method=fem --set discretisation.fem.element=q4
+expect_error "lies outside the body" "$ROOT/problems/perforated_strip.yaml" --set discretisation.method=fem --set 'geometry.holes.0.radius=6' --set 'output.monitors=[]'
 printf 'name: x\nanalysis: elastic_static\n' > "$WORK/incomplete.yaml"
 expect_error "model: required value is missing" "$WORK/incomplete.yaml"
 # usage errors

@@ -242,7 +242,7 @@ TEST_CASE("pure shear in plane stress yields at sigma_y / sqrt(3)", "[materials]
   CHECK(std::abs(above.stress_zz) < 1e-9);
 }
 
-TEST_CASE("plane strain keeps eps_zz = 0 and develops szz; 3D elastic stress is Hooke's law",
+TEST_CASE("plane strain keeps eps_zz = 0 and develops szz, and its elastic stress is Hooke's law",
           "[materials]") {
   J2Parameters p;
   p.E = 200000.0;

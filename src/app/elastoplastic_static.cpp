@@ -197,7 +197,8 @@ double von_mises(const Vec3& s, double szz) {
 }
 
 /// The largest of the candidates (value, position) over every rank.
-PeakStress peak(double value, const Vec2& at, double sigma_y, const solvers::PetscSession& session) {
+PeakStress peak(double value, const Vec2& at, double sigma_y,
+                const solvers::PetscSession& session) {
   struct {
     double value;
     int rank;
@@ -233,8 +234,7 @@ ElasticLimit elastic_limit(const io::ProblemSpec& spec, const GalerkinModel& m,
   Vec2 where(0.0, 0.0);
   for (int k = 0; k < m.domain_table.rows(); ++k) {
     const double vm = vm_at(m.domain_table, k);
-    if (m.domain_mine.counted[k] && vm > best)
-      best = vm, where = m.domain.x[m.domain_mine.rows[k]];
+    if (m.domain_mine.counted[k] && vm > best) best = vm, where = m.domain.x[m.domain_mine.rows[k]];
   }
   lim.gauss_points = peak(best, where, sigma_y, session);
   best = -1.0;
@@ -383,7 +383,8 @@ std::string factors_text(const io::ProblemSpec& spec, const std::vector<double>&
   for (std::size_t c = 0; c < spec.boundary.size(); ++c)
     if (drives(spec.boundary[c]))
       s += (s.empty() ? "" : ", ") + spec.boundary[c].name + " " + detail::concat(f[c]);
-  if (!spec.body_force.isZero()) s += (s.empty() ? "" : ", ") + detail::concat("body_force ", f.back());
+  if (!spec.body_force.isZero())
+    s += (s.empty() ? "" : ", ") + detail::concat("body_force ", f.back());
   return s.empty() ? "no load" : s;
 }
 
@@ -604,8 +605,8 @@ ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
         record_increment(std::move(rec), write_fields);
       }
       const IncrementRecord& done = R.increments.back();
-      log::info("  step '", step.name, "' at ", tau, " (", factors_text(spec, f), "): ",
-                rep.iterations, " Newton iterations, |R|/|F| ",
+      log::info("  step '", step.name, "' at ", tau, " (", factors_text(spec, f),
+                "): ", rep.iterations, " Newton iterations, |R|/|F| ",
                 rep.residual.back() / std::max(rep.scale.back(), 1e-300), ", plastic points ",
                 done.plastic_points, ", max plastic strain ", done.max_plastic_strain);
       // A cut increment grows back, doubling after every two easy ones, up to the nominal size.

@@ -141,9 +141,9 @@ double distance_to(const geometry::Curve& c, const Vec2& p) {
   return std::min((p - c.point(0.0)).norm(), (p - c.point(1.0)).norm());
 }
 
-/// The mesh of a finite-element discretisation: the gmsh file, or a structured mesh of the
-/// rectangle with elements of the discretisation's spacing; nodes renumbered for locality.
-fem::Mesh fe_mesh(const io::ProblemSpec& spec) {
+} // namespace
+
+fem::Mesh read_fe_mesh(const io::ProblemSpec& spec) {
   const io::DiscretisationSpec& disc = spec.discretisation;
   const std::string& e = disc.fem.element;
   const fem::ElementType type = e == "t3"   ? fem::ElementType::T3
@@ -171,6 +171,8 @@ fem::Mesh fe_mesh(const io::ProblemSpec& spec) {
   return mesh;
 }
 
+namespace {
+
 /// Copies the rows `rows` of a point set's shapes into a ShapeTable.
 implicit::ShapeTable table_rows(const std::vector<int>& offset, const std::vector<int>& node,
                                 const std::vector<double>& phi, const std::vector<Vec2>* dphi,
@@ -194,7 +196,7 @@ GalerkinModel build_fem_model(const io::ProblemSpec& spec, const solvers::PetscS
   {
     PhaseTimer::Scope scope(timer, "nodes");
     m.fe = std::make_unique<FeDiscretisation>();
-    session.collective([&] { m.fe->mesh = fe_mesh(spec); });
+    session.collective([&] { m.fe->mesh = read_fe_mesh(spec); });
     m.fe->locator = std::make_unique<fem::PointLocator>(m.fe->mesh);
   }
   const fem::Mesh& mesh = m.fe->mesh;

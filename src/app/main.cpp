@@ -67,13 +67,21 @@ int check(const Command& c) {
     return 0;
   }
   const auto& d = spec.discretisation;
-  const auto nodes = mf::geometry::generate_nodes(spec.domain, d.spacing, d.refinement);
-  const auto pts = mf::quadrature::domain_points(
-      spec.domain, d.cell_size, d.order, d.cut_levels,
-      {d.spacing, d.refinement, d.cell_size / d.spacing, d.dilation.maxCoeff()});
-  std::cout << "  method: " << mf::app::describe_method(d) << "\n"
-            << "  nodes: " << nodes.x.size() << " (" << 2 * nodes.x.size() << " DOFs)\n"
-            << "  integration: " << pts.cell_count << " cells, " << pts.x.size() << " points\n";
+  if (d.method == mf::io::Method::Fem) {
+    const mf::fem::Mesh mesh = mf::app::read_fe_mesh(spec);
+    std::cout << "  method: " << mf::app::describe_method(d) << "\n"
+              << "  mesh: " << mesh.element_count() << " " << mf::fem::element_name(mesh.type)
+              << " elements, " << mesh.node_count() << " nodes (" << 2 * mesh.node_count()
+              << " DOFs)\n";
+  } else {
+    const auto nodes = mf::geometry::generate_nodes(spec.domain, d.spacing, d.refinement);
+    const auto pts = mf::quadrature::domain_points(
+        spec.domain, d.cell_size, d.order, d.cut_levels,
+        {d.spacing, d.refinement, d.cell_size / d.spacing, d.dilation.maxCoeff()});
+    std::cout << "  method: " << mf::app::describe_method(d) << "\n"
+              << "  nodes: " << nodes.x.size() << " (" << 2 * nodes.x.size() << " DOFs)\n"
+              << "  integration: " << pts.cell_count << " cells, " << pts.x.size() << " points\n";
+  }
   for (const auto& bc : spec.boundary) {
     double len = 0.0;
     for (const auto& p : mf::io::select_boundary(spec.domain, bc.on, bc.key_path))
@@ -81,6 +89,8 @@ int check(const Command& c) {
     std::cout << "  boundary " << bc.name << ": " << (bc.constrains ? "displacement" : "traction")
               << " on length " << len << "\n";
   }
+  for (const auto& step : spec.steps)
+    std::cout << "  step " << step.name << ": " << step.increments << " increments\n";
   return 0;
 }
 
@@ -99,6 +109,8 @@ int run(Command& c) {
   mf::io::ProblemSpec spec;
   try {
     spec = mf::io::read_problem(c.problem, c.overrides);
+    // A finite-element mesh is input too: read and checked before anything is written.
+    if (spec.discretisation.method == mf::io::Method::Fem) mf::app::read_fe_mesh(spec);
   } catch (const std::exception& e) {
     if (session.rank() == 0) std::cerr << "meshfree: " << e.what() << std::endl;
     return 2;

@@ -74,6 +74,11 @@ struct BoundaryReport {
 GalerkinModel build_galerkin_model(const io::ProblemSpec& spec,
                                    const solvers::PetscSession& session, PhaseTimer& timer);
 
+/// The finite-element mesh a fem discretisation asks for: the gmsh file (checked against the
+/// element type and the geometry) or a structured mesh of the rectangle; nodes numbered for
+/// locality. Throws mf::Error naming the key.
+fem::Mesh read_fe_mesh(const io::ProblemSpec& spec);
+
 /// Cells for field output: the elements of a finite-element model, none (points) for meshfree.
 io::GridCells output_cells(const GalerkinModel& m);
 
