@@ -97,7 +97,7 @@ TEST_CASE("cell-list neighbour search finds exactly the points a brute-force sea
   }
 }
 
-TEST_CASE("integration points cover the area of a plate with a hole; cut-cell refinement converges",
+TEST_CASE("integration points cover the area of a plate with a hole, and cut-cell refinement converges",
           "[quadrature]") {
   const auto d = quarter_plate_with_hole();
   const double exact = 25.0 - M_PI / 4.0;

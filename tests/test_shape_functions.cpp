@@ -110,7 +110,7 @@ TEST_CASE("RK and MLS with a linear basis reproduce linear fields and their grad
           }
 }
 
-TEST_CASE("RK with a quadratic basis reproduces quadratic fields to round-off; linear does not",
+TEST_CASE("RK with a quadratic basis reproduces quadratic fields to round-off, a linear basis does not",
           "[kernels]") {
   for (int dim : {1, 2}) {
     const implicit::MeshfreeSpace quad(lattice(dim, 11, 0.2),
