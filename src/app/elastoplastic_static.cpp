@@ -54,7 +54,7 @@ class ElastoplasticSystem {
 public:
   ElastoplasticSystem(const io::ProblemSpec& spec, const GalerkinModel& m)
       : spec_(spec), m_(m), params_(*spec.plasticity), states_(m.domain_table.rows()),
-        penalty_(m.pattern), tangent_(m.pattern) {
+        penalty_(m.pattern), tangent_(m.pattern), scatter_(m.domain_table, m.pattern) {
     update_ = spec.model == materials::PlaneModel::PlaneStress ? &materials::j2_update_plane_stress
                                                                : &materials::j2_update_plane_strain;
     const int rows = m.pattern.rows();
@@ -123,9 +123,13 @@ public:
     const auto t0 = Clock::now();
     update_materials(d);
     tangent_.set_values(penalty_.values());
-    implicit::add_tangent(
-        m_.domain_table, m_.domain_weight, [&](int k) -> const Mat3& { return states_.tangent[k]; },
-        [&](const int* nodes, int n, const double* v) { tangent_.add_matrix(nodes, n, v); });
+    const implicit::ShapeTable& t = m_.domain_table;
+    for (int k = 0; k < t.rows(); ++k) {
+      const int n = t.offset[k + 1] - t.offset[k];
+      block_.resize(4 * n * n);
+      implicit::point_stiffness(t, k, m_.domain_weight[k] * states_.tangent[k], block_.data());
+      tangent_.add_matrix_at(scatter_.slots(k), n, block_.data());
+    }
     blocks = tangent_.values();
     jacobian_seconds_ += seconds_since(t0);
   }
@@ -181,8 +185,10 @@ private:
   materials::J2Parameters params_;
   materials::J2Result2D (*update_)(const materials::J2Parameters&, const Vec3&, const J2State&);
   PointStates states_;
-  implicit::BlockRows penalty_; // K_pen: constant
-  implicit::BlockRows tangent_; // work space for the Jacobian
+  implicit::BlockRows penalty_;    // K_pen: constant
+  implicit::BlockRows tangent_;    // work space for the Jacobian
+  implicit::BlockScatter scatter_; // where each point's blocks go in tangent_
+  std::vector<double> block_;      // one point's block
   std::vector<std::vector<double>> loads_;
   std::vector<char> counts_in_scale_; // tractions and body force, not penalty right-hand sides
   std::vector<double> factors_;

@@ -99,6 +99,47 @@ void BlockRows::multiply_add(const std::vector<double>& d, double* r) const {
   }
 }
 
+void BlockRows::add_matrix_at(const int* slots, int n, const double* block) {
+  const int stride = 2 * n;
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b) {
+      const int k = slots[a * n + b];
+      if (k < 0) continue;
+      double* v = values_.data() + 4 * static_cast<std::size_t>(k);
+      const double* src = block + (2 * a) * stride + 2 * b;
+      v[0] += src[0];
+      v[1] += src[1];
+      v[2] += src[stride];
+      v[3] += src[stride + 1];
+    }
+}
+
+BlockScatter::BlockScatter(const ShapeTable& t, const RowPattern& p) {
+  offset_.assign(t.rows() + 1, 0);
+  for (int r = 0; r < t.rows(); ++r) {
+    const std::size_t n = t.offset[r + 1] - t.offset[r];
+    offset_[r + 1] = offset_[r] + n * n;
+  }
+  slot_.assign(offset_.back(), -1);
+  const int* col = p.column.data();
+  for (int r = 0; r < t.rows(); ++r) {
+    const int n = t.offset[r + 1] - t.offset[r];
+    const int* nodes = t.node.data() + t.offset[r];
+    int* out = slot_.data() + offset_[r];
+    for (int a = 0; a < n; ++a) {
+      const int I = nodes[a];
+      if (I < p.begin || I >= p.end) continue;
+      const int* k = col + p.offset[I - p.begin];
+      const int* k_end = col + p.offset[I - p.begin + 1];
+      for (int b = 0; b < n; ++b) {
+        k = std::lower_bound(k, k_end, nodes[b]);
+        MF_REQUIRE(k < k_end && *k == nodes[b], "BlockScatter: a node pair is not in the pattern");
+        out[a * n + b] = static_cast<int>(k - col);
+      }
+    }
+  }
+}
+
 void BlockRows::add_vector(const int* nodes, int n, const double* values) {
   for (int a = 0; a < n; ++a) {
     const int I = nodes[a];

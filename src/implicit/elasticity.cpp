@@ -2,6 +2,48 @@
 
 namespace mf::implicit {
 
+void point_stiffness(const ShapeTable& t, int r, const Mat3& wC, double* K) {
+  const int n = t.offset[r + 1] - t.offset[r];
+  const Vec2* g = t.dphi.data() + t.offset[r];
+  // w C B_J for each node: on the stack for the usual supports, on the heap for crowded ones.
+  constexpr int kOnStack = 64;
+  Eigen::Matrix<double, 3, 2> stack[kOnStack];
+  std::vector<Eigen::Matrix<double, 3, 2>> heap;
+  Eigen::Matrix<double, 3, 2>* CB = stack;
+  if (n > kOnStack) {
+    heap.resize(n);
+    CB = heap.data();
+  }
+  for (int j = 0; j < n; ++j) CB[j] = wC * strain_matrix(g[j]);
+  // C is symmetric (elasticity, and the consistent tangent of associative plasticity), so
+  // K_JI = K_IJ^T: half the blocks are computed.
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Matrix<double, 3, 2> Bi = strain_matrix(g[i]);
+    for (int j = i; j < n; ++j) {
+      const Mat2 kij = Bi.transpose() * CB[j];
+      double* ij0 = K + (2 * i) * (2 * n) + 2 * j;
+      double* ij1 = ij0 + 2 * n;
+      double* ji0 = K + (2 * j) * (2 * n) + 2 * i;
+      double* ji1 = ji0 + 2 * n;
+      ij0[0] = kij(0, 0), ij0[1] = kij(0, 1);
+      ij1[0] = kij(1, 0), ij1[1] = kij(1, 1);
+      ji0[0] = kij(0, 0), ji0[1] = kij(1, 0);
+      ji1[0] = kij(0, 1), ji1[1] = kij(1, 1);
+    }
+  }
+}
+
+void add_stiffness(const ShapeTable& t, const std::vector<double>& weight, const Mat3& C,
+                   const MatrixAdder& add) {
+  std::vector<double> K;
+  for (int r = 0; r < t.rows(); ++r) {
+    const int n = t.offset[r + 1] - t.offset[r];
+    K.resize(4 * n * n);
+    point_stiffness(t, r, weight[r] * C, K.data());
+    add(t.node.data() + t.offset[r], n, K.data());
+  }
+}
+
 void add_internal_force(const ShapeTable& t, const std::vector<double>& weight,
                         const std::vector<Vec3>& stress, const VectorAdder& add) {
   std::vector<double> f;

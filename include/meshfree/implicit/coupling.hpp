@@ -2,6 +2,7 @@
 // Exact sparsity of a meshfree Galerkin matrix: nodes I and J couple when some integration
 // point lies in both supports.
 #include "meshfree/implicit/meshfree_space.hpp"
+#include <cstddef>
 #include <vector>
 
 namespace mf::implicit {
@@ -26,6 +27,8 @@ public:
   explicit BlockRows(RowPattern pattern);
   /// Adds a (2n x 2n, row-major) block on nodes[0..n), which must be sorted.
   void add_matrix(const int* nodes, int n, const double* block);
+  /// The same with the slots of the (row, column) pairs known (BlockScatter): no search.
+  void add_matrix_at(const int* slots, int n, const double* block);
   void add_vector(const int* nodes, int n, const double* values);
 
   /// Zeroes every value and right-hand side entry; the pattern stays.
@@ -44,6 +47,23 @@ private:
   RowPattern pattern_;
   std::vector<double> values_;
   std::vector<double> rhs_;
+};
+
+/// Where each (owned row, column) node pair of every point of a shape table lands among the
+/// blocks of a row pattern: n * n slots per point (row-major, -1 for rows another rank owns).
+/// Assembling a point then costs indexed additions instead of searches in the rows, which is
+/// worth its memory (4 bytes per pair) for a matrix assembled at every Newton iteration
+/// (measured on the perforated strip, 39,059 points of 12 nodes: 67 ms per tangent with
+/// searches, 26 ms of it the element arithmetic).
+class BlockScatter {
+public:
+  BlockScatter(const ShapeTable& table, const RowPattern& pattern);
+  const int* slots(int r) const { return slot_.data() + offset_[r]; }
+  std::size_t bytes() const { return slot_.size() * sizeof(int); }
+
+private:
+  std::vector<std::size_t> offset_;
+  std::vector<int> slot_;
 };
 
 } // namespace mf::implicit

@@ -25,41 +25,14 @@ inline Eigen::Matrix<double, 3, 2> strain_matrix(const Vec2& g) {
   return B;
 }
 
-/// K_IJ = sum_r weight[r] B_I^T C(r) B_J: the elastic stiffness (C constant) or the tangent of a
-/// nonlinear material (C(r) its algorithmic tangent at point r). `C_at(r)` returns a Mat3.
-template <class MaterialAt>
-void add_tangent(const ShapeTable& t, const std::vector<double>& weight, MaterialAt&& C_at,
-                 const MatrixAdder& add) {
-  std::vector<double> K;
-  std::vector<Eigen::Matrix<double, 3, 2>> CB; // w C B_J for each node of the point
-  for (int r = 0; r < t.rows(); ++r) {
-    const int n = t.offset[r + 1] - t.offset[r];
-    const int* nodes = t.node.data() + t.offset[r];
-    const Vec2* g = t.dphi.data() + t.offset[r];
-    const Mat3 wC = weight[r] * C_at(r);
-    K.assign(4 * n * n, 0.0);
-    CB.resize(n);
-    for (int j = 0; j < n; ++j) CB[j] = wC * strain_matrix(g[j]);
-    for (int i = 0; i < n; ++i) {
-      const Eigen::Matrix<double, 3, 2> Bi = strain_matrix(g[i]);
-      for (int j = 0; j < n; ++j) {
-        const Mat2 kij = Bi.transpose() * CB[j];
-        double* row0 = K.data() + (2 * i) * (2 * n) + 2 * j;
-        double* row1 = row0 + 2 * n;
-        row0[0] = kij(0, 0), row0[1] = kij(0, 1);
-        row1[0] = kij(1, 0), row1[1] = kij(1, 1);
-      }
-    }
-    add(nodes, n, K.data());
-  }
-}
+/// The 2n x 2n block (row-major) of one point r of the table with n nodes: K_IJ = B_I^T wC B_J,
+/// with wC the constitutive (or algorithmic tangent) matrix times the point's weight, which must
+/// be symmetric. `K` has room for 4 n^2 values.
+void point_stiffness(const ShapeTable& t, int r, const Mat3& wC, double* K);
 
-/// Elastic stiffness with one constitutive matrix for every point.
-inline void add_stiffness(const ShapeTable& t, const std::vector<double>& weight, const Mat3& C,
-                          const MatrixAdder& add) {
-  add_tangent(
-      t, weight, [&C](int) -> const Mat3& { return C; }, add);
-}
+/// K_IJ = sum_r weight[r] B_I^T C B_J: the elastic stiffness, one C for every point.
+void add_stiffness(const ShapeTable& table, const std::vector<double>& weight, const Mat3& C,
+                   const MatrixAdder& add);
 
 /// Internal force f_I = sum_r weight[r] B_I^T sigma[r].
 void add_internal_force(const ShapeTable& table, const std::vector<double>& weight,
