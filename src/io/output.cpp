@@ -126,8 +126,11 @@ FieldSeries::FieldSeries(OutputDirectory& out, const std::string& stem,
     : out_(out), stem_(stem), points_(points.size()) {
   const std::string h5_temp = out_.temp_path(stem_ + ".h5");
   const std::string h5 = stem_ + ".h5";
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); // our messages say what failed, not HDF5's stack
   const hid_t file = H5Fcreate(h5_temp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  MF_REQUIRE(file >= 0, h5_temp, ": cannot create the HDF5 file");
+  MF_REQUIRE(file >= 0, h5_temp,
+             ": cannot create the HDF5 file (no space or permission, or another run is writing "
+             "into the same folder)");
   file_ = file;
   const std::size_t n = points.size();
   std::vector<double> xyz(3 * n, 0.0);
