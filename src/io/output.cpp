@@ -67,20 +67,26 @@ void OutputDirectory::write_csv(const std::string& file, const std::vector<std::
 
 namespace {
 
-void write_dataset(hid_t file, const std::string& name, const std::vector<double>& data,
-                   hsize_t rows, hsize_t cols) {
+/// A rows x cols dataset (1-D when cols is 1), creating the groups on its path.
+template <class T>
+void write_dataset(hid_t file, const std::string& name, const std::vector<T>& data, hsize_t rows,
+                   hsize_t cols, hid_t type) {
   hsize_t dims[2] = {rows, cols};
   const hid_t space = H5Screate_simple(cols > 1 ? 2 : 1, dims, nullptr);
   const hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
   H5Pset_create_intermediate_group(lcpl, 1);
-  const hid_t set =
-      H5Dcreate2(file, name.c_str(), H5T_NATIVE_DOUBLE, space, lcpl, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t set = H5Dcreate2(file, name.c_str(), type, space, lcpl, H5P_DEFAULT, H5P_DEFAULT);
   MF_REQUIRE(set >= 0, "HDF5: cannot create dataset ", name);
-  MF_REQUIRE(H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) >= 0,
+  MF_REQUIRE(H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) >= 0,
              "HDF5: cannot write dataset ", name);
   H5Dclose(set);
   H5Pclose(lcpl);
   H5Sclose(space);
+}
+
+void write_dataset(hid_t file, const std::string& name, const std::vector<double>& data,
+                   hsize_t rows, hsize_t cols) {
+  write_dataset(file, name, data, rows, cols, H5T_NATIVE_DOUBLE);
 }
 
 std::string data_item(const std::string& h5, const std::string& set, std::size_t rows, int cols) {
@@ -105,18 +111,7 @@ namespace {
 
 void write_int_dataset(hid_t file, const std::string& name, const std::vector<int>& data,
                        hsize_t rows, hsize_t cols) {
-  hsize_t dims[2] = {rows, cols};
-  const hid_t space = H5Screate_simple(cols > 1 ? 2 : 1, dims, nullptr);
-  const hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
-  H5Pset_create_intermediate_group(lcpl, 1);
-  const hid_t set =
-      H5Dcreate2(file, name.c_str(), H5T_NATIVE_INT, space, lcpl, H5P_DEFAULT, H5P_DEFAULT);
-  MF_REQUIRE(set >= 0 &&
-                 H5Dwrite(set, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) >= 0,
-             "HDF5: cannot write dataset ", name);
-  H5Dclose(set);
-  H5Pclose(lcpl);
-  H5Sclose(space);
+  write_dataset(file, name, data, rows, cols, H5T_NATIVE_INT);
 }
 
 } // namespace

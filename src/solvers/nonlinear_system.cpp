@@ -239,19 +239,7 @@ std::vector<double> NonlinearBlockSystem::gather_on_root(const std::vector<doubl
   check(VecGetArray(local, &lv), "VecGetArray");
   std::copy(d.begin() + 2 * s.owned.begin, d.begin() + 2 * s.owned.end, lv);
   check(VecRestoreArray(local, &lv), "VecRestoreArray");
-  VecScatter scatter;
-  Vec all;
-  check(VecScatterCreateToZero(local, &scatter, &all), "VecScatterCreateToZero");
-  check(VecScatterBegin(scatter, local, all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
-  check(VecScatterEnd(scatter, local, all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
-  PetscInt n;
-  check(VecGetLocalSize(all, &n), "VecGetLocalSize");
-  const PetscScalar* a;
-  check(VecGetArrayRead(all, &a), "VecGetArrayRead");
-  std::vector<double> out(a, a + n);
-  check(VecRestoreArrayRead(all, &a), "VecRestoreArrayRead");
-  VecScatterDestroy(&scatter);
-  VecDestroy(&all);
+  std::vector<double> out = detail::gather(local, /*everywhere=*/false);
   VecDestroy(&local);
   return out;
 }

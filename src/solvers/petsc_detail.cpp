@@ -108,6 +108,25 @@ void set_direct_solver(KSP ksp, bool symmetric) {
     check(PetscOptionsSetValue(nullptr, "-mat_mumps_icntl_14", "100"), "PetscOptionsSetValue");
 }
 
+std::vector<double> gather(Vec x, bool everywhere) {
+  VecScatter scatter;
+  Vec all;
+  check(everywhere ? VecScatterCreateToAll(x, &scatter, &all)
+                   : VecScatterCreateToZero(x, &scatter, &all),
+        "VecScatterCreate");
+  check(VecScatterBegin(scatter, x, all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+  check(VecScatterEnd(scatter, x, all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+  PetscInt n;
+  check(VecGetLocalSize(all, &n), "VecGetLocalSize");
+  const PetscScalar* a;
+  check(VecGetArrayRead(all, &a), "VecGetArrayRead");
+  std::vector<double> out(a, a + n);
+  check(VecRestoreArrayRead(all, &a), "VecRestoreArrayRead");
+  VecScatterDestroy(&scatter);
+  VecDestroy(&all);
+  return out;
+}
+
 std::string describe(KSP ksp) {
   KSPType kt;
   PCType pt;

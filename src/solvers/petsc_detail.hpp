@@ -27,6 +27,10 @@ void set_block_values(Mat A, OwnedRange owned, const std::vector<int>& row_offse
 /// options so that every -ksp_/-pc_ option overrides it.
 void set_direct_solver(KSP ksp, bool symmetric);
 
+/// The whole of a distributed vector on every rank (`everywhere`) or on rank 0 alone (empty
+/// elsewhere).
+std::vector<double> gather(Vec x, bool everywhere);
+
 /// "preonly/cholesky/mumps": KSP type, PC type and factorisation package.
 std::string describe(KSP ksp);
 

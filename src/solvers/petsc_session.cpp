@@ -126,20 +126,7 @@ SolveReport BlockLinearSystem::solve() {
 }
 
 std::vector<double> BlockLinearSystem::solution_everywhere() const {
-  VecScatter scatter;
-  Vec all;
-  check(VecScatterCreateToAll(impl_->x, &scatter, &all), "VecScatterCreateToAll");
-  check(VecScatterBegin(scatter, impl_->x, all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
-  check(VecScatterEnd(scatter, impl_->x, all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
-  PetscInt n;
-  check(VecGetSize(all, &n), "VecGetSize");
-  const PetscScalar* a;
-  check(VecGetArrayRead(all, &a), "VecGetArrayRead");
-  std::vector<double> out(a, a + n);
-  check(VecRestoreArrayRead(all, &a), "VecRestoreArrayRead");
-  VecScatterDestroy(&scatter);
-  VecDestroy(&all);
-  return out;
+  return detail::gather(impl_->x, /*everywhere=*/true);
 }
 
 double BlockLinearSystem::global_nonzeros() const {
