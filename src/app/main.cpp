@@ -4,10 +4,12 @@
 #include "meshfree/app/elastic_static.hpp"
 #include "meshfree/app/elastoplastic_static.hpp"
 #include "meshfree/app/model_problem_1d.hpp"
+#include "meshfree/app/peridynamics.hpp"
 #include "meshfree/core/log.hpp"
 #include "meshfree/geometry/node_generation.hpp"
 #include "meshfree/io/problem_spec.hpp"
 #include "meshfree/quadrature/integration_points.hpp"
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -64,6 +66,15 @@ int check(const Command& c) {
   if (spec.analysis == mf::io::Analysis::ModelProblem1D) {
     std::cout << "  1D model problem on [0, " << spec.model_1d.length << "], spacing "
               << spec.discretisation.spacing << "\n";
+    return 0;
+  }
+  if (spec.analysis == mf::io::Analysis::Peridynamics) {
+    mf::PhaseTimer timer;
+    const mf::app::PdSetup setup = mf::app::build_pd_setup(spec, timer);
+    std::cout << "  peridynamics: " << setup.model.particles.size() << " particles, "
+              << setup.model.bonds.count() / 2 << " bonds, horizon " << setup.model.horizon
+              << "\n  time step " << setup.dt << " (" << setup.dt_limit << "), "
+              << static_cast<long>(std::ceil(spec.pd->end_time / setup.dt)) << " steps\n";
     return 0;
   }
   const auto& d = spec.discretisation;
@@ -129,6 +140,17 @@ int run(Command& c) {
         const auto r = mf::app::solve_model_problem_1d(spec);
         mf::app::write_model_1d_outputs(spec, r, *out);
       }
+    } else if (spec.analysis == mf::io::Analysis::Peridynamics) {
+      // Explicit dynamics runs on OpenMP threads within one process.
+      MF_REQUIRE(session.size() == 1, "analysis peridynamics runs on one MPI rank (it is "
+                                      "parallel over OpenMP threads: set OMP_NUM_THREADS)");
+      mf::app::PdResult r = mf::app::run_peridynamics(spec, out.get());
+      {
+        mf::PhaseTimer::Scope scope(r.timer, "output");
+        if (out) mf::app::write_pd_outputs(spec, r, *out);
+      }
+      log_phases(r.timer);
+      if (r.status == "failed") exit_code = 1;
     } else if (spec.analysis == mf::io::Analysis::ElastoplasticStatic) {
       mf::app::ElastoplasticResult r =
           mf::app::solve_elastoplastic_static(spec, session, out.get());

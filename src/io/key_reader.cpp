@@ -126,6 +126,30 @@ Vec2 KeyReader::scalar_or_vec2(const std::string& key, const Vec2& fallback) {
   return v;
 }
 
+std::vector<double> KeyReader::numbers(const std::string& key, int count) {
+  const YAML::Node n = get(key);
+  if (!n.IsSequence() || static_cast<int>(n.size()) != count)
+    error(key, "expected a list of " + std::to_string(count) + " numbers, got " + show(n));
+  std::vector<double> out;
+  for (const auto& v : n) out.push_back(to_number(v, key));
+  return out;
+}
+
+std::vector<std::vector<double>> KeyReader::number_lists(const std::string& key, int count) {
+  const YAML::Node n = get(key);
+  if (!n.IsSequence()) error(key, "expected a list of lists, got " + show(n));
+  std::vector<std::vector<double>> out;
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    const std::string k = key + "[" + std::to_string(i) + "]";
+    if (!n[i].IsSequence() || static_cast<int>(n[i].size()) != count)
+      error(k, "expected a list of " + std::to_string(count) + " numbers, got " + show(n[i]));
+    std::vector<double> row;
+    for (const auto& v : n[i]) row.push_back(to_number(v, k));
+    out.push_back(row);
+  }
+  return out;
+}
+
 std::vector<Vec2> KeyReader::vec2_list(const std::string& key) {
   const YAML::Node n = get(key);
   if (!n.IsSequence()) error(key, "expected a list of pairs, got " + show(n));

@@ -119,6 +119,19 @@ void write_int_dataset(hid_t file, const std::string& name, const std::vector<in
 FieldSeries::FieldSeries(OutputDirectory& out, const std::string& stem,
                          const std::vector<Vec2>& points, const GridCells& cells)
     : out_(out), stem_(stem), points_(points.size()) {
+  const std::size_t n = points.size();
+  std::vector<double> xyz(3 * n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) xyz[3 * i] = points[i].x(), xyz[3 * i + 1] = points[i].y();
+  open(xyz, cells);
+}
+
+FieldSeries::FieldSeries(OutputDirectory& out, const std::string& stem,
+                         const std::vector<double>& xyz)
+    : out_(out), stem_(stem), points_(xyz.size() / 3) {
+  open(xyz, {});
+}
+
+void FieldSeries::open(const std::vector<double>& xyz, const GridCells& cells) {
   const std::string h5_temp = out_.temp_path(stem_ + ".h5");
   const std::string h5 = stem_ + ".h5";
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); // our messages say what failed, not HDF5's stack
@@ -127,9 +140,7 @@ FieldSeries::FieldSeries(OutputDirectory& out, const std::string& stem,
              ": cannot create the HDF5 file (no space or permission, or another run is writing "
              "into the same folder)");
   file_ = file;
-  const std::size_t n = points.size();
-  std::vector<double> xyz(3 * n, 0.0);
-  for (std::size_t i = 0; i < n; ++i) xyz[3 * i] = points[i].x(), xyz[3 * i + 1] = points[i].y();
+  const std::size_t n = points_;
   write_dataset(file, "/geometry/coordinates", xyz, n, 3);
   std::ostringstream g;
   if (cells.nodes_per_cell == 0) { // Polyvertex: point i is vertex i
@@ -179,6 +190,12 @@ void FieldSeries::add_step(const FieldStep& step) {
     std::vector<double> d(3 * n, 0.0);
     for (std::size_t i = 0; i < n; ++i) d[3 * i] = v[i].x(), d[3 * i + 1] = v[i].y();
     write_dataset(file_, group.str() + "/" + name, d, n, 3);
+    x << "    <Attribute Name=\"" << name << "\" AttributeType=\"Vector\" Center=\"Node\">"
+      << data_item(h5, group.str() + "/" + name, n, 3) << "</Attribute>\n";
+  }
+  for (const auto& [name, v] : step.vectors3) {
+    MF_ASSERT(v.size() == 3 * n);
+    write_dataset(file_, group.str() + "/" + name, v, n, 3);
     x << "    <Attribute Name=\"" << name << "\" AttributeType=\"Vector\" Center=\"Node\">"
       << data_item(h5, group.str() + "/" + name, n, 3) << "</Attribute>\n";
   }

@@ -1,4 +1,5 @@
 #include "meshfree/io/key_reader.hpp"
+#include "meshfree/io/pd_read.hpp"
 #include "meshfree/io/problem_spec.hpp"
 #include <cmath>
 #include <fstream>
@@ -471,10 +472,19 @@ ProblemSpec parse_problem(YAML::Node root, const std::string& base_dir) {
   p.description = r.text("description", "");
   p.units = r.text("units", "");
   const std::string analysis =
-      r.choice("analysis", {"elastic_static", "elastoplastic_static", "model_problem_1d"}, "");
+      r.choice("analysis",
+               {"elastic_static", "elastoplastic_static", "model_problem_1d", "peridynamics"}, "");
   p.analysis = analysis == "elastic_static"         ? Analysis::ElasticStatic
                : analysis == "elastoplastic_static" ? Analysis::ElastoplasticStatic
+               : analysis == "peridynamics"         ? Analysis::Peridynamics
                                                     : Analysis::ModelProblem1D;
+  if (p.analysis == Analysis::Peridynamics) {
+    p.pd = parse_pd(r, base_dir);
+    if (p.pd->dimension != materials::PdDimension::Solid3D) p.domain = read_geometry(r);
+    p.thickness = p.pd->thickness;
+    r.finish();
+    return p;
+  }
 
   if (p.analysis == Analysis::ModelProblem1D) {
     KeyReader m = r.map("problem_1d");

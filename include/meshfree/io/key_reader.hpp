@@ -38,6 +38,10 @@ public:
   /// A scalar s read as (s, s), or a pair.
   Vec2 scalar_or_vec2(const std::string& key, const Vec2& fallback);
   std::vector<Vec2> vec2_list(const std::string& key);
+  /// A list of exactly `count` numbers.
+  std::vector<double> numbers(const std::string& key, int count);
+  /// A list of lists of exactly `count` numbers each.
+  std::vector<std::vector<double>> number_lists(const std::string& key, int count);
 
   KeyReader map(const std::string& key);
   std::optional<KeyReader> optional_map(const std::string& key);

@@ -15,6 +15,7 @@ struct FieldStep {
   double time = 0.0;
   std::vector<std::pair<std::string, std::vector<double>>> scalars;
   std::vector<std::pair<std::string, std::vector<Vec2>>> vectors;
+  std::vector<std::pair<std::string, std::vector<double>>> vectors3; // 3 values per point
 };
 
 /// Cells of the grid a field series lives on: none (the points alone, an XDMF Polyvertex grid),
@@ -60,6 +61,8 @@ class FieldSeries {
 public:
   FieldSeries(OutputDirectory& out, const std::string& stem, const std::vector<Vec2>& points,
               const GridCells& cells = {});
+  /// Points in space: x, y, z of each point in turn.
+  FieldSeries(OutputDirectory& out, const std::string& stem, const std::vector<double>& xyz);
   ~FieldSeries();
   FieldSeries(const FieldSeries&) = delete;
   FieldSeries& operator=(const FieldSeries&) = delete;
@@ -68,6 +71,7 @@ public:
   int steps() const { return steps_; }
 
 private:
+  void open(const std::vector<double>& xyz, const GridCells& cells);
   OutputDirectory& out_;
   std::string stem_;
   long file_ = -1; // hid_t

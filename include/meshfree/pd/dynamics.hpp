@@ -1,0 +1,87 @@
+#pragma once
+// Explicit dynamics of a peridynamic body: velocity Verlet (the half kick, drift, force, half
+// kick of LAMMPS's fix nve; paper 000 eq. 9), body forces and tractions turned into body forces,
+// prescribed displacement and velocity components, and rigid impactors with kinematic contact.
+#include "meshfree/loads/time_function.hpp"
+#include "meshfree/pd/forces.hpp"
+#include "meshfree/pd/model.hpp"
+#include <string>
+#include <vector>
+
+namespace mf::pd {
+
+/// Displacement, velocity and acceleration, 3 per particle, and the clock.
+struct Motion {
+  std::vector<double> u, v, a;
+  double time = 0.0;
+  long step = 0;
+  explicit Motion(int particles = 0)
+      : u(3 * static_cast<std::size_t>(particles), 0.0), v(u), a(u) {}
+};
+
+/// Prescribed components of displacement (or velocity) on a set of particles: value times the
+/// time function (`function` < 0: constant 1).
+struct Constraint {
+  std::string name;
+  std::vector<int> particles;
+  bool velocity = false;
+  bool fixed[3] = {false, false, false};
+  double value[3] = {0.0, 0.0, 0.0};
+  int function = -1;
+};
+
+/// A force per unit volume on a set of particles, times a time function. A traction t on a face
+/// of area A becomes b = t A / (volume of the loaded layer of particles).
+struct BodyLoad {
+  std::string name;
+  std::vector<int> particles;
+  Eigen::Vector3d density{0.0, 0.0, 0.0};
+  int function = -1;
+};
+
+/// A rigid impactor: a sphere (a disk in a plane) or a flat-nosed block, with its mass and
+/// velocity. Contact is kinematic (Madenci & Oterkus 2014, sec. 10.3): a particle found inside
+/// after the drift is put back on the surface (a sphere radially, a flat nose along the impact
+/// direction onto the leading face), its velocity becomes the one that moved it there, and the
+/// momentum it gained is taken from the impactor.
+struct Impactor {
+  enum class Shape { Sphere, Flat };
+  std::string name;
+  Shape shape = Shape::Sphere;
+  double radius = 0.0;                      // sphere
+  Eigen::Vector3d half_size{0.0, 0.0, 0.0}; // flat: half extents of the block
+  Eigen::Vector3d direction{0.0, -1.0,
+                            0.0}; // flat: unit impact direction (the leading face's normal)
+  double mass = 0.0;
+  Eigen::Vector3d position{0.0, 0.0, 0.0}, velocity{0.0, 0.0, 0.0};
+  Eigen::Vector3d contact_force{0.0, 0.0, 0.0}; // on the impactor, last step
+};
+
+struct Loading {
+  std::vector<loads::TimeFunction> functions;
+  std::vector<Constraint> constraints;
+  std::vector<BodyLoad> loads;
+  double factor(int function, double t) const {
+    return function < 0 ? 1.0 : functions[function](t);
+  }
+};
+
+struct StepReport {
+  long broken = 0;            // bonds broken in this step (from both ends)
+  double strain_energy = 0.0; // if asked for
+  double external_work = 0.0; // work of the body loads over the step
+};
+
+/// Accelerations at the current state: bond forces plus body loads over density (constrained
+/// components get zero). Call once before the first step.
+StepReport accelerate(const Model& m, BondState& s, Motion& q, const Loading& loading,
+                      bool with_energy);
+
+/// One velocity-Verlet step of length dt with the impactors in contact.
+StepReport advance(const Model& m, BondState& s, Motion& q, const Loading& loading,
+                   std::vector<Impactor>& impactors, double dt, bool with_energy);
+
+/// Kinetic energy sum_i rho_i V_i |v_i|^2 / 2.
+double kinetic_energy(const Model& m, const Motion& q);
+
+} // namespace mf::pd

@@ -1,0 +1,25 @@
+#pragma once
+// The bond forces of a peridynamic body: the hot loop. For particle i at current position y_i,
+//   F_i = sum_j mu_ij f(s_ij) e_ij w_ij   (force per unit volume; w_ij = V_j times corrections),
+// with f from the bond law (materials::bond_force), s the bond stretch and e the current bond
+// direction (Silling & Askari 2005, eq. 3 discretised). Each bond is stored and evaluated from
+// both ends, so rows are independent: OpenMP over particles, no atomics, no virtual calls.
+#include "meshfree/pd/model.hpp"
+#include <vector>
+
+namespace mf::pd {
+
+struct ForceReport {
+  long broken = 0;            // bonds broken in this evaluation (each bond counted from both ends)
+  double strain_energy = 0.0; // sum_i V_i W_i, W_i = 1/2 sum_j w(s_ij) w_ij, if asked for
+};
+
+/// Fills `force` (3 per particle) at positions `y` (3 per particle). A bond whose stretch exceeds
+/// its critical stretch is broken after its force has counted in this evaluation (the order of
+/// LAMMPS peri/pmb); with the LAMMPS alpha rule the critical stretch is min(s0_i, s0_j) from the
+/// previous evaluation, and s0 is renewed. `energy_density` (optional, one per particle) gets W_i.
+ForceReport bond_forces(const Model& m, BondState& s, const std::vector<double>& y,
+                        std::vector<double>& force, bool with_energy = false,
+                        std::vector<double>* energy_density = nullptr);
+
+} // namespace mf::pd

@@ -1,0 +1,155 @@
+#include "meshfree/pd/dynamics.hpp"
+#include <cmath>
+
+namespace mf::pd {
+
+namespace {
+
+/// Applies the prescribed components at time t: displacement constraints set u (and the
+/// velocity that moved them there from u_before over dt), velocity constraints set v;
+/// accelerations of constrained components are zero. Without u_before only the accelerations
+/// are set.
+void impose(const Loading& loading, Motion& q, double t, double dt,
+            const std::vector<double>* u_before) {
+  for (const Constraint& c : loading.constraints) {
+    const double f = loading.factor(c.function, t);
+    for (int i : c.particles)
+      for (int d = 0; d < 3; ++d) {
+        if (!c.fixed[d]) continue;
+        const std::size_t k = 3 * static_cast<std::size_t>(i) + d;
+        q.a[k] = 0.0;
+        if (!u_before) continue;
+        if (c.velocity) {
+          q.v[k] = c.value[d] * f;
+        } else {
+          const double target = c.value[d] * f;
+          q.v[k] = (target - (*u_before)[k]) / dt;
+          q.u[k] = target;
+        }
+      }
+  }
+}
+
+/// Kinematic contact of one impactor with the particles at their current positions.
+void contact(const Model& m, Motion& q, Impactor& imp, double dt) {
+  const Particles& p = m.particles;
+  const int n = p.size();
+  double impulse[3] = {0.0, 0.0, 0.0};
+#pragma omp parallel for schedule(static) reduction(+ : impulse[:3])
+  for (int i = 0; i < n; ++i) {
+    Eigen::Vector3d y(p.x[3 * i] + q.u[3 * i], p.x[3 * i + 1] + q.u[3 * i + 1],
+                      p.x[3 * i + 2] + q.u[3 * i + 2]);
+    const Eigen::Vector3d rel = y - imp.position;
+    Eigen::Vector3d target;
+    if (imp.shape == Impactor::Shape::Sphere) {
+      const double r = rel.norm();
+      if (r >= imp.radius || r == 0.0) continue;
+      target = imp.position + rel * (imp.radius / r);
+    } else {
+      if ((rel.cwiseAbs() - imp.half_size).maxCoeff() >= 0.0) continue;
+      // Onto the leading face: the face whose outward normal is the impact direction.
+      const double ahead = imp.half_size.dot(imp.direction.cwiseAbs());
+      target = y + (ahead - rel.dot(imp.direction)) * imp.direction;
+    }
+    const double mass = p.density[i] * p.volume[i];
+    for (int d = 0; d < 3; ++d) {
+      const std::size_t k = 3 * static_cast<std::size_t>(i) + d;
+      const double moved = target(d) - y(d);
+      q.u[k] += moved;
+      const double dv = moved / dt;
+      q.v[k] += dv;
+      impulse[d] += mass * dv;
+    }
+  }
+  // The particles' momentum gain is the impactor's loss.
+  const Eigen::Vector3d J(impulse[0], impulse[1], impulse[2]);
+  imp.velocity -= J / imp.mass;
+  imp.contact_force = -J / dt;
+}
+
+} // namespace
+
+StepReport accelerate(const Model& m, BondState& s, Motion& q, const Loading& loading,
+                      bool with_energy) {
+  const Particles& p = m.particles;
+  const int n = p.size();
+  std::vector<double> y(3 * static_cast<std::size_t>(n));
+  for (std::size_t k = 0; k < y.size(); ++k) y[k] = p.x[k] + q.u[k];
+  std::vector<double> f;
+  const ForceReport fr = bond_forces(m, s, y, f, with_energy);
+  for (const BodyLoad& load : loading.loads) {
+    const double g = loading.factor(load.function, q.time);
+    for (int i : load.particles)
+      for (int d = 0; d < 3; ++d) f[3 * i + d] += g * load.density(d);
+  }
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i)
+    for (int d = 0; d < 3; ++d) q.a[3 * i + d] = f[3 * i + d] / p.density[i];
+  impose(loading, q, q.time, 0.0, nullptr);
+  StepReport r;
+  r.broken = fr.broken;
+  r.strain_energy = fr.strain_energy;
+  return r;
+}
+
+StepReport advance(const Model& m, BondState& s, Motion& q, const Loading& loading,
+                   std::vector<Impactor>& impactors, double dt, bool with_energy) {
+  const int n = m.particles.size();
+  const std::size_t size = 3 * static_cast<std::size_t>(n);
+  // Work of the body loads over the step: the trapezoidal rule on b . du.
+  double work = 0.0;
+  const auto load_power = [&](const std::vector<double>& du, double t) {
+    double w = 0.0;
+    for (const BodyLoad& load : loading.loads) {
+      const double g = loading.factor(load.function, t);
+      for (int i : load.particles)
+        for (int d = 0; d < 3; ++d)
+          w += g * load.density(d) * m.particles.volume[i] * du[3 * i + d];
+    }
+    return w;
+  };
+  std::vector<double> u_old = q.u;
+  // Half kick and drift.
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < size; ++k) {
+    q.v[k] += 0.5 * dt * q.a[k];
+    q.u[k] += dt * q.v[k];
+  }
+  const double t_old = q.time;
+  q.time += dt;
+  ++q.step;
+  impose(loading, q, q.time, dt, &u_old);
+  for (Impactor& imp : impactors) {
+    imp.position += dt * imp.velocity;
+    contact(m, q, imp, dt);
+  }
+  std::vector<double> du(size);
+  for (std::size_t k = 0; k < size; ++k) du[k] = q.u[k] - u_old[k];
+  work += 0.5 * (load_power(du, t_old) + load_power(du, q.time));
+  // New accelerations and the second half kick.
+  StepReport r = accelerate(m, s, q, loading, with_energy);
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < size; ++k) q.v[k] += 0.5 * dt * q.a[k];
+  for (const Constraint& c : loading.constraints) // prescribed velocities stay as prescribed
+    if (c.velocity) {
+      const double f = loading.factor(c.function, q.time);
+      for (int i : c.particles)
+        for (int d = 0; d < 3; ++d)
+          if (c.fixed[d]) q.v[3 * i + d] = c.value[d] * f;
+    }
+  r.external_work = work;
+  return r;
+}
+
+double kinetic_energy(const Model& m, const Motion& q) {
+  const Particles& p = m.particles;
+  double e = 0.0;
+  for (int i = 0; i < p.size(); ++i) {
+    const double v2 =
+        q.v[3 * i] * q.v[3 * i] + q.v[3 * i + 1] * q.v[3 * i + 1] + q.v[3 * i + 2] * q.v[3 * i + 2];
+    e += 0.5 * p.density[i] * p.volume[i] * v2;
+  }
+  return e;
+}
+
+} // namespace mf::pd
