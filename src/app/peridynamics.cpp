@@ -198,6 +198,7 @@ PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer) {
     imp.radius = k.radius;
     imp.half_size = k.half_size;
     imp.mass = k.mass;
+    imp.fixed = k.fixed;
     imp.position = k.position;
     imp.velocity = k.velocity;
     if (!k.sphere) imp.direction = k.velocity.normalized();
@@ -271,9 +272,11 @@ PdResult run_peridynamics(const io::ProblemSpec& spec, io::OutputDirectory* out)
   std::vector<std::string>& H = R.history_header;
   H = {"time",          "step",           "kinetic_energy", "strain_energy",
        "external_work", "energy_balance", "broken_bonds",   "max_damage"};
-  for (const auto& imp : setup.impactors) {
-    for (int d = 0; d < dims; ++d) H.push_back(imp.name + "_position_" + axes[d]);
-    for (int d = 0; d < dims; ++d) H.push_back(imp.name + "_velocity_" + axes[d]);
+  for (const auto& imp : setup.impactors) { // a fixed support records only its force
+    if (!imp.fixed) {
+      for (int d = 0; d < dims; ++d) H.push_back(imp.name + "_position_" + axes[d]);
+      for (int d = 0; d < dims; ++d) H.push_back(imp.name + "_velocity_" + axes[d]);
+    }
     for (int d = 0; d < dims; ++d) H.push_back(imp.name + "_force_" + axes[d]);
   }
   for (const auto& g : s.gauges)
@@ -297,8 +300,10 @@ PdResult run_peridynamics(const io::ProblemSpec& spec, io::OutputDirectory* out)
                             static_cast<double>(broken / 2),
                             *std::max_element(phi.begin(), phi.end())};
     for (const auto& imp : setup.impactors) {
-      for (int d = 0; d < dims; ++d) row.push_back(imp.position(d));
-      for (int d = 0; d < dims; ++d) row.push_back(imp.velocity(d));
+      if (!imp.fixed) {
+        for (int d = 0; d < dims; ++d) row.push_back(imp.position(d));
+        for (int d = 0; d < dims; ++d) row.push_back(imp.velocity(d));
+      }
       for (int d = 0; d < dims; ++d) row.push_back(imp.contact_force(d));
     }
     for (int i : setup.gauge_particle)

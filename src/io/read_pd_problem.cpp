@@ -277,9 +277,17 @@ PdSpec parse_pd(KeyReader& r, const std::string& base_dir) {
     k.allow(imp.sphere ? "size" : "radius");
     if (k.has(imp.sphere ? "size" : "radius"))
       k.error(imp.sphere ? "size" : "radius", "does not belong to this shape");
-    imp.mass = k.positive("mass");
+    imp.fixed = k.choice("motion", {"free", "fixed"}, "free") == "fixed";
+    if (imp.fixed) {
+      if (k.has("mass") || k.has("velocity"))
+        k.error("motion", "a fixed impactor (a support) has no mass or velocity");
+      k.allow("mass");
+      k.allow("velocity");
+    } else {
+      imp.mass = k.positive("mass");
+      imp.velocity = read_point(k, "velocity", dim);
+    }
     imp.position = read_point(k, "position", dim);
-    imp.velocity = read_point(k, "velocity", dim);
     if (imp.velocity.norm() == 0.0 && !imp.sphere)
       k.error("velocity",
               "a flat impactor needs a velocity: its direction is the impact direction");

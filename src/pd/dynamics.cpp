@@ -63,7 +63,7 @@ void contact(const Model& m, Motion& q, Impactor& imp, double dt) {
   }
   // The particles' momentum gain is the impactor's loss.
   const Eigen::Vector3d J(impulse[0], impulse[1], impulse[2]);
-  imp.velocity -= J / imp.mass;
+  if (!imp.fixed) imp.velocity -= J / imp.mass;
   imp.contact_force = -J / dt;
 }
 

@@ -69,7 +69,8 @@ struct PdImpactor {
   bool sphere = true;
   double radius = 0.0;
   Vec3d half_size{0, 0, 0};
-  double mass = 0.0;
+  double mass = 0.0; // 0 for a fixed support
+  bool fixed = false;
   Vec3d position{0, 0, 0}, velocity{0, 0, 0};
 };
 

@@ -53,6 +53,7 @@ struct Impactor {
   Eigen::Vector3d direction{0.0, -1.0,
                             0.0}; // flat: unit impact direction (the leading face's normal)
   double mass = 0.0;
+  bool fixed = false; // a support: it does not move, whatever the contact pushes
   Eigen::Vector3d position{0.0, 0.0, 0.0}, velocity{0.0, 0.0, 0.0};
   Eigen::Vector3d contact_force{0.0, 0.0, 0.0}; // on the impactor, last step
 };
