@@ -63,7 +63,9 @@ I = B * H**3 / 12.0
 G = E / (2.0 * (1.0 + NU))
 KAPPA = 10.0 * (1.0 + NU) / (12.0 + 11.0 * NU)  # Cowper (1966), rectangle
 P0 = TAU0 * B * H  # end force amplitude, N
-STATIONS = (12.0, 24.0, 36.0, 48.0)
+# x = 47.5 m is the last column of particles of the peridynamic model with dx = 1 m (cell
+# centres at 0.5, 1.5, ..., 47.5), where its tip deflection is read.
+STATIONS = (12.0, 24.0, 36.0, 47.5, 48.0)
 
 EI, KGA, RA, RI = E * I, KAPPA * G * A, RHO * A, RHO * I
 OMEGA_C = math.sqrt(KGA / RI)  # second cut-off frequency of the Timoshenko beam
@@ -564,7 +566,7 @@ def main():
         cols = []
         for name, tag in (("Euler-Bernoulli", "eb"), ("Timoshenko", "timoshenko")):
             for xs in STATIONS:
-                cols.append(f"w_{tag}_x{int(xs)}")
+                cols.append(f"w_{tag}_x{xs:g}")
         fh.write("t," + ",".join(cols) + "\n")
         for k in range(len(t)):
             vals = [res[n][j][k] for n in ("Euler-Bernoulli", "Timoshenko") for j in range(len(STATIONS))]
