@@ -337,6 +337,18 @@ PdResult run_peridynamics(const io::ProblemSpec& spec, io::OutputDirectory* out)
     fields->add_step(step);
   };
 
+  // Gauge maxima over every step.
+  for (const auto& g : s.gauges)
+    for (const char* what : {"u", "v", "a"})
+      for (int d = 0; d < dims; ++d) R.gauge_maxima.emplace_back(g.name + "_" + what + axes[d], 0.0);
+  const auto track_gauges = [&]() {
+    std::size_t k = 0;
+    for (int i : setup.gauge_particle)
+      for (const std::vector<double>* field : {&q.u, &q.v, &q.a})
+        for (int d = 0; d < dims; ++d, ++k)
+          R.gauge_maxima[k].second = std::max(R.gauge_maxima[k].second, std::abs((*field)[3 * i + d]));
+  };
+  track_gauges();
   record(first.strain_energy);
   write_fields();
   double next_history = s.history_interval, next_fields = s.fields_interval;
@@ -352,6 +364,7 @@ PdResult run_peridynamics(const io::ProblemSpec& spec, io::OutputDirectory* out)
         pd::advance(m, setup.state, q, setup.loading, setup.impactors, dt, history_due);
     bond_seconds += seconds_since(t0);
     ++steps;
+    track_gauges();
     work += r.external_work;
     broken += r.broken;
     if (history_due) {
@@ -427,6 +440,9 @@ void write_pd_outputs(const io::ProblemSpec& spec, const PdResult& r, io::Output
     maxima.set(r.history_header[c], v);
   }
   results.set("max_abs", maxima);
+  io::Json gauges;
+  for (const auto& [name, v] : r.gauge_maxima) gauges.set(name, v);
+  results.set("gauge_max_abs_every_step", gauges);
   io::Json summary;
   summary.set("problem", spec.name)
       .set("description", spec.description)

@@ -123,8 +123,11 @@ PdFunction read_function(KeyReader& f, const std::string& base_dir, const PdSpec
     const double scale = f.number("scale", 1.0);
     for (double& v : tf.samples) v *= scale;
     out.haar_level = f.integer("haar_level", 0, 0, 10);
+    // Level j holds block means of 2^j samples, each for 2^j original sample steps (the last
+    // block of an odd-length level is padded, so N_j 2^j can exceed N by a few samples).
+    const double step0 = tf.duration / static_cast<double>(tf.samples.size());
     tf.samples = loads::haar_approximation(tf.samples, out.haar_level);
-    tf.sample_step = tf.duration / static_cast<double>(tf.samples.size());
+    tf.sample_step = step0 * std::pow(2.0, out.haar_level);
   }
   f.finish();
   return out;

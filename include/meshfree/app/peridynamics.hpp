@@ -36,6 +36,9 @@ struct PdResult {
   double max_damage = 0.0;
   long broken_bonds = 0;
   double energy_drift = 0.0; // |E_total(t) - E_total(0) - W_ext| / max(E), no dissipation only
+  /// Largest |value| of every gauge component (u, v, a) over every step, not only the recorded
+  /// ones: "<gauge>_<u|v|a><x|y|z>".
+  std::vector<std::pair<std::string, double>> gauge_maxima;
   std::string status = "completed", stop_reason;
   PhaseTimer timer;
 };
