@@ -9,6 +9,7 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 using namespace mf;
@@ -359,4 +360,82 @@ TEST_CASE("a long pulse travels at the dilatational speed of the continuum", "[p
   // rest is the surface layers and the peak-time estimate.
   CHECK(std::abs(plate / c_plate - 1.0) < 0.03);
   CHECK(std::abs(solid / c_solid - 1.0) < 0.04);
+}
+
+TEST_CASE("PMB on a lattice matches LAMMPS peri/pmb step for step before any bond breaks",
+          "[pd][lammps]") {
+  // reference/lammps/pmb_lattice: LAMMPS's peri/pmb on 10^3 particles of a simple cubic lattice
+  // (a = 0.5 mm), c = 1.6863e22, delta = 0.0015001, s00 = 0.0005, alpha = 0.25, density 2200,
+  // an initial velocity field, velocity Verlet with dt = 1e-8 for 400 steps; see its README for
+  // the recipe and the conventions matched here (LAMMPS's vfrac_scale is the linear partial
+  // volume with r = a / 2; rmass holds the density).
+  const std::string dir = source_path("reference/lammps/pmb_lattice/");
+  std::ifstream in(dir + "particles.csv");
+  REQUIRE(in.good());
+  std::string line;
+  std::getline(in, line);
+  pd::Model m;
+  m.dimension = PdDimension::Solid3D;
+  m.spacing = 0.0005;
+  m.horizon = 0.0015001;
+  m.material_names = {"lammps"};
+  std::vector<double> v0;
+  while (std::getline(in, line)) {
+    std::stringstream ss(line);
+    double id, x, y, z, vol, vx, vy, vz;
+    char comma;
+    ss >> id >> comma >> x >> comma >> y >> comma >> z >> comma >> vol >> comma >> vx >> comma >>
+        vy >> comma >> vz;
+    m.particles.add({x, y, z}, vol, 2200.0, 0);
+    v0.insert(v0.end(), {vx, vy, vz});
+  }
+  REQUIRE(m.particles.size() == 1000);
+  pd::LawTable t;
+  t.materials = 1;
+  materials::BondLaw law;
+  law.c = 1.6863e22;
+  law.critical_stretch = 0.0005;
+  law.alpha = 0.25;
+  t.laws = {law};
+  t.law_of = {0};
+  pd::build_bonds(m, t, pd::VolumeCorrection::Linear);
+  pd::BondState s = pd::initial_state(m, {});
+  pd::Motion q(m.particles.size());
+  q.v = v0;
+  pd::Loading none;
+  std::vector<pd::Impactor> no_impactors;
+  pd::accelerate(m, s, q, none, false);
+  // LAMMPS's displacements at every 40th step.
+  std::ifstream ref(dir + "displacements.csv");
+  std::getline(ref, line);
+  std::map<int, std::vector<double>> lammps;
+  while (std::getline(ref, line)) {
+    std::stringstream ss(line);
+    double step, time, id, ux, uy, uz;
+    char comma;
+    ss >> step >> comma >> time >> comma >> id >> comma >> ux >> comma >> uy >> comma >> uz;
+    auto& u = lammps[static_cast<int>(step)];
+    u.resize(3000);
+    const int i = static_cast<int>(id) - 1;
+    u[3 * i] = ux, u[3 * i + 1] = uy, u[3 * i + 2] = uz;
+  }
+  REQUIRE(lammps.size() == 11);
+  double worst = 0.0, largest = 0.0;
+  long broken = 0;
+  for (int step = 1; step <= 400; ++step) {
+    broken += pd::advance(m, s, q, none, no_impactors, 1e-8, false).broken;
+    const auto it = lammps.find(step);
+    if (it == lammps.end()) continue;
+    double scale = 0.0, diff = 0.0;
+    for (std::size_t k = 0; k < q.u.size(); ++k) {
+      scale = std::max(scale, std::abs(it->second[k]));
+      diff = std::max(diff, std::abs(q.u[k] - it->second[k]));
+    }
+    largest = std::max(largest, scale);
+    worst = std::max(worst, diff / scale);
+  }
+  std::cout << "pd vs LAMMPS: " << m.bonds.count() / 2 << " bonds, largest displacement " << largest
+            << " m, largest difference " << worst << " of the largest displacement at that step\n";
+  CHECK(broken == 0);
+  CHECK(worst < 1e-6);
 }
