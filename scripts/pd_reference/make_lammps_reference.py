@@ -612,6 +612,15 @@ def main():
         th = [l for l in ref_log.splitlines() if re.match(r"^\s+\d+\s+[\d.]+e", l)]
         if th:
             first, last = th[0].split(), th[-1].split()
+            # thermo ke = sum_i rho v_i^2 / 2, pe = sum_i W_i, W_i = 1/4 sum_j c beta s^2 r0 V_j
+            # (energy densities summed over particles, J/m^3; times a^3 for joules)
+            x, vv = ref[NSTEPS][:, 1:4], ref[NSTEPS][:, 7:10]
+            d = x[bj] - x[bi]
+            st = (np.sqrt((d * d).sum(axis=1)) - r0) / r0
+            pe = 2 * (0.25 * C * vfrac_scale(r0, A) * st * st * r0 * VOLUME).sum()
+            ke = 0.5 * RHO * (vv * vv).sum()
+            print("energies at step %d from the dumped state: ke %.10e, pe %.10e; thermo: ke %s, pe %s"
+                  % (NSTEPS, ke, pe, last[2], last[3]))
             print("thermo: step %s ke %s pe %s; step %s ke %s pe %s; ke+pe change %.3e relative"
                   % (first[0], first[2], first[3], last[0], last[2], last[3],
                      (float(last[2]) + float(last[3]) - float(first[2]) - float(first[3]))
