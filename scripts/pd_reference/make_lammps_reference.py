@@ -67,7 +67,7 @@ pmb_lattice/displacements.csv  step,time,id,ux,uy,uz every --every steps
                                (about 1 MB; --every 20 doubles it)
 pmb_lattice/data.pmb_lattice   LAMMPS data file read by the deck
 pmb_lattice/lammps.in          the LAMMPS deck of the reference run (it dumps
-                               every step: dump.traj is about 80 MB)
+                               every step: dump.traj is about 89 MB)
 pmb_lattice/log.lammps         its log (thermo every 20 steps; per-rank
                                histograms and the wall-clock line removed)
 benchmark.csv                  particles,bonds,steps,threads,pair_seconds,
