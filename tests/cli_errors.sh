@@ -14,6 +14,20 @@ expect_error() { # expect_error "message fragment" args...
   if [ -n "$(ls -A "$out" 2>/dev/null)" ]; then echo "FAIL (left files in $out): $*"; fails=$((fails+1)); return; fi
   echo "ok: $want"
 }
+# A valid file whose run fails while setting up: the only file left is summary.json, with status
+# "failed" and the message.
+expect_run_failure() { # expect_run_failure "message fragment" args...
+  local want="$1"; shift
+  local out="$WORK/out"
+  rm -rf "$out"
+  msg="$("$MF" run "$@" --out "$out" 2>&1 >/dev/null)"; rc=$?
+  if [ $rc -eq 0 ]; then echo "FAIL (exit 0): $*"; fails=$((fails+1)); return; fi
+  if ! grep -qF -- "$want" <<<"$msg"; then echo "FAIL (message '$msg' lacks '$want'): $*"; fails=$((fails+1)); return; fi
+  if [ "$(ls -A "$out")" != "summary.json" ] || ! grep -q '"status": "failed"' "$out/summary.json"; then
+    echo "FAIL (expected only a failed summary.json in $out): $*"; fails=$((fails+1)); return
+  fi
+  echo "ok: $want"
+}
 P="$ROOT/problems/plate_tension.yaml"
 expect_error "discretisation.spacing: expected a positive number, got -0.1" "$P" --set discretisation.spacing=-0.1
 expect_error "material.E: expected a number, got steel" "$P" --set material.E=steel
@@ -58,6 +72,11 @@ expect_error "holds Q8 elements" "$ROOT/problems/perforated_strip.yaml" --set di
 expect_error "lies outside the body" "$ROOT/problems/perforated_strip.yaml" --set discretisation.method=fem --set 'geometry.holes.0.radius=6' --set 'output.monitors=[]'
 printf 'name: x\nanalysis: elastic_static\n' > "$WORK/incomplete.yaml"
 expect_error "model: required value is missing" "$WORK/incomplete.yaml"
+B="$ROOT/problems/pd_slab_blast.yaml"
+expect_error "boundary[2].blast.tnt_mass: expected a positive number, got -10" "$B" --set boundary.2.blast.tnt_mass=-10
+expect_error "boundary[2].blast.burst: expected one of" "$B" --set boundary.2.blast.burst=underwater
+expect_run_failure "boundary[2].blast: particle at (0.995, 0.195, 0): Kingery-Bulmash: scaled distance 0.049" "$B" --set 'boundary.2.blast.charge_at=[1.1, 0.21]'
+expect_error "boundary[2].blast.normal: expected a non-zero vector" "$B" --set 'boundary.2.blast.normal=[0, 0]'
 # usage errors
 "$MF" 2>/dev/null; [ $? -eq 2 ] && echo "ok: no command -> exit 2" || { echo "FAIL: no command"; fails=$((fails+1)); }
 "$MF" check "$P" >/dev/null || { echo "FAIL: check on a good problem"; fails=$((fails+1)); }

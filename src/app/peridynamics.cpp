@@ -134,6 +134,35 @@ Vec3d traction_density(const io::PdCondition& c, const pd::Particles& p,
   return c.value / thickness;
 }
 
+/// A blast on a face: each particle of the layer gets the Friedlander history of its distance
+/// and angle of incidence; the force per volume of a unit pressure is -n / (layer thickness).
+/// In a plane model the charge lies in the plane and distances are measured in it.
+std::vector<loads::Friedlander> blast_pulses(const io::PdCondition& c, const pd::Particles& p,
+                                             const std::vector<int>& group, double dx, int dims,
+                                             Vec3d& density) {
+  io::PdCondition unit = c;
+  unit.value = -c.blast.normal;
+  unit.area = 0.0;
+  density = traction_density(unit, p, group, dx, dims);
+  const loads::Burst burst =
+      c.blast.surface_burst ? loads::Burst::HemisphericalSurface : loads::Burst::SphericalFreeAir;
+  std::vector<loads::Friedlander> out;
+  out.reserve(group.size());
+  for (int i : group) {
+    const Vec3d ray = p.position(i) - c.blast.charge;
+    const double r = ray.norm();
+    loads::BlastParameters b;
+    try {
+      b = loads::kingery_bulmash(burst, c.blast.tnt_mass, r);
+    } catch (const Error& e) {
+      fail(c.key_path, ".blast: particle at (", p.position(i).x(), ", ", p.position(i).y(), ", ",
+           p.position(i).z(), "): ", e.what());
+    }
+    out.push_back(loads::blast_pulse(b, -c.blast.normal.dot(ray) / r));
+  }
+  return out;
+}
+
 } // namespace
 
 PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer) {
@@ -184,6 +213,8 @@ PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer) {
                          ? traction_density(c, p, group, s.spacing, m.plane() ? 2 : 3)
                          : c.value;
       load.function = c.function;
+      if (c.kind == io::PdCondition::Kind::Blast)
+        load.pulses = blast_pulses(c, p, group, s.spacing, m.plane() ? 2 : 3, load.density);
       out.loading.loads.push_back(load);
     }
   }
@@ -259,6 +290,16 @@ PdResult run_peridynamics(const io::ProblemSpec& spec, io::OutputDirectory* out)
               m.laws[k].plastic() ? detail::concat(", yield stretch ", m.laws[k].yield_stretch)
                                   : "");
   log::info("time step ", R.dt, ": ", R.dt_limit);
+  for (const pd::BodyLoad& load : setup.loading.loads) {
+    if (load.pulses.empty()) continue;
+    const auto [lo, hi] = std::minmax_element(
+        load.pulses.begin(), load.pulses.end(),
+        [](const loads::Friedlander& a, const loads::Friedlander& b) { return a.peak < b.peak; });
+    log::info("blast '", load.name, "' on ", load.pulses.size(), " particles: peak ", lo->peak,
+              "..", hi->peak, " Pa, arrival ", hi->arrival, "..", lo->arrival, " s, duration ",
+              hi->duration, "..", lo->duration, " s, impulse ", lo->impulse(), "..", hi->impulse(),
+              " Pa s");
+  }
 
   pd::Motion q(n);
   q.v = setup.initial_velocity;
@@ -340,13 +381,15 @@ PdResult run_peridynamics(const io::ProblemSpec& spec, io::OutputDirectory* out)
   // Gauge maxima over every step.
   for (const auto& g : s.gauges)
     for (const char* what : {"u", "v", "a"})
-      for (int d = 0; d < dims; ++d) R.gauge_maxima.emplace_back(g.name + "_" + what + axes[d], 0.0);
+      for (int d = 0; d < dims; ++d)
+        R.gauge_maxima.emplace_back(g.name + "_" + what + axes[d], 0.0);
   const auto track_gauges = [&]() {
     std::size_t k = 0;
     for (int i : setup.gauge_particle)
       for (const std::vector<double>* field : {&q.u, &q.v, &q.a})
         for (int d = 0; d < dims; ++d, ++k)
-          R.gauge_maxima[k].second = std::max(R.gauge_maxima[k].second, std::abs((*field)[3 * i + d]));
+          R.gauge_maxima[k].second =
+              std::max(R.gauge_maxima[k].second, std::abs((*field)[3 * i + d]));
   };
   track_gauges();
   record(first.strain_energy);

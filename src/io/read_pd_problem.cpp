@@ -142,11 +142,11 @@ PdCondition read_condition(KeyReader& c, const PdSpec& s, int dim) {
     if (other.name == out.name) c.error("name", "another condition is named '" + out.name + "'");
   if (c.has("box")) out.box = read_box3(c, "box", dim);
   c.allow("box");
-  const char* kinds[] = {"displacement", "velocity", "traction", "body_force"};
+  const char* kinds[] = {"displacement", "velocity", "traction", "body_force", "blast"};
   int given = 0;
   for (const char* k : kinds) given += c.has(k) ? 1 : 0;
   if (given != 1)
-    c.error("name", "give exactly one of displacement, velocity, traction or body_force");
+    c.error("name", "give exactly one of displacement, velocity, traction, body_force or blast");
   if (c.has("displacement") || c.has("velocity")) {
     const bool vel = c.has("velocity");
     out.kind = vel ? PdCondition::Kind::Velocity : PdCondition::Kind::Displacement;
@@ -163,6 +163,17 @@ PdCondition read_condition(KeyReader& c, const PdSpec& s, int dim) {
     out.value = read_point(c, "traction", dim);
     out.area = c.positive("area", 0.0);
     if (!out.box) c.error("box", "a traction needs the box of the loaded layer of particles");
+  } else if (c.has("blast")) {
+    out.kind = PdCondition::Kind::Blast;
+    KeyReader b = c.map("blast");
+    out.blast.tnt_mass = b.positive("tnt_mass");
+    out.blast.surface_burst = b.choice("burst", {"surface", "free_air"}, "surface") == "surface";
+    out.blast.charge = read_point(b, "charge_at", dim);
+    out.blast.normal = read_point(b, "normal", dim);
+    if (!(out.blast.normal.norm() > 0.0)) b.error("normal", "expected a non-zero vector");
+    out.blast.normal.normalize();
+    b.finish();
+    if (!out.box) c.error("box", "a blast load needs the box of the loaded layer of particles");
   } else {
     out.kind = PdCondition::Kind::BodyForce;
     out.value = read_point(c, "body_force", dim);

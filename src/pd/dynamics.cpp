@@ -77,11 +77,12 @@ StepReport accelerate(const Model& m, BondState& s, Motion& q, const Loading& lo
   for (std::size_t k = 0; k < y.size(); ++k) y[k] = p.x[k] + q.u[k];
   std::vector<double> f;
   const ForceReport fr = bond_forces(m, s, y, f, with_energy);
-  for (const BodyLoad& load : loading.loads) {
-    const double g = loading.factor(load.function, q.time);
-    for (int i : load.particles)
+  for (const BodyLoad& load : loading.loads)
+    for (std::size_t k = 0; k < load.particles.size(); ++k) {
+      const int i = load.particles[k];
+      const double g = loading.factor(load, k, q.time);
       for (int d = 0; d < 3; ++d) f[3 * i + d] += g * load.density(d);
-  }
+    }
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i)
     for (int d = 0; d < 3; ++d) q.a[3 * i + d] = f[3 * i + d] / p.density[i];
@@ -100,12 +101,13 @@ StepReport advance(const Model& m, BondState& s, Motion& q, const Loading& loadi
   double work = 0.0;
   const auto load_power = [&](const std::vector<double>& du, double t) {
     double w = 0.0;
-    for (const BodyLoad& load : loading.loads) {
-      const double g = loading.factor(load.function, t);
-      for (int i : load.particles)
+    for (const BodyLoad& load : loading.loads)
+      for (std::size_t k = 0; k < load.particles.size(); ++k) {
+        const int i = load.particles[k];
+        const double g = loading.factor(load, k, t);
         for (int d = 0; d < 3; ++d)
           w += g * load.density(d) * m.particles.volume[i] * du[3 * i + d];
-    }
+      }
     return w;
   };
   std::vector<double> u_old = q.u;

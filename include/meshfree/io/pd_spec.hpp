@@ -53,11 +53,20 @@ struct PdFunction {
   std::string file; // table source, for the summary
 };
 
+/// A TNT charge whose air blast loads a face (Kingery-Bulmash, loads/blast.hpp).
+struct PdBlast {
+  double tnt_mass = 0.0;     // kg of TNT (equivalent)
+  bool surface_burst = true; // hemispherical surface burst, else spherical free air
+  Vec3d charge{0, 0, 0};     // the charge's centre
+  Vec3d normal{0, 0, 0};     // unit outward normal of the loaded face
+};
+
 /// A constraint or a load on the particles in a box (or on all particles).
 struct PdCondition {
   std::string name, key_path;
   std::optional<Box3> box;
-  enum class Kind { Displacement, Velocity, Traction, BodyForce } kind = Kind::Displacement;
+  enum class Kind { Displacement, Velocity, Traction, BodyForce, Blast } kind = Kind::Displacement;
+  PdBlast blast;
   bool fixed[3] = {false, false, false};
   Vec3d value{0, 0, 0};
   double area = 0.0; // traction: loaded area (0: from the box)

@@ -2,6 +2,7 @@
 // Explicit dynamics of a peridynamic body: velocity Verlet (the half kick, drift, force, half
 // kick of LAMMPS's fix nve; paper 000 eq. 9), body forces and tractions turned into body forces,
 // prescribed displacement and velocity components, and rigid impactors with kinematic contact.
+#include "meshfree/loads/blast.hpp"
 #include "meshfree/loads/time_function.hpp"
 #include "meshfree/pd/forces.hpp"
 #include "meshfree/pd/model.hpp"
@@ -31,12 +32,15 @@ struct Constraint {
 };
 
 /// A force per unit volume on a set of particles, times a time function. A traction t on a face
-/// of area A becomes b = t A / (volume of the loaded layer of particles).
+/// of area A becomes b = t A / (volume of the loaded layer of particles). A blast load gives each
+/// particle its own pressure history (`pulses`, one per particle, in Pa) and `density` is the
+/// force per volume of a unit pressure.
 struct BodyLoad {
   std::string name;
   std::vector<int> particles;
   Eigen::Vector3d density{0.0, 0.0, 0.0};
   int function = -1;
+  std::vector<loads::Friedlander> pulses;
 };
 
 /// A rigid impactor: a sphere (a disk in a plane) or a flat-nosed block, with its mass and
@@ -64,6 +68,11 @@ struct Loading {
   std::vector<BodyLoad> loads;
   double factor(int function, double t) const {
     return function < 0 ? 1.0 : functions[function](t);
+  }
+  /// The factor of the k-th particle of a load at time t.
+  double factor(const BodyLoad& load, std::size_t k, double t) const {
+    const double g = factor(load.function, t);
+    return load.pulses.empty() ? g : g * load.pulses[k](t);
   }
 };
 
