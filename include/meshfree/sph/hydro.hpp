@@ -1,0 +1,100 @@
+#pragma once
+// Smoothed-particle hydrodynamics of compressible media in 1, 2 or 3 dimensions (the thesis'
+// chapter 3, after Monaghan 1992 and Liu & Liu 2003): continuity-equation density (eq. 3-41),
+// the symmetric momentum and energy equations (eqs. 3-48 and 3-64) with Monaghan's artificial
+// viscosity (alpha = beta = 1, phi = 0.1 h), smoothing lengths that follow the density, a
+// midpoint predictor-corrector step under the CFL bound, equations of state per material, and
+// programmed burn of explosives (lighting time = distance / D_CJ).
+#include "meshfree/materials/eos.hpp"
+#include "meshfree/neighbors/pair_list.hpp"
+#include <string>
+#include <vector>
+
+namespace mf::sph {
+
+/// A material's equation of state; the kind selects which member is used.
+struct Eos {
+  enum class Kind { IdealGas, Jwl, MieGruneisen, LinearPolynomial };
+  Kind kind = Kind::IdealGas;
+  materials::IdealGas ideal_gas;
+  materials::Jwl jwl;
+  materials::MieGruneisen mie_gruneisen;
+  materials::LinearPolynomial linear_polynomial;
+};
+
+materials::PressureAndSound evaluate(const Eos& eos, double rho, double e);
+
+struct Material {
+  std::string name;
+  Eos eos;
+};
+
+/// Particle arrays (structure of arrays; vectors have 3 components per particle, the unused ones
+/// zero in 1D and 2D).
+struct Particles {
+  int dim = 3;
+  std::vector<double> x, v;
+  std::vector<double> mass, rho, e, h;
+  std::vector<double> rho_ref, h_ref; // h = h_ref (rho_ref / rho)^(1/dim)
+  std::vector<int> material;
+  std::vector<double> light_time; // programmed burn: when the particle is lit (< 0: never burns)
+  std::vector<double> p, c;       // from the equation of state, per step
+  int size() const { return static_cast<int>(mass.size()); }
+  /// Appends a particle at rest.
+  void add(const double position[3], double mass, double rho, double e, double h, int material);
+};
+
+struct Settings {
+  double alpha = 1.0, beta = 1.0; // Monaghan artificial viscosity
+  double phi = 0.1;               // singularity guard of the viscosity, times h
+  double courant = 0.3;           // dt = courant * min h / (c + |v|)
+  double skin = 0.2;              // neighbour-list margin, times the largest support 2h
+  double burn_width = 2.0;        // programmed burn: the burn fraction rises over this many h
+};
+
+struct Rates {
+  std::vector<double> dv, drho, de;
+};
+
+/// A run's state: particles, materials, settings, time and the neighbour list with its margin.
+struct Hydro {
+  Particles particles;
+  std::vector<Material> materials;
+  Settings settings;
+  double time = 0.0;
+  long step = 0;
+  neighbors::PairList pairs;
+  std::vector<double> x_at_build; // positions when the list was built
+  double build_radius = 0.0;
+  int rebuilds = 0;
+};
+
+/// Lighting times for a detonation at point `at` (distance / D_CJ) of every particle of an
+/// explosive (JWL) material; other particles never burn.
+void light_from_point(Hydro& s, const double at[3]);
+
+/// Smoothing lengths, pressures and sound speeds from density and energy at time t; the
+/// pressure of an explosive particle is the JWL pressure times its burn fraction
+/// F = clamp((t - t_l) D / (burn_width h), 0, 1).
+void update_state(Hydro& s);
+
+/// Rebuilds the neighbour list when a pair closer than 2 h could be missing from it.
+void refresh_neighbours(Hydro& s);
+
+/// Rates of velocity, density and energy at the current state.
+void compute_rates(const Hydro& s, Rates& r);
+
+/// The CFL step courant * min_i h_i / (c_i + |v_i|) and the particle that sets it.
+double stable_step(const Hydro& s, int* limiting = nullptr);
+
+/// One midpoint predictor-corrector step of length dt (second order).
+void advance(Hydro& s, double dt);
+
+/// Kinetic and internal energy of all particles.
+struct Energies {
+  double kinetic = 0.0, internal = 0.0;
+  double total() const { return kinetic + internal; }
+};
+Energies energies(const Hydro& s);
+
+} // namespace mf::sph
