@@ -77,6 +77,11 @@ expect_error "boundary[2].blast.tnt_mass: expected a positive number, got -10" "
 expect_error "boundary[2].blast.burst: expected one of" "$B" --set boundary.2.blast.burst=underwater
 expect_run_failure "boundary[2].blast: particle at (0.995, 0.195, 0): Kingery-Bulmash: scaled distance 0.049" "$B" --set 'boundary.2.blast.charge_at=[1.1, 0.21]'
 expect_error "boundary[2].blast.normal: expected a non-zero vector" "$B" --set 'boundary.2.blast.normal=[0, 0]'
+S="$ROOT/problems/sph_sod_tube.yaml"
+expect_error "materials[0].eos.type: expected one of" "$S" --set 'materials.0.eos.type=plasma'
+expect_error "blocks[0].energy: give exactly one of 'energy' (J/kg) or 'pressure'" "$S" --set 'blocks.0.energy=2.5'
+expect_error "model.smoothing: expected h / spacing between 1 and 3" "$S" --set model.smoothing=5
+expect_error "blocks[1].material: no material is named 'air'" "$S" --set blocks.1.material=air
 # usage errors
 "$MF" 2>/dev/null; [ $? -eq 2 ] && echo "ok: no command -> exit 2" || { echo "FAIL: no command"; fails=$((fails+1)); }
 "$MF" check "$P" >/dev/null || { echo "FAIL: check on a good problem"; fails=$((fails+1)); }

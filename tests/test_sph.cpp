@@ -196,8 +196,8 @@ struct SodResult {
   int particles = 0;
 };
 
-/// Sod's tube on [-1, 1] with equal-mass particles: n_left on the left (rho 1, p 1), n_left / 8
-/// on the right (rho 0.125, p 0.1), h = 1.5 local spacings; run to t = 0.2.
+/// Sod's tube on [-1, 1] between fixed walls with equal-mass particles: n_left on the left (rho 1,
+/// p 1), n_left / 8 on the right (rho 0.125, p 0.1), h = 1.5 local spacings; run to t = 0.2.
 SodResult run_sod(int n_left, const Riemann& exact) {
   sph::Hydro s;
   s.particles.dim = 1;
@@ -215,6 +215,12 @@ SodResult run_sod(int n_left, const Riemann& exact) {
     const double x[3] = {(k + 0.5) * dxr, 0, 0};
     s.particles.add(x, m, 0.125, 0.1 / (0.4 * 0.125), 1.5 * dxr, 0);
   }
+  // Closed ends: four fixed wall particles beyond each end (no wave reaches them by t = 0.2).
+  for (int k = 1; k <= 4; ++k) {
+    const double xl[3] = {-1.0 - (k - 0.5) * dxl, 0, 0}, xr[3] = {1.0 + (k - 0.5) * dxr, 0, 0};
+    s.particles.add(xl, m, 1.0, 1.0 / (0.4 * 1.0), 1.5 * dxl, 0, true);
+    s.particles.add(xr, m, 0.125, 0.1 / (0.4 * 0.125), 1.5 * dxr, 0, true);
+  }
   sph::update_state(s);
   const double e0 = sph::energies(s).total();
   while (s.time < 0.2) {
@@ -222,12 +228,13 @@ SodResult run_sod(int n_left, const Riemann& exact) {
     sph::advance(s, dt);
   }
   SodResult out;
-  out.particles = s.particles.size();
+  out.particles = s.particles.size() - 8;
   out.energy_drift = std::abs(sph::energies(s).total() - e0) / e0;
   const sph::Particles& P = s.particles;
   int count = 0, plateau = 0;
   const double rho_mid = 0.5 * (0.26557 + 0.125);
-  for (int i = 0; i + 1 < P.size(); ++i) {
+  const int n_gas = P.size() - 8;
+  for (int i = 0; i + 1 < n_gas; ++i) {
     const double x = P.x[3 * i];
     double rho, u, p;
     exact.sample(x / 0.2, rho, u, p);

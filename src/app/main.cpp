@@ -5,6 +5,7 @@
 #include "meshfree/app/elastoplastic_static.hpp"
 #include "meshfree/app/model_problem_1d.hpp"
 #include "meshfree/app/peridynamics.hpp"
+#include "meshfree/app/sph_run.hpp"
 #include "meshfree/core/log.hpp"
 #include "meshfree/geometry/node_generation.hpp"
 #include "meshfree/io/problem_spec.hpp"
@@ -66,6 +67,15 @@ int check(const Command& c) {
   if (spec.analysis == mf::io::Analysis::ModelProblem1D) {
     std::cout << "  1D model problem on [0, " << spec.model_1d.length << "], spacing "
               << spec.discretisation.spacing << "\n";
+    return 0;
+  }
+  if (spec.analysis == mf::io::Analysis::Sph) {
+    const mf::sph::Hydro h = mf::app::build_sph(*spec.sph);
+    int limiting = -1;
+    const double dt = mf::sph::stable_step(h, &limiting);
+    std::cout << "  sph: " << h.particles.size() << " particles in " << spec.sph->dimension
+              << "D, first CFL step " << dt << " (particle " << limiting << "), about "
+              << static_cast<long>(std::ceil(spec.sph->end_time / dt)) << " steps or more\n";
     return 0;
   }
   if (spec.analysis == mf::io::Analysis::Peridynamics) {
@@ -148,6 +158,16 @@ int run(Command& c) {
       {
         mf::PhaseTimer::Scope scope(r.timer, "output");
         if (out) mf::app::write_pd_outputs(spec, r, *out);
+      }
+      log_phases(r.timer);
+      if (r.status == "failed") exit_code = 1;
+    } else if (spec.analysis == mf::io::Analysis::Sph) {
+      MF_REQUIRE(session.size() == 1, "analysis sph runs on one MPI rank (it is parallel over "
+                                      "OpenMP threads: set OMP_NUM_THREADS)");
+      mf::app::SphResult r = mf::app::run_sph(spec, out.get());
+      {
+        mf::PhaseTimer::Scope scope(r.timer, "output");
+        if (out) mf::app::write_sph_outputs(spec, r, *out);
       }
       log_phases(r.timer);
       if (r.status == "failed") exit_code = 1;

@@ -1,6 +1,7 @@
 #include "meshfree/io/key_reader.hpp"
 #include "meshfree/io/pd_read.hpp"
 #include "meshfree/io/problem_spec.hpp"
+#include "meshfree/io/sph_read.hpp"
 #include <cmath>
 #include <fstream>
 
@@ -471,13 +472,19 @@ ProblemSpec parse_problem(YAML::Node root, const std::string& base_dir) {
   check_name(r, "name", p.name, false);
   p.description = r.text("description", "");
   p.units = r.text("units", "");
-  const std::string analysis =
-      r.choice("analysis",
-               {"elastic_static", "elastoplastic_static", "model_problem_1d", "peridynamics"}, "");
+  const std::string analysis = r.choice(
+      "analysis",
+      {"elastic_static", "elastoplastic_static", "model_problem_1d", "peridynamics", "sph"}, "");
   p.analysis = analysis == "elastic_static"         ? Analysis::ElasticStatic
                : analysis == "elastoplastic_static" ? Analysis::ElastoplasticStatic
                : analysis == "peridynamics"         ? Analysis::Peridynamics
+               : analysis == "sph"                  ? Analysis::Sph
                                                     : Analysis::ModelProblem1D;
+  if (p.analysis == Analysis::Sph) {
+    p.sph = parse_sph(r);
+    r.finish();
+    return p;
+  }
   if (p.analysis == Analysis::Peridynamics) {
     p.pd = parse_pd(r, base_dir);
     if (p.pd->dimension != materials::PdDimension::Solid3D) p.domain = read_geometry(r);

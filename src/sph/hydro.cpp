@@ -21,7 +21,7 @@ materials::PressureAndSound evaluate(const Eos& eos, double rho, double e) {
 }
 
 void Particles::add(const double position[3], double m, double density, double energy,
-                    double smoothing, int mat) {
+                    double smoothing, int mat, bool is_fixed) {
   for (int d = 0; d < 3; ++d) {
     x.push_back(position[d]);
     v.push_back(0.0);
@@ -34,6 +34,7 @@ void Particles::add(const double position[3], double m, double density, double e
   h_ref.push_back(smoothing);
   material.push_back(mat);
   light_time.push_back(-1.0);
+  fixed.push_back(is_fixed ? 1 : 0);
   p.push_back(0.0);
   c.push_back(0.0);
 }
@@ -81,23 +82,45 @@ void update_state(Hydro& s) {
 void refresh_neighbours(Hydro& s) {
   const Particles& P = s.particles;
   const int n = P.size();
-  const double h_max = *std::max_element(P.h.begin(), P.h.end());
-  // A pair within 2 h_max now was at most 2 h_max + 2 d_max apart at the last build.
-  double d_max = 0.0;
-  if (!s.x_at_build.empty())
+  const double skin = s.settings.skin;
+  // A pair (i, j) left out at the last build was at least (h_i + h_j)(1 + skin) apart then; it
+  // cannot interact yet while every particle has moved and grown its h by less than skin h.
+  if (!s.x_at_build.empty()) {
+    bool stale = false;
+#pragma omp parallel for schedule(static) reduction(|| : stale)
     for (int i = 0; i < n; ++i) {
       double d2 = 0.0;
       for (int k = 0; k < 3; ++k) {
         const double dx = P.x[3 * i + k] - s.x_at_build[3 * i + k];
         d2 += dx * dx;
       }
-      d_max = std::max(d_max, d2);
+      const double grown = std::max(0.0, P.h[i] - s.h_at_build[i]);
+      if (std::sqrt(d2) + grown > skin * s.h_at_build[i]) stale = true;
     }
-  d_max = std::sqrt(d_max);
-  if (!s.x_at_build.empty() && 2.0 * h_max + 2.0 * d_max <= s.build_radius) return;
-  s.build_radius = 2.0 * h_max * (1.0 + s.settings.skin);
-  s.pairs = neighbors::pairs_within(P.x, s.build_radius);
+    if (!stale) return;
+  }
+  const double h_max = *std::max_element(P.h.begin(), P.h.end());
+  s.build_radius = 2.0 * h_max * (1.0 + skin);
+  const neighbors::PairList all = neighbors::pairs_within(P.x, s.build_radius);
+  // Keep the pairs within (h_i + h_j)(1 + skin): with smoothing lengths that differ across the
+  // body, the global radius would hand small particles many far partners.
+  s.pairs.offset.assign(n + 1, 0);
+  s.pairs.partner.clear();
+  for (int i = 0; i < n; ++i) {
+    for (long k = all.offset[i]; k < all.offset[i + 1]; ++k) {
+      const int j = all.partner[k];
+      double r2 = 0.0;
+      for (int d = 0; d < 3; ++d) {
+        const double dx = P.x[3 * i + d] - P.x[3 * j + d];
+        r2 += dx * dx;
+      }
+      const double reach = (P.h[i] + P.h[j]) * (1.0 + skin);
+      if (r2 < reach * reach) s.pairs.partner.push_back(j);
+    }
+    s.pairs.offset[i + 1] = static_cast<long>(s.pairs.partner.size());
+  }
   s.x_at_build = P.x;
+  s.h_at_build = P.h;
   ++s.rebuilds;
 }
 
@@ -139,7 +162,8 @@ void compute_rates(const Hydro& s, Rates& r) {
       drho += mj * vx * g;
       de += 0.5 * mj * q * vx * g;
     }
-    for (int d = 0; d < 3; ++d) r.dv[3 * i + d] = acc[d];
+    if (!P.fixed[i])
+      for (int d = 0; d < 3; ++d) r.dv[3 * i + d] = acc[d];
     r.drho[i] = drho;
     r.de[i] = de;
   }

@@ -4,6 +4,7 @@
 #include "meshfree/geometry/domain.hpp"
 #include "meshfree/geometry/node_generation.hpp"
 #include "meshfree/io/pd_spec.hpp"
+#include "meshfree/io/sph_spec.hpp"
 #include "meshfree/kernels/shape_functions.hpp"
 #include "meshfree/materials/elastic.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
@@ -15,7 +16,7 @@
 
 namespace mf::io {
 
-enum class Analysis { ElasticStatic, ElastoplasticStatic, ModelProblem1D, Peridynamics };
+enum class Analysis { ElasticStatic, ElastoplasticStatic, ModelProblem1D, Peridynamics, Sph };
 
 /// Meshfree Galerkin (RK/MLS nodes on background cells) or finite elements on a mesh; both feed
 /// the same assembly, material and solver.
@@ -121,7 +122,8 @@ struct ProblemSpec {
   int fields_every = 1; // write fields every this many converged increments (and the last)
   std::vector<LoadStep> steps;
   NonlinearSpec nonlinear;
-  std::optional<PdSpec> pd; // analysis: peridynamics
+  std::optional<SphSpec> sph; // analysis: sph
+  std::optional<PdSpec> pd;   // analysis: peridynamics
   ModelProblem1D model_1d;
 };
 

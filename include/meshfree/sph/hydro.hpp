@@ -38,17 +38,21 @@ struct Particles {
   std::vector<double> rho_ref, h_ref; // h = h_ref (rho_ref / rho)^(1/dim)
   std::vector<int> material;
   std::vector<double> light_time; // programmed burn: when the particle is lit (< 0: never burns)
-  std::vector<double> p, c;       // from the equation of state, per step
+  /// Fixed (wall) particles: they do not move, but their density and energy evolve, so that they
+  /// push back on approaching particles (dynamic boundary particles, Crespo et al. 2007).
+  std::vector<char> fixed;
+  std::vector<double> p, c; // from the equation of state, per step
   int size() const { return static_cast<int>(mass.size()); }
   /// Appends a particle at rest.
-  void add(const double position[3], double mass, double rho, double e, double h, int material);
+  void add(const double position[3], double mass, double rho, double e, double h, int material,
+           bool fixed = false);
 };
 
 struct Settings {
   double alpha = 1.0, beta = 1.0; // Monaghan artificial viscosity
   double phi = 0.1;               // singularity guard of the viscosity, times h
   double courant = 0.3;           // dt = courant * min h / (c + |v|)
-  double skin = 0.2;              // neighbour-list margin, times the largest support 2h
+  double skin = 0.5;              // neighbour-list margin: pairs within (h_i + h_j)(1 + skin)
   double burn_width = 2.0;        // programmed burn: the burn fraction rises over this many h
 };
 
@@ -64,7 +68,7 @@ struct Hydro {
   double time = 0.0;
   long step = 0;
   neighbors::PairList pairs;
-  std::vector<double> x_at_build; // positions when the list was built
+  std::vector<double> x_at_build, h_at_build; // positions and h when the list was built
   double build_radius = 0.0;
   int rebuilds = 0;
 };

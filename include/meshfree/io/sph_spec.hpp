@@ -1,0 +1,39 @@
+#pragma once
+// What an SPH problem file says (analysis: sph), validated and typed.
+#include "meshfree/sph/hydro.hpp"
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mf::io {
+
+/// A box of particles on a lattice of the given spacing, one material, uniform initial state.
+struct SphBlock {
+  std::string material;
+  std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0}; // unused axes: 0
+  double spacing = 0.0;
+  double density = 0.0;
+  double energy = 0.0; // specific internal energy [J/kg]
+  std::array<double, 3> velocity{0, 0, 0};
+  bool fixed = false; // a wall of fixed particles
+};
+
+struct SphGauge {
+  std::string name;
+  std::array<double, 3> at{0, 0, 0};
+};
+
+struct SphSpec {
+  int dimension = 1;      // 1, 2 (plane strain, per unit thickness) or 3
+  double smoothing = 1.5; // h = smoothing * spacing
+  std::vector<sph::Material> materials;
+  std::vector<SphBlock> blocks;
+  std::optional<std::array<double, 3>> detonation_point;
+  sph::Settings settings;
+  double end_time = 0.0;
+  double history_interval = 0.0, fields_interval = 0.0; // 0: every step / start and end only
+  std::vector<SphGauge> gauges;
+};
+
+} // namespace mf::io

@@ -1,0 +1,235 @@
+#include "meshfree/app/sph_run.hpp"
+#include "meshfree/core/log.hpp"
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+namespace mf::app {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+int material_index(const io::SphSpec& s, const std::string& name) {
+  for (std::size_t k = 0; k < s.materials.size(); ++k)
+    if (s.materials[k].name == name) return static_cast<int>(k);
+  return -1;
+}
+
+} // namespace
+
+sph::Hydro build_sph(const io::SphSpec& s) {
+  sph::Hydro h;
+  h.materials = s.materials;
+  h.settings = s.settings;
+  sph::Particles& P = h.particles;
+  P.dim = s.dimension;
+  for (const io::SphBlock& b : s.blocks) {
+    const int mat = material_index(s, b.material);
+    int count[3] = {1, 1, 1};
+    for (int d = 0; d < s.dimension; ++d)
+      count[d] = std::max(1, static_cast<int>(std::lround((b.hi[d] - b.lo[d]) / b.spacing)));
+    double step[3];
+    for (int d = 0; d < 3; ++d) step[d] = d < s.dimension ? (b.hi[d] - b.lo[d]) / count[d] : 0.0;
+    double volume = 1.0;
+    for (int d = 0; d < s.dimension; ++d) volume *= step[d];
+    const double spacing = std::pow(volume, 1.0 / s.dimension);
+    for (int k = 0; k < count[2]; ++k)
+      for (int j = 0; j < count[1]; ++j)
+        for (int i = 0; i < count[0]; ++i) {
+          const int idx[3] = {i, j, k};
+          double x[3] = {0, 0, 0};
+          for (int d = 0; d < s.dimension; ++d) x[d] = b.lo[d] + (idx[d] + 0.5) * step[d];
+          P.add(x, b.density * volume, b.density, b.energy, s.smoothing * spacing, mat, b.fixed);
+          for (int d = 0; d < 3; ++d) P.v[P.v.size() - 3 + d] = b.velocity[d];
+        }
+  }
+  if (s.detonation_point) sph::light_from_point(h, s.detonation_point->data());
+  sph::update_state(h);
+  return h;
+}
+
+SphResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out) {
+  const io::SphSpec& s = *spec.sph;
+  SphResult R;
+  sph::Hydro h;
+  {
+    PhaseTimer::Scope scope(R.timer, "particles");
+    h = build_sph(s);
+  }
+  sph::Particles& P = h.particles;
+  const int n = P.size(), dims = s.dimension;
+  R.particles = n;
+  log::info("sph: ", n, " particles in ", dims, "D, ", s.materials.size(), " material(s)",
+            s.detonation_point ? ", detonation lit" : "");
+  const std::vector<double> x0 = P.x;
+
+  // Lagrangian gauges: the particle nearest each point at the start.
+  std::vector<int> gauge;
+  for (const io::SphGauge& g : s.gauges) {
+    int best = 0;
+    double d2 = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < n; ++i) {
+      double e = 0.0;
+      for (int d = 0; d < 3; ++d) e += (P.x[3 * i + d] - g.at[d]) * (P.x[3 * i + d] - g.at[d]);
+      if (e < d2) d2 = e, best = i;
+    }
+    gauge.push_back(best);
+  }
+  const char* axes[] = {"x", "y", "z"};
+  std::vector<std::string>& H = R.history_header;
+  H = {"time",         "step",         "dt",          "kinetic_energy", "internal_energy",
+       "total_energy", "energy_error", "max_pressure"};
+  for (const io::SphGauge& g : s.gauges) {
+    H.push_back(g.name + "_pressure");
+    H.push_back(g.name + "_density");
+    for (int d = 0; d < dims; ++d) H.push_back(g.name + "_v" + axes[d]);
+    for (int d = 0; d < dims; ++d) H.push_back(g.name + "_u" + axes[d]);
+  }
+  for (const io::SphGauge& g : s.gauges)
+    for (const char* what : {"pressure", "speed"})
+      R.gauge_maxima.emplace_back(g.name + "_" + what, 0.0);
+
+  const double e0 = sph::energies(h).total();
+  double dt = 0.0;
+  const auto max_pressure = [&]() { return *std::max_element(P.p.begin(), P.p.end()); };
+  const auto record = [&]() {
+    const sph::Energies E = sph::energies(h);
+    const double err = std::abs(E.total() - e0) / std::abs(e0);
+    R.energy_error = std::max(R.energy_error, err);
+    std::vector<double> row{
+        h.time,        static_cast<double>(h.step), dt, E.kinetic, E.internal, E.total(), err,
+        max_pressure()};
+    for (int i : gauge) {
+      row.push_back(P.p[i]);
+      row.push_back(P.rho[i]);
+      for (int d = 0; d < dims; ++d) row.push_back(P.v[3 * i + d]);
+      for (int d = 0; d < dims; ++d) row.push_back(P.x[3 * i + d] - x0[3 * i + d]);
+    }
+    R.history.push_back(row);
+  };
+  const auto track = [&]() {
+    R.peak_pressure = std::max(R.peak_pressure, max_pressure());
+    for (std::size_t k = 0; k < gauge.size(); ++k) {
+      const int i = gauge[k];
+      const double speed = std::sqrt(P.v[3 * i] * P.v[3 * i] + P.v[3 * i + 1] * P.v[3 * i + 1] +
+                                     P.v[3 * i + 2] * P.v[3 * i + 2]);
+      R.gauge_maxima[2 * k].second = std::max(R.gauge_maxima[2 * k].second, std::abs(P.p[i]));
+      R.gauge_maxima[2 * k + 1].second = std::max(R.gauge_maxima[2 * k + 1].second, speed);
+    }
+  };
+  std::unique_ptr<io::FieldSeries> fields;
+  if (out) fields = std::make_unique<io::FieldSeries>(*out, "fields", x0);
+  const auto write_fields = [&]() {
+    if (!fields) return;
+    io::FieldStep step;
+    step.time = h.time;
+    std::vector<double> u(P.x.size());
+    for (std::size_t k = 0; k < u.size(); ++k) u[k] = P.x[k] - x0[k];
+    std::vector<double> material(P.material.begin(), P.material.end());
+    step.vectors3 = {{"displacement", u}, {"velocity", P.v}};
+    step.scalars = {{"density", P.rho},
+                    {"pressure", P.p},
+                    {"specific_energy", P.e},
+                    {"smoothing_length", P.h},
+                    {"material", material}};
+    fields->add_step(step);
+  };
+
+  track();
+  record();
+  write_fields();
+  double next_history = s.history_interval, next_fields = s.fields_interval;
+  double next_progress = 0.1 * s.end_time;
+  R.smallest_dt = std::numeric_limits<double>::infinity();
+  const auto t_start = Clock::now();
+  while (h.time < s.end_time * (1.0 - 1e-12)) {
+    int limiting = -1;
+    const double stable = sph::stable_step(h, &limiting);
+    if (!(stable > 0.0) || !std::isfinite(stable)) {
+      R.status = "failed";
+      R.stop_reason = detail::concat("no finite CFL step at t = ", h.time, " (step ", h.step,
+                                     ", particle ", limiting, ")");
+      break;
+    }
+    dt = std::min(stable, s.end_time - h.time);
+    if (h.step == 0) R.first_dt = dt;
+    if (stable < R.smallest_dt) {
+      R.smallest_dt = stable;
+      R.dt_limit = detail::concat(
+          "CFL step ", stable, " (Courant ", s.settings.courant, ") set at step ", h.step,
+          " by particle ", limiting, " at (", P.x[3 * limiting], ", ", P.x[3 * limiting + 1], ", ",
+          P.x[3 * limiting + 2], "), h ", P.h[limiting], ", c ", P.c[limiting]);
+    }
+    try {
+      sph::advance(h, dt);
+    } catch (const Error& e) {
+      R.status = "failed";
+      R.stop_reason = e.what();
+      break;
+    }
+    track();
+    if (s.history_interval <= 0.0 || h.time >= next_history * (1 - 1e-12)) {
+      record();
+      while (s.history_interval > 0.0 && next_history <= h.time * (1 + 1e-12))
+        next_history += s.history_interval;
+    }
+    if (s.fields_interval > 0.0 && h.time >= next_fields * (1 - 1e-12)) {
+      write_fields();
+      while (next_fields <= h.time * (1 + 1e-12)) next_fields += s.fields_interval;
+    }
+    if (h.time >= next_progress) {
+      log::info("  t = ", h.time, " (", static_cast<int>(std::lround(100 * h.time / s.end_time)),
+                "%), step ", h.step, ", dt ", dt, ", max pressure ", max_pressure(), ", ",
+                seconds_since(t_start), " s");
+      next_progress += 0.1 * s.end_time;
+    }
+  }
+  const double stepping = seconds_since(t_start);
+  R.timer.add("stepping", stepping);
+  R.steps = h.step;
+  R.neighbour_rebuilds = h.rebuilds;
+  R.particle_steps_per_second = stepping > 0.0 ? static_cast<double>(n) * h.step / stepping : 0.0;
+  if (R.status == "completed") {
+    if (R.history.back()[0] < h.time) record();
+    write_fields();
+  }
+  if (fields) fields->close();
+  if (R.status != "completed") log::info("stopped: ", R.stop_reason);
+  log::info("done: ", R.steps, " steps, ", R.neighbour_rebuilds, " neighbour-list builds, ",
+            R.particle_steps_per_second, " particle steps/s, largest energy error ",
+            R.energy_error);
+  log::info("smallest step: ", R.dt_limit);
+  return R;
+}
+
+void write_sph_outputs(const io::ProblemSpec& spec, const SphResult& r, io::OutputDirectory& out) {
+  out.write_csv("history.csv", r.history_header, r.history);
+  io::Json counts, step, times, results, gauges;
+  counts.set("particles", r.particles)
+      .set("steps", r.steps)
+      .set("neighbour_list_builds", r.neighbour_rebuilds);
+  step.set("first", r.first_dt).set("smallest", r.smallest_dt).set("limited_by", r.dt_limit);
+  for (const auto& [name, seconds] : r.timer.phases()) times.set(name, seconds);
+  for (const auto& [name, value] : r.gauge_maxima) gauges.set(name, value);
+  results.set("peak_pressure", r.peak_pressure)
+      .set("energy_error_relative", r.energy_error)
+      .set("particle_steps_per_second", r.particle_steps_per_second)
+      .set("gauge_maxima", gauges);
+  io::Json summary;
+  summary.set("problem", spec.name)
+      .set("description", spec.description)
+      .set("units", spec.units)
+      .set("analysis", "sph")
+      .set("status", r.status);
+  if (!r.stop_reason.empty()) summary.set("stop_reason", r.stop_reason);
+  summary.set("counts", counts).set("time_step", step).set("time_s", times).set("results", results);
+  out.write_text("summary.json", summary.str() + "\n");
+}
+
+} // namespace mf::app
