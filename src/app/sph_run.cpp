@@ -88,6 +88,9 @@ SphResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out) {
   for (const io::SphGauge& g : s.gauges) {
     H.push_back(g.name + "_pressure");
     H.push_back(g.name + "_density");
+    H.push_back(g.name + "_von_mises");
+    H.push_back(g.name + "_yield_stress");
+    H.push_back(g.name + "_plastic_strain");
     for (int d = 0; d < dims; ++d) H.push_back(g.name + "_v" + axes[d]);
     for (int d = 0; d < dims; ++d) H.push_back(g.name + "_u" + axes[d]);
   }
@@ -97,6 +100,12 @@ SphResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out) {
 
   const double e0 = sph::energies(h).total();
   double dt = 0.0;
+  // Von Mises stress of the deviator: sqrt(3/2 S:S).
+  const auto von_mises = [&](int i) {
+    const double* si = &P.S[6 * static_cast<std::size_t>(i)];
+    return std::sqrt(1.5 * (si[0] * si[0] + si[1] * si[1] + si[2] * si[2] +
+                            2.0 * (si[3] * si[3] + si[4] * si[4] + si[5] * si[5])));
+  };
   const auto max_pressure = [&]() { return *std::max_element(P.p.begin(), P.p.end()); };
   const auto record = [&]() {
     const sph::Energies E = sph::energies(h);
@@ -108,6 +117,10 @@ SphResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out) {
     for (int i : gauge) {
       row.push_back(P.p[i]);
       row.push_back(P.rho[i]);
+      row.push_back(von_mises(i));
+      const sph::Strength& st = h.materials[P.material[i]].strength;
+      row.push_back(st.plastic ? materials::yield_stress(st.yield, P.alpha[i]) : 0.0);
+      row.push_back(P.alpha[i]);
       for (int d = 0; d < dims; ++d) row.push_back(P.v[3 * i + d]);
       for (int d = 0; d < dims; ++d) row.push_back(P.x[3 * i + d] - x0[3 * i + d]);
     }

@@ -1,3 +1,4 @@
+#include "meshfree/io/hardening_read.hpp"
 #include "meshfree/io/key_reader.hpp"
 #include "meshfree/io/pd_read.hpp"
 #include "meshfree/io/problem_spec.hpp"
@@ -7,28 +8,6 @@
 
 namespace mf::io {
 
-namespace {
-
-/// Names end up in file names and CSV/JSON keys: letters, digits, '_' and '-' only.
-void check_name(KeyReader& r, const std::string& key, const std::string& name, bool may_be_empty) {
-  if (name.empty() && may_be_empty) return;
-  if (name.empty() ||
-      name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") !=
-          std::string::npos)
-    r.error(key, "expected a name of letters, digits, '_' or '-', got '" + name + "'");
-}
-
-materials::PlaneModel read_model(KeyReader& r, double& thickness) {
-  KeyReader m = r.map("model");
-  const std::string type = m.choice("type", {"plane_stress", "plane_strain"}, "plane_stress");
-  thickness = m.positive("thickness", 1.0);
-  m.finish();
-  return type == "plane_stress" ? materials::PlaneModel::PlaneStress
-                                : materials::PlaneModel::PlaneStrain;
-}
-
-/// The isotropic hardening law of material.plasticity.hardening; sets j.sigma0 for the laws that
-/// define the initial yield stress themselves (Swift, table).
 void read_hardening(KeyReader& p, materials::J2Parameters& j) {
   const bool has_yield = p.has("yield_stress");
   std::string type = "perfect";
@@ -95,6 +74,26 @@ void read_hardening(KeyReader& p, materials::J2Parameters& j) {
     j.hardening = t;
   }
   if (h) h->finish();
+}
+
+namespace {
+
+/// Names end up in file names and CSV/JSON keys: letters, digits, '_' and '-' only.
+void check_name(KeyReader& r, const std::string& key, const std::string& name, bool may_be_empty) {
+  if (name.empty() && may_be_empty) return;
+  if (name.empty() ||
+      name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") !=
+          std::string::npos)
+    r.error(key, "expected a name of letters, digits, '_' or '-', got '" + name + "'");
+}
+
+materials::PlaneModel read_model(KeyReader& r, double& thickness) {
+  KeyReader m = r.map("model");
+  const std::string type = m.choice("type", {"plane_stress", "plane_strain"}, "plane_stress");
+  thickness = m.positive("thickness", 1.0);
+  m.finish();
+  return type == "plane_stress" ? materials::PlaneModel::PlaneStress
+                                : materials::PlaneModel::PlaneStrain;
 }
 
 materials::IsotropicElastic read_material(KeyReader& r,

@@ -1,6 +1,7 @@
 // The SPH part of a problem file (analysis: sph): dimension, materials with their equations of
 // state, blocks of particles, detonation, viscosity, time and output. Every key is checked;
 // errors name the key path.
+#include "meshfree/io/hardening_read.hpp"
 #include "meshfree/io/key_reader.hpp"
 #include "meshfree/io/sph_read.hpp"
 #include <cmath>
@@ -84,6 +85,18 @@ SphSpec parse_sph(KeyReader& r) {
       if (other.name == mat.name) m.error("name", "another material is named '" + mat.name + "'");
     KeyReader e = m.map("eos");
     mat.eos = read_eos(e);
+    if (auto st = m.optional_map("strength")) {
+      // The deviatoric stress of a solid; the J2 return uses mu = G (E = 2G, nu = 0).
+      mat.strength.enabled = true;
+      mat.strength.shear_modulus = st->positive("shear_modulus");
+      mat.strength.yield.E = 2.0 * mat.strength.shear_modulus;
+      mat.strength.yield.nu = 0.0;
+      if (st->has("yield_stress") || st->has("hardening")) {
+        mat.strength.plastic = true;
+        read_hardening(*st, mat.strength.yield);
+      }
+      st->finish();
+    }
     m.finish();
     s.materials.push_back(mat);
   }

@@ -80,6 +80,22 @@ double yield_slope(const J2Parameters& p, double alpha) {
   return std::visit(Slope{p.sigma0, alpha}, p.hardening);
 }
 
+DeviatoricReturn j2_return_deviatoric(const J2Parameters& p, double q_trial, double alpha) {
+  DeviatoricReturn r;
+  if (q_trial <= yield_stress(p, alpha)) return r;
+  const double mu = p.E / (2.0 * (1.0 + p.nu));
+  double d = 0.0;
+  for (int it = 0; it < 50; ++it) {
+    const double g = q_trial - 3.0 * mu * d - yield_stress(p, alpha + d);
+    const double step = g / (3.0 * mu + yield_slope(p, alpha + d));
+    d += step;
+    if (std::abs(step) <= 1e-15 * std::max(d, 1e-300) || std::abs(g) <= 1e-13 * q_trial) break;
+  }
+  r.dalpha = d;
+  r.scale = (q_trial - 3.0 * mu * d) / q_trial;
+  return r;
+}
+
 double von_mises_3d(const Vec6& s) {
   return std::sqrt(1.5) * tensor_norm(deviator(s));
 }

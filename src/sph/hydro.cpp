@@ -35,6 +35,8 @@ void Particles::add(const double position[3], double m, double density, double e
   material.push_back(mat);
   light_time.push_back(-1.0);
   fixed.push_back(is_fixed ? 1 : 0);
+  for (int k = 0; k < 6; ++k) S.push_back(0.0);
+  alpha.push_back(0.0);
   p.push_back(0.0);
   c.push_back(0.0);
 }
@@ -74,8 +76,11 @@ void update_state(Hydro& s) {
       f = 0.0; // never lit: inert
     }
     P.p[i] = f * ps.p;
-    // The unburnt explosive keeps the products' sound speed so that the step resolves the burn.
-    P.c[i] = std::sqrt(std::max(ps.c2, 0.0));
+    // The unburnt explosive keeps the products' sound speed so that the step resolves the burn;
+    // a solid's longitudinal speed adds 4G / (3 rho).
+    const Strength& st = s.materials[P.material[i]].strength;
+    const double shear = st.enabled ? 4.0 * st.shear_modulus / (3.0 * P.rho[i]) : 0.0;
+    P.c[i] = std::sqrt(std::max(ps.c2, 0.0) + shear);
   }
 }
 
@@ -124,6 +129,27 @@ void refresh_neighbours(Hydro& s) {
   ++s.rebuilds;
 }
 
+namespace {
+bool any_solid(const Hydro& s) {
+  for (const Material& m : s.materials)
+    if (m.strength.enabled) return true;
+  return false;
+}
+
+/// grad_i W_ij / r_ij for a pair within the support of h_bar, or 0.
+inline double pair_gradient(const Particles& P, int dim, int i, int j, double xij[3], double& r2) {
+  r2 = 0.0;
+  for (int d = 0; d < 3; ++d) {
+    xij[d] = P.x[3 * i + d] - P.x[3 * j + d];
+    r2 += xij[d] * xij[d];
+  }
+  const double hij = 0.5 * (P.h[i] + P.h[j]);
+  if (r2 >= 4.0 * hij * hij || r2 == 0.0) return 0.0;
+  const double rr = std::sqrt(r2);
+  return kernels::cubic_spline_slope(dim, rr, hij) / rr;
+}
+} // namespace
+
 void compute_rates(const Hydro& s, Rates& r) {
   const Particles& P = s.particles;
   const Settings& S = s.settings;
@@ -131,24 +157,67 @@ void compute_rates(const Hydro& s, Rates& r) {
   r.dv.assign(3 * static_cast<std::size_t>(n), 0.0);
   r.drho.assign(n, 0.0);
   r.de.assign(n, 0.0);
+  const bool solids = any_solid(s);
+  if (solids) {
+    // Velocity gradient L_i = sum_j (m_j / rho_j)(v_j - v_i) (x) grad_i W_ij, and the Jaumann
+    // rate of the deviatoric stress.
+    r.grad_v.assign(9 * static_cast<std::size_t>(n), 0.0);
+    r.dS.assign(6 * static_cast<std::size_t>(n), 0.0);
+#pragma omp parallel for schedule(dynamic, 64)
+    for (int i = 0; i < n; ++i) {
+      const Strength& st = s.materials[P.material[i]].strength;
+      if (!st.enabled) continue;
+      double L[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+      for (long k = s.pairs.offset[i]; k < s.pairs.offset[i + 1]; ++k) {
+        const int j = s.pairs.partner[k];
+        double xij[3], r2;
+        const double g = pair_gradient(P, dim, i, j, xij, r2);
+        if (g == 0.0) continue;
+        const double w = P.mass[j] / P.rho[j] * g;
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b) L[a][b] += w * (P.v[3 * j + a] - P.v[3 * i + a]) * xij[b];
+      }
+      double D[3][3], W[3][3], Si[3][3];
+      const double* s6 = &P.S[6 * static_cast<std::size_t>(i)];
+      const double Sm[3][3] = {{s6[0], s6[5], s6[4]}, {s6[5], s6[1], s6[3]}, {s6[4], s6[3], s6[2]}};
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) {
+          D[a][b] = 0.5 * (L[a][b] + L[b][a]);
+          W[a][b] = 0.5 * (L[a][b] - L[b][a]);
+          Si[a][b] = Sm[a][b];
+        }
+      const double trD = D[0][0] + D[1][1] + D[2][2];
+      double dS[3][3];
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) {
+          double rot = 0.0;
+          for (int c = 0; c < 3; ++c) rot += W[a][c] * Si[c][b] - Si[a][c] * W[c][b];
+          dS[a][b] = 2.0 * st.shear_modulus * (D[a][b] - (a == b ? trD / 3.0 : 0.0)) + rot;
+        }
+      double* out = &r.dS[6 * static_cast<std::size_t>(i)];
+      out[0] = dS[0][0], out[1] = dS[1][1], out[2] = dS[2][2];
+      out[3] = dS[1][2], out[4] = dS[0][2], out[5] = dS[0][1];
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) r.grad_v[9 * static_cast<std::size_t>(i) + 3 * a + b] = L[a][b];
+    }
+  }
 #pragma omp parallel for schedule(dynamic, 64)
   for (int i = 0; i < n; ++i) {
     const double pi_rho2 = P.p[i] / (P.rho[i] * P.rho[i]);
+    const double* si = &P.S[6 * static_cast<std::size_t>(i)];
+    const double ri2 = 1.0 / (P.rho[i] * P.rho[i]);
     double acc[3] = {0.0, 0.0, 0.0}, drho = 0.0, de = 0.0;
     for (long k = s.pairs.offset[i]; k < s.pairs.offset[i + 1]; ++k) {
       const int j = s.pairs.partner[k];
-      double xij[3], vij[3], r2 = 0.0, vx = 0.0;
+      double xij[3], r2;
+      const double g = pair_gradient(P, dim, i, j, xij, r2);
+      if (g == 0.0) continue;
+      double vij[3], vx = 0.0;
       for (int d = 0; d < 3; ++d) {
-        xij[d] = P.x[3 * i + d] - P.x[3 * j + d];
         vij[d] = P.v[3 * i + d] - P.v[3 * j + d];
-        r2 += xij[d] * xij[d];
         vx += vij[d] * xij[d];
       }
       const double hij = 0.5 * (P.h[i] + P.h[j]);
-      if (r2 >= 4.0 * hij * hij || r2 == 0.0) continue;
-      const double rr = std::sqrt(r2);
-      // grad_i W_ij = dW/dr x_ij / r.
-      const double g = kernels::cubic_spline_slope(dim, rr, hij) / rr;
       // Monaghan's viscosity for approaching pairs.
       double visc = 0.0;
       if (vx < 0.0) {
@@ -161,6 +230,20 @@ void compute_rates(const Hydro& s, Rates& r) {
       for (int d = 0; d < 3; ++d) acc[d] -= mj * q * g * xij[d];
       drho += mj * vx * g;
       de += 0.5 * mj * q * vx * g;
+      if (solids) {
+        // Deviatoric stress: dv_i += m_j (S_i/rho_i^2 + S_j/rho_j^2) . grad W and
+        // de_i -= m_j / 2 (S_i/rho_i^2 + S_j/rho_j^2) : (v_ij (x) grad W).
+        const double* sj = &P.S[6 * static_cast<std::size_t>(j)];
+        const double rj2 = 1.0 / (P.rho[j] * P.rho[j]);
+        double T[6];
+        for (int c = 0; c < 6; ++c) T[c] = si[c] * ri2 + sj[c] * rj2;
+        const double gx[3] = {g * xij[0], g * xij[1], g * xij[2]};
+        const double Tg[3] = {T[0] * gx[0] + T[5] * gx[1] + T[4] * gx[2],
+                              T[5] * gx[0] + T[1] * gx[1] + T[3] * gx[2],
+                              T[4] * gx[0] + T[3] * gx[1] + T[2] * gx[2]};
+        for (int d = 0; d < 3; ++d) acc[d] += mj * Tg[d];
+        de -= 0.5 * mj * (vij[0] * Tg[0] + vij[1] * Tg[1] + vij[2] * Tg[2]);
+      }
     }
     if (!P.fixed[i])
       for (int d = 0; d < 3; ++d) r.dv[3 * i + d] = acc[d];
@@ -196,11 +279,35 @@ void check_finite(const Hydro& s) {
 }
 } // namespace
 
+namespace {
+/// S = S0 + dt dS, returned to the yield surface; alpha = alpha0 + its plastic increment.
+void update_stress(Hydro& s, const std::vector<double>& S0, const std::vector<double>& alpha0,
+                   const Rates& r, double dt) {
+  Particles& P = s.particles;
+  const int n = P.size();
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    const Strength& st = s.materials[P.material[i]].strength;
+    if (!st.enabled) continue;
+    double* si = &P.S[6 * static_cast<std::size_t>(i)];
+    for (int c = 0; c < 6; ++c) si[c] = S0[6 * i + c] + dt * r.dS[6 * i + c];
+    P.alpha[i] = alpha0[i];
+    if (!st.plastic) continue;
+    const double q = std::sqrt(1.5 * (si[0] * si[0] + si[1] * si[1] + si[2] * si[2] +
+                                      2.0 * (si[3] * si[3] + si[4] * si[4] + si[5] * si[5])));
+    const materials::DeviatoricReturn ret = materials::j2_return_deviatoric(st.yield, q, alpha0[i]);
+    for (int c = 0; c < 6; ++c) si[c] *= ret.scale;
+    P.alpha[i] = alpha0[i] + ret.dalpha;
+  }
+}
+} // namespace
+
 void advance(Hydro& s, double dt) {
   Particles& P = s.particles;
   const int n = P.size();
   const std::size_t n3 = 3 * static_cast<std::size_t>(n);
-  const std::vector<double> x0 = P.x, v0 = P.v, rho0 = P.rho, e0 = P.e;
+  const std::vector<double> x0 = P.x, v0 = P.v, rho0 = P.rho, e0 = P.e, S0 = P.S, a0 = P.alpha;
+  const bool solids = any_solid(s);
   const double t0 = s.time;
   Rates r;
   // Predictor: half a step with the rates at the start.
@@ -216,6 +323,7 @@ void advance(Hydro& s, double dt) {
     P.rho[i] = rho0[i] + 0.5 * dt * r.drho[i];
     P.e[i] = e0[i] + 0.5 * dt * r.de[i];
   }
+  if (solids) update_stress(s, S0, a0, r, 0.5 * dt);
   s.time = t0 + 0.5 * dt;
   update_state(s);
   // Corrector: the full step with the mid-step rates.
@@ -231,6 +339,7 @@ void advance(Hydro& s, double dt) {
     P.rho[i] = rho0[i] + dt * r.drho[i];
     P.e[i] = e0[i] + dt * r.de[i];
   }
+  if (solids) update_stress(s, S0, a0, r, dt);
   s.time = t0 + dt;
   ++s.step;
   check_finite(s);

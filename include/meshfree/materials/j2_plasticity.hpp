@@ -85,6 +85,18 @@ J2Result2D j2_update_plane_strain(const J2Parameters& p, const Vec3& strain,
 J2Result2D j2_update_plane_stress(const J2Parameters& p, const Vec3& strain,
                                   const J2State& committed);
 
+/// Radial return for codes that integrate the deviatoric stress rate (explicit SPH): a trial
+/// deviator of von Mises stress q_trial at equivalent plastic strain alpha is scaled back to the
+/// yield surface. Backward Euler with isotropic hardening, the consistency equation of
+/// j2_update_3d (Simo & Hughes 1998, Box 3.2) in von Mises form:
+///   q_trial - 3 mu dalpha - sigma_y(alpha + dalpha) = 0.
+/// Kinematic hardening is not carried here. Returns the factor on the deviator (1: elastic) and
+/// the plastic strain increment.
+struct DeviatoricReturn {
+  double scale = 1.0, dalpha = 0.0;
+};
+DeviatoricReturn j2_return_deviatoric(const J2Parameters& p, double q_trial, double alpha);
+
 /// Von Mises stress of a 3D stress vector.
 double von_mises_3d(const Vec6& s);
 

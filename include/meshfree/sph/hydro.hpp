@@ -6,6 +6,7 @@
 // midpoint predictor-corrector step under the CFL bound, equations of state per material, and
 // programmed burn of explosives (lighting time = distance / D_CJ).
 #include "meshfree/materials/eos.hpp"
+#include "meshfree/materials/j2_plasticity.hpp"
 #include "meshfree/neighbors/pair_list.hpp"
 #include <string>
 #include <vector>
@@ -24,9 +25,21 @@ struct Eos {
 
 materials::PressureAndSound evaluate(const Eos& eos, double rho, double e);
 
+/// Strength of a solid: the deviatoric stress S follows the Jaumann rate
+/// dS/dt = 2 G (D - tr(D) I / 3) + W S - S W (D, W: symmetric and skew parts of grad v) and is
+/// returned to the von Mises surface of the shared J2 layer (materials/j2_plasticity) after each
+/// update. The pressure comes from the equation of state.
+struct Strength {
+  bool enabled = false;
+  double shear_modulus = 0.0;
+  bool plastic = false;
+  materials::J2Parameters yield; // sigma0 and hardening; E = 2G and nu = 0 give mu = G
+};
+
 struct Material {
   std::string name;
   Eos eos;
+  Strength strength;
 };
 
 /// Particle arrays (structure of arrays; vectors have 3 components per particle, the unused ones
@@ -41,7 +54,9 @@ struct Particles {
   /// Fixed (wall) particles: they do not move, but their density and energy evolve, so that they
   /// push back on approaching particles (dynamic boundary particles, Crespo et al. 2007).
   std::vector<char> fixed;
-  std::vector<double> p, c; // from the equation of state, per step
+  std::vector<double> p, c;  // from the equation of state, per step
+  std::vector<double> S;     // deviatoric stress, 6 per particle: xx yy zz yz xz xy
+  std::vector<double> alpha; // equivalent plastic strain
   int size() const { return static_cast<int>(mass.size()); }
   /// Appends a particle at rest.
   void add(const double position[3], double mass, double rho, double e, double h, int material,
@@ -57,7 +72,8 @@ struct Settings {
 };
 
 struct Rates {
-  std::vector<double> dv, drho, de;
+  std::vector<double> dv, drho, de, dS;
+  std::vector<double> grad_v; // 9 per particle (solids): L_ab = d v_a / d x_b
 };
 
 /// A run's state: particles, materials, settings, time and the neighbour list with its margin.
