@@ -4,29 +4,29 @@ set -u
 MF="$1"; ROOT="$2"
 WORK="$(mktemp -d)"; trap 'rm -rf "$WORK"' EXIT
 fails=0
-expect_error() { # expect_error "message fragment" args...
+# Runs "$MF run ARGS --out $WORK/out"; fails the case unless it exits non-zero with a message
+# holding the fragment. Returns 1 when the case has already failed.
+run_failing() { # run_failing "message fragment" args...
   local want="$1"; shift
-  local out="$WORK/out"
-  rm -rf "$out"
-  msg="$("$MF" run "$@" --out "$out" 2>&1 >/dev/null)"; rc=$?
-  if [ $rc -eq 0 ]; then echo "FAIL (exit 0): $*"; fails=$((fails+1)); return; fi
-  if ! grep -qF -- "$want" <<<"$msg"; then echo "FAIL (message '$msg' lacks '$want'): $*"; fails=$((fails+1)); return; fi
-  if [ -n "$(ls -A "$out" 2>/dev/null)" ]; then echo "FAIL (left files in $out): $*"; fails=$((fails+1)); return; fi
-  echo "ok: $want"
+  rm -rf "$WORK/out"
+  msg="$("$MF" run "$@" --out "$WORK/out" 2>&1 >/dev/null)"; rc=$?
+  if [ $rc -eq 0 ]; then echo "FAIL (exit 0): $*"; fails=$((fails+1)); return 1; fi
+  if ! grep -qF -- "$want" <<<"$msg"; then echo "FAIL (message '$msg' lacks '$want'): $*"; fails=$((fails+1)); return 1; fi
+}
+# Bad input: rejected before anything is written.
+expect_error() { # expect_error "message fragment" args...
+  run_failing "$@" || return
+  if [ -n "$(ls -A "$WORK/out" 2>/dev/null)" ]; then echo "FAIL (left files in $WORK/out): ${*:2}"; fails=$((fails+1)); return; fi
+  echo "ok: $1"
 }
 # A valid file whose run fails while setting up: the only file left is summary.json, with status
 # "failed" and the message.
 expect_run_failure() { # expect_run_failure "message fragment" args...
-  local want="$1"; shift
-  local out="$WORK/out"
-  rm -rf "$out"
-  msg="$("$MF" run "$@" --out "$out" 2>&1 >/dev/null)"; rc=$?
-  if [ $rc -eq 0 ]; then echo "FAIL (exit 0): $*"; fails=$((fails+1)); return; fi
-  if ! grep -qF -- "$want" <<<"$msg"; then echo "FAIL (message '$msg' lacks '$want'): $*"; fails=$((fails+1)); return; fi
-  if [ "$(ls -A "$out")" != "summary.json" ] || ! grep -q '"status": "failed"' "$out/summary.json"; then
-    echo "FAIL (expected only a failed summary.json in $out): $*"; fails=$((fails+1)); return
+  run_failing "$@" || return
+  if [ "$(ls -A "$WORK/out")" != "summary.json" ] || ! grep -q '"status": "failed"' "$WORK/out/summary.json"; then
+    echo "FAIL (expected only a failed summary.json in $WORK/out): ${*:2}"; fails=$((fails+1)); return
   fi
-  echo "ok: $want"
+  echo "ok: $1"
 }
 P="$ROOT/problems/plate_tension.yaml"
 expect_error "discretisation.spacing: expected a positive number, got -0.1" "$P" --set discretisation.spacing=-0.1
