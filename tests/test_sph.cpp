@@ -509,3 +509,57 @@ TEST_CASE("deviatoric radial return agrees with the implicit J2 update", "[sph][
     CHECK(r.scale * q == Approx(materials::von_mises_3d(implicit.stress)).epsilon(1e-10));
   }
 }
+
+TEST_CASE("plane elastic wave in a 2D and a 3D block: stress behind the front", "[sph][solid]") {
+  // Two blocks meet at x = 0 with velocities +-v0; near the centre line the state is uniaxial
+  // strain until the lateral release waves from the free sides arrive (after half the width over
+  // c_L). Behind the front sigma_xx = -rho c_L v0 (the 1D test's material, h = 1.5 dx: the SPH
+  // gradient of a linear field on these lattices is within 1% of exact).
+  const double v0 = 1.0, K = 70e9, G = 26e9, rho = 2700.0;
+  const double cl = std::sqrt((K + 4.0 / 3.0 * G) / rho);
+  for (int dim : {2, 3}) {
+    sph::Hydro s;
+    s.particles.dim = dim;
+    sph::Material al;
+    al.name = "solid";
+    al.eos.kind = sph::Eos::Kind::LinearPolynomial;
+    al.eos.linear_polynomial.rho0 = rho;
+    al.eos.linear_polynomial.c[1] = K;
+    al.strength.enabled = true;
+    al.strength.shear_modulus = G;
+    s.materials.push_back(al);
+    const double dx = 0.5e-3, half = 8e-3; // half-width across; the blocks are 10 mm long
+    const int nx = static_cast<int>(std::lround(2 * 0.01 / dx)),
+              ny = static_cast<int>(std::lround(2 * half / dx)), nz = dim == 3 ? ny : 1;
+    for (int k = 0; k < nz; ++k)
+      for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+          const double x[3] = {-0.01 + (i + 0.5) * dx, -half + (j + 0.5) * dx,
+                               dim == 3 ? -half + (k + 0.5) * dx : 0.0};
+          s.particles.add(x, rho * std::pow(dx, dim), rho, 0.0, 1.5 * dx, 0);
+          s.particles.v[s.particles.v.size() - 3] = x[0] < 0.0 ? v0 : -v0;
+        }
+    sph::update_state(s);
+    const double t_end = 0.8 * half / cl; // before the lateral release reaches the centre
+    const double e0 = sph::energies(s).total();
+    while (s.time < t_end) sph::advance(s, std::min(sph::stable_step(s), t_end - s.time));
+    const sph::Particles& P = s.particles;
+    double sum = 0.0;
+    int count = 0;
+    for (int i = 0; i < P.size(); ++i) {
+      const double x = P.x[3 * i], r = std::hypot(P.x[3 * i + 1], P.x[3 * i + 2]);
+      if (x > 0.1 * cl * t_end && x < 0.7 * cl * t_end && r < 0.1 * half)
+        sum += -P.p[i] + P.S[6 * i], ++count;
+    }
+    const double sxx = sum / count;
+    const double drift = std::abs(sph::energies(s).total() - e0) / e0;
+    std::printf("  %dD block (%d particles): sigma_xx %.4g MPa (theory %.4g) over %d particles, "
+                "energy drift %.2e\n",
+                dim, P.size(), sxx / 1e6, -rho * cl * v0 / 1e6, count, drift);
+    INFO(dim << "D");
+    // Measured: -0.5% (2D), -0.6% (3D); energy error 1.0e-3 (2D) and 2.0e-4 (3D), held to the
+    // issue's 1% for runs without dissipation leaving the system.
+    CHECK(sxx == Approx(-rho * cl * v0).epsilon(0.02));
+    CHECK(drift < 0.01);
+  }
+}
