@@ -8,7 +8,7 @@ for p in "$ROOT"/problems/*.yaml; do
   extra=()
   # Explicit dynamics runs take minutes to their end time (scripts/pd_*_study.py and the pd
   # tests run them in full): here the first 2% of it shows that they run as they are.
-  if grep -q '^analysis: peridynamics' "$p"; then
+  if grep -qE '^analysis: (peridynamics|sph)' "$p"; then
     end="$(sed -n 's/^time: {end: \([^,}]*\).*/\1/p' "$p")"
     extra=(--set "time.end=$(awk -v e="$end" 'BEGIN { printf "%.6g", 0.02 * e }')")
   fi

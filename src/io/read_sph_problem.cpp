@@ -137,6 +137,30 @@ SphSpec parse_sph(KeyReader& r) {
     s.blocks.push_back(block);
   }
   if (s.blocks.empty()) r.error("blocks", "at least one block of particles is required");
+  for (KeyReader& l : r.map_list("loads")) {
+    SphBlastLoad load;
+    load.key_path = l.path();
+    load.name = l.text("name");
+    const auto corners = l.number_lists("box", dim);
+    if (corners.size() != 2) l.error("box", "expected two corners [[x0, ...], [x1, ...]]");
+    for (int d = 0; d < 3; ++d) {
+      load.lo[d] = d < dim ? std::min(corners[0][d], corners[1][d]) : -1e300;
+      load.hi[d] = d < dim ? std::max(corners[0][d], corners[1][d]) : 1e300;
+    }
+    KeyReader b = l.map("blast");
+    load.tnt_mass = b.positive("tnt_mass");
+    load.surface_burst = b.choice("burst", {"surface", "free_air"}, "surface") == "surface";
+    load.charge = read_point(b, "charge_at", dim);
+    load.normal = read_point(b, "normal", dim);
+    const double norm =
+        std::sqrt(load.normal[0] * load.normal[0] + load.normal[1] * load.normal[1] +
+                  load.normal[2] * load.normal[2]);
+    if (!(norm > 0.0)) b.error("normal", "expected a non-zero vector");
+    for (double& c : load.normal) c /= norm;
+    b.finish();
+    l.finish();
+    s.loads.push_back(load);
+  }
   if (auto d = r.optional_map("detonation")) {
     s.detonation_point = read_point(*d, "point", dim);
     s.settings.burn_width = d->positive("burn_width", s.settings.burn_width);

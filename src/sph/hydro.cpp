@@ -250,7 +250,29 @@ void compute_rates(const Hydro& s, Rates& r) {
     r.drho[i] = drho;
     r.de[i] = de;
   }
+  for (const SurfaceLoad& load : s.loads)
+    for (std::size_t k = 0; k < load.particles.size(); ++k) {
+      const int i = load.particles[k];
+      if (P.fixed[i]) continue;
+      const double f = load.pulses[k](s.time) * load.area[k] / P.mass[i];
+      for (int d = 0; d < 3; ++d) r.dv[3 * i + d] += f * load.direction[d];
+    }
 }
+
+namespace {
+/// Power of the surface loads at the current time and velocities.
+double load_power(const Hydro& s) {
+  const Particles& P = s.particles;
+  double w = 0.0;
+  for (const SurfaceLoad& load : s.loads)
+    for (std::size_t k = 0; k < load.particles.size(); ++k) {
+      const int i = load.particles[k];
+      const double f = load.pulses[k](s.time) * load.area[k];
+      for (int d = 0; d < 3; ++d) w += f * load.direction[d] * P.v[3 * i + d];
+    }
+  return w;
+}
+} // namespace
 
 double stable_step(const Hydro& s, int* limiting) {
   const Particles& P = s.particles;
@@ -326,6 +348,8 @@ void advance(Hydro& s, double dt) {
   if (solids) update_stress(s, S0, a0, r, 0.5 * dt);
   s.time = t0 + 0.5 * dt;
   update_state(s);
+  // The loads' work over the step at the midpoint, as the step itself.
+  if (!s.loads.empty()) s.external_work += dt * load_power(s);
   // Corrector: the full step with the mid-step rates.
   refresh_neighbours(s);
   compute_rates(s, r);

@@ -19,6 +19,15 @@ struct SphBlock {
   bool fixed = false; // a wall of fixed particles
 };
 
+/// A Kingery-Bulmash blast on the particles of a box (a surface layer one particle thick).
+struct SphBlastLoad {
+  std::string name, key_path;
+  std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0};
+  double tnt_mass = 0.0;
+  bool surface_burst = true;
+  std::array<double, 3> charge{0, 0, 0}, normal{0, 0, 0}; // normal: unit, outward
+};
+
 struct SphGauge {
   std::string name;
   std::array<double, 3> at{0, 0, 0};
@@ -34,6 +43,7 @@ struct SphSpec {
   double end_time = 0.0;
   double history_interval = 0.0, fields_interval = 0.0; // 0: every step / start and end only
   std::vector<SphGauge> gauges;
+  std::vector<SphBlastLoad> loads;
 };
 
 } // namespace mf::io

@@ -5,6 +5,7 @@
 // viscosity (alpha = beta = 1, phi = 0.1 h), smoothing lengths that follow the density, a
 // midpoint predictor-corrector step under the CFL bound, equations of state per material, and
 // programmed burn of explosives (lighting time = distance / D_CJ).
+#include "meshfree/loads/blast.hpp"
 #include "meshfree/materials/eos.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
 #include "meshfree/neighbors/pair_list.hpp"
@@ -76,6 +77,16 @@ struct Rates {
   std::vector<double> grad_v; // 9 per particle (solids): L_ab = d v_a / d x_b
 };
 
+/// A pressure history on a surface layer of particles (an empirical blast load): particle k of
+/// the layer takes the force pulses[k](t) area[k] along `direction` (the inward normal).
+struct SurfaceLoad {
+  std::string name;
+  std::vector<int> particles;
+  std::vector<double> area;
+  std::vector<loads::Friedlander> pulses;
+  double direction[3] = {0.0, 0.0, 0.0};
+};
+
 /// A run's state: particles, materials, settings, time and the neighbour list with its margin.
 struct Hydro {
   Particles particles;
@@ -87,6 +98,8 @@ struct Hydro {
   std::vector<double> x_at_build, h_at_build; // positions and h when the list was built
   double build_radius = 0.0;
   int rebuilds = 0;
+  std::vector<SurfaceLoad> loads;
+  double external_work = 0.0; // work of the surface loads so far
 };
 
 /// Lighting times for a detonation at point `at` (distance / D_CJ) of every particle of an
