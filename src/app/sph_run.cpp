@@ -83,6 +83,26 @@ sph::Hydro build_sph(const io::SphSpec& s) {
   }
   if (s.detonation_point) sph::light_from_point(h, s.detonation_point->data());
   sph::update_state(h);
+  for (const io::SphTransmitting& t : s.transmitting) {
+    // Lysmer dashpots with the particle's initial impedances rho c_L and rho c_s.
+    sph::TransmittingBoundary b;
+    b.name = t.name;
+    for (int d = 0; d < 3; ++d) b.normal[d] = t.normal[d];
+    for (int i = 0; i < P.size(); ++i) {
+      bool inside = !P.fixed[i];
+      for (int d = 0; d < 3 && inside; ++d)
+        inside = P.x[3 * i + d] >= t.lo[d] - 1e-9 && P.x[3 * i + d] <= t.hi[d] + 1e-9;
+      if (!inside) continue;
+      const sph::Strength& st = h.materials[P.material[i]].strength;
+      const double volume = P.mass[i] / P.rho_ref[i];
+      b.particles.push_back(i);
+      b.area.push_back(volume / std::pow(volume, 1.0 / s.dimension));
+      b.normal_impedance.push_back(P.rho[i] * P.c[i]);
+      b.shear_impedance.push_back(st.enabled ? std::sqrt(P.rho[i] * st.shear_modulus) : 0.0);
+    }
+    MF_REQUIRE(!b.particles.empty(), t.key_path, ".box: selects no free particle");
+    h.transmitting.push_back(b);
+  }
   return h;
 }
 

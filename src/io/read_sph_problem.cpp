@@ -161,6 +161,25 @@ SphSpec parse_sph(KeyReader& r) {
     l.finish();
     s.loads.push_back(load);
   }
+  for (KeyReader& b : r.map_list("boundaries")) {
+    SphTransmitting t;
+    t.key_path = b.path();
+    t.name = b.text("name");
+    b.choice("type", {"transmitting"}, "");
+    const auto corners = b.number_lists("box", dim);
+    if (corners.size() != 2) b.error("box", "expected two corners [[x0, ...], [x1, ...]]");
+    for (int d = 0; d < 3; ++d) {
+      t.lo[d] = d < dim ? std::min(corners[0][d], corners[1][d]) : -1e300;
+      t.hi[d] = d < dim ? std::max(corners[0][d], corners[1][d]) : 1e300;
+    }
+    t.normal = read_point(b, "normal", dim);
+    const double norm = std::sqrt(t.normal[0] * t.normal[0] + t.normal[1] * t.normal[1] +
+                                  t.normal[2] * t.normal[2]);
+    if (!(norm > 0.0)) b.error("normal", "expected a non-zero vector");
+    for (double& c : t.normal) c /= norm;
+    b.finish();
+    s.transmitting.push_back(t);
+  }
   if (auto d = r.optional_map("detonation")) {
     s.detonation_point = read_point(*d, "point", dim);
     s.settings.burn_width = d->positive("burn_width", s.settings.burn_width);

@@ -136,6 +136,17 @@ bool any_solid(const Hydro& s) {
   return false;
 }
 
+/// The dashpot force of particle k of a transmitting boundary at velocity v.
+inline void boundary_force(const TransmittingBoundary& b, std::size_t k, const double* v,
+                           double f[3]) {
+  const double vn = v[0] * b.normal[0] + v[1] * b.normal[1] + v[2] * b.normal[2];
+  for (int d = 0; d < 3; ++d) {
+    const double normal_part = vn * b.normal[d];
+    f[d] = -b.area[k] *
+           (b.normal_impedance[k] * normal_part + b.shear_impedance[k] * (v[d] - normal_part));
+  }
+}
+
 /// grad_i W_ij / r_ij for a pair within the support of h_bar, or 0.
 inline double pair_gradient(const Particles& P, int dim, int i, int j, double xij[3], double& r2) {
   r2 = 0.0;
@@ -257,6 +268,13 @@ void compute_rates(const Hydro& s, Rates& r) {
       const double f = load.pulses[k](s.time) * load.area[k] / P.mass[i];
       for (int d = 0; d < 3; ++d) r.dv[3 * i + d] += f * load.direction[d];
     }
+  for (const TransmittingBoundary& b : s.transmitting)
+    for (std::size_t k = 0; k < b.particles.size(); ++k) {
+      const int i = b.particles[k];
+      double f[3];
+      boundary_force(b, k, &P.v[3 * static_cast<std::size_t>(i)], f);
+      for (int d = 0; d < 3; ++d) r.dv[3 * i + d] += f[d] / P.mass[i];
+    }
 }
 
 namespace {
@@ -269,6 +287,13 @@ double load_power(const Hydro& s) {
       const int i = load.particles[k];
       const double f = load.pulses[k](s.time) * load.area[k];
       for (int d = 0; d < 3; ++d) w += f * load.direction[d] * P.v[3 * i + d];
+    }
+  for (const TransmittingBoundary& b : s.transmitting)
+    for (std::size_t k = 0; k < b.particles.size(); ++k) {
+      const double* v = &P.v[3 * static_cast<std::size_t>(b.particles[k])];
+      double f[3];
+      boundary_force(b, k, v, f);
+      w += f[0] * v[0] + f[1] * v[1] + f[2] * v[2];
     }
   return w;
 }
@@ -349,7 +374,7 @@ void advance(Hydro& s, double dt) {
   s.time = t0 + 0.5 * dt;
   update_state(s);
   // The loads' work over the step at the midpoint, as the step itself.
-  if (!s.loads.empty()) s.external_work += dt * load_power(s);
+  if (!s.loads.empty() || !s.transmitting.empty()) s.external_work += dt * load_power(s);
   // Corrector: the full step with the mid-step rates.
   refresh_neighbours(s);
   compute_rates(s, r);

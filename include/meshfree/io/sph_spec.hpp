@@ -28,6 +28,13 @@ struct SphBlastLoad {
   std::array<double, 3> charge{0, 0, 0}, normal{0, 0, 0}; // normal: unit, outward
 };
 
+/// A transmitting (Lysmer) boundary on the particles of a box, with its outward normal.
+struct SphTransmitting {
+  std::string name, key_path;
+  std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0};
+  std::array<double, 3> normal{0, 0, 0};
+};
+
 struct SphGauge {
   std::string name;
   std::array<double, 3> at{0, 0, 0};
@@ -44,6 +51,7 @@ struct SphSpec {
   double history_interval = 0.0, fields_interval = 0.0; // 0: every step / start and end only
   std::vector<SphGauge> gauges;
   std::vector<SphBlastLoad> loads;
+  std::vector<SphTransmitting> transmitting;
 };
 
 } // namespace mf::io

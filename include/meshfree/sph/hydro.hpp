@@ -87,6 +87,16 @@ struct SurfaceLoad {
   double direction[3] = {0.0, 0.0, 0.0};
 };
 
+/// A transmitting (non-reflecting) boundary on a surface layer: Lysmer & Kuhlemeyer (1969)
+/// dashpots, a traction -rho c_p (v.n) n - rho c_s (v - (v.n) n) on each particle's face area,
+/// which absorbs plane waves arriving along the normal.
+struct TransmittingBoundary {
+  std::string name;
+  std::vector<int> particles;
+  std::vector<double> area, normal_impedance, shear_impedance; // A, rho c_p, rho c_s per particle
+  double normal[3] = {0.0, 0.0, 0.0};                          // unit, outward
+};
+
 /// A run's state: particles, materials, settings, time and the neighbour list with its margin.
 struct Hydro {
   Particles particles;
@@ -99,7 +109,8 @@ struct Hydro {
   double build_radius = 0.0;
   int rebuilds = 0;
   std::vector<SurfaceLoad> loads;
-  double external_work = 0.0; // work of the surface loads so far
+  std::vector<TransmittingBoundary> transmitting;
+  double external_work = 0.0; // work of the surface loads and boundaries so far
 };
 
 /// Lighting times for a detonation at point `at` (distance / D_CJ) of every particle of an
