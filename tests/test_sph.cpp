@@ -357,6 +357,23 @@ TEST_CASE("TNT slab: programmed burn runs at D_CJ and the front obeys the jump c
 
 namespace {
 
+/// The solid of the wave tests: linear EOS p = K mu with K = 70 GPa, rho = 2700 kg/m^3,
+/// G = 26 GPa, and J2 yield sigma_y (<= 0: elastic).
+sph::Material test_solid(double sigma_y = 0.0) {
+  sph::Material al;
+  al.name = "solid";
+  al.eos.kind = sph::Eos::Kind::LinearPolynomial;
+  al.eos.linear_polynomial.rho0 = 2700.0;
+  al.eos.linear_polynomial.c[1] = 70e9;
+  al.strength.enabled = true;
+  al.strength.shear_modulus = 26e9;
+  al.strength.plastic = sigma_y > 0.0;
+  al.strength.yield.E = 2.0 * 26e9; // nu = 0: the return uses mu = G
+  al.strength.yield.nu = 0.0;
+  al.strength.yield.sigma0 = sigma_y;
+  return al;
+}
+
 struct BarImpact {
   double elastic_stress = 0.0, final_stress = 0.0; // mean sigma_xx over the two plateaus
   double elastic_speed = 0.0, plastic_speed = 0.0; // of the half-level crossings, 2/3 t to t
@@ -373,18 +390,7 @@ struct BarImpact {
 BarImpact bar_impact(double v0, double sigma_y, double t_end) {
   sph::Hydro s;
   s.particles.dim = 1;
-  sph::Material al;
-  al.name = "solid";
-  al.eos.kind = sph::Eos::Kind::LinearPolynomial;
-  al.eos.linear_polynomial.rho0 = 2700.0;
-  al.eos.linear_polynomial.c[1] = 70e9;
-  al.strength.enabled = true;
-  al.strength.shear_modulus = 26e9;
-  al.strength.plastic = sigma_y > 0.0;
-  al.strength.yield.E = 2.0 * 26e9; // nu = 0: the return uses mu = G
-  al.strength.yield.nu = 0.0;
-  al.strength.yield.sigma0 = sigma_y;
-  s.materials.push_back(al);
+  s.materials.push_back(test_solid(sigma_y));
   const int n = 400;
   const double dx = 0.05 / n;
   for (int k = 0; k < 2 * n; ++k) {
@@ -523,14 +529,7 @@ TEST_CASE("plane elastic wave in a 2D and a 3D block: stress behind the front", 
   for (int dim : {2, 3}) {
     sph::Hydro s;
     s.particles.dim = dim;
-    sph::Material al;
-    al.name = "solid";
-    al.eos.kind = sph::Eos::Kind::LinearPolynomial;
-    al.eos.linear_polynomial.rho0 = rho;
-    al.eos.linear_polynomial.c[1] = K;
-    al.strength.enabled = true;
-    al.strength.shear_modulus = G;
-    s.materials.push_back(al);
+    s.materials.push_back(test_solid());
     const double dx = 0.5e-3, half = 8e-3; // half-width across; the blocks are 10 mm long
     const int nx = static_cast<int>(std::lround(2 * 0.01 / dx)),
               ny = static_cast<int>(std::lround(2 * half / dx)), nz = dim == 3 ? ny : 1;
@@ -623,14 +622,7 @@ TEST_CASE("a transmitting boundary absorbs an elastic pulse", "[sph][solid]") {
   for (int absorbing : {0, 1}) {
     sph::Hydro s;
     s.particles.dim = 1;
-    sph::Material al;
-    al.name = "solid";
-    al.eos.kind = sph::Eos::Kind::LinearPolynomial;
-    al.eos.linear_polynomial.rho0 = rho;
-    al.eos.linear_polynomial.c[1] = K;
-    al.strength.enabled = true;
-    al.strength.shear_modulus = G;
-    s.materials.push_back(al);
+    s.materials.push_back(test_solid());
     const int n = 400;
     const double dx = 0.1 / n;
     for (int k = 0; k < n; ++k) {

@@ -15,6 +15,21 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+/// Whether a free particle lies in the box [lo, hi].
+bool free_in_box(const sph::Particles& P, int i, const std::array<double, 3>& lo,
+                 const std::array<double, 3>& hi) {
+  if (P.fixed[i]) return false;
+  for (int d = 0; d < 3; ++d)
+    if (P.x[3 * i + d] < lo[d] - 1e-9 || P.x[3 * i + d] > hi[d] + 1e-9) return false;
+  return true;
+}
+
+/// The face area of a particle in a surface layer one particle thick: V / spacing.
+double face_area(const sph::Particles& P, int i, int dim) {
+  const double volume = P.mass[i] / P.rho_ref[i];
+  return volume / std::pow(volume, 1.0 / dim);
+}
+
 int material_index(const io::SphSpec& s, const std::string& name) {
   for (std::size_t k = 0; k < s.materials.size(); ++k)
     if (s.materials[k].name == name) return static_cast<int>(k);
@@ -58,10 +73,7 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     const loads::Burst burst =
         l.surface_burst ? loads::Burst::HemisphericalSurface : loads::Burst::SphericalFreeAir;
     for (int i = 0; i < P.size(); ++i) {
-      bool inside = !P.fixed[i];
-      for (int d = 0; d < 3 && inside; ++d)
-        inside = P.x[3 * i + d] >= l.lo[d] - 1e-9 && P.x[3 * i + d] <= l.hi[d] + 1e-9;
-      if (!inside) continue;
+      if (!free_in_box(P, i, l.lo, l.hi)) continue;
       double ray[3], r = 0.0, cosine = 0.0;
       for (int d = 0; d < 3; ++d) ray[d] = P.x[3 * i + d] - l.charge[d], r += ray[d] * ray[d];
       r = std::sqrt(r);
@@ -73,9 +85,8 @@ sph::Hydro build_sph(const io::SphSpec& s) {
         fail(l.key_path, ".blast: particle at (", P.x[3 * i], ", ", P.x[3 * i + 1], ", ",
              P.x[3 * i + 2], "): ", e.what());
       }
-      const double volume = P.mass[i] / P.rho_ref[i];
       load.particles.push_back(i);
-      load.area.push_back(volume / std::pow(volume, 1.0 / s.dimension));
+      load.area.push_back(face_area(P, i, s.dimension));
       load.pulses.push_back(loads::blast_pulse(b, cosine));
     }
     MF_REQUIRE(!load.particles.empty(), l.key_path, ".box: selects no free particle");
@@ -89,14 +100,10 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     b.name = t.name;
     for (int d = 0; d < 3; ++d) b.normal[d] = t.normal[d];
     for (int i = 0; i < P.size(); ++i) {
-      bool inside = !P.fixed[i];
-      for (int d = 0; d < 3 && inside; ++d)
-        inside = P.x[3 * i + d] >= t.lo[d] - 1e-9 && P.x[3 * i + d] <= t.hi[d] + 1e-9;
-      if (!inside) continue;
+      if (!free_in_box(P, i, t.lo, t.hi)) continue;
       const sph::Strength& st = h.materials[P.material[i]].strength;
-      const double volume = P.mass[i] / P.rho_ref[i];
       b.particles.push_back(i);
-      b.area.push_back(volume / std::pow(volume, 1.0 / s.dimension));
+      b.area.push_back(face_area(P, i, s.dimension));
       b.normal_impedance.push_back(P.rho[i] * P.c[i]);
       b.shear_impedance.push_back(st.enabled ? std::sqrt(P.rho[i] * st.shear_modulus) : 0.0);
     }
