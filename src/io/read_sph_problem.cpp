@@ -72,6 +72,10 @@ SphSpec parse_sph(KeyReader& r) {
     KeyReader m = r.map("model");
     s.dimension = m.integer("dimension", 0, 1, 3);
     s.smoothing = m.positive("smoothing", 1.5);
+    s.settings.kernel =
+        m.choice("kernel", {"cubic_spline", "wendland_c2"}, "cubic_spline") == "cubic_spline"
+            ? kernels::SphKernel::CubicSpline
+            : kernels::SphKernel::WendlandC2;
     if (s.smoothing < 1.0 || s.smoothing > 3.0)
       m.error("smoothing",
               "expected h / spacing between 1 and 3, got " + std::to_string(s.smoothing));

@@ -148,7 +148,8 @@ inline void boundary_force(const TransmittingBoundary& b, std::size_t k, const d
 }
 
 /// grad_i W_ij / r_ij for a pair within the support of h_bar, or 0.
-inline double pair_gradient(const Particles& P, int dim, int i, int j, double xij[3], double& r2) {
+inline double pair_gradient(const Particles& P, int dim, kernels::SphKernel kernel, int i, int j,
+                            double xij[3], double& r2) {
   r2 = 0.0;
   for (int d = 0; d < 3; ++d) {
     xij[d] = P.x[3 * i + d] - P.x[3 * j + d];
@@ -157,7 +158,7 @@ inline double pair_gradient(const Particles& P, int dim, int i, int j, double xi
   const double hij = 0.5 * (P.h[i] + P.h[j]);
   if (r2 >= 4.0 * hij * hij || r2 == 0.0) return 0.0;
   const double rr = std::sqrt(r2);
-  return kernels::cubic_spline_slope(dim, rr, hij) / rr;
+  return kernels::sph_kernel_slope(kernel, dim, rr, hij) / rr;
 }
 } // namespace
 
@@ -182,7 +183,7 @@ void compute_rates(const Hydro& s, Rates& r) {
       for (long k = s.pairs.offset[i]; k < s.pairs.offset[i + 1]; ++k) {
         const int j = s.pairs.partner[k];
         double xij[3], r2;
-        const double g = pair_gradient(P, dim, i, j, xij, r2);
+        const double g = pair_gradient(P, dim, S.kernel, i, j, xij, r2);
         if (g == 0.0) continue;
         const double w = P.mass[j] / P.rho[j] * g;
         for (int a = 0; a < 3; ++a)
@@ -221,7 +222,7 @@ void compute_rates(const Hydro& s, Rates& r) {
     for (long k = s.pairs.offset[i]; k < s.pairs.offset[i + 1]; ++k) {
       const int j = s.pairs.partner[k];
       double xij[3], r2;
-      const double g = pair_gradient(P, dim, i, j, xij, r2);
+      const double g = pair_gradient(P, dim, S.kernel, i, j, xij, r2);
       if (g == 0.0) continue;
       double vij[3], vx = 0.0;
       for (int d = 0; d < 3; ++d) {

@@ -1,6 +1,6 @@
 #pragma once
-// The cubic B-spline smoothing kernel of SPH (Monaghan & Lattanzio 1985; the thesis' eq. 3-19),
-// support 2h, in 1, 2 or 3 dimensions:
+// Smoothing kernels of SPH with support 2h in 1, 2 or 3 dimensions. The cubic B-spline
+// (Monaghan & Lattanzio 1985; the thesis' eq. 3-19):
 //   W(q) = a_d (1 - 3/2 q^2 + 3/4 q^3) for 0 <= q < 1, a_d (2 - q)^3 / 4 for 1 <= q < 2, 0 beyond,
 //   q = r / h, a_1 = 2 / (3h), a_2 = 10 / (7 pi h^2), a_3 = 1 / (pi h^3).
 #include <cmath>
@@ -26,6 +26,36 @@ inline double cubic_spline_slope(int dim, double r, double h) {
   if (q < 1.0) return a * (-3.0 * q + 2.25 * q * q);
   if (q < 2.0) return -a * 0.75 * (2.0 - q) * (2.0 - q);
   return 0.0;
+}
+
+/// The Wendland C2 kernel (Wendland 1995; Dehnen & Aly 2012), support 2h, s = q / 2:
+///   1D: W = 5/(8h) (1 - s)^3 (1 + 3s);  2D: 7/(4 pi h^2) (1 - s)^4 (1 + 4s);
+///   3D: 21/(16 pi h^3) (1 - s)^4 (1 + 4s).
+/// Its Fourier transform is positive, so it does not suffer the pairing instability of the cubic
+/// spline at many neighbours.
+inline double wendland_c2(int dim, double r, double h) {
+  const double q = r / h;
+  if (q >= 2.0) return 0.0;
+  const double t = 1.0 - 0.5 * q;
+  if (dim == 1) return 5.0 / (8.0 * h) * t * t * t * (1.5 * q + 1.0);
+  const double a = dim == 2 ? 7.0 / (4.0 * M_PI * h * h) : 21.0 / (16.0 * M_PI * h * h * h);
+  return a * t * t * t * t * (2.0 * q + 1.0);
+}
+
+/// dW/dr of the Wendland C2 kernel.
+inline double wendland_c2_slope(int dim, double r, double h) {
+  const double q = r / h;
+  if (q >= 2.0) return 0.0;
+  const double t = 1.0 - 0.5 * q;
+  if (dim == 1) return -3.0 * 5.0 / (8.0 * h * h) * q * t * t;
+  const double a = dim == 2 ? 7.0 / (4.0 * M_PI * h * h) : 21.0 / (16.0 * M_PI * h * h * h);
+  return -5.0 * a / h * q * t * t * t;
+}
+
+enum class SphKernel { CubicSpline, WendlandC2 };
+
+inline double sph_kernel_slope(SphKernel k, int dim, double r, double h) {
+  return k == SphKernel::CubicSpline ? cubic_spline_slope(dim, r, h) : wendland_c2_slope(dim, r, h);
 }
 
 } // namespace mf::kernels

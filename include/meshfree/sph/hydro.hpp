@@ -5,6 +5,7 @@
 // viscosity (alpha = beta = 1, phi = 0.1 h), smoothing lengths that follow the density, a
 // midpoint predictor-corrector step under the CFL bound, equations of state per material, and
 // programmed burn of explosives (lighting time = distance / D_CJ).
+#include "meshfree/kernels/sph_kernel.hpp"
 #include "meshfree/loads/blast.hpp"
 #include "meshfree/materials/eos.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
@@ -65,6 +66,7 @@ struct Particles {
 };
 
 struct Settings {
+  kernels::SphKernel kernel = kernels::SphKernel::CubicSpline;
   double alpha = 1.0, beta = 1.0; // Monaghan artificial viscosity
   double phi = 0.1;               // singularity guard of the viscosity, times h
   double courant = 0.3;           // dt = courant * min h / (c + |v|)
