@@ -16,41 +16,32 @@ using namespace mf;
 
 TEST_CASE("cubic spline and Wendland C2 kernels have unit integral and consistent slopes",
           "[sph]") {
+  using Kernel = double (*)(int, double, double);
+  const struct {
+    const char* name;
+    Kernel W, slope;
+  } kinds[] = {{"cubic spline", kernels::cubic_spline, kernels::cubic_spline_slope},
+               {"Wendland C2", kernels::wendland_c2, kernels::wendland_c2_slope}};
   const double h = 0.7;
-  for (int dim = 1; dim <= 3; ++dim) {
-    // Integral of W over its support by the radial rule in dim dimensions.
-    const int n = 20000;
-    double integral = 0.0;
-    for (int k = 0; k < n; ++k) {
-      const double r = (k + 0.5) * 2.0 * h / n, dr = 2.0 * h / n;
-      const double shell = dim == 1 ? 2.0 : dim == 2 ? 2.0 * M_PI * r : 4.0 * M_PI * r * r;
-      integral += kernels::cubic_spline(dim, r, h) * shell * dr;
+  for (const auto& kind : kinds)
+    for (int dim = 1; dim <= 3; ++dim) {
+      INFO(kind.name << ", dim " << dim);
+      // Integral of W over its support by the radial rule in dim dimensions.
+      const int n = 20000;
+      double integral = 0.0;
+      for (int k = 0; k < n; ++k) {
+        const double r = (k + 0.5) * 2.0 * h / n, dr = 2.0 * h / n;
+        const double shell = dim == 1 ? 2.0 : dim == 2 ? 2.0 * M_PI * r : 4.0 * M_PI * r * r;
+        integral += kind.W(dim, r, h) * shell * dr;
+      }
+      CHECK(integral == Approx(1.0).epsilon(1e-6));
+      for (double r : {0.1, 0.5, 0.69, 0.71, 1.0, 1.3}) {
+        const double d = 1e-6;
+        const double fd = (kind.W(dim, r + d, h) - kind.W(dim, r - d, h)) / (2 * d);
+        CHECK(kind.slope(dim, r, h) == Approx(fd).epsilon(1e-6));
+      }
+      CHECK(kind.W(dim, 2.0 * h, h) == 0.0);
     }
-    INFO("dim " << dim);
-    CHECK(integral == Approx(1.0).epsilon(1e-6));
-    for (double r : {0.1, 0.5, 0.69, 0.71, 1.0, 1.3}) {
-      const double d = 1e-6;
-      const double fd =
-          (kernels::cubic_spline(dim, r + d, h) - kernels::cubic_spline(dim, r - d, h)) / (2 * d);
-      CHECK(kernels::cubic_spline_slope(dim, r, h) == Approx(fd).epsilon(1e-6));
-    }
-    CHECK(kernels::cubic_spline(dim, 2.0 * h, h) == 0.0);
-    // The Wendland C2 kernel the same way.
-    double integral_w = 0.0;
-    for (int k = 0; k < n; ++k) {
-      const double r = (k + 0.5) * 2.0 * h / n, dr = 2.0 * h / n;
-      const double shell = dim == 1 ? 2.0 : dim == 2 ? 2.0 * M_PI * r : 4.0 * M_PI * r * r;
-      integral_w += kernels::wendland_c2(dim, r, h) * shell * dr;
-    }
-    CHECK(integral_w == Approx(1.0).epsilon(1e-6));
-    for (double r : {0.1, 0.5, 0.69, 0.71, 1.0, 1.3}) {
-      const double d = 1e-6;
-      const double fd =
-          (kernels::wendland_c2(dim, r + d, h) - kernels::wendland_c2(dim, r - d, h)) / (2 * d);
-      CHECK(kernels::wendland_c2_slope(dim, r, h) == Approx(fd).epsilon(1e-6));
-    }
-    CHECK(kernels::wendland_c2(dim, 2.0 * h, h) == 0.0);
-  }
 }
 
 namespace {

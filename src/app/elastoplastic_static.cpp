@@ -16,10 +16,6 @@ namespace {
 using materials::J2State;
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
 /// The material history and the trial response at this rank's domain points.
 struct PointStates {
   std::vector<J2State> committed, trial;

@@ -13,10 +13,6 @@ namespace {
 using io::Vec3d;
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
 /// Cell-centred lattice of spacing dx over the body: a 3D box, or the 2D domain's bounding box
 /// with the points the domain contains.
 pd::Particles lattice(const io::ProblemSpec& spec) {

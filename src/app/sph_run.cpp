@@ -11,9 +11,6 @@ namespace mf::app {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 /// Whether a free particle lies in the box [lo, hi].
 bool free_in_box(const sph::Particles& P, int i, const std::array<double, 3>& lo,

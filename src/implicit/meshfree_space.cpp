@@ -1,5 +1,6 @@
 #include "meshfree/implicit/meshfree_space.hpp"
 #include "meshfree/core/error.hpp"
+#include "meshfree/core/parallel_rows.hpp"
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -53,32 +54,10 @@ void MeshfreeSpace::nodes_covering(const Vec2& x, std::vector<int>& out) const {
 }
 
 Csr MeshfreeSpace::support_lists(const std::vector<Vec2>& points) const {
-  const int n = static_cast<int>(points.size());
-  // One pass: each thread fills its own contiguous block of points, then the blocks are joined.
-  std::vector<std::vector<int>> counts, lists;
-#pragma omp parallel
-  {
-#pragma omp single
-    {
-      counts.resize(omp_get_num_threads());
-      lists.resize(omp_get_num_threads());
-    }
-    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
-    const int begin = static_cast<int>(static_cast<long>(n) * t / nt);
-    const int end = static_cast<int>(static_cast<long>(n) * (t + 1) / nt);
-    std::vector<int> nb;
-    for (int p = begin; p < end; ++p) {
-      nodes_covering(points[p], nb);
-      counts[t].push_back(static_cast<int>(nb.size()));
-      lists[t].insert(lists[t].end(), nb.begin(), nb.end());
-    }
-  }
   Csr csr;
-  csr.offset.reserve(n + 1);
-  for (std::size_t t = 0; t < counts.size(); ++t) {
-    for (int c : counts[t]) csr.offset.push_back(csr.offset.back() + c);
-    csr.index.insert(csr.index.end(), lists[t].begin(), lists[t].end());
-  }
+  parallel_rows(
+      static_cast<int>(points.size()),
+      [&](int p, std::vector<int>& row) { nodes_covering(points[p], row); }, csr.offset, csr.index);
   return csr;
 }
 

@@ -4,6 +4,7 @@
 #include "meshfree/io/hardening_read.hpp"
 #include "meshfree/io/key_reader.hpp"
 #include "meshfree/io/sph_read.hpp"
+#include <algorithm>
 #include <cmath>
 
 namespace mf::io {
@@ -15,6 +16,27 @@ std::array<double, 3> read_point(KeyReader& r, const std::string& key, int dim) 
   std::array<double, 3> out{0, 0, 0};
   for (int d = 0; d < dim; ++d) out[d] = v[d];
   return out;
+}
+
+/// A box [[x0, ...], [x1, ...]] with `dim` coordinates per corner; axes beyond dim span
+/// [-unused, unused].
+void read_box(KeyReader& r, const std::string& key, int dim, double unused,
+              std::array<double, 3>& lo, std::array<double, 3>& hi) {
+  const auto corners = r.number_lists(key, dim);
+  if (corners.size() != 2) r.error(key, "expected two corners [[x0, ...], [x1, ...]]");
+  for (int d = 0; d < 3; ++d) {
+    lo[d] = d < dim ? std::min(corners[0][d], corners[1][d]) : -unused;
+    hi[d] = d < dim ? std::max(corners[0][d], corners[1][d]) : unused;
+  }
+}
+
+/// A non-zero vector with `dim` components, scaled to unit length.
+std::array<double, 3> read_unit_vector(KeyReader& r, const std::string& key, int dim) {
+  std::array<double, 3> v = read_point(r, key, dim);
+  const double norm = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  if (!(norm > 0.0)) r.error(key, "expected a non-zero vector");
+  for (double& c : v) c /= norm;
+  return v;
 }
 
 sph::Eos read_eos(KeyReader& e) {
@@ -109,13 +131,9 @@ SphSpec parse_sph(KeyReader& r) {
     SphBlock block;
     const int k = find_material(b, "material", s);
     block.material = s.materials[k].name;
-    const auto corners = b.number_lists("box", dim);
-    if (corners.size() != 2) b.error("box", "expected two corners [[x0, ...], [x1, ...]]");
-    for (int d = 0; d < dim; ++d) {
-      block.lo[d] = std::min(corners[0][d], corners[1][d]);
-      block.hi[d] = std::max(corners[0][d], corners[1][d]);
+    read_box(b, "box", dim, 0.0, block.lo, block.hi);
+    for (int d = 0; d < dim; ++d)
       if (!(block.hi[d] > block.lo[d])) b.error("box", "the box is empty along an axis");
-    }
     block.spacing = b.positive("spacing");
     for (int d = 0; d < dim; ++d)
       if (block.spacing > block.hi[d] - block.lo[d])
@@ -145,22 +163,12 @@ SphSpec parse_sph(KeyReader& r) {
     SphBlastLoad load;
     load.key_path = l.path();
     load.name = l.text("name");
-    const auto corners = l.number_lists("box", dim);
-    if (corners.size() != 2) l.error("box", "expected two corners [[x0, ...], [x1, ...]]");
-    for (int d = 0; d < 3; ++d) {
-      load.lo[d] = d < dim ? std::min(corners[0][d], corners[1][d]) : -1e300;
-      load.hi[d] = d < dim ? std::max(corners[0][d], corners[1][d]) : 1e300;
-    }
+    read_box(l, "box", dim, 1e300, load.lo, load.hi);
     KeyReader b = l.map("blast");
     load.tnt_mass = b.positive("tnt_mass");
     load.surface_burst = b.choice("burst", {"surface", "free_air"}, "surface") == "surface";
     load.charge = read_point(b, "charge_at", dim);
-    load.normal = read_point(b, "normal", dim);
-    const double norm =
-        std::sqrt(load.normal[0] * load.normal[0] + load.normal[1] * load.normal[1] +
-                  load.normal[2] * load.normal[2]);
-    if (!(norm > 0.0)) b.error("normal", "expected a non-zero vector");
-    for (double& c : load.normal) c /= norm;
+    load.normal = read_unit_vector(b, "normal", dim);
     b.finish();
     l.finish();
     s.loads.push_back(load);
@@ -170,17 +178,8 @@ SphSpec parse_sph(KeyReader& r) {
     t.key_path = b.path();
     t.name = b.text("name");
     b.choice("type", {"transmitting"}, "");
-    const auto corners = b.number_lists("box", dim);
-    if (corners.size() != 2) b.error("box", "expected two corners [[x0, ...], [x1, ...]]");
-    for (int d = 0; d < 3; ++d) {
-      t.lo[d] = d < dim ? std::min(corners[0][d], corners[1][d]) : -1e300;
-      t.hi[d] = d < dim ? std::max(corners[0][d], corners[1][d]) : 1e300;
-    }
-    t.normal = read_point(b, "normal", dim);
-    const double norm = std::sqrt(t.normal[0] * t.normal[0] + t.normal[1] * t.normal[1] +
-                                  t.normal[2] * t.normal[2]);
-    if (!(norm > 0.0)) b.error("normal", "expected a non-zero vector");
-    for (double& c : t.normal) c /= norm;
+    read_box(b, "box", dim, 1e300, t.lo, t.hi);
+    t.normal = read_unit_vector(b, "normal", dim);
     b.finish();
     s.transmitting.push_back(t);
   }

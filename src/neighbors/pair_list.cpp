@@ -1,8 +1,8 @@
 #include "meshfree/neighbors/pair_list.hpp"
 #include "meshfree/core/error.hpp"
+#include "meshfree/core/parallel_rows.hpp"
 #include <algorithm>
 #include <cmath>
-#include <omp.h>
 
 namespace mf::neighbors {
 
@@ -40,44 +40,25 @@ PairList pairs_within(const std::vector<double>& x, double radius) {
     for (int i = 0; i < n; ++i) sorted[fill[cell_of[i]]++] = i;
   }
   const double r2 = radius * radius;
-  // Each thread fills its own contiguous block of rows; the blocks are joined in order.
-  std::vector<std::vector<int>> counts, lists;
-#pragma omp parallel
-  {
-#pragma omp single
-    {
-      counts.resize(omp_get_num_threads());
-      lists.resize(omp_get_num_threads());
-    }
-    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
-    const int begin = static_cast<int>(static_cast<long>(n) * t / nt);
-    const int end = static_cast<int>(static_cast<long>(n) * (t + 1) / nt);
-    std::vector<int> row;
-    for (int i = begin; i < end; ++i) {
-      row.clear();
-      const long ci[3] = {cell_coord(i, 0), cell_coord(i, 1), cell_coord(i, 2)};
-      for (long cz = std::max(0L, ci[2] - 1); cz <= std::min(dims[2] - 1, ci[2] + 1); ++cz)
-        for (long cy = std::max(0L, ci[1] - 1); cy <= std::min(dims[1] - 1, ci[1] + 1); ++cy)
-          for (long cx = std::max(0L, ci[0] - 1); cx <= std::min(dims[0] - 1, ci[0] + 1); ++cx) {
-            const long c = (cz * dims[1] + cy) * dims[0] + cx;
-            for (long k = start[c]; k < start[c + 1]; ++k) {
-              const int j = sorted[k];
-              if (j == i) continue;
-              const double dx = x[3 * j] - x[3 * i], dy = x[3 * j + 1] - x[3 * i + 1],
-                           dz = x[3 * j + 2] - x[3 * i + 2];
-              if (dx * dx + dy * dy + dz * dz <= r2) row.push_back(j);
+  parallel_rows(
+      n,
+      [&](int i, std::vector<int>& row) {
+        const long ci[3] = {cell_coord(i, 0), cell_coord(i, 1), cell_coord(i, 2)};
+        for (long cz = std::max(0L, ci[2] - 1); cz <= std::min(dims[2] - 1, ci[2] + 1); ++cz)
+          for (long cy = std::max(0L, ci[1] - 1); cy <= std::min(dims[1] - 1, ci[1] + 1); ++cy)
+            for (long cx = std::max(0L, ci[0] - 1); cx <= std::min(dims[0] - 1, ci[0] + 1); ++cx) {
+              const long c = (cz * dims[1] + cy) * dims[0] + cx;
+              for (long k = start[c]; k < start[c + 1]; ++k) {
+                const int j = sorted[k];
+                if (j == i) continue;
+                const double dx = x[3 * j] - x[3 * i], dy = x[3 * j + 1] - x[3 * i + 1],
+                             dz = x[3 * j + 2] - x[3 * i + 2];
+                if (dx * dx + dy * dy + dz * dz <= r2) row.push_back(j);
+              }
             }
-          }
-      std::sort(row.begin(), row.end());
-      counts[t].push_back(static_cast<int>(row.size()));
-      lists[t].insert(lists[t].end(), row.begin(), row.end());
-    }
-  }
-  out.offset.reserve(n + 1);
-  for (std::size_t t = 0; t < counts.size(); ++t) {
-    for (int c : counts[t]) out.offset.push_back(out.offset.back() + c);
-    out.partner.insert(out.partner.end(), lists[t].begin(), lists[t].end());
-  }
+        std::sort(row.begin(), row.end());
+      },
+      out.offset, out.partner);
   return out;
 }
 

@@ -7,6 +7,11 @@
 
 namespace mf {
 
+/// Seconds of wall-clock time since `start`.
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 class PhaseTimer {
 public:
   /// Adds the seconds elapsed since `start` to phase `name`.
@@ -19,10 +24,7 @@ public:
   public:
     Scope(PhaseTimer& timer, std::string name)
         : timer_(timer), name_(std::move(name)), start_(std::chrono::steady_clock::now()) {}
-    ~Scope() {
-      timer_.add(name_,
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());
-    }
+    ~Scope() { timer_.add(name_, seconds_since(start_)); }
     Scope(const Scope&) = delete;
     Scope& operator=(const Scope&) = delete;
 
