@@ -82,6 +82,17 @@ expect_error "materials[0].eos.type: expected one of" "$S" --set 'materials.0.eo
 expect_error "blocks[0].energy: give exactly one of 'energy' (J/kg) or 'pressure'" "$S" --set 'blocks.0.energy=2.5'
 expect_error "model.smoothing: expected h / spacing between 1 and 3" "$S" --set model.smoothing=5
 expect_error "blocks[1].material: no material is named 'air'" "$S" --set blocks.1.material=air
+T="$ROOT/problems/sph_tunnel_blast.yaml"
+expect_error "materials[0].eos.loading: row 3: the first column must increase (1873.8 after 1873.8)" "$T" --set 'materials.0.eos.loading.3=[1873.8, 29.15e6]'
+expect_error "materials[0].eos.sound_speed: row 0: expected a positive value, got -265.2" "$T" --set 'materials.0.eos.sound_speed.0=[1674.0, -265.2]'
+expect_error "materials[0].strength.shear_modulus: give exactly one of 'shear_modulus' or 'shear_modulus_table'" "$T" --set 'materials.0.strength.shear_modulus=1.0e8'
+expect_error "materials[1].strength: the HJC model needs both 'eos: {type: hjc}' and 'strength: {model: hjc}'" "$T" --set 'materials.1.strength={model: elastic, shear_modulus: 1.0e10}'
+expect_error "materials[1].hjc.P_lock: must exceed P_crush" "$T" --set 'materials.1.hjc={P_lock: 1.0e6}'
+expect_error "blocks[1].ring.outer_radius: must exceed inner_radius" "$T" --set 'blocks.1.ring.inner_radius=3.5'
+expect_error "blocks[0].box: give exactly one of 'box' or 'ring'" "$T" --set 'blocks.0.ring={center: [0, 0], inner_radius: 1, outer_radius: 2}'
+expect_error "blocks[0].energy: this equation of state does not depend on the internal energy" "$T" --set 'blocks.0.energy=1.0'
+expect_error "interface.n2: must be smaller than n1" "$T" --set 'interface={penalty_pressure: 1.0e6, n1: 6, n2: 12}'
+expect_run_failure "loads[0].blast: particle at (-0.375, -0.125, 0): Kingery-Bulmash: scaled distance" "$T" --set 'loads.0.blast.near_field=error'
 # usage errors
 "$MF" 2>/dev/null; [ $? -eq 2 ] && echo "ok: no command -> exit 2" || { echo "FAIL: no command"; fails=$((fails+1)); }
 "$MF" check "$P" >/dev/null || { echo "FAIL: check on a good problem"; fails=$((fails+1)); }

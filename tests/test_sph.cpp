@@ -393,7 +393,8 @@ sph::Material test_solid(double sigma_y = 0.0) {
   al.eos.linear_polynomial.c[1] = 70e9;
   al.strength.enabled = true;
   al.strength.shear_modulus = 26e9;
-  al.strength.plastic = sigma_y > 0.0;
+  al.strength.model =
+      sigma_y > 0.0 ? sph::Strength::Model::VonMises : sph::Strength::Model::Elastic;
   al.strength.yield.E = 2.0 * 26e9; // nu = 0: the return uses mu = G
   al.strength.yield.nu = 0.0;
   al.strength.yield.sigma0 = sigma_y;

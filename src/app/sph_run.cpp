@@ -43,6 +43,33 @@ sph::Hydro build_sph(const io::SphSpec& s) {
   P.dim = s.dimension;
   for (const io::SphBlock& b : s.blocks) {
     const int mat = material_index(s, b.material);
+    const auto add = [&](const double x[3], double volume) {
+      for (const io::SphCircle& c : b.holes) {
+        const double dx = x[0] - c.center[0], dy = x[1] - c.center[1];
+        if (dx * dx + dy * dy < c.radius * c.radius) return;
+      }
+      const double spacing = std::pow(volume, 1.0 / s.dimension);
+      P.add(x, b.density * volume, b.density, b.energy, s.smoothing * spacing, mat, b.fixed);
+      for (int d = 0; d < 3; ++d) P.v[P.v.size() - 3 + d] = b.velocity[d];
+    };
+    if (b.is_ring) {
+      // Rings of particles at radii r_k, each with round(2 pi r_k / spacing) particles whose
+      // areas add up to the annulus exactly.
+      const double thickness = b.ring.radius - b.ring_inner_radius;
+      const int layers = std::max(1, static_cast<int>(std::lround(thickness / b.spacing)));
+      const double dr = thickness / layers;
+      for (int k = 0; k < layers; ++k) {
+        const double r = b.ring_inner_radius + (k + 0.5) * dr;
+        const int around = std::max(3, static_cast<int>(std::lround(2.0 * M_PI * r / b.spacing)));
+        for (int a = 0; a < around; ++a) {
+          const double theta = 2.0 * M_PI * (a + 0.5) / around;
+          const double x[3] = {b.ring.center[0] + r * std::cos(theta),
+                               b.ring.center[1] + r * std::sin(theta), 0.0};
+          add(x, 2.0 * M_PI * r * dr / around);
+        }
+      }
+      continue;
+    }
     int count[3] = {1, 1, 1};
     for (int d = 0; d < s.dimension; ++d)
       count[d] = std::max(1, static_cast<int>(std::lround((b.hi[d] - b.lo[d]) / b.spacing)));
@@ -50,15 +77,13 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     for (int d = 0; d < 3; ++d) step[d] = d < s.dimension ? (b.hi[d] - b.lo[d]) / count[d] : 0.0;
     double volume = 1.0;
     for (int d = 0; d < s.dimension; ++d) volume *= step[d];
-    const double spacing = std::pow(volume, 1.0 / s.dimension);
     for (int k = 0; k < count[2]; ++k)
       for (int j = 0; j < count[1]; ++j)
         for (int i = 0; i < count[0]; ++i) {
           const int idx[3] = {i, j, k};
           double x[3] = {0, 0, 0};
           for (int d = 0; d < s.dimension; ++d) x[d] = b.lo[d] + (idx[d] + 0.5) * step[d];
-          P.add(x, b.density * volume, b.density, b.energy, s.smoothing * spacing, mat, b.fixed);
-          for (int d = 0; d < 3; ++d) P.v[P.v.size() - 3 + d] = b.velocity[d];
+          add(x, volume);
         }
   }
   for (const io::SphBlastLoad& l : s.loads) {
@@ -77,7 +102,10 @@ sph::Hydro build_sph(const io::SphSpec& s) {
       for (int d = 0; d < 3; ++d) cosine -= l.normal[d] * ray[d] / r;
       loads::BlastParameters b;
       try {
-        b = loads::kingery_bulmash(burst, l.tnt_mass, r);
+        // near_field: clamp loads particles nearer than the fits reach with the values at the
+        // smallest scaled distance the fits cover (the crater region is not modelled).
+        const double r_min = loads::kingery_bulmash_range(burst).first * std::cbrt(l.tnt_mass);
+        b = loads::kingery_bulmash(burst, l.tnt_mass, l.clamp_below_range ? std::max(r, r_min) : r);
       } catch (const Error& e) {
         fail(l.key_path, ".blast: particle at (", P.x[3 * i], ", ", P.x[3 * i + 1], ", ",
              P.x[3 * i + 2], "): ", e.what());
@@ -98,11 +126,12 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     for (int d = 0; d < 3; ++d) b.normal[d] = t.normal[d];
     for (int i = 0; i < P.size(); ++i) {
       if (!free_in_box(P, i, t.lo, t.hi)) continue;
-      const sph::Strength& st = h.materials[P.material[i]].strength;
+      const sph::Material& mat = h.materials[P.material[i]];
       b.particles.push_back(i);
       b.area.push_back(face_area(P, i, s.dimension));
       b.normal_impedance.push_back(P.rho[i] * P.c[i]);
-      b.shear_impedance.push_back(st.enabled ? std::sqrt(P.rho[i] * st.shear_modulus) : 0.0);
+      b.shear_impedance.push_back(
+          mat.strength.enabled ? std::sqrt(P.rho[i] * sph::shear_modulus(mat, P.rho[i])) : 0.0);
     }
     MF_REQUIRE(!b.particles.empty(), t.key_path, ".box: selects no free particle");
     h.transmitting.push_back(b);
@@ -182,8 +211,8 @@ SphResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out) {
       row.push_back(P.p[i]);
       row.push_back(P.rho[i]);
       row.push_back(von_mises(i));
-      const sph::Strength& st = h.materials[P.material[i]].strength;
-      row.push_back(st.plastic ? materials::yield_stress(st.yield, P.alpha[i]) : 0.0);
+      row.push_back(sph::current_yield(h.materials[P.material[i]], P.p[i], P.alpha[i], P.damage[i],
+                                       P.strain_rate[i]));
       row.push_back(P.alpha[i]);
       for (int d = 0; d < dims; ++d) row.push_back(P.v[3 * i + d]);
       for (int d = 0; d < dims; ++d) row.push_back(P.x[3 * i + d] - x0[3 * i + d]);
@@ -209,12 +238,12 @@ SphResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out) {
     std::vector<double> u(P.x.size());
     for (std::size_t k = 0; k < u.size(); ++k) u[k] = P.x[k] - x0[k];
     std::vector<double> material(P.material.begin(), P.material.end());
+    std::vector<double> failed(P.failed.begin(), P.failed.end()), mises(P.size());
+    for (int i = 0; i < P.size(); ++i) mises[i] = von_mises(i);
     step.vectors3 = {{"displacement", u}, {"velocity", P.v}};
-    step.scalars = {{"density", P.rho},
-                    {"pressure", P.p},
-                    {"specific_energy", P.e},
-                    {"smoothing_length", P.h},
-                    {"material", material}};
+    step.scalars = {{"density", P.rho},        {"pressure", P.p},    {"specific_energy", P.e},
+                    {"smoothing_length", P.h}, {"von_mises", mises}, {"plastic_strain", P.alpha},
+                    {"damage", P.damage},      {"failed", failed},   {"material", material}};
     fields->add_step(step);
   };
 

@@ -39,10 +39,62 @@ std::array<double, 3> read_unit_vector(KeyReader& r, const std::string& key, int
   return v;
 }
 
+/// A table [[x0, y0], [x1, y1], ...] with strictly ascending x, as a piecewise-linear function.
+materials::PiecewiseLinear read_table(KeyReader& r, const std::string& key, std::size_t at_least,
+                                      bool positive_values) {
+  materials::PiecewiseLinear t;
+  const auto rows = r.number_lists(key, 2);
+  if (rows.size() < at_least)
+    r.error(key, "expected at least " + std::to_string(at_least) + " rows [x, y]");
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    if (k > 0 && !(rows[k][0] > rows[k - 1][0]))
+      r.error(key, detail::concat("row ", k, ": the first column must increase (", rows[k][0],
+                                  " after ", rows[k - 1][0], ")"));
+    if (positive_values && !(rows[k][1] > 0.0))
+      r.error(key, detail::concat("row ", k, ": expected a positive value, got ", rows[k][1]));
+    t.x.push_back(rows[k][0]);
+    t.y.push_back(rows[k][1]);
+  }
+  return t;
+}
+
+/// The Holmquist-Johnson-Cook constants; defaults: the 48 MPa concrete of the 1993 paper.
+materials::Hjc read_hjc(KeyReader& h) {
+  materials::Hjc m;
+  m.A = h.positive("A", m.A);
+  m.B = h.positive("B", m.B);
+  m.N = h.positive("N", m.N);
+  m.C = h.number("C", m.C);
+  m.s_max = h.positive("s_max", m.s_max);
+  m.fc = h.positive("fc", m.fc);
+  m.T = h.positive("T", m.T);
+  m.eps_dot0 = h.positive("eps_dot0", m.eps_dot0);
+  m.D1 = h.positive("D1", m.D1);
+  m.D2 = h.positive("D2", m.D2);
+  m.eps_f_min = h.positive("eps_f_min", m.eps_f_min);
+  m.rho0 = h.positive("rho0", m.rho0);
+  m.P_crush = h.positive("P_crush", m.P_crush);
+  m.mu_crush = h.positive("mu_crush", m.mu_crush);
+  m.K1 = h.positive("K1", m.K1);
+  m.K2 = h.number("K2", m.K2);
+  m.K3 = h.number("K3", m.K3);
+  m.P_lock = h.positive("P_lock", m.P_lock);
+  m.mu_lock = h.positive("mu_lock", m.mu_lock);
+  m.shear_modulus = h.positive("shear_modulus", m.shear_modulus);
+  if (!(m.mu_lock > m.mu_crush)) h.error("mu_lock", "must exceed mu_crush");
+  if (!(m.P_lock > m.P_crush)) h.error("P_lock", "must exceed P_crush");
+  const double mu_grain = materials::hjc_grain_compression(m);
+  if (!(mu_grain > m.mu_crush && mu_grain < m.mu_lock))
+    h.error("K1", "the fully dense curve K1, K2, K3 does not reach P_lock between mu_crush and "
+                  "mu_lock");
+  h.finish();
+  return m;
+}
+
 sph::Eos read_eos(KeyReader& e) {
   sph::Eos eos;
-  const std::string type =
-      e.choice("type", {"ideal_gas", "jwl", "mie_gruneisen", "linear_polynomial"}, "");
+  const std::string type = e.choice(
+      "type", {"ideal_gas", "jwl", "mie_gruneisen", "linear_polynomial", "compaction", "hjc"}, "");
   if (type == "ideal_gas") {
     eos.kind = sph::Eos::Kind::IdealGas;
     eos.ideal_gas.gamma = e.positive("gamma", 1.4);
@@ -67,6 +119,22 @@ sph::Eos read_eos(KeyReader& e) {
     m.c0 = e.positive("c0");
     m.s = e.number("s");
     m.gamma0 = e.number("gamma0");
+  } else if (type == "compaction") {
+    // Tabulated compaction (materials/geomaterials.hpp): [density, pressure] and
+    // [density, sound speed] rows.
+    eos.kind = sph::Eos::Kind::Compaction;
+    eos.compaction.loading = read_table(e, "loading", 2, false);
+    eos.compaction.sound_speed = read_table(e, "sound_speed", 1, true);
+    if (eos.compaction.loading.y.front() != 0.0)
+      e.error("loading", "the loading curve must start at zero pressure (the initial density)");
+    for (std::size_t k = 1; k < eos.compaction.loading.y.size(); ++k)
+      if (!(eos.compaction.loading.y[k] > eos.compaction.loading.y[k - 1]))
+        e.error("loading", "the pressure must increase with density");
+    eos.compaction.tensile_limit = e.number("tensile_limit", 0.0);
+    if (eos.compaction.tensile_limit < 0.0)
+      e.error("tensile_limit", "expected a tension magnitude >= 0");
+  } else if (type == "hjc") {
+    eos.kind = sph::Eos::Kind::Hjc; // constants from the material's 'hjc' map
   } else {
     eos.kind = sph::Eos::Kind::LinearPolynomial;
     eos.linear_polynomial.rho0 = e.positive("rho0");
@@ -111,18 +179,49 @@ SphSpec parse_sph(KeyReader& r) {
       if (other.name == mat.name) m.error("name", "another material is named '" + mat.name + "'");
     KeyReader e = m.map("eos");
     mat.eos = read_eos(e);
+    if (auto h = m.optional_map("hjc")) mat.hjc = read_hjc(*h);
     if (auto st = m.optional_map("strength")) {
       // The deviatoric stress of a solid; the J2 return uses mu = G (E = 2G, nu = 0).
       mat.strength.enabled = true;
-      mat.strength.shear_modulus = st->positive("shear_modulus");
-      mat.strength.yield.E = 2.0 * mat.strength.shear_modulus;
-      mat.strength.yield.nu = 0.0;
-      if (st->has("yield_stress") || st->has("hardening")) {
-        mat.strength.plastic = true;
-        read_hardening(*st, mat.strength.yield);
+      const bool yield_given = st->has("yield_stress") || st->has("hardening");
+      const std::string model = st->choice("model", {"elastic", "von_mises", "granular", "hjc"},
+                                           yield_given ? "von_mises" : "elastic");
+      using Model = sph::Strength::Model;
+      if (model == "granular") {
+        mat.strength.model = Model::Granular;
+        mat.strength.granular.yield = read_table(*st, "yield", 2, false);
+        if (st->has("shear_modulus") == st->has("shear_modulus_table"))
+          st->error("shear_modulus", "give exactly one of 'shear_modulus' or "
+                                     "'shear_modulus_table' [[density, G], ...]");
+        if (st->has("shear_modulus")) {
+          mat.strength.shear_modulus = st->positive("shear_modulus");
+        } else {
+          mat.strength.granular.shear_modulus = read_table(*st, "shear_modulus_table", 1, true);
+          mat.strength.shear_modulus = mat.strength.granular.shear_modulus.y.front();
+        }
+      } else if (model == "hjc") {
+        mat.strength.model = Model::Hjc;
+        mat.strength.shear_modulus = mat.hjc.shear_modulus;
+      } else {
+        mat.strength.shear_modulus = st->positive("shear_modulus");
+        mat.strength.yield.E = 2.0 * mat.strength.shear_modulus;
+        mat.strength.yield.nu = 0.0;
+        if (model == "von_mises") {
+          if (!yield_given) st->error("yield_stress", "required value is missing");
+          mat.strength.model = Model::VonMises;
+          read_hardening(*st, mat.strength.yield);
+        }
       }
+      mat.strength.failure_strain = st->positive("failure_strain", 0.0);
+      if (st->has("failure_strain") && !(mat.strength.failure_strain > 0.0))
+        st->error("failure_strain", "expected a positive plastic strain");
       st->finish();
     }
+    const bool hjc_eos = mat.eos.kind == sph::Eos::Kind::Hjc;
+    const bool hjc_strength = mat.strength.model == sph::Strength::Model::Hjc;
+    if (hjc_eos != hjc_strength)
+      m.error(hjc_eos ? "strength" : "eos",
+              "the HJC model needs both 'eos: {type: hjc}' and 'strength: {model: hjc}'");
     m.finish();
     s.materials.push_back(mat);
   }
@@ -131,17 +230,50 @@ SphSpec parse_sph(KeyReader& r) {
     SphBlock block;
     const int k = find_material(b, "material", s);
     block.material = s.materials[k].name;
-    read_box(b, "box", dim, 0.0, block.lo, block.hi);
-    for (int d = 0; d < dim; ++d)
-      if (!(block.hi[d] > block.lo[d])) b.error("box", "the box is empty along an axis");
+    if (b.has("box") == b.has("ring")) b.error("box", "give exactly one of 'box' or 'ring'");
     block.spacing = b.positive("spacing");
-    for (int d = 0; d < dim; ++d)
-      if (block.spacing > block.hi[d] - block.lo[d])
-        b.error("spacing", "larger than the box along an axis");
+    if (b.has("ring")) {
+      // A ring (2D): concentric circles of particles between the two radii.
+      if (dim != 2) b.error("ring", "rings are available in 2D only");
+      KeyReader g = b.map("ring");
+      block.is_ring = true;
+      block.ring.center = read_point(g, "center", dim);
+      block.ring_inner_radius = g.positive("inner_radius");
+      block.ring.radius = g.positive("outer_radius");
+      if (!(block.ring.radius > block.ring_inner_radius))
+        g.error("outer_radius", "must exceed inner_radius");
+      if (block.spacing > block.ring.radius - block.ring_inner_radius)
+        b.error("spacing", "larger than the ring's thickness");
+      g.finish();
+    } else {
+      read_box(b, "box", dim, 0.0, block.lo, block.hi);
+      for (int d = 0; d < dim; ++d)
+        if (!(block.hi[d] > block.lo[d])) b.error("box", "the box is empty along an axis");
+      for (int d = 0; d < dim; ++d)
+        if (block.spacing > block.hi[d] - block.lo[d])
+          b.error("spacing", "larger than the box along an axis");
+    }
+    for (KeyReader& c : b.map_list("holes")) {
+      if (dim == 1) c.error("center", "holes need 2D or 3D");
+      SphCircle hole;
+      const std::vector<double> at = c.numbers("center", 2);
+      hole.center = {at[0], at[1], 0.0};
+      hole.radius = c.positive("radius");
+      c.finish();
+      block.holes.push_back(hole);
+    }
     const sph::Eos& eos = s.materials[k].eos;
-    block.density = b.positive("density", eos.kind == sph::Eos::Kind::Jwl ? eos.jwl.rho0 : 0.0);
+    double natural = 0.0; // the reference density of the equation of state, where it has one
+    if (eos.kind == sph::Eos::Kind::Jwl) natural = eos.jwl.rho0;
+    if (eos.kind == sph::Eos::Kind::Hjc) natural = s.materials[k].hjc.rho0;
+    if (eos.kind == sph::Eos::Kind::Compaction) natural = eos.compaction.loading.x.front();
+    block.density = b.positive("density", natural);
     if (!(block.density > 0.0)) b.error("density", "required value is missing");
-    if (b.has("pressure") == b.has("energy") && eos.kind != sph::Eos::Kind::Jwl)
+    const bool energy_free =
+        eos.kind == sph::Eos::Kind::Compaction || eos.kind == sph::Eos::Kind::Hjc;
+    if (energy_free && b.has("energy"))
+      b.error("energy", "this equation of state does not depend on the internal energy");
+    if (b.has("pressure") == b.has("energy") && eos.kind != sph::Eos::Kind::Jwl && !energy_free)
       b.error("energy", "give exactly one of 'energy' (J/kg) or 'pressure'");
     if (b.has("pressure")) {
       if (eos.kind != sph::Eos::Kind::IdealGas)
@@ -169,6 +301,7 @@ SphSpec parse_sph(KeyReader& r) {
     load.surface_burst = b.choice("burst", {"surface", "free_air"}, "surface") == "surface";
     load.charge = read_point(b, "charge_at", dim);
     load.normal = read_unit_vector(b, "normal", dim);
+    load.clamp_below_range = b.choice("near_field", {"error", "clamp"}, "error") == "clamp";
     b.finish();
     l.finish();
     s.loads.push_back(load);
@@ -195,6 +328,17 @@ SphSpec parse_sph(KeyReader& r) {
     if (s.settings.alpha < 0.0 || s.settings.beta < 0.0)
       v->error("alpha", "the viscosity coefficients must not be negative");
     v->finish();
+  }
+  if (auto f = r.optional_map("interface")) {
+    // The inter-material penalty force (sph/hydro.hpp, Settings::Penalty).
+    sph::Settings::Penalty& pen = s.settings.penalty;
+    pen.pressure = f->positive("penalty_pressure");
+    pen.n1 = f->integer("n1", 12, 1, 32);
+    pen.n2 = f->integer("n2", 6, 0, 31);
+    pen.distance = f->positive("distance", 1.0);
+    if (pen.n2 >= pen.n1) f->error("n2", "must be smaller than n1 for a repulsive force");
+    if (pen.distance > 2.0) f->error("distance", "expected at most 2 particle spacings");
+    f->finish();
   }
   {
     KeyReader t = r.map("time");

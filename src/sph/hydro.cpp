@@ -6,7 +6,9 @@
 
 namespace mf::sph {
 
-materials::PressureAndSound evaluate(const Eos& eos, double rho, double e) {
+materials::PressureAndSound evaluate(const Material& m, double rho, double e, double rho_max,
+                                     double damage) {
+  const Eos& eos = m.eos;
   switch (eos.kind) {
   case Eos::Kind::IdealGas:
     return materials::ideal_gas(eos.ideal_gas, rho, e);
@@ -16,8 +18,35 @@ materials::PressureAndSound evaluate(const Eos& eos, double rho, double e) {
     return materials::mie_gruneisen(eos.mie_gruneisen, rho, e);
   case Eos::Kind::LinearPolynomial:
     return materials::linear_polynomial(eos.linear_polynomial, rho, e);
+  case Eos::Kind::Compaction:
+    return materials::compaction(eos.compaction, rho, rho_max);
+  case Eos::Kind::Hjc:
+    return materials::hjc_pressure(m.hjc, rho, rho_max, damage);
   }
   return {};
+}
+
+double shear_modulus(const Material& m, double rho) {
+  const Strength& st = m.strength;
+  if (st.model == Strength::Model::Granular && !st.granular.shear_modulus.x.empty())
+    return st.granular.shear_modulus(rho);
+  return st.shear_modulus;
+}
+
+double current_yield(const Material& m, double pressure, double alpha, double damage,
+                     double strain_rate) {
+  const Strength& st = m.strength;
+  switch (st.model) {
+  case Strength::Model::Elastic:
+    return 0.0;
+  case Strength::Model::VonMises:
+    return materials::yield_stress(st.yield, alpha);
+  case Strength::Model::Granular:
+    return materials::granular_yield(st.granular, pressure);
+  case Strength::Model::Hjc:
+    return materials::hjc_yield(m.hjc, pressure, damage, strain_rate);
+  }
+  return 0.0;
 }
 
 void Particles::add(const double position[3], double m, double density, double energy,
@@ -37,6 +66,10 @@ void Particles::add(const double position[3], double m, double density, double e
   fixed.push_back(is_fixed ? 1 : 0);
   for (int k = 0; k < 6; ++k) S.push_back(0.0);
   alpha.push_back(0.0);
+  rho_max.push_back(density);
+  damage.push_back(0.0);
+  strain_rate.push_back(0.0);
+  failed.push_back(0);
   p.push_back(0.0);
   c.push_back(0.0);
 }
@@ -59,8 +92,10 @@ void update_state(Hydro& s) {
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     P.h[i] = P.h_ref[i] * std::pow(P.rho_ref[i] / P.rho[i], inv_dim);
-    const Eos& eos = s.materials[P.material[i]].eos;
-    const materials::PressureAndSound ps = evaluate(eos, P.rho[i], P.e[i]);
+    const Material& mat = s.materials[P.material[i]];
+    const Eos& eos = mat.eos;
+    const materials::PressureAndSound ps =
+        evaluate(mat, P.rho[i], P.e[i], P.rho_max[i], P.damage[i]);
     double f = 1.0;
     if (eos.kind == Eos::Kind::Jwl && P.light_time[i] >= 0.0) {
       // Burn fraction F = max(F_programmed, F_beta) (Wilkins 1964; LS-DYNA's
@@ -75,11 +110,11 @@ void update_state(Hydro& s) {
     } else if (eos.kind == Eos::Kind::Jwl) {
       f = 0.0; // never lit: inert
     }
-    P.p[i] = f * ps.p;
+    P.p[i] = P.failed[i] ? std::max(f * ps.p, 0.0) : f * ps.p;
     // The unburnt explosive keeps the products' sound speed so that the step resolves the burn;
     // a solid's longitudinal speed adds 4G / (3 rho).
-    const Strength& st = s.materials[P.material[i]].strength;
-    const double shear = st.enabled ? 4.0 * st.shear_modulus / (3.0 * P.rho[i]) : 0.0;
+    const double shear =
+        mat.strength.enabled ? 4.0 * shear_modulus(mat, P.rho[i]) / (3.0 * P.rho[i]) : 0.0;
     P.c[i] = std::sqrt(std::max(ps.c2, 0.0) + shear);
   }
 }
@@ -177,8 +212,9 @@ void compute_rates(const Hydro& s, Rates& r) {
     r.dS.assign(6 * static_cast<std::size_t>(n), 0.0);
 #pragma omp parallel for schedule(dynamic, 64)
     for (int i = 0; i < n; ++i) {
-      const Strength& st = s.materials[P.material[i]].strength;
-      if (!st.enabled) continue;
+      const Material& mat = s.materials[P.material[i]];
+      if (!mat.strength.enabled) continue;
+      const double G = shear_modulus(mat, P.rho[i]);
       double L[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
       for (long k = s.pairs.offset[i]; k < s.pairs.offset[i + 1]; ++k) {
         const int j = s.pairs.partner[k];
@@ -204,7 +240,7 @@ void compute_rates(const Hydro& s, Rates& r) {
         for (int b = 0; b < 3; ++b) {
           double rot = 0.0;
           for (int c = 0; c < 3; ++c) rot += W[a][c] * Si[c][b] - Si[a][c] * W[c][b];
-          dS[a][b] = 2.0 * st.shear_modulus * (D[a][b] - (a == b ? trD / 3.0 : 0.0)) + rot;
+          dS[a][b] = 2.0 * G * (D[a][b] - (a == b ? trD / 3.0 : 0.0)) + rot;
         }
       double* out = &r.dS[6 * static_cast<std::size_t>(i)];
       out[0] = dS[0][0], out[1] = dS[1][1], out[2] = dS[2][2];
@@ -255,6 +291,17 @@ void compute_rates(const Hydro& s, Rates& r) {
                               T[4] * gx[0] + T[3] * gx[1] + T[2] * gx[2]};
         for (int d = 0; d < 3; ++d) acc[d] += mj * Tg[d];
         de -= 0.5 * mj * (vij[0] * Tg[0] + vij[1] * Tg[1] + vij[2] * Tg[2]);
+      }
+      if (S.penalty.pressure > 0.0 && P.material[i] != P.material[j]) {
+        const double a = 0.5 * (std::pow(P.mass[i] / P.rho_ref[i], 1.0 / dim) +
+                                std::pow(mj / P.rho_ref[j], 1.0 / dim));
+        const double r0 = S.penalty.distance * a, rr = std::sqrt(r2);
+        if (rr < r0) {
+          const double pe = r0 / rr;
+          const double f = S.penalty.pressure * std::pow(a, dim - 1) *
+                           (std::pow(pe, S.penalty.n1) - std::pow(pe, S.penalty.n2));
+          for (int d = 0; d < 3; ++d) acc[d] += f / P.mass[i] * xij[d] / rr;
+        }
       }
     }
     if (!P.fixed[i])
@@ -328,24 +375,82 @@ void check_finite(const Hydro& s) {
 } // namespace
 
 namespace {
-/// S = S0 + dt dS, returned to the yield surface; alpha = alpha0 + its plastic increment.
+/// S = S0 + dt dS, returned radially to the yield surface of the particle's model at its current
+/// pressure; the plastic strain and the damage grow from their values at the start of the step.
 void update_stress(Hydro& s, const std::vector<double>& S0, const std::vector<double>& alpha0,
-                   const Rates& r, double dt) {
+                   const std::vector<double>& damage0, const Rates& r, double dt) {
   Particles& P = s.particles;
   const int n = P.size();
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
-    const Strength& st = s.materials[P.material[i]].strength;
+    const Material& mat = s.materials[P.material[i]];
+    const Strength& st = mat.strength;
     if (!st.enabled) continue;
     double* si = &P.S[6 * static_cast<std::size_t>(i)];
+    if (P.failed[i]) {
+      for (int c = 0; c < 6; ++c) si[c] = 0.0;
+      continue;
+    }
     for (int c = 0; c < 6; ++c) si[c] = S0[6 * i + c] + dt * r.dS[6 * i + c];
     P.alpha[i] = alpha0[i];
-    if (!st.plastic) continue;
+    P.damage[i] = damage0[i];
+    // Equivalent deviatoric strain rate sqrt(2/3 D':D') from the velocity gradient.
+    const double* L = &r.grad_v[9 * static_cast<std::size_t>(i)];
+    const double tr = (L[0] + L[4] + L[8]) / 3.0;
+    double dd = 0.0;
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) {
+        const double d = 0.5 * (L[3 * a + b] + L[3 * b + a]) - (a == b ? tr : 0.0);
+        dd += d * d;
+      }
+    P.strain_rate[i] = std::sqrt(2.0 / 3.0 * dd);
+    if (!st.plastic()) continue;
     const double q = std::sqrt(1.5 * (si[0] * si[0] + si[1] * si[1] + si[2] * si[2] +
                                       2.0 * (si[3] * si[3] + si[4] * si[4] + si[5] * si[5])));
-    const materials::DeviatoricReturn ret = materials::j2_return_deviatoric(st.yield, q, alpha0[i]);
-    for (int c = 0; c < 6; ++c) si[c] *= ret.scale;
-    P.alpha[i] = alpha0[i] + ret.dalpha;
+    if (st.model == Strength::Model::VonMises) {
+      const materials::DeviatoricReturn ret =
+          materials::j2_return_deviatoric(st.yield, q, alpha0[i]);
+      for (int c = 0; c < 6; ++c) si[c] *= ret.scale;
+      P.alpha[i] = alpha0[i] + ret.dalpha;
+    } else {
+      // Perfectly plastic at the current pressure (and damage): radial return to Y, with the
+      // plastic strain increment (q - Y) / 3G.
+      const double Y = current_yield(mat, P.p[i], alpha0[i], damage0[i], P.strain_rate[i]);
+      double dalpha = 0.0;
+      if (q > Y) {
+        const double scale = q > 0.0 ? Y / q : 0.0;
+        for (int c = 0; c < 6; ++c) si[c] *= scale;
+        dalpha = (q - Y) / (3.0 * shear_modulus(mat, P.rho[i]));
+      }
+      P.alpha[i] = alpha0[i] + dalpha;
+      if (st.model == Strength::Model::Hjc) {
+        // HJC damage: plastic strain plus plastic volumetric compaction (the growth of the
+        // largest compression beyond the crush point) over the strain to fracture.
+        const materials::Hjc& m = mat.hjc;
+        const double mu = P.rho[i] / m.rho0 - 1.0, mu_max = P.rho_max[i] / m.rho0 - 1.0;
+        const double dmu = mu > mu_max && mu > m.mu_crush ? mu - std::max(mu_max, m.mu_crush) : 0.0;
+        P.damage[i] =
+            std::min(1.0, damage0[i] + (dalpha + dmu) / materials::hjc_fracture_strain(m, P.p[i]));
+      }
+    }
+  }
+}
+
+/// Marks the particles whose damage or plastic strain has reached failure, and commits the
+/// largest density reached.
+void commit_history(Hydro& s) {
+  Particles& P = s.particles;
+  const int n = P.size();
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    P.rho_max[i] = std::max(P.rho_max[i], P.rho[i]);
+    const Strength& st = s.materials[P.material[i]].strength;
+    if (!st.enabled || P.failed[i]) continue;
+    if ((st.model == Strength::Model::Hjc && P.damage[i] >= 1.0) ||
+        (st.failure_strain > 0.0 && P.alpha[i] >= st.failure_strain)) {
+      P.failed[i] = 1;
+      for (int c = 0; c < 6; ++c) P.S[6 * static_cast<std::size_t>(i) + c] = 0.0;
+    }
   }
 }
 } // namespace
@@ -354,7 +459,8 @@ void advance(Hydro& s, double dt) {
   Particles& P = s.particles;
   const int n = P.size();
   const std::size_t n3 = 3 * static_cast<std::size_t>(n);
-  const std::vector<double> x0 = P.x, v0 = P.v, rho0 = P.rho, e0 = P.e, S0 = P.S, a0 = P.alpha;
+  const std::vector<double> x0 = P.x, v0 = P.v, rho0 = P.rho, e0 = P.e, S0 = P.S, a0 = P.alpha,
+                            D0 = P.damage;
   const bool solids = any_solid(s);
   const double t0 = s.time;
   Rates r;
@@ -371,7 +477,7 @@ void advance(Hydro& s, double dt) {
     P.rho[i] = rho0[i] + 0.5 * dt * r.drho[i];
     P.e[i] = e0[i] + 0.5 * dt * r.de[i];
   }
-  if (solids) update_stress(s, S0, a0, r, 0.5 * dt);
+  if (solids) update_stress(s, S0, a0, D0, r, 0.5 * dt);
   s.time = t0 + 0.5 * dt;
   update_state(s);
   // The loads' work over the step at the midpoint, as the step itself.
@@ -389,10 +495,11 @@ void advance(Hydro& s, double dt) {
     P.rho[i] = rho0[i] + dt * r.drho[i];
     P.e[i] = e0[i] + dt * r.de[i];
   }
-  if (solids) update_stress(s, S0, a0, r, dt);
+  if (solids) update_stress(s, S0, a0, D0, r, dt);
   s.time = t0 + dt;
   ++s.step;
   check_finite(s);
+  commit_history(s);
   update_state(s);
 }
 

@@ -8,10 +8,21 @@
 
 namespace mf::io {
 
-/// A box of particles on a lattice of the given spacing, one material, uniform initial state.
+/// A circle in the x-y plane (a cylinder along z in 3D).
+struct SphCircle {
+  std::array<double, 3> center{0, 0, 0};
+  double radius = 0.0;
+};
+
+/// A block of particles, one material, uniform initial state: a box on a lattice of the given
+/// spacing, less any holes, or (2D) a ring of concentric particle circles.
 struct SphBlock {
   std::string material;
   std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0}; // unused axes: 0
+  std::vector<SphCircle> holes;                   // particles inside are left out
+  bool is_ring = false;
+  SphCircle ring; // center and outer radius
+  double ring_inner_radius = 0.0;
   double spacing = 0.0;
   double density = 0.0;
   double energy = 0.0; // specific internal energy [J/kg]
@@ -25,6 +36,7 @@ struct SphBlastLoad {
   std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0};
   double tnt_mass = 0.0;
   bool surface_burst = true;
+  bool clamp_below_range = false; // closer than the fits reach: the values at their nearest end
   std::array<double, 3> charge{0, 0, 0}, normal{0, 0, 0}; // normal: unit, outward
 };
 

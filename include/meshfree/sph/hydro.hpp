@@ -8,6 +8,7 @@
 #include "meshfree/kernels/sph_kernel.hpp"
 #include "meshfree/loads/blast.hpp"
 #include "meshfree/materials/eos.hpp"
+#include "meshfree/materials/geomaterials.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
 #include "meshfree/neighbors/pair_list.hpp"
 #include <string>
@@ -15,34 +16,55 @@
 
 namespace mf::sph {
 
-/// A material's equation of state; the kind selects which member is used.
+/// A material's equation of state; the kind selects which member is used. Compaction and HJC
+/// depend on the largest density a particle has reached (its rho_max).
 struct Eos {
-  enum class Kind { IdealGas, Jwl, MieGruneisen, LinearPolynomial };
+  enum class Kind { IdealGas, Jwl, MieGruneisen, LinearPolynomial, Compaction, Hjc };
   Kind kind = Kind::IdealGas;
   materials::IdealGas ideal_gas;
   materials::Jwl jwl;
   materials::MieGruneisen mie_gruneisen;
   materials::LinearPolynomial linear_polynomial;
+  materials::Compaction compaction;
 };
-
-materials::PressureAndSound evaluate(const Eos& eos, double rho, double e);
 
 /// Strength of a solid: the deviatoric stress S follows the Jaumann rate
 /// dS/dt = 2 G (D - tr(D) I / 3) + W S - S W (D, W: symmetric and skew parts of grad v) and is
-/// returned to the von Mises surface of the shared J2 layer (materials/j2_plasticity) after each
-/// update. The pressure comes from the equation of state.
+/// returned radially to the yield surface of its model after each update:
+///  - VonMises: the shared J2 layer (materials/j2_plasticity) with its hardening;
+///  - Granular: a pressure-dependent yield Y(p) and a shear modulus G(rho) (soil);
+///  - Hjc: the Holmquist-Johnson-Cook surface with damage (concrete).
+/// The pressure comes from the equation of state. A particle fails when its plastic strain
+/// reaches failure_strain (> 0) or its HJC damage reaches 1: it then carries no deviatoric
+/// stress and no tension (it flows as a crushed, cohesionless material).
 struct Strength {
+  enum class Model { Elastic, VonMises, Granular, Hjc };
   bool enabled = false;
+  Model model = Model::Elastic;
   double shear_modulus = 0.0;
-  bool plastic = false;
   materials::J2Parameters yield; // sigma0 and hardening; E = 2G and nu = 0 give mu = G
+  materials::GranularStrength granular;
+  double failure_strain = 0.0; // 0: no failure by plastic strain
+  bool plastic() const { return model != Model::Elastic; }
 };
 
 struct Material {
   std::string name;
   Eos eos;
   Strength strength;
+  materials::Hjc hjc; // the HJC equation of state and strength share one parameter set
 };
+
+/// Pressure and squared sound speed of a particle of material m.
+materials::PressureAndSound evaluate(const Material& m, double rho, double e, double rho_max,
+                                     double damage);
+
+/// The shear modulus of material m at density rho.
+double shear_modulus(const Material& m, double rho);
+
+/// The current yield stress of a particle (0 for a material without plasticity).
+double current_yield(const Material& m, double pressure, double alpha, double damage,
+                     double strain_rate);
 
 /// Particle arrays (structure of arrays; vectors have 3 components per particle, the unused ones
 /// zero in 1D and 2D).
@@ -56,9 +78,13 @@ struct Particles {
   /// Fixed (wall) particles: they do not move, but their density and energy evolve, so that they
   /// push back on approaching particles (dynamic boundary particles, Crespo et al. 2007).
   std::vector<char> fixed;
-  std::vector<double> p, c;  // from the equation of state, per step
-  std::vector<double> S;     // deviatoric stress, 6 per particle: xx yy zz yz xz xy
-  std::vector<double> alpha; // equivalent plastic strain
+  std::vector<double> p, c;        // from the equation of state, per step
+  std::vector<double> S;           // deviatoric stress, 6 per particle: xx yy zz yz xz xy
+  std::vector<double> alpha;       // equivalent plastic strain
+  std::vector<double> rho_max;     // largest density reached (compaction history)
+  std::vector<double> damage;      // HJC damage, 0..1
+  std::vector<double> strain_rate; // equivalent deviatoric strain rate sqrt(2/3 D':D') [1/s]
+  std::vector<char> failed;        // no deviatoric stress and no tension once set
   int size() const { return static_cast<int>(mass.size()); }
   /// Appends a particle at rest.
   void add(const double position[3], double mass, double rho, double e, double h, int material,
@@ -72,6 +98,17 @@ struct Settings {
   double courant = 0.3;           // dt = courant * min h / (c + |v|)
   double skin = 0.5;              // neighbour-list margin: pairs within (h_i + h_j)(1 + skin)
   double burn_width = 2.0;        // programmed burn: the burn fraction rises over this many h
+  /// Inter-material penalty force (the thesis' eqs. 3-29 and 3-30, after Liu et al. 2003):
+  /// particles of different materials closer than r0 = distance x their mean initial spacing
+  /// repel with F = pressure a^(dim-1) [(r0/r)^n1 - (r0/r)^n2] along the line of centres,
+  /// a = the mean spacing. The thesis activates it at (h_i + h_j) / (2 r) >= 1; with
+  /// h = 1.5 spacing that would push nearest neighbours apart at rest, so r0 is taken from the
+  /// spacing instead. pressure = 0 switches it off.
+  struct Penalty {
+    double pressure = 0.0;
+    int n1 = 12, n2 = 6;
+    double distance = 1.0;
+  } penalty;
 };
 
 struct Rates {

@@ -1,0 +1,261 @@
+#!/usr/bin/env python3
+"""The buried-tunnel study of the SPH thesis (sources/digest-004): a concrete lining in dry sand
+under a TNT surface burst, depths 10, 15, 20 m x charges 500, 1000, 5000 kg.
+
+Each case is problems/sph_tunnel_blast.yaml with its depth and charge (the crown's extrados at
+the depth, 6 m of sand below the invert) and a run time that grows with the depth. The script
+runs the cases, then writes to --out:
+  - results.csv: per case and gauge, arrival time, peak pressure, peak downward velocity, final
+    vertical displacement, peak von Mises stress, particles, steps and wall time;
+  - table.md: the arrival times next to the thesis' table (scaled x1000, as its model appears to
+    be a 1:1000 replica; digest section 6.3), and the peaks;
+  - gauges_<depth>m_<mass>kg.png: pressure, vertical velocity, vertical displacement and von
+    Mises stress at the crown and the floor;
+  - max_von_mises_vs_depth.png and arrival_vs_depth.png (the thesis' Figs 5-78/79 and 5-49/50).
+
+Usage: scripts/tunnel_study.py [--meshfree build/meshfree] [--out out/tunnel_study]
+       [--spacing 0.25] [--cases 10:500,20:5000] [--end-scale 1.0]
+"""
+import argparse
+import copy
+import csv
+import os
+import subprocess
+import sys
+import time
+
+import yaml
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+TEMPLATE = os.path.join(ROOT, "problems", "sph_tunnel_blast.yaml")
+DEPTHS = [10.0, 15.0, 20.0]
+MASSES = [500.0, 1000.0, 5000.0]
+# The thesis' first-arrival table (ms in its model units), digest section 6.1: depth ->
+# (crown 500, 1000, 5000, floor 500, 1000, 5000). Scaled x1000 it reads in real ms.
+THESIS_ARRIVAL = {10.0: (0.007, 0.006, 0.004, 0.010, 0.009, 0.008),
+                  15.0: (0.008, 0.007, 0.006, 0.011, 0.009, 0.009),
+                  20.0: (0.012, 0.009, 0.007, 0.014, 0.013, 0.011)}
+OUTER_RADIUS, LINING = 3.25, 0.5
+HALF_WIDTH, BELOW_INVERT = 16.0, 6.0
+ARRIVAL_FRACTION = 0.02  # arrival: |p| first reaches this fraction of the gauge's peak
+
+
+def case_problem(template, depth, mass, spacing, end_scale):
+    """The template with the depth, charge and spacing of one case."""
+    p = copy.deepcopy(template)
+    centre = -(depth + OUTER_RADIUS)
+    bottom = centre - OUTER_RADIUS - BELOW_INVERT
+    s = spacing
+    p["name"] = f"sph_tunnel_{int(depth)}m_{int(mass)}kg"
+    p["description"] = (f"Concrete tunnel lining in dry sand under a {mass:g} kg TNT surface "
+                        f"burst, crown {depth:g} m deep (SPH, 2D plane strain)")
+    sand, lining = p["blocks"]
+    sand["box"] = [[-HALF_WIDTH, bottom], [HALF_WIDTH, 0.0]]
+    sand["spacing"] = s
+    sand["holes"] = [{"center": [0.0, centre], "radius": OUTER_RADIUS}]
+    lining["ring"] = {"center": [0.0, centre], "inner_radius": OUTER_RADIUS - LINING,
+                      "outer_radius": OUTER_RADIUS}
+    lining["spacing"] = s
+    load = p["loads"][0]
+    load["box"] = [[-HALF_WIDTH, -s], [HALF_WIDTH, 0.0]]
+    load["blast"]["tnt_mass"] = mass
+    left, right, floor = p["boundaries"]
+    left["box"] = [[-HALF_WIDTH, bottom], [-HALF_WIDTH + s, 0.0]]
+    right["box"] = [[HALF_WIDTH - s, bottom], [HALF_WIDTH, 0.0]]
+    floor["box"] = [[-HALF_WIDTH + s, bottom], [HALF_WIDTH - s, bottom + s]]
+    # The ground shock in the sand travels at 0.4-1 km/s: give it 2.5 ms per metre down to the
+    # invert.
+    p["time"]["end"] = round(end_scale * 2.5e-3 * (depth + 2 * OUTER_RADIUS), 6)
+    p["output"]["gauges"] = [
+        {"name": "crown", "at": [0.0, -depth - 0.5 * s]},
+        {"name": "floor", "at": [0.0, centre - OUTER_RADIUS + 0.5 * s]},
+        {"name": "sand_above_crown", "at": [0.0, -depth + 0.5 * s]},
+        {"name": "surface", "at": [0.0, -0.5 * s]},
+    ]
+    return p
+
+
+def read_history(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    return {k: [float(r[k]) for r in rows] for k in rows[0]}
+
+
+def gauge_numbers(h, g):
+    t, p = h["time"], h[g + "_pressure"]
+    peak = max(p, key=abs)
+    arrival = next(ti for ti, pi in zip(t, p) if abs(pi) >= ARRIVAL_FRACTION * abs(peak))
+    return {"arrival_ms": 1e3 * arrival, "peak_pressure_kPa": 1e-3 * peak,
+            "peak_time_ms": 1e3 * t[p.index(peak)],
+            "min_vy": min(h[g + "_vy"]), "final_uy_mm": 1e3 * h[g + "_uy"][-1],
+            "max_von_mises_kPa": 1e-3 * max(h[g + "_von_mises"])}
+
+
+def plot_case(h, title, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    t = [1e3 * x for x in h["time"]]
+    fig, ax = plt.subplots(2, 2, figsize=(10, 7))
+    panels = [("pressure", 1e-3, "pressure [kPa]"), ("vy", 1.0, "vertical velocity [m/s]"),
+              ("uy", 1e3, "vertical displacement [mm]"), ("von_mises", 1e-3, "von Mises [kPa]")]
+    for a, (what, scale, label) in zip(ax.flat, panels):
+        for g in ("crown", "floor"):
+            a.plot(t, [scale * v for v in h[f"{g}_{what}"]], label=g)
+        a.set_xlabel("time [ms]")
+        a.set_ylabel(label)
+        a.grid(True, alpha=0.3)
+        a.legend()
+    fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def plot_summary(results, out):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(1, 2, figsize=(10, 4.5))
+    for k, g in enumerate(("crown", "floor")):
+        for m in MASSES:
+            pts = sorted((r["depth_m"], r["max_von_mises_kPa"]) for r in results
+                         if r["gauge"] == g and r["tnt_kg"] == m)
+            if pts:
+                ax[k].plot([v for _, v in pts], [d for d, _ in pts], "o-", label=f"{m:g} kg")
+        ax[k].invert_yaxis()
+        ax[k].set_xlabel("maximum von Mises stress [kPa]")
+        ax[k].set_ylabel("depth [m]")
+        ax[k].set_title(g)
+        ax[k].grid(True, alpha=0.3)
+        ax[k].legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "max_von_mises_vs_depth.png"), dpi=110)
+    plt.close(fig)
+    fig, ax = plt.subplots(1, 2, figsize=(10, 4.5))
+    for k, g in enumerate(("crown", "floor")):
+        for j, m in enumerate(MASSES):
+            pts = sorted((r["depth_m"], r["arrival_ms"]) for r in results
+                         if r["gauge"] == g and r["tnt_kg"] == m)
+            if not pts:
+                continue
+            line, = ax[k].plot([v for _, v in pts], [d for d, _ in pts], "o-", label=f"{m:g} kg")
+            ax[k].plot([1e3 * THESIS_ARRIVAL[d][3 * k + j] for d in DEPTHS], DEPTHS, "x--",
+                       color=line.get_color(), label=f"thesis x1000, {m:g} kg")
+        ax[k].invert_yaxis()
+        ax[k].set_xlabel("first arrival [ms]")
+        ax[k].set_ylabel("depth [m]")
+        ax[k].set_title(g)
+        ax[k].grid(True, alpha=0.3)
+        ax[k].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "arrival_vs_depth.png"), dpi=110)
+    plt.close(fig)
+
+
+def write_table(results, runs, out, spacing):
+    def get(d, m, g, key):
+        for r in results:
+            if r["depth_m"] == d and r["tnt_kg"] == m and r["gauge"] == g:
+                return r[key]
+        return None
+
+    lines = [f"# Buried-tunnel study: results (spacing {spacing:g} m)", "",
+             "First arrival at the gauge (|p| reaches "
+             f"{100 * ARRIVAL_FRACTION:g}% of its peak), ms; the thesis' values x1000 in "
+             "brackets.", "",
+             "| depth | crown 500 kg | crown 1000 kg | crown 5000 kg | floor 500 kg | "
+             "floor 1000 kg | floor 5000 kg |", "|---|---|---|---|---|---|---|"]
+    for d in DEPTHS:
+        cells = []
+        for k, g in enumerate(("crown", "floor")):
+            for j, m in enumerate(MASSES):
+                a = get(d, m, g, "arrival_ms")
+                ref = 1e3 * THESIS_ARRIVAL[d][3 * k + j]
+                cells.append("-" if a is None else f"{a:.1f} ({ref:g})")
+        lines.append(f"| {d:g} m | " + " | ".join(cells) + " |")
+    for key, label in (("peak_pressure_kPa", "Peak pressure, kPa"),
+                       ("max_von_mises_kPa", "Maximum von Mises stress, kPa"),
+                       ("min_vy", "Largest downward velocity, m/s"),
+                       ("final_uy_mm", "Vertical displacement at the end of the run, mm")):
+        lines += ["", label + ":", "",
+                  "| depth | crown 500 kg | crown 1000 kg | crown 5000 kg | floor 500 kg | "
+                  "floor 1000 kg | floor 5000 kg |", "|---|---|---|---|---|---|---|"]
+        for d in DEPTHS:
+            cells = []
+            for g in ("crown", "floor"):
+                for m in MASSES:
+                    v = get(d, m, g, key)
+                    cells.append("-" if v is None else f"{v:.4g}")
+            lines.append(f"| {d:g} m | " + " | ".join(cells) + " |")
+    lines += ["", "Runs:", "", "| case | particles | steps | end [ms] | wall [s] | "
+              "energy error |", "|---|---|---|---|---|---|"]
+    for r in runs:
+        lines.append(f"| {r['case']} | {r['particles']} | {r['steps']} | {r['end_ms']:g} | "
+                     f"{r['wall_s']:.1f} | {r['energy_error']:.2e} |")
+    with open(os.path.join(out, "table.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--meshfree", default=os.path.join(ROOT, "build", "meshfree"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "out", "tunnel_study"))
+    ap.add_argument("--spacing", type=float, default=0.25)
+    ap.add_argument("--cases", default="", help="depth:mass pairs, e.g. 10:500,20:5000")
+    ap.add_argument("--end-scale", type=float, default=1.0,
+                    help="multiplies every run's end time (a smoke test uses less)")
+    args = ap.parse_args()
+    with open(TEMPLATE) as f:
+        template = yaml.safe_load(f)
+    cases = [(d, m) for d in DEPTHS for m in MASSES]
+    if args.cases:
+        cases = [tuple(float(v) for v in c.split(":")) for c in args.cases.split(",")]
+        for d, m in cases:
+            if d not in DEPTHS or m not in MASSES:
+                sys.exit(f"--cases: {d:g}:{m:g} is not one of the thesis' cases "
+                         f"(depths {DEPTHS}, masses {MASSES})")
+    os.makedirs(args.out, exist_ok=True)
+    results, runs = [], []
+    for d, m in cases:
+        name = f"{int(d)}m_{int(m)}kg"
+        case_dir = os.path.join(args.out, name)
+        os.makedirs(case_dir, exist_ok=True)
+        problem = case_problem(template, d, m, args.spacing, args.end_scale)
+        problem_path = os.path.join(case_dir, "problem.yaml")
+        with open(problem_path, "w") as f:
+            yaml.safe_dump(problem, f, sort_keys=False)
+        start = time.time()
+        run = subprocess.run([args.meshfree, "run", problem_path, "--out", case_dir],
+                             capture_output=True, text=True)
+        wall = time.time() - start
+        if run.returncode != 0:
+            sys.exit(f"case {name} failed:\n{run.stdout}\n{run.stderr}")
+        import json
+        with open(os.path.join(case_dir, "summary.json")) as f:
+            summary = json.load(f)
+        h = read_history(os.path.join(case_dir, "history.csv"))
+        runs.append({"case": name, "particles": summary["counts"]["particles"],
+                     "steps": summary["counts"]["steps"], "end_ms": 1e3 * problem["time"]["end"],
+                     "wall_s": wall,
+                     "energy_error": summary["results"]["energy_error_relative"]})
+        for g in ("crown", "floor", "sand_above_crown", "surface"):
+            row = {"depth_m": d, "tnt_kg": m, "gauge": g}
+            row.update(gauge_numbers(h, g))
+            results.append(row)
+        plot_case(h, f"crown {d:g} m, {m:g} kg TNT", os.path.join(args.out, f"gauges_{name}.png"))
+        crown = results[-4]
+        print(f"{name}: {runs[-1]['particles']} particles, {runs[-1]['steps']} steps, "
+              f"{wall:.1f} s; crown arrival {crown['arrival_ms']:.2f} ms, peak "
+              f"{crown['peak_pressure_kPa']:.0f} kPa", flush=True)
+    with open(os.path.join(args.out, "results.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(results[0].keys()))
+        w.writeheader()
+        w.writerows(results)
+    write_table(results, runs, args.out, args.spacing)
+    plot_summary(results, args.out)
+    print(f"wrote {args.out}/table.md, results.csv and the plots")
+
+
+if __name__ == "__main__":
+    main()
