@@ -44,6 +44,10 @@ sph::Hydro build_sph(const io::SphSpec& s) {
   for (const io::SphBlock& b : s.blocks) {
     const int mat = material_index(s, b.material);
     const auto add = [&](const double x[3], double volume) {
+      if (b.inside) {
+        const double dx = x[0] - b.inside->center[0], dy = x[1] - b.inside->center[1];
+        if (dx * dx + dy * dy > b.inside->radius * b.inside->radius) return;
+      }
       for (const io::SphCircle& c : b.holes) {
         const double dx = x[0] - c.center[0], dy = x[1] - c.center[1];
         if (dx * dx + dy * dy < c.radius * c.radius) return;
@@ -196,7 +200,8 @@ SphResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out) {
     const sph::Energies E = sph::energies(h);
     // The balance: total energy against its start plus the work of the loads.
     const double err = std::abs(E.total() - e0 - h.external_work) /
-                       std::max({std::abs(e0), std::abs(h.external_work), 1e-300});
+                       std::max({std::abs(e0), std::abs(h.external_work), E.kinetic,
+                                 std::abs(E.internal), 1e-300});
     R.energy_error = std::max(R.energy_error, err);
     std::vector<double> row{h.time,
                             static_cast<double>(h.step),

@@ -166,6 +166,7 @@ SphSpec parse_sph(KeyReader& r) {
         m.choice("kernel", {"cubic_spline", "wendland_c2"}, "cubic_spline") == "cubic_spline"
             ? kernels::SphKernel::CubicSpline
             : kernels::SphKernel::WendlandC2;
+    s.settings.gradient_correction = m.choice("gradient_correction", {"off", "on"}, "off") == "on";
     if (s.smoothing < 1.0 || s.smoothing > 3.0)
       m.error("smoothing",
               "expected h / spacing between 1 and 3, got " + std::to_string(s.smoothing));
@@ -252,6 +253,16 @@ SphSpec parse_sph(KeyReader& r) {
       for (int d = 0; d < dim; ++d)
         if (block.spacing > block.hi[d] - block.lo[d])
           b.error("spacing", "larger than the box along an axis");
+    }
+    if (auto c = b.optional_map("inside")) {
+      // A round block: a disc in 2D, a cylinder along z in 3D.
+      if (dim == 1) c->error("center", "'inside' needs 2D or 3D");
+      SphCircle keep;
+      const std::vector<double> at = c->numbers("center", 2);
+      keep.center = {at[0], at[1], 0.0};
+      keep.radius = c->positive("radius");
+      c->finish();
+      block.inside = keep;
     }
     for (KeyReader& c : b.map_list("holes")) {
       if (dim == 1) c.error("center", "holes need 2D or 3D");

@@ -197,10 +197,67 @@ inline double pair_gradient(const Particles& P, int dim, kernels::SphKernel kern
 }
 } // namespace
 
+namespace {
+/// Kernel-gradient correction (Bonet & Lok 1999; Randles & Libersky 1996): per particle the
+/// inverse of M_i = sum_j V_j (x_j - x_i) (x) grad_i W_ij, so that the corrected gradient
+/// M_i^-1 grad_i W_ij reproduces the gradient of any linear field exactly, near free surfaces
+/// too. Unused axes keep 1 on the diagonal; a particle with too few neighbours to invert M keeps
+/// the uncorrected kernel (identity).
+void correction_matrices(const Hydro& s, std::vector<double>& C) {
+  const Particles& P = s.particles;
+  const int n = P.size(), dim = P.dim;
+  C.assign(9 * static_cast<std::size_t>(n), 0.0);
+#pragma omp parallel for schedule(dynamic, 64)
+  for (int i = 0; i < n; ++i) {
+    double M[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    for (long k = s.pairs.offset[i]; k < s.pairs.offset[i + 1]; ++k) {
+      const int j = s.pairs.partner[k];
+      double xij[3], r2;
+      const double g = pair_gradient(P, dim, s.settings.kernel, i, j, xij, r2);
+      if (g == 0.0) continue;
+      const double w = -P.mass[j] / P.rho[j] * g; // (x_j - x_i) = -x_ij
+      for (int a = 0; a < dim; ++a)
+        for (int b = 0; b < dim; ++b) M[a][b] += w * xij[a] * xij[b];
+    }
+    for (int a = dim; a < 3; ++a) M[a][a] = 1.0;
+    const double det = M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
+                       M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
+                       M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
+    double* c = &C[9 * static_cast<std::size_t>(i)];
+    if (!(std::abs(det) > 1e-6)) {
+      c[0] = c[4] = c[8] = 1.0;
+      continue;
+    }
+    c[0] = (M[1][1] * M[2][2] - M[1][2] * M[2][1]) / det;
+    c[1] = (M[0][2] * M[2][1] - M[0][1] * M[2][2]) / det;
+    c[2] = (M[0][1] * M[1][2] - M[0][2] * M[1][1]) / det;
+    c[3] = (M[1][2] * M[2][0] - M[1][0] * M[2][2]) / det;
+    c[4] = (M[0][0] * M[2][2] - M[0][2] * M[2][0]) / det;
+    c[5] = (M[0][2] * M[1][0] - M[0][0] * M[1][2]) / det;
+    c[6] = (M[1][0] * M[2][1] - M[1][1] * M[2][0]) / det;
+    c[7] = (M[0][1] * M[2][0] - M[0][0] * M[2][1]) / det;
+    c[8] = (M[0][0] * M[1][1] - M[0][1] * M[1][0]) / det;
+  }
+}
+
+/// The kernel gradient of a pair as a vector: g x_ij, or with the correction A g x_ij for the
+/// 3x3 matrix A (row-major).
+inline void gradient_vector(const double* A, double g, const double xij[3], double out[3]) {
+  if (!A) {
+    for (int d = 0; d < 3; ++d) out[d] = g * xij[d];
+    return;
+  }
+  for (int a = 0; a < 3; ++a)
+    out[a] = g * (A[3 * a] * xij[0] + A[3 * a + 1] * xij[1] + A[3 * a + 2] * xij[2]);
+}
+} // namespace
+
 void compute_rates(const Hydro& s, Rates& r) {
   const Particles& P = s.particles;
   const Settings& S = s.settings;
   const int n = P.size(), dim = P.dim;
+  const bool corrected = S.gradient_correction;
+  if (corrected) correction_matrices(s, r.correction);
   r.dv.assign(3 * static_cast<std::size_t>(n), 0.0);
   r.drho.assign(n, 0.0);
   r.de.assign(n, 0.0);
@@ -221,9 +278,12 @@ void compute_rates(const Hydro& s, Rates& r) {
         double xij[3], r2;
         const double g = pair_gradient(P, dim, S.kernel, i, j, xij, r2);
         if (g == 0.0) continue;
-        const double w = P.mass[j] / P.rho[j] * g;
+        double gv[3];
+        gradient_vector(corrected ? &r.correction[9 * static_cast<std::size_t>(i)] : nullptr, g,
+                        xij, gv);
+        const double vol = P.mass[j] / P.rho[j];
         for (int a = 0; a < 3; ++a)
-          for (int b = 0; b < 3; ++b) L[a][b] += w * (P.v[3 * j + a] - P.v[3 * i + a]) * xij[b];
+          for (int b = 0; b < 3; ++b) L[a][b] += vol * (P.v[3 * j + a] - P.v[3 * i + a]) * gv[b];
       }
       double D[3][3], W[3][3], Si[3][3];
       const double* s6 = &P.S[6 * static_cast<std::size_t>(i)];
@@ -275,9 +335,22 @@ void compute_rates(const Hydro& s, Rates& r) {
       }
       const double q = pi_rho2 + P.p[j] / (P.rho[j] * P.rho[j]) + visc;
       const double mj = P.mass[j];
-      for (int d = 0; d < 3; ++d) acc[d] -= mj * q * g * xij[d];
-      drho += mj * vx * g;
-      de += 0.5 * mj * q * vx * g;
+      // The pair's gradient: with the correction, (C_i + C_j)/2 grad W, which stays
+      // antisymmetric in i and j, so momentum is still conserved exactly.
+      double gv[3];
+      if (corrected) {
+        double A[9];
+        const double* ci = &r.correction[9 * static_cast<std::size_t>(i)];
+        const double* cj = &r.correction[9 * static_cast<std::size_t>(j)];
+        for (int c = 0; c < 9; ++c) A[c] = 0.5 * (ci[c] + cj[c]);
+        gradient_vector(A, g, xij, gv);
+      } else {
+        gradient_vector(nullptr, g, xij, gv);
+      }
+      const double vg = vij[0] * gv[0] + vij[1] * gv[1] + vij[2] * gv[2];
+      for (int d = 0; d < 3; ++d) acc[d] -= mj * q * gv[d];
+      drho += mj * vg;
+      de += 0.5 * mj * q * vg;
       if (solids) {
         // Deviatoric stress: dv_i += m_j (S_i/rho_i^2 + S_j/rho_j^2) . grad W and
         // de_i -= m_j / 2 (S_i/rho_i^2 + S_j/rho_j^2) : (v_ij (x) grad W).
@@ -285,7 +358,7 @@ void compute_rates(const Hydro& s, Rates& r) {
         const double rj2 = 1.0 / (P.rho[j] * P.rho[j]);
         double T[6];
         for (int c = 0; c < 6; ++c) T[c] = si[c] * ri2 + sj[c] * rj2;
-        const double gx[3] = {g * xij[0], g * xij[1], g * xij[2]};
+        const double* gx = gv;
         const double Tg[3] = {T[0] * gx[0] + T[5] * gx[1] + T[4] * gx[2],
                               T[5] * gx[0] + T[1] * gx[1] + T[3] * gx[2],
                               T[4] * gx[0] + T[3] * gx[1] + T[2] * gx[2]};
@@ -326,24 +399,27 @@ void compute_rates(const Hydro& s, Rates& r) {
 }
 
 namespace {
-/// Power of the surface loads at the current time and velocities.
-double load_power(const Hydro& s) {
+/// The forces of the surface loads and the boundaries at the current state, particle by
+/// particle (a particle may appear more than once).
+void external_forces(const Hydro& s, std::vector<int>& who, std::vector<double>& force) {
   const Particles& P = s.particles;
-  double w = 0.0;
+  who.clear();
+  force.clear();
   for (const SurfaceLoad& load : s.loads)
     for (std::size_t k = 0; k < load.particles.size(); ++k) {
       const int i = load.particles[k];
+      if (P.fixed[i]) continue;
       const double f = load.pulses[k](s.time) * load.area[k];
-      for (int d = 0; d < 3; ++d) w += f * load.direction[d] * P.v[3 * i + d];
+      who.push_back(i);
+      for (int d = 0; d < 3; ++d) force.push_back(f * load.direction[d]);
     }
   for (const TransmittingBoundary& b : s.transmitting)
     for (std::size_t k = 0; k < b.particles.size(); ++k) {
-      const double* v = &P.v[3 * static_cast<std::size_t>(b.particles[k])];
       double f[3];
-      boundary_force(b, k, v, f);
-      w += f[0] * v[0] + f[1] * v[1] + f[2] * v[2];
+      boundary_force(b, k, &P.v[3 * static_cast<std::size_t>(b.particles[k])], f);
+      who.push_back(b.particles[k]);
+      for (int d = 0; d < 3; ++d) force.push_back(f[d]);
     }
-  return w;
 }
 } // namespace
 
@@ -480,8 +556,10 @@ void advance(Hydro& s, double dt) {
   if (solids) update_stress(s, S0, a0, D0, r, 0.5 * dt);
   s.time = t0 + 0.5 * dt;
   update_state(s);
-  // The loads' work over the step at the midpoint, as the step itself.
-  if (!s.loads.empty() || !s.transmitting.empty()) s.external_work += dt * load_power(s);
+  // The loads' forces at the midpoint, which the corrector applies over the whole step.
+  std::vector<int> loaded;
+  std::vector<double> mid_force;
+  external_forces(s, loaded, mid_force);
   // Corrector: the full step with the mid-step rates.
   refresh_neighbours(s);
   compute_rates(s, r);
@@ -496,6 +574,13 @@ void advance(Hydro& s, double dt) {
     P.e[i] = e0[i] + dt * r.de[i];
   }
   if (solids) update_stress(s, S0, a0, D0, r, dt);
+  // Their work: F_mid . (v0 + v1) / 2 dt, which is exactly the kinetic energy the corrector's
+  // velocity update gives them, pulses that arrive within the step included.
+  for (std::size_t k = 0; k < loaded.size(); ++k)
+    for (int d = 0; d < 3; ++d) {
+      const std::size_t at = 3 * static_cast<std::size_t>(loaded[k]) + d;
+      s.external_work += dt * mid_force[3 * k + d] * 0.5 * (v0[at] + P.v[at]);
+    }
   s.time = t0 + dt;
   ++s.step;
   check_finite(s);

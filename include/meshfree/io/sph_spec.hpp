@@ -20,6 +20,7 @@ struct SphBlock {
   std::string material;
   std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0}; // unused axes: 0
   std::vector<SphCircle> holes;                   // particles inside are left out
+  std::optional<SphCircle> inside;                // if given, only particles inside are kept
   bool is_ring = false;
   SphCircle ring; // center and outer radius
   double ring_inner_radius = 0.0;

@@ -93,11 +93,12 @@ struct Particles {
 
 struct Settings {
   kernels::SphKernel kernel = kernels::SphKernel::CubicSpline;
-  double alpha = 1.0, beta = 1.0; // Monaghan artificial viscosity
-  double phi = 0.1;               // singularity guard of the viscosity, times h
-  double courant = 0.3;           // dt = courant * min h / (c + |v|)
-  double skin = 0.5;              // neighbour-list margin: pairs within (h_i + h_j)(1 + skin)
-  double burn_width = 2.0;        // programmed burn: the burn fraction rises over this many h
+  double alpha = 1.0, beta = 1.0;   // Monaghan artificial viscosity
+  double phi = 0.1;                 // singularity guard of the viscosity, times h
+  double courant = 0.3;             // dt = courant * min h / (c + |v|)
+  double skin = 0.5;                // neighbour-list margin: pairs within (h_i + h_j)(1 + skin)
+  double burn_width = 2.0;          // programmed burn: the burn fraction rises over this many h
+  bool gradient_correction = false; // kernel-gradient correction (Bonet & Lok 1999)
   /// Inter-material penalty force (the thesis' eqs. 3-29 and 3-30, after Liu et al. 2003):
   /// particles of different materials closer than r0 = distance x their mean initial spacing
   /// repel with F = pressure a^(dim-1) [(r0/r)^n1 - (r0/r)^n2] along the line of centres,
@@ -113,7 +114,8 @@ struct Settings {
 
 struct Rates {
   std::vector<double> dv, drho, de, dS;
-  std::vector<double> grad_v; // 9 per particle (solids): L_ab = d v_a / d x_b
+  std::vector<double> grad_v;     // 9 per particle (solids): L_ab = d v_a / d x_b
+  std::vector<double> correction; // 9 per particle: the kernel-gradient correction matrix
 };
 
 /// A pressure history on a surface layer of particles (an empirical blast load): particle k of
