@@ -340,6 +340,11 @@ SphSpec parse_sph(KeyReader& r) {
       v->error("alpha", "the viscosity coefficients must not be negative");
     v->finish();
   }
+  if (auto a = r.optional_map("artificial_stress")) {
+    s.settings.artificial_stress = a->positive("epsilon", 0.3);
+    s.settings.artificial_stress_exponent = a->integer("exponent", 4, 1, 12);
+    a->finish();
+  }
   if (auto f = r.optional_map("interface")) {
     // The inter-material penalty force (sph/hydro.hpp, Settings::Penalty).
     sph::Settings::Penalty& pen = s.settings.penalty;

@@ -1,6 +1,7 @@
 #include "meshfree/sph/hydro.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/kernels/sph_kernel.hpp"
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -240,6 +241,33 @@ void correction_matrices(const Hydro& s, std::vector<double>& C) {
   }
 }
 
+/// The artificial stress of every solid particle: R = Q diag(R_a) Q^T with
+/// R_a = -epsilon sigma_a / rho^2 for each tensile principal stress sigma_a of sigma = -p I + S
+/// (Gray, Monaghan & Swift 2001, eqs. 3.11-3.13), 0 for compressive ones.
+void artificial_stresses(const Hydro& s, std::vector<double>& R) {
+  const Particles& P = s.particles;
+  const int n = P.size();
+  const double eps = s.settings.artificial_stress;
+  R.assign(6 * static_cast<std::size_t>(n), 0.0);
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    if (!s.materials[P.material[i]].strength.enabled) continue;
+    const double* si = &P.S[6 * static_cast<std::size_t>(i)];
+    Eigen::Matrix3d sigma;
+    sigma << si[0] - P.p[i], si[5], si[4], si[5], si[1] - P.p[i], si[3], si[4], si[3],
+        si[2] - P.p[i];
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(sigma);
+    Eigen::Vector3d ra = Eigen::Vector3d::Zero();
+    for (int a = 0; a < 3; ++a)
+      if (eig.eigenvalues()[a] > 0.0) ra[a] = -eps * eig.eigenvalues()[a] / (P.rho[i] * P.rho[i]);
+    const Eigen::Matrix3d Ri =
+        eig.eigenvectors() * ra.asDiagonal() * eig.eigenvectors().transpose();
+    double* out = &R[6 * static_cast<std::size_t>(i)];
+    out[0] = Ri(0, 0), out[1] = Ri(1, 1), out[2] = Ri(2, 2);
+    out[3] = Ri(1, 2), out[4] = Ri(0, 2), out[5] = Ri(0, 1);
+  }
+}
+
 /// The kernel gradient of a pair as a vector: g x_ij, or with the correction A g x_ij for the
 /// 3x3 matrix A (row-major).
 inline void gradient_vector(const double* A, double g, const double xij[3], double out[3]) {
@@ -258,6 +286,8 @@ void compute_rates(const Hydro& s, Rates& r) {
   const int n = P.size(), dim = P.dim;
   const bool corrected = S.gradient_correction;
   if (corrected) correction_matrices(s, r.correction);
+  const bool art = S.artificial_stress > 0.0;
+  if (art) artificial_stresses(s, r.art_stress);
   r.dv.assign(3 * static_cast<std::size_t>(n), 0.0);
   r.drho.assign(n, 0.0);
   r.de.assign(n, 0.0);
@@ -358,6 +388,17 @@ void compute_rates(const Hydro& s, Rates& r) {
         const double rj2 = 1.0 / (P.rho[j] * P.rho[j]);
         double T[6];
         for (int c = 0; c < 6; ++c) T[c] = si[c] * ri2 + sj[c] * rj2;
+        if (art) {
+          // f^n (R_i + R_j), f = W(r) / W(dp) with dp the pair's mean initial spacing.
+          const double dp = 0.5 * (std::pow(P.mass[i] / P.rho_ref[i], 1.0 / dim) +
+                                   std::pow(mj / P.rho_ref[j], 1.0 / dim));
+          const double f = kernels::sph_kernel(S.kernel, dim, std::sqrt(r2), hij) /
+                           kernels::sph_kernel(S.kernel, dim, dp, hij);
+          const double fn = std::pow(f, S.artificial_stress_exponent);
+          const double* Ri = &r.art_stress[6 * static_cast<std::size_t>(i)];
+          const double* Rj = &r.art_stress[6 * static_cast<std::size_t>(j)];
+          for (int c = 0; c < 6; ++c) T[c] += fn * (Ri[c] + Rj[c]);
+        }
         const double* gx = gv;
         const double Tg[3] = {T[0] * gx[0] + T[5] * gx[1] + T[4] * gx[2],
                               T[5] * gx[0] + T[1] * gx[1] + T[3] * gx[2],

@@ -54,6 +54,9 @@ inline double wendland_c2_slope(int dim, double r, double h) {
 
 enum class SphKernel { CubicSpline, WendlandC2 };
 
+inline double sph_kernel(SphKernel k, int dim, double r, double h) {
+  return k == SphKernel::CubicSpline ? cubic_spline(dim, r, h) : wendland_c2(dim, r, h);
+}
 inline double sph_kernel_slope(SphKernel k, int dim, double r, double h) {
   return k == SphKernel::CubicSpline ? cubic_spline_slope(dim, r, h) : wendland_c2_slope(dim, r, h);
 }

@@ -99,6 +99,12 @@ struct Settings {
   double skin = 0.5;                // neighbour-list margin: pairs within (h_i + h_j)(1 + skin)
   double burn_width = 2.0;          // programmed burn: the burn fraction rises over this many h
   bool gradient_correction = false; // kernel-gradient correction (Bonet & Lok 1999)
+  /// Artificial stress against the tensile instability of solids (Monaghan 2000; Gray,
+  /// Monaghan & Swift 2001): each particle's tensile principal stresses give
+  /// R = -epsilon sigma_tensile / rho^2, and a pair adds f^n (R_i + R_j) to its stress term with
+  /// f = W(r) / W(initial spacing). epsilon = 0 switches it off; Gray et al. use 0.3 and n = 4.
+  double artificial_stress = 0.0;
+  int artificial_stress_exponent = 4;
   /// Inter-material penalty force (the thesis' eqs. 3-29 and 3-30, after Liu et al. 2003):
   /// particles of different materials closer than r0 = distance x their mean initial spacing
   /// repel with F = pressure a^(dim-1) [(r0/r)^n1 - (r0/r)^n2] along the line of centres,
@@ -116,6 +122,7 @@ struct Rates {
   std::vector<double> dv, drho, de, dS;
   std::vector<double> grad_v;     // 9 per particle (solids): L_ab = d v_a / d x_b
   std::vector<double> correction; // 9 per particle: the kernel-gradient correction matrix
+  std::vector<double> art_stress; // 6 per particle: the artificial stress R (Voigt, like S)
 };
 
 /// A pressure history on a surface layer of particles (an empirical blast load): particle k of
