@@ -121,6 +121,15 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     MF_REQUIRE(!load.particles.empty(), l.key_path, ".box: selects no free particle");
     h.loads.push_back(load);
   }
+  h.symmetry = s.symmetry;
+  for (std::size_t q = 0; q < s.symmetry.size(); ++q) {
+    // The body must lie on one side of each symmetry plane.
+    const sph::SymmetryPlane& m = s.symmetry[q];
+    int below = 0, above = 0;
+    for (int i = 0; i < P.size(); ++i) (P.x[3 * i + m.axis] < m.at ? below : above) += 1;
+    MF_REQUIRE(below == 0 || above == 0, "symmetry[", q, "]: the plane ", "xyz"[m.axis], " = ",
+               m.at, " cuts the body (", below, " particles below it, ", above, " above)");
+  }
   if (s.detonation_point) sph::light_from_point(h, s.detonation_point->data());
   sph::update_state(h);
   for (const io::SphTransmitting& t : s.transmitting) {
@@ -240,15 +249,24 @@ SphResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out) {
     if (!fields) return;
     io::FieldStep step;
     step.time = h.time;
-    std::vector<double> u(P.x.size());
-    for (std::size_t k = 0; k < u.size(); ++k) u[k] = P.x[k] - x0[k];
-    std::vector<double> material(P.material.begin(), P.material.end());
-    std::vector<double> failed(P.failed.begin(), P.failed.end()), mises(P.size());
-    for (int i = 0; i < P.size(); ++i) mises[i] = von_mises(i);
-    step.vectors3 = {{"displacement", u}, {"velocity", P.v}};
-    step.scalars = {{"density", P.rho},        {"pressure", P.p},    {"specific_energy", P.e},
-                    {"smoothing_length", P.h}, {"von_mises", mises}, {"plastic_strain", P.alpha},
-                    {"damage", P.damage},      {"failed", failed},   {"material", material}};
+    // The body's particles only (mirror images beyond them are not written).
+    const auto body = [&](const auto& a, int per) {
+      return std::vector<double>(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(per) * n);
+    };
+    std::vector<double> u = body(P.x, 3);
+    for (std::size_t k = 0; k < u.size(); ++k) u[k] -= x0[k];
+    std::vector<double> mises(n);
+    for (int i = 0; i < n; ++i) mises[i] = von_mises(i);
+    step.vectors3 = {{"displacement", u}, {"velocity", body(P.v, 3)}};
+    step.scalars = {{"density", body(P.rho, 1)},
+                    {"pressure", body(P.p, 1)},
+                    {"specific_energy", body(P.e, 1)},
+                    {"smoothing_length", body(P.h, 1)},
+                    {"von_mises", mises},
+                    {"plastic_strain", body(P.alpha, 1)},
+                    {"damage", body(P.damage, 1)},
+                    {"failed", body(P.failed, 1)},
+                    {"material", body(P.material, 1)}};
     fields->add_step(step);
   };
 

@@ -327,6 +327,18 @@ SphSpec parse_sph(KeyReader& r) {
     b.finish();
     s.transmitting.push_back(t);
   }
+  for (KeyReader& m : r.map_list("symmetry")) {
+    sph::SymmetryPlane plane;
+    const std::vector<std::string> axes{"x", "y", "z"};
+    const std::string axis =
+        m.choice("axis", std::vector<std::string>(axes.begin(), axes.begin() + dim), "");
+    plane.axis = static_cast<int>(std::find(axes.begin(), axes.end(), axis) - axes.begin());
+    plane.at = m.number("at");
+    for (const auto& other : s.symmetry)
+      if (other.axis == plane.axis) m.error("axis", "another symmetry plane is normal to " + axis);
+    m.finish();
+    s.symmetry.push_back(plane);
+  }
   if (auto d = r.optional_map("detonation")) {
     s.detonation_point = read_point(*d, "point", dim);
     s.settings.burn_width = d->positive("burn_width", s.settings.burn_width);

@@ -75,6 +75,94 @@ void Particles::add(const double position[3], double m, double density, double e
   c.push_back(0.0);
 }
 
+void Particles::append_copy(int i) {
+  const std::size_t k = static_cast<std::size_t>(i);
+  for (int d = 0; d < 3; ++d) {
+    x.push_back(x[3 * k + d]);
+    v.push_back(v[3 * k + d]);
+  }
+  mass.push_back(mass[k]);
+  rho.push_back(rho[k]);
+  e.push_back(e[k]);
+  h.push_back(h[k]);
+  rho_ref.push_back(rho_ref[k]);
+  h_ref.push_back(h_ref[k]);
+  material.push_back(material[k]);
+  light_time.push_back(light_time[k]);
+  fixed.push_back(1);
+  for (int c = 0; c < 6; ++c) S.push_back(S[6 * k + c]);
+  alpha.push_back(alpha[k]);
+  rho_max.push_back(rho_max[k]);
+  damage.push_back(damage[k]);
+  strain_rate.push_back(strain_rate[k]);
+  failed.push_back(failed[k]);
+  p.push_back(p[k]);
+  c.push_back(c[k]);
+}
+
+void Particles::truncate(int n) {
+  const std::size_t m = static_cast<std::size_t>(n);
+  x.resize(3 * m), v.resize(3 * m), S.resize(6 * m);
+  for (auto* a : {&mass, &rho, &e, &h, &rho_ref, &h_ref, &light_time, &alpha, &rho_max, &damage,
+                  &strain_rate, &p, &c})
+    a->resize(m);
+  material.resize(m), fixed.resize(m), failed.resize(m);
+}
+
+namespace {
+/// Mirrors particle k's vector and stress across the planes in `planes` (bits of s.symmetry).
+void mirror_state(Hydro& s, int k, int source, int planes) {
+  Particles& P = s.particles;
+  const std::size_t g = static_cast<std::size_t>(k), i = static_cast<std::size_t>(source);
+  for (int d = 0; d < 3; ++d) {
+    P.x[3 * g + d] = P.x[3 * i + d];
+    P.v[3 * g + d] = P.v[3 * i + d];
+  }
+  for (int c = 0; c < 6; ++c) P.S[6 * g + c] = P.S[6 * i + c];
+  // Voigt xx yy zz yz xz xy: the shear components with one index on the plane's axis flip.
+  static const int shear_of[3][2] = {{4, 5}, {3, 5}, {3, 4}};
+  for (std::size_t q = 0; q < s.symmetry.size(); ++q) {
+    if (!(planes >> q & 1)) continue;
+    const SymmetryPlane& m = s.symmetry[q];
+    P.x[3 * g + m.axis] = 2.0 * m.at - P.x[3 * g + m.axis];
+    P.v[3 * g + m.axis] = -P.v[3 * g + m.axis];
+    P.S[6 * g + shear_of[m.axis][0]] = -P.S[6 * g + shear_of[m.axis][0]];
+    P.S[6 * g + shear_of[m.axis][1]] = -P.S[6 * g + shear_of[m.axis][1]];
+  }
+  P.rho[g] = P.rho[i], P.e[g] = P.e[i], P.h[g] = P.h[i], P.p[g] = P.p[i], P.c[g] = P.c[i];
+  P.alpha[g] = P.alpha[i], P.rho_max[g] = P.rho_max[i], P.damage[g] = P.damage[i];
+  P.failed[g] = P.failed[i], P.strain_rate[g] = P.strain_rate[i];
+}
+
+/// Drops the old mirror particles and mirrors every particle within `band` of each plane, the
+/// images of earlier planes included (corners of two or three planes).
+void rebuild_ghosts(Hydro& s, double band) {
+  Particles& P = s.particles;
+  if (s.real < 0) s.real = P.size();
+  P.truncate(s.real);
+  s.ghost_of.clear();
+  s.ghost_planes.clear();
+  for (std::size_t q = 0; q < s.symmetry.size(); ++q) {
+    const SymmetryPlane& m = s.symmetry[q];
+    const int count = P.size();
+    for (int i = 0; i < count; ++i) {
+      if (std::abs(P.x[3 * i + m.axis] - m.at) >= band) continue;
+      const int source = i < s.real ? i : s.ghost_of[i - s.real];
+      const int planes = (i < s.real ? 0 : s.ghost_planes[i - s.real]) | (1 << q);
+      P.append_copy(source);
+      s.ghost_of.push_back(source);
+      s.ghost_planes.push_back(planes);
+      mirror_state(s, P.size() - 1, source, planes);
+    }
+  }
+}
+} // namespace
+
+void refresh_ghosts(Hydro& s) {
+  for (std::size_t k = 0; k < s.ghost_of.size(); ++k)
+    mirror_state(s, s.real + static_cast<int>(k), s.ghost_of[k], s.ghost_planes[k]);
+}
+
 void light_from_point(Hydro& s, const double at[3]) {
   Particles& P = s.particles;
   for (int i = 0; i < P.size(); ++i) {
@@ -140,14 +228,16 @@ void refresh_neighbours(Hydro& s) {
     }
     if (!stale) return;
   }
-  const double h_max = *std::max_element(P.h.begin(), P.h.end());
+  const double h_max = *std::max_element(P.h.begin(), P.h.begin() + s.real_count());
   s.build_radius = 2.0 * h_max * (1.0 + skin);
+  if (!s.symmetry.empty()) rebuild_ghosts(s, s.build_radius);
   const neighbors::PairList all = neighbors::pairs_within(P.x, s.build_radius);
   // Keep the pairs within (h_i + h_j)(1 + skin): with smoothing lengths that differ across the
   // body, the global radius would hand small particles many far partners.
-  s.pairs.offset.assign(n + 1, 0);
+  const int with_ghosts = P.size();
+  s.pairs.offset.assign(with_ghosts + 1, 0);
   s.pairs.partner.clear();
-  for (int i = 0; i < n; ++i) {
+  for (int i = 0; i < with_ghosts; ++i) {
     for (long k = all.offset[i]; k < all.offset[i + 1]; ++k) {
       const int j = all.partner[k];
       double r2 = 0.0;
@@ -468,7 +558,7 @@ double stable_step(const Hydro& s, int* limiting) {
   const Particles& P = s.particles;
   double best = std::numeric_limits<double>::infinity();
   int where = -1;
-  for (int i = 0; i < P.size(); ++i) {
+  for (int i = 0; i < s.real_count(); ++i) {
     const double speed = std::sqrt(P.v[3 * i] * P.v[3 * i] + P.v[3 * i + 1] * P.v[3 * i + 1] +
                                    P.v[3 * i + 2] * P.v[3 * i + 2]);
     const double dt = P.h[i] / (P.c[i] + speed);
@@ -497,7 +587,7 @@ namespace {
 void update_stress(Hydro& s, const std::vector<double>& S0, const std::vector<double>& alpha0,
                    const std::vector<double>& damage0, const Rates& r, double dt) {
   Particles& P = s.particles;
-  const int n = P.size();
+  const int n = s.real_count();
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     const Material& mat = s.materials[P.material[i]];
@@ -574,7 +664,7 @@ void commit_history(Hydro& s) {
 
 void advance(Hydro& s, double dt) {
   Particles& P = s.particles;
-  const int n = P.size();
+  const int n = s.real_count(); // mirror particles are copied from these after each stage
   const std::size_t n3 = 3 * static_cast<std::size_t>(n);
   const std::vector<double> x0 = P.x, v0 = P.v, rho0 = P.rho, e0 = P.e, S0 = P.S, a0 = P.alpha,
                             D0 = P.damage;
@@ -596,6 +686,7 @@ void advance(Hydro& s, double dt) {
   }
   if (solids) update_stress(s, S0, a0, D0, r, 0.5 * dt);
   s.time = t0 + 0.5 * dt;
+  refresh_ghosts(s);
   update_state(s);
   // The loads' forces at the midpoint, which the corrector applies over the whole step.
   std::vector<int> loaded;
@@ -626,13 +717,14 @@ void advance(Hydro& s, double dt) {
   ++s.step;
   check_finite(s);
   commit_history(s);
+  refresh_ghosts(s);
   update_state(s);
 }
 
 Energies energies(const Hydro& s) {
   const Particles& P = s.particles;
   Energies out;
-  for (int i = 0; i < P.size(); ++i) {
+  for (int i = 0; i < s.real_count(); ++i) {
     const double v2 =
         P.v[3 * i] * P.v[3 * i] + P.v[3 * i + 1] * P.v[3 * i + 1] + P.v[3 * i + 2] * P.v[3 * i + 2];
     out.kinetic += 0.5 * P.mass[i] * v2;

@@ -65,6 +65,7 @@ struct SphSpec {
   std::vector<SphGauge> gauges;
   std::vector<SphBlastLoad> loads;
   std::vector<SphTransmitting> transmitting;
+  std::vector<sph::SymmetryPlane> symmetry; // read from 'symmetry: [{axis: x, at: 0}]'
 };
 
 } // namespace mf::io

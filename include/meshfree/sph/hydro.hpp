@@ -86,6 +86,10 @@ struct Particles {
   std::vector<double> strain_rate; // equivalent deviatoric strain rate sqrt(2/3 D':D') [1/s]
   std::vector<char> failed;        // no deviatoric stress and no tension once set
   int size() const { return static_cast<int>(mass.size()); }
+  /// Appends a copy of particle i (a mirror image starts as one).
+  void append_copy(int i);
+  /// Drops every particle from index n on.
+  void truncate(int n);
   /// Appends a particle at rest.
   void add(const double position[3], double mass, double rho, double e, double h, int material,
            bool fixed = false);
@@ -145,6 +149,15 @@ struct TransmittingBoundary {
   double normal[3] = {0.0, 0.0, 0.0};                          // unit, outward
 };
 
+/// A symmetry plane x_axis = at (Libersky & Petschek 1991, the thesis' type-II virtual particles):
+/// the particles within reach of the plane are mirrored across it, with the normal velocity and
+/// the shear stresses on the plane reversed, so that the body behaves as half of a symmetric
+/// whole: no normal motion through the plane and no shear on it.
+struct SymmetryPlane {
+  int axis = 0;
+  double at = 0.0;
+};
+
 /// A run's state: particles, materials, settings, time and the neighbour list with its margin.
 struct Hydro {
   Particles particles;
@@ -159,7 +172,17 @@ struct Hydro {
   std::vector<SurfaceLoad> loads;
   std::vector<TransmittingBoundary> transmitting;
   double external_work = 0.0; // work of the surface loads and boundaries so far
+  std::vector<SymmetryPlane> symmetry;
+  /// Particles [0, real) are the body; [real, size) are mirror images of ghost_of[k - real],
+  /// rebuilt with the neighbour list and refreshed from their sources at every stage.
+  int real = -1;
+  std::vector<int> ghost_of;
+  std::vector<int> ghost_planes; // bit p set: mirrored across symmetry[p]
+  int real_count() const { return real < 0 ? particles.size() : real; }
 };
+
+/// Copies every mirror particle's state from its source, mirrored.
+void refresh_ghosts(Hydro& s);
 
 /// Lighting times for a detonation at point `at` (distance / D_CJ) of every particle of an
 /// explosive (JWL) material; other particles never burn.
