@@ -2,7 +2,7 @@
 """Final length and footprint radius of the Taylor bar (problems/sph_taylor_bar.yaml) from a
 run's fields.h5, against the benchmark's converged finite-element values.
 
-The rod is the half z > 0 of the run (the other half is its mirror image). A particle stands
+The run holds the rod (or its quarter) above the wall z = 0. A particle stands
 for a cube of the spacing, so the length is the highest particle centre plus half a spacing,
 and the footprint radius is the largest distance from the axis in the first particle layer
 plus half a spacing.

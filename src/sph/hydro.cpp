@@ -289,6 +289,36 @@ inline double pair_gradient(const Particles& P, int dim, kernels::SphKernel kern
 } // namespace
 
 namespace {
+/// The signs a mirror particle's tensors take: component (a, b) of the source times
+/// sign[a] sign[b], sign = -1 on each mirrored axis.
+void mirror_signs(const Hydro& s, std::size_t ghost, double sign[3]) {
+  sign[0] = sign[1] = sign[2] = 1.0;
+  for (std::size_t q = 0; q < s.symmetry.size(); ++q)
+    if (s.ghost_planes[ghost] >> q & 1) sign[s.symmetry[q].axis] = -sign[s.symmetry[q].axis];
+}
+
+/// Fills the mirror particles' correction matrices (9 per particle) from their sources.
+void mirror_matrices(const Hydro& s, std::vector<double>& C) {
+  for (std::size_t k = 0; k < s.ghost_of.size(); ++k) {
+    double sign[3];
+    mirror_signs(s, k, sign);
+    const std::size_t g = 9 * (s.real + k), i = 9 * static_cast<std::size_t>(s.ghost_of[k]);
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) C[g + 3 * a + b] = sign[a] * sign[b] * C[i + 3 * a + b];
+  }
+}
+
+/// Fills the mirror particles' symmetric tensors (6 per particle, Voigt) from their sources.
+void mirror_voigt(const Hydro& s, std::vector<double>& T) {
+  static const int rows[6] = {0, 1, 2, 1, 0, 0}, cols[6] = {0, 1, 2, 2, 2, 1};
+  for (std::size_t k = 0; k < s.ghost_of.size(); ++k) {
+    double sign[3];
+    mirror_signs(s, k, sign);
+    const std::size_t g = 6 * (s.real + k), i = 6 * static_cast<std::size_t>(s.ghost_of[k]);
+    for (int c = 0; c < 6; ++c) T[g + c] = sign[rows[c]] * sign[cols[c]] * T[i + c];
+  }
+}
+
 /// Kernel-gradient correction (Bonet & Lok 1999; Randles & Libersky 1996): per particle the
 /// inverse of M_i = sum_j V_j (x_j - x_i) (x) grad_i W_ij, so that the corrected gradient
 /// M_i^-1 grad_i W_ij reproduces the gradient of any linear field exactly, near free surfaces
@@ -296,8 +326,8 @@ namespace {
 /// the uncorrected kernel (identity).
 void correction_matrices(const Hydro& s, std::vector<double>& C) {
   const Particles& P = s.particles;
-  const int n = P.size(), dim = P.dim;
-  C.assign(9 * static_cast<std::size_t>(n), 0.0);
+  const int n = s.real_count(), dim = P.dim;
+  C.assign(9 * static_cast<std::size_t>(P.size()), 0.0);
 #pragma omp parallel for schedule(dynamic, 64)
   for (int i = 0; i < n; ++i) {
     double M[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
@@ -336,9 +366,9 @@ void correction_matrices(const Hydro& s, std::vector<double>& C) {
 /// (Gray, Monaghan & Swift 2001, eqs. 3.11-3.13), 0 for compressive ones.
 void artificial_stresses(const Hydro& s, std::vector<double>& R) {
   const Particles& P = s.particles;
-  const int n = P.size();
+  const int n = s.real_count();
   const double eps = s.settings.artificial_stress;
-  R.assign(6 * static_cast<std::size_t>(n), 0.0);
+  R.assign(6 * static_cast<std::size_t>(P.size()), 0.0);
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     if (!s.materials[P.material[i]].strength.enabled) continue;
@@ -373,20 +403,27 @@ inline void gradient_vector(const double* A, double g, const double xij[3], doub
 void compute_rates(const Hydro& s, Rates& r) {
   const Particles& P = s.particles;
   const Settings& S = s.settings;
-  const int n = P.size(), dim = P.dim;
+  // Rates for the body's particles; mirror particles only lend their (mirrored) state.
+  const int n = s.real_count(), all = P.size(), dim = P.dim;
   const bool corrected = S.gradient_correction;
-  if (corrected) correction_matrices(s, r.correction);
+  if (corrected) {
+    correction_matrices(s, r.correction);
+    mirror_matrices(s, r.correction);
+  }
   const bool art = S.artificial_stress > 0.0;
-  if (art) artificial_stresses(s, r.art_stress);
-  r.dv.assign(3 * static_cast<std::size_t>(n), 0.0);
-  r.drho.assign(n, 0.0);
-  r.de.assign(n, 0.0);
+  if (art) {
+    artificial_stresses(s, r.art_stress);
+    mirror_voigt(s, r.art_stress);
+  }
+  r.dv.assign(3 * static_cast<std::size_t>(all), 0.0);
+  r.drho.assign(all, 0.0);
+  r.de.assign(all, 0.0);
   const bool solids = any_solid(s);
   if (solids) {
     // Velocity gradient L_i = sum_j (m_j / rho_j)(v_j - v_i) (x) grad_i W_ij, and the Jaumann
     // rate of the deviatoric stress.
-    r.grad_v.assign(9 * static_cast<std::size_t>(n), 0.0);
-    r.dS.assign(6 * static_cast<std::size_t>(n), 0.0);
+    r.grad_v.assign(9 * static_cast<std::size_t>(all), 0.0);
+    r.dS.assign(6 * static_cast<std::size_t>(all), 0.0);
 #pragma omp parallel for schedule(dynamic, 64)
     for (int i = 0; i < n; ++i) {
       const Material& mat = s.materials[P.material[i]];
