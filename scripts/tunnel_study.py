@@ -19,10 +19,10 @@ Usage: scripts/tunnel_study.py [--meshfree build/meshfree] [--out out/tunnel_stu
 import argparse
 import copy
 import csv
+import json
 import os
 import subprocess
 import sys
-import time
 
 import yaml
 
@@ -35,6 +35,19 @@ MASSES = [500.0, 1000.0, 5000.0]
 THESIS_ARRIVAL = {10.0: (0.007, 0.006, 0.004, 0.010, 0.009, 0.008),
                   15.0: (0.008, 0.007, 0.006, 0.011, 0.009, 0.009),
                   20.0: (0.012, 0.009, 0.007, 0.014, 0.013, 0.011)}
+# TM 5-855-1 ground shock in dry sand (backfill; UFC 3-340-01 / ConWep after Drake & Little
+# 1983): peak particle velocity V0 = 48.768 f (2.5208 R / W^(1/3))^-n m/s (R in m, W in kg TNT),
+# P0 = rho c V0, arrival t = R / c, with rho c = 498 kPa s/m, c = 305 m/s, n = 2.75; coupling
+# f = 0.14 for a burst on the surface, 0.4 at zero depth of burial on the Bulson curve.
+TM_RHO_C, TM_C, TM_N, TM_F = 498e3, 305.0, 2.75, (0.14, 0.4)
+
+
+def tm5_855(depth, mass, f):
+    """Free-field peak pressure [kPa] and arrival [ms] of TM 5-855-1 at range `depth`."""
+    v0 = 48.768 * f * (2.5208 * depth / mass ** (1.0 / 3.0)) ** (-TM_N)
+    return 1e-3 * TM_RHO_C * v0, 1e3 * depth / TM_C
+
+
 OUTER_RADIUS, LINING = 3.25, 0.5
 HALF_WIDTH, BELOW_INVERT = 16.0, 6.0
 ARRIVAL_FRACTION = 0.02  # arrival: |p| first reaches this fraction of the gauge's peak
@@ -174,6 +187,20 @@ def write_table(results, runs, out, spacing):
                 ref = 1e3 * THESIS_ARRIVAL[d][3 * k + j]
                 cells.append("-" if a is None else f"{a:.1f} ({ref:g})")
         lines.append(f"| {d:g} m | " + " | ".join(cells) + " |")
+    lines += ["", "Free-field sand just above the crown against TM 5-855-1 (dry sand; f = 0.14 and "
+              "0.4; the 2D model's line of charges decays more slowly than a point charge):", "",
+              "| depth | charge | arrival ms | TM arrival ms | peak kPa | TM peak kPa (f 0.14 / 0.4) |",
+              "|---|---|---|---|---|---|"]
+    for d in DEPTHS:
+        for m in MASSES:
+            a = get(d, m, "sand_above_crown", "arrival_ms")
+            if a is None:
+                continue
+            p = get(d, m, "sand_above_crown", "peak_pressure_kPa")
+            lo, t_tm = tm5_855(d, m, TM_F[0])
+            hi, _ = tm5_855(d, m, TM_F[1])
+            lines.append(f"| {d:g} m | {m:g} kg | {a:.1f} | {t_tm:.1f} | {p:.4g} | "
+                         f"{lo:.3g} / {hi:.3g} |")
     for key, label in (("peak_pressure_kPa", "Peak pressure, kPa"),
                        ("max_von_mises_kPa", "Maximum von Mises stress, kPa"),
                        ("min_vy", "Largest downward velocity, m/s"),
@@ -205,6 +232,8 @@ def main():
     ap.add_argument("--cases", default="", help="depth:mass pairs, e.g. 10:500,20:5000")
     ap.add_argument("--end-scale", type=float, default=1.0,
                     help="multiplies every run's end time (a smoke test uses less)")
+    ap.add_argument("--report-only", action="store_true",
+                    help="write the table and plots from the runs already in --out")
     args = ap.parse_args()
     with open(TEMPLATE) as f:
         template = yaml.safe_load(f)
@@ -223,17 +252,20 @@ def main():
         os.makedirs(case_dir, exist_ok=True)
         problem = case_problem(template, d, m, args.spacing, args.end_scale)
         problem_path = os.path.join(case_dir, "problem.yaml")
-        with open(problem_path, "w") as f:
-            yaml.safe_dump(problem, f, sort_keys=False)
-        start = time.time()
-        run = subprocess.run([args.meshfree, "run", problem_path, "--out", case_dir],
-                             capture_output=True, text=True)
-        wall = time.time() - start
-        if run.returncode != 0:
-            sys.exit(f"case {name} failed:\n{run.stdout}\n{run.stderr}")
-        import json
+        if not args.report_only:
+            with open(problem_path, "w") as f:
+                yaml.safe_dump(problem, f, sort_keys=False)
+        if args.report_only:
+            with open(problem_path) as f:
+                problem = yaml.safe_load(f)
+        else:
+            run = subprocess.run([args.meshfree, "run", problem_path, "--out", case_dir],
+                                 capture_output=True, text=True)
+            if run.returncode != 0:
+                sys.exit(f"case {name} failed:\n{run.stdout}\n{run.stderr}")
         with open(os.path.join(case_dir, "summary.json")) as f:
             summary = json.load(f)
+        wall = sum(summary["time_s"].values())
         h = read_history(os.path.join(case_dir, "history.csv"))
         runs.append({"case": name, "particles": summary["counts"]["particles"],
                      "steps": summary["counts"]["steps"], "end_ms": 1e3 * problem["time"]["end"],

@@ -77,27 +77,18 @@ void Particles::add(const double position[3], double m, double density, double e
 
 void Particles::append_copy(int i) {
   const std::size_t k = static_cast<std::size_t>(i);
-  for (int d = 0; d < 3; ++d) {
-    x.push_back(x[3 * k + d]);
-    v.push_back(v[3 * k + d]);
-  }
-  mass.push_back(mass[k]);
-  rho.push_back(rho[k]);
-  e.push_back(e[k]);
-  h.push_back(h[k]);
-  rho_ref.push_back(rho_ref[k]);
-  h_ref.push_back(h_ref[k]);
-  material.push_back(material[k]);
-  light_time.push_back(light_time[k]);
+  const auto copy = [k](auto& a, std::size_t per) {
+    for (std::size_t c = 0; c < per; ++c) {
+      const auto value = a[per * k + c];
+      a.push_back(value);
+    }
+  };
+  copy(x, 3), copy(v, 3), copy(S, 6);
+  for (auto* a : {&mass, &rho, &e, &h, &rho_ref, &h_ref, &light_time, &alpha, &rho_max, &damage,
+                  &strain_rate, &p, &c})
+    copy(*a, 1);
+  copy(material, 1), copy(failed, 1);
   fixed.push_back(1);
-  for (int c = 0; c < 6; ++c) S.push_back(S[6 * k + c]);
-  alpha.push_back(alpha[k]);
-  rho_max.push_back(rho_max[k]);
-  damage.push_back(damage[k]);
-  strain_rate.push_back(strain_rate[k]);
-  failed.push_back(failed[k]);
-  p.push_back(p[k]);
-  c.push_back(c[k]);
 }
 
 void Particles::truncate(int n) {
