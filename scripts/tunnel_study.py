@@ -125,6 +125,41 @@ def plot_case(h, title, path):
     plt.close(fig)
 
 
+def plot_field(case_dir, depth, at_ms, title, path):
+    """Pressure around the tunnel and damage in the lining at the field output nearest at_ms."""
+    import h5py
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import re
+    with open(os.path.join(case_dir, "fields.xmf")) as f:  # the series' times, in step order
+        times = [float(t) for t in re.findall(r'<Time Value="([^"]+)"', f.read())]
+    with h5py.File(os.path.join(case_dir, "fields.h5"), "r") as f:
+        steps = sorted(k for k in f if k.startswith("step_"))
+        k = min(range(len(steps)), key=lambda i: abs(1e3 * times[i] - at_ms))
+        x = f["geometry/coordinates"][:] + f[f"{steps[k]}/displacement"][:]
+        p = f[f"{steps[k]}/pressure"][:]
+        damage = f[f"{steps[k]}/damage"][:]
+        material = f[f"{steps[k]}/material"][:]
+    centre = -(depth + OUTER_RADIUS)
+    near = (abs(x[:, 0]) < 8.0) & (abs(x[:, 1] - centre) < 8.0)
+    fig, ax = plt.subplots(1, 2, figsize=(11, 5))
+    sc = ax[0].scatter(x[near, 0], x[near, 1], c=1e-3 * p[near], s=4, cmap="viridis")
+    fig.colorbar(sc, ax=ax[0], label="pressure [kPa]")
+    ring = near & (material == 1)
+    sc = ax[1].scatter(x[ring, 0], x[ring, 1], c=damage[ring], s=12, cmap="magma", vmin=0, vmax=1)
+    fig.colorbar(sc, ax=ax[1], label="HJC damage")
+    for a in ax:
+        a.set_aspect("equal")
+        a.set_xlabel("x [m]")
+        a.set_ylabel("y [m]")
+    ax[0].set_title(f"{title}: pressure at {1e3 * times[k]:.0f} ms")
+    ax[1].set_title("lining damage")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
 def plot_summary(results, out):
     import matplotlib
     matplotlib.use("Agg")
@@ -277,6 +312,8 @@ def main():
             results.append(row)
         plot_case(h, f"crown {d:g} m, {m:g} kg TNT", os.path.join(args.out, f"gauges_{name}.png"))
         crown = results[-4]
+        plot_field(case_dir, d, crown["peak_time_ms"], f"crown {d:g} m, {m:g} kg",
+                   os.path.join(args.out, f"field_{name}.png"))
         print(f"{name}: {runs[-1]['particles']} particles, {runs[-1]['steps']} steps, "
               f"{wall:.1f} s; crown arrival {crown['arrival_ms']:.2f} ms, peak "
               f"{crown['peak_pressure_kPa']:.0f} kPa", flush=True)
