@@ -125,6 +125,17 @@ def plot_case(h, title, path):
     plt.close(fig)
 
 
+def lining_damage(case_dir):
+    """The largest HJC damage and the number of failed particles in the lining over the run."""
+    import h5py
+    with h5py.File(os.path.join(case_dir, "fields.h5"), "r") as f:
+        steps = [k for k in f if k.startswith("step_")]
+        lining = f[f"{steps[0]}/material"][:] == 1
+        damage = max(float(f[f"{k}/damage"][:][lining].max()) for k in steps)
+        failed = max(int(f[f"{k}/failed"][:][lining].sum()) for k in steps)
+    return damage, failed, int(lining.sum())
+
+
 def plot_field(case_dir, depth, at_ms, title, path):
     """Pressure around the tunnel and damage in the lining at the field output nearest at_ms."""
     import h5py
@@ -250,11 +261,14 @@ def write_table(results, runs, out, spacing):
                     v = get(d, m, g, key)
                     cells.append("-" if v is None else f"{v:.4g}")
             lines.append(f"| {d:g} m | " + " | ".join(cells) + " |")
-    lines += ["", "Runs:", "", "| case | particles | steps | end [ms] | wall [s] | "
-              "energy error |", "|---|---|---|---|---|---|"]
+    lines += ["", "Runs (lining damage: the largest HJC damage and the failed particles in the "
+              f"lining, of {runs[0]['lining']}):", "",
+              "| case | particles | steps | end [ms] | wall [s] | energy error | lining damage | "
+              "failed |", "|---|---|---|---|---|---|---|---|"]
     for r in runs:
         lines.append(f"| {r['case']} | {r['particles']} | {r['steps']} | {r['end_ms']:g} | "
-                     f"{r['wall_s']:.1f} | {r['energy_error']:.2e} |")
+                     f"{r['wall_s']:.1f} | {r['energy_error']:.2e} | {r['damage']:.3f} | "
+                     f"{r['failed']} |")
     with open(os.path.join(out, "table.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
 
@@ -302,7 +316,9 @@ def main():
             summary = json.load(f)
         wall = sum(summary["time_s"].values())
         h = read_history(os.path.join(case_dir, "history.csv"))
+        damage, failed, lining = lining_damage(case_dir)
         runs.append({"case": name, "particles": summary["counts"]["particles"],
+                     "damage": damage, "failed": failed, "lining": lining,
                      "steps": summary["counts"]["steps"], "end_ms": 1e3 * problem["time"]["end"],
                      "wall_s": wall,
                      "energy_error": summary["results"]["energy_error_relative"]})
