@@ -82,6 +82,7 @@ expect_error "materials[0].eos.type: expected one of" "$S" --set 'materials.0.eo
 expect_error "blocks[0].energy: give exactly one of 'energy' (J/kg) or 'pressure'" "$S" --set 'blocks.0.energy=2.5'
 expect_error "model.smoothing: expected h / spacing between 1 and 3" "$S" --set model.smoothing=5
 expect_error "blocks[1].material: no material is named 'air'" "$S" --set blocks.1.material=air
+expect_error "materials[0].eos.unreacted.c0: expected a positive number, got -2390" "$ROOT/problems/sph_tnt_slab.yaml" --set 'materials.0.eos.unreacted.c0=-2390'
 T="$ROOT/problems/sph_tunnel_blast.yaml"
 expect_error "materials[0].eos.loading: row 3: the first column must increase (1873.8 after 1873.8)" "$T" --set 'materials.0.eos.loading.3=[1873.8, 29.15e6]'
 expect_error "materials[0].eos.sound_speed: row 0: expected a positive value, got -265.2" "$T" --set 'materials.0.eos.sound_speed.0=[1674.0, -265.2]'

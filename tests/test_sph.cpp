@@ -327,12 +327,11 @@ TEST_CASE("TNT slab: programmed burn runs at D_CJ and the front obeys the jump c
           "[sph]") {
   // A slab of TNT (JWL, Dobratz) 0.1 m thick, lit at x = 0 and burning by programmed burn at
   // D_CJ = 6930 m/s. At the front, mass and momentum conservation tie the state to the Rayleigh
-  // line: rho = rho0 D / (D - u) and p = rho0 D u. The front reaches 18.0 GPa = 0.86 P_CJ at
-  // every resolution and burn width tried (400-1600 particles, 0.01-12 h): with a pressureless
-  // unreacted explosive the burn follows the weak branch of the products' Hugoniot, which touches
-  // the Rayleigh line only at CJ (see the JWL CJ test), and the last 2% of the burn fraction
-  // carries the pressure from 18 to 21 GPa. Reaching P_CJ needs an unreacted-explosive equation
-  // of state (a ZND front), which this model does not have yet.
+  // line: rho = rho0 D / (D - u) and p = rho0 D u. The front reaches 17.9 GPa = 0.851 P_CJ at
+  // every resolution and burn width tried (400-3200 particles, 0.5-20 h): with a pressureless
+  // unreacted explosive the burn completes before the material is compressed to the CJ state,
+  // and the products' Hugoniot touches the Rayleigh line only at CJ (see the JWL CJ test).
+  // The next test adds the unreacted explosive, whose ZND front ends at P_CJ.
   for (int n : {400, 800}) {
     sph::Hydro s;
     s.particles.dim = 1;
@@ -378,6 +377,67 @@ TEST_CASE("TNT slab: programmed burn runs at D_CJ and the front obeys the jump c
     CHECK(worst_rayleigh < 0.03);
     CHECK(worst_mass < 0.01);
     CHECK(drift < 1e-3);
+  }
+}
+
+TEST_CASE("TNT slab with an unreacted equation of state: a self-sustained ZND front at D_CJ "
+          "that ends at the Chapman-Jouguet pressure",
+          "[sph]") {
+  // The unreacted TNT (Mie-Grueneisen, U_s = 2390 + 2.05 u_p m/s) is lit where the shock has
+  // compressed it by 10%; its burn then takes 6 h / D_CJ. Nothing imposes the front speed: it
+  // follows from the products' JWL. The state at the end of the burn is the CJ state
+  // (P_CJ = 21.0 GPa of the Dobratz constants), ahead of it the von Neumann spike of the
+  // unreacted Hugoniot at D, rho0 D (D - c0) / s = 25.0 GPa, smeared by the viscosity.
+  for (int n : {400, 800, 1600}) {
+    sph::Hydro s;
+    s.particles.dim = 1;
+    s.settings.burn_width = 6.0;
+    sph::Material tnt;
+    tnt.eos.kind = sph::Eos::Kind::Jwl;
+    tnt.eos.has_unreacted = true;
+    tnt.eos.unreacted = {1630.0, 2390.0, 2.05, 1.0};
+    s.materials.push_back(tnt);
+    const materials::Jwl& j = tnt.eos.jwl;
+    const double L = 0.1, dx = L / n, D = j.detonation_speed;
+    for (int k = 0; k < n; ++k) {
+      const double x[3] = {(k + 0.5) * dx, 0, 0};
+      s.particles.add(x, j.rho0 * dx, j.rho0, j.e0, 1.5 * dx, 0);
+    }
+    const double at[3] = {0, 0, 0};
+    sph::light_from_point(s, at);
+    sph::update_state(s);
+    double t_front[2] = {-1, -1}, cj_sum = 0.0, spike = 0.0;
+    int cj_count = 0;
+    while (s.time < 0.85 * L / D) {
+      sph::advance(s, sph::stable_step(s));
+      const sph::Particles& P = s.particles;
+      int front = 0;
+      for (int i = 0; i < P.size(); ++i)
+        if (P.p[i] > P.p[front]) front = i;
+      const double xf = P.x[3 * front];
+      if (t_front[0] < 0 && xf >= 0.3 * L) t_front[0] = s.time;
+      if (t_front[1] < 0 && xf >= 0.7 * L) t_front[1] = s.time;
+      if (xf < 0.3 * L || xf > 0.75 * L) continue;
+      spike = std::max(spike, P.p[front]);
+      // The end of the reaction zone: the first particle behind the front that has burnt.
+      for (int i = front; i >= 0; --i) {
+        const double burnt = (s.time - P.light_time[i]) * D / (s.settings.burn_width * P.h[i]);
+        if (P.light_time[i] >= 0.0 && burnt >= 1.0) {
+          cj_sum += P.p[i];
+          ++cj_count;
+          break;
+        }
+      }
+    }
+    const double speed = 0.4 * L / (t_front[1] - t_front[0]);
+    const double cj = cj_sum / cj_count, vn = j.rho0 * D * (D - 2390.0) / 2.05;
+    std::printf("  ZND front, %d particles: speed %.0f m/s (D_CJ 6930), end of burn %.2f GPa = "
+                "%.3f P_CJ, peak %.2f GPa (von Neumann %.2f)\n",
+                n, speed, cj / 1e9, cj / j.cj_pressure, spike / 1e9, vn / 1e9);
+    INFO(n << " particles");
+    CHECK(speed == Approx(D).epsilon(0.02));
+    CHECK(cj == Approx(j.cj_pressure).epsilon(0.10));
+    CHECK(spike == Approx(vn).epsilon(0.10));
   }
 }
 

@@ -112,6 +112,15 @@ sph::Eos read_eos(KeyReader& e) {
     j.detonation_speed = e.positive("detonation_speed", j.detonation_speed);
     j.cj_pressure = e.positive("cj_pressure", j.cj_pressure);
     j.e0 = e.positive("detonation_energy", j.e0 * j.rho0) / j.rho0; // given per volume [J/m^3]
+    if (auto u = e.optional_map("unreacted")) {
+      // The unreacted explosive's shock Hugoniot U_s = c0 + s u_p and Grueneisen gamma.
+      eos.has_unreacted = true;
+      eos.unreacted.rho0 = j.rho0;
+      eos.unreacted.c0 = u->positive("c0");
+      eos.unreacted.s = u->positive("s");
+      eos.unreacted.gamma0 = u->positive("gamma0");
+      u->finish();
+    }
   } else if (type == "mie_gruneisen") {
     eos.kind = sph::Eos::Kind::MieGruneisen;
     materials::MieGruneisen& m = eos.mie_gruneisen;
@@ -342,6 +351,8 @@ SphSpec parse_sph(KeyReader& r) {
   if (auto d = r.optional_map("detonation")) {
     s.detonation_point = read_point(*d, "point", dim);
     s.settings.burn_width = d->positive("burn_width", s.settings.burn_width);
+    s.settings.ignition_compression =
+        d->positive("ignition_compression", s.settings.ignition_compression);
     d->finish();
   }
   if (auto v = r.optional_map("viscosity")) {

@@ -161,7 +161,11 @@ void light_from_point(Hydro& s, const double at[3]) {
     if (eos.kind != Eos::Kind::Jwl) continue;
     double r2 = 0.0;
     for (int d = 0; d < 3; ++d) r2 += (P.x[3 * i + d] - at[d]) * (P.x[3 * i + d] - at[d]);
-    P.light_time[i] = std::sqrt(r2) / eos.jwl.detonation_speed;
+    const double r = std::sqrt(r2);
+    // With an unreacted equation of state only a booster of 2 h around the point is lit on
+    // schedule; the rest lights when the shock compresses it (update_state).
+    if (eos.has_unreacted && r > 2.0 * P.h[i]) continue;
+    P.light_time[i] = r / eos.jwl.detonation_speed;
   }
 }
 
@@ -177,6 +181,9 @@ void update_state(Hydro& s) {
     const materials::PressureAndSound ps =
         evaluate(mat, P.rho[i], P.e[i], P.rho_max[i], P.damage[i]);
     double f = 1.0;
+    if (eos.kind == Eos::Kind::Jwl && eos.has_unreacted && P.light_time[i] < 0.0 &&
+        P.rho[i] >= (1.0 + s.settings.ignition_compression) * eos.jwl.rho0)
+      P.light_time[i] = s.time;
     if (eos.kind == Eos::Kind::Jwl && P.light_time[i] >= 0.0) {
       // Burn fraction F = max(F_programmed, F_beta) (Wilkins 1964; LS-DYNA's
       // *MAT_HIGH_EXPLOSIVE_BURN): the lit time over the burn width, or the compression toward
@@ -186,16 +193,27 @@ void update_state(Hydro& s) {
           (s.time - P.light_time[i]) * j.detonation_speed / (s.settings.burn_width * P.h[i]);
       const double beta = (1.0 - j.rho0 / P.rho[i]) * j.rho0 * j.detonation_speed *
                           j.detonation_speed / j.cj_pressure;
-      f = std::clamp(std::max(programmed, beta), 0.0, 1.0);
+      // With an unreacted equation of state the shock has compressed the particle before it
+      // lights, and the burn follows its lighting time only (a ZND front).
+      f = std::clamp(eos.has_unreacted ? programmed : std::max(programmed, beta), 0.0, 1.0);
     } else if (eos.kind == Eos::Kind::Jwl) {
       f = 0.0; // never lit: inert
     }
-    P.p[i] = P.failed[i] ? std::max(f * ps.p, 0.0) : f * ps.p;
+    double pressure = f * ps.p, c2 = ps.c2;
+    if (eos.kind == Eos::Kind::Jwl && eos.has_unreacted) {
+      // The unreacted share follows its own Hugoniot, with the energy gained above the initial
+      // state (e - e0): a shock into the explosive (the von Neumann spike), then the burn.
+      const materials::PressureAndSound u =
+          materials::mie_gruneisen(eos.unreacted, P.rho[i], P.e[i] - eos.jwl.e0);
+      pressure += (1.0 - f) * u.p;
+      c2 = std::max(c2, u.c2);
+    }
+    P.p[i] = P.failed[i] ? std::max(pressure, 0.0) : pressure;
     // The unburnt explosive keeps the products' sound speed so that the step resolves the burn;
     // a solid's longitudinal speed adds 4G / (3 rho).
     const double shear =
         mat.strength.enabled ? 4.0 * shear_modulus(mat, P.rho[i]) / (3.0 * P.rho[i]) : 0.0;
-    P.c[i] = std::sqrt(std::max(ps.c2, 0.0) + shear);
+    P.c[i] = std::sqrt(std::max(c2, 0.0) + shear);
   }
 }
 

@@ -26,6 +26,12 @@ struct Eos {
   materials::MieGruneisen mie_gruneisen;
   materials::LinearPolynomial linear_polynomial;
   materials::Compaction compaction;
+  /// Optional for JWL: the unreacted explosive (Mie-Grueneisen on the JWL's rho0). It carries
+  /// the pressure share 1 - F of the burn fraction F, particles light when the shock has
+  /// compressed them (Settings::ignition_compression) and burn over burn_width h / D_CJ, so the
+  /// front is a ZND wave whose speed and CJ state follow from the equations of state.
+  bool has_unreacted = false;
+  materials::MieGruneisen unreacted;
 };
 
 /// Strength of a solid: the deviatoric stress S follows the Jaumann rate
@@ -97,12 +103,14 @@ struct Particles {
 
 struct Settings {
   kernels::SphKernel kernel = kernels::SphKernel::CubicSpline;
-  double alpha = 1.0, beta = 1.0;   // Monaghan artificial viscosity
-  double phi = 0.1;                 // singularity guard of the viscosity, times h
-  double courant = 0.3;             // dt = courant * min h / (c + |v|)
-  double skin = 0.5;                // neighbour-list margin: pairs within (h_i + h_j)(1 + skin)
-  double burn_width = 2.0;          // programmed burn: the burn fraction rises over this many h
-  bool gradient_correction = false; // kernel-gradient correction (Bonet & Lok 1999)
+  double alpha = 1.0, beta = 1.0;    // Monaghan artificial viscosity
+  double phi = 0.1;                  // singularity guard of the viscosity, times h
+  double courant = 0.3;              // dt = courant * min h / (c + |v|)
+  double skin = 0.5;                 // neighbour-list margin: pairs within (h_i + h_j)(1 + skin)
+  double burn_width = 2.0;           // programmed burn: the burn fraction rises over this many h
+  bool gradient_correction = false;  // kernel-gradient correction (Bonet & Lok 1999)
+  double ignition_compression = 0.1; // rho / rho0 - 1 that lights an explosive with an
+                                     // unreacted equation of state
   /// Artificial stress against the tensile instability of solids (Monaghan 2000; Gray,
   /// Monaghan & Swift 2001): each particle's tensile principal stresses give
   /// R = -epsilon sigma_tensile / rho^2, and a pair adds f^n (R_i + R_j) to its stress term with
@@ -185,7 +193,9 @@ struct Hydro {
 void refresh_ghosts(Hydro& s);
 
 /// Lighting times for a detonation at point `at` (distance / D_CJ) of every particle of an
-/// explosive (JWL) material; other particles never burn.
+/// explosive (JWL) material; other particles never burn. An explosive with an unreacted
+/// equation of state is lit on schedule only within 2 h of the point (the booster); the shock
+/// lights the rest.
 void light_from_point(Hydro& s, const double at[3]);
 
 /// Smoothing lengths, pressures and sound speeds from density and energy at time t; the
