@@ -83,6 +83,7 @@ expect_error "blocks[0].energy: give exactly one of 'energy' (J/kg) or 'pressure
 expect_error "model.smoothing: expected h / spacing between 1 and 3" "$S" --set model.smoothing=5
 expect_error "blocks[1].material: no material is named 'air'" "$S" --set blocks.1.material=air
 expect_error "materials[0].eos.unreacted.c0: expected a positive number, got -2390" "$ROOT/problems/sph_tnt_slab.yaml" --set 'materials.0.eos.unreacted.c0=-2390'
+expect_error "detonation.point: give exactly one of 'point' or 'plane: {at, normal}'" "$ROOT/problems/sph_tnt_slab.yaml" --set 'detonation.plane={at: [0.0], normal: [1]}'
 T="$ROOT/problems/sph_tunnel_blast.yaml"
 expect_error "materials[0].eos.loading: row 3: the first column must increase (1873.8 after 1873.8)" "$T" --set 'materials.0.eos.loading.3=[1873.8, 29.15e6]'
 expect_error "materials[0].eos.sound_speed: row 0: expected a positive value, got -265.2" "$T" --set 'materials.0.eos.sound_speed.0=[1674.0, -265.2]'

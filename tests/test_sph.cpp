@@ -380,6 +380,53 @@ TEST_CASE("TNT slab: programmed burn runs at D_CJ and the front obeys the jump c
   }
 }
 
+TEST_CASE("a detonation plane lights a 2D TNT strip as a plane wave at D_CJ", "[sph]") {
+  // A 40 x 6 mm strip lit by the plane x = 0 (programmed burn, pressureless explosive): every
+  // row of particles has the same lighting time at the same x, and the front (the largest
+  // pressure of each row) crosses the strip at D_CJ with the rows within one spacing.
+  sph::Hydro s;
+  s.particles.dim = 2;
+  sph::Material tnt;
+  tnt.eos.kind = sph::Eos::Kind::Jwl;
+  s.materials.push_back(tnt);
+  const materials::Jwl& j = tnt.eos.jwl;
+  const double dx = 0.5e-3, D = j.detonation_speed;
+  const int nx = 80, ny = 12;
+  for (int r = 0; r < ny; ++r)
+    for (int c = 0; c < nx; ++c) {
+      const double x[3] = {(c + 0.5) * dx, (r + 0.5) * dx, 0};
+      s.particles.add(x, j.rho0 * dx * dx, j.rho0, j.e0, 1.5 * dx, 0);
+    }
+  const double at[3] = {0, 0, 0}, normal[3] = {1, 0, 0};
+  sph::light_from_plane(s, at, normal);
+  for (int i = 0; i < s.particles.size(); ++i)
+    REQUIRE(s.particles.light_time[i] == Approx(s.particles.x[3 * i] / D));
+  sph::update_state(s);
+  const auto fronts = [&]() {
+    std::vector<double> x(ny, 0.0), p(ny, -1.0);
+    for (int i = 0; i < s.particles.size(); ++i) {
+      const int r = i / nx;
+      if (s.particles.p[i] > p[r]) p[r] = s.particles.p[i], x[r] = s.particles.x[3 * i];
+    }
+    return x;
+  };
+  const double t1 = 0.3 * nx * dx / D, t2 = 0.7 * nx * dx / D;
+  while (s.time < t1) sph::advance(s, std::min(sph::stable_step(s), t1 - s.time));
+  const std::vector<double> x1 = fronts();
+  while (s.time < t2) sph::advance(s, std::min(sph::stable_step(s), t2 - s.time));
+  const std::vector<double> x2 = fronts();
+  // The inner rows (two spacings from the free edges, where the products expand sideways).
+  double lo = 1e300, hi = -1e300, speed = 0.0;
+  for (int r = 2; r < ny - 2; ++r) {
+    lo = std::min(lo, x2[r]), hi = std::max(hi, x2[r]);
+    speed += (x2[r] - x1[r]) / (t2 - t1) / (ny - 4);
+  }
+  std::printf("  plane detonation: front speed %.0f m/s (D 6930), rows within %.2f dx\n", speed,
+              (hi - lo) / dx);
+  CHECK(speed == Approx(D).epsilon(0.02));
+  CHECK(hi - lo <= dx * 1.01);
+}
+
 TEST_CASE("TNT slab with an unreacted equation of state: a self-sustained ZND front at D_CJ "
           "that ends at the Chapman-Jouguet pressure",
           "[sph]") {

@@ -130,7 +130,10 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     MF_REQUIRE(below == 0 || above == 0, "symmetry[", q, "]: the plane ", "xyz"[m.axis], " = ",
                m.at, " cuts the body (", below, " particles below it, ", above, " above)");
   }
-  if (s.detonation_point) sph::light_from_point(h, s.detonation_point->data());
+  if (s.detonation_normal)
+    sph::light_from_plane(h, s.detonation_point->data(), s.detonation_normal->data());
+  else if (s.detonation_point)
+    sph::light_from_point(h, s.detonation_point->data());
   sph::update_state(h);
   for (const io::SphTransmitting& t : s.transmitting) {
     // Lysmer dashpots with the particle's initial impedances rho c_L and rho c_s.

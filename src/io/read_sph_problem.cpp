@@ -349,7 +349,16 @@ SphSpec parse_sph(KeyReader& r) {
     s.symmetry.push_back(plane);
   }
   if (auto d = r.optional_map("detonation")) {
-    s.detonation_point = read_point(*d, "point", dim);
+    if (d->has("point") == d->has("plane"))
+      d->error("point", "give exactly one of 'point' or 'plane: {at, normal}'");
+    if (d->has("point")) {
+      s.detonation_point = read_point(*d, "point", dim);
+    } else {
+      KeyReader plane = d->map("plane");
+      s.detonation_point = read_point(plane, "at", dim);
+      s.detonation_normal = read_unit_vector(plane, "normal", dim);
+      plane.finish();
+    }
     s.settings.burn_width = d->positive("burn_width", s.settings.burn_width);
     s.settings.ignition_compression =
         d->positive("ignition_compression", s.settings.ignition_compression);

@@ -154,19 +154,33 @@ void refresh_ghosts(Hydro& s) {
     mirror_state(s, s.real + static_cast<int>(k), s.ghost_of[k], s.ghost_planes[k]);
 }
 
-void light_from_point(Hydro& s, const double at[3]) {
+namespace {
+/// Lights every explosive particle at distance(x) / D_CJ; with an unreacted equation of state
+/// only a booster of 2 h is lit on schedule, and the shock lights the rest (update_state).
+template <class Distance> void light_by_distance(Hydro& s, Distance distance) {
   Particles& P = s.particles;
   for (int i = 0; i < P.size(); ++i) {
     const Eos& eos = s.materials[P.material[i]].eos;
     if (eos.kind != Eos::Kind::Jwl) continue;
-    double r2 = 0.0;
-    for (int d = 0; d < 3; ++d) r2 += (P.x[3 * i + d] - at[d]) * (P.x[3 * i + d] - at[d]);
-    const double r = std::sqrt(r2);
-    // With an unreacted equation of state only a booster of 2 h around the point is lit on
-    // schedule; the rest lights when the shock compresses it (update_state).
+    const double r = distance(&P.x[3 * static_cast<std::size_t>(i)]);
     if (eos.has_unreacted && r > 2.0 * P.h[i]) continue;
     P.light_time[i] = r / eos.jwl.detonation_speed;
   }
+}
+} // namespace
+
+void light_from_point(Hydro& s, const double at[3]) {
+  light_by_distance(s, [at](const double* x) {
+    return std::sqrt((x[0] - at[0]) * (x[0] - at[0]) + (x[1] - at[1]) * (x[1] - at[1]) +
+                     (x[2] - at[2]) * (x[2] - at[2]));
+  });
+}
+
+void light_from_plane(Hydro& s, const double at[3], const double normal[3]) {
+  light_by_distance(s, [at, normal](const double* x) {
+    return std::abs((x[0] - at[0]) * normal[0] + (x[1] - at[1]) * normal[1] +
+                    (x[2] - at[2]) * normal[2]);
+  });
 }
 
 void update_state(Hydro& s) {

@@ -58,7 +58,8 @@ struct SphSpec {
   double smoothing = 1.5; // h = smoothing * spacing
   std::vector<sph::Material> materials;
   std::vector<SphBlock> blocks;
-  std::optional<std::array<double, 3>> detonation_point;
+  std::optional<std::array<double, 3>> detonation_point;  // a point, or with the normal a plane
+  std::optional<std::array<double, 3>> detonation_normal; // unit
   sph::Settings settings;
   double end_time = 0.0;
   double history_interval = 0.0, fields_interval = 0.0; // 0: every step / start and end only

@@ -198,6 +198,10 @@ void refresh_ghosts(Hydro& s);
 /// lights the rest.
 void light_from_point(Hydro& s, const double at[3]);
 
+/// The same for a detonation plane through `at` with unit normal `normal`: lighting time =
+/// distance to the plane / D_CJ (a plane wave generator).
+void light_from_plane(Hydro& s, const double at[3], const double normal[3]);
+
 /// Smoothing lengths, pressures and sound speeds from density and energy at time t; the
 /// pressure of an explosive particle is the JWL pressure times its burn fraction
 /// F = clamp((t - t_l) D / (burn_width h), 0, 1).
