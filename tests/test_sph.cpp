@@ -323,6 +323,31 @@ TEST_CASE("Sod's shock tube with the Wendland C2 kernel", "[sph]") {
   CHECK(r.energy_drift < 1e-4);
 }
 
+namespace {
+/// A 0.1 m slab of TNT (JWL, Dobratz) in n particles, h = 1.5 dx, lit at x = 0; with
+/// `unreacted`, the unreacted TNT of problems/sph_tnt_slab.yaml (U_s = 2390 + 2.05 u_p m/s).
+sph::Hydro tnt_slab(int n, bool unreacted) {
+  sph::Hydro s;
+  s.particles.dim = 1;
+  sph::Material tnt;
+  tnt.name = "tnt";
+  tnt.eos.kind = sph::Eos::Kind::Jwl;
+  tnt.eos.has_unreacted = unreacted;
+  tnt.eos.unreacted = {1630.0, 2390.0, 2.05, 1.0};
+  s.materials.push_back(tnt);
+  const materials::Jwl& j = tnt.eos.jwl;
+  const double dx = 0.1 / n;
+  for (int k = 0; k < n; ++k) {
+    const double x[3] = {(k + 0.5) * dx, 0, 0};
+    s.particles.add(x, j.rho0 * dx, j.rho0, j.e0, 1.5 * dx, 0);
+  }
+  const double at[3] = {0, 0, 0};
+  sph::light_from_point(s, at);
+  sph::update_state(s);
+  return s;
+}
+} // namespace
+
 TEST_CASE("TNT slab: programmed burn runs at D_CJ and the front obeys the jump conditions",
           "[sph]") {
   // A slab of TNT (JWL, Dobratz) 0.1 m thick, lit at x = 0 and burning by programmed burn at
@@ -333,21 +358,9 @@ TEST_CASE("TNT slab: programmed burn runs at D_CJ and the front obeys the jump c
   // and the products' Hugoniot touches the Rayleigh line only at CJ (see the JWL CJ test).
   // The next test adds the unreacted explosive, whose ZND front ends at P_CJ.
   for (int n : {400, 800}) {
-    sph::Hydro s;
-    s.particles.dim = 1;
-    sph::Material tnt;
-    tnt.name = "tnt";
-    tnt.eos.kind = sph::Eos::Kind::Jwl;
-    s.materials.push_back(tnt);
-    const materials::Jwl& j = tnt.eos.jwl;
-    const double L = 0.1, dx = L / n, D = j.detonation_speed;
-    for (int k = 0; k < n; ++k) {
-      const double x[3] = {(k + 0.5) * dx, 0, 0};
-      s.particles.add(x, j.rho0 * dx, j.rho0, j.e0, 1.5 * dx, 0);
-    }
-    const double at[3] = {0, 0, 0};
-    sph::light_from_point(s, at);
-    sph::update_state(s);
+    sph::Hydro s = tnt_slab(n, false);
+    const materials::Jwl& j = s.materials[0].eos.jwl;
+    const double L = 0.1, D = j.detonation_speed;
     const double e0 = sph::energies(s).total();
     double t_front[2] = {-1, -1};
     double worst_rayleigh = 0.0, worst_mass = 0.0, peak = 0.0;
@@ -436,23 +449,10 @@ TEST_CASE("TNT slab with an unreacted equation of state: a self-sustained ZND fr
   // (P_CJ = 21.0 GPa of the Dobratz constants), ahead of it the von Neumann spike of the
   // unreacted Hugoniot at D, rho0 D (D - c0) / s = 25.0 GPa, smeared by the viscosity.
   for (int n : {400, 800, 1600}) {
-    sph::Hydro s;
-    s.particles.dim = 1;
+    sph::Hydro s = tnt_slab(n, true);
     s.settings.burn_width = 6.0;
-    sph::Material tnt;
-    tnt.eos.kind = sph::Eos::Kind::Jwl;
-    tnt.eos.has_unreacted = true;
-    tnt.eos.unreacted = {1630.0, 2390.0, 2.05, 1.0};
-    s.materials.push_back(tnt);
-    const materials::Jwl& j = tnt.eos.jwl;
-    const double L = 0.1, dx = L / n, D = j.detonation_speed;
-    for (int k = 0; k < n; ++k) {
-      const double x[3] = {(k + 0.5) * dx, 0, 0};
-      s.particles.add(x, j.rho0 * dx, j.rho0, j.e0, 1.5 * dx, 0);
-    }
-    const double at[3] = {0, 0, 0};
-    sph::light_from_point(s, at);
-    sph::update_state(s);
+    const materials::Jwl& j = s.materials[0].eos.jwl;
+    const double L = 0.1, D = j.detonation_speed;
     double t_front[2] = {-1, -1}, cj_sum = 0.0, spike = 0.0;
     int cj_count = 0;
     while (s.time < 0.85 * L / D) {
