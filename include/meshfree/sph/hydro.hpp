@@ -3,8 +3,10 @@
 // chapter 3, after Monaghan 1992 and Liu & Liu 2003): continuity-equation density (eq. 3-41),
 // the symmetric momentum and energy equations (eqs. 3-48 and 3-64) with Monaghan's artificial
 // viscosity (alpha = beta = 1, phi = 0.1 h), smoothing lengths that follow the density, a
-// midpoint predictor-corrector step under the CFL bound, equations of state per material, and
-// programmed burn of explosives (lighting time = distance / D_CJ).
+// midpoint predictor-corrector step under the CFL bound, equations of state per material,
+// programmed burn of explosives (lighting time = distance / D_CJ) or a ZND front lit by its own
+// shock, solid strength, symmetry planes (mirror particles), transmitting boundaries, and the
+// optional kernel-gradient correction and artificial stress.
 #include "meshfree/kernels/sph_kernel.hpp"
 #include "meshfree/loads/blast.hpp"
 #include "meshfree/materials/eos.hpp"
