@@ -21,6 +21,7 @@ import copy
 import csv
 import json
 import os
+import re
 import subprocess
 import sys
 
@@ -142,7 +143,6 @@ def plot_field(case_dir, depth, at_ms, title, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    import re
     with open(os.path.join(case_dir, "fields.xmf")) as f:  # the series' times, in step order
         times = [float(t) for t in re.findall(r'<Time Value="([^"]+)"', f.read())]
     with h5py.File(os.path.join(case_dir, "fields.h5"), "r") as f:

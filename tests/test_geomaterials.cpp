@@ -33,7 +33,6 @@ sph::Material sand(bool with_strength) {
     m.strength.granular.shear_modulus = {
         {1674.0, 1746.0, 2086.0, 2147.0, 2300.0, 2572.0, 2598.0, 2635.0, 2641.0, 2800.0},
         {7.69e7, 8.69e8, 4.03e9, 4.91e9, 7.77e9, 1.48e10, 1.66e10, 3.67e10, 3.73e10, 3.73e10}};
-    m.strength.shear_modulus = 7.69e7;
   }
   return m;
 }

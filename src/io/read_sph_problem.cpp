@@ -207,7 +207,6 @@ SphSpec parse_sph(KeyReader& r) {
           mat.strength.shear_modulus = st->positive("shear_modulus");
         } else {
           mat.strength.granular.shear_modulus = read_table(*st, "shear_modulus_table", 1, true);
-          mat.strength.shear_modulus = mat.strength.granular.shear_modulus.y.front();
         }
       } else if (model == "hjc") {
         mat.strength.model = Model::Hjc;

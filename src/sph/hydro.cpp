@@ -438,6 +438,12 @@ void compute_rates(const Hydro& s, Rates& r) {
     artificial_stresses(s, r.art_stress);
     mirror_voigt(s, r.art_stress);
   }
+  if (art || S.penalty.pressure > 0.0) {
+    // Initial particle spacings (m / rho_ref)^(1/dim), once per call rather than per pair.
+    r.spacing.resize(all);
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < all; ++i) r.spacing[i] = std::pow(P.mass[i] / P.rho_ref[i], 1.0 / dim);
+  }
   r.dv.assign(3 * static_cast<std::size_t>(all), 0.0);
   r.drho.assign(all, 0.0);
   r.de.assign(all, 0.0);
@@ -540,8 +546,7 @@ void compute_rates(const Hydro& s, Rates& r) {
         for (int c = 0; c < 6; ++c) T[c] = si[c] * ri2 + sj[c] * rj2;
         if (art) {
           // f^n (R_i + R_j), f = W(r) / W(dp) with dp the pair's mean initial spacing.
-          const double dp = 0.5 * (std::pow(P.mass[i] / P.rho_ref[i], 1.0 / dim) +
-                                   std::pow(mj / P.rho_ref[j], 1.0 / dim));
+          const double dp = 0.5 * (r.spacing[i] + r.spacing[j]);
           const double f = kernels::sph_kernel(S.kernel, dim, std::sqrt(r2), hij) /
                            kernels::sph_kernel(S.kernel, dim, dp, hij);
           const double fn = std::pow(f, S.artificial_stress_exponent);
@@ -557,8 +562,7 @@ void compute_rates(const Hydro& s, Rates& r) {
         de -= 0.5 * mj * (vij[0] * Tg[0] + vij[1] * Tg[1] + vij[2] * Tg[2]);
       }
       if (S.penalty.pressure > 0.0 && P.material[i] != P.material[j]) {
-        const double a = 0.5 * (std::pow(P.mass[i] / P.rho_ref[i], 1.0 / dim) +
-                                std::pow(mj / P.rho_ref[j], 1.0 / dim));
+        const double a = 0.5 * (r.spacing[i] + r.spacing[j]);
         const double r0 = S.penalty.distance * a, rr = std::sqrt(r2);
         if (rr < r0) {
           const double pe = r0 / rr;

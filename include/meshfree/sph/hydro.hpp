@@ -49,7 +49,7 @@ struct Strength {
   enum class Model { Elastic, VonMises, Granular, Hjc };
   bool enabled = false;
   Model model = Model::Elastic;
-  double shear_modulus = 0.0;
+  double shear_modulus = 0.0;    // G; a granular G(rho) table, when given, is used instead
   materials::J2Parameters yield; // sigma0 and hardening; E = 2G and nu = 0 give mu = G
   materials::GranularStrength granular;
   double failure_strain = 0.0; // 0: no failure by plastic strain
@@ -137,6 +137,7 @@ struct Rates {
   std::vector<double> grad_v;     // 9 per particle (solids): L_ab = d v_a / d x_b
   std::vector<double> correction; // 9 per particle: the kernel-gradient correction matrix
   std::vector<double> art_stress; // 6 per particle: the artificial stress R (Voigt, like S)
+  std::vector<double> spacing;    // initial spacing per particle (artificial stress, penalty)
 };
 
 /// A pressure history on a surface layer of particles (an empirical blast load): particle k of
