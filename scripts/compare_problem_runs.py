@@ -1,0 +1,103 @@
+#!/usr/bin/python3
+"""Runs every problem of two builds of meshfree and compares their results: the check that a
+change which must not change any result (a refactor, a new input dialect) changed none.
+
+Each side is a meshfree binary and a folder of problem files (the two may speak different input
+dialects); problems are paired by file name. Explicit problems (peridynamics, sph) run over
+--explicit-fraction of their end time (set through `time.end`, a key both dialects share).
+The comparison is scripts/compare_runs.py at --rtol: every number under "results" in
+summary.json, every history.csv column and every field of the last output step.
+
+    scripts/compare_problem_runs.py --old-meshfree OLD/meshfree --old-problems OLD/problems \\
+        --new-meshfree build/meshfree --new-problems problems --out out/compare_runs
+
+--reuse-old keeps the old runs already in OUT/old (they take the longer part of the time).
+Runs use OMP_NUM_THREADS=1 unless --threads says otherwise, so that sums are in one order.
+"""
+import argparse
+import os
+import re
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def end_time(problem: Path):
+    m = re.search(r"^time:\s*\{end:\s*([^,}]+)", problem.read_text(), re.M)
+    return float(m.group(1)) if m else None
+
+
+def explicit(problem: Path):
+    return re.search(r"^analysis:\s*(peridynamics|sph)\b", problem.read_text(), re.M) is not None
+
+
+def run(binary, problem: Path, out: Path, fraction, threads, log):
+    args = [str(binary), "run", str(problem), "--out", str(out)]
+    end = end_time(problem) if explicit(problem) else None
+    if end is not None:
+        args += ["--set", f"time.end={fraction * end:.6g}"]
+    env = dict(os.environ, OMP_NUM_THREADS=str(threads))
+    t0 = time.time()
+    with open(log, "w") as f:
+        rc = subprocess.run(args, stdout=f, stderr=subprocess.STDOUT, env=env).returncode
+    return rc, time.time() - t0
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--old-meshfree", required=True)
+    ap.add_argument("--old-problems", required=True)
+    ap.add_argument("--new-meshfree", default=str(ROOT / "build" / "meshfree"))
+    ap.add_argument("--new-problems", default=str(ROOT / "problems"))
+    ap.add_argument("--out", default="out/compare_problem_runs")
+    ap.add_argument("--explicit-fraction", type=float, default=0.05)
+    ap.add_argument("--rtol", type=float, default=1e-10)
+    ap.add_argument("--threads", type=int, default=1)
+    ap.add_argument("--reuse-old", action="store_true")
+    ap.add_argument("--only-old", action="store_true", help="run the old side only")
+    ap.add_argument("problems", nargs="*", help="file names to compare (default: all)")
+    args = ap.parse_args()
+
+    out = Path(args.out)
+    (out / "old").mkdir(parents=True, exist_ok=True)
+    (out / "new").mkdir(parents=True, exist_ok=True)
+    names = args.problems or sorted(p.name for p in Path(args.old_problems).glob("*.yaml"))
+    rows, failures = [], 0
+    for name in names:
+        stem = name.removesuffix(".yaml")
+        old_dir, new_dir = out / "old" / stem, out / "new" / stem
+        if not (args.reuse_old and (old_dir / "summary.json").exists()):
+            rc, t = run(args.old_meshfree, Path(args.old_problems) / name, old_dir,
+                        args.explicit_fraction, args.threads, out / "old" / f"{stem}.log")
+            print(f"old {stem}: exit {rc}, {t:.1f} s", flush=True)
+        if args.only_old:
+            continue
+        new_problem = Path(args.new_problems) / name
+        if not new_problem.exists():
+            print(f"FAIL {stem}: no new problem file {new_problem}")
+            failures += 1
+            continue
+        rc, t = run(args.new_meshfree, new_problem, new_dir, args.explicit_fraction,
+                    args.threads, out / "new" / f"{stem}.log")
+        cmp = subprocess.run([sys.executable, str(ROOT / "scripts" / "compare_runs.py"),
+                              str(old_dir), str(new_dir), "--rtol", str(args.rtol)],
+                             capture_output=True, text=True)
+        last = (cmp.stdout.strip().splitlines() or [""])[-1]
+        verdict = "ok" if rc == 0 and cmp.returncode == 0 else "FAIL"
+        failures += verdict == "FAIL"
+        detail = last if cmp.returncode == 0 else (cmp.stdout + cmp.stderr).strip().replace("\n", "; ")
+        rows.append(f"| {stem} | {verdict} | {t:.1f} | {detail} |")
+        print(f"{verdict} {stem}: {detail}", flush=True)
+    if rows:
+        table = ["| problem | verdict | new wall s | comparison |", "|---|---|---|---|"] + rows
+        (out / "comparison.md").write_text("\n".join(table) + "\n")
+        print("\n".join(table))
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()
