@@ -11,7 +11,7 @@ summary.json, every history.csv column and every field of the last output step.
     scripts/compare_problem_runs.py --old-meshfree OLD/meshfree --old-problems OLD/problems \\
         --new-meshfree build/meshfree --new-problems problems --out out/compare_runs
 
---reuse-old keeps the old runs already in OUT/old (they take the longer part of the time).
+--reuse-old keeps the old runs already in OUT/old (or --old-runs DIR).
 Runs use OMP_NUM_THREADS=1 unless --threads says otherwise, so that sums are in one order.
 """
 import argparse
@@ -58,21 +58,24 @@ def main():
     ap.add_argument("--rtol", type=float, default=1e-10)
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--reuse-old", action="store_true")
+    ap.add_argument("--old-runs", help="folder of existing old runs (default OUT/old); implies --reuse-old")
     ap.add_argument("--only-old", action="store_true", help="run the old side only")
     ap.add_argument("problems", nargs="*", help="file names to compare (default: all)")
     args = ap.parse_args()
 
     out = Path(args.out)
-    (out / "old").mkdir(parents=True, exist_ok=True)
+    old_root = Path(args.old_runs) if args.old_runs else out / "old"
+    args.reuse_old = args.reuse_old or bool(args.old_runs)
+    old_root.mkdir(parents=True, exist_ok=True)
     (out / "new").mkdir(parents=True, exist_ok=True)
     names = args.problems or sorted(p.name for p in Path(args.old_problems).glob("*.yaml"))
     rows, failures = [], 0
     for name in names:
         stem = name.removesuffix(".yaml")
-        old_dir, new_dir = out / "old" / stem, out / "new" / stem
+        old_dir, new_dir = old_root / stem, out / "new" / stem
         if not (args.reuse_old and (old_dir / "summary.json").exists()):
             rc, t = run(args.old_meshfree, Path(args.old_problems) / name, old_dir,
-                        args.explicit_fraction, args.threads, out / "old" / f"{stem}.log")
+                        args.explicit_fraction, args.threads, old_root / f"{stem}.log")
             print(f"old {stem}: exit {rc}, {t:.1f} s", flush=True)
         if args.only_old:
             continue
