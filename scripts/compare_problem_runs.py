@@ -86,7 +86,7 @@ def main():
             continue
         rc, t = run(args.new_meshfree, new_problem, new_dir, args.explicit_fraction,
                     args.threads, out / "new" / f"{stem}.log")
-        cmp = subprocess.run([sys.executable, str(ROOT / "scripts" / "compare_runs.py"),
+        cmp = subprocess.run(["/usr/bin/python3", str(ROOT / "scripts" / "compare_runs.py"),
                               str(old_dir), str(new_dir), "--rtol", str(args.rtol)],
                              capture_output=True, text=True)
         last = (cmp.stdout.strip().splitlines() or [""])[-1]
