@@ -50,9 +50,9 @@ def main():
 
     ra = dict(numbers(json.loads(open(f"{args.a}/summary.json").read())["results"]))
     rb = dict(numbers(json.loads(open(f"{args.b}/summary.json").read())["results"]))
-    # Iteration counts and round-off quantities, and where a maximum lies (symmetric problems
+    # Iteration counts, rates measured in wall time, round-off quantities, and where a maximum lies (symmetric problems
     # have ties that round-off decides).
-    solver_keys = ("newton_iterations", "equilibrium_error", ".at.")
+    solver_keys = ("newton_iterations", "equilibrium_error", ".at.", "per_second")
     ra = {k: v for k, v in ra.items() if not any(s in k for s in solver_keys)}
     rb = {k: v for k, v in rb.items() if not any(s in k for s in solver_keys)}
     if ra.keys() != rb.keys():
