@@ -442,7 +442,7 @@ ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
     if (!root) return;
     node_table = shapes_at(m, m.node_positions(), false);
     std::vector<Vec2> mx;
-    for (const auto& mon : spec.monitors) mx.push_back(mon.at);
+    for (const auto& mon : spec.gauges) mx.push_back(mon.at.head<2>());
     if (!mx.empty()) monitor_table = shapes_at(m, mx, false);
     for (const auto& line : spec.lines) {
       std::vector<Vec2> x;
@@ -638,7 +638,7 @@ void write_elastoplastic_outputs(const io::ProblemSpec& spec, const Elastoplasti
     header.push_back(kind + bc.name + "_x");
     header.push_back(kind + bc.name + "_y");
   }
-  for (const auto& mon : spec.monitors) {
+  for (const auto& mon : spec.gauges) {
     header.push_back("ux_" + mon.name);
     header.push_back("uy_" + mon.name);
   }
@@ -721,8 +721,8 @@ void write_elastoplastic_outputs(const io::ProblemSpec& spec, const Elastoplasti
     fin_forces.set(spec.boundary[c].name,
                    std::vector<double>{fin.boundary[c].force.x(), fin.boundary[c].force.y()});
   }
-  for (std::size_t k = 0; k < spec.monitors.size() && k < fin.monitor_u.size(); ++k)
-    fin_monitors.set(spec.monitors[k].name,
+  for (std::size_t k = 0; k < spec.gauges.size() && k < fin.monitor_u.size(); ++k)
+    fin_monitors.set(spec.gauges[k].name,
                      std::vector<double>{fin.monitor_u[k].x(), fin.monitor_u[k].y()});
   last.set("factors", fin_factors)
       .set("forces", fin_forces)

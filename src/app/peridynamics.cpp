@@ -22,8 +22,8 @@ pd::Particles lattice(const io::ProblemSpec& spec) {
   const bool solid = s.dimension == materials::PdDimension::Solid3D;
   Vec3d lo, hi;
   if (solid) {
-    lo = s.box->lo;
-    hi = s.box->hi;
+    lo = spec.box->lo;
+    hi = spec.box->hi;
   } else {
     const BoundingBox b = spec.domain.bounds();
     lo = Vec3d(b.lo.x(), b.lo.y(), 0.0);
@@ -44,13 +44,11 @@ pd::Particles lattice(const io::ProblemSpec& spec) {
                       solid ? lo.z() + (k + 0.5) * dx : 0.0);
         if (!solid && !spec.domain.contains(Vec2(x.x(), x.y()))) continue;
         bool removed = false;
-        for (const io::Box3& b : s.removed) removed = removed || b.contains(x, 1e-9 * dx);
+        for (const io::Region& b : s.removed) removed = removed || b.contains(x, 1e-9 * dx);
         if (removed) continue;
-        int mat = 0;
+        int mat = s.body_material;
         for (const io::PdRegion& r : s.regions)
-          if (r.box.contains(x, 1e-9 * dx))
-            for (std::size_t m = 0; m < s.materials.size(); ++m)
-              if (s.materials[m].name == r.material) mat = static_cast<int>(m);
+          if (r.material >= 0 && r.region.contains(x, 1e-9 * dx)) mat = r.material;
         p.add(x, volume, s.materials[mat].density, mat);
       }
   MF_REQUIRE(p.size() > 0, "discretisation.spacing: no particle lies in the body");
@@ -59,18 +57,19 @@ pd::Particles lattice(const io::ProblemSpec& spec) {
 
 /// The bond law of one material: micromodulus (from E, the bulk modulus or given), critical
 /// stretch (from G0, given, or none), micro-plastic yield stretch and the LAMMPS alpha.
-materials::BondLaw material_law(const io::PdSpec& s, const io::PdMaterial& m, double delta) {
+materials::BondLaw material_law(const io::PdSpec& s, const io::MaterialSpec& mat, double delta) {
+  const io::BondSpec& m = *mat.bond;
   materials::BondLaw law;
-  law.c = m.micromodulus > 0.0   ? m.micromodulus
-          : m.bulk_modulus > 0.0 ? materials::pd_micromodulus_from_bulk(m.bulk_modulus, delta)
-                                 : materials::pd_micromodulus(s.dimension, m.E, delta, s.thickness);
+  law.c = m.micromodulus > 0.0     ? m.micromodulus
+          : mat.bulk_modulus > 0.0 ? materials::pd_micromodulus_from_bulk(mat.bulk_modulus, delta)
+                                   : materials::pd_micromodulus(s.dimension, mat.E, delta, s.thickness);
   if (m.critical_stretch > 0.0) {
     law.critical_stretch = m.critical_stretch;
   } else if (m.fracture_energy > 0.0) {
     law.critical_stretch =
-        m.bulk_modulus > 0.0 || m.micromodulus > 0.0
+        mat.bulk_modulus > 0.0 || m.micromodulus > 0.0
             ? materials::pd_critical_stretch_from_c(law.c, m.fracture_energy, delta)
-            : materials::pd_critical_stretch(s.dimension, m.E, m.fracture_energy, delta);
+            : materials::pd_critical_stretch(s.dimension, mat.E, m.fracture_energy, delta);
   }
   law.yield_stretch = m.yield_stretch;
   law.alpha = m.alpha;
@@ -104,11 +103,11 @@ pd::LawTable law_table(const io::PdSpec& s, double delta) {
   return t;
 }
 
-std::vector<int> particles_in(const pd::Particles& p, const std::optional<io::Box3>& box,
+std::vector<int> particles_in(const pd::Particles& p, const std::optional<io::Region>& region,
                               double tol) {
   std::vector<int> out;
   for (int i = 0; i < p.size(); ++i)
-    if (!box || box->contains(p.position(i), tol)) out.push_back(i);
+    if (!region || region->contains(p.position(i), tol)) out.push_back(i);
   return out;
 }
 
@@ -190,7 +189,7 @@ PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer) {
   const double tol = 1e-6 * s.spacing;
   for (const auto& f : s.functions) out.loading.functions.push_back(f.f);
   for (const io::PdCondition& c : s.conditions) {
-    const std::vector<int> group = particles_in(p, c.box, tol);
+    const std::vector<int> group = particles_in(p, c.region, tol);
     MF_REQUIRE(!group.empty(), c.key_path, ".box: selects no particle");
     if (c.kind == io::PdCondition::Kind::Displacement ||
         c.kind == io::PdCondition::Kind::Velocity) {
@@ -215,9 +214,10 @@ PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer) {
     }
   }
   out.initial_velocity.assign(3 * static_cast<std::size_t>(p.size()), 0.0);
-  for (const auto& iv : s.initial_velocities)
-    for (int i : particles_in(p, iv.box, tol))
-      for (int d = 0; d < 3; ++d) out.initial_velocity[3 * i + d] = iv.value(d);
+  for (const io::PdRegion& r : s.regions)
+    if (r.velocity)
+      for (int i : particles_in(p, r.region, tol))
+        for (int d = 0; d < 3; ++d) out.initial_velocity[3 * i + d] = (*r.velocity)(d);
   for (const io::PdImpactor& k : s.impactors) {
     pd::Impactor imp;
     imp.name = k.name;
@@ -231,7 +231,7 @@ PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer) {
     if (!k.sphere) imp.direction = k.velocity.normalized();
     out.impactors.push_back(imp);
   }
-  for (const io::PdGauge& g : s.gauges) {
+  for (const io::GaugeSpec& g : s.gauges) {
     int best = 0;
     double d2 = std::numeric_limits<double>::infinity();
     for (int i = 0; i < p.size(); ++i) {

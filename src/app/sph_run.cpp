@@ -12,43 +12,96 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// Whether a free particle lies in the box [lo, hi].
-bool free_in_box(const sph::Particles& P, int i, const std::array<double, 3>& lo,
-                 const std::array<double, 3>& hi) {
-  if (P.fixed[i]) return false;
-  for (int d = 0; d < 3; ++d)
-    if (P.x[3 * i + d] < lo[d] - 1e-9 || P.x[3 * i + d] > hi[d] + 1e-9) return false;
-  return true;
-}
-
 /// The face area of a particle in a surface layer one particle thick: V / spacing.
 double face_area(const sph::Particles& P, int i, int dim) {
   const double volume = P.mass[i] / P.rho_ref[i];
   return volume / std::pow(volume, 1.0 / dim);
 }
 
-int material_index(const io::SphSpec& s, const std::string& name) {
-  for (std::size_t k = 0; k < s.materials.size(); ++k)
-    if (s.materials[k].name == name) return static_cast<int>(k);
-  return -1;
+/// The solver's material from the spec's: the equation of state, and the strength of a solid
+/// (J2 from the material's plasticity with mu = G, granular, HJC, or elastic when it has a shear
+/// modulus and no plasticity).
+sph::Material to_solver(const io::MaterialSpec& m) {
+  sph::Material out;
+  out.name = m.name;
+  const io::EosSpec& e = *m.eos;
+  out.eos.kind = static_cast<sph::Eos::Kind>(static_cast<int>(e.kind));
+  out.eos.ideal_gas = e.ideal_gas;
+  out.eos.jwl = e.jwl;
+  out.eos.mie_gruneisen = e.mie_gruneisen;
+  out.eos.linear_polynomial = e.linear_polynomial;
+  out.eos.compaction = e.compaction;
+  out.eos.has_unreacted = e.has_unreacted;
+  out.eos.unreacted = e.unreacted;
+  if (m.hjc) out.hjc = *m.hjc;
+  sph::Strength& st = out.strength;
+  using Model = io::StrengthSpec::Model;
+  const Model model = m.strength ? m.strength->model : Model::J2;
+  if (model == Model::Granular) {
+    st.enabled = true;
+    st.model = sph::Strength::Model::Granular;
+    st.granular = m.strength->granular;
+    st.shear_modulus = m.shear_modulus;
+  } else if (model == Model::Hjc) {
+    st.enabled = true;
+    st.model = sph::Strength::Model::Hjc;
+    st.shear_modulus = out.hjc.shear_modulus;
+  } else if (m.plasticity || m.shear_modulus > 0.0) {
+    // The deviatoric stress of a solid; the J2 return uses mu = G (E = 2G, nu = 0).
+    st.enabled = true;
+    st.shear_modulus = m.shear_modulus;
+    if (m.plasticity) {
+      st.model = sph::Strength::Model::VonMises;
+      st.yield = *m.plasticity;
+    }
+    st.yield.E = 2.0 * st.shear_modulus;
+    st.yield.nu = 0.0;
+  }
+  if (m.strength) st.failure_strain = m.strength->failure_strain;
+  return out;
+}
+
+sph::Settings to_solver(const io::SphNumerics& n) {
+  sph::Settings s;
+  s.kernel = n.kernel;
+  s.gradient_correction = n.gradient_correction;
+  s.alpha = n.alpha;
+  s.beta = n.beta;
+  s.phi = n.phi;
+  s.courant = n.courant;
+  s.burn_width = n.burn_width;
+  s.ignition_compression = n.ignition_compression;
+  s.artificial_stress = n.artificial_stress;
+  s.artificial_stress_exponent = n.artificial_stress_exponent;
+  s.penalty.pressure = n.penalty.pressure;
+  s.penalty.n1 = n.penalty.n1;
+  s.penalty.n2 = n.penalty.n2;
+  s.penalty.distance = n.penalty.distance;
+  return s;
+}
+
+/// Whether a free particle lies in a region.
+bool free_in(const sph::Particles& P, int i, const io::Region& region) {
+  return !P.fixed[i] && region.contains(io::Point(P.x[3 * i], P.x[3 * i + 1], P.x[3 * i + 2]), 1e-9);
 }
 
 } // namespace
 
 sph::Hydro build_sph(const io::SphSpec& s) {
   sph::Hydro h;
-  h.materials = s.materials;
-  h.settings = s.settings;
+  for (const io::MaterialSpec& m : s.materials) h.materials.push_back(to_solver(m));
+  h.settings = to_solver(s.numerics);
   sph::Particles& P = h.particles;
   P.dim = s.dimension;
-  for (const io::SphBlock& b : s.blocks) {
-    const int mat = material_index(s, b.material);
+  for (const io::SphRegion& b : s.regions) {
+    const int mat = b.material;
+    const io::Region& g = b.region;
     const auto add = [&](const double x[3], double volume) {
-      if (b.inside) {
-        const double dx = x[0] - b.inside->center[0], dy = x[1] - b.inside->center[1];
-        if (dx * dx + dy * dy > b.inside->radius * b.inside->radius) return;
+      if (g.circle) {
+        const double dx = x[0] - g.circle->center[0], dy = x[1] - g.circle->center[1];
+        if (dx * dx + dy * dy > g.circle->radius * g.circle->radius) return;
       }
-      for (const io::SphCircle& c : b.holes) {
+      for (const io::Circle& c : g.holes) {
         const double dx = x[0] - c.center[0], dy = x[1] - c.center[1];
         if (dx * dx + dy * dy < c.radius * c.radius) return;
       }
@@ -56,19 +109,19 @@ sph::Hydro build_sph(const io::SphSpec& s) {
       P.add(x, b.density * volume, b.density, b.energy, s.smoothing * spacing, mat, b.fixed);
       for (int d = 0; d < 3; ++d) P.v[P.v.size() - 3 + d] = b.velocity[d];
     };
-    if (b.is_ring) {
+    if (g.ring) {
       // Rings of particles at radii r_k, each with round(2 pi r_k / spacing) particles whose
       // areas add up to the annulus exactly.
-      const double thickness = b.ring.radius - b.ring_inner_radius;
+      const double thickness = g.ring->outer_radius - g.ring->inner_radius;
       const int layers = std::max(1, static_cast<int>(std::lround(thickness / b.spacing)));
       const double dr = thickness / layers;
       for (int k = 0; k < layers; ++k) {
-        const double r = b.ring_inner_radius + (k + 0.5) * dr;
+        const double r = g.ring->inner_radius + (k + 0.5) * dr;
         const int around = std::max(3, static_cast<int>(std::lround(2.0 * M_PI * r / b.spacing)));
         for (int a = 0; a < around; ++a) {
           const double theta = 2.0 * M_PI * (a + 0.5) / around;
-          const double x[3] = {b.ring.center[0] + r * std::cos(theta),
-                               b.ring.center[1] + r * std::sin(theta), 0.0};
+          const double x[3] = {g.ring->center[0] + r * std::cos(theta),
+                               g.ring->center[1] + r * std::sin(theta), 0.0};
           add(x, 2.0 * M_PI * r * dr / around);
         }
       }
@@ -76,9 +129,10 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     }
     int count[3] = {1, 1, 1};
     for (int d = 0; d < s.dimension; ++d)
-      count[d] = std::max(1, static_cast<int>(std::lround((b.hi[d] - b.lo[d]) / b.spacing)));
+      count[d] = std::max(1, static_cast<int>(std::lround((g.box->hi[d] - g.box->lo[d]) / b.spacing)));
     double step[3];
-    for (int d = 0; d < 3; ++d) step[d] = d < s.dimension ? (b.hi[d] - b.lo[d]) / count[d] : 0.0;
+    for (int d = 0; d < 3; ++d)
+      step[d] = d < s.dimension ? (g.box->hi[d] - g.box->lo[d]) / count[d] : 0.0;
     double volume = 1.0;
     for (int d = 0; d < s.dimension; ++d) volume *= step[d];
     for (int k = 0; k < count[2]; ++k)
@@ -86,7 +140,7 @@ sph::Hydro build_sph(const io::SphSpec& s) {
         for (int i = 0; i < count[0]; ++i) {
           const int idx[3] = {i, j, k};
           double x[3] = {0, 0, 0};
-          for (int d = 0; d < s.dimension; ++d) x[d] = b.lo[d] + (idx[d] + 0.5) * step[d];
+          for (int d = 0; d < s.dimension; ++d) x[d] = g.box->lo[d] + (idx[d] + 0.5) * step[d];
           add(x, volume);
         }
   }
@@ -95,21 +149,23 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     // of its own distance and angle of incidence (loads/blast.hpp).
     sph::SurfaceLoad load;
     load.name = l.name;
-    for (int d = 0; d < 3; ++d) load.direction[d] = -l.normal[d];
+    const io::BlastSpec& blast = l.blast;
+    for (int d = 0; d < 3; ++d) load.direction[d] = -blast.normal[d];
     const loads::Burst burst =
-        l.surface_burst ? loads::Burst::HemisphericalSurface : loads::Burst::SphericalFreeAir;
+        blast.surface_burst ? loads::Burst::HemisphericalSurface : loads::Burst::SphericalFreeAir;
     for (int i = 0; i < P.size(); ++i) {
-      if (!free_in_box(P, i, l.lo, l.hi)) continue;
+      if (!free_in(P, i, l.region)) continue;
       double ray[3], r = 0.0, cosine = 0.0;
-      for (int d = 0; d < 3; ++d) ray[d] = P.x[3 * i + d] - l.charge[d], r += ray[d] * ray[d];
+      for (int d = 0; d < 3; ++d) ray[d] = P.x[3 * i + d] - blast.charge[d], r += ray[d] * ray[d];
       r = std::sqrt(r);
-      for (int d = 0; d < 3; ++d) cosine -= l.normal[d] * ray[d] / r;
+      for (int d = 0; d < 3; ++d) cosine -= blast.normal[d] * ray[d] / r;
       loads::BlastParameters b;
       try {
         // near_field: clamp loads particles nearer than the fits reach with the values at the
         // smallest scaled distance the fits cover (the crater region is not modelled).
-        const double r_min = loads::kingery_bulmash_range(burst).first * std::cbrt(l.tnt_mass);
-        b = loads::kingery_bulmash(burst, l.tnt_mass, l.clamp_below_range ? std::max(r, r_min) : r);
+        const double r_min = loads::kingery_bulmash_range(burst).first * std::cbrt(blast.tnt_mass);
+        b = loads::kingery_bulmash(burst, blast.tnt_mass,
+                                   blast.clamp_below_range ? std::max(r, r_min) : r);
       } catch (const Error& e) {
         fail(l.key_path, ".blast: particle at (", P.x[3 * i], ", ", P.x[3 * i + 1], ", ",
              P.x[3 * i + 2], "): ", e.what());
@@ -121,14 +177,13 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     MF_REQUIRE(!load.particles.empty(), l.key_path, ".box: selects no free particle");
     h.loads.push_back(load);
   }
-  h.symmetry = s.symmetry;
-  for (std::size_t q = 0; q < s.symmetry.size(); ++q) {
+  for (const io::SphSymmetry& m : s.symmetry) {
     // The body must lie on one side of each symmetry plane.
-    const sph::SymmetryPlane& m = s.symmetry[q];
     int below = 0, above = 0;
     for (int i = 0; i < P.size(); ++i) (P.x[3 * i + m.axis] < m.at ? below : above) += 1;
-    MF_REQUIRE(below == 0 || above == 0, "symmetry[", q, "]: the plane ", "xyz"[m.axis], " = ",
+    MF_REQUIRE(below == 0 || above == 0, "boundary ", m.name, ": the plane ", "xyz"[m.axis], " = ",
                m.at, " cuts the body (", below, " particles below it, ", above, " above)");
+    h.symmetry.push_back({m.axis, m.at});
   }
   if (s.detonation_normal)
     sph::light_from_plane(h, s.detonation_point->data(), s.detonation_normal->data());
@@ -141,7 +196,7 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     b.name = t.name;
     for (int d = 0; d < 3; ++d) b.normal[d] = t.normal[d];
     for (int i = 0; i < P.size(); ++i) {
-      if (!free_in_box(P, i, t.lo, t.hi)) continue;
+      if (!free_in(P, i, t.region)) continue;
       const sph::Material& mat = h.materials[P.material[i]];
       b.particles.push_back(i);
       b.area.push_back(face_area(P, i, s.dimension));
@@ -172,7 +227,7 @@ SphResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out) {
 
   // Lagrangian gauges: the particle nearest each point at the start.
   std::vector<int> gauge;
-  for (const io::SphGauge& g : s.gauges) {
+  for (const io::GaugeSpec& g : s.gauges) {
     int best = 0;
     double d2 = std::numeric_limits<double>::infinity();
     for (int i = 0; i < n; ++i) {
@@ -186,7 +241,7 @@ SphResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out) {
   std::vector<std::string>& H = R.history_header;
   H = {"time",         "step",          "dt",           "kinetic_energy", "internal_energy",
        "total_energy", "external_work", "energy_error", "max_pressure"};
-  for (const io::SphGauge& g : s.gauges) {
+  for (const io::GaugeSpec& g : s.gauges) {
     H.push_back(g.name + "_pressure");
     H.push_back(g.name + "_density");
     H.push_back(g.name + "_von_mises");
@@ -195,7 +250,7 @@ SphResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out) {
     for (int d = 0; d < dims; ++d) H.push_back(g.name + "_v" + axes[d]);
     for (int d = 0; d < dims; ++d) H.push_back(g.name + "_u" + axes[d]);
   }
-  for (const io::SphGauge& g : s.gauges)
+  for (const io::GaugeSpec& g : s.gauges)
     for (const char* what : {"pressure", "speed"})
       R.gauge_maxima.emplace_back(g.name + "_" + what, 0.0);
 
@@ -294,7 +349,7 @@ SphResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out) {
     if (stable < R.smallest_dt) {
       R.smallest_dt = stable;
       R.dt_limit = detail::concat(
-          "CFL step ", stable, " (Courant ", s.settings.courant, ") set at step ", h.step,
+          "CFL step ", stable, " (Courant ", s.numerics.courant, ") set at step ", h.step,
           " by particle ", limiting, " at (", P.x[3 * limiting], ", ", P.x[3 * limiting + 1], ", ",
           P.x[3 * limiting + 2], "), h ", P.h[limiting], ", c ", P.c[limiting]);
     }

@@ -38,6 +38,12 @@ YAML::Node KeyReader::raw(const std::string& key) {
   return get(key);
 }
 
+YAML::Node KeyReader::raw_map() {
+  for (const auto& kv : node_)
+    if (kv.first.IsScalar()) used_.insert(kv.first.Scalar());
+  return node_;
+}
+
 double KeyReader::to_number(const YAML::Node& n, const std::string& key) const {
   if (!n.IsScalar()) error(key, "expected a number, got " + show(n));
   try {

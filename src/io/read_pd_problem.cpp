@@ -1,80 +1,13 @@
-// The peridynamics part of a problem file (analysis: peridynamics): model, materials and their
-// interfaces, the body (a 2D geometry or a 3D box) and its particles, cracks and notches, time
-// functions, boundary conditions, impactors, time and output. Every key is checked; errors name
-// the key path.
-#include "meshfree/io/key_reader.hpp"
-#include "meshfree/io/pd_read.hpp"
+// The peridynamics part of a problem file (analysis: peridynamics): the materials the body uses
+// and their interfaces, the particles, regions, cracks and notches, time functions, boundary
+// conditions, impactors, time and output. Every key is checked; errors name the key path.
+#include "meshfree/io/analysis_read.hpp"
+#include "meshfree/io/spec_read.hpp"
 #include <cmath>
 
 namespace mf::io {
 
 namespace {
-
-/// A point or vector with `dim` components (the third is 0 in a plane).
-Vec3d read_point(KeyReader& r, const std::string& key, int dim) {
-  const std::vector<double> v = r.numbers(key, dim);
-  return {v[0], v[1], dim == 3 ? v[2] : 0.0};
-}
-
-/// [[x0, y0(, z0)], [x1, y1(, z1)]]; in a plane the box is unbounded in z.
-Box3 read_box3(KeyReader& r, const std::string& key, int dim) {
-  const auto corners = r.number_lists(key, dim);
-  if (corners.size() != 2) r.error(key, "expected two corners [[x0, ...], [x1, ...]]");
-  Box3 b;
-  for (int d = 0; d < 3; ++d) {
-    const double a = d < dim ? corners[0][d] : -1e300, c = d < dim ? corners[1][d] : 1e300;
-    b.lo(d) = std::min(a, c);
-    b.hi(d) = std::max(a, c);
-  }
-  return b;
-}
-
-void check_name(KeyReader& r, const std::string& key, const std::string& name) {
-  if (name.empty() ||
-      name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") !=
-          std::string::npos)
-    r.error(key, "expected a name of letters, digits, '_' or '-', got '" + name + "'");
-}
-
-PdMaterial read_material(KeyReader& m, const PdSpec& s) {
-  PdMaterial mat;
-  mat.name = m.text("name");
-  check_name(m, "name", mat.name);
-  for (const auto& other : s.materials)
-    if (other.name == mat.name) m.error("name", "another material is named '" + mat.name + "'");
-  mat.E = m.positive("E");
-  mat.density = m.positive("density");
-  mat.bulk_modulus = m.positive("bulk_modulus", 0.0);
-  mat.micromodulus = m.positive("micromodulus", 0.0);
-  if (mat.bulk_modulus > 0.0 && mat.micromodulus > 0.0)
-    m.error("micromodulus", "give 'micromodulus' or 'bulk_modulus', not both");
-  if (mat.bulk_modulus > 0.0 && s.dimension != materials::PdDimension::Solid3D)
-    m.error("bulk_modulus", "the micromodulus from the bulk modulus is a 3D formula");
-  mat.fracture_energy = m.positive("fracture_energy", 0.0);
-  mat.critical_stretch = m.positive("critical_stretch", 0.0);
-  if (mat.fracture_energy > 0.0 && mat.critical_stretch > 0.0)
-    m.error("critical_stretch", "give 'fracture_energy' or 'critical_stretch', not both");
-  const std::string bond = m.choice("bond", {"pmb", "microplastic"}, "pmb");
-  if (bond == "microplastic") {
-    mat.yield_stretch = m.positive("yield_stretch");
-  } else if (m.has("yield_stretch")) {
-    m.error("yield_stretch", "a yield stretch needs bond: microplastic");
-  }
-  m.allow("yield_stretch");
-  mat.alpha = m.number("alpha", 0.0);
-  if (mat.alpha != 0.0 && mat.critical_stretch <= 0.0)
-    m.error("alpha", "the LAMMPS alpha rule needs 'critical_stretch' (s00)");
-  m.finish();
-  return mat;
-}
-
-int find_material(KeyReader& r, const std::string& key, const PdSpec& s, const std::string& name) {
-  for (std::size_t k = 0; k < s.materials.size(); ++k)
-    if (s.materials[k].name == name) return static_cast<int>(k);
-  std::string names;
-  for (const auto& m : s.materials) names += (names.empty() ? "" : ", ") + m.name;
-  r.error(key, "no material is named '" + name + "' (materials: " + names + ")");
-}
 
 int find_function(KeyReader& r, const std::string& key, const PdSpec& s) {
   if (!r.has(key)) {
@@ -140,8 +73,8 @@ PdCondition read_condition(KeyReader& c, const PdSpec& s, int dim) {
   check_name(c, "name", out.name);
   for (const auto& other : s.conditions)
     if (other.name == out.name) c.error("name", "another condition is named '" + out.name + "'");
-  if (c.has("box")) out.box = read_box3(c, "box", dim);
-  c.allow("box");
+  const Region region = read_region(c, dim, kSolids);
+  if (!region.everything()) out.region = region;
   const char* kinds[] = {"displacement", "velocity", "traction", "body_force", "blast"};
   int given = 0;
   for (const char* k : kinds) given += c.has(k) ? 1 : 0;
@@ -157,23 +90,17 @@ PdCondition read_condition(KeyReader& c, const PdSpec& s, int dim) {
     v.finish();
     if (!out.fixed[0] && !out.fixed[1] && !out.fixed[2])
       c.error(vel ? "velocity" : "displacement", "prescribe at least one component");
-    if (!out.box) c.error("box", "a prescribed motion needs the box of particles it acts on");
+    if (!out.region) c.error("box", "a prescribed motion needs the region of particles it acts on");
   } else if (c.has("traction")) {
     out.kind = PdCondition::Kind::Traction;
     out.value = read_point(c, "traction", dim);
     out.area = c.positive("area", 0.0);
-    if (!out.box) c.error("box", "a traction needs the box of the loaded layer of particles");
+    if (!out.region) c.error("box", "a traction needs the region of the loaded layer of particles");
   } else if (c.has("blast")) {
     out.kind = PdCondition::Kind::Blast;
     KeyReader b = c.map("blast");
-    out.blast.tnt_mass = b.positive("tnt_mass");
-    out.blast.surface_burst = b.choice("burst", {"surface", "free_air"}, "surface") == "surface";
-    out.blast.charge = read_point(b, "charge_at", dim);
-    out.blast.normal = read_point(b, "normal", dim);
-    if (!(out.blast.normal.norm() > 0.0)) b.error("normal", "expected a non-zero vector");
-    out.blast.normal.normalize();
-    b.finish();
-    if (!out.box) c.error("box", "a blast load needs the box of the loaded layer of particles");
+    out.blast = read_blast(b, dim, false);
+    if (!out.region) c.error("box", "a blast load needs the region of the loaded layer of particles");
   } else {
     out.kind = PdCondition::Kind::BodyForce;
     out.value = read_point(c, "body_force", dim);
@@ -184,38 +111,43 @@ PdCondition read_condition(KeyReader& c, const PdSpec& s, int dim) {
   return out;
 }
 
+/// The checks of a material the body uses: E, density and bond parameters.
+void take_material(const MaterialSpec& m, materials::PdDimension dimension) {
+  const std::string needs = "analysis peridynamics needs ";
+  if (!(m.E > 0.0)) material_error(m, "E", needs + "Young's modulus E");
+  if (!(m.density > 0.0)) material_error(m, "density", needs + "a density");
+  if (!m.bond) material_error(m, "bond", needs + "bond parameters (bond: {law: pmb, ...})");
+  if (m.bulk_modulus > 0.0 && m.bond->micromodulus > 0.0)
+    material_error(m, "bond.micromodulus", "give 'micromodulus' or the material's "
+                                           "'bulk_modulus', not both");
+  if (m.bulk_modulus > 0.0 && dimension != materials::PdDimension::Solid3D)
+    material_error(m, "bulk_modulus", "the micromodulus from the bulk modulus is a 3D formula");
+}
+
 } // namespace
 
-PdSpec parse_pd(KeyReader& r, const std::string& base_dir) {
+PdSpec parse_pd(KeyReader& r, const ProblemSpec& front, const std::string& base_dir) {
   PdSpec s;
-  {
-    KeyReader m = r.map("model");
-    const std::string type = m.choice("type", {"solid_3d", "plane_stress", "plane_strain"}, "");
-    s.dimension = type == "solid_3d"       ? materials::PdDimension::Solid3D
-                  : type == "plane_stress" ? materials::PdDimension::PlaneStress
-                                           : materials::PdDimension::PlaneStrain;
-    s.thickness = m.positive("thickness", 1.0);
-    if (s.dimension == materials::PdDimension::Solid3D && m.has("thickness"))
-      m.error("thickness", "a 3D body has no thickness");
-    m.finish();
+  if (front.model_type == ModelType::UniaxialStrain)
+    r.error("model", "analysis peridynamics takes model.type plane_stress, plane_strain or "
+                     "solid_3d");
+  s.dimension = front.model_type == ModelType::Solid3D       ? materials::PdDimension::Solid3D
+                : front.model_type == ModelType::PlaneStress ? materials::PdDimension::PlaneStress
+                                                             : materials::PdDimension::PlaneStrain;
+  s.thickness = front.thickness;
+  const int dim = front.dimension;
+  const std::vector<MaterialSpec>& all = front.materials;
+  // The materials the body uses: its own (a `material:` reference or the single entry), those
+  // of its regions and those of the interfaces; indices below are into `all` until the end.
+  std::vector<char> used(all.size(), 0);
+  if (r.has("material")) {
+    s.body_material = find_material(r, "material", all, r.text("material"));
+  } else if (all.size() != 1) {
+    r.error("material", "name the material of the body (the file lists " +
+                            std::to_string(all.size()) + " materials)");
   }
-  const int dim = s.dimension == materials::PdDimension::Solid3D ? 3 : 2;
-  if (dim == 3) {
-    KeyReader g = r.map("geometry");
-    KeyReader b = g.map("box");
-    const Vec3d origin = b.has("origin") ? read_point(b, "origin", 3) : Vec3d(0, 0, 0);
-    b.allow("origin");
-    const Vec3d size = read_point(b, "size", 3);
-    if (size.minCoeff() <= 0.0) b.error("size", "expected positive extents");
-    b.finish();
-    g.finish();
-    s.box = Box3{origin, origin + size};
-  } else {
-    r.allow("geometry"); // read by the caller (rectangle, polygon, holes)
-  }
-
-  for (KeyReader& m : r.map_list("materials")) s.materials.push_back(read_material(m, s));
-  if (s.materials.empty()) r.error("materials", "at least one material is required");
+  r.allow("material");
+  used[s.body_material] = 1;
   for (KeyReader& i : r.map_list("interfaces")) {
     PdInterface f;
     const YAML::Node names = i.raw("materials");
@@ -223,10 +155,10 @@ PdSpec parse_pd(KeyReader& r, const std::string& base_dir) {
       i.error("materials", "expected the two material names [a, b]");
     f.a = names[0].as<std::string>();
     f.b = names[1].as<std::string>();
-    find_material(i, "materials", s, f.a);
-    find_material(i, "materials", s, f.b);
+    used[find_material(i, "materials", all, f.a)] = 1;
+    used[find_material(i, "materials", all, f.b)] = 1;
     f.base = i.text("base", f.a);
-    find_material(i, "base", s, f.base);
+    used[find_material(i, "base", all, f.base)] = 1;
     f.yield_stretch_factor = i.positive("yield_stretch_factor", 1.0);
     f.critical_stretch_factor = i.positive("critical_stretch_factor", 1.0);
     i.finish();
@@ -247,14 +179,32 @@ PdSpec parse_pd(KeyReader& r, const std::string& base_dir) {
   }
   for (KeyReader& g : r.map_list("regions")) {
     PdRegion reg;
-    reg.material = g.text("material");
-    find_material(g, "material", s, reg.material);
-    reg.box = read_box3(g, "box", dim);
+    reg.region = read_region(g, dim, kSolids);
+    if (g.has("material")) {
+      reg.material = find_material(g, "material", all, g.text("material"));
+      used[reg.material] = 1;
+    }
+    g.allow("material");
+    if (g.has("velocity")) reg.velocity = read_point(g, "velocity", dim);
+    g.allow("velocity");
+    if (reg.material < 0 && !reg.velocity)
+      g.error("material", "a region sets a 'material', a 'velocity' or both");
     g.finish();
     s.regions.push_back(reg);
   }
+  std::vector<int> index(all.size(), -1);
+  for (std::size_t k = 0; k < all.size(); ++k)
+    if (used[k]) {
+      take_material(all[k], s.dimension);
+      index[k] = static_cast<int>(s.materials.size());
+      s.materials.push_back(all[k]);
+    }
+  s.body_material = index[s.body_material];
+  for (PdRegion& g : s.regions)
+    if (g.material >= 0) g.material = index[g.material];
   for (KeyReader& g : r.map_list("notches")) {
-    s.removed.push_back(read_box3(g, "box", dim));
+    s.removed.push_back(read_region(g, dim, kSolids));
+    if (s.removed.back().everything()) g.error("box", "a notch needs the region it removes");
     g.finish();
   }
   for (KeyReader& c : r.map_list("cracks")) {
@@ -265,14 +215,6 @@ PdSpec parse_pd(KeyReader& r, const std::string& base_dir) {
     c.allow("to2");
     c.finish();
     s.cracks.push_back(k);
-  }
-  for (KeyReader& v : r.map_list("initial_velocity")) {
-    PdSpec::InitialVelocity iv;
-    if (v.has("box")) iv.box = read_box3(v, "box", dim);
-    v.allow("box");
-    iv.value = read_point(v, "value", dim);
-    v.finish();
-    s.initial_velocities.push_back(iv);
   }
   for (KeyReader& f : r.map_list("functions")) s.functions.push_back(read_function(f, base_dir, s));
   for (KeyReader& c : r.map_list("boundary")) s.conditions.push_back(read_condition(c, s, dim));
@@ -320,14 +262,7 @@ PdSpec parse_pd(KeyReader& r, const std::string& base_dir) {
   if (auto o = r.optional_map("output")) {
     s.history_interval = o->positive("history_interval", 0.0);
     s.fields_interval = o->positive("fields_interval", 0.0);
-    for (KeyReader& g : o->map_list("gauges")) {
-      PdGauge gauge;
-      gauge.name = g.text("name");
-      check_name(g, "name", gauge.name);
-      gauge.at = read_point(g, "at", dim);
-      g.finish();
-      s.gauges.push_back(gauge);
-    }
+    s.gauges = read_gauges(*o, dim);
     if (auto c = o->optional_map("crack")) {
       s.crack.enabled = true;
       s.crack.threshold = c->positive("damage_threshold", 0.38);

@@ -1,591 +1,125 @@
-#include "meshfree/io/hardening_read.hpp"
-#include "meshfree/io/key_reader.hpp"
-#include "meshfree/io/pd_read.hpp"
-#include "meshfree/io/problem_spec.hpp"
-#include "meshfree/io/sph_read.hpp"
-#include <cmath>
+// The front of a problem file, shared by every analysis: name, description, units, analysis,
+// model, materials and geometry; then the reader of the analysis for the rest. A file may list
+// `stages:` instead of one analysis.
+#include "meshfree/io/analysis_read.hpp"
+#include "meshfree/io/spec_read.hpp"
 #include <fstream>
 
 namespace mf::io {
 
-void read_hardening(KeyReader& p, materials::J2Parameters& j) {
-  const bool has_yield = p.has("yield_stress");
-  std::string type = "perfect";
-  std::optional<KeyReader> h;
-  if (p.has("hardening")) {
-    YAML::Node n = p.raw("hardening");
-    if (n.IsScalar()) {
-      type = n.Scalar();
-      if (type != "perfect")
-        p.error("hardening", "'" + type +
-                                 "' needs parameters: give a map {type: linear|voce|swift|table, "
-                                 "...}, or 'perfect'");
-    } else {
-      h.emplace(n, p.path_of("hardening"));
-      type = h->choice("type", {"perfect", "linear", "voce", "swift", "table"}, "");
-    }
-  }
-  const bool defines_yield = type == "swift" || type == "table";
-  if (defines_yield && has_yield)
-    p.error("yield_stress", "the " + type + " law sets the initial yield stress itself; remove it");
-  if (!defines_yield) j.sigma0 = p.positive("yield_stress");
-  p.allow("yield_stress");
-  const auto non_negative = [](KeyReader& k, const std::string& key) {
-    const double v = k.number(key);
-    if (v < 0.0) k.error(key, "expected a number >= 0, got " + detail::concat(v));
-    return v;
-  };
-  if (type == "linear") {
-    j.hardening = materials::LinearHardening{non_negative(*h, "H")};
-  } else if (type == "voce") {
-    materials::VoceHardening v;
-    v.H = non_negative(*h, "H");
-    v.sigma_inf = h->positive("sigma_inf");
-    v.delta = h->positive("delta");
-    j.hardening = v;
-  } else if (type == "swift") {
-    materials::SwiftHardening w;
-    w.K = h->positive("K");
-    w.eps0 = h->positive("eps0");
-    w.n = h->positive("n");
-    if (w.n > 1.0) h->error("n", "expected an exponent in (0, 1], got " + detail::concat(w.n));
-    j.hardening = w;
-    j.sigma0 = w.K * std::pow(w.eps0, w.n);
-  } else if (type == "table") {
-    materials::TableHardening t;
-    for (const Vec2& pt : h->vec2_list("points")) {
-      t.alpha.push_back(pt.x());
-      t.sigma.push_back(pt.y());
-    }
-    if (t.alpha.size() < 2)
-      h->error("points", "expected at least two [equivalent plastic strain, yield stress] pairs");
-    if (t.alpha.front() != 0.0)
-      h->error("points", "the first point must be at equivalent plastic strain 0, got " +
-                             detail::concat(t.alpha.front()));
-    for (std::size_t k = 0; k < t.alpha.size(); ++k) {
-      if (k > 0 && !(t.alpha[k] > t.alpha[k - 1]))
-        h->error("points", "equivalent plastic strains must increase, got " +
-                               detail::concat(t.alpha[k - 1]) + " then " +
-                               detail::concat(t.alpha[k]));
-      if (!(t.sigma[k] > 0.0))
-        h->error("points", "yield stresses must be positive, got " + detail::concat(t.sigma[k]));
-    }
-    j.sigma0 = t.sigma.front();
-    j.hardening = t;
-  }
-  if (h) h->finish();
-}
-
 namespace {
 
-/// Names end up in file names and CSV/JSON keys: letters, digits, '_' and '-' only.
-void check_name(KeyReader& r, const std::string& key, const std::string& name, bool may_be_empty) {
-  if (name.empty() && may_be_empty) return;
-  if (name.empty() ||
-      name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") !=
-          std::string::npos)
-    r.error(key, "expected a name of letters, digits, '_' or '-', got '" + name + "'");
+const std::vector<std::string> kAnalyses{"elastic_static", "elastoplastic_static",
+                                         "model_problem_1d", "peridynamics", "sph"};
+
+Analysis analysis_of(const std::string& name) {
+  return name == "elastic_static"         ? Analysis::ElasticStatic
+         : name == "elastoplastic_static" ? Analysis::ElastoplasticStatic
+         : name == "peridynamics"         ? Analysis::Peridynamics
+         : name == "sph"                  ? Analysis::Sph
+                                          : Analysis::ModelProblem1D;
 }
 
-materials::PlaneModel read_model(KeyReader& r, double& thickness) {
+void read_model(KeyReader& r, ProblemSpec& p) {
   KeyReader m = r.map("model");
-  const std::string type = m.choice("type", {"plane_stress", "plane_strain"}, "plane_stress");
-  thickness = m.positive("thickness", 1.0);
+  const std::string type =
+      m.choice("type", {"plane_stress", "plane_strain", "solid_3d", "uniaxial_strain"}, "");
+  p.model_type = type == "plane_stress"   ? ModelType::PlaneStress
+                 : type == "plane_strain" ? ModelType::PlaneStrain
+                 : type == "solid_3d"     ? ModelType::Solid3D
+                                          : ModelType::UniaxialStrain;
+  p.dimension = p.model_type == ModelType::Solid3D          ? 3
+                : p.model_type == ModelType::UniaxialStrain ? 1
+                                                            : 2;
+  p.model = p.model_type == ModelType::PlaneStrain ? materials::PlaneModel::PlaneStrain
+                                                   : materials::PlaneModel::PlaneStress;
+  p.thickness = m.positive("thickness", 1.0);
+  if (p.dimension != 2 && m.has("thickness"))
+    m.error("thickness", "only a plane model has a thickness");
   m.finish();
-  return type == "plane_stress" ? materials::PlaneModel::PlaneStress
-                                : materials::PlaneModel::PlaneStrain;
 }
 
-materials::IsotropicElastic read_material(KeyReader& r,
-                                          std::optional<materials::J2Parameters>& plasticity) {
-  KeyReader m = r.map("material");
-  materials::IsotropicElastic mat;
-  mat.E = m.positive("E");
-  mat.nu = m.number("nu");
-  if (!(mat.nu > -1.0 && mat.nu < 0.5))
-    m.error("nu", "expected a Poisson's ratio in (-1, 0.5), got " + std::to_string(mat.nu));
-  if (auto p = m.optional_map("plasticity")) {
-    materials::J2Parameters j;
-    j.E = mat.E;
-    j.nu = mat.nu;
-    read_hardening(*p, j);
-    j.H_kinematic = p->number("kinematic_modulus", 0.0);
-    if (j.H_kinematic < 0.0)
-      p->error("kinematic_modulus", "expected a number >= 0, got " + detail::concat(j.H_kinematic));
-    p->finish();
-    plasticity = j;
-  }
-  m.finish();
-  return mat;
-}
-
-BoundingBox read_box(KeyReader& r, const std::string& key) {
-  const std::vector<Vec2> corners = r.vec2_list(key);
-  if (corners.size() != 2) r.error(key, "expected two corners [[x0, y0], [x1, y1]]");
-  BoundingBox b{corners[0].cwiseMin(corners[1]), corners[0].cwiseMax(corners[1])};
-  return b;
-}
-
-geometry::Domain read_geometry(KeyReader& r) {
+/// geometry: a 2D body (rectangle or polygon, with holes) or a 3D box {origin, size}.
+void read_geometry(KeyReader& r, ProblemSpec& p) {
   KeyReader g = r.map("geometry");
-  const bool rect = g.has("rectangle"), poly = g.has("polygon");
-  if (rect == poly) g.error("rectangle", "give exactly one of 'rectangle' or 'polygon'");
-  geometry::Domain d = geometry::Domain::rectangle({0, 0}, {1, 1});
-  if (rect) {
-    KeyReader rr = g.map("rectangle");
-    const Vec2 origin = rr.has("origin") ? rr.vec2("origin") : Vec2(0.0, 0.0);
-    rr.allow("origin");
-    const Vec2 size = rr.vec2("size");
-    if (!(size.x() > 0.0 && size.y() > 0.0)) rr.error("size", "expected positive width and height");
-    rr.finish();
-    d = geometry::Domain::rectangle(origin, size);
+  if (p.dimension == 3) {
+    KeyReader b = g.map("box");
+    const Point origin = b.has("origin") ? read_point(b, "origin", 3) : Point(0, 0, 0);
+    b.allow("origin");
+    const Point size = read_point(b, "size", 3);
+    if (size.minCoeff() <= 0.0) b.error("size", "expected positive extents");
+    b.finish();
+    g.finish();
+    p.box = Box{origin, origin + size};
   } else {
-    KeyReader pr = g.map("polygon");
-    std::vector<Vec2> v = pr.vec2_list("vertices");
-    std::vector<std::string> names;
-    if (pr.has("edge_names")) {
-      YAML::Node n = pr.raw("edge_names");
-      if (!n.IsSequence() || n.size() != v.size())
-        pr.error("edge_names", "expected a list of " + std::to_string(v.size()) + " names");
-      for (const auto& e : n) {
-        if (!e.IsScalar()) pr.error("edge_names", "expected a list of names");
-        names.push_back(e.Scalar());
-      }
-    }
-    pr.allow("edge_names");
-    pr.finish();
-    try {
-      d = geometry::Domain::polygon(v, names);
-    } catch (const Error& e) {
-      fail(pr.path_of("vertices"), ": ", e.what());
-    }
+    p.domain = read_domain(g);
   }
-  for (KeyReader& h : g.map_list("holes")) {
-    geometry::Circle c;
-    c.center = h.vec2("center");
-    c.radius = h.positive("radius");
-    c.name = h.text("name", "");
-    check_name(h, "name", c.name, true);
-    h.finish();
-    d.add_hole(c);
-    bool outline_left = false;
-    for (const auto& piece : d.boundary())
-      outline_left = outline_left || piece.kind == geometry::Curve::Kind::Segment;
-    if (!outline_left) h.error("radius", "the hole covers the whole body");
-    const std::string name = d.holes().back().name;
-    bool cuts = false;
-    for (const auto& piece : d.boundary()) cuts = cuts || piece.name == name;
-    if (!cuts) h.error("center", "the hole '" + name + "' does not cut the body");
-  }
-  g.finish();
-  return d;
 }
 
-kernels::WindowType window_type(const std::string& s) {
-  if (s == "cubic_spline") return kernels::WindowType::CubicSpline;
-  if (s == "quartic_spline") return kernels::WindowType::QuarticSpline;
-  return kernels::WindowType::Gaussian;
-}
-
-DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox& bounds,
-                                       const std::string& base_dir) {
-  KeyReader d = r.map("discretisation");
-  DiscretisationSpec s;
-  s.method =
-      d.choice("method", {"meshfree", "fem"}, "meshfree") == "fem" ? Method::Fem : Method::Meshfree;
-  if (auto f = d.optional_map("fem")) {
-    s.fem.element = f->choice("element", {"t3", "q4", "q8"}, "q8");
-    if (f->has("mesh")) {
-      const std::string mesh = f->text("mesh");
-      s.fem.mesh = !mesh.empty() && mesh.front() == '/' ? mesh : base_dir + mesh;
-      std::ifstream probe(s.fem.mesh);
-      if (!probe.good()) f->error("mesh", "cannot open the mesh file '" + s.fem.mesh + "'");
-    }
-    f->allow("mesh");
-    s.fem.order = f->integer("order", 0, 1, 10);
-    f->finish();
+/// The file of a one-stage `stages:` list as a one-analysis file: the shared keys and the
+/// stage's own.
+YAML::Node stage_file(KeyReader& r, ProblemSpec& p) {
+  std::vector<KeyReader> stages = r.map_list("stages");
+  if (stages.empty()) r.error("stages", "expected a list of stages {name, analysis, ...}");
+  if (stages.size() > 1)
+    r.error("stages", "staged runs of more than one stage are not available yet (the file lists " +
+                          std::to_string(stages.size()) + " stages)");
+  KeyReader& s = stages.front();
+  p.stage = s.text("name");
+  check_name(s, "name", p.stage);
+  s.choice("analysis", kAnalyses, "");
+  YAML::Node merged(YAML::NodeType::Map);
+  for (const char* key : {"name", "description", "units", "model", "materials", "geometry"})
+    if (r.has(key)) merged[key] = YAML::Clone(r.raw(key));
+  for (const auto& kv : s.raw_map()) {
+    const std::string key = kv.first.Scalar();
+    if (key == "name") continue;
+    if (merged[key].IsDefined() && !merged[key].IsNull())
+      s.error(key, "given at the top of the file already");
+    merged[key] = YAML::Clone(kv.second);
   }
-  s.spacing = d.positive("spacing");
-  for (KeyReader& f : d.map_list("refinement")) {
-    geometry::Refinement ref;
-    ref.box = read_box(f, "box");
-    ref.spacing = f.positive("spacing");
-    if (ref.spacing >= s.spacing)
-      f.error("spacing", "a refinement must be finer than discretisation.spacing");
-    const Vec2 lo = ref.box.lo.cwiseMax(bounds.lo), hi = ref.box.hi.cwiseMin(bounds.hi);
-    const Vec2 extent = (hi - lo).cwiseMax(Vec2::Zero());
-    const double nodes = (extent.x() / ref.spacing + 1.0) * (extent.y() / ref.spacing + 1.0);
-    if (nodes > 2e7)
-      f.error("spacing", detail::concat("puts about ", static_cast<float>(nodes),
-                                        " nodes in the box; one run is meant for at most 2e7"));
-    f.finish();
-    s.refinement.push_back(ref);
-  }
-  const std::string approx = d.choice("approximation", {"rk", "mls"}, "rk");
-  s.shape.approximation = approx == "rk" ? kernels::Approximation::ReproducingKernel
-                                         : kernels::Approximation::MovingLeastSquares;
-  s.shape.basis = d.choice("basis", {"linear", "quadratic"}, "linear") == "linear"
-                      ? kernels::Basis::Linear
-                      : kernels::Basis::Quadratic;
-  s.shape.window.type = window_type(
-      d.choice("window", {"cubic_spline", "quartic_spline", "gaussian"}, "cubic_spline"));
-  s.shape.window.gaussian_shape = d.positive("gaussian_shape", 0.4);
-  s.shape.support = d.choice("support", {"circular", "rectangular"}, "circular") == "circular"
-                        ? kernels::SupportShape::Circular
-                        : kernels::SupportShape::Rectangular;
-  s.shape.dim = dim;
-  const double default_dilation = s.shape.basis == kernels::Basis::Quadratic ? 3.0 : 2.0;
-  s.dilation = d.scalar_or_vec2("dilation", Vec2(default_dilation, default_dilation));
-  const double min_dilation = s.shape.basis == kernels::Basis::Quadratic ? 2.0 : 1.0;
-  if (s.dilation.minCoeff() <= min_dilation)
-    d.error("dilation", "must exceed " + std::to_string(min_dilation) +
-                            " so that every point is covered by enough nodes for the basis");
-  if (auto q = d.optional_map("quadrature")) {
-    s.order = q->integer("order", 3, 2, 10);
-    s.cell_size = q->positive("cell_size", s.spacing);
-    s.cut_levels = q->integer("cut_levels", 2, 0, 6);
-    s.boundary_order = q->integer("boundary_order", s.order, 2, 10);
-    q->finish();
-  } else {
-    s.cell_size = s.spacing;
-    s.boundary_order = s.order;
-  }
-  d.finish();
-  return s;
-}
-
-BoundarySelector read_selector(KeyReader& bc) {
-  BoundarySelector sel;
-  YAML::Node on = bc.raw("on");
-  if (on.IsScalar()) {
-    sel.names.push_back(on.Scalar());
-    return sel;
-  }
-  KeyReader o(on, bc.path_of("on"));
-  if (o.has("edge")) sel.names.push_back(o.text("edge"));
-  if (o.has("edges")) {
-    YAML::Node e = o.raw("edges");
-    if (!e.IsSequence()) o.error("edges", "expected a list of boundary names");
-    for (const auto& n : e) {
-      if (!n.IsScalar()) o.error("edges", "expected a list of boundary names");
-      sel.names.push_back(n.Scalar());
-    }
-  }
-  o.allow("edge");
-  o.allow("edges");
-  if (o.has("box")) sel.box = read_box(o, "box");
-  o.allow("box");
-  o.finish();
-  if (sel.names.empty() && !sel.box)
-    o.error("edge", "name the boundary pieces ('edge' or 'edges') or give a 'box'");
-  return sel;
-}
-
-/// `stiffness_scale` = E / h: the penalty is alpha = penalty_scale * E / h unless an absolute
-/// `penalty` is given (the thesis uses alpha = 1e12 with E = 2e5 MPa).
-BoundaryCondition read_condition(KeyReader& bc, double stiffness_scale) {
-  BoundaryCondition c;
-  c.key_path = bc.path();
-  c.name = bc.text("name");
-  check_name(bc, "name", c.name, false);
-  c.on = read_selector(bc);
-  if (bc.has("displacement")) {
-    c.constrains = true;
-    YAML::Node n = bc.raw("displacement");
-    if (n.IsScalar() && n.Scalar() == "exact") {
-      c.value_from_exact = true;
-      c.mask = Vec2(1.0, 1.0);
-    } else {
-      KeyReader u(n, bc.path_of("displacement"));
-      if (u.has("x")) c.mask.x() = 1.0, c.value.x() = u.number("x");
-      if (u.has("y")) c.mask.y() = 1.0, c.value.y() = u.number("y");
-      u.allow("x");
-      u.allow("y");
-      if (u.has("exact") && (u.has("x") || u.has("y")))
-        u.error("exact", "give either prescribed values (x, y) or 'exact', not both");
-      if (u.has("exact")) {
-        const std::string comps = u.choice("exact", {"x", "y", "xy"}, "xy");
-        c.value_from_exact = true;
-        c.mask = Vec2(comps.find('x') != std::string::npos, comps.find('y') != std::string::npos);
-      }
-      u.allow("exact");
-      u.finish();
-      if (c.mask.isZero())
-        bc.error("displacement", "constrain at least one of x, y (or say 'exact')");
-    }
-    if (bc.has("penalty") && bc.has("penalty_scale"))
-      bc.error("penalty_scale",
-               "give either 'penalty' (absolute) or 'penalty_scale' (times E/h), not both");
-    c.penalty = bc.has("penalty") ? bc.positive("penalty")
-                                  : bc.positive("penalty_scale", 1e6) * stiffness_scale;
-  }
-  for (const char* key : {"penalty", "penalty_scale"}) {
-    if (!c.constrains && bc.has(key)) bc.error(key, "a penalty needs a 'displacement' condition");
-    bc.allow(key);
-  }
-  if (bc.has("traction")) {
-    c.loads = true;
-    YAML::Node n = bc.raw("traction");
-    if (n.IsScalar() && n.Scalar() == "exact")
-      c.traction_from_exact = true;
-    else
-      c.traction = bc.vec2("traction");
-  }
-  bc.allow("traction");
-  if (c.constrains == c.loads)
-    bc.error("name", "a boundary condition needs exactly one of 'displacement' or 'traction'");
-  bc.finish();
-  return c;
-}
-
-std::optional<verification::ExactSolution> read_exact(KeyReader& r) {
-  auto e = r.optional_map("exact");
-  if (!e) return std::nullopt;
-  const std::string kind = e->choice("solution", {"timoshenko_beam", "kirsch", "linear"}, "");
-  verification::ExactSolution out;
-  if (kind == "timoshenko_beam") {
-    verification::TimoshenkoBeam b;
-    b.P = e->number("P");
-    b.L = e->positive("L");
-    b.D = e->positive("D");
-    out = b;
-  } else if (kind == "kirsch") {
-    verification::KirschPlate k;
-    k.a = e->positive("radius");
-    k.sigma0 = e->number("sigma0");
-    out = k;
-  } else {
-    verification::LinearField f;
-    f.u0 = e->vec2("u0");
-    const std::vector<Vec2> g = e->vec2_list("gradient");
-    if (g.size() != 2) e->error("gradient", "expected [[dux/dx, dux/dy], [duy/dx, duy/dy]]");
-    f.G << g[0].x(), g[0].y(), g[1].x(), g[1].y();
-    out = f;
-  }
-  e->finish();
-  return out;
-}
-
-/// steps: [{name, increments, load_factor, factors: {condition: target}}]; see LoadStep.
-std::vector<LoadStep> read_steps(KeyReader& r, const std::vector<BoundaryCondition>& boundary) {
-  std::vector<LoadStep> steps;
-  const std::size_t n = boundary.size() + 1; // the body force is the last factor
-  std::vector<double> current(n, 0.0);
-  std::vector<KeyReader> list = r.map_list("steps");
-  if (list.empty())
-    r.error("steps", "an elastoplastic analysis needs a load schedule: a list of "
-                     "{name, load_factor, increments}");
-  for (KeyReader& k : list) {
-    LoadStep s;
-    s.name = k.text("name");
-    check_name(k, "name", s.name, false);
-    for (const auto& other : steps)
-      if (other.name == s.name) k.error("name", "another step is named '" + s.name + "'");
-    s.increments = k.integer("increments", 1, 1, 1000000);
-    std::vector<char> named(n, 0);
-    s.target = current;
-    if (auto f = k.optional_map("factors")) {
-      for (std::size_t c = 0; c < n; ++c) {
-        const std::string key = c < boundary.size() ? boundary[c].name : "body_force";
-        if (f->has(key)) {
-          s.target[c] = f->number(key);
-          named[c] = 1;
-        }
-      }
-      try {
-        f->finish();
-      } catch (const Error& e) {
-        fail(e.what(), " (factors name boundary conditions or 'body_force')");
-      }
-    }
-    if (k.has("load_factor")) {
-      const double lf = k.number("load_factor");
-      for (std::size_t c = 0; c < n; ++c)
-        if (!named[c]) s.target[c] = lf;
-    } else if (!k.has("factors")) {
-      k.error("load_factor", "give the step's target 'load_factor' or 'factors'");
-    }
-    k.allow("load_factor");
-    k.finish();
-    current = s.target;
-    steps.push_back(s);
-  }
-  return steps;
-}
-
-NonlinearSpec read_nonlinear(KeyReader& r) {
-  NonlinearSpec s;
-  if (auto n = r.optional_map("nonlinear")) {
-    s.tolerance = n->positive("tolerance", s.tolerance);
-    if (s.tolerance >= 1e-2)
-      n->error("tolerance", "a relative residual tolerance below 1e-2 is needed, got " +
-                                detail::concat(s.tolerance));
-    s.max_iterations = n->integer("max_iterations", s.max_iterations, 1, 200);
-    s.max_cutbacks = n->integer("max_cutbacks", s.max_cutbacks, 0, 30);
-    n->finish();
-  }
-  return s;
+  r.finish();
+  return merged;
 }
 
 } // namespace
 
-std::vector<geometry::Curve> select_boundary(const geometry::Domain& domain,
-                                             const BoundarySelector& on,
-                                             const std::string& key_path) {
-  std::vector<geometry::Curve> out;
-  const auto all = domain.boundary();
-  for (const auto& name : on.names) {
-    bool known = false;
-    for (const auto& c : all) known = known || c.name == name;
-    if (!known) {
-      std::string names;
-      for (const auto& c : all)
-        if (names.find(c.name) == std::string::npos) names += (names.empty() ? "" : ", ") + c.name;
-      fail(key_path, ".on: no boundary piece is named '", name, "' (the body's pieces: ", names,
-           ")");
-    }
-  }
-  for (const auto& c : all) {
-    const bool named =
-        on.names.empty() || std::find(on.names.begin(), on.names.end(), c.name) != on.names.end();
-    if (!named) continue;
-    if (!on.box) {
-      out.push_back(c);
-      continue;
-    }
-    const double tol = 1e-9 * (domain.bounds().size().maxCoeff());
-    for (const auto& [t0, t1] :
-         geometry::kept_intervals(c, [&](const Vec2& p) { return on.box->contains(p, tol); }))
-      out.push_back(c.piece(t0, t1));
-  }
-  double length = 0.0;
-  for (const auto& c : out) length += c.length();
-  if (out.empty() || length <= 0.0) fail(key_path, ".on: selects no part of the boundary");
-  return out;
-}
-
 ProblemSpec parse_problem(YAML::Node root, const std::string& base_dir) {
   KeyReader r(root, "");
   ProblemSpec p;
+  std::vector<std::string> analyses = kAnalyses;
+  analyses.push_back("staged");
+  if (r.has("analysis") && r.text("analysis") == "staged") {
+    std::string stage;
+    {
+      ProblemSpec front;
+      YAML::Node one = stage_file(r, front);
+      stage = front.stage;
+      p = parse_problem(one, base_dir);
+    }
+    p.stage = stage;
+    return p;
+  }
   p.name = r.text("name");
-  check_name(r, "name", p.name, false);
+  check_name(r, "name", p.name);
   p.description = r.text("description", "");
   p.units = r.text("units", "");
-  const std::string analysis = r.choice(
-      "analysis",
-      {"elastic_static", "elastoplastic_static", "model_problem_1d", "peridynamics", "sph"}, "");
-  p.analysis = analysis == "elastic_static"         ? Analysis::ElasticStatic
-               : analysis == "elastoplastic_static" ? Analysis::ElastoplasticStatic
-               : analysis == "peridynamics"         ? Analysis::Peridynamics
-               : analysis == "sph"                  ? Analysis::Sph
-                                                    : Analysis::ModelProblem1D;
-  if (p.analysis == Analysis::Sph) {
-    p.sph = parse_sph(r);
-    r.finish();
-    return p;
-  }
-  if (p.analysis == Analysis::Peridynamics) {
-    p.pd = parse_pd(r, base_dir);
-    if (p.pd->dimension != materials::PdDimension::Solid3D) p.domain = read_geometry(r);
-    p.thickness = p.pd->thickness;
-    r.finish();
-    return p;
-  }
-
+  p.analysis = analysis_of(r.choice("analysis", analyses, ""));
   if (p.analysis == Analysis::ModelProblem1D) {
-    KeyReader m = r.map("problem_1d");
-    p.model_1d.length = m.positive("length");
-    p.model_1d.sine_amplitude = m.number("sine_amplitude", 1.0);
-    p.model_1d.sine_waves = m.positive("sine_waves", 1.0);
-    p.model_1d.linear = m.number("linear", 0.0);
-    m.finish();
-    const BoundingBox line{{0.0, 0.0}, {p.model_1d.length, 0.0}};
-    p.discretisation = read_discretisation(r, 1, line, base_dir);
-    p.model_1d.penalty = r.positive("penalty", 1e6 / p.discretisation.spacing);
+    parse_model_1d(r, p, base_dir);
     r.finish();
     return p;
   }
-
-  p.model = read_model(r, p.thickness);
-  p.material = read_material(r, p.plasticity);
-  p.domain = read_geometry(r);
-  p.discretisation = read_discretisation(r, 2, p.domain.bounds(), base_dir);
-  if (p.discretisation.method == Method::Fem && p.discretisation.fem.mesh.empty() &&
-      (p.domain.vertices().size() != 4 || !p.domain.holes().empty() ||
-       std::abs(p.domain.area_estimate() - p.domain.bounds().size().prod()) >
-           1e-12 * p.domain.bounds().size().prod()))
-    fail("discretisation.fem.mesh: required for a body that is not a plain rectangle (a "
-         "structured mesh is generated only for rectangles)");
-  p.exact = read_exact(r);
-  if (r.has("body_force")) p.body_force = r.vec2("body_force");
-  r.allow("body_force");
-  // Default penalty: alpha = 1e6 E / h, stiff enough that the constraint error is ~1e-6 of the
-  // boundary displacement scale, and far from the round-off limit of a direct solve.
-  const double stiffness_scale = p.material.E / p.discretisation.spacing;
-  for (KeyReader& bc : r.map_list("boundary")) {
-    p.boundary.push_back(read_condition(bc, stiffness_scale));
-    const BoundaryCondition& c = p.boundary.back();
-    for (std::size_t k = 0; k + 1 < p.boundary.size(); ++k)
-      if (p.boundary[k].name == c.name)
-        bc.error("name", "'" + c.name + "' is used by " + p.boundary[k].key_path + " already");
-    if ((c.value_from_exact || c.traction_from_exact) && !p.exact)
-      bc.error(c.constrains ? "displacement" : "traction",
-               "'exact' needs an 'exact' section in the problem");
-    select_boundary(p.domain, c.on, c.key_path); // rejects selectors that pick nothing
-  }
-  if (p.boundary.empty()) r.error("boundary", "at least one boundary condition is required");
-  bool constrained = false;
-  for (const auto& c : p.boundary) constrained = constrained || c.constrains;
-  if (!constrained)
-    r.error("boundary", "no displacement condition: the body is free to move as a rigid body");
-
-  const bool plastic = p.analysis == Analysis::ElastoplasticStatic;
-  if (plastic && !p.plasticity)
-    r.error("material", "analysis elastoplastic_static needs material.plasticity");
-  if (!plastic && p.plasticity)
-    r.error("material", "material.plasticity is used only by analysis elastoplastic_static");
-  if (plastic) {
-    p.steps = read_steps(r, p.boundary);
-    p.nonlinear = read_nonlinear(r);
+  read_model(r, p);
+  p.materials = read_materials(r);
+  if (p.analysis == Analysis::Sph) {
+    p.sph = parse_sph(r, p);
   } else {
-    for (const char* key : {"steps", "nonlinear"})
-      if (r.has(key)) r.error(key, "used only by analysis elastoplastic_static");
-  }
-
-  if (auto out = r.optional_map("output")) {
-    for (KeyReader& m : out->map_list("monitors")) {
-      if (!plastic) m.error("name", "monitors are recorded only by analysis elastoplastic_static");
-      MonitorSpec s;
-      s.name = m.text("name");
-      check_name(m, "name", s.name, false);
-      s.at = m.vec2("at");
-      for (const auto& other : p.monitors)
-        if (other.name == s.name) m.error("name", "another monitor is named '" + s.name + "'");
-      if (!p.domain.contains(s.at, 1e-9 * p.domain.bounds().size().maxCoeff()))
-        m.error("at",
-                "the point (" + detail::concat(s.at.x(), ", ", s.at.y()) + ") is not in the body");
-      m.finish();
-      p.monitors.push_back(s);
-    }
-    p.fields_every = out->integer("fields_every", 1, 1, 1000000);
-    for (KeyReader& l : out->map_list("lines")) {
-      LineSpec s;
-      s.name = l.text("name");
-      s.from = l.vec2("from");
-      s.to = l.vec2("to");
-      s.points = l.integer("points", 51, 2, 1000000);
-      check_name(l, "name", s.name, false);
-      for (const auto& other : p.lines)
-        if (other.name == s.name) l.error("name", "another line is named '" + s.name + "'");
-      bool inside = false;
-      for (int k = 0; k < s.points && !inside; ++k)
-        inside = p.domain.contains(
-            s.from + (s.to - s.from) * (static_cast<double>(k) / (s.points - 1)), 1e-9);
-      if (!inside) l.error("from", "no sample point of the line lies in the body");
-      l.finish();
-      p.lines.push_back(s);
-    }
-    out->finish();
+    read_geometry(r, p);
+    if (p.analysis == Analysis::Peridynamics)
+      p.pd = parse_pd(r, p, base_dir);
+    else
+      parse_galerkin(r, p, base_dir);
   }
   r.finish();
   return p;

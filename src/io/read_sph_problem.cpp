@@ -1,9 +1,9 @@
-// The SPH part of a problem file (analysis: sph): dimension, materials with their equations of
-// state, blocks of particles, detonation, viscosity, time and output. Every key is checked;
+// The SPH part of a problem file (analysis: sph): numerics, the regions of particles and their
+// materials' equations of state and strength, boundary conditions (blasts, transmitting
+// boundaries, symmetry planes), detonation, viscosity, time and output. Every key is checked;
 // errors name the key path.
-#include "meshfree/io/hardening_read.hpp"
-#include "meshfree/io/key_reader.hpp"
-#include "meshfree/io/sph_read.hpp"
+#include "meshfree/io/analysis_read.hpp"
+#include "meshfree/io/spec_read.hpp"
 #include <algorithm>
 #include <cmath>
 
@@ -11,332 +11,83 @@ namespace mf::io {
 
 namespace {
 
-std::array<double, 3> read_point(KeyReader& r, const std::string& key, int dim) {
-  const std::vector<double> v = r.numbers(key, dim);
-  std::array<double, 3> out{0, 0, 0};
-  for (int d = 0; d < dim; ++d) out[d] = v[d];
-  return out;
+/// The checks of a material the particles use: an equation of state, and for a solid with
+/// plasticity its shear modulus.
+void take_material(const MaterialSpec& m) {
+  if (!m.eos) material_error(m, "eos", "analysis sph needs an equation of state");
+  const bool j2 = !m.strength || m.strength->model == StrengthSpec::Model::J2;
+  if (m.strength && j2 && !m.plasticity)
+    material_error(m, "plasticity", "a J2 strength needs the material's 'plasticity'");
+  if (j2 && m.plasticity && !(m.shear_modulus > 0.0))
+    material_error(m, "shear_modulus", "analysis sph needs the shear modulus (or E and nu) of a "
+                                       "solid with plasticity");
 }
 
-/// A box [[x0, ...], [x1, ...]] with `dim` coordinates per corner; axes beyond dim span
-/// [-unused, unused].
-void read_box(KeyReader& r, const std::string& key, int dim, double unused,
-              std::array<double, 3>& lo, std::array<double, 3>& hi) {
-  const auto corners = r.number_lists(key, dim);
-  if (corners.size() != 2) r.error(key, "expected two corners [[x0, ...], [x1, ...]]");
-  for (int d = 0; d < 3; ++d) {
-    lo[d] = d < dim ? std::min(corners[0][d], corners[1][d]) : -unused;
-    hi[d] = d < dim ? std::max(corners[0][d], corners[1][d]) : unused;
-  }
+/// The reference density of a material's equation of state, where it has one (else 0).
+double natural_density(const MaterialSpec& m) {
+  const EosSpec& eos = *m.eos;
+  if (eos.kind == EosSpec::Kind::Jwl) return eos.jwl.rho0;
+  if (eos.kind == EosSpec::Kind::Hjc) return m.hjc->rho0;
+  if (eos.kind == EosSpec::Kind::Compaction) return eos.compaction.loading.x.front();
+  return 0.0;
 }
 
-/// A non-zero vector with `dim` components, scaled to unit length.
-std::array<double, 3> read_unit_vector(KeyReader& r, const std::string& key, int dim) {
-  std::array<double, 3> v = read_point(r, key, dim);
-  const double norm = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  if (!(norm > 0.0)) r.error(key, "expected a non-zero vector");
-  for (double& c : v) c /= norm;
-  return v;
-}
-
-/// A table [[x0, y0], [x1, y1], ...] with strictly ascending x, as a piecewise-linear function.
-materials::PiecewiseLinear read_table(KeyReader& r, const std::string& key, std::size_t at_least,
-                                      bool positive_values) {
-  materials::PiecewiseLinear t;
-  const auto rows = r.number_lists(key, 2);
-  if (rows.size() < at_least)
-    r.error(key, "expected at least " + std::to_string(at_least) + " rows [x, y]");
-  for (std::size_t k = 0; k < rows.size(); ++k) {
-    if (k > 0 && !(rows[k][0] > rows[k - 1][0]))
-      r.error(key, detail::concat("row ", k, ": the first column must increase (", rows[k][0],
-                                  " after ", rows[k - 1][0], ")"));
-    if (positive_values && !(rows[k][1] > 0.0))
-      r.error(key, detail::concat("row ", k, ": expected a positive value, got ", rows[k][1]));
-    t.x.push_back(rows[k][0]);
-    t.y.push_back(rows[k][1]);
-  }
-  return t;
-}
-
-/// The Holmquist-Johnson-Cook constants; defaults: the 48 MPa concrete of the 1993 paper.
-materials::Hjc read_hjc(KeyReader& h) {
-  materials::Hjc m;
-  m.A = h.positive("A", m.A);
-  m.B = h.positive("B", m.B);
-  m.N = h.positive("N", m.N);
-  m.C = h.number("C", m.C);
-  m.s_max = h.positive("s_max", m.s_max);
-  m.fc = h.positive("fc", m.fc);
-  m.T = h.positive("T", m.T);
-  m.eps_dot0 = h.positive("eps_dot0", m.eps_dot0);
-  m.D1 = h.positive("D1", m.D1);
-  m.D2 = h.positive("D2", m.D2);
-  m.eps_f_min = h.positive("eps_f_min", m.eps_f_min);
-  m.rho0 = h.positive("rho0", m.rho0);
-  m.P_crush = h.positive("P_crush", m.P_crush);
-  m.mu_crush = h.positive("mu_crush", m.mu_crush);
-  m.K1 = h.positive("K1", m.K1);
-  m.K2 = h.number("K2", m.K2);
-  m.K3 = h.number("K3", m.K3);
-  m.P_lock = h.positive("P_lock", m.P_lock);
-  m.mu_lock = h.positive("mu_lock", m.mu_lock);
-  m.shear_modulus = h.positive("shear_modulus", m.shear_modulus);
-  if (!(m.mu_lock > m.mu_crush)) h.error("mu_lock", "must exceed mu_crush");
-  if (!(m.P_lock > m.P_crush)) h.error("P_lock", "must exceed P_crush");
-  const double mu_grain = materials::hjc_grain_compression(m);
-  if (!(mu_grain > m.mu_crush && mu_grain < m.mu_lock))
-    h.error("K1", "the fully dense curve K1, K2, K3 does not reach P_lock between mu_crush and "
-                  "mu_lock");
-  h.finish();
-  return m;
-}
-
-sph::Eos read_eos(KeyReader& e) {
-  sph::Eos eos;
-  const std::string type = e.choice(
-      "type", {"ideal_gas", "jwl", "mie_gruneisen", "linear_polynomial", "compaction", "hjc"}, "");
-  if (type == "ideal_gas") {
-    eos.kind = sph::Eos::Kind::IdealGas;
-    eos.ideal_gas.gamma = e.positive("gamma", 1.4);
-    if (!(eos.ideal_gas.gamma > 1.0)) e.error("gamma", "expected a ratio of specific heats > 1");
-  } else if (type == "jwl") {
-    // Defaults: TNT, Dobratz & Crawford 1985 (materials/eos.hpp).
-    eos.kind = sph::Eos::Kind::Jwl;
-    materials::Jwl& j = eos.jwl;
-    j.rho0 = e.positive("rho0", j.rho0);
-    j.A = e.positive("A", j.A);
-    j.B = e.positive("B", j.B);
-    j.R1 = e.positive("R1", j.R1);
-    j.R2 = e.positive("R2", j.R2);
-    j.omega = e.positive("omega", j.omega);
-    j.detonation_speed = e.positive("detonation_speed", j.detonation_speed);
-    j.cj_pressure = e.positive("cj_pressure", j.cj_pressure);
-    j.e0 = e.positive("detonation_energy", j.e0 * j.rho0) / j.rho0; // given per volume [J/m^3]
-    if (auto u = e.optional_map("unreacted")) {
-      // The unreacted explosive's shock Hugoniot U_s = c0 + s u_p and Grueneisen gamma.
-      eos.has_unreacted = true;
-      eos.unreacted.rho0 = j.rho0;
-      eos.unreacted.c0 = u->positive("c0");
-      eos.unreacted.s = u->positive("s");
-      eos.unreacted.gamma0 = u->positive("gamma0");
-      u->finish();
-    }
-  } else if (type == "mie_gruneisen") {
-    eos.kind = sph::Eos::Kind::MieGruneisen;
-    materials::MieGruneisen& m = eos.mie_gruneisen;
-    m.rho0 = e.positive("rho0");
-    m.c0 = e.positive("c0");
-    m.s = e.number("s");
-    m.gamma0 = e.number("gamma0");
-  } else if (type == "compaction") {
-    // Tabulated compaction (materials/geomaterials.hpp): [density, pressure] and
-    // [density, sound speed] rows.
-    eos.kind = sph::Eos::Kind::Compaction;
-    eos.compaction.loading = read_table(e, "loading", 2, false);
-    eos.compaction.sound_speed = read_table(e, "sound_speed", 1, true);
-    if (eos.compaction.loading.y.front() != 0.0)
-      e.error("loading", "the loading curve must start at zero pressure (the initial density)");
-    for (std::size_t k = 1; k < eos.compaction.loading.y.size(); ++k)
-      if (!(eos.compaction.loading.y[k] > eos.compaction.loading.y[k - 1]))
-        e.error("loading", "the pressure must increase with density");
-    eos.compaction.tensile_limit = e.number("tensile_limit", 0.0);
-    if (eos.compaction.tensile_limit < 0.0)
-      e.error("tensile_limit", "expected a tension magnitude >= 0");
-  } else if (type == "hjc") {
-    eos.kind = sph::Eos::Kind::Hjc; // constants from the material's 'hjc' map
+SphRegion read_region_of_particles(KeyReader& b, int dim, double spacing,
+                                   const std::vector<MaterialSpec>& materials) {
+  SphRegion block;
+  block.material = find_material(b, "material", materials, b.text("material"));
+  const MaterialSpec& mat = materials[block.material];
+  if (b.has("box") == b.has("ring")) b.error("box", "give exactly one of 'box' or 'ring'");
+  block.spacing = spacing > 0.0 ? b.positive("spacing", spacing) : b.positive("spacing");
+  block.region = read_region(b, dim, kSolids);
+  const Region& g = block.region;
+  if (g.ring) {
+    if (block.spacing > g.ring->outer_radius - g.ring->inner_radius)
+      b.error("spacing", "larger than the ring's thickness");
   } else {
-    eos.kind = sph::Eos::Kind::LinearPolynomial;
-    eos.linear_polynomial.rho0 = e.positive("rho0");
-    const std::vector<double> c = e.numbers("c", 7);
-    for (int k = 0; k < 7; ++k) eos.linear_polynomial.c[k] = c[k];
+    for (int d = 0; d < dim; ++d)
+      if (!(g.box->hi[d] > g.box->lo[d])) b.error("box", "the box is empty along an axis");
+    for (int d = 0; d < dim; ++d)
+      if (block.spacing > g.box->hi[d] - g.box->lo[d])
+        b.error("spacing", "larger than the box along an axis");
   }
-  e.finish();
-  return eos;
+  const EosSpec& eos = *mat.eos;
+  const double natural = mat.density > 0.0 ? mat.density : natural_density(mat);
+  block.density = b.positive("density", natural);
+  if (!(block.density > 0.0)) b.error("density", "required value is missing");
+  const bool energy_free =
+      eos.kind == EosSpec::Kind::Compaction || eos.kind == EosSpec::Kind::Hjc;
+  if (energy_free && b.has("energy"))
+    b.error("energy", "this equation of state does not depend on the internal energy");
+  if (b.has("pressure") == b.has("energy") && eos.kind != EosSpec::Kind::Jwl && !energy_free)
+    b.error("energy", "give exactly one of 'energy' (J/kg) or 'pressure'");
+  if (b.has("pressure")) {
+    if (eos.kind != EosSpec::Kind::IdealGas)
+      b.error("pressure", "an initial pressure is turned into energy for an ideal gas only; "
+                          "give 'energy'");
+    block.energy = b.positive("pressure") / ((eos.ideal_gas.gamma - 1.0) * block.density);
+  } else {
+    block.energy = b.number("energy", eos.kind == EosSpec::Kind::Jwl ? eos.jwl.e0 : 0.0);
+  }
+  if (b.has("velocity")) block.velocity = read_point(b, "velocity", dim);
+  b.allow("velocity");
+  block.fixed = b.choice("motion", {"free", "fixed"}, "free") == "fixed";
+  if (block.fixed && b.has("velocity")) b.error("velocity", "a fixed region does not move");
+  b.finish();
+  return block;
 }
 
-int find_material(KeyReader& r, const std::string& key, const SphSpec& s) {
-  const std::string name = r.text(key);
-  for (std::size_t k = 0; k < s.materials.size(); ++k)
-    if (s.materials[k].name == name) return static_cast<int>(k);
-  std::string names;
-  for (const auto& m : s.materials) names += (names.empty() ? "" : ", ") + m.name;
-  r.error(key, "no material is named '" + name + "' (materials: " + names + ")");
-}
-
-} // namespace
-
-SphSpec parse_sph(KeyReader& r) {
-  SphSpec s;
-  {
-    KeyReader m = r.map("model");
-    s.dimension = m.integer("dimension", 0, 1, 3);
-    s.smoothing = m.positive("smoothing", 1.5);
-    s.settings.kernel =
-        m.choice("kernel", {"cubic_spline", "wendland_c2"}, "cubic_spline") == "cubic_spline"
-            ? kernels::SphKernel::CubicSpline
-            : kernels::SphKernel::WendlandC2;
-    s.settings.gradient_correction = m.choice("gradient_correction", {"off", "on"}, "off") == "on";
-    if (s.smoothing < 1.0 || s.smoothing > 3.0)
-      m.error("smoothing",
-              "expected h / spacing between 1 and 3, got " + std::to_string(s.smoothing));
-    m.finish();
-  }
-  const int dim = s.dimension;
-  for (KeyReader& m : r.map_list("materials")) {
-    sph::Material mat;
-    mat.name = m.text("name");
-    for (const auto& other : s.materials)
-      if (other.name == mat.name) m.error("name", "another material is named '" + mat.name + "'");
-    KeyReader e = m.map("eos");
-    mat.eos = read_eos(e);
-    if (auto h = m.optional_map("hjc")) mat.hjc = read_hjc(*h);
-    if (auto st = m.optional_map("strength")) {
-      // The deviatoric stress of a solid; the J2 return uses mu = G (E = 2G, nu = 0).
-      mat.strength.enabled = true;
-      const bool yield_given = st->has("yield_stress") || st->has("hardening");
-      const std::string model = st->choice("model", {"elastic", "von_mises", "granular", "hjc"},
-                                           yield_given ? "von_mises" : "elastic");
-      using Model = sph::Strength::Model;
-      if (model == "granular") {
-        mat.strength.model = Model::Granular;
-        mat.strength.granular.yield = read_table(*st, "yield", 2, false);
-        if (st->has("shear_modulus") == st->has("shear_modulus_table"))
-          st->error("shear_modulus", "give exactly one of 'shear_modulus' or "
-                                     "'shear_modulus_table' [[density, G], ...]");
-        if (st->has("shear_modulus")) {
-          mat.strength.shear_modulus = st->positive("shear_modulus");
-        } else {
-          mat.strength.granular.shear_modulus = read_table(*st, "shear_modulus_table", 1, true);
-        }
-      } else if (model == "hjc") {
-        mat.strength.model = Model::Hjc;
-        mat.strength.shear_modulus = mat.hjc.shear_modulus;
-      } else {
-        mat.strength.shear_modulus = st->positive("shear_modulus");
-        mat.strength.yield.E = 2.0 * mat.strength.shear_modulus;
-        mat.strength.yield.nu = 0.0;
-        if (model == "von_mises") {
-          if (!yield_given) st->error("yield_stress", "required value is missing");
-          mat.strength.model = Model::VonMises;
-          read_hardening(*st, mat.strength.yield);
-        }
-      }
-      mat.strength.failure_strain = st->positive("failure_strain", 0.0);
-      if (st->has("failure_strain") && !(mat.strength.failure_strain > 0.0))
-        st->error("failure_strain", "expected a positive plastic strain");
-      st->finish();
-    }
-    const bool hjc_eos = mat.eos.kind == sph::Eos::Kind::Hjc;
-    const bool hjc_strength = mat.strength.model == sph::Strength::Model::Hjc;
-    if (hjc_eos != hjc_strength)
-      m.error(hjc_eos ? "strength" : "eos",
-              "the HJC model needs both 'eos: {type: hjc}' and 'strength: {model: hjc}'");
-    m.finish();
-    s.materials.push_back(mat);
-  }
-  if (s.materials.empty()) r.error("materials", "at least one material is required");
-  for (KeyReader& b : r.map_list("blocks")) {
-    SphBlock block;
-    const int k = find_material(b, "material", s);
-    block.material = s.materials[k].name;
-    if (b.has("box") == b.has("ring")) b.error("box", "give exactly one of 'box' or 'ring'");
-    block.spacing = b.positive("spacing");
-    if (b.has("ring")) {
-      // A ring (2D): concentric circles of particles between the two radii.
-      if (dim != 2) b.error("ring", "rings are available in 2D only");
-      KeyReader g = b.map("ring");
-      block.is_ring = true;
-      block.ring.center = read_point(g, "center", dim);
-      block.ring_inner_radius = g.positive("inner_radius");
-      block.ring.radius = g.positive("outer_radius");
-      if (!(block.ring.radius > block.ring_inner_radius))
-        g.error("outer_radius", "must exceed inner_radius");
-      if (block.spacing > block.ring.radius - block.ring_inner_radius)
-        b.error("spacing", "larger than the ring's thickness");
-      g.finish();
-    } else {
-      read_box(b, "box", dim, 0.0, block.lo, block.hi);
-      for (int d = 0; d < dim; ++d)
-        if (!(block.hi[d] > block.lo[d])) b.error("box", "the box is empty along an axis");
-      for (int d = 0; d < dim; ++d)
-        if (block.spacing > block.hi[d] - block.lo[d])
-          b.error("spacing", "larger than the box along an axis");
-    }
-    if (auto c = b.optional_map("inside")) {
-      // A round block: a disc in 2D, a cylinder along z in 3D.
-      if (dim == 1) c->error("center", "'inside' needs 2D or 3D");
-      SphCircle keep;
-      const std::vector<double> at = c->numbers("center", 2);
-      keep.center = {at[0], at[1], 0.0};
-      keep.radius = c->positive("radius");
-      c->finish();
-      block.inside = keep;
-    }
-    for (KeyReader& c : b.map_list("holes")) {
-      if (dim == 1) c.error("center", "holes need 2D or 3D");
-      SphCircle hole;
-      const std::vector<double> at = c.numbers("center", 2);
-      hole.center = {at[0], at[1], 0.0};
-      hole.radius = c.positive("radius");
-      c.finish();
-      block.holes.push_back(hole);
-    }
-    const sph::Eos& eos = s.materials[k].eos;
-    double natural = 0.0; // the reference density of the equation of state, where it has one
-    if (eos.kind == sph::Eos::Kind::Jwl) natural = eos.jwl.rho0;
-    if (eos.kind == sph::Eos::Kind::Hjc) natural = s.materials[k].hjc.rho0;
-    if (eos.kind == sph::Eos::Kind::Compaction) natural = eos.compaction.loading.x.front();
-    block.density = b.positive("density", natural);
-    if (!(block.density > 0.0)) b.error("density", "required value is missing");
-    const bool energy_free =
-        eos.kind == sph::Eos::Kind::Compaction || eos.kind == sph::Eos::Kind::Hjc;
-    if (energy_free && b.has("energy"))
-      b.error("energy", "this equation of state does not depend on the internal energy");
-    if (b.has("pressure") == b.has("energy") && eos.kind != sph::Eos::Kind::Jwl && !energy_free)
-      b.error("energy", "give exactly one of 'energy' (J/kg) or 'pressure'");
-    if (b.has("pressure")) {
-      if (eos.kind != sph::Eos::Kind::IdealGas)
-        b.error("pressure", "an initial pressure is turned into energy for an ideal gas only; "
-                            "give 'energy'");
-      block.energy = b.positive("pressure") / ((eos.ideal_gas.gamma - 1.0) * block.density);
-    } else {
-      block.energy = b.number("energy", eos.kind == sph::Eos::Kind::Jwl ? eos.jwl.e0 : 0.0);
-    }
-    if (b.has("velocity")) block.velocity = read_point(b, "velocity", dim);
-    b.allow("velocity");
-    block.fixed = b.choice("motion", {"free", "fixed"}, "free") == "fixed";
-    if (block.fixed && b.has("velocity")) b.error("velocity", "a fixed block does not move");
-    b.finish();
-    s.blocks.push_back(block);
-  }
-  if (s.blocks.empty()) r.error("blocks", "at least one block of particles is required");
-  for (KeyReader& l : r.map_list("loads")) {
-    SphBlastLoad load;
-    load.key_path = l.path();
-    load.name = l.text("name");
-    read_box(l, "box", dim, 1e300, load.lo, load.hi);
-    KeyReader b = l.map("blast");
-    load.tnt_mass = b.positive("tnt_mass");
-    load.surface_burst = b.choice("burst", {"surface", "free_air"}, "surface") == "surface";
-    load.charge = read_point(b, "charge_at", dim);
-    load.normal = read_unit_vector(b, "normal", dim);
-    load.clamp_below_range = b.choice("near_field", {"error", "clamp"}, "error") == "clamp";
-    b.finish();
-    l.finish();
-    s.loads.push_back(load);
-  }
-  for (KeyReader& b : r.map_list("boundaries")) {
-    SphTransmitting t;
-    t.key_path = b.path();
-    t.name = b.text("name");
-    b.choice("type", {"transmitting"}, "");
-    read_box(b, "box", dim, 1e300, t.lo, t.hi);
-    t.normal = read_unit_vector(b, "normal", dim);
-    b.finish();
-    s.transmitting.push_back(t);
-  }
-  for (KeyReader& m : r.map_list("symmetry")) {
-    sph::SymmetryPlane plane;
+/// One entry of `boundary:`: a blast, a transmitting boundary or a symmetry plane.
+void read_condition(KeyReader& c, int dim, SphSpec& s) {
+  const std::string name = c.text("name");
+  check_name(c, "name", name);
+  int given = 0;
+  for (const char* k : {"blast", "transmitting", "symmetry"}) given += c.has(k) ? 1 : 0;
+  if (given != 1) c.error("name", "give exactly one of blast, transmitting or symmetry");
+  if (c.has("symmetry")) {
+    KeyReader m = c.map("symmetry");
+    SphSymmetry plane;
+    plane.name = name;
     const std::vector<std::string> axes{"x", "y", "z"};
     const std::string axis =
         m.choice("axis", std::vector<std::string>(axes.begin(), axes.begin() + dim), "");
@@ -346,7 +97,69 @@ SphSpec parse_sph(KeyReader& r) {
       if (other.axis == plane.axis) m.error("axis", "another symmetry plane is normal to " + axis);
     m.finish();
     s.symmetry.push_back(plane);
+  } else {
+    const Region region = read_region(c, dim, kSolids);
+    if (region.everything()) c.error("box", "a boundary needs the region of its particles");
+    if (c.has("blast")) {
+      SphBlastLoad load;
+      load.key_path = c.path();
+      load.name = name;
+      load.region = region;
+      KeyReader b = c.map("blast");
+      load.blast = read_blast(b, dim, true);
+      s.loads.push_back(load);
+    } else {
+      SphTransmitting t;
+      t.key_path = c.path();
+      t.name = name;
+      t.region = region;
+      KeyReader m = c.map("transmitting");
+      t.normal = read_unit_vector(m, "normal", dim);
+      m.finish();
+      s.transmitting.push_back(t);
+    }
   }
+  for (const char* k : {"blast", "transmitting", "symmetry"}) c.allow(k);
+  c.finish();
+}
+
+} // namespace
+
+SphSpec parse_sph(KeyReader& r, const ProblemSpec& front) {
+  SphSpec s;
+  if (front.model_type == ModelType::PlaneStress)
+    r.error("model", "analysis sph takes model.type uniaxial_strain, plane_strain or solid_3d");
+  s.dimension = front.dimension;
+  const int dim = s.dimension;
+  double spacing = 0.0;
+  if (auto m = r.optional_map("discretisation")) {
+    spacing = m->positive("spacing", 0.0);
+    s.smoothing = m->positive("smoothing", 1.5);
+    s.numerics.kernel =
+        m->choice("kernel", {"cubic_spline", "wendland_c2"}, "cubic_spline") == "cubic_spline"
+            ? kernels::SphKernel::CubicSpline
+            : kernels::SphKernel::WendlandC2;
+    s.numerics.gradient_correction =
+        m->choice("gradient_correction", {"off", "on"}, "off") == "on";
+    if (s.smoothing < 1.0 || s.smoothing > 3.0)
+      m->error("smoothing",
+               "expected h / spacing between 1 and 3, got " + std::to_string(s.smoothing));
+    m->finish();
+  }
+  // The materials the particles use, in the order of the list.
+  const std::vector<MaterialSpec>& all = front.materials;
+  std::vector<KeyReader> regions = r.map_list("regions");
+  if (regions.empty()) r.error("regions", "at least one region of particles is required");
+  std::vector<char> used(all.size(), 0);
+  for (KeyReader& b : regions) used[find_material(b, "material", all, b.text("material"))] = 1;
+  for (std::size_t k = 0; k < all.size(); ++k)
+    if (used[k]) {
+      take_material(all[k]);
+      s.materials.push_back(all[k]);
+    }
+  for (KeyReader& b : regions)
+    s.regions.push_back(read_region_of_particles(b, dim, spacing, s.materials));
+  for (KeyReader& c : r.map_list("boundary")) read_condition(c, dim, s);
   if (auto d = r.optional_map("detonation")) {
     if (d->has("point") == d->has("plane"))
       d->error("point", "give exactly one of 'point' or 'plane: {at, normal}'");
@@ -358,27 +171,27 @@ SphSpec parse_sph(KeyReader& r) {
       s.detonation_normal = read_unit_vector(plane, "normal", dim);
       plane.finish();
     }
-    s.settings.burn_width = d->positive("burn_width", s.settings.burn_width);
-    s.settings.ignition_compression =
-        d->positive("ignition_compression", s.settings.ignition_compression);
+    s.numerics.burn_width = d->positive("burn_width", s.numerics.burn_width);
+    s.numerics.ignition_compression =
+        d->positive("ignition_compression", s.numerics.ignition_compression);
     d->finish();
   }
   if (auto v = r.optional_map("viscosity")) {
-    s.settings.alpha = v->number("alpha", 1.0);
-    s.settings.beta = v->number("beta", 1.0);
-    s.settings.phi = v->positive("phi", 0.1);
-    if (s.settings.alpha < 0.0 || s.settings.beta < 0.0)
+    s.numerics.alpha = v->number("alpha", 1.0);
+    s.numerics.beta = v->number("beta", 1.0);
+    s.numerics.phi = v->positive("phi", 0.1);
+    if (s.numerics.alpha < 0.0 || s.numerics.beta < 0.0)
       v->error("alpha", "the viscosity coefficients must not be negative");
     v->finish();
   }
   if (auto a = r.optional_map("artificial_stress")) {
-    s.settings.artificial_stress = a->positive("epsilon", 0.3);
-    s.settings.artificial_stress_exponent = a->integer("exponent", 4, 1, 12);
+    s.numerics.artificial_stress = a->positive("epsilon", 0.3);
+    s.numerics.artificial_stress_exponent = a->integer("exponent", 4, 1, 12);
     a->finish();
   }
   if (auto f = r.optional_map("interface")) {
-    // The inter-material penalty force (sph/hydro.hpp, Settings::Penalty).
-    sph::Settings::Penalty& pen = s.settings.penalty;
+    // The inter-material penalty force (sph::Settings::Penalty).
+    SphNumerics::Penalty& pen = s.numerics.penalty;
     pen.pressure = f->positive("penalty_pressure");
     pen.n1 = f->integer("n1", 12, 1, 32);
     pen.n2 = f->integer("n2", 6, 0, 31);
@@ -390,20 +203,14 @@ SphSpec parse_sph(KeyReader& r) {
   {
     KeyReader t = r.map("time");
     s.end_time = t.positive("end");
-    s.settings.courant = t.positive("courant", 0.3);
-    if (s.settings.courant > 1.0) t.error("courant", "expected a Courant number <= 1");
+    s.numerics.courant = t.positive("courant", 0.3);
+    if (s.numerics.courant > 1.0) t.error("courant", "expected a Courant number <= 1");
     t.finish();
   }
   if (auto o = r.optional_map("output")) {
     s.history_interval = o->positive("history_interval", 0.0);
     s.fields_interval = o->positive("fields_interval", 0.0);
-    for (KeyReader& g : o->map_list("gauges")) {
-      SphGauge gauge;
-      gauge.name = g.text("name");
-      gauge.at = read_point(g, "at", dim);
-      g.finish();
-      s.gauges.push_back(gauge);
-    }
+    s.gauges = read_gauges(*o, dim);
     o->finish();
   }
   return s;

@@ -49,6 +49,8 @@ public:
   std::vector<KeyReader> map_list(const std::string& key);
   /// The raw node (marks the key as read).
   YAML::Node raw(const std::string& key);
+  /// The whole map (marks every key as read).
+  YAML::Node raw_map();
 
   /// Throws if the map has a key that was never read.
   void finish() const;

@@ -1,9 +1,13 @@
 #pragma once
-// A validated, typed problem description (what a problem YAML file says).
+// A validated, typed problem description (what a problem YAML file says): the front every
+// analysis shares (name, units, analysis, model, materials, geometry) and the part of each
+// analysis. Plain data: no solver header is included.
 #include "meshfree/core/types.hpp"
 #include "meshfree/geometry/domain.hpp"
 #include "meshfree/geometry/node_generation.hpp"
+#include "meshfree/io/material_spec.hpp"
 #include "meshfree/io/pd_spec.hpp"
+#include "meshfree/io/region_spec.hpp"
 #include "meshfree/io/sph_spec.hpp"
 #include "meshfree/kernels/shape_functions.hpp"
 #include "meshfree/materials/elastic.hpp"
@@ -17,6 +21,9 @@
 namespace mf::io {
 
 enum class Analysis { ElasticStatic, ElastoplasticStatic, ModelProblem1D, Peridynamics, Sph };
+
+/// model.type: the kinematic model of every analysis (uniaxial strain is 1D SPH).
+enum class ModelType { PlaneStress, PlaneStrain, Solid3D, UniaxialStrain };
 
 /// Meshfree Galerkin (RK/MLS nodes on background cells) or finite elements on a mesh; both feed
 /// the same assembly, material and solver.
@@ -43,16 +50,10 @@ struct DiscretisationSpec {
   int boundary_order = 3;  // Gauss points per boundary part
 };
 
-/// Which boundary pieces a condition acts on: named pieces, optionally clipped to a box.
-struct BoundarySelector {
-  std::vector<std::string> names;
-  std::optional<BoundingBox> box;
-};
-
 struct BoundaryCondition {
   std::string name;
   std::string key_path; // e.g. "boundary[0]", for messages
-  BoundarySelector on;
+  Region on; // named boundary pieces (edges), optionally clipped to a box
   // Displacement (penalty) constraint on the components with mask = 1.
   bool constrains = false;
   Vec2 mask{0.0, 0.0};
@@ -82,11 +83,6 @@ struct NonlinearSpec {
   int max_cutbacks = 8; // an increment is halved at most this many times in a row
 };
 
-struct MonitorSpec {
-  std::string name;
-  Vec2 at{0.0, 0.0};
-};
-
 struct LineSpec {
   std::string name;
   Vec2 from{0.0, 0.0}, to{0.0, 0.0};
@@ -108,17 +104,24 @@ struct ProblemSpec {
   std::string description;
   std::string units;
   Analysis analysis = Analysis::ElasticStatic;
-  materials::PlaneModel model = materials::PlaneModel::PlaneStress;
+  std::string stage; // the stage's name when the file lists `stages:`
+  ModelType model_type = ModelType::PlaneStress;
+  int dimension = 2;
+  materials::PlaneModel model = materials::PlaneModel::PlaneStress; // Galerkin: from model_type
   double thickness = 1.0;
+  std::vector<MaterialSpec> materials; // the file's `materials:` list
+  // Galerkin analyses: the material they use (a `material:` reference or the single entry).
+  int material_index = 0;
   materials::IsotropicElastic material;
-  std::optional<materials::J2Parameters> plasticity; // material.plasticity (E and nu from above)
-  geometry::Domain domain = geometry::Domain::rectangle({0.0, 0.0}, {1.0, 1.0});
+  std::optional<materials::J2Parameters> plasticity; // its plasticity (E and nu from above)
+  geometry::Domain domain = geometry::Domain::rectangle({0.0, 0.0}, {1.0, 1.0}); // 2D bodies
+  std::optional<Box> box; // a 3D body (peridynamics, model solid_3d)
   DiscretisationSpec discretisation;
   std::vector<BoundaryCondition> boundary;
   Vec2 body_force{0.0, 0.0}; // force per volume
   std::optional<verification::ExactSolution> exact;
   std::vector<LineSpec> lines;
-  std::vector<MonitorSpec> monitors;
+  std::vector<GaugeSpec> gauges; // points whose displacement history is recorded
   int fields_every = 1; // write fields every this many converged increments (and the last)
   std::vector<LoadStep> steps;
   NonlinearSpec nonlinear;
@@ -133,9 +136,9 @@ ProblemSpec read_problem(const std::string& path, const std::vector<std::string>
 /// `base_dir` (ending in '/', or empty) resolves relative paths in the file, e.g. mesh files.
 ProblemSpec parse_problem(YAML::Node root, const std::string& base_dir = "");
 
-/// The pieces of the boundary a selector picks; throws naming `key_path` if none.
-std::vector<geometry::Curve> select_boundary(const geometry::Domain& domain,
-                                             const BoundarySelector& on,
+/// The pieces of the boundary a region picks (its named edges, clipped to its box); throws
+/// naming `key_path` if none.
+std::vector<geometry::Curve> select_boundary(const geometry::Domain& domain, const Region& on,
                                              const std::string& key_path);
 
 } // namespace mf::io

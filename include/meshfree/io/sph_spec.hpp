@@ -1,72 +1,80 @@
 #pragma once
-// What an SPH problem file says (analysis: sph), validated and typed.
-#include "meshfree/sph/hydro.hpp"
-#include <array>
+// What the SPH part of a problem file says (analysis: sph), validated and typed: plain data that
+// the SPH builder maps to the solver's own settings.
+#include "meshfree/io/material_spec.hpp"
+#include "meshfree/io/region_spec.hpp"
+#include "meshfree/kernels/sph_kernel.hpp"
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace mf::io {
 
-/// A circle in the x-y plane (a cylinder along z in 3D).
-struct SphCircle {
-  std::array<double, 3> center{0, 0, 0};
-  double radius = 0.0;
-};
-
-/// A block of particles, one material, uniform initial state: a box on a lattice of the given
-/// spacing, less any holes, or (2D) a ring of concentric particle circles.
-struct SphBlock {
-  std::string material;
-  std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0}; // unused axes: 0
-  std::vector<SphCircle> holes;                   // particles inside are left out
-  std::optional<SphCircle> inside;                // if given, only particles inside are kept
-  bool is_ring = false;
-  SphCircle ring; // center and outer radius
-  double ring_inner_radius = 0.0;
+/// A body of particles, one material, uniform initial state: a box on a lattice of the given
+/// spacing (kept inside the region's circle, less its holes), or (2D) a ring of concentric
+/// particle circles.
+struct SphRegion {
+  int material = 0; // index into SphSpec::materials
+  Region region;
   double spacing = 0.0;
   double density = 0.0;
   double energy = 0.0; // specific internal energy [J/kg]
-  std::array<double, 3> velocity{0, 0, 0};
+  Point velocity{0, 0, 0};
   bool fixed = false; // a wall of fixed particles
 };
 
-/// A Kingery-Bulmash blast on the particles of a box (a surface layer one particle thick).
+/// A Kingery-Bulmash blast on the particles of a region (a surface layer one particle thick).
 struct SphBlastLoad {
   std::string name, key_path;
-  std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0};
-  double tnt_mass = 0.0;
-  bool surface_burst = true;
-  bool clamp_below_range = false; // closer than the fits reach: the values at their nearest end
-  std::array<double, 3> charge{0, 0, 0}, normal{0, 0, 0}; // normal: unit, outward
+  Region region;
+  BlastSpec blast;
 };
 
-/// A transmitting (Lysmer) boundary on the particles of a box, with its outward normal.
+/// A transmitting (Lysmer) boundary on the particles of a region, with its outward normal.
 struct SphTransmitting {
   std::string name, key_path;
-  std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0};
-  std::array<double, 3> normal{0, 0, 0};
+  Region region;
+  Point normal{0, 0, 0};
 };
 
-struct SphGauge {
+/// A mirror plane normal to a coordinate axis.
+struct SphSymmetry {
   std::string name;
-  std::array<double, 3> at{0, 0, 0};
+  int axis = 0;
+  double at = 0.0;
+};
+
+/// The numerical parameters of the SPH solver (defaults: those of sph::Settings).
+struct SphNumerics {
+  kernels::SphKernel kernel = kernels::SphKernel::CubicSpline;
+  bool gradient_correction = false;
+  double alpha = 1.0, beta = 1.0, phi = 0.1; // Monaghan artificial viscosity
+  double courant = 0.3;
+  double burn_width = 2.0;
+  double ignition_compression = 0.1;
+  double artificial_stress = 0.0;
+  int artificial_stress_exponent = 4;
+  struct Penalty {
+    double pressure = 0.0;
+    int n1 = 12, n2 = 6;
+    double distance = 1.0;
+  } penalty;
 };
 
 struct SphSpec {
-  int dimension = 1;      // 1, 2 (plane strain, per unit thickness) or 3
+  int dimension = 1;      // 1 (uniaxial strain), 2 (plane strain, per unit thickness) or 3
   double smoothing = 1.5; // h = smoothing * spacing
-  std::vector<sph::Material> materials;
-  std::vector<SphBlock> blocks;
-  std::optional<std::array<double, 3>> detonation_point;  // a point, or with the normal a plane
-  std::optional<std::array<double, 3>> detonation_normal; // unit
-  sph::Settings settings;
+  std::vector<MaterialSpec> materials; // each with an equation of state
+  std::vector<SphRegion> regions;
+  std::optional<Point> detonation_point;  // a point, or with the normal a plane
+  std::optional<Point> detonation_normal; // unit
+  SphNumerics numerics;
   double end_time = 0.0;
   double history_interval = 0.0, fields_interval = 0.0; // 0: every step / start and end only
-  std::vector<SphGauge> gauges;
+  std::vector<GaugeSpec> gauges;
   std::vector<SphBlastLoad> loads;
   std::vector<SphTransmitting> transmitting;
-  std::vector<sph::SymmetryPlane> symmetry; // read from 'symmetry: [{axis: x, at: 0}]'
+  std::vector<SphSymmetry> symmetry;
 };
 
 } // namespace mf::io

@@ -1,0 +1,25 @@
+#pragma once
+// The reader of each analysis: what follows the front (name, units, analysis, model, materials,
+// geometry) that read_problem reads for every analysis.
+#include "meshfree/io/key_reader.hpp"
+#include "meshfree/io/problem_spec.hpp"
+#include <string>
+
+namespace mf::io {
+
+/// geometry: a rectangle or a polygon, with circular holes (2D bodies).
+geometry::Domain read_domain(KeyReader& geometry);
+
+/// elastic_static and elastoplastic_static: the material, discretisation, exact solution, body
+/// force, boundary, steps, nonlinear and output.
+void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir);
+/// model_problem_1d: problem_1d, discretisation and penalty.
+void parse_model_1d(KeyReader& r, ProblemSpec& p, const std::string& base_dir);
+/// peridynamics: material, interfaces, discretisation, regions, notches, cracks, functions,
+/// boundary, impactors, time and output. `base_dir` resolves relative file names.
+PdSpec parse_pd(KeyReader& r, const ProblemSpec& front, const std::string& base_dir);
+/// sph: discretisation, regions (the bodies of particles), boundary, detonation, viscosity,
+/// artificial stress, interface, time and output.
+SphSpec parse_sph(KeyReader& r, const ProblemSpec& front);
+
+} // namespace mf::io

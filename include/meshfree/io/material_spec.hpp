@@ -1,0 +1,61 @@
+#pragma once
+// One entry of a problem file's `materials:` list: elastic constants, density, and the optional
+// parts each analysis takes what it needs from (plasticity for the Galerkin solver and SPH
+// solids, an equation of state and a strength model for SPH, bond parameters for peridynamics).
+#include "meshfree/materials/eos.hpp"
+#include "meshfree/materials/geomaterials.hpp"
+#include "meshfree/materials/j2_plasticity.hpp"
+#include <optional>
+#include <string>
+
+namespace mf::io {
+
+/// An equation of state; the kind selects which member is used.
+struct EosSpec {
+  enum class Kind { IdealGas, Jwl, MieGruneisen, LinearPolynomial, Compaction, Hjc };
+  Kind kind = Kind::IdealGas;
+  materials::IdealGas ideal_gas;
+  materials::Jwl jwl;
+  materials::MieGruneisen mie_gruneisen;
+  materials::LinearPolynomial linear_polynomial;
+  materials::Compaction compaction;
+  bool has_unreacted = false;        // JWL: the unreacted explosive (Mie-Grueneisen on rho0)
+  materials::MieGruneisen unreacted; // its shock Hugoniot U_s = c0 + s u_p and gamma0
+};
+
+/// A strength model other than J2 (which comes from `plasticity:`): a granular yield table and
+/// shear modulus table (soil) or the Holmquist-Johnson-Cook model (concrete, constants from the
+/// material's `hjc:`), and the plastic strain at which a particle fails (0: never).
+struct StrengthSpec {
+  enum class Model { J2, Granular, Hjc };
+  Model model = Model::J2;
+  materials::GranularStrength granular;
+  double failure_strain = 0.0;
+};
+
+/// Peridynamic bond parameters (the micromodulus comes from E, the bulk modulus or is given).
+struct BondSpec {
+  bool microplastic = false;     // law: pmb | microplastic
+  double micromodulus = 0.0;     // > 0: c given directly
+  double fracture_energy = 0.0;  // > 0: critical stretch from G0
+  double critical_stretch = 0.0; // > 0: given directly
+  double yield_stretch = 0.0;    // > 0: micro-plastic bond
+  double alpha = 0.0;            // LAMMPS rule
+};
+
+struct MaterialSpec {
+  std::string name;
+  std::string key_path; // e.g. "materials[0]", for messages
+  double E = 0.0, nu = 0.0; // 0: not given
+  bool has_nu = false;
+  double shear_modulus = 0.0; // given, or E / (2 (1 + nu)) from E and nu; 0: none
+  double bulk_modulus = 0.0;  // given only
+  double density = 0.0;       // 0: not given
+  std::optional<materials::J2Parameters> plasticity; // E and nu from above
+  std::optional<EosSpec> eos;
+  std::optional<StrengthSpec> strength;
+  std::optional<materials::Hjc> hjc;
+  std::optional<BondSpec> bond;
+};
+
+} // namespace mf::io

@@ -1,0 +1,79 @@
+#pragma once
+// The shapes a problem file names: points, boxes, circles, rings and the regions built from them
+// (boundary selection, material regions, initial conditions, loads), gauges and blasts. One set
+// of types for every analysis, in 1, 2 and 3 dimensions: unused coordinates of a point are 0 and
+// unused axes of a box are unbounded.
+#include "meshfree/core/types.hpp"
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mf::io {
+
+using Point = Eigen::Vector3d;
+
+struct Box {
+  Point lo{0, 0, 0}, hi{0, 0, 0};
+  bool contains(const Point& p, double tol) const {
+    return (p - lo).minCoeff() >= -tol && (hi - p).minCoeff() >= -tol;
+  }
+};
+
+/// A disc in the x-y plane (a cylinder along z in 3D).
+struct Circle {
+  Point center{0, 0, 0};
+  double radius = 0.0;
+};
+
+/// The annulus between two radii about a centre in the x-y plane.
+struct Ring {
+  Point center{0, 0, 0};
+  double inner_radius = 0.0, outer_radius = 0.0;
+};
+
+/// A part of space or of a body's boundary: a box, a circle (only what lies inside it is kept),
+/// a ring, circular holes (what lies inside them is left out), and named boundary pieces of a 2D
+/// body. An empty region is everything.
+struct Region {
+  std::optional<Box> box;
+  std::optional<Circle> circle;
+  std::optional<Ring> ring;
+  std::vector<Circle> holes;
+  std::vector<std::string> edges;
+
+  bool everything() const { return !box && !circle && !ring && holes.empty() && edges.empty(); }
+  bool contains(const Point& p, double tol) const {
+    if (box && !box->contains(p, tol)) return false;
+    const auto r2 = [&p](const Point& c) {
+      const double dx = p.x() - c.x(), dy = p.y() - c.y();
+      return dx * dx + dy * dy;
+    };
+    if (circle && r2(circle->center) > circle->radius * circle->radius) return false;
+    for (const Circle& h : holes)
+      if (r2(h.center) < h.radius * h.radius) return false;
+    if (ring) {
+      const double d2 = r2(ring->center);
+      if (d2 < ring->inner_radius * ring->inner_radius ||
+          d2 > ring->outer_radius * ring->outer_radius)
+        return false;
+    }
+    return true;
+  }
+};
+
+/// A point whose history is recorded (the nearest particle, or the field at the point).
+struct GaugeSpec {
+  std::string name;
+  Point at{0, 0, 0};
+};
+
+/// A TNT charge whose air blast loads a face (Kingery-Bulmash, loads/blast.hpp).
+struct BlastSpec {
+  double tnt_mass = 0.0;          // kg of TNT (equivalent)
+  bool surface_burst = true;      // hemispherical surface burst, else spherical free air
+  bool clamp_below_range = false; // closer than the fits reach: the values at their nearest end
+  Point charge{0, 0, 0};          // the charge's centre
+  Point normal{0, 0, 0};          // unit outward normal of the loaded face
+};
+
+} // namespace mf::io

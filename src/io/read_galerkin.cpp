@@ -1,0 +1,443 @@
+// The Galerkin analyses of a problem file (elastic_static, elastoplastic_static and the 1D model
+// problem): body, discretisation, boundary conditions, load schedule and output. Every key is
+// checked; errors name the key path.
+#include "meshfree/io/analysis_read.hpp"
+#include "meshfree/io/spec_read.hpp"
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+namespace mf::io {
+
+namespace {
+
+kernels::WindowType window_type(const std::string& s) {
+  if (s == "cubic_spline") return kernels::WindowType::CubicSpline;
+  if (s == "quartic_spline") return kernels::WindowType::QuarticSpline;
+  return kernels::WindowType::Gaussian;
+}
+
+DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox& bounds,
+                                       const std::string& base_dir) {
+  KeyReader d = r.map("discretisation");
+  DiscretisationSpec s;
+  s.method =
+      d.choice("method", {"meshfree", "fem"}, "meshfree") == "fem" ? Method::Fem : Method::Meshfree;
+  if (auto f = d.optional_map("fem")) {
+    s.fem.element = f->choice("element", {"t3", "q4", "q8"}, "q8");
+    if (f->has("mesh")) {
+      const std::string mesh = f->text("mesh");
+      s.fem.mesh = !mesh.empty() && mesh.front() == '/' ? mesh : base_dir + mesh;
+      std::ifstream probe(s.fem.mesh);
+      if (!probe.good()) f->error("mesh", "cannot open the mesh file '" + s.fem.mesh + "'");
+    }
+    f->allow("mesh");
+    s.fem.order = f->integer("order", 0, 1, 10);
+    f->finish();
+  }
+  s.spacing = d.positive("spacing");
+  for (KeyReader& f : d.map_list("refinement")) {
+    geometry::Refinement ref;
+    const Box b = read_box(f, "box", 2);
+    ref.box = BoundingBox{b.lo.head<2>(), b.hi.head<2>()};
+    ref.spacing = f.positive("spacing");
+    if (ref.spacing >= s.spacing)
+      f.error("spacing", "a refinement must be finer than discretisation.spacing");
+    const Vec2 lo = ref.box.lo.cwiseMax(bounds.lo), hi = ref.box.hi.cwiseMin(bounds.hi);
+    const Vec2 extent = (hi - lo).cwiseMax(Vec2::Zero());
+    const double nodes = (extent.x() / ref.spacing + 1.0) * (extent.y() / ref.spacing + 1.0);
+    if (nodes > 2e7)
+      f.error("spacing", detail::concat("puts about ", static_cast<float>(nodes),
+                                        " nodes in the box; one run is meant for at most 2e7"));
+    f.finish();
+    s.refinement.push_back(ref);
+  }
+  const std::string approx = d.choice("approximation", {"rk", "mls"}, "rk");
+  s.shape.approximation = approx == "rk" ? kernels::Approximation::ReproducingKernel
+                                         : kernels::Approximation::MovingLeastSquares;
+  s.shape.basis = d.choice("basis", {"linear", "quadratic"}, "linear") == "linear"
+                      ? kernels::Basis::Linear
+                      : kernels::Basis::Quadratic;
+  s.shape.window.type = window_type(
+      d.choice("window", {"cubic_spline", "quartic_spline", "gaussian"}, "cubic_spline"));
+  s.shape.window.gaussian_shape = d.positive("gaussian_shape", 0.4);
+  s.shape.support = d.choice("support", {"circular", "rectangular"}, "circular") == "circular"
+                        ? kernels::SupportShape::Circular
+                        : kernels::SupportShape::Rectangular;
+  s.shape.dim = dim;
+  const double default_dilation = s.shape.basis == kernels::Basis::Quadratic ? 3.0 : 2.0;
+  s.dilation = d.scalar_or_vec2("dilation", Vec2(default_dilation, default_dilation));
+  const double min_dilation = s.shape.basis == kernels::Basis::Quadratic ? 2.0 : 1.0;
+  if (s.dilation.minCoeff() <= min_dilation)
+    d.error("dilation", "must exceed " + std::to_string(min_dilation) +
+                            " so that every point is covered by enough nodes for the basis");
+  if (auto q = d.optional_map("quadrature")) {
+    s.order = q->integer("order", 3, 2, 10);
+    s.cell_size = q->positive("cell_size", s.spacing);
+    s.cut_levels = q->integer("cut_levels", 2, 0, 6);
+    s.boundary_order = q->integer("boundary_order", s.order, 2, 10);
+    q->finish();
+  } else {
+    s.cell_size = s.spacing;
+    s.boundary_order = s.order;
+  }
+  d.finish();
+  return s;
+}
+
+/// `stiffness_scale` = E / h: the penalty is alpha = penalty_scale * E / h unless an absolute
+/// `penalty` is given (the thesis uses alpha = 1e12 with E = 2e5 MPa).
+BoundaryCondition read_condition(KeyReader& bc, double stiffness_scale) {
+  BoundaryCondition c;
+  c.key_path = bc.path();
+  c.name = bc.text("name");
+  check_name(bc, "name", c.name, false);
+  c.on = read_region(bc, 2, kEdges | kBox);
+  if (c.on.edges.empty() && !c.on.box)
+    bc.error("edges", "name the boundary pieces ('edges') or give a 'box'");
+  if (bc.has("displacement")) {
+    c.constrains = true;
+    YAML::Node n = bc.raw("displacement");
+    if (n.IsScalar() && n.Scalar() == "exact") {
+      c.value_from_exact = true;
+      c.mask = Vec2(1.0, 1.0);
+    } else {
+      KeyReader u(n, bc.path_of("displacement"));
+      if (u.has("x")) c.mask.x() = 1.0, c.value.x() = u.number("x");
+      if (u.has("y")) c.mask.y() = 1.0, c.value.y() = u.number("y");
+      u.allow("x");
+      u.allow("y");
+      if (u.has("exact") && (u.has("x") || u.has("y")))
+        u.error("exact", "give either prescribed values (x, y) or 'exact', not both");
+      if (u.has("exact")) {
+        const std::string comps = u.choice("exact", {"x", "y", "xy"}, "xy");
+        c.value_from_exact = true;
+        c.mask = Vec2(comps.find('x') != std::string::npos, comps.find('y') != std::string::npos);
+      }
+      u.allow("exact");
+      u.finish();
+      if (c.mask.isZero())
+        bc.error("displacement", "constrain at least one of x, y (or say 'exact')");
+    }
+    if (bc.has("penalty") && bc.has("penalty_scale"))
+      bc.error("penalty_scale",
+               "give either 'penalty' (absolute) or 'penalty_scale' (times E/h), not both");
+    c.penalty = bc.has("penalty") ? bc.positive("penalty")
+                                  : bc.positive("penalty_scale", 1e6) * stiffness_scale;
+  }
+  for (const char* key : {"penalty", "penalty_scale"}) {
+    if (!c.constrains && bc.has(key)) bc.error(key, "a penalty needs a 'displacement' condition");
+    bc.allow(key);
+  }
+  if (bc.has("traction")) {
+    c.loads = true;
+    YAML::Node n = bc.raw("traction");
+    if (n.IsScalar() && n.Scalar() == "exact")
+      c.traction_from_exact = true;
+    else
+      c.traction = bc.vec2("traction");
+  }
+  bc.allow("traction");
+  if (c.constrains == c.loads)
+    bc.error("name", "a boundary condition needs exactly one of 'displacement' or 'traction'");
+  bc.finish();
+  return c;
+}
+
+std::optional<verification::ExactSolution> read_exact(KeyReader& r) {
+  auto e = r.optional_map("exact");
+  if (!e) return std::nullopt;
+  const std::string kind = e->choice("solution", {"timoshenko_beam", "kirsch", "linear"}, "");
+  verification::ExactSolution out;
+  if (kind == "timoshenko_beam") {
+    verification::TimoshenkoBeam b;
+    b.P = e->number("P");
+    b.L = e->positive("L");
+    b.D = e->positive("D");
+    out = b;
+  } else if (kind == "kirsch") {
+    verification::KirschPlate k;
+    k.a = e->positive("radius");
+    k.sigma0 = e->number("sigma0");
+    out = k;
+  } else {
+    verification::LinearField f;
+    f.u0 = e->vec2("u0");
+    const std::vector<Vec2> g = e->vec2_list("gradient");
+    if (g.size() != 2) e->error("gradient", "expected [[dux/dx, dux/dy], [duy/dx, duy/dy]]");
+    f.G << g[0].x(), g[0].y(), g[1].x(), g[1].y();
+    out = f;
+  }
+  e->finish();
+  return out;
+}
+
+/// steps: [{name, increments, load_factor, factors: {condition: target}}]; see LoadStep.
+std::vector<LoadStep> read_steps(KeyReader& r, const std::vector<BoundaryCondition>& boundary) {
+  std::vector<LoadStep> steps;
+  const std::size_t n = boundary.size() + 1; // the body force is the last factor
+  std::vector<double> current(n, 0.0);
+  std::vector<KeyReader> list = r.map_list("steps");
+  if (list.empty())
+    r.error("steps", "an elastoplastic analysis needs a load schedule: a list of "
+                     "{name, load_factor, increments}");
+  for (KeyReader& k : list) {
+    LoadStep s;
+    s.name = k.text("name");
+    check_name(k, "name", s.name, false);
+    for (const auto& other : steps)
+      if (other.name == s.name) k.error("name", "another step is named '" + s.name + "'");
+    s.increments = k.integer("increments", 1, 1, 1000000);
+    std::vector<char> named(n, 0);
+    s.target = current;
+    if (auto f = k.optional_map("factors")) {
+      for (std::size_t c = 0; c < n; ++c) {
+        const std::string key = c < boundary.size() ? boundary[c].name : "body_force";
+        if (f->has(key)) {
+          s.target[c] = f->number(key);
+          named[c] = 1;
+        }
+      }
+      try {
+        f->finish();
+      } catch (const Error& e) {
+        fail(e.what(), " (factors name boundary conditions or 'body_force')");
+      }
+    }
+    if (k.has("load_factor")) {
+      const double lf = k.number("load_factor");
+      for (std::size_t c = 0; c < n; ++c)
+        if (!named[c]) s.target[c] = lf;
+    } else if (!k.has("factors")) {
+      k.error("load_factor", "give the step's target 'load_factor' or 'factors'");
+    }
+    k.allow("load_factor");
+    k.finish();
+    current = s.target;
+    steps.push_back(s);
+  }
+  return steps;
+}
+
+NonlinearSpec read_nonlinear(KeyReader& r) {
+  NonlinearSpec s;
+  if (auto n = r.optional_map("nonlinear")) {
+    s.tolerance = n->positive("tolerance", s.tolerance);
+    if (s.tolerance >= 1e-2)
+      n->error("tolerance", "a relative residual tolerance below 1e-2 is needed, got " +
+                                detail::concat(s.tolerance));
+    s.max_iterations = n->integer("max_iterations", s.max_iterations, 1, 200);
+    s.max_cutbacks = n->integer("max_cutbacks", s.max_cutbacks, 0, 30);
+    n->finish();
+  }
+  return s;
+}
+
+} // namespace
+
+geometry::Domain read_domain(KeyReader& g) {
+  const bool rect = g.has("rectangle"), poly = g.has("polygon");
+  if (rect == poly) g.error("rectangle", "give exactly one of 'rectangle' or 'polygon'");
+  geometry::Domain d = geometry::Domain::rectangle({0, 0}, {1, 1});
+  if (rect) {
+    KeyReader rr = g.map("rectangle");
+    const Vec2 origin = rr.has("origin") ? rr.vec2("origin") : Vec2(0.0, 0.0);
+    rr.allow("origin");
+    const Vec2 size = rr.vec2("size");
+    if (!(size.x() > 0.0 && size.y() > 0.0)) rr.error("size", "expected positive width and height");
+    rr.finish();
+    d = geometry::Domain::rectangle(origin, size);
+  } else {
+    KeyReader pr = g.map("polygon");
+    std::vector<Vec2> v = pr.vec2_list("vertices");
+    std::vector<std::string> names;
+    if (pr.has("edge_names")) {
+      YAML::Node n = pr.raw("edge_names");
+      if (!n.IsSequence() || n.size() != v.size())
+        pr.error("edge_names", "expected a list of " + std::to_string(v.size()) + " names");
+      for (const auto& e : n) {
+        if (!e.IsScalar()) pr.error("edge_names", "expected a list of names");
+        names.push_back(e.Scalar());
+      }
+    }
+    pr.allow("edge_names");
+    pr.finish();
+    try {
+      d = geometry::Domain::polygon(v, names);
+    } catch (const Error& e) {
+      fail(pr.path_of("vertices"), ": ", e.what());
+    }
+  }
+  for (KeyReader& h : g.map_list("holes")) {
+    geometry::Circle c;
+    c.center = h.vec2("center");
+    c.radius = h.positive("radius");
+    c.name = h.text("name", "");
+    check_name(h, "name", c.name, true);
+    h.finish();
+    d.add_hole(c);
+    bool outline_left = false;
+    for (const auto& piece : d.boundary())
+      outline_left = outline_left || piece.kind == geometry::Curve::Kind::Segment;
+    if (!outline_left) h.error("radius", "the hole covers the whole body");
+    const std::string name = d.holes().back().name;
+    bool cuts = false;
+    for (const auto& piece : d.boundary()) cuts = cuts || piece.name == name;
+    if (!cuts) h.error("center", "the hole '" + name + "' does not cut the body");
+  }
+  g.finish();
+  return d;
+}
+
+std::vector<geometry::Curve> select_boundary(const geometry::Domain& domain, const Region& on,
+                                             const std::string& key_path) {
+  std::vector<geometry::Curve> out;
+  const auto all = domain.boundary();
+  for (const auto& name : on.edges) {
+    bool known = false;
+    for (const auto& c : all) known = known || c.name == name;
+    if (!known) {
+      std::string names;
+      for (const auto& c : all)
+        if (names.find(c.name) == std::string::npos) names += (names.empty() ? "" : ", ") + c.name;
+      fail(key_path, ".edges: no boundary piece is named '", name, "' (the body's pieces: ", names,
+           ")");
+    }
+  }
+  for (const auto& c : all) {
+    const bool named =
+        on.edges.empty() || std::find(on.edges.begin(), on.edges.end(), c.name) != on.edges.end();
+    if (!named) continue;
+    if (!on.box) {
+      out.push_back(c);
+      continue;
+    }
+    const double tol = 1e-9 * (domain.bounds().size().maxCoeff());
+    for (const auto& [t0, t1] :
+         geometry::kept_intervals(c, [&](const Vec2& p) { return on.box->contains(Point(p.x(), p.y(), 0.0), tol); }))
+      out.push_back(c.piece(t0, t1));
+  }
+  double length = 0.0;
+  for (const auto& c : out) length += c.length();
+  if (out.empty() || length <= 0.0) fail(key_path, ": selects no part of the boundary");
+  return out;
+}
+
+void parse_model_1d(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
+  KeyReader m = r.map("problem_1d");
+  p.model_1d.length = m.positive("length");
+  p.model_1d.sine_amplitude = m.number("sine_amplitude", 1.0);
+  p.model_1d.sine_waves = m.positive("sine_waves", 1.0);
+  p.model_1d.linear = m.number("linear", 0.0);
+  m.finish();
+  const BoundingBox line{{0.0, 0.0}, {p.model_1d.length, 0.0}};
+  p.discretisation = read_discretisation(r, 1, line, base_dir);
+  p.model_1d.penalty = r.positive("penalty", 1e6 / p.discretisation.spacing);
+}
+
+namespace {
+
+/// The material of a Galerkin analysis: the one `material:` names, or the single entry; it
+/// needs E and nu, and plasticity exactly when the analysis is elastoplastic.
+void take_material(KeyReader& r, ProblemSpec& p, const std::string& analysis) {
+  if (r.has("material")) {
+    p.material_index = find_material(r, "material", p.materials, r.text("material"));
+  } else if (p.materials.size() != 1) {
+    r.error("material", "name the material of the body (the file lists " +
+                            std::to_string(p.materials.size()) + " materials)");
+  }
+  r.allow("material");
+  const MaterialSpec& m = p.materials[p.material_index];
+  if (!(m.E > 0.0)) material_error(m, "E", "analysis " + analysis + " needs Young's modulus E");
+  if (!m.has_nu)
+    material_error(m, "nu", "analysis " + analysis + " needs Poisson's ratio nu (or the shear "
+                            "modulus)");
+  p.material.E = m.E;
+  p.material.nu = m.nu;
+  p.plasticity = m.plasticity;
+}
+
+} // namespace
+
+void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
+  const bool plastic = p.analysis == Analysis::ElastoplasticStatic;
+  const std::string analysis = plastic ? "elastoplastic_static" : "elastic_static";
+  if (p.model_type != ModelType::PlaneStress && p.model_type != ModelType::PlaneStrain)
+    r.error("model", "analysis " + analysis + " takes model.type plane_stress or plane_strain");
+  take_material(r, p, analysis);
+  p.discretisation = read_discretisation(r, 2, p.domain.bounds(), base_dir);
+  if (p.discretisation.method == Method::Fem && p.discretisation.fem.mesh.empty() &&
+      (p.domain.vertices().size() != 4 || !p.domain.holes().empty() ||
+       std::abs(p.domain.area_estimate() - p.domain.bounds().size().prod()) >
+           1e-12 * p.domain.bounds().size().prod()))
+    fail("discretisation.fem.mesh: required for a body that is not a plain rectangle (a "
+         "structured mesh is generated only for rectangles)");
+  p.exact = read_exact(r);
+  if (r.has("body_force")) p.body_force = r.vec2("body_force");
+  r.allow("body_force");
+  // Default penalty: alpha = 1e6 E / h, stiff enough that the constraint error is ~1e-6 of the
+  // boundary displacement scale, and far from the round-off limit of a direct solve.
+  const double stiffness_scale = p.material.E / p.discretisation.spacing;
+  for (KeyReader& bc : r.map_list("boundary")) {
+    p.boundary.push_back(read_condition(bc, stiffness_scale));
+    const BoundaryCondition& c = p.boundary.back();
+    for (std::size_t k = 0; k + 1 < p.boundary.size(); ++k)
+      if (p.boundary[k].name == c.name)
+        bc.error("name", "'" + c.name + "' is used by " + p.boundary[k].key_path + " already");
+    if ((c.value_from_exact || c.traction_from_exact) && !p.exact)
+      bc.error(c.constrains ? "displacement" : "traction",
+               "'exact' needs an 'exact' section in the problem");
+    select_boundary(p.domain, c.on, c.key_path); // rejects selectors that pick nothing
+  }
+  if (p.boundary.empty()) r.error("boundary", "at least one boundary condition is required");
+  bool constrained = false;
+  for (const auto& c : p.boundary) constrained = constrained || c.constrains;
+  if (!constrained)
+    r.error("boundary", "no displacement condition: the body is free to move as a rigid body");
+
+  const MaterialSpec& mat = p.materials[p.material_index];
+  if (plastic && !p.plasticity)
+    material_error(mat, "plasticity", "analysis elastoplastic_static needs a plasticity law");
+  if (!plastic && p.plasticity)
+    material_error(mat, "plasticity", "used only by analysis elastoplastic_static");
+  if (plastic) {
+    p.steps = read_steps(r, p.boundary);
+    p.nonlinear = read_nonlinear(r);
+  } else {
+    for (const char* key : {"steps", "nonlinear"})
+      if (r.has(key)) r.error(key, "used only by analysis elastoplastic_static");
+  }
+
+  if (auto out = r.optional_map("output")) {
+    if (!plastic && out->has("gauges"))
+      out->error("gauges", "gauges are recorded only by analysis elastoplastic_static");
+    p.gauges = read_gauges(*out, 2);
+    for (std::size_t k = 0; k < p.gauges.size(); ++k) {
+      const Vec2 at = p.gauges[k].at.head<2>();
+      if (!p.domain.contains(at, 1e-9 * p.domain.bounds().size().maxCoeff()))
+        fail(out->path_of("gauges"), "[", k, "].at: the point (",
+             detail::concat(at.x(), ", ", at.y()), ") is not in the body");
+    }
+    p.fields_every = out->integer("fields_every", 1, 1, 1000000);
+    for (KeyReader& l : out->map_list("lines")) {
+      LineSpec s;
+      s.name = l.text("name");
+      s.from = l.vec2("from");
+      s.to = l.vec2("to");
+      s.points = l.integer("points", 51, 2, 1000000);
+      check_name(l, "name", s.name, false);
+      for (const auto& other : p.lines)
+        if (other.name == s.name) l.error("name", "another line is named '" + s.name + "'");
+      bool inside = false;
+      for (int k = 0; k < s.points && !inside; ++k)
+        inside = p.domain.contains(
+            s.from + (s.to - s.from) * (static_cast<double>(k) / (s.points - 1)), 1e-9);
+      if (!inside) l.error("from", "no sample point of the line lies in the body");
+      l.finish();
+      p.lines.push_back(s);
+    }
+    out->finish();
+  }
+}
+
+} // namespace mf::io
