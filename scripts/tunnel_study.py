@@ -63,17 +63,16 @@ def case_problem(template, depth, mass, spacing, end_scale):
     p["name"] = f"sph_tunnel_{int(depth)}m_{int(mass)}kg"
     p["description"] = (f"Concrete tunnel lining in dry sand under a {mass:g} kg TNT surface "
                         f"burst, crown {depth:g} m deep (SPH, 2D plane strain)")
-    sand, lining = p["blocks"]
+    sand, lining = p["regions"]
     sand["box"] = [[-HALF_WIDTH, bottom], [HALF_WIDTH, 0.0]]
     sand["spacing"] = s
     sand["holes"] = [{"center": [0.0, centre], "radius": OUTER_RADIUS}]
     lining["ring"] = {"center": [0.0, centre], "inner_radius": OUTER_RADIUS - LINING,
                       "outer_radius": OUTER_RADIUS}
     lining["spacing"] = s
-    load = p["loads"][0]
+    load, left, right, floor = p["boundary"]
     load["box"] = [[-HALF_WIDTH, -s], [HALF_WIDTH, 0.0]]
     load["blast"]["tnt_mass"] = mass
-    left, right, floor = p["boundaries"]
     left["box"] = [[-HALF_WIDTH, bottom], [-HALF_WIDTH + s, 0.0]]
     right["box"] = [[HALF_WIDTH - s, bottom], [HALF_WIDTH, 0.0]]
     floor["box"] = [[-HALF_WIDTH + s, bottom], [HALF_WIDTH - s, bottom + s]]

@@ -30,14 +30,14 @@ expect_run_failure() { # expect_run_failure "message fragment" args...
 }
 P="$ROOT/problems/plate_tension.yaml"
 expect_error "discretisation.spacing: expected a positive number, got -0.1" "$P" --set discretisation.spacing=-0.1
-expect_error "material.E: expected a number, got steel" "$P" --set material.E=steel
+expect_error "materials[0].E: expected a number, got steel" "$P" --set materials.0.E=steel
 expect_error "discretisation.colour: unknown key" "$P" --set discretisation.colour=red
-expect_error "boundary[0].on: selects no part of the boundary" "$P" --set 'boundary.0.on={edge: bottom, box: [[5, 5], [6, 6]]}'
-expect_error "boundary[1].on: no boundary piece is named 'roof'" "$P" --set boundary.1.on=roof
+expect_error "boundary[0]: selects no part of the boundary" "$P" --set 'boundary.0.box=[[5, 5], [6, 6]]'
+expect_error "boundary[1].edges: no boundary piece is named 'roof'" "$P" --set boundary.1.edges=roof
 expect_error "cannot open the problem file" "$WORK/missing.yaml"
 expect_error "--set boundary.x: 'x' indexes a list and must be a number" "$P" --set boundary.x=1
 expect_error "--set name.foo: 'name' holds a single value" "$P" --set name.foo=1
-expect_error "boundary[0].on.edges: expected a list of boundary names" "$P" --set 'boundary.0.on={edges: [{a: 1}]}'
+expect_error "boundary[0].edges: expected a list of boundary names" "$P" --set 'boundary.0.edges=[{a: 1}]'
 expect_error "output.lines[1].name: another line is named 'y07'" "$P" --set 'output.lines.1.name=y07'
 expect_error "output.lines[0].from: no sample point of the line lies in the body" "$P" --set 'output.lines.0.from=[5, 5]' --set 'output.lines.0.to=[6, 6]'
 expect_error "geometry.holes[0].center: the hole 'hole0' does not cut the body" "$P" --set 'geometry.holes=[{center: [5, 5], radius: 0.1}]'
@@ -48,28 +48,28 @@ expect_error "name: expected a name of letters, digits" "$P" --set name=a/b
 expect_error "discretisation.quadrature.order: expected an integer from 2 to 10, got 1e30" "$P" --set discretisation.quadrature.order=1e30
 # Elastoplastic inputs: plasticity, hardening laws, the load schedule, finite elements.
 Q="$ROOT/problems/plate_plastic_thesis.yaml"
-expect_error "material.plasticity.yield_stress: expected a positive number, got -310" "$Q" --set material.plasticity.yield_stress=-310
-expect_error "material.plasticity.hardening.type: expected one of" "$Q" --set 'material.plasticity.hardening={type: cubic}'
-expect_error "material.plasticity.hardening: 'linear' needs parameters" "$Q" --set material.plasticity.hardening=linear
-expect_error "material.plasticity.hardening.H: expected a number >= 0, got -5" "$Q" --set 'material.plasticity.hardening={type: linear, H: -5}'
-expect_error "material.plasticity.yield_stress: the swift law sets the initial yield stress itself" "$Q" --set 'material.plasticity.hardening={type: swift, K: 500, eps0: 0.01, n: 0.2}'
-expect_error "material.plasticity.hardening.points: equivalent plastic strains must increase" "$Q" --set 'material.plasticity={hardening: {type: table, points: [[0, 300], [0.1, 320], [0.05, 330]]}}'
-expect_error "material.plasticity.hardening.points: the first point must be at equivalent plastic strain 0" "$Q" --set 'material.plasticity={hardening: {type: table, points: [[0.1, 300], [0.2, 320]]}}'
-expect_error "material: analysis elastoplastic_static needs material.plasticity" "$Q" --set 'material={E: 2.0e5, nu: 0.1}'
-expect_error "material: material.plasticity is used only by analysis elastoplastic_static" "$Q" --set analysis=elastic_static
+expect_error "materials[0].plasticity.yield_stress: expected a positive number, got -310" "$Q" --set materials.0.plasticity.yield_stress=-310
+expect_error "materials[0].plasticity.hardening.type: expected one of" "$Q" --set 'materials.0.plasticity.hardening={type: cubic}'
+expect_error "materials[0].plasticity.hardening: 'linear' needs parameters" "$Q" --set materials.0.plasticity.hardening=linear
+expect_error "materials[0].plasticity.hardening.H: expected a number >= 0, got -5" "$Q" --set 'materials.0.plasticity.hardening={type: linear, H: -5}'
+expect_error "materials[0].plasticity.yield_stress: the swift law sets the initial yield stress itself" "$Q" --set 'materials.0.plasticity.hardening={type: swift, K: 500, eps0: 0.01, n: 0.2}'
+expect_error "materials[0].plasticity.hardening.points: equivalent plastic strains must increase" "$Q" --set 'materials.0.plasticity={hardening: {type: table, points: [[0, 300], [0.1, 320], [0.05, 330]]}}'
+expect_error "materials[0].plasticity.hardening.points: the first point must be at equivalent plastic strain 0" "$Q" --set 'materials.0.plasticity={hardening: {type: table, points: [[0.1, 300], [0.2, 320]]}}'
+expect_error "materials[0].plasticity: analysis elastoplastic_static needs a plasticity law" "$Q" --set 'materials.0={name: steel, E: 2.0e5, nu: 0.1}'
+expect_error "materials[0].plasticity: used only by analysis elastoplastic_static" "$Q" --set analysis=elastic_static
 expect_error "steps[1].name: another step is named 'elastic'" "$Q" --set steps.1.name=elastic
 expect_error "steps[0].increments: expected an integer from 1 to 1000000, got 0" "$Q" --set steps.0.increments=0
 expect_error "steps[0].factors.roof: unknown key" "$Q" --set 'steps.0.factors={roof: 2}'
 expect_error "steps[0].load_factor: give the step's target 'load_factor' or 'factors'" "$Q" --set 'steps.0={name: a, increments: 2}'
 expect_error "steps: an elastoplastic analysis needs a load schedule" "$Q" --set 'steps=[]'
 expect_error "nonlinear.tolerance: a relative residual tolerance below 1e-2 is needed, got 0.5" "$Q" --set nonlinear.tolerance=0.5
-expect_error "output.monitors[0].at: the point (5, 5) is not in the body" "$Q" --set 'output.monitors.0.at=[5, 5]'
+expect_error "output.gauges[0].at: the point (5, 5) is not in the body" "$Q" --set 'output.gauges.0.at=[5, 5]'
 expect_error "discretisation.method: expected one of" "$Q" --set discretisation.method=bem
 expect_error "discretisation.fem.element: expected one of" "$Q" --set discretisation.method=fem --set discretisation.fem.element=q9
 expect_error "discretisation.fem.mesh: cannot open the mesh file" "$Q" --set discretisation.method=fem --set discretisation.fem.mesh=missing.msh
 expect_error "discretisation.fem.mesh: required for a body that is not a plain rectangle" "$ROOT/problems/plate_hole_kirsch.yaml" --set discretisation.method=fem
 expect_error "holds Q8 elements" "$ROOT/problems/perforated_strip.yaml" --set discretisation.method=fem --set discretisation.fem.element=q4
-expect_error "lies outside the body" "$ROOT/problems/perforated_strip.yaml" --set discretisation.method=fem --set 'geometry.holes.0.radius=6' --set 'output.monitors=[]'
+expect_error "lies outside the body" "$ROOT/problems/perforated_strip.yaml" --set discretisation.method=fem --set 'geometry.holes.0.radius=6' --set 'output.gauges=[]'
 printf 'name: x\nanalysis: elastic_static\n' > "$WORK/incomplete.yaml"
 expect_error "model: required value is missing" "$WORK/incomplete.yaml"
 B="$ROOT/problems/pd_slab_blast.yaml"
@@ -79,22 +79,27 @@ expect_run_failure "boundary[2].blast: particle at (0.995, 0.195, 0): Kingery-Bu
 expect_error "boundary[2].blast.normal: expected a non-zero vector" "$B" --set 'boundary.2.blast.normal=[0, 0]'
 S="$ROOT/problems/sph_sod_tube.yaml"
 expect_error "materials[0].eos.type: expected one of" "$S" --set 'materials.0.eos.type=plasma'
-expect_error "blocks[0].energy: give exactly one of 'energy' (J/kg) or 'pressure'" "$S" --set 'blocks.0.energy=2.5'
-expect_error "model.smoothing: expected h / spacing between 1 and 3" "$S" --set model.smoothing=5
-expect_error "blocks[1].material: no material is named 'air'" "$S" --set blocks.1.material=air
+expect_error "regions[0].energy: give exactly one of 'energy' (J/kg) or 'pressure'" "$S" --set 'regions.0.energy=2.5'
+expect_error "discretisation.smoothing: expected h / spacing between 1 and 3" "$S" --set discretisation.smoothing=5
+expect_error "regions[1].material: no material is named 'air'" "$S" --set regions.1.material=air
 expect_error "materials[0].eos.unreacted.c0: expected a positive number, got -2390" "$ROOT/problems/sph_tnt_slab.yaml" --set 'materials.0.eos.unreacted.c0=-2390'
 expect_error "detonation.point: give exactly one of 'point' or 'plane: {at, normal}'" "$ROOT/problems/sph_tnt_slab.yaml" --set 'detonation.plane={at: [0.0], normal: [1]}'
 T="$ROOT/problems/sph_tunnel_blast.yaml"
 expect_error "materials[0].eos.loading: row 3: the first column must increase (1873.8 after 1873.8)" "$T" --set 'materials.0.eos.loading.3=[1873.8, 29.15e6]'
 expect_error "materials[0].eos.sound_speed: row 0: expected a positive value, got -265.2" "$T" --set 'materials.0.eos.sound_speed.0=[1674.0, -265.2]'
-expect_error "materials[0].strength.shear_modulus: give exactly one of 'shear_modulus' or 'shear_modulus_table'" "$T" --set 'materials.0.strength.shear_modulus=1.0e8'
-expect_error "materials[1].strength: the HJC model needs both 'eos: {type: hjc}' and 'strength: {model: hjc}'" "$T" --set 'materials.1.strength={model: elastic, shear_modulus: 1.0e10}'
+expect_error "materials[0].strength.shear_modulus_table: give exactly one of the material's 'shear_modulus' or 'strength.shear_modulus_table'" "$T" --set 'materials.0.shear_modulus=1.0e8'
+expect_error "materials[1].strength: the HJC model needs both 'eos: {type: hjc}' and 'strength: {model: hjc}'" "$T" --set 'materials.1.strength={model: j2}'
 expect_error "materials[1].hjc.P_lock: must exceed P_crush" "$T" --set 'materials.1.hjc={P_lock: 1.0e6}'
-expect_error "blocks[1].ring.outer_radius: must exceed inner_radius" "$T" --set 'blocks.1.ring.inner_radius=3.5'
-expect_error "blocks[0].box: give exactly one of 'box' or 'ring'" "$T" --set 'blocks.0.ring={center: [0, 0], inner_radius: 1, outer_radius: 2}'
-expect_error "blocks[0].energy: this equation of state does not depend on the internal energy" "$T" --set 'blocks.0.energy=1.0'
+expect_error "regions[1].ring.outer_radius: must exceed inner_radius" "$T" --set 'regions.1.ring.inner_radius=3.5'
+expect_error "regions[0].box: give exactly one of 'box' or 'ring'" "$T" --set 'regions.0.ring={center: [0, 0], inner_radius: 1, outer_radius: 2}'
+expect_error "regions[0].energy: this equation of state does not depend on the internal energy" "$T" --set 'regions.0.energy=1.0'
 expect_error "interface.n2: must be smaller than n1" "$T" --set 'interface={penalty_pressure: 1.0e6, n1: 6, n2: 12}'
-expect_run_failure "loads[0].blast: particle at (-0.375, -0.125, 0): Kingery-Bulmash: scaled distance" "$T" --set 'loads.0.blast.near_field=error'
+expect_run_failure "boundary[0].blast: particle at (-0.375, -0.125, 0): Kingery-Bulmash: scaled distance" "$T" --set 'boundary.0.blast.near_field=error'
+# One materials list, each analysis takes its part; staged runs.
+expect_error "materials[0].eos: analysis sph needs an equation of state" "$S" --set 'materials.0={name: gas}'
+expect_error "materials[0].bond: analysis peridynamics needs bond parameters" "$B" --set 'materials.0={name: concrete, E: 30.0e9, density: 2400}'
+printf 'name: x\nanalysis: staged\nstages:\n  - {name: a, analysis: elastic_static}\n  - {name: b, analysis: sph}\n' > "$WORK/staged.yaml"
+expect_error "stages: staged runs of more than one stage are not available yet" "$WORK/staged.yaml"
 # usage errors
 "$MF" 2>/dev/null; [ $? -eq 2 ] && echo "ok: no command -> exit 2" || { echo "FAIL: no command"; fails=$((fails+1)); }
 "$MF" check "$P" >/dev/null || { echo "FAIL: check on a good problem"; fails=$((fails+1)); }

@@ -10,13 +10,14 @@ const char* kGood = R"(
 name: t
 analysis: elastic_static
 model: {type: plane_stress, thickness: 1}
-material: {E: 2.0e5, nu: 0.3}
+materials:
+  - {name: steel, E: 2.0e5, nu: 0.3}
 geometry:
   rectangle: {size: [2, 1]}
 discretisation: {spacing: 0.25}
 boundary:
-  - {name: clamp, on: left, displacement: {x: 0, y: 0}}
-  - {name: pull, on: right, traction: [1, 0]}
+  - {name: clamp, edges: left, displacement: {x: 0, y: 0}}
+  - {name: pull, edges: right, traction: [1, 0]}
 )";
 
 std::string error_of(const std::string& assignment) {
@@ -48,8 +49,9 @@ TEST_CASE("a valid problem parses with the documented defaults", "[input]") {
 }
 
 TEST_CASE("bad inputs are rejected with the key path and the value", "[input]") {
-  CHECK(error_of("material.E=-2e5") == "material.E: expected a positive number, got -200000");
-  CHECK(error_of("material.E=abc") == "material.E: expected a number, got abc");
+  CHECK(error_of("materials.0.E=-2e5") ==
+        "materials[0].E: expected a positive number, got -200000");
+  CHECK(error_of("materials.0.E=abc") == "materials[0].E: expected a number, got abc");
   CHECK(error_of("discretisation.spacing=0") ==
         "discretisation.spacing: expected a positive number, got 0");
   CHECK_THAT(error_of("discretisation.spcing=0.1"),
@@ -57,26 +59,28 @@ TEST_CASE("bad inputs are rejected with the key path and the value", "[input]") 
   CHECK_THAT(error_of("discretisation.window=bspline"),
              Catch::Contains("discretisation.window: expected one of [cubic_spline, "
                              "quartic_spline, gaussian], got 'bspline'"));
-  CHECK(error_of("boundary.0.on=north") == "boundary[0].on: no boundary piece is named 'north' "
-                                           "(the body's pieces: bottom, right, top, left)");
-  CHECK(error_of("boundary.1.on={edge: right, box: [[5, 5], [6, 6]]}") ==
-        "boundary[1].on: selects no part of the boundary");
-  CHECK(error_of("model.type=shell") ==
-        "model.type: expected one of [plane_stress, plane_strain], got 'shell'");
+  CHECK(error_of("boundary.0.edges=north") ==
+        "boundary[0].edges: no boundary piece is named 'north' "
+        "(the body's pieces: bottom, right, top, left)");
+  CHECK(error_of("boundary.1.box=[[5, 5], [6, 6]]") ==
+        "boundary[1]: selects no part of the boundary");
+  CHECK(error_of("model.type=shell") == "model.type: expected one of [plane_stress, "
+                                        "plane_strain, solid_3d, uniaxial_strain], got 'shell'");
   CHECK(error_of("geometry.rectangle.size=[1]") ==
         "geometry.rectangle.size: expected a pair [a, b], got [1]");
-  CHECK_THAT(error_of("material.nu=0.5"),
-             Catch::StartsWith("material.nu: expected a Poisson's ratio in (-1, 0.5)"));
+  CHECK_THAT(error_of("materials.0.nu=0.5"),
+             Catch::StartsWith("materials[0].nu: expected a Poisson's ratio in (-1, 0.5)"));
   CHECK(error_of("boundary.0.displacement={}") ==
         "boundary[0].displacement: constrain at least one of x, y (or say 'exact')");
 }
 
 TEST_CASE("missing required values and missing constraints are errors", "[input]") {
   YAML::Node root = YAML::Load(kGood);
-  root["material"].remove("E");
-  CHECK_THROWS_WITH(io::parse_problem(root), "material.E: required value is missing");
+  root["materials"][0].remove("E");
+  CHECK_THROWS_WITH(io::parse_problem(root),
+                    "materials[0].E: analysis elastic_static needs Young's modulus E");
   YAML::Node free = YAML::Load(kGood);
-  free["boundary"] = YAML::Load("[{name: pull, on: right, traction: [1, 0]}]");
+  free["boundary"] = YAML::Load("[{name: pull, edges: right, traction: [1, 0]}]");
   CHECK_THROWS_WITH(io::parse_problem(free),
                     Catch::Contains("boundary: no displacement condition"));
 }

@@ -60,9 +60,10 @@ pd::Particles lattice(const io::ProblemSpec& spec) {
 materials::BondLaw material_law(const io::PdSpec& s, const io::MaterialSpec& mat, double delta) {
   const io::BondSpec& m = *mat.bond;
   materials::BondLaw law;
-  law.c = m.micromodulus > 0.0     ? m.micromodulus
-          : mat.bulk_modulus > 0.0 ? materials::pd_micromodulus_from_bulk(mat.bulk_modulus, delta)
-                                   : materials::pd_micromodulus(s.dimension, mat.E, delta, s.thickness);
+  law.c = m.micromodulus > 0.0 ? m.micromodulus
+          : mat.bulk_modulus > 0.0
+              ? materials::pd_micromodulus_from_bulk(mat.bulk_modulus, delta)
+              : materials::pd_micromodulus(s.dimension, mat.E, delta, s.thickness);
   if (m.critical_stretch > 0.0) {
     law.critical_stretch = m.critical_stretch;
   } else if (m.fracture_energy > 0.0) {

@@ -82,7 +82,8 @@ sph::Settings to_solver(const io::SphNumerics& n) {
 
 /// Whether a free particle lies in a region.
 bool free_in(const sph::Particles& P, int i, const io::Region& region) {
-  return !P.fixed[i] && region.contains(io::Point(P.x[3 * i], P.x[3 * i + 1], P.x[3 * i + 2]), 1e-9);
+  return !P.fixed[i] &&
+         region.contains(io::Point(P.x[3 * i], P.x[3 * i + 1], P.x[3 * i + 2]), 1e-9);
 }
 
 } // namespace
@@ -129,7 +130,8 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     }
     int count[3] = {1, 1, 1};
     for (int d = 0; d < s.dimension; ++d)
-      count[d] = std::max(1, static_cast<int>(std::lround((g.box->hi[d] - g.box->lo[d]) / b.spacing)));
+      count[d] =
+          std::max(1, static_cast<int>(std::lround((g.box->hi[d] - g.box->lo[d]) / b.spacing)));
     double step[3];
     for (int d = 0; d < 3; ++d)
       step[d] = d < s.dimension ? (g.box->hi[d] - g.box->lo[d]) / count[d] : 0.0;

@@ -313,8 +313,8 @@ std::vector<geometry::Curve> select_boundary(const geometry::Domain& domain, con
       continue;
     }
     const double tol = 1e-9 * (domain.bounds().size().maxCoeff());
-    for (const auto& [t0, t1] :
-         geometry::kept_intervals(c, [&](const Vec2& p) { return on.box->contains(Point(p.x(), p.y(), 0.0), tol); }))
+    for (const auto& [t0, t1] : geometry::kept_intervals(
+             c, [&](const Vec2& p) { return on.box->contains(Point(p.x(), p.y(), 0.0), tol); }))
       out.push_back(c.piece(t0, t1));
   }
   double length = 0.0;
@@ -350,8 +350,10 @@ void take_material(KeyReader& r, ProblemSpec& p, const std::string& analysis) {
   const MaterialSpec& m = p.materials[p.material_index];
   if (!(m.E > 0.0)) material_error(m, "E", "analysis " + analysis + " needs Young's modulus E");
   if (!m.has_nu)
-    material_error(m, "nu", "analysis " + analysis + " needs Poisson's ratio nu (or the shear "
-                            "modulus)");
+    material_error(m, "nu",
+                   "analysis " + analysis +
+                       " needs Poisson's ratio nu (or the shear "
+                       "modulus)");
   p.material.E = m.E;
   p.material.nu = m.nu;
   p.plasticity = m.plasticity;

@@ -254,8 +254,6 @@ MaterialSpec read_material(KeyReader& m) {
   } else if (mat.shear_modulus == 0.0 && mat.E > 0.0 && mat.has_nu) {
     mat.shear_modulus = mat.E / (2.0 * (1.0 + mat.nu));
   }
-  if (mat.has_nu && !m.has("E") && !(mat.shear_modulus > 0.0))
-    m.error("nu", "a Poisson's ratio needs E or shear_modulus");
   mat.bulk_modulus = m.positive("bulk_modulus", 0.0);
   mat.density = m.positive("density", 0.0);
   if (auto p = m.optional_map("plasticity")) {

@@ -100,7 +100,8 @@ PdCondition read_condition(KeyReader& c, const PdSpec& s, int dim) {
     out.kind = PdCondition::Kind::Blast;
     KeyReader b = c.map("blast");
     out.blast = read_blast(b, dim, false);
-    if (!out.region) c.error("box", "a blast load needs the region of the loaded layer of particles");
+    if (!out.region)
+      c.error("box", "a blast load needs the region of the loaded layer of particles");
   } else {
     out.kind = PdCondition::Kind::BodyForce;
     out.value = read_point(c, "body_force", dim);
@@ -118,8 +119,9 @@ void take_material(const MaterialSpec& m, materials::PdDimension dimension) {
   if (!(m.density > 0.0)) material_error(m, "density", needs + "a density");
   if (!m.bond) material_error(m, "bond", needs + "bond parameters (bond: {law: pmb, ...})");
   if (m.bulk_modulus > 0.0 && m.bond->micromodulus > 0.0)
-    material_error(m, "bond.micromodulus", "give 'micromodulus' or the material's "
-                                           "'bulk_modulus', not both");
+    material_error(m, "bond.micromodulus",
+                   "give 'micromodulus' or the material's "
+                   "'bulk_modulus', not both");
   if (m.bulk_modulus > 0.0 && dimension != materials::PdDimension::Solid3D)
     material_error(m, "bulk_modulus", "the micromodulus from the bulk modulus is a 3D formula");
 }

@@ -4,8 +4,7 @@
 
 namespace mf::io {
 
-void check_name(KeyReader& r, const std::string& key, const std::string& name,
-                bool may_be_empty) {
+void check_name(KeyReader& r, const std::string& key, const std::string& name, bool may_be_empty) {
   if (name.empty() && may_be_empty) return;
   if (name.empty() ||
       name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") !=

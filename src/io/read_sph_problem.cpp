@@ -19,8 +19,9 @@ void take_material(const MaterialSpec& m) {
   if (m.strength && j2 && !m.plasticity)
     material_error(m, "plasticity", "a J2 strength needs the material's 'plasticity'");
   if (j2 && m.plasticity && !(m.shear_modulus > 0.0))
-    material_error(m, "shear_modulus", "analysis sph needs the shear modulus (or E and nu) of a "
-                                       "solid with plasticity");
+    material_error(m, "shear_modulus",
+                   "analysis sph needs the shear modulus (or E and nu) of a "
+                   "solid with plasticity");
 }
 
 /// The reference density of a material's equation of state, where it has one (else 0).
@@ -55,8 +56,7 @@ SphRegion read_region_of_particles(KeyReader& b, int dim, double spacing,
   const double natural = mat.density > 0.0 ? mat.density : natural_density(mat);
   block.density = b.positive("density", natural);
   if (!(block.density > 0.0)) b.error("density", "required value is missing");
-  const bool energy_free =
-      eos.kind == EosSpec::Kind::Compaction || eos.kind == EosSpec::Kind::Hjc;
+  const bool energy_free = eos.kind == EosSpec::Kind::Compaction || eos.kind == EosSpec::Kind::Hjc;
   if (energy_free && b.has("energy"))
     b.error("energy", "this equation of state does not depend on the internal energy");
   if (b.has("pressure") == b.has("energy") && eos.kind != EosSpec::Kind::Jwl && !energy_free)
@@ -139,8 +139,7 @@ SphSpec parse_sph(KeyReader& r, const ProblemSpec& front) {
         m->choice("kernel", {"cubic_spline", "wendland_c2"}, "cubic_spline") == "cubic_spline"
             ? kernels::SphKernel::CubicSpline
             : kernels::SphKernel::WendlandC2;
-    s.numerics.gradient_correction =
-        m->choice("gradient_correction", {"off", "on"}, "off") == "on";
+    s.numerics.gradient_correction = m->choice("gradient_correction", {"off", "on"}, "off") == "on";
     if (s.smoothing < 1.0 || s.smoothing > 3.0)
       m->error("smoothing",
                "expected h / spacing between 1 and 3, got " + std::to_string(s.smoothing));

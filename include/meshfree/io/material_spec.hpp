@@ -45,7 +45,7 @@ struct BondSpec {
 
 struct MaterialSpec {
   std::string name;
-  std::string key_path; // e.g. "materials[0]", for messages
+  std::string key_path;     // e.g. "materials[0]", for messages
   double E = 0.0, nu = 0.0; // 0: not given
   bool has_nu = false;
   double shear_modulus = 0.0; // given, or E / (2 (1 + nu)) from E and nu; 0: none

@@ -70,7 +70,7 @@ struct PdCrackTracking {
 
 struct PdSpec {
   materials::PdDimension dimension = materials::PdDimension::Solid3D; // from model.type
-  double thickness = 1.0;                                              // from model.thickness
+  double thickness = 1.0;                                             // from model.thickness
   double spacing = 0.0;
   double horizon_factor = 3.0;             // delta = horizon_factor * spacing
   std::string volume_correction = "exact"; // exact | linear | none

@@ -53,7 +53,7 @@ struct DiscretisationSpec {
 struct BoundaryCondition {
   std::string name;
   std::string key_path; // e.g. "boundary[0]", for messages
-  Region on; // named boundary pieces (edges), optionally clipped to a box
+  Region on;            // named boundary pieces (edges), optionally clipped to a box
   // Displacement (penalty) constraint on the components with mask = 1.
   bool constrains = false;
   Vec2 mask{0.0, 0.0};
@@ -122,7 +122,7 @@ struct ProblemSpec {
   std::optional<verification::ExactSolution> exact;
   std::vector<LineSpec> lines;
   std::vector<GaugeSpec> gauges; // points whose displacement history is recorded
-  int fields_every = 1; // write fields every this many converged increments (and the last)
+  int fields_every = 1;          // write fields every this many converged increments (and the last)
   std::vector<LoadStep> steps;
   NonlinearSpec nonlinear;
   std::optional<SphSpec> sph; // analysis: sph

@@ -23,10 +23,10 @@ Box read_box(KeyReader& r, const std::string& key, int dim);
 /// Which shapes a region may be made of.
 enum RegionShapes : unsigned {
   kBox = 1u,
-  kCircle = 2u,  // `circle: {center: [x, y], radius}`: only what lies inside is kept
-  kRing = 4u,    // `ring: {center, inner_radius, outer_radius}` (2D)
-  kHoles = 8u,   // `holes: [{center: [x, y], radius}]`: what lies inside is left out
-  kEdges = 16u,  // `edges: name` or `edges: [names]`: boundary pieces of a 2D body
+  kCircle = 2u, // `circle: {center: [x, y], radius}`: only what lies inside is kept
+  kRing = 4u,   // `ring: {center, inner_radius, outer_radius}` (2D)
+  kHoles = 8u,  // `holes: [{center: [x, y], radius}]`: what lies inside is left out
+  kEdges = 16u, // `edges: name` or `edges: [names]`: boundary pieces of a 2D body
   kSolids = kBox | kCircle | kRing | kHoles,
 };
 
