@@ -396,7 +396,7 @@ ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
                                                const solvers::PetscSession& session,
                                                io::OutputDirectory* out) {
   MF_REQUIRE(spec.plasticity && !spec.steps.empty(),
-             "an elastoplastic analysis needs material.plasticity and steps");
+             "an elastoplastic analysis needs a material with plasticity and steps");
   ElastoplasticResult R;
   const GalerkinModel m = build_galerkin_model(spec, session, R.timer);
   R.method = describe_method(spec.discretisation);

@@ -253,18 +253,16 @@ PdSpec parse_pd(KeyReader& r, const ProblemSpec& front, const std::string& base_
     s.impactors.push_back(imp);
   }
   {
-    KeyReader t = r.map("time");
-    s.end_time = t.positive("end");
-    s.dt = t.positive("dt", 0.0);
-    s.safety = t.positive("safety", 0.8);
-    if (s.safety > 1.0)
-      t.error("safety", "expected a safety factor in (0, 1], got " + detail::concat(s.safety));
-    t.finish();
+    const TimeSpec t = read_time(r, StepControl::Safety);
+    s.end_time = t.end;
+    s.dt = t.dt;
+    s.safety = t.safety;
   }
   if (auto o = r.optional_map("output")) {
-    s.history_interval = o->positive("history_interval", 0.0);
-    s.fields_interval = o->positive("fields_interval", 0.0);
-    s.gauges = read_gauges(*o, dim);
+    SeriesOutputSpec series = read_series_output(*o, dim);
+    s.history_interval = series.history_interval;
+    s.fields_interval = series.fields_interval;
+    s.gauges = std::move(series.gauges);
     if (auto c = o->optional_map("crack")) {
       s.crack.enabled = true;
       s.crack.threshold = c->positive("damage_threshold", 0.38);

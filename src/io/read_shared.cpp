@@ -109,6 +109,31 @@ std::vector<GaugeSpec> read_gauges(KeyReader& output, int dim) {
   return out;
 }
 
+TimeSpec read_time(KeyReader& r, StepControl control) {
+  KeyReader t = r.map("time");
+  TimeSpec s;
+  s.end = t.positive("end");
+  if (control == StepControl::Safety) {
+    s.dt = t.positive("dt", 0.0);
+    s.safety = t.positive("safety", 0.8);
+    if (s.safety > 1.0)
+      t.error("safety", "expected a safety factor in (0, 1], got " + detail::concat(s.safety));
+  } else {
+    s.courant = t.positive("courant", 0.3);
+    if (s.courant > 1.0) t.error("courant", "expected a Courant number <= 1");
+  }
+  t.finish();
+  return s;
+}
+
+SeriesOutputSpec read_series_output(KeyReader& output, int dim) {
+  SeriesOutputSpec s;
+  s.history_interval = output.positive("history_interval", 0.0);
+  s.fields_interval = output.positive("fields_interval", 0.0);
+  s.gauges = read_gauges(output, dim);
+  return s;
+}
+
 BlastSpec read_blast(KeyReader& b, int dim, bool near_field) {
   BlastSpec out;
   out.tnt_mass = b.positive("tnt_mass");

@@ -200,16 +200,15 @@ SphSpec parse_sph(KeyReader& r, const ProblemSpec& front) {
     f->finish();
   }
   {
-    KeyReader t = r.map("time");
-    s.end_time = t.positive("end");
-    s.numerics.courant = t.positive("courant", 0.3);
-    if (s.numerics.courant > 1.0) t.error("courant", "expected a Courant number <= 1");
-    t.finish();
+    const TimeSpec t = read_time(r, StepControl::Courant);
+    s.end_time = t.end;
+    s.numerics.courant = t.courant;
   }
   if (auto o = r.optional_map("output")) {
-    s.history_interval = o->positive("history_interval", 0.0);
-    s.fields_interval = o->positive("fields_interval", 0.0);
-    s.gauges = read_gauges(*o, dim);
+    SeriesOutputSpec series = read_series_output(*o, dim);
+    s.history_interval = series.history_interval;
+    s.fields_interval = series.fields_interval;
+    s.gauges = std::move(series.gauges);
     o->finish();
   }
   return s;

@@ -1,5 +1,5 @@
 #pragma once
-// An SPH run from a problem file (analysis: sph): particles from the blocks, lighting times from
+// An SPH run from a problem file (analysis: sph): particles from the regions, lighting times from
 // the detonation point, CFL-limited steps to the end time, histories, gauges and fields.
 #include "meshfree/core/timer.hpp"
 #include "meshfree/io/output.hpp"
@@ -11,7 +11,8 @@
 
 namespace mf::app {
 
-/// The particles of a spec, at rest state of the blocks, lit if the spec detonates.
+/// The particles of a spec, in the initial state of its regions, lit if the spec detonates; the
+/// spec's materials and numerics mapped to the solver's.
 sph::Hydro build_sph(const io::SphSpec& s);
 
 struct SphResult {

@@ -67,6 +67,21 @@ struct GaugeSpec {
   Point at{0, 0, 0};
 };
 
+/// time: the end of an explicit run and what sets its step (peridynamics: a safety factor on
+/// the stable step, or a given dt; SPH: the Courant number).
+struct TimeSpec {
+  double end = 0.0;
+  double dt = 0.0; // 0: from the stability bound
+  double safety = 0.8;
+  double courant = 0.3;
+};
+
+/// output of an explicit run: the intervals of the history and field series and the gauges.
+struct SeriesOutputSpec {
+  double history_interval = 0.0, fields_interval = 0.0; // 0: every step / start and end only
+  std::vector<GaugeSpec> gauges;
+};
+
 /// A TNT charge whose air blast loads a face (Kingery-Bulmash, loads/blast.hpp).
 struct BlastSpec {
   double tnt_mass = 0.0;          // kg of TNT (equivalent)

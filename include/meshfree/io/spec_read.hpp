@@ -37,6 +37,14 @@ Region read_region(KeyReader& r, int dim, unsigned shapes);
 /// output.gauges: [{name, at}], names unique.
 std::vector<GaugeSpec> read_gauges(KeyReader& output, int dim);
 
+/// What sets the step of an explicit analysis.
+enum class StepControl { Safety, Courant };
+/// time: {end, dt, safety} (StepControl::Safety) or {end, courant} (StepControl::Courant).
+TimeSpec read_time(KeyReader& r, StepControl control);
+/// The history_interval, fields_interval and gauges of an `output:` map (the other keys are the
+/// caller's, who also calls finish()).
+SeriesOutputSpec read_series_output(KeyReader& output, int dim);
+
 /// A `blast:` map: {tnt_mass, burst: surface|free_air, charge_at, normal, near_field}.
 BlastSpec read_blast(KeyReader& b, int dim, bool near_field);
 
