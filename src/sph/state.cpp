@@ -45,8 +45,8 @@ double von_mises(const double* s) {
                           2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])));
 }
 
-/// The elastic trial of a solid particle: S = S0 + dt dS with the plastic strain, back stress and
-/// damage of the start of the step, and the equivalent deviatoric strain rate sqrt(2/3 D':D')
+/// The elastic trial of a solid particle: S = S0 + dt dS with the plastic strain and damage of
+/// the start of the step, and the equivalent deviatoric strain rate sqrt(2/3 D':D')
 /// from the velocity gradient. A failed particle carries no deviatoric stress (returns false).
 bool elastic_trial(Particles& P, const StressHistory& start, const Rates& r, double dt, int i) {
   const std::size_t i6 = 6 * static_cast<std::size_t>(i);
@@ -56,7 +56,6 @@ bool elastic_trial(Particles& P, const StressHistory& start, const Rates& r, dou
     return false;
   }
   for (int c = 0; c < 6; ++c) si[c] = start.S[i6 + c] + dt * r.dS[i6 + c];
-  for (int c = 0; c < 6; ++c) P.back_stress[i6 + c] = start.back_stress[i6 + c];
   P.alpha[i] = start.alpha[i];
   P.damage[i] = start.damage[i];
   const double* L = &r.grad_v[9 * static_cast<std::size_t>(i)];
@@ -72,29 +71,53 @@ bool elastic_trial(Particles& P, const StressHistory& start, const Rates& r, dou
 }
 
 /// The return of each strength model, after the elastic trial of particle i.
-void plastic_return(Particles&, const materials::ElasticShear&, const StressHistory&, int) {}
+void plastic_return(Particles&, const materials::ElasticShear&, const StressHistory&, const Rates&,
+                    double, int) {}
+
+/// The Jaumann rate W b - b W of a symmetric tensor b (Voigt, stress-like) under the spin
+/// W = (L - L^T) / 2 of the velocity gradient L (row-major), the rotation that the deviatoric
+/// stress rate carries too.
+materials::Vec6 jaumann_rotation(const double* L, const materials::Vec6& b) {
+  const double B[3][3] = {{b(0), b(5), b(4)}, {b(5), b(1), b(3)}, {b(4), b(3), b(2)}};
+  double W[3][3];
+  for (int a = 0; a < 3; ++a)
+    for (int c = 0; c < 3; ++c) W[a][c] = 0.5 * (L[3 * a + c] - L[3 * c + a]);
+  const auto rot = [&](int a, int c) {
+    double sum = 0.0;
+    for (int k = 0; k < 3; ++k) sum += W[a][k] * B[k][c] - B[a][k] * W[k][c];
+    return sum;
+  };
+  materials::Vec6 out;
+  out << rot(0, 0), rot(1, 1), rot(2, 2), rot(1, 2), rot(0, 2), rot(0, 1);
+  return out;
+}
 
 void plastic_return(Particles& P, const materials::VonMises& law, const StressHistory& start,
-                    int i) {
+                    const Rates& r, double dt, int i) {
   // The J2 return of the Galerkin solver on the integrated trial deviator (materials/
-  // j2_plasticity), with the particle's back stress.
+  // j2_plasticity), with the particle's back stress. With kinematic hardening the back stress
+  // turns with the material like S: b = b0 + dt (W b - b W), b at the rates' state.
   const std::size_t i6 = 6 * static_cast<std::size_t>(i);
   double* si = &P.S[i6];
   const materials::Vec6 trial = Eigen::Map<const materials::Vec6>(si);
-  const materials::Vec6 beta = Eigen::Map<const materials::Vec6>(&start.back_stress[i6]);
+  materials::Vec6 beta = Eigen::Map<const materials::Vec6>(&start.back_stress[i6]);
+  if (law.j2.H_kinematic > 0.0)
+    beta += dt * jaumann_rotation(&r.grad_v[9 * static_cast<std::size_t>(i)],
+                                  Eigen::Map<const materials::Vec6>(&P.back_stress[i6]));
   const materials::J2Return ret = materials::j2_radial_return(law.j2, trial, beta, start.alpha[i]);
-  if (!ret.plastic) return;
-  for (int c = 0; c < 6; ++c) {
-    si[c] = ret.deviator(c);
-    P.back_stress[i6 + c] = ret.back_stress(c);
+  if (ret.plastic) {
+    for (int c = 0; c < 6; ++c) si[c] = ret.deviator(c);
+    P.alpha[i] = ret.alpha;
+    beta = ret.back_stress;
   }
-  P.alpha[i] = ret.alpha;
+  for (int c = 0; c < 6; ++c) P.back_stress[i6 + c] = beta(c);
 }
 
 /// Perfectly plastic at the current pressure (and damage): radial return to Y, with the plastic
 /// strain increment (q - Y) / 3G; HJC adds its damage.
 template <class Law>
-void plastic_return(Particles& P, const Law& law, const StressHistory& start, int i) {
+void plastic_return(Particles& P, const Law& law, const StressHistory& start, const Rates&, double,
+                    int i) {
   double* si = &P.S[6 * static_cast<std::size_t>(i)];
   const double q = von_mises(si);
   const double Y =
@@ -151,7 +174,7 @@ void update_stress(Hydro& s, const StressHistory& start, const Rates& r, double 
 #pragma omp parallel for schedule(static)
             for (int k = 0; k < count; ++k) {
               const int i = members[k];
-              if (elastic_trial(P, start, r, dt, i)) plastic_return(P, law, start, i);
+              if (elastic_trial(P, start, r, dt, i)) plastic_return(P, law, start, r, dt, i);
             }
           }
         },
