@@ -8,7 +8,7 @@
 // shock, solid strength, symmetry planes (mirror particles), transmitting boundaries, and the
 // optional kernel-gradient correction and artificial stress. This header holds a run's data; the
 // steps that act on it are declared in sph/state.hpp, sph/neighbours.hpp, sph/rates.hpp,
-// sph/step.hpp, sph/symmetry.hpp and sph/detonation.hpp.
+// sph/corrections.hpp, sph/step.hpp, sph/symmetry.hpp and sph/detonation.hpp.
 #include "meshfree/kernels/sph_kernel.hpp"
 #include "meshfree/loads/blast.hpp"
 #include "meshfree/neighbors/pair_list.hpp"
