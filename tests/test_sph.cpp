@@ -734,6 +734,65 @@ TEST_CASE("SPH's deviatoric update with kinematic hardening follows j2_update_3d
   CHECK(galerkin.back_stress.norm() > 0.0);
 }
 
+TEST_CASE("an SPH particle with kinematic hardening carries its back stress between steps like "
+          "j2_update_3d",
+          "[sph][j2]") {
+  // One solid particle driven through update_stress by prescribed rates (no spin): each step's
+  // deviatoric rate is 2G de' / dt, and the particle's stress, back stress and plastic strain
+  // follow the Galerkin update of the total strain (E = 2G, nu = 0, so the return's mu is G).
+  const double G = 26e9;
+  materials::VonMises vm;
+  vm.shear_modulus = G;
+  vm.j2.E = 2.0 * G;
+  vm.j2.nu = 0.0;
+  vm.j2.sigma0 = 150e6;
+  vm.j2.hardening = materials::LinearHardening{0.5e9};
+  vm.j2.H_kinematic = 2.0e9;
+  sph::Hydro s;
+  s.particles.dim = 3;
+  sph::Material solid = test_solid();
+  solid.strength = vm;
+  s.materials.push_back(solid);
+  const double x[3] = {0.0, 0.0, 0.0};
+  s.particles.add(x, 1.0, 2700.0, 0.0, 1.0, 0);
+  sph::group_materials(s);
+  materials::Vec6 direction; // engineering shears
+  direction << 1.0, -0.2, -0.6, 0.3, 0.5, -0.4;
+  const std::vector<double> path = {1.0e-3, 2.5e-3, 4.0e-3, 2.0e-3, -1.0e-3, -4.0e-3, 0.0, 5.0e-3};
+  materials::J2State galerkin;
+  double previous = 0.0;
+  int plastic_steps = 0;
+  for (double level : path) {
+    const materials::J2Result3D implicit =
+        materials::j2_update_3d(vm.j2, level * direction, galerkin);
+    galerkin = implicit.state;
+    plastic_steps += implicit.plastic ? 1 : 0;
+    const materials::Vec6 de = (level - previous) * direction;
+    const double tr = de(0) + de(1) + de(2);
+    sph::Rates r;
+    r.dS.assign(6, 0.0);
+    r.grad_v.assign(9, 0.0);
+    for (int k = 0; k < 3; ++k) r.dS[k] = 2.0 * G * (de(k) - tr / 3.0);
+    for (int k = 3; k < 6; ++k) r.dS[k] = G * de(k);
+    // A symmetric velocity gradient over dt = 1 (the strain rate only).
+    const double D[9] = {de(0),     de(5) / 2, de(4) / 2, de(5) / 2, de(1),
+                         de(3) / 2, de(4) / 2, de(3) / 2, de(2)};
+    for (int k = 0; k < 9; ++k) r.grad_v[k] = D[k];
+    sph::update_stress(s, sph::stress_history(s), r, 1.0);
+    previous = level;
+    INFO("strain level " << level);
+    const double mean = implicit.stress.head<3>().sum() / 3.0;
+    for (int k = 0; k < 6; ++k) {
+      CHECK(s.particles.S[k] ==
+            Approx(implicit.stress(k) - (k < 3 ? mean : 0.0)).margin(1e-12 * vm.j2.sigma0));
+      CHECK(s.particles.back_stress[k] ==
+            Approx(galerkin.back_stress(k)).margin(1e-12 * vm.j2.sigma0));
+    }
+    CHECK(s.particles.alpha[0] == Approx(galerkin.alpha).epsilon(1e-12));
+  }
+  CHECK(plastic_steps >= 4);
+}
+
 TEST_CASE("plane elastic wave in a 2D and a 3D block: stress behind the front", "[sph][solid]") {
   // Two blocks meet at x = 0 with velocities +-v0; near the centre line the state is uniaxial
   // strain until the lateral release waves from the free sides arrive (after half the width over
