@@ -1,5 +1,8 @@
 #include "meshfree/app/sph_run.hpp"
 #include "meshfree/core/log.hpp"
+#include "meshfree/sph/detonation.hpp"
+#include "meshfree/sph/state.hpp"
+#include "meshfree/sph/step.hpp"
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -24,40 +27,27 @@ double face_area(const sph::Particles& P, int i, int dim) {
 sph::Material to_solver(const io::MaterialSpec& m) {
   sph::Material out;
   out.name = m.name;
-  const io::EosSpec& e = *m.eos;
-  out.eos.kind = static_cast<sph::Eos::Kind>(static_cast<int>(e.kind));
-  out.eos.ideal_gas = e.ideal_gas;
-  out.eos.jwl = e.jwl;
-  out.eos.mie_gruneisen = e.mie_gruneisen;
-  out.eos.linear_polynomial = e.linear_polynomial;
-  out.eos.compaction = e.compaction;
-  out.eos.has_unreacted = e.has_unreacted;
-  out.eos.unreacted = e.unreacted;
-  if (m.hjc) out.hjc = *m.hjc;
-  sph::Strength& st = out.strength;
+  out.eos = *m.eos;
   using Model = io::StrengthSpec::Model;
   const Model model = m.strength ? m.strength->model : Model::J2;
   if (model == Model::Granular) {
-    st.enabled = true;
-    st.model = sph::Strength::Model::Granular;
-    st.granular = m.strength->granular;
-    st.shear_modulus = m.shear_modulus;
+    materials::GranularStrength granular = m.strength->granular;
+    if (m.shear_modulus > 0.0) granular.shear_modulus = {{0.0}, {m.shear_modulus}}; // a constant
+    out.strength = granular;
   } else if (model == Model::Hjc) {
-    st.enabled = true;
-    st.model = sph::Strength::Model::Hjc;
-    st.shear_modulus = out.hjc.shear_modulus;
-  } else if (m.plasticity || m.shear_modulus > 0.0) {
-    // The deviatoric stress of a solid; the J2 return uses mu = G (E = 2G, nu = 0).
-    st.enabled = true;
-    st.shear_modulus = m.shear_modulus;
-    if (m.plasticity) {
-      st.model = sph::Strength::Model::VonMises;
-      st.yield = *m.plasticity;
-    }
-    st.yield.E = 2.0 * st.shear_modulus;
-    st.yield.nu = 0.0;
+    out.strength = *m.hjc;
+  } else if (m.plasticity) {
+    // The J2 return uses mu = G (E = 2G, nu = 0); the pressure is the equation of state's.
+    materials::VonMises vm;
+    vm.shear_modulus = m.shear_modulus;
+    vm.j2 = *m.plasticity;
+    vm.j2.E = 2.0 * m.shear_modulus;
+    vm.j2.nu = 0.0;
+    out.strength = vm;
+  } else if (m.shear_modulus > 0.0) {
+    out.strength = materials::ElasticShear{m.shear_modulus};
   }
-  if (m.strength) st.failure_strain = m.strength->failure_strain;
+  if (m.strength) out.failure_strain = m.strength->failure_strain;
   return out;
 }
 
@@ -199,12 +189,11 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     for (int d = 0; d < 3; ++d) b.normal[d] = t.normal[d];
     for (int i = 0; i < P.size(); ++i) {
       if (!free_in(P, i, t.region)) continue;
-      const sph::Material& mat = h.materials[P.material[i]];
       b.particles.push_back(i);
       b.area.push_back(face_area(P, i, s.dimension));
       b.normal_impedance.push_back(P.rho[i] * P.c[i]);
-      b.shear_impedance.push_back(
-          mat.strength.enabled ? std::sqrt(P.rho[i] * sph::shear_modulus(mat, P.rho[i])) : 0.0);
+      b.shear_impedance.push_back(std::sqrt(
+          P.rho[i] * materials::shear_modulus(h.materials[P.material[i]].strength, P.rho[i])));
     }
     MF_REQUIRE(!b.particles.empty(), t.key_path, ".box: selects no free particle");
     h.transmitting.push_back(b);
@@ -286,8 +275,8 @@ SphResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out) {
       row.push_back(P.p[i]);
       row.push_back(P.rho[i]);
       row.push_back(von_mises(i));
-      row.push_back(sph::current_yield(h.materials[P.material[i]], P.p[i], P.alpha[i], P.damage[i],
-                                       P.strain_rate[i]));
+      row.push_back(materials::current_yield(h.materials[P.material[i]].strength, P.p[i],
+                                             P.alpha[i], P.damage[i], P.strain_rate[i]));
       row.push_back(P.alpha[i]);
       for (int d = 0; d < dims; ++d) row.push_back(P.v[3 * i + d]);
       for (int d = 0; d < dims; ++d) row.push_back(P.x[3 * i + d] - x0[3 * i + d]);

@@ -3,6 +3,7 @@
 // errors name the key path.
 #include "meshfree/io/spec_read.hpp"
 #include <cmath>
+#include <variant>
 
 namespace mf::io {
 
@@ -128,18 +129,19 @@ materials::Hjc read_hjc(KeyReader& h) {
   return m;
 }
 
-EosSpec read_eos(KeyReader& e) {
-  EosSpec eos;
+materials::EquationOfState read_eos(KeyReader& e) {
+  materials::EquationOfState eos;
   const std::string type = e.choice(
       "type", {"ideal_gas", "jwl", "mie_gruneisen", "linear_polynomial", "compaction", "hjc"}, "");
   if (type == "ideal_gas") {
-    eos.kind = EosSpec::Kind::IdealGas;
-    eos.ideal_gas.gamma = e.positive("gamma", 1.4);
-    if (!(eos.ideal_gas.gamma > 1.0)) e.error("gamma", "expected a ratio of specific heats > 1");
+    materials::IdealGas g;
+    g.gamma = e.positive("gamma", 1.4);
+    if (!(g.gamma > 1.0)) e.error("gamma", "expected a ratio of specific heats > 1");
+    eos = g;
   } else if (type == "jwl") {
     // Defaults: TNT, Dobratz & Crawford 1985 (materials/eos.hpp).
-    eos.kind = EosSpec::Kind::Jwl;
-    materials::Jwl& j = eos.jwl;
+    materials::JwlExplosive x;
+    materials::Jwl& j = x.jwl;
     j.rho0 = e.positive("rho0", j.rho0);
     j.A = e.positive("A", j.A);
     j.B = e.positive("B", j.B);
@@ -151,41 +153,44 @@ EosSpec read_eos(KeyReader& e) {
     j.e0 = e.positive("detonation_energy", j.e0 * j.rho0) / j.rho0; // given per volume [J/m^3]
     if (auto u = e.optional_map("unreacted")) {
       // The unreacted explosive's shock Hugoniot U_s = c0 + s u_p and Grueneisen gamma.
-      eos.has_unreacted = true;
-      eos.unreacted.rho0 = j.rho0;
-      eos.unreacted.c0 = u->positive("c0");
-      eos.unreacted.s = u->positive("s");
-      eos.unreacted.gamma0 = u->positive("gamma0");
+      materials::MieGruneisen unreacted;
+      unreacted.rho0 = j.rho0;
+      unreacted.c0 = u->positive("c0");
+      unreacted.s = u->positive("s");
+      unreacted.gamma0 = u->positive("gamma0");
+      x.unreacted = unreacted;
       u->finish();
     }
+    eos = x;
   } else if (type == "mie_gruneisen") {
-    eos.kind = EosSpec::Kind::MieGruneisen;
-    materials::MieGruneisen& m = eos.mie_gruneisen;
+    materials::MieGruneisen m;
     m.rho0 = e.positive("rho0");
     m.c0 = e.positive("c0");
     m.s = e.number("s");
     m.gamma0 = e.number("gamma0");
+    eos = m;
   } else if (type == "compaction") {
     // Tabulated compaction (materials/geomaterials.hpp): [density, pressure] and
     // [density, sound speed] rows.
-    eos.kind = EosSpec::Kind::Compaction;
-    eos.compaction.loading = read_table(e, "loading", 2, false);
-    eos.compaction.sound_speed = read_table(e, "sound_speed", 1, true);
-    if (eos.compaction.loading.y.front() != 0.0)
+    materials::Compaction c;
+    c.loading = read_table(e, "loading", 2, false);
+    c.sound_speed = read_table(e, "sound_speed", 1, true);
+    if (c.loading.y.front() != 0.0)
       e.error("loading", "the loading curve must start at zero pressure (the initial density)");
-    for (std::size_t k = 1; k < eos.compaction.loading.y.size(); ++k)
-      if (!(eos.compaction.loading.y[k] > eos.compaction.loading.y[k - 1]))
+    for (std::size_t k = 1; k < c.loading.y.size(); ++k)
+      if (!(c.loading.y[k] > c.loading.y[k - 1]))
         e.error("loading", "the pressure must increase with density");
-    eos.compaction.tensile_limit = e.number("tensile_limit", 0.0);
-    if (eos.compaction.tensile_limit < 0.0)
-      e.error("tensile_limit", "expected a tension magnitude >= 0");
+    c.tensile_limit = e.number("tensile_limit", 0.0);
+    if (c.tensile_limit < 0.0) e.error("tensile_limit", "expected a tension magnitude >= 0");
+    eos = c;
   } else if (type == "hjc") {
-    eos.kind = EosSpec::Kind::Hjc; // constants from the material's 'hjc' map
+    eos = materials::Hjc{}; // constants from the material's 'hjc' map
   } else {
-    eos.kind = EosSpec::Kind::LinearPolynomial;
-    eos.linear_polynomial.rho0 = e.positive("rho0");
+    materials::LinearPolynomial l;
+    l.rho0 = e.positive("rho0");
     const std::vector<double> c = e.numbers("c", 7);
-    for (int k = 0; k < 7; ++k) eos.linear_polynomial.c[k] = c[k];
+    for (int k = 0; k < 7; ++k) l.c[k] = c[k];
+    eos = l;
   }
   e.finish();
   return eos;
@@ -270,12 +275,13 @@ MaterialSpec read_material(KeyReader& m) {
   if (auto e = m.optional_map("eos")) mat.eos = read_eos(*e);
   if (auto h = m.optional_map("hjc")) mat.hjc = read_hjc(*h);
   if (auto st = m.optional_map("strength")) mat.strength = read_strength(*st, mat);
-  const bool hjc_eos = mat.eos && mat.eos->kind == EosSpec::Kind::Hjc;
+  const bool hjc_eos = mat.eos && std::holds_alternative<materials::Hjc>(*mat.eos);
   const bool hjc_strength = mat.strength && mat.strength->model == StrengthSpec::Model::Hjc;
   if (hjc_eos != hjc_strength)
     m.error(hjc_eos ? "strength" : "eos",
             "the HJC model needs both 'eos: {type: hjc}' and 'strength: {model: hjc}'");
   if (hjc_eos && !mat.hjc) mat.hjc = materials::Hjc{}; // the constants' defaults
+  if (hjc_eos) mat.eos = *mat.hjc;
   if (auto b = m.optional_map("bond")) mat.bond = read_bond(*b);
   m.finish();
   return mat;

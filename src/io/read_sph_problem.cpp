@@ -6,6 +6,7 @@
 #include "meshfree/io/spec_read.hpp"
 #include <algorithm>
 #include <cmath>
+#include <variant>
 
 namespace mf::io {
 
@@ -22,15 +23,6 @@ void take_material(const MaterialSpec& m) {
     material_error(m, "shear_modulus",
                    "analysis sph needs the shear modulus (or E and nu) of a "
                    "solid with plasticity");
-}
-
-/// The reference density of a material's equation of state, where it has one (else 0).
-double natural_density(const MaterialSpec& m) {
-  const EosSpec& eos = *m.eos;
-  if (eos.kind == EosSpec::Kind::Jwl) return eos.jwl.rho0;
-  if (eos.kind == EosSpec::Kind::Hjc) return m.hjc->rho0;
-  if (eos.kind == EosSpec::Kind::Compaction) return eos.compaction.loading.x.front();
-  return 0.0;
 }
 
 SphRegion read_region_of_particles(KeyReader& b, int dim, double spacing,
@@ -52,22 +44,30 @@ SphRegion read_region_of_particles(KeyReader& b, int dim, double spacing,
       if (block.spacing > g.box->hi[d] - g.box->lo[d])
         b.error("spacing", "larger than the box along an axis");
   }
-  const EosSpec& eos = *mat.eos;
-  const double natural = mat.density > 0.0 ? mat.density : natural_density(mat);
+  const materials::EquationOfState& eos = *mat.eos;
+  const auto* explosive = std::get_if<materials::JwlExplosive>(&eos);
+  const auto* ideal_gas = std::get_if<materials::IdealGas>(&eos);
+  const auto* hjc = std::get_if<materials::Hjc>(&eos);
+  const auto* compaction = std::get_if<materials::Compaction>(&eos);
+  // The material's density, else the reference density of its equation of state.
+  double natural = mat.density;
+  if (!(natural > 0.0) && explosive) natural = explosive->jwl.rho0;
+  if (!(natural > 0.0) && hjc) natural = hjc->rho0;
+  if (!(natural > 0.0) && compaction) natural = compaction->loading.x.front();
   block.density = b.positive("density", natural);
   if (!(block.density > 0.0)) b.error("density", "required value is missing");
-  const bool energy_free = eos.kind == EosSpec::Kind::Compaction || eos.kind == EosSpec::Kind::Hjc;
+  const bool energy_free = compaction || hjc;
   if (energy_free && b.has("energy"))
     b.error("energy", "this equation of state does not depend on the internal energy");
-  if (b.has("pressure") == b.has("energy") && eos.kind != EosSpec::Kind::Jwl && !energy_free)
+  if (b.has("pressure") == b.has("energy") && !explosive && !energy_free)
     b.error("energy", "give exactly one of 'energy' (J/kg) or 'pressure'");
   if (b.has("pressure")) {
-    if (eos.kind != EosSpec::Kind::IdealGas)
+    if (!ideal_gas)
       b.error("pressure", "an initial pressure is turned into energy for an ideal gas only; "
                           "give 'energy'");
-    block.energy = b.positive("pressure") / ((eos.ideal_gas.gamma - 1.0) * block.density);
+    block.energy = b.positive("pressure") / ((ideal_gas->gamma - 1.0) * block.density);
   } else {
-    block.energy = b.number("energy", eos.kind == EosSpec::Kind::Jwl ? eos.jwl.e0 : 0.0);
+    block.energy = b.number("energy", explosive ? explosive->jwl.e0 : 0.0);
   }
   if (b.has("velocity")) block.velocity = read_point(b, "velocity", dim);
   b.allow("velocity");

@@ -2,26 +2,13 @@
 // One entry of a problem file's `materials:` list: elastic constants, density, and the optional
 // parts each analysis takes what it needs from (plasticity for the Galerkin solver and SPH
 // solids, an equation of state and a strength model for SPH, bond parameters for peridynamics).
-#include "meshfree/materials/eos.hpp"
+#include "meshfree/materials/equation_of_state.hpp"
 #include "meshfree/materials/geomaterials.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
 #include <optional>
 #include <string>
 
 namespace mf::io {
-
-/// An equation of state; the kind selects which member is used.
-struct EosSpec {
-  enum class Kind { IdealGas, Jwl, MieGruneisen, LinearPolynomial, Compaction, Hjc };
-  Kind kind = Kind::IdealGas;
-  materials::IdealGas ideal_gas;
-  materials::Jwl jwl;
-  materials::MieGruneisen mie_gruneisen;
-  materials::LinearPolynomial linear_polynomial;
-  materials::Compaction compaction;
-  bool has_unreacted = false;        // JWL: the unreacted explosive (Mie-Grueneisen on rho0)
-  materials::MieGruneisen unreacted; // its shock Hugoniot U_s = c0 + s u_p and gamma0
-};
 
 /// A strength model other than J2 (which comes from `plasticity:`): a granular yield table and
 /// shear modulus table (soil) or the Holmquist-Johnson-Cook model (concrete, constants from the
@@ -52,7 +39,7 @@ struct MaterialSpec {
   double bulk_modulus = 0.0;  // given only
   double density = 0.0;       // 0: not given
   std::optional<materials::J2Parameters> plasticity; // E and nu from above
-  std::optional<EosSpec> eos;
+  std::optional<materials::EquationOfState> eos;     // type hjc: the constants of `hjc:`
   std::optional<StrengthSpec> strength;
   std::optional<materials::Hjc> hjc;
   std::optional<BondSpec> bond;
