@@ -106,6 +106,13 @@ ProblemSpec parse_problem(YAML::Node root, const std::string& base_dir) {
   p.units = r.text("units", "");
   p.analysis = analysis_of(r.choice("analysis", analyses, ""));
   if (p.analysis == Analysis::ModelProblem1D) {
+    // A 1D problem: the model, if given, can only be uniaxial.
+    if (r.has("model")) {
+      read_model(r, p);
+      if (p.model_type != ModelType::UniaxialStrain)
+        r.error("model", "analysis model_problem_1d takes model.type uniaxial_strain");
+    }
+    r.allow("model");
     parse_model_1d(r, p, base_dir);
     r.finish();
     return p;
