@@ -1,7 +1,7 @@
 // Elastoplastic analysis through the whole solver: a homogeneous bar against the closed-form
 // uniaxial response (load, unload, reverse yielding), quadratic convergence of Newton with the
 // consistent tangent, and the load schedule's bookkeeping.
-#include "meshfree/app/elastoplastic_static.hpp"
+#include "meshfree/implicit/elastoplastic_solve.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
 #include "test_support.hpp"
 #include <catch2/catch.hpp>
@@ -42,7 +42,7 @@ struct Uniaxial {
 /// Largest |reaction - sigma_exact * area| over the increments, relative to the largest stress.
 double bar_error(const std::vector<std::string>& overrides) {
   const auto spec = load_problem("bar_uniaxial_cyclic", overrides);
-  const auto r = app::solve_elastoplastic_static(spec, test_session(), nullptr);
+  const auto r = implicit::solve_elastoplastic_static(spec, test_session(), nullptr);
   REQUIRE(r.status == "completed");
   Uniaxial exact{*spec.plasticity};
   const double length = 2.0, area = 1.0; // height and width x thickness of the bar
@@ -89,7 +89,7 @@ TEST_CASE("Newton with the consistent tangent converges quadratically in plastic
   const auto spec = load_problem("beam_voce_bending",
                                  {"boundary.0.penalty_scale=1e4", "boundary.1.penalty_scale=1e4",
                                   "nonlinear.tolerance=1e-10", "steps.0.increments=25"});
-  const auto r = app::solve_elastoplastic_static(spec, test_session(), nullptr);
+  const auto r = implicit::solve_elastoplastic_static(spec, test_session(), nullptr);
   REQUIRE(r.status == "completed");
   int checked = 0;
   double lowest = 1e300, largest_C = 0.0;
@@ -130,7 +130,7 @@ TEST_CASE("a load beyond the limit load stops the run with the reason and keeps 
   const auto spec =
       load_problem("plate_plastic_thesis", {"discretisation.spacing=0.1", "steps.1.load_factor=320",
                                             "steps.1.increments=4", "nonlinear.max_cutbacks=4"});
-  const auto r = app::solve_elastoplastic_static(spec, test_session(), nullptr);
+  const auto r = implicit::solve_elastoplastic_static(spec, test_session(), nullptr);
   CHECK(r.status == "stopped");
   CHECK_THAT(r.stop_reason, Catch::Contains("step 'plastic'") && Catch::Contains("limit load") &&
                                 Catch::Contains("did not converge"));
