@@ -11,6 +11,7 @@
 #include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/io/problem_spec.hpp"
 #include "meshfree/quadrature/integration_points.hpp"
+#include "meshfree/solvers/parallel.hpp"
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -201,7 +202,7 @@ int run(Command& c) {
         std::cerr << "meshfree: cannot record the failure: " << again.what() << std::endl;
       }
     }
-    if (session.size() > 1 && !everywhere) MPI_Abort(MPI_COMM_WORLD, 1);
+    if (session.size() > 1 && !everywhere) mf::solvers::abort_every_rank(session.comm(), 1);
     return 1;
   }
   return exit_code;

@@ -1,4 +1,5 @@
 #include "meshfree/solvers/parallel.hpp"
+#include <cstdlib>
 
 namespace mf::solvers {
 
@@ -74,6 +75,11 @@ RankMax max_with_location(MPI_Comm comm, double value, double* payload, int n) {
   MPI_Allreduce(&mine, &top, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm);
   MPI_Bcast(payload, n, MPI_DOUBLE, top.rank, comm);
   return {top.value, top.rank};
+}
+
+void abort_every_rank(MPI_Comm comm, int code) {
+  MPI_Abort(comm, code);
+  std::abort(); // not reached: MPI_Abort ends the process, but is not declared noreturn
 }
 
 } // namespace mf::solvers

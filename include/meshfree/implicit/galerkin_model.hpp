@@ -1,8 +1,9 @@
 #pragma once
-// The solution-independent part of a meshfree Galerkin analysis on one rank: nodes and their
-// supports, integration points in the body and on the boundary conditions, the points this rank
-// integrates with their shape functions, and the pattern of its block rows. The elastic solve
-// assembles on it once; a nonlinear solve would assemble on it every iteration.
+// The solution-independent part of a Galerkin analysis (meshfree or finite elements) on one rank:
+// nodes and their supports, integration points in the body and on the boundary conditions, the
+// points this rank integrates with their shape functions, and the pattern of its block rows. The
+// elastic solve assembles on it once, the elastoplastic solve every Newton iteration; a later
+// stage evaluates a returned solution on it (shapes_at).
 #include "meshfree/core/timer.hpp"
 #include "meshfree/fem/elements.hpp"
 #include "meshfree/fem/mesh.hpp"

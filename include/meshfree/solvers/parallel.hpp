@@ -34,4 +34,8 @@ struct RankMax {
 /// are copied to every rank.
 RankMax max_with_location(MPI_Comm comm, double value, double* payload, int n);
 
+/// Ends the run on every rank of `comm` with exit code `code`: for an error that reached this rank
+/// only, while the others would wait for it in a collective call forever.
+[[noreturn]] void abort_every_rank(MPI_Comm comm, int code);
+
 } // namespace mf::solvers
