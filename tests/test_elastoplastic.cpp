@@ -149,7 +149,7 @@ TEST_CASE("the converged state returned by the solver is the closed-form homogen
   // plastic strain is e_p = (E eps - sigma0) / (E + H + Hk), s = E (eps - e_p); the plastic flow
   // is isochoric (e_p,xx = e_p,zz = -e_p / 2), the back stress 2/3 Hk times the plastic strain
   // tensor (Simo & Hughes 1998, Box 3.2), and the equivalent plastic strain alpha = e_p.
-  for (const std::vector<std::string> overrides :
+  for (const std::vector<std::string>& overrides :
        {std::vector<std::string>{"discretisation.method=fem", "discretisation.fem.element=q4"},
         std::vector<std::string>{}}) {
     auto spec = load_problem("bar_uniaxial_cyclic", overrides);
