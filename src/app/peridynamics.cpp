@@ -306,9 +306,9 @@ PdResult run_peridynamics(const io::ProblemSpec& spec, io::OutputDirectory* out)
   const bool plane = m.plane();
   const char* axes[] = {"x", "y", "z"};
   const int dims = plane ? 2 : 3;
-  std::vector<std::string>& H = R.history_header;
-  H = {"time",          "step",           "kinetic_energy", "strain_energy",
-       "external_work", "energy_balance", "broken_bonds",   "max_damage"};
+  std::vector<std::string> H = {"time",          "step",          "kinetic_energy",
+                                "strain_energy", "external_work", "energy_balance",
+                                "broken_bonds",  "max_damage"};
   for (const auto& imp : setup.impactors) { // a fixed support records only its force
     if (!imp.fixed) {
       for (int d = 0; d < dims; ++d) H.push_back(imp.name + "_position_" + axes[d]);
@@ -321,6 +321,7 @@ PdResult run_peridynamics(const io::ProblemSpec& spec, io::OutputDirectory* out)
       for (int d = 0; d < dims; ++d) H.push_back(g.name + "_" + what + axes[d]);
   if (s.crack.enabled)
     H.insert(H.end(), {"crack_tip_x", "crack_tip_y", "crack_tip_z", "crack_length"});
+  R.history = io::History(H);
 
   double work = 0.0;
   long broken = first.broken;
@@ -359,20 +360,15 @@ PdResult run_peridynamics(const io::ProblemSpec& spec, io::OutputDirectory* out)
       row.insert(row.end(), {tip.x(), tip.y(), tip.z(), reach});
     }
     R.max_damage = row[7];
-    R.history.push_back(row);
+    R.history.append(std::move(row));
   };
 
-  std::unique_ptr<io::FieldSeries> fields;
-  if (out) fields = std::make_unique<io::FieldSeries>(*out, "fields", p.x);
-  const auto write_fields = [&]() {
-    if (!fields) return;
-    io::FieldStep step;
-    step.time = q.time;
-    step.vectors3 = {{"displacement", q.u}, {"velocity", q.v}};
-    std::vector<double> material(p.material.begin(), p.material.end());
-    step.scalars = {{"damage", phi}, {"material", material}};
-    fields->add_step(step);
-  };
+  io::FieldOutput fields(out, "fields", p.x);
+  fields.vector("displacement", q.u);
+  fields.vector("velocity", q.v);
+  fields.scalar("damage", phi);
+  fields.scalar("material", p.material);
+  const auto write_fields = [&]() { fields.write(q.time); };
 
   // Gauge maxima over every step.
   for (const auto& g : s.gauges)
@@ -441,16 +437,16 @@ PdResult run_peridynamics(const io::ProblemSpec& spec, io::OutputDirectory* out)
   R.bond_updates_per_second =
       bond_seconds > 0.0 ? 2.0 * static_cast<double>(R.bonds) * steps / bond_seconds : 0.0;
   if (R.status == "completed") {
-    if (R.history.empty() || R.history.back()[0] < q.time) {
+    if (R.history.empty() || R.history.last()[0] < q.time) {
       const pd::StepReport last = pd::accelerate(m, setup.state, q, setup.loading, true);
       record(last.strain_energy);
     }
     pd::damage(m, setup.state, phi);
     write_fields();
   }
-  if (fields) fields->close();
+  fields.close();
   double emax = 0.0, drift = 0.0;
-  for (const auto& row : R.history) {
+  for (const auto& row : R.history.rows()) {
     emax = std::max({emax, row[2] + row[3], std::abs(row[4])});
     drift = std::max(drift, std::abs(row[5]));
   }
@@ -461,40 +457,29 @@ PdResult run_peridynamics(const io::ProblemSpec& spec, io::OutputDirectory* out)
 }
 
 void write_pd_outputs(const io::ProblemSpec& spec, const PdResult& r, io::OutputDirectory& out) {
-  out.write_csv("history.csv", r.history_header, r.history);
-  io::Json counts, times, results, step;
-  counts.set("particles", r.particles).set("bonds", r.bonds).set("steps", r.steps);
-  step.set("dt", r.dt).set("limited_by", r.dt_limit);
-  for (const auto& [name, sec] : r.timer.phases()) times.set(name, sec);
-  times.set("total", r.timer.total());
+  r.history.write(out);
+  io::Summary summary({spec.name, spec.description, spec.units, "peridynamics", ""});
+  summary.set_status(r.status, r.stop_reason);
+  summary.set("openmp_threads", omp_get_max_threads());
+  summary.section("counts")
+      .set("particles", r.particles)
+      .set("bonds", r.bonds)
+      .set("steps", r.steps);
+  summary.section("time_step").set("dt", r.dt).set("limited_by", r.dt_limit);
+  io::Json& results = summary.section("results");
   results.set("broken_bonds", r.broken_bonds)
       .set("max_damage", r.max_damage)
       .set("energy_balance_relative", r.energy_drift)
       .set("bond_evaluations_per_second", r.bond_updates_per_second);
   // Largest magnitudes of every recorded history column (gauges, impactor, crack).
   io::Json maxima;
-  for (std::size_t c = 2; c < r.history_header.size(); ++c) {
-    double v = 0.0;
-    for (const auto& row : r.history) v = std::max(v, std::abs(row[c]));
-    maxima.set(r.history_header[c], v);
-  }
+  for (std::size_t c = 2; c < r.history.columns().size(); ++c)
+    maxima.set(r.history.columns()[c], r.history.max_abs(c));
   results.set("max_abs", maxima);
   io::Json gauges;
   for (const auto& [name, v] : r.gauge_maxima) gauges.set(name, v);
   results.set("gauge_max_abs_every_step", gauges);
-  io::Json summary;
-  summary.set("problem", spec.name)
-      .set("description", spec.description)
-      .set("units", spec.units)
-      .set("analysis", "peridynamics")
-      .set("status", r.status);
-  if (!r.stop_reason.empty()) summary.set("stop_reason", r.stop_reason);
-  summary.set("openmp_threads", omp_get_max_threads())
-      .set("counts", counts)
-      .set("time_step", step)
-      .set("time_s", times)
-      .set("results", results);
-  out.write_text("summary.json", summary.str() + "\n");
+  summary.write(out, r.timer);
 }
 
 } // namespace mf::app

@@ -183,9 +183,9 @@ SphResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out) {
     gauge.push_back(best);
   }
   const char* axes[] = {"x", "y", "z"};
-  std::vector<std::string>& H = R.history_header;
-  H = {"time",         "step",          "dt",           "kinetic_energy", "internal_energy",
-       "total_energy", "external_work", "energy_error", "max_pressure"};
+  std::vector<std::string> H = {
+      "time",         "step",          "dt",           "kinetic_energy", "internal_energy",
+      "total_energy", "external_work", "energy_error", "max_pressure"};
   for (const io::SphGauge& g : s.gauges) {
     H.push_back(g.name + "_pressure");
     H.push_back(g.name + "_density");
@@ -195,6 +195,7 @@ SphResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out) {
     for (int d = 0; d < dims; ++d) H.push_back(g.name + "_v" + axes[d]);
     for (int d = 0; d < dims; ++d) H.push_back(g.name + "_u" + axes[d]);
   }
+  R.history = io::History(H);
   for (const io::SphGauge& g : s.gauges)
     for (const char* what : {"pressure", "speed"})
       R.gauge_maxima.emplace_back(g.name + "_" + what, 0.0);
@@ -234,7 +235,7 @@ SphResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out) {
       for (int d = 0; d < dims; ++d) row.push_back(P.v[3 * i + d]);
       for (int d = 0; d < dims; ++d) row.push_back(P.x[3 * i + d] - x0[3 * i + d]);
     }
-    R.history.push_back(row);
+    R.history.append(std::move(row));
   };
   const auto track = [&]() {
     R.peak_pressure = std::max(R.peak_pressure, max_pressure());
@@ -246,32 +247,26 @@ SphResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out) {
       R.gauge_maxima[2 * k + 1].second = std::max(R.gauge_maxima[2 * k + 1].second, speed);
     }
   };
-  std::unique_ptr<io::FieldSeries> fields;
-  if (out) fields = std::make_unique<io::FieldSeries>(*out, "fields", x0);
-  const auto write_fields = [&]() {
-    if (!fields) return;
-    io::FieldStep step;
-    step.time = h.time;
-    // The body's particles only (mirror images beyond them are not written).
-    const auto body = [&](const auto& a, int per) {
-      return std::vector<double>(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(per) * n);
-    };
-    std::vector<double> u = body(P.x, 3);
+  // The body's particles only (mirror images beyond them are not written).
+  io::FieldOutput fields(out, "fields", x0);
+  fields.vector("displacement", [&](std::vector<double>& u) {
+    u.assign(P.x.begin(), P.x.begin() + 3 * static_cast<std::ptrdiff_t>(n));
     for (std::size_t k = 0; k < u.size(); ++k) u[k] -= x0[k];
-    std::vector<double> mises(n);
+  });
+  fields.vector("velocity", P.v);
+  fields.scalar("density", P.rho);
+  fields.scalar("pressure", P.p);
+  fields.scalar("specific_energy", P.e);
+  fields.scalar("smoothing_length", P.h);
+  fields.scalar("von_mises", [&](std::vector<double>& mises) {
+    mises.resize(n);
     for (int i = 0; i < n; ++i) mises[i] = von_mises(i);
-    step.vectors3 = {{"displacement", u}, {"velocity", body(P.v, 3)}};
-    step.scalars = {{"density", body(P.rho, 1)},
-                    {"pressure", body(P.p, 1)},
-                    {"specific_energy", body(P.e, 1)},
-                    {"smoothing_length", body(P.h, 1)},
-                    {"von_mises", mises},
-                    {"plastic_strain", body(P.alpha, 1)},
-                    {"damage", body(P.damage, 1)},
-                    {"failed", body(P.failed, 1)},
-                    {"material", body(P.material, 1)}};
-    fields->add_step(step);
-  };
+  });
+  fields.scalar("plastic_strain", P.alpha);
+  fields.scalar("damage", P.damage);
+  fields.scalar("failed", P.failed);
+  fields.scalar("material", P.material);
+  const auto write_fields = [&]() { fields.write(h.time); };
 
   track();
   record();
@@ -328,10 +323,10 @@ SphResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out) {
   R.neighbour_rebuilds = h.rebuilds;
   R.particle_steps_per_second = stepping > 0.0 ? static_cast<double>(n) * h.step / stepping : 0.0;
   if (R.status == "completed") {
-    if (R.history.back()[0] < h.time) record();
+    if (R.history.last()[0] < h.time) record();
     write_fields();
   }
-  if (fields) fields->close();
+  fields.close();
   if (R.status != "completed") log::info("stopped: ", R.stop_reason);
   log::info("done: ", R.steps, " steps, ", R.neighbour_rebuilds, " neighbour-list builds, ",
             R.particle_steps_per_second, " particle steps/s, largest energy error ",
@@ -341,27 +336,25 @@ SphResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out) {
 }
 
 void write_sph_outputs(const io::ProblemSpec& spec, const SphResult& r, io::OutputDirectory& out) {
-  out.write_csv("history.csv", r.history_header, r.history);
-  io::Json counts, step, times, results, gauges;
-  counts.set("particles", r.particles)
+  r.history.write(out);
+  io::Summary summary({spec.name, spec.description, spec.units, "sph", ""});
+  summary.set_status(r.status, r.stop_reason);
+  summary.section("counts")
+      .set("particles", r.particles)
       .set("steps", r.steps)
       .set("neighbour_list_builds", r.neighbour_rebuilds);
-  step.set("first", r.first_dt).set("smallest", r.smallest_dt).set("limited_by", r.dt_limit);
-  for (const auto& [name, seconds] : r.timer.phases()) times.set(name, seconds);
+  summary.section("time_step")
+      .set("first", r.first_dt)
+      .set("smallest", r.smallest_dt)
+      .set("limited_by", r.dt_limit);
+  io::Json gauges;
   for (const auto& [name, value] : r.gauge_maxima) gauges.set(name, value);
-  results.set("peak_pressure", r.peak_pressure)
+  summary.section("results")
+      .set("peak_pressure", r.peak_pressure)
       .set("energy_error_relative", r.energy_error)
       .set("particle_steps_per_second", r.particle_steps_per_second)
       .set("gauge_maxima", gauges);
-  io::Json summary;
-  summary.set("problem", spec.name)
-      .set("description", spec.description)
-      .set("units", spec.units)
-      .set("analysis", "sph")
-      .set("status", r.status);
-  if (!r.stop_reason.empty()) summary.set("stop_reason", r.stop_reason);
-  summary.set("counts", counts).set("time_step", step).set("time_s", times).set("results", results);
-  out.write_text("summary.json", summary.str() + "\n");
+  summary.write(out, r.timer);
 }
 
 } // namespace mf::app

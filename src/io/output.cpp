@@ -283,6 +283,18 @@ Json& Json::set(const std::string& key, const Json& object) {
   return *this;
 }
 
+Json& Json::merge(const Json& other) {
+  std::size_t si = 0, oi = 0;
+  for (const auto& [key, kind] : other.order_) {
+    if (kind == 0)
+      items_.push_back(other.items_[si++]);
+    else
+      objects_.push_back(other.objects_[oi++]);
+    order_.emplace_back(key, kind);
+  }
+  return *this;
+}
+
 std::string Json::str(int indent) const {
   const std::string pad(indent + 2, ' ');
   std::string out = "{\n";

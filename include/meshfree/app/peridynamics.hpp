@@ -4,6 +4,7 @@
 #include "meshfree/core/timer.hpp"
 #include "meshfree/io/output.hpp"
 #include "meshfree/io/problem_spec.hpp"
+#include "meshfree/io/results.hpp"
 #include "meshfree/pd/dynamics.hpp"
 #include <string>
 #include <vector>
@@ -31,8 +32,7 @@ struct PdResult {
   double dt = 0.0;
   std::string dt_limit;
   double bond_updates_per_second = 0.0;
-  std::vector<std::string> history_header;
-  std::vector<std::vector<double>> history;
+  io::History history;
   double max_damage = 0.0;
   long broken_bonds = 0;
   double energy_drift = 0.0; // |E_total(t) - E_total(0) - W_ext| / max(E), no dissipation only

@@ -4,6 +4,7 @@
 #include "meshfree/core/timer.hpp"
 #include "meshfree/io/output.hpp"
 #include "meshfree/io/problem_spec.hpp"
+#include "meshfree/io/results.hpp"
 #include "meshfree/sph/hydro.hpp"
 #include <string>
 #include <vector>
@@ -21,8 +22,7 @@ struct SphResult {
   std::string dt_limit; // the particle that set the smallest step
   double particle_steps_per_second = 0.0;
   double peak_pressure = 0.0, energy_error = 0.0; // |E(t) - E(0)| / E(0), largest
-  std::vector<std::string> history_header;
-  std::vector<std::vector<double>> history;
+  io::History history;
   std::vector<std::pair<std::string, double>> gauge_maxima;
   std::string status = "completed", stop_reason;
   PhaseTimer timer;

@@ -92,6 +92,8 @@ public:
   Json& set(const std::string& key, bool v);
   Json& set(const std::string& key, const Json& object);
   Json& set(const std::string& key, const std::vector<double>& v);
+  /// Appends every key of `other`, in its order.
+  Json& merge(const Json& other);
   std::string str(int indent = 0) const;
 
 private:

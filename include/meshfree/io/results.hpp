@@ -1,0 +1,110 @@
+#pragma once
+// What every analysis writes about its run (DESIGN.md, "the run contract"): summary.json (a
+// header naming the problem and the analysis, the status and why a run stopped, named sections
+// such as counts and results, and the wall time of each phase), history.csv (named columns, one
+// row per recorded instant), and field series whose fields are registered once by name and kind
+// and sampled at every output step, for particles, nodes and quadrature points alike.
+#include "meshfree/core/timer.hpp"
+#include "meshfree/io/output.hpp"
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mf::io {
+
+/// history.csv: named columns, rows appended as the run goes.
+class History {
+public:
+  History() = default;
+  explicit History(std::vector<std::string> columns) : columns_(std::move(columns)) {}
+  void add_column(std::string name) { columns_.push_back(std::move(name)); }
+  const std::vector<std::string>& columns() const { return columns_; }
+  /// Appends a row with one value per column.
+  void append(std::vector<double> row);
+  const std::vector<std::vector<double>>& rows() const { return rows_; }
+  bool empty() const { return rows_.empty(); }
+  const std::vector<double>& last() const { return rows_.back(); }
+  /// Largest |value| of column c over every row (0 without rows).
+  double max_abs(std::size_t c) const;
+  void write(OutputDirectory& out, const std::string& file = "history.csv") const;
+
+private:
+  std::vector<std::string> columns_;
+  std::vector<std::vector<double>> rows_;
+};
+
+/// The first keys of summary.json; an empty method is left out.
+struct RunHeader {
+  std::string problem, description, units, analysis, method;
+};
+
+/// summary.json: the header, "status" (and "stop_reason" when a run stopped early), top-level
+/// values (ranks, threads), then the sections in the order they were first asked for, with
+/// "time_s" (each phase of the timer, anything added to section("time_s"), and "total") just
+/// before "results".
+class Summary {
+public:
+  explicit Summary(RunHeader header) : header_(std::move(header)) {}
+  void set_status(std::string status, std::string stop_reason = {});
+  /// A value written after the status.
+  template <class T> Summary& set(const std::string& key, const T& value) {
+    top_.set(key, value);
+    return *this;
+  }
+  /// The section `name`, created empty at its first use.
+  Json& section(const std::string& name);
+  std::string str(const PhaseTimer& timer) const;
+  void write(OutputDirectory& out, const PhaseTimer& timer) const;
+
+private:
+  RunHeader header_;
+  std::string status_ = "completed", stop_reason_;
+  Json top_;
+  std::vector<std::pair<std::string, std::unique_ptr<Json>>> sections_;
+};
+
+/// A series of fields on one point set (fields.h5/.xmf, or another stem for quadrature points),
+/// each field registered once by name and kind with the function that fills its values; write()
+/// samples every field at one instant. Without an output directory nothing is written.
+class FieldOutput {
+public:
+  using Fill = std::function<void(std::vector<double>&)>;
+  using Fill2 = std::function<void(std::vector<Vec2>&)>;
+  /// Points in space, x, y, z of each in turn.
+  FieldOutput(OutputDirectory* out, const std::string& stem, const std::vector<double>& xyz);
+  /// Points of a plane, with the cells of a mesh if any.
+  FieldOutput(OutputDirectory* out, const std::string& stem, const std::vector<Vec2>& points,
+              const GridCells& cells = {});
+  /// One value per point.
+  void scalar(std::string name, Fill fill);
+  /// Three values per point.
+  void vector(std::string name, Fill fill);
+  /// A plane vector per point (written with z = 0).
+  void vector2(std::string name, Fill2 fill);
+  /// The first points() values (three per point for a vector) of an array that lives as long
+  /// as this series (it may grow: it is read at each write); its elements convert to double.
+  template <class T> void scalar(std::string name, const std::vector<T>& a) {
+    scalar(std::move(name), copy_of(a, 1));
+  }
+  template <class T> void vector(std::string name, const std::vector<T>& a) {
+    vector(std::move(name), copy_of(a, 3));
+  }
+  std::size_t points() const { return points_; }
+  bool active() const { return series_ != nullptr; }
+  /// Every registered field at time t.
+  void write(double t);
+  void close();
+
+private:
+  template <class T> Fill copy_of(const std::vector<T>& a, std::size_t per) const {
+    const std::size_t n = per * points_;
+    return [&a, n](std::vector<double>& out) { out.assign(a.begin(), a.begin() + n); };
+  }
+  std::unique_ptr<FieldSeries> series_;
+  std::size_t points_ = 0;
+  std::vector<std::pair<std::string, Fill>> scalars_, vectors_;
+  std::vector<std::pair<std::string, Fill2>> vectors2_;
+};
+
+} // namespace mf::io

@@ -1,0 +1,116 @@
+#include "meshfree/io/results.hpp"
+#include "meshfree/core/error.hpp"
+#include <algorithm>
+#include <cmath>
+
+namespace mf::io {
+
+void History::append(std::vector<double> row) {
+  MF_ASSERT(row.size() == columns_.size());
+  rows_.push_back(std::move(row));
+}
+
+double History::max_abs(std::size_t c) const {
+  double v = 0.0;
+  for (const auto& row : rows_) v = std::max(v, std::abs(row[c]));
+  return v;
+}
+
+void History::write(OutputDirectory& out, const std::string& file) const {
+  out.write_csv(file, columns_, rows_);
+}
+
+void Summary::set_status(std::string status, std::string stop_reason) {
+  status_ = std::move(status);
+  stop_reason_ = std::move(stop_reason);
+}
+
+Json& Summary::section(const std::string& name) {
+  for (auto& [key, json] : sections_)
+    if (key == name) return *json;
+  sections_.emplace_back(name, std::make_unique<Json>());
+  return *sections_.back().second;
+}
+
+std::string Summary::str(const PhaseTimer& timer) const {
+  Json times;
+  for (const auto& [name, seconds] : timer.phases()) times.set(name, seconds);
+  const Json* extra_times = nullptr;
+  for (const auto& [key, json] : sections_)
+    if (key == "time_s") extra_times = json.get();
+  if (extra_times) times.merge(*extra_times);
+  times.set("total", timer.total());
+
+  Json j;
+  j.set("problem", header_.problem).set("description", header_.description);
+  j.set("units", header_.units);
+  j.set("analysis", header_.analysis);
+  if (!header_.method.empty()) j.set("method", header_.method);
+  j.set("status", status_);
+  if (!stop_reason_.empty()) j.set("stop_reason", stop_reason_);
+  j.merge(top_);
+  bool timed = false;
+  for (const auto& [key, json] : sections_) {
+    if (key == "time_s") continue;
+    if (key == "results") j.set("time_s", times), timed = true;
+    j.set(key, *json);
+  }
+  if (!timed) j.set("time_s", times);
+  return j.str() + "\n";
+}
+
+void Summary::write(OutputDirectory& out, const PhaseTimer& timer) const {
+  out.write_text("summary.json", str(timer));
+}
+
+FieldOutput::FieldOutput(OutputDirectory* out, const std::string& stem,
+                         const std::vector<double>& xyz)
+    : points_(xyz.size() / 3) {
+  if (out) series_ = std::make_unique<FieldSeries>(*out, stem, xyz);
+}
+
+FieldOutput::FieldOutput(OutputDirectory* out, const std::string& stem,
+                         const std::vector<Vec2>& points, const GridCells& cells)
+    : points_(points.size()) {
+  if (out) series_ = std::make_unique<FieldSeries>(*out, stem, points, cells);
+}
+
+void FieldOutput::scalar(std::string name, Fill fill) {
+  scalars_.emplace_back(std::move(name), std::move(fill));
+}
+
+void FieldOutput::vector(std::string name, Fill fill) {
+  vectors_.emplace_back(std::move(name), std::move(fill));
+}
+
+void FieldOutput::vector2(std::string name, Fill2 fill) {
+  vectors2_.emplace_back(std::move(name), std::move(fill));
+}
+
+void FieldOutput::write(double t) {
+  if (!series_) return;
+  FieldStep step;
+  step.time = t;
+  for (const auto& [name, fill] : scalars_) {
+    step.scalars.emplace_back(name, std::vector<double>());
+    fill(step.scalars.back().second);
+    MF_ASSERT(step.scalars.back().second.size() == points_);
+  }
+  for (const auto& [name, fill] : vectors_) {
+    step.vectors3.emplace_back(name, std::vector<double>());
+    fill(step.vectors3.back().second);
+    MF_ASSERT(step.vectors3.back().second.size() == 3 * points_);
+  }
+  for (const auto& [name, fill] : vectors2_) {
+    step.vectors.emplace_back(name, std::vector<Vec2>());
+    fill(step.vectors.back().second);
+    MF_ASSERT(step.vectors.back().second.size() == points_);
+  }
+  series_->add_step(step);
+}
+
+void FieldOutput::close() {
+  if (series_) series_->close();
+}
+
+} // namespace mf::io
