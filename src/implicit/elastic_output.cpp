@@ -1,4 +1,5 @@
 #include "meshfree/implicit/elastic_output.hpp"
+#include "meshfree/io/results.hpp"
 #include "meshfree/materials/elastic.hpp"
 #include "meshfree/verification/exact_solutions.hpp"
 #include <algorithm>
@@ -11,31 +12,33 @@ void write_elastic_outputs(const io::ProblemSpec& spec, const ElasticResult& r,
   if (session.rank() != 0) return;
   const materials::IsotropicElastic exact_mat =
       materials::plane_stress_equivalent(spec.material, spec.model);
-  io::FieldStep step;
-  step.time = 1.0;
-  std::vector<double> sxx, syy, sxy, vm, vol, rad;
+  std::vector<double> sxx, syy, sxy, vm;
   for (std::size_t i = 0; i < r.node_x.size(); ++i) {
     sxx.push_back(r.node_stress[i](0));
     syy.push_back(r.node_stress[i](1));
     sxy.push_back(r.node_stress[i](2));
     vm.push_back(materials::von_mises(r.node_stress[i], r.node_szz[i]));
   }
-  std::vector<Vec2> params(r.node_x.size());
-  for (std::size_t i = 0; i < params.size(); ++i)
-    params[i] = Vec2(r.parameters[2 * i], r.parameters[2 * i + 1]);
-  step.vectors = {{"displacement", r.node_u}, {"nodal_parameters", params}};
-  step.scalars = {{"stress_xx", sxx},
-                  {"stress_yy", syy},
-                  {"stress_xy", sxy},
-                  {"stress_zz", r.node_szz},
-                  {"von_mises", vm}};
-  if (spec.exact) {
-    std::vector<Vec2> ue;
-    for (const auto& x : r.node_x)
-      ue.push_back(verification::exact_displacement(*spec.exact, exact_mat, x));
-    step.vectors.emplace_back("displacement_exact", ue);
-  }
-  out.write_fields(r.node_x, {step}, r.output_cells);
+  io::FieldOutput fields(&out, "fields", r.node_x, r.output_cells);
+  fields.vector2("displacement", [&](std::vector<Vec2>& v) { v = r.node_u; });
+  fields.vector2("nodal_parameters", [&](std::vector<Vec2>& v) {
+    v.resize(r.node_x.size());
+    for (std::size_t i = 0; i < v.size(); ++i)
+      v[i] = Vec2(r.parameters[2 * i], r.parameters[2 * i + 1]);
+  });
+  if (spec.exact)
+    fields.vector2("displacement_exact", [&](std::vector<Vec2>& v) {
+      v.clear();
+      for (const auto& x : r.node_x)
+        v.push_back(verification::exact_displacement(*spec.exact, exact_mat, x));
+    });
+  fields.scalar("stress_xx", sxx);
+  fields.scalar("stress_yy", syy);
+  fields.scalar("stress_xy", sxy);
+  fields.scalar("stress_zz", r.node_szz);
+  fields.scalar("von_mises", vm);
+  fields.write(1.0);
+  fields.close();
 
   for (const auto& [name, s] : r.lines) {
     std::vector<std::string> header{"s",  "x",         "y",         "ux",
@@ -60,21 +63,26 @@ void write_elastic_outputs(const io::ProblemSpec& spec, const ElasticResult& r,
   double umax = 0.0, vmmax = 0.0;
   for (const auto& u : r.node_u) umax = std::max(umax, u.norm());
   for (double v : vm) vmmax = std::max(vmmax, v);
-  std::vector<std::string> header{"step", "load_factor"};
+  io::History history({"step", "load_factor"});
   std::vector<double> row{1.0, 1.0};
   for (const auto& b : r.boundary) {
     const std::string kind = b.constraint ? "reaction_" : "load_";
-    header.push_back(kind + b.name + "_x");
-    header.push_back(kind + b.name + "_y");
+    history.add_column(kind + b.name + "_x");
+    history.add_column(kind + b.name + "_y");
     row.push_back(b.force.x());
     row.push_back(b.force.y());
   }
-  header.insert(header.end(), {"max_displacement", "max_von_mises", "solver_iterations"});
+  for (const char* c : {"max_displacement", "max_von_mises", "solver_iterations"})
+    history.add_column(c);
   row.insert(row.end(), {umax, vmmax, static_cast<double>(r.solve.iterations)});
-  out.write_csv("history.csv", header, {row});
+  history.append(std::move(row));
+  history.write(out);
 
-  io::Json counts, times, results, bnd, solver;
-  counts.set("nodes", r.nodes)
+  io::Summary summary({spec.name, spec.description, spec.units, "elastic_static",
+                       describe_method(spec.discretisation)});
+  summary.set("mpi_ranks", session.size()).set("openmp_threads", omp_get_max_threads());
+  summary.section("counts")
+      .set("nodes", r.nodes)
       .set("dofs", r.dofs)
       .set("background_cells", r.cells)
       .set("domain_points", r.domain_points)
@@ -83,12 +91,12 @@ void write_elastic_outputs(const io::ProblemSpec& spec, const ElasticResult& r,
       .set("matrix_nonzeros", r.matrix_nonzeros)
       .set("steps", 1)
       .set("newton_iterations", 0);
-  for (const auto& [name, sec] : r.timer.phases()) times.set(name, sec);
-  times.set("total", r.timer.total());
-  solver.set("type", r.solve.solver)
+  summary.section("solver")
+      .set("type", r.solve.solver)
       .set("iterations", r.solve.iterations)
       .set("reason", r.solve.reason_name)
       .set("relative_residual", r.solve.residual_norm);
+  io::Json bnd;
   for (const auto& b : r.boundary) {
     io::Json j;
     j.set("kind", b.constraint ? "displacement" : "traction");
@@ -97,6 +105,7 @@ void write_elastic_outputs(const io::ProblemSpec& spec, const ElasticResult& r,
     if (b.constraint) j.set("violation_max", b.violation_max);
     bnd.set(b.name, j);
   }
+  io::Json& results = summary.section("results");
   results.set("max_displacement", umax)
       .set("max_von_mises", vmmax)
       .set("constraint_violation_max", r.violation_max)
@@ -104,20 +113,7 @@ void write_elastic_outputs(const io::ProblemSpec& spec, const ElasticResult& r,
       .set("boundary", bnd);
   if (spec.exact)
     results.set("error_l2_relative", r.error_l2).set("error_energy_relative", r.error_energy);
-  io::Json summary;
-  summary.set("problem", spec.name)
-      .set("description", spec.description)
-      .set("units", spec.units)
-      .set("analysis", "elastic_static")
-      .set("method", describe_method(spec.discretisation))
-      .set("status", "completed")
-      .set("mpi_ranks", session.size())
-      .set("openmp_threads", omp_get_max_threads())
-      .set("counts", counts)
-      .set("solver", solver)
-      .set("time_s", times)
-      .set("results", results);
-  out.write_text("summary.json", summary.str() + "\n");
+  summary.write(out, r.timer);
 }
 
 } // namespace mf::implicit

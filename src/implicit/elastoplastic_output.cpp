@@ -1,5 +1,6 @@
 #include "meshfree/implicit/elastoplastic_output.hpp"
 #include "meshfree/io/output.hpp"
+#include "meshfree/io/results.hpp"
 #include <algorithm>
 #include <omp.h>
 
@@ -9,20 +10,20 @@ void write_elastoplastic_outputs(const io::ProblemSpec& spec, const Elastoplasti
                                  const solvers::PetscSession& session, io::OutputDirectory& out) {
   if (session.rank() != 0) return;
   // history.csv: one row per converged increment, increment 0 the unloaded state.
-  std::vector<std::string> header{"increment", "step", "step_fraction"};
-  for (const auto& bc : spec.boundary) header.push_back("factor_" + bc.name);
+  io::History history({"increment", "step", "step_fraction"});
+  for (const auto& bc : spec.boundary) history.add_column("factor_" + bc.name);
   for (const auto& bc : spec.boundary) {
     const std::string kind = bc.constrains ? "reaction_" : "load_";
-    header.push_back(kind + bc.name + "_x");
-    header.push_back(kind + bc.name + "_y");
+    history.add_column(kind + bc.name + "_x");
+    history.add_column(kind + bc.name + "_y");
   }
   for (const auto& mon : spec.monitors) {
-    header.push_back("ux_" + mon.name);
-    header.push_back("uy_" + mon.name);
+    history.add_column("ux_" + mon.name);
+    history.add_column("uy_" + mon.name);
   }
-  header.insert(header.end(), {"max_plastic_strain", "plastic_points", "newton_iterations",
-                               "cutbacks", "residual_relative", "equilibrium_error"});
-  std::vector<std::vector<double>> rows;
+  for (const char* c : {"max_plastic_strain", "plastic_points", "newton_iterations", "cutbacks",
+                        "residual_relative", "equilibrium_error"})
+    history.add_column(c);
   long newton_total = 0;
   int cut_total = 0;
   for (std::size_t i = 0; i < r.increments.size(); ++i) {
@@ -38,19 +39,22 @@ void write_elastoplastic_outputs(const io::ProblemSpec& spec, const Elastoplasti
     row.insert(row.end(), {inc.max_plastic_strain, static_cast<double>(inc.plastic_points),
                            static_cast<double>(inc.newton.iterations),
                            static_cast<double>(inc.cutbacks), rel, inc.equilibrium_error});
-    rows.push_back(row);
+    history.append(std::move(row));
     newton_total += inc.newton.iterations;
     cut_total += inc.cutbacks;
   }
-  out.write_csv("history.csv", header, rows);
+  history.write(out);
   for (const auto& [name, line_rows] : r.lines)
     out.write_csv("line_" + name + ".csv",
                   {"increment", "s", "x", "y", "ux", "uy", "stress_xx", "stress_yy", "stress_xy"},
                   line_rows);
 
-  io::Json counts, times, results, solver, limit, last, steps;
+  io::Summary summary({spec.name, spec.description, spec.units, "elastoplastic_static", r.method});
+  summary.set_status(r.status, r.stop_reason);
+  summary.set("mpi_ranks", session.size()).set("openmp_threads", omp_get_max_threads());
   const int increments = static_cast<int>(r.increments.size()) - 1;
-  counts.set("nodes", r.nodes)
+  summary.section("counts")
+      .set("nodes", r.nodes)
       .set("dofs", r.dofs)
       .set("background_cells", r.cells)
       .set("domain_points", r.domain_points)
@@ -59,19 +63,17 @@ void write_elastoplastic_outputs(const io::ProblemSpec& spec, const Elastoplasti
       .set("increments", increments)
       .set("newton_iterations", newton_total)
       .set("cutbacks", cut_total);
+  summary.section("solver").set("type", r.solver).set("tolerance", spec.nonlinear.tolerance);
   double newton_s = 0.0;
-  for (const auto& [name, sec] : r.timer.phases()) {
-    times.set(name, sec);
+  for (const auto& [name, sec] : r.timer.phases())
     if (name == "newton") newton_s = sec;
-  }
   io::Json newton_parts;
   newton_parts.set("residual_and_return_mapping", r.residual_seconds)
       .set("jacobian_assembly", r.jacobian_seconds)
       .set("linear_solves_and_other", newton_s - r.residual_seconds - r.jacobian_seconds);
-  times.set("newton_parts", newton_parts);
-  times.set("total", r.timer.total());
-  solver.set("type", r.solver).set("tolerance", spec.nonlinear.tolerance);
+  summary.section("time_s").set("newton_parts", newton_parts);
 
+  io::Json limit, last, steps;
   const ElasticLimit& e = r.elastic_limit;
   io::Json lim_factors, lim_forces;
   for (std::size_t c = 0; c < spec.boundary.size(); ++c) {
@@ -119,22 +121,8 @@ void write_elastoplastic_outputs(const io::ProblemSpec& spec, const Elastoplasti
         .set("newton_iterations", its);
     steps.set(spec.steps[s].name, js);
   }
-  results.set("elastic_limit", limit).set("final", last).set("steps", steps);
-  io::Json summary;
-  summary.set("problem", spec.name)
-      .set("description", spec.description)
-      .set("units", spec.units)
-      .set("analysis", "elastoplastic_static")
-      .set("method", r.method)
-      .set("status", r.status);
-  if (!r.stop_reason.empty()) summary.set("stop_reason", r.stop_reason);
-  summary.set("mpi_ranks", session.size())
-      .set("openmp_threads", omp_get_max_threads())
-      .set("counts", counts)
-      .set("solver", solver)
-      .set("time_s", times)
-      .set("results", results);
-  out.write_text("summary.json", summary.str() + "\n");
+  summary.section("results").set("elastic_limit", limit).set("final", last).set("steps", steps);
+  summary.write(out, r.timer);
 }
 
 } // namespace mf::implicit

@@ -2,16 +2,19 @@
 #include "meshfree/implicit/elasticity.hpp"
 #include "meshfree/implicit/galerkin_forms.hpp"
 #include "meshfree/implicit/nodal_average.hpp"
+#include "meshfree/io/results.hpp"
 #include "meshfree/materials/elastic.hpp"
 #include "meshfree/solvers/parallel.hpp"
 #include <algorithm>
 
 namespace mf::implicit {
 
-/// Gauss-point fields of the counted points, for the gauss_points series.
+/// Gauss-point fields of the counted points, gathered on rank 0 in rank order, for the
+/// gauss_points series.
 struct IncrementRecorder::GaussOutput {
   std::vector<int> counted_rows; // table rows of this rank's counted points
-  std::unique_ptr<io::FieldSeries> series;
+  std::vector<double> values[7]; // gathered, on rank 0
+  std::unique_ptr<io::FieldOutput> series;
 
   GaussOutput(const GalerkinModel& m, const solvers::PetscSession& session,
               io::OutputDirectory* out) {
@@ -24,18 +27,15 @@ struct IncrementRecorder::GaussOutput {
         x.push_back(p.y());
       }
     const std::vector<double> all = solvers::gather_on_root(session.comm(), x);
-    if (out) {
-      std::vector<Vec2> points(all.size() / 2);
-      for (std::size_t i = 0; i < points.size(); ++i) points[i] = Vec2(all[2 * i], all[2 * i + 1]);
-      series = std::make_unique<io::FieldSeries>(*out, "gauss_points", points);
-    }
+    std::vector<Vec2> points(all.size() / 2);
+    for (std::size_t i = 0; i < points.size(); ++i) points[i] = Vec2(all[2 * i], all[2 * i + 1]);
+    series = std::make_unique<io::FieldOutput>(out, "gauss_points", points);
+    const char* names[] = {"stress_xx", "stress_yy",      "stress_xy", "stress_zz",
+                           "von_mises", "plastic_strain", "plastic"};
+    for (int f = 0; f < 7; ++f) series->scalar(names[f], values[f]);
   }
 
   void write(double time, const PointStates& st, const solvers::PetscSession& session) {
-    const char* names[] = {"stress_xx", "stress_yy",      "stress_xy", "stress_zz",
-                           "von_mises", "plastic_strain", "plastic"};
-    io::FieldStep step;
-    step.time = time;
     for (int f = 0; f < 7; ++f) {
       std::vector<double> v;
       for (int k : counted_rows) {
@@ -49,10 +49,9 @@ struct IncrementRecorder::GaussOutput {
                                 static_cast<double>(st.plastic[k])};
         v.push_back(value[f]);
       }
-      std::vector<double> all = solvers::gather_on_root(session.comm(), v);
-      if (series) step.scalars.emplace_back(names[f], std::move(all));
+      values[f] = solvers::gather_on_root(session.comm(), v);
     }
-    if (series) series->add_step(step);
+    series->write(time);
   }
 };
 
@@ -76,10 +75,14 @@ IncrementRecorder::IncrementRecorder(const io::ProblemSpec& spec, const Galerkin
       line_tables_.push_back(shapes_at(m, x, false));
       line_points_.emplace_back(&line, std::move(x));
     }
-    if (out)
-      fields_ =
-          std::make_unique<io::FieldSeries>(*out, "fields", m.node_positions(), output_cells(m));
+    fields_ = std::make_unique<io::FieldOutput>(out, "fields", m.node_positions(), output_cells(m));
   });
+  if (!fields_) fields_ = std::make_unique<io::FieldOutput>(nullptr, "fields", std::vector<Vec2>{});
+  fields_->vector2("displacement", [this](std::vector<Vec2>& v) { v = node_u_; });
+  fields_->vector2("nodal_parameters", [this](std::vector<Vec2>& v) { v = node_parameters_; });
+  const char* names[] = {"stress_xx", "stress_yy",      "stress_xy",       "stress_zz",
+                         "von_mises", "plastic_strain", "plastic_fraction"};
+  for (int f = 0; f < 7; ++f) fields_->scalar(names[f], node_values_[f]);
   gauss_ = std::make_unique<GaussOutput>(m, session, root ? out : nullptr);
 }
 
@@ -124,25 +127,19 @@ void IncrementRecorder::record(IncrementRecord rec, const std::vector<double>& d
     const NodalAverage avg = nodal_average(m, st, session);
     gauss_->write(time, st, session);
     if (root) {
-      io::FieldStep step;
-      step.time = time;
-      std::vector<Vec2> u(R.nodes), params(R.nodes);
-      std::vector<double> sxx(R.nodes), syy(R.nodes), sxy(R.nodes), vm(R.nodes);
+      node_u_.resize(R.nodes);
+      node_parameters_.resize(R.nodes);
+      for (auto& v : node_values_) v.resize(R.nodes);
       for (int I = 0; I < R.nodes; ++I) {
-        u[I] = displacement_at(node_table_, I, all);
-        params[I] = Vec2(all[2 * I], all[2 * I + 1]);
-        sxx[I] = avg.stress[I](0), syy[I] = avg.stress[I](1), sxy[I] = avg.stress[I](2);
-        vm[I] = materials::von_mises(avg.stress[I], avg.stress_zz[I]);
+        node_u_[I] = displacement_at(node_table_, I, all);
+        node_parameters_[I] = Vec2(all[2 * I], all[2 * I + 1]);
+        for (int c = 0; c < 3; ++c) node_values_[c][I] = avg.stress[I](c);
+        node_values_[3][I] = avg.stress_zz[I];
+        node_values_[4][I] = materials::von_mises(avg.stress[I], avg.stress_zz[I]);
+        node_values_[5][I] = avg.plastic_strain[I];
+        node_values_[6][I] = avg.plastic[I];
       }
-      step.vectors = {{"displacement", u}, {"nodal_parameters", params}};
-      step.scalars = {{"stress_xx", sxx},
-                      {"stress_yy", syy},
-                      {"stress_xy", sxy},
-                      {"stress_zz", avg.stress_zz},
-                      {"von_mises", vm},
-                      {"plastic_strain", avg.plastic_strain},
-                      {"plastic_fraction", avg.plastic}};
-      if (fields_) fields_->add_step(step);
+      fields_->write(time);
       const int inc = static_cast<int>(R.increments.size());
       for (std::size_t l = 0; l < line_points_.size(); ++l) {
         const ShapeTable& t = line_tables_[l];
@@ -162,8 +159,8 @@ void IncrementRecorder::record(IncrementRecord rec, const std::vector<double>& d
 }
 
 void IncrementRecorder::close() {
-  if (fields_) fields_->close();
-  if (gauss_->series) gauss_->series->close();
+  fields_->close();
+  gauss_->series->close();
 }
 
 } // namespace mf::implicit

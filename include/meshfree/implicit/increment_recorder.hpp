@@ -7,6 +7,7 @@
 #include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/io/output.hpp"
 #include "meshfree/io/problem_spec.hpp"
+#include "meshfree/io/results.hpp"
 #include "meshfree/solvers/nonlinear_system.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
 #include <memory>
@@ -40,7 +41,9 @@ private:
   ShapeTable node_table_, monitor_table_;
   std::vector<std::pair<const io::LineSpec*, std::vector<Vec2>>> line_points_;
   std::vector<ShapeTable> line_tables_;
-  std::unique_ptr<io::FieldSeries> fields_;
+  std::unique_ptr<io::FieldOutput> fields_; // nodal fields (rank 0)
+  std::vector<Vec2> node_u_, node_parameters_;
+  std::vector<double> node_values_[7]; // stresses, szz, von Mises, alpha, plastic fraction
   std::unique_ptr<GaussOutput> gauss_;
 };
 
