@@ -4,6 +4,7 @@
 #include "meshfree/implicit/elasticity.hpp"
 #include "meshfree/implicit/elastoplastic_solve.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
+#include "meshfree/solvers/parallel.hpp"
 #include "test_support.hpp"
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -211,6 +212,17 @@ TEST_CASE("the converged state returned by the solver is the closed-form homogen
       mean_back += w * st.history[k].back_stress;
       mean_alpha += w * st.history[k].alpha;
       area += w;
+    }
+    // The means over the whole body: each rank holds its share of the points.
+    {
+      double sums[18];
+      for (int c = 0; c < 3; ++c) sums[c] = mean_stress(c);
+      for (int c = 0; c < 6; ++c) sums[3 + c] = mean_plastic(c), sums[9 + c] = mean_back(c);
+      sums[15] = mean_szz, sums[16] = mean_alpha, sums[17] = area;
+      solvers::sum_everywhere(test_session().comm(), sums, 18);
+      for (int c = 0; c < 3; ++c) mean_stress(c) = sums[c];
+      for (int c = 0; c < 6; ++c) mean_plastic(c) = sums[3 + c], mean_back(c) = sums[9 + c];
+      mean_szz = sums[15], mean_alpha = sums[16], area = sums[17];
     }
     if (!fe) {
       relative(worst_stress, (mean_stress / area - Vec3(0.0, s, 0.0)).norm() / s);
