@@ -1,5 +1,8 @@
 #include "meshfree/app/sph_run.hpp"
 #include "meshfree/core/log.hpp"
+#include "meshfree/sph/detonation.hpp"
+#include "meshfree/sph/state.hpp"
+#include "meshfree/sph/step.hpp"
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -142,12 +145,11 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     for (int d = 0; d < 3; ++d) b.normal[d] = t.normal[d];
     for (int i = 0; i < P.size(); ++i) {
       if (!free_in_box(P, i, t.lo, t.hi)) continue;
-      const sph::Material& mat = h.materials[P.material[i]];
       b.particles.push_back(i);
       b.area.push_back(face_area(P, i, s.dimension));
       b.normal_impedance.push_back(P.rho[i] * P.c[i]);
-      b.shear_impedance.push_back(
-          mat.strength.enabled ? std::sqrt(P.rho[i] * sph::shear_modulus(mat, P.rho[i])) : 0.0);
+      b.shear_impedance.push_back(std::sqrt(
+          P.rho[i] * materials::shear_modulus(h.materials[P.material[i]].strength, P.rho[i])));
     }
     MF_REQUIRE(!b.particles.empty(), t.key_path, ".box: selects no free particle");
     h.transmitting.push_back(b);
@@ -229,8 +231,8 @@ SphResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out) {
       row.push_back(P.p[i]);
       row.push_back(P.rho[i]);
       row.push_back(von_mises(i));
-      row.push_back(sph::current_yield(h.materials[P.material[i]], P.p[i], P.alpha[i], P.damage[i],
-                                       P.strain_rate[i]));
+      row.push_back(materials::current_yield(h.materials[P.material[i]].strength, P.p[i],
+                                             P.alpha[i], P.damage[i], P.strain_rate[i]));
       row.push_back(P.alpha[i]);
       for (int d = 0; d < dims; ++d) row.push_back(P.v[3 * i + d]);
       for (int d = 0; d < dims; ++d) row.push_back(P.x[3 * i + d] - x0[3 * i + d]);
