@@ -1,9 +1,9 @@
 // One `materials:` list, three analyses: the same steel entry is read by an elastoplastic
 // Galerkin run, a peridynamics run and an SPH run, each taking its part of the material (and
 // refusing clearly when that part is missing), and each run is checked against a closed form.
-#include "meshfree/app/elastoplastic_static.hpp"
 #include "meshfree/app/peridynamics.hpp"
 #include "meshfree/app/sph_run.hpp"
+#include "meshfree/implicit/elastoplastic_solve.hpp"
 #include "meshfree/io/key_reader.hpp"
 #include "meshfree/io/problem_spec.hpp"
 #include "meshfree/sph/step.hpp"
@@ -126,7 +126,7 @@ TEST_CASE("each analysis names the part of the material it misses", "[input][mat
 TEST_CASE("shared steel, elastoplastic: a bar in uniaxial stress yields at sigma0",
           "[materials][elastoplastic]") {
   const io::ProblemSpec spec = parse(kBar);
-  const auto r = app::solve_elastoplastic_static(spec, test_session(), nullptr);
+  const auto r = implicit::solve_elastoplastic_static(spec, test_session(), nullptr);
   REQUIRE(r.status == "completed");
   REQUIRE(r.increments.size() == 8); // the initial state and 2 + 5 increments
   // Uniaxial stress with perfect plasticity: sigma = min(E eps, sigma0) on a loading path; the
