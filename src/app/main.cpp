@@ -80,7 +80,7 @@ int check(const Command& c) {
   }
   if (spec.analysis == mf::io::Analysis::Peridynamics) {
     mf::PhaseTimer timer;
-    const mf::app::PdSetup setup = mf::app::build_pd_setup(spec, timer);
+    const mf::pd::Setup setup = mf::pd::build_setup(spec, timer);
     std::cout << "  peridynamics: " << setup.model.particles.size() << " particles, "
               << setup.model.bonds.count() / 2 << " bonds, horizon " << setup.model.horizon
               << "\n  time step " << setup.dt << " (" << setup.dt_limit << "), "
@@ -154,7 +154,7 @@ int run(Command& c) {
       // Explicit dynamics runs on OpenMP threads within one process.
       MF_REQUIRE(session.size() == 1, "analysis peridynamics runs on one MPI rank (it is "
                                       "parallel over OpenMP threads: set OMP_NUM_THREADS)");
-      mf::app::PdResult r = mf::app::run_peridynamics(spec, out.get());
+      mf::pd::RunResult r = mf::app::run_peridynamics(spec, out.get());
       {
         mf::PhaseTimer::Scope scope(r.timer, "output");
         if (out) mf::app::write_pd_outputs(spec, r, *out);
