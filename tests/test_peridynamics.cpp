@@ -157,7 +157,8 @@ TEST_CASE("bonds break where the stretch exceeds the critical stretch, and not e
   long expected = 0, wrong = 0;
   for (int i = 0; i < m.particles.size(); ++i)
     for (long k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) {
-      const Eigen::Vector3d d = m.particles.reference(m.bonds.partner[k]) - m.particles.reference(i);
+      const Eigen::Vector3d d =
+          m.particles.reference(m.bonds.partner[k]) - m.particles.reference(i);
       const double c2 = d.x() * d.x() / d.squaredNorm();
       const bool should_break = std::sqrt(1.0 + (2.0 * eps + eps * eps) * c2) - 1.0 > s0;
       expected += should_break;

@@ -9,7 +9,9 @@
 #include "meshfree/core/log.hpp"
 #include "meshfree/geometry/node_generation.hpp"
 #include "meshfree/io/problem_spec.hpp"
+#include "meshfree/pd/setup.hpp"
 #include "meshfree/quadrature/integration_points.hpp"
+#include "meshfree/sph/setup.hpp"
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -70,7 +72,7 @@ int check(const Command& c) {
     return 0;
   }
   if (spec.analysis == mf::io::Analysis::Sph) {
-    const mf::sph::Hydro h = mf::app::build_sph(*spec.sph);
+    const mf::sph::Hydro h = mf::sph::build_hydro(*spec.sph);
     int limiting = -1;
     const double dt = mf::sph::stable_step(h, &limiting);
     std::cout << "  sph: " << h.particles.size() << " particles in " << spec.sph->dimension
@@ -164,7 +166,7 @@ int run(Command& c) {
     } else if (spec.analysis == mf::io::Analysis::Sph) {
       MF_REQUIRE(session.size() == 1, "analysis sph runs on one MPI rank (it is parallel over "
                                       "OpenMP threads: set OMP_NUM_THREADS)");
-      mf::app::SphResult r = mf::app::run_sph(spec, out.get());
+      mf::sph::RunResult r = mf::app::run_sph(spec, out.get());
       {
         mf::PhaseTimer::Scope scope(r.timer, "output");
         if (out) mf::app::write_sph_outputs(spec, r, *out);

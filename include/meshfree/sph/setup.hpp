@@ -1,0 +1,13 @@
+#pragma once
+// An SPH body built from a problem file (analysis: sph): particles of the blocks (lattices less
+// holes, rings), surface blasts per particle, transmitting boundaries, symmetry planes and the
+// lighting times of a detonation.
+#include "meshfree/io/sph_spec.hpp"
+#include "meshfree/sph/hydro.hpp"
+
+namespace mf::sph {
+
+/// The particles of a spec, at the rest state of the blocks, lit if the spec detonates.
+Hydro build_hydro(const io::SphSpec& s);
+
+} // namespace mf::sph
