@@ -2,10 +2,10 @@
 // moduli of the discrete model from uniform deformations, wave speeds against theory, energy
 // conservation of velocity Verlet, momentum conservation of the impactor contact, bond breaking,
 // pre-cracks, and the Haar approximation of load histories.
+#include "meshfree/explicit/pd_setup.hpp"
 #include "meshfree/loads/blast.hpp"
 #include "meshfree/loads/time_function.hpp"
 #include "meshfree/pd/dynamics.hpp"
-#include "meshfree/pd/setup.hpp"
 #include "test_support.hpp"
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -467,7 +467,7 @@ TEST_CASE("a blast gives a free slab the momentum of the Kingery-Bulmash impulse
     const io::ProblemSpec spec =
         load_problem("pd_slab_blast", {"time.safety=" + std::to_string(safety)});
     PhaseTimer timer;
-    pd::Setup setup = pd::build_setup(spec, timer);
+    explicit_dynamics::PdSetup setup = explicit_dynamics::build_pd_setup(spec, timer);
     setup.loading.constraints.clear();
     particles::ParticleSet& q = setup.model.particles;
     pd::accelerate(setup.model, setup.state, setup.loading, false);

@@ -4,18 +4,19 @@
 
 namespace mf::app {
 
-pd::RunResult run_peridynamics(const io::ProblemSpec& spec, io::OutputDirectory* out) {
+explicit_dynamics::PdRunResult run_peridynamics(const io::ProblemSpec& spec,
+                                                io::OutputDirectory* out) {
   const io::PdSpec& s = *spec.pd;
-  pd::RunResult result;
-  pd::Setup setup = pd::build_setup(spec, result.timer);
-  pd::log_setup(spec, setup);
-  pd::Run run(setup, s, out, result);
+  explicit_dynamics::PdRunResult result;
+  explicit_dynamics::PdSetup setup = explicit_dynamics::build_pd_setup(spec, result.timer);
+  explicit_dynamics::log_pd_setup(spec, setup);
+  explicit_dynamics::PdRun run(setup, s, out, result);
   run.finish(
       explicit_dynamics::run_time_loop(run, {s.end_time, s.history_interval, s.fields_interval}));
   return result;
 }
 
-void write_pd_outputs(const io::ProblemSpec& spec, const pd::RunResult& r,
+void write_pd_outputs(const io::ProblemSpec& spec, const explicit_dynamics::PdRunResult& r,
                       io::OutputDirectory& out) {
   r.history.write(out);
   io::Summary summary({spec.name, spec.description, spec.units, "peridynamics", ""});

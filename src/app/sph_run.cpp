@@ -1,27 +1,27 @@
 #include "meshfree/app/sph_run.hpp"
 #include "meshfree/core/log.hpp"
+#include "meshfree/explicit/sph_setup.hpp"
 #include "meshfree/explicit/time_loop.hpp"
-#include "meshfree/sph/setup.hpp"
 
 namespace mf::app {
 
-sph::RunResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out) {
+explicit_dynamics::SphRunResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out) {
   const io::SphSpec& s = *spec.sph;
-  sph::RunResult result;
+  explicit_dynamics::SphRunResult result;
   sph::Hydro h;
   {
     PhaseTimer::Scope scope(result.timer, "particles");
-    h = sph::build_hydro(s);
+    h = explicit_dynamics::build_sph(s);
   }
   log::info("sph: ", h.particles.size(), " particles in ", s.dimension, "D, ", s.materials.size(),
             " material(s)", s.detonation_point ? ", detonation lit" : "");
-  sph::Run run(h, s, out, result);
+  explicit_dynamics::SphRun run(h, s, out, result);
   run.finish(
       explicit_dynamics::run_time_loop(run, {s.end_time, s.history_interval, s.fields_interval}));
   return result;
 }
 
-void write_sph_outputs(const io::ProblemSpec& spec, const sph::RunResult& r,
+void write_sph_outputs(const io::ProblemSpec& spec, const explicit_dynamics::SphRunResult& r,
                        io::OutputDirectory& out) {
   r.history.write(out);
   io::Summary summary({spec.name, spec.description, spec.units, "sph", ""});

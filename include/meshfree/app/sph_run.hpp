@@ -1,17 +1,17 @@
 #pragma once
 // An SPH run from a problem file (analysis: sph): particles from the blocks, lighting times from
 // the detonation point, CFL-limited steps to the end time, histories, gauges and fields.
+#include "meshfree/explicit/sph_run.hpp"
 #include "meshfree/io/output.hpp"
 #include "meshfree/io/problem_spec.hpp"
-#include "meshfree/sph/run.hpp"
 
 namespace mf::app {
 
 /// Runs the problem to its end time; fields go to `out` (null: none).
-sph::RunResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out);
+explicit_dynamics::SphRunResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out);
 
 /// history.csv and summary.json.
-void write_sph_outputs(const io::ProblemSpec& spec, const sph::RunResult& r,
+void write_sph_outputs(const io::ProblemSpec& spec, const explicit_dynamics::SphRunResult& r,
                        io::OutputDirectory& out);
 
 } // namespace mf::app

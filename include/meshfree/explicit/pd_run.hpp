@@ -1,19 +1,19 @@
 #pragma once
 // A peridynamic run as the explicit time loop drives it (explicit/time_loop.hpp): velocity-Verlet
 // steps of a set-up body, a history row per recorded instant (energies and their balance, broken
-// bonds, damage, impactors, gauges, the crack tip), gauge maxima over every step, and fields
-// (displacement, velocity, damage, material).
+// bonds, pd::damage, impactors, gauges, the crack tip), gauge maxima over every step, and fields
+// (displacement, velocity, pd::damage, material).
 #include "meshfree/explicit/gauges.hpp"
+#include "meshfree/explicit/pd_setup.hpp"
 #include "meshfree/explicit/time_loop.hpp"
 #include "meshfree/io/results.hpp"
-#include "meshfree/pd/setup.hpp"
 #include <string>
 #include <utility>
 #include <vector>
 
-namespace mf::pd {
+namespace mf::explicit_dynamics {
 
-struct RunResult {
+struct PdRunResult {
   int particles = 0;
   long bonds = 0; // counted once
   long steps = 0;
@@ -31,10 +31,10 @@ struct RunResult {
   PhaseTimer timer;
 };
 
-class Run {
+class PdRun {
 public:
   /// Accelerations at t = 0 and the columns of the history; fields go to `out` (null: none).
-  Run(Setup& setup, const io::PdSpec& spec, io::OutputDirectory* out, RunResult& result);
+  PdRun(PdSetup& setup, const io::PdSpec& spec, io::OutputDirectory* out, PdRunResult& result);
 
   double time() const { return setup_.model.particles.time; }
   long step() const { return setup_.model.particles.step; }
@@ -52,19 +52,19 @@ public:
   std::string progress() const { return detail::concat("broken bonds ", broken_ / 2); }
 
   /// Counts, rates, status and energy balance of the finished loop into the result.
-  void finish(const explicit_dynamics::LoopReport& loop);
+  void finish(const LoopReport& loop);
 
 private:
-  Setup& setup_;
+  PdSetup& setup_;
   const io::PdSpec& spec_;
-  RunResult& r_;
-  explicit_dynamics::Gauges gauges_;
+  PdRunResult& r_;
+  Gauges gauges_;
   io::FieldOutput fields_;
-  StepReport last_; // of the last force evaluation
+  pd::StepReport last_; // of the last force evaluation
   bool last_has_energy_ = true;
   double e0_ = 0.0, work_ = 0.0;
   long broken_ = 0; // from both ends
   std::vector<double> phi_;
 };
 
-} // namespace mf::pd
+} // namespace mf::explicit_dynamics

@@ -1,32 +1,32 @@
-#include "meshfree/pd/run.hpp"
+#include "meshfree/explicit/pd_run.hpp"
 #include "meshfree/core/log.hpp"
 #include <algorithm>
 #include <cmath>
 
-namespace mf::pd {
+namespace mf::explicit_dynamics {
 
 namespace {
 
-std::vector<explicit_dynamics::GaugePoint> gauge_points(const io::PdSpec& s) {
-  std::vector<explicit_dynamics::GaugePoint> g;
+std::vector<GaugePoint> gauge_points(const io::PdSpec& s) {
+  std::vector<GaugePoint> g;
   for (const auto& p : s.gauges) g.push_back({p.name, p.at});
   return g;
 }
 
 } // namespace
 
-Run::Run(Setup& setup, const io::PdSpec& spec, io::OutputDirectory* out, RunResult& result)
+PdRun::PdRun(PdSetup& setup, const io::PdSpec& spec, io::OutputDirectory* out, PdRunResult& result)
     : setup_(setup), spec_(spec), r_(result),
       gauges_(gauge_points(spec), setup.model.particles.X, setup.model.particles.size()),
       fields_(out, "fields", setup.model.particles.X) {
-  Model& m = setup_.model;
+  pd::Model& m = setup_.model;
   const particles::ParticleSet& p = m.particles;
   r_.particles = p.size();
   r_.bonds = m.bonds.count() / 2;
   r_.dt = setup_.dt;
   r_.dt_limit = setup_.dt_limit;
-  last_ = accelerate(m, setup_.state, setup_.loading, true);
-  e0_ = kinetic_energy(m) + last_.strain_energy;
+  last_ = pd::accelerate(m, setup_.state, setup_.loading, true);
+  e0_ = pd::kinetic_energy(m) + last_.strain_energy;
   broken_ = last_.broken;
 
   const char* axes[] = {"x", "y", "z"};
@@ -62,7 +62,7 @@ Run::Run(Setup& setup, const io::PdSpec& spec, io::OutputDirectory* out, RunResu
   fields_.scalar("material", p.material);
 }
 
-void Run::advance(double dt, bool history_due) {
+void PdRun::advance(double dt, bool history_due) {
   last_ =
       pd::advance(setup_.model, setup_.state, setup_.loading, setup_.impactors, dt, history_due);
   last_has_energy_ = history_due;
@@ -70,7 +70,7 @@ void Run::advance(double dt, bool history_due) {
   broken_ += last_.broken;
 }
 
-int Run::nonfinite() const {
+int PdRun::nonfinite() const {
   const std::vector<double>& u = setup_.model.particles.u;
   for (std::size_t k = 0; k < u.size(); k += 3)
     if (!std::isfinite(u[k]) || !std::isfinite(u[k + 1]) || !std::isfinite(u[k + 2]))
@@ -78,20 +78,20 @@ int Run::nonfinite() const {
   return -1;
 }
 
-std::string Run::advice() const {
+std::string PdRun::advice() const {
   return detail::concat("the time step ", setup_.dt, " (", setup_.dt_limit,
                         ") is probably too large");
 }
 
-void Run::record() {
-  Model& m = setup_.model;
+void PdRun::record() {
+  pd::Model& m = setup_.model;
   const particles::ParticleSet& p = m.particles;
   // A row between history instants (the last one) needs the strain energy of the state.
   const double strain_energy =
       last_has_energy_ ? last_.strain_energy
-                       : accelerate(m, setup_.state, setup_.loading, true).strain_energy;
-  damage(m, setup_.state, phi_);
-  const double kinetic = kinetic_energy(m);
+                       : pd::accelerate(m, setup_.state, setup_.loading, true).strain_energy;
+  pd::damage(m, setup_.state, phi_);
+  const double kinetic = pd::kinetic_energy(m);
   std::vector<double> row{p.time,
                           static_cast<double>(p.step),
                           kinetic,
@@ -111,7 +111,8 @@ void Run::record() {
   gauges_.append_to(row);
   if (spec_.crack.enabled) {
     // The crack tip: the damaged particle farthest along the tracking direction from the
-    // origin (damage at or above the threshold marks a crack, paper 001: 0.38 for delta = 3 dx).
+    // origin (pd::damage at or above the threshold marks a crack, paper 001: 0.38 for delta = 3
+    // dx).
     double reach = 0.0;
     Vec3 tip = spec_.crack.origin;
     for (int i : p.owned()) {
@@ -125,13 +126,13 @@ void Run::record() {
   r_.history.append(std::move(row));
 }
 
-void Run::write_fields() {
+void PdRun::write_fields() {
   if (!fields_.active()) return;
-  damage(setup_.model, setup_.state, phi_);
+  pd::damage(setup_.model, setup_.state, phi_);
   fields_.write(time());
 }
 
-void Run::finish(const explicit_dynamics::LoopReport& loop) {
+void PdRun::finish(const LoopReport& loop) {
   fields_.close();
   r_.steps = loop.steps;
   r_.status = loop.status;
@@ -154,4 +155,4 @@ void Run::finish(const explicit_dynamics::LoopReport& loop) {
             r_.bond_updates_per_second, " bond evaluations/s, energy balance ", r_.energy_drift);
 }
 
-} // namespace mf::pd
+} // namespace mf::explicit_dynamics

@@ -5,9 +5,9 @@
 #include "meshfree/io/sph_spec.hpp"
 #include "meshfree/sph/hydro.hpp"
 
-namespace mf::sph {
+namespace mf::explicit_dynamics {
 
 /// The particles of a spec, at the rest state of the blocks, lit if the spec detonates.
-Hydro build_hydro(const io::SphSpec& s);
+sph::Hydro build_sph(const io::SphSpec& s);
 
-} // namespace mf::sph
+} // namespace mf::explicit_dynamics

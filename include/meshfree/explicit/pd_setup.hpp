@@ -8,21 +8,21 @@
 #include <string>
 #include <vector>
 
-namespace mf::pd {
+namespace mf::explicit_dynamics {
 
 /// The body at t = 0, its loading and impactors (no time stepping yet).
-struct Setup {
-  Model model; // the particles carry their initial velocities
-  BondState state;
-  Loading loading;
-  std::vector<Impactor> impactors;
+struct PdSetup {
+  pd::Model model; // the particles carry their initial velocities
+  pd::BondState state;
+  pd::Loading loading;
+  std::vector<pd::Impactor> impactors;
   double dt = 0.0;
   std::string dt_limit; // what set the time step
 };
 
-Setup build_setup(const io::ProblemSpec& spec, PhaseTimer& timer);
+PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer);
 
 /// The body, its bond laws, time step and blast pulses, on the log.
-void log_setup(const io::ProblemSpec& spec, const Setup& setup);
+void log_pd_setup(const io::ProblemSpec& spec, const PdSetup& setup);
 
-} // namespace mf::pd
+} // namespace mf::explicit_dynamics

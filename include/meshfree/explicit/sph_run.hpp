@@ -1,6 +1,6 @@
 #pragma once
 // An SPH run as the explicit time loop drives it (explicit/time_loop.hpp): CFL-limited midpoint
-// steps of a built body, a history row per recorded instant (energies and their balance, peak
+// steps of a built body, a history row per recorded instant (sph::energies and their balance, peak
 // pressure, gauges), gauge maxima over every step, and fields of the body's particles.
 #include "meshfree/core/timer.hpp"
 #include "meshfree/explicit/gauges.hpp"
@@ -12,9 +12,9 @@
 #include <utility>
 #include <vector>
 
-namespace mf::sph {
+namespace mf::explicit_dynamics {
 
-struct RunResult {
+struct SphRunResult {
   int particles = 0;
   long steps = 0;
   int neighbour_rebuilds = 0;
@@ -29,11 +29,11 @@ struct RunResult {
   PhaseTimer timer;
 };
 
-class Run {
+class SphRun {
 public:
   /// The history's columns and the gauges of the body `h` at t = 0; fields go to `out` (null:
   /// none).
-  Run(Hydro& h, const io::SphSpec& spec, io::OutputDirectory* out, RunResult& result);
+  SphRun(sph::Hydro& h, const io::SphSpec& spec, io::OutputDirectory* out, SphRunResult& result);
 
   double time() const { return h_.time; }
   long step() const { return h_.step; }
@@ -48,19 +48,19 @@ public:
   std::string progress() const;
 
   /// Counts, rates and status of the finished loop into the result.
-  void finish(const explicit_dynamics::LoopReport& loop);
+  void finish(const LoopReport& loop);
 
 private:
   double max_pressure() const;
   double von_mises(int i) const;
-  Hydro& h_;
+  sph::Hydro& h_;
   const io::SphSpec& spec_;
-  RunResult& r_;
+  SphRunResult& r_;
   int n_; // the body's particles (mirror images follow them)
   std::vector<double> x0_;
-  explicit_dynamics::Gauges gauges_;
+  Gauges gauges_;
   io::FieldOutput fields_;
   double e0_ = 0.0, dt_ = 0.0;
 };
 
-} // namespace mf::sph
+} // namespace mf::explicit_dynamics

@@ -1,16 +1,16 @@
-#include "meshfree/sph/setup.hpp"
+#include "meshfree/explicit/sph_setup.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/explicit/surface_blast.hpp"
 #include "meshfree/geometry/lattice.hpp"
 #include <algorithm>
 #include <cmath>
 
-namespace mf::sph {
+namespace mf::explicit_dynamics {
 
 namespace {
 
 /// Whether a free particle lies in the box [lo, hi].
-bool free_in_box(const Particles& P, int i, const std::array<double, 3>& lo,
+bool free_in_box(const sph::Particles& P, int i, const std::array<double, 3>& lo,
                  const std::array<double, 3>& hi) {
   if (P.fixed[i]) return false;
   for (int d = 0; d < 3; ++d)
@@ -19,7 +19,7 @@ bool free_in_box(const Particles& P, int i, const std::array<double, 3>& lo,
 }
 
 /// The face area of a particle in a surface layer one particle thick: V / spacing.
-double face_area(const Particles& P, int i, int dim) {
+double face_area(const sph::Particles& P, int i, int dim) {
   const double volume = P.mass[i] / P.rho_ref[i];
   return volume / std::pow(volume, 1.0 / dim);
 }
@@ -32,11 +32,11 @@ int material_index(const io::SphSpec& s, const std::string& name) {
 
 } // namespace
 
-Hydro build_hydro(const io::SphSpec& s) {
-  Hydro h;
+sph::Hydro build_sph(const io::SphSpec& s) {
+  sph::Hydro h;
   h.materials = s.materials;
   h.settings = s.settings;
-  Particles& P = h.particles;
+  sph::Particles& P = h.particles;
   P.dim = s.dimension;
   for (const io::SphBlock& b : s.blocks) {
     const int mat = material_index(s, b.material);
@@ -67,7 +67,7 @@ Hydro build_hydro(const io::SphSpec& s) {
   for (const io::SphBlastLoad& l : s.loads) {
     // Each particle of the layer carries its face area V / spacing and the Friedlander history
     // of its own distance and angle of incidence (loads/blast.hpp).
-    SurfaceLoad load;
+    sph::SurfaceLoad load;
     load.name = l.name;
     for (int d = 0; d < 3; ++d) load.direction[d] = -l.normal[d];
     for (int i = 0; i < P.size(); ++i)
@@ -75,40 +75,40 @@ Hydro build_hydro(const io::SphSpec& s) {
         load.particles.push_back(i);
         load.area.push_back(face_area(P, i, s.dimension));
       }
-    const explicit_dynamics::Charge charge{l.tnt_mass, l.surface_burst, l.clamp_below_range,
-                                           Vec3(l.charge[0], l.charge[1], l.charge[2]),
-                                           Vec3(l.normal[0], l.normal[1], l.normal[2])};
-    load.pulses = explicit_dynamics::surface_pulses(charge, P.x, load.particles, l.key_path);
+    const Charge charge{l.tnt_mass, l.surface_burst, l.clamp_below_range,
+                        Vec3(l.charge[0], l.charge[1], l.charge[2]),
+                        Vec3(l.normal[0], l.normal[1], l.normal[2])};
+    load.pulses = surface_pulses(charge, P.x, load.particles, l.key_path);
     MF_REQUIRE(!load.particles.empty(), l.key_path, ".box: selects no free particle");
     h.loads.push_back(load);
   }
   h.symmetry = s.symmetry;
   for (std::size_t q = 0; q < s.symmetry.size(); ++q) {
     // The body must lie on one side of each symmetry plane.
-    const SymmetryPlane& m = s.symmetry[q];
+    const sph::SymmetryPlane& m = s.symmetry[q];
     int below = 0, above = 0;
     for (int i = 0; i < P.size(); ++i) (P.x[3 * i + m.axis] < m.at ? below : above) += 1;
     MF_REQUIRE(below == 0 || above == 0, "symmetry[", q, "]: the plane ", "xyz"[m.axis], " = ",
                m.at, " cuts the body (", below, " particles below it, ", above, " above)");
   }
   if (s.detonation_normal)
-    light_from_plane(h, s.detonation_point->data(), s.detonation_normal->data());
+    sph::light_from_plane(h, s.detonation_point->data(), s.detonation_normal->data());
   else if (s.detonation_point)
-    light_from_point(h, s.detonation_point->data());
-  update_state(h);
+    sph::light_from_point(h, s.detonation_point->data());
+  sph::update_state(h);
   for (const io::SphTransmitting& t : s.transmitting) {
     // Lysmer dashpots with the particle's initial impedances rho c_L and rho c_s.
-    TransmittingBoundary b;
+    sph::TransmittingBoundary b;
     b.name = t.name;
     for (int d = 0; d < 3; ++d) b.normal[d] = t.normal[d];
     for (int i = 0; i < P.size(); ++i) {
       if (!free_in_box(P, i, t.lo, t.hi)) continue;
-      const Material& mat = h.materials[P.material[i]];
+      const sph::Material& mat = h.materials[P.material[i]];
       b.particles.push_back(i);
       b.area.push_back(face_area(P, i, s.dimension));
       b.normal_impedance.push_back(P.rho[i] * P.c[i]);
       b.shear_impedance.push_back(
-          mat.strength.enabled ? std::sqrt(P.rho[i] * shear_modulus(mat, P.rho[i])) : 0.0);
+          mat.strength.enabled ? std::sqrt(P.rho[i] * sph::shear_modulus(mat, P.rho[i])) : 0.0);
     }
     MF_REQUIRE(!b.particles.empty(), t.key_path, ".box: selects no free particle");
     h.transmitting.push_back(b);
@@ -116,4 +116,4 @@ Hydro build_hydro(const io::SphSpec& s) {
   return h;
 }
 
-} // namespace mf::sph
+} // namespace mf::explicit_dynamics

@@ -1,4 +1,4 @@
-#include "meshfree/pd/setup.hpp"
+#include "meshfree/explicit/pd_setup.hpp"
 #include "meshfree/core/log.hpp"
 #include "meshfree/explicit/surface_blast.hpp"
 #include "meshfree/geometry/lattice.hpp"
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-namespace mf::pd {
+namespace mf::explicit_dynamics {
 
 namespace {
 
@@ -72,8 +72,8 @@ materials::BondLaw material_law(const io::PdSpec& s, const io::PdMaterial& m, do
 
 /// Laws of every material pair: a material's own law, an interface's base law scaled by its
 /// factors, or (pairs with no interface) the law of the pair's softer material.
-LawTable law_table(const io::PdSpec& s, double delta) {
-  LawTable t;
+pd::LawTable law_table(const io::PdSpec& s, double delta) {
+  pd::LawTable t;
   const int n = static_cast<int>(s.materials.size());
   t.materials = n;
   for (const auto& m : s.materials) t.laws.push_back(material_law(s, m, delta));
@@ -125,10 +125,10 @@ Vec3d traction_density(const io::PdCondition& c, const particles::ParticleSet& p
 
 } // namespace
 
-Setup build_setup(const io::ProblemSpec& spec, PhaseTimer& timer) {
+PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer) {
   const io::PdSpec& s = *spec.pd;
-  Setup out;
-  Model& m = out.model;
+  PdSetup out;
+  pd::Model& m = out.model;
   m.dimension = s.dimension;
   m.thickness = s.thickness;
   m.spacing = s.spacing;
@@ -140,14 +140,15 @@ Setup build_setup(const io::ProblemSpec& spec, PhaseTimer& timer) {
   }
   {
     PhaseTimer::Scope scope(timer, "bonds");
-    const VolumeCorrection correction = s.volume_correction == "exact"    ? VolumeCorrection::Exact
-                                        : s.volume_correction == "linear" ? VolumeCorrection::Linear
-                                                                          : VolumeCorrection::None;
-    build_bonds(m, law_table(s, m.horizon), correction);
-    if (s.surface_correction) apply_surface_correction(m);
-    std::vector<PreCrack> cracks;
+    const pd::VolumeCorrection correction =
+        s.volume_correction == "exact"    ? pd::VolumeCorrection::Exact
+        : s.volume_correction == "linear" ? pd::VolumeCorrection::Linear
+                                          : pd::VolumeCorrection::None;
+    pd::build_bonds(m, law_table(s, m.horizon), correction);
+    if (s.surface_correction) pd::apply_surface_correction(m);
+    std::vector<pd::PreCrack> cracks;
     for (const auto& c : s.cracks) cracks.push_back({c.a, c.b, c.c});
-    out.state = initial_state(m, cracks);
+    out.state = pd::initial_state(m, cracks);
   }
   particles::ParticleSet& p = m.particles;
   const double tol = 1e-6 * s.spacing;
@@ -157,7 +158,7 @@ Setup build_setup(const io::ProblemSpec& spec, PhaseTimer& timer) {
     MF_REQUIRE(!group.empty(), c.key_path, ".box: selects no particle");
     if (c.kind == io::PdCondition::Kind::Displacement ||
         c.kind == io::PdCondition::Kind::Velocity) {
-      Constraint k;
+      pd::Constraint k;
       k.name = c.name;
       k.particles = group;
       k.velocity = c.kind == io::PdCondition::Kind::Velocity;
@@ -165,7 +166,7 @@ Setup build_setup(const io::ProblemSpec& spec, PhaseTimer& timer) {
       k.function = c.function;
       out.loading.constraints.push_back(k);
     } else {
-      BodyLoad load;
+      pd::BodyLoad load;
       load.name = c.name;
       load.particles = group;
       load.density = c.kind == io::PdCondition::Kind::Traction
@@ -180,9 +181,9 @@ Setup build_setup(const io::ProblemSpec& spec, PhaseTimer& timer) {
         unit.value = -c.blast.normal;
         unit.area = 0.0;
         load.density = traction_density(unit, p, group, s.spacing, m.plane() ? 2 : 3);
-        const explicit_dynamics::Charge charge{c.blast.tnt_mass, c.blast.surface_burst, false,
-                                               c.blast.charge, c.blast.normal};
-        load.pulses = explicit_dynamics::surface_pulses(charge, p.X, group, c.key_path);
+        const Charge charge{c.blast.tnt_mass, c.blast.surface_burst, false, c.blast.charge,
+                            c.blast.normal};
+        load.pulses = surface_pulses(charge, p.X, group, c.key_path);
       }
       out.loading.loads.push_back(load);
     }
@@ -191,9 +192,9 @@ Setup build_setup(const io::ProblemSpec& spec, PhaseTimer& timer) {
     for (int i : particles_in(p, iv.box, tol))
       for (int d = 0; d < 3; ++d) p.v[3 * i + d] = iv.value(d);
   for (const io::PdImpactor& k : s.impactors) {
-    Impactor imp;
+    pd::Impactor imp;
     imp.name = k.name;
-    imp.shape = k.sphere ? Impactor::Shape::Sphere : Impactor::Shape::Flat;
+    imp.shape = k.sphere ? pd::Impactor::Shape::Sphere : pd::Impactor::Shape::Flat;
     imp.radius = k.radius;
     imp.half_size = k.half_size;
     imp.mass = k.mass;
@@ -206,7 +207,7 @@ Setup build_setup(const io::ProblemSpec& spec, PhaseTimer& timer) {
   // The time step: the Silling-Askari bound times the safety factor, one step per load sample
   // when a table is finer, or the step asked for (never above the bound).
   int limiting = -1;
-  const double stable = stable_time_step(m, &limiting);
+  const double stable = pd::stable_time_step(m, &limiting);
   MF_REQUIRE(std::isfinite(stable), "peridynamics: no particle has a bond; is the horizon "
                                     "(discretisation.horizon) smaller than the spacing?");
   out.dt = s.safety * stable;
@@ -231,8 +232,8 @@ Setup build_setup(const io::ProblemSpec& spec, PhaseTimer& timer) {
   return out;
 }
 
-void log_setup(const io::ProblemSpec& spec, const Setup& setup) {
-  const Model& m = setup.model;
+void log_pd_setup(const io::ProblemSpec& spec, const PdSetup& setup) {
+  const pd::Model& m = setup.model;
   log::info("peridynamics: ", m.particles.size(), " particles, ", m.bonds.count() / 2,
             " bonds, horizon ", m.horizon, " (", spec.pd->horizon_factor, " spacings), ",
             m.laws.size(), " bond law(s)");
@@ -241,7 +242,7 @@ void log_setup(const io::ProblemSpec& spec, const Setup& setup) {
               m.laws[k].plastic() ? detail::concat(", yield stretch ", m.laws[k].yield_stretch)
                                   : "");
   log::info("time step ", setup.dt, ": ", setup.dt_limit);
-  for (const BodyLoad& load : setup.loading.loads) {
+  for (const pd::BodyLoad& load : setup.loading.loads) {
     if (load.pulses.empty()) continue;
     const auto [lo, hi] = std::minmax_element(
         load.pulses.begin(), load.pulses.end(),
@@ -253,4 +254,4 @@ void log_setup(const io::ProblemSpec& spec, const Setup& setup) {
   }
 }
 
-} // namespace mf::pd
+} // namespace mf::explicit_dynamics

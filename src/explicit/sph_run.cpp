@@ -1,25 +1,26 @@
-#include "meshfree/sph/run.hpp"
+#include "meshfree/explicit/sph_run.hpp"
 #include "meshfree/core/log.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-namespace mf::sph {
+namespace mf::explicit_dynamics {
 
 namespace {
 
-std::vector<explicit_dynamics::GaugePoint> gauge_points(const io::SphSpec& s) {
-  std::vector<explicit_dynamics::GaugePoint> g;
+std::vector<GaugePoint> gauge_points(const io::SphSpec& s) {
+  std::vector<GaugePoint> g;
   for (const auto& p : s.gauges) g.push_back({p.name, Vec3(p.at[0], p.at[1], p.at[2])});
   return g;
 }
 
 } // namespace
 
-Run::Run(Hydro& h, const io::SphSpec& spec, io::OutputDirectory* out, RunResult& result)
+SphRun::SphRun(sph::Hydro& h, const io::SphSpec& spec, io::OutputDirectory* out,
+               SphRunResult& result)
     : h_(h), spec_(spec), r_(result), n_(h.particles.size()), x0_(h.particles.x),
       gauges_(gauge_points(spec), x0_, n_), fields_(out, "fields", x0_) {
-  const Particles& P = h_.particles;
+  const sph::Particles& P = h_.particles;
   r_.particles = n_;
   r_.smallest_dt = std::numeric_limits<double>::infinity();
   const char* axes[] = {"x", "y", "z"};
@@ -27,8 +28,8 @@ Run::Run(Hydro& h, const io::SphSpec& spec, io::OutputDirectory* out, RunResult&
   gauges_.record("density", [&P](int i) { return P.rho[i]; });
   gauges_.record("von_mises", [this](int i) { return von_mises(i); });
   gauges_.record("yield_stress", [&P, &h](int i) {
-    return current_yield(h.materials[P.material[i]], P.p[i], P.alpha[i], P.damage[i],
-                         P.strain_rate[i]);
+    return sph::current_yield(h.materials[P.material[i]], P.p[i], P.alpha[i], P.damage[i],
+                              P.strain_rate[i]);
   });
   gauges_.record("plastic_strain", [&P](int i) { return P.alpha[i]; });
   for (int d = 0; d < spec.dimension; ++d)
@@ -46,7 +47,7 @@ Run::Run(Hydro& h, const io::SphSpec& spec, io::OutputDirectory* out, RunResult&
       "total_energy", "external_work", "energy_error", "max_pressure"};
   for (const std::string& c : gauges_.columns()) H.push_back(c);
   r_.history = io::History(H);
-  e0_ = energies(h_).total();
+  e0_ = sph::energies(h_).total();
 
   // The body's particles only (mirror images beyond them are not written).
   fields_.vector("displacement", [this](std::vector<double>& u) {
@@ -68,20 +69,20 @@ Run::Run(Hydro& h, const io::SphSpec& spec, io::OutputDirectory* out, RunResult&
   fields_.scalar("material", P.material);
 }
 
-double Run::max_pressure() const {
+double SphRun::max_pressure() const {
   return *std::max_element(h_.particles.p.begin(), h_.particles.p.end());
 }
 
-double Run::von_mises(int i) const {
+double SphRun::von_mises(int i) const {
   // Von Mises stress of the deviator: sqrt(3/2 S:S).
   const double* si = &h_.particles.S[6 * static_cast<std::size_t>(i)];
   return std::sqrt(1.5 * (si[0] * si[0] + si[1] * si[1] + si[2] * si[2] +
                           2.0 * (si[3] * si[3] + si[4] * si[4] + si[5] * si[5])));
 }
 
-bool Run::time_step(double remaining, double& dt, std::string& why) {
+bool SphRun::time_step(double remaining, double& dt, std::string& why) {
   int limiting = -1;
-  const double stable = stable_step(h_, &limiting);
+  const double stable = sph::stable_step(h_, &limiting);
   if (!(stable > 0.0) || !std::isfinite(stable)) {
     why = detail::concat("no finite CFL step at t = ", h_.time, " (step ", h_.step, ", particle ",
                          limiting, ")");
@@ -90,7 +91,7 @@ bool Run::time_step(double remaining, double& dt, std::string& why) {
   dt = dt_ = std::min(stable, remaining);
   if (h_.step == 0) r_.first_dt = dt;
   if (stable < r_.smallest_dt) {
-    const Particles& P = h_.particles;
+    const sph::Particles& P = h_.particles;
     r_.smallest_dt = stable;
     r_.dt_limit = detail::concat(
         "CFL step ", stable, " (Courant ", spec_.settings.courant, ") set at step ", h_.step,
@@ -100,26 +101,26 @@ bool Run::time_step(double remaining, double& dt, std::string& why) {
   return true;
 }
 
-void Run::track() {
+void SphRun::track() {
   r_.peak_pressure = std::max(r_.peak_pressure, max_pressure());
   gauges_.update_maxima();
 }
 
-int Run::nonfinite() const {
-  const Particles& P = h_.particles;
+int SphRun::nonfinite() const {
+  const sph::Particles& P = h_.particles;
   for (int i = 0; i < n_; ++i)
     for (int d = 0; d < 3; ++d)
       if (!std::isfinite(P.x[3 * i + d]) || !std::isfinite(P.v[3 * i + d])) return i;
   return -1;
 }
 
-std::string Run::advice() const {
+std::string SphRun::advice() const {
   return detail::concat("the last step ", dt_, " (Courant ", spec_.settings.courant,
                         ") may be too large");
 }
 
-void Run::record() {
-  const Energies E = energies(h_);
+void SphRun::record() {
+  const sph::Energies E = sph::energies(h_);
   // The balance: total energy against its start plus the work of the loads.
   const double err = std::abs(E.total() - e0_ - h_.external_work) /
                      std::max({std::abs(e0_), std::abs(h_.external_work), E.kinetic,
@@ -138,11 +139,11 @@ void Run::record() {
   r_.history.append(std::move(row));
 }
 
-std::string Run::progress() const {
+std::string SphRun::progress() const {
   return detail::concat("dt ", dt_, ", max pressure ", max_pressure());
 }
 
-void Run::finish(const explicit_dynamics::LoopReport& loop) {
+void SphRun::finish(const LoopReport& loop) {
   fields_.close();
   r_.status = loop.status;
   r_.stop_reason = loop.stop_reason;
@@ -159,4 +160,4 @@ void Run::finish(const explicit_dynamics::LoopReport& loop) {
   log::info("smallest step: ", r_.dt_limit);
 }
 
-} // namespace mf::sph
+} // namespace mf::explicit_dynamics
