@@ -1,11 +1,18 @@
 // Geomaterials for blast: the tabulated compaction EOS and the granular strength of dry sand
 // (Laine & Sandvik 2001) against the shock jump conditions of a one-dimensional SPH impact, and
 // the Holmquist-Johnson-Cook concrete model against its defining equations.
+#include "meshfree/materials/equation_of_state.hpp"
 #include "meshfree/materials/geomaterials.hpp"
+#include "meshfree/materials/strength.hpp"
 #include "meshfree/sph/hydro.hpp"
+#include "meshfree/sph/neighbours.hpp"
+#include "meshfree/sph/rates.hpp"
+#include "meshfree/sph/state.hpp"
+#include "meshfree/sph/step.hpp"
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <variant>
 
 using namespace mf;
 
@@ -17,22 +24,22 @@ namespace {
 sph::Material sand(bool with_strength) {
   sph::Material m;
   m.name = "sand";
-  m.eos.kind = sph::Eos::Kind::Compaction;
-  m.eos.compaction.loading = {
+  materials::Compaction c;
+  c.loading = {
       {1674.0, 1739.5, 1873.8, 1997.0, 2143.8, 2250.0, 2380.0, 2485.0, 2585.0, 2671.3},
       {0.0, 4.577e6, 14.98e6, 29.15e6, 59.18e6, 98.10e6, 179.4e6, 289.4e6, 450.2e6, 650.7e6}};
-  m.eos.compaction.sound_speed = {
-      {1674.0, 1746.0, 2086.0, 2147.0, 2300.0, 2572.0, 2598.0, 2635.0, 2641.0, 2800.0},
-      {265.2, 852.1, 1721.7, 1875.5, 2264.8, 2956.1, 3112.2, 4600.0, 4634.0, 4634.0}};
-  m.eos.compaction.tensile_limit = 1e3;
+  c.sound_speed = {{1674.0, 1746.0, 2086.0, 2147.0, 2300.0, 2572.0, 2598.0, 2635.0, 2641.0, 2800.0},
+                   {265.2, 852.1, 1721.7, 1875.5, 2264.8, 2956.1, 3112.2, 4600.0, 4634.0, 4634.0}};
+  c.tensile_limit = 1e3;
+  m.eos = c;
   if (with_strength) {
-    m.strength.enabled = true;
-    m.strength.model = sph::Strength::Model::Granular;
-    m.strength.granular.yield = {{0.0, 3.40e6, 3.49e7, 1.01e8, 1.85e8, 5.00e8},
-                                 {0.0, 4.24e6, 4.47e7, 1.24e8, 2.26e8, 2.26e8}};
-    m.strength.granular.shear_modulus = {
+    materials::GranularStrength granular;
+    granular.yield = {{0.0, 3.40e6, 3.49e7, 1.01e8, 1.85e8, 5.00e8},
+                      {0.0, 4.24e6, 4.47e7, 1.24e8, 2.26e8, 2.26e8}};
+    granular.shear_modulus = {
         {1674.0, 1746.0, 2086.0, 2147.0, 2300.0, 2572.0, 2598.0, 2635.0, 2641.0, 2800.0},
         {7.69e7, 8.69e8, 4.03e9, 4.91e9, 7.77e9, 1.48e10, 1.66e10, 3.67e10, 3.73e10, 3.73e10}};
+    m.strength = granular;
   }
   return m;
 }
@@ -44,19 +51,20 @@ struct Hugoniot {
   double rho1, pressure, stress, front_speed; // front speed in the wall's frame
 };
 Hugoniot sand_hugoniot(const sph::Material& m, double u) {
-  const double rho0 = m.eos.compaction.loading.x.front();
+  const materials::Compaction& c = std::get<materials::Compaction>(m.eos);
+  const double rho0 = c.loading.x.front();
+  const auto* granular = std::get_if<materials::GranularStrength>(&m.strength);
   const auto stress = [&](double rho) {
-    const double p = m.eos.compaction.loading(rho);
-    return p + (m.strength.enabled ? 2.0 / 3.0 * materials::granular_yield(m.strength.granular, p)
-                                   : 0.0);
+    const double p = c.loading(rho);
+    return p + (granular ? 2.0 / 3.0 * materials::granular_yield(*granular, p) : 0.0);
   };
-  double lo = rho0 * (1 + 1e-9), hi = m.eos.compaction.loading.x.back();
+  double lo = rho0 * (1 + 1e-9), hi = c.loading.x.back();
   for (int it = 0; it < 200; ++it) {
     const double mid = 0.5 * (lo + hi);
     (stress(mid) * (1.0 - rho0 / mid) < rho0 * u * u ? lo : hi) = mid;
   }
   const double rho1 = 0.5 * (lo + hi);
-  return {rho1, m.eos.compaction.loading(rho1), stress(rho1), rho0 * u / (rho1 - rho0)};
+  return {rho1, c.loading(rho1), stress(rho1), rho0 * u / (rho1 - rho0)};
 }
 
 struct ShockRun {
@@ -72,7 +80,7 @@ ShockRun sand_impact(const sph::Material& m, double u, double t_end) {
   s.particles.dim = 1;
   s.materials.push_back(m);
   const int n = 500;
-  const double dx = 0.05 / n, rho0 = m.eos.compaction.loading.x.front();
+  const double dx = 0.05 / n, rho0 = std::get<materials::Compaction>(m.eos).loading.x.front();
   for (int k = 0; k < 2 * n; ++k) {
     const double x[3] = {-0.05 + (k + 0.5) * dx, 0, 0};
     s.particles.add(x, rho0 * dx, rho0, 0.0, 2.0 * dx, 0);
@@ -108,10 +116,11 @@ ShockRun sand_impact(const sph::Material& m, double u, double t_end) {
         s_sum += P.p[i] - P.S[6 * i];
         ++count;
       }
-      if (m.strength.enabled && P.p[i] > 1e5) {
+      const auto* granular = std::get_if<materials::GranularStrength>(&m.strength);
+      if (granular && P.p[i] > 1e5) {
         const double* si = &P.S[6 * static_cast<std::size_t>(i)];
         const double q = std::sqrt(1.5 * (si[0] * si[0] + si[1] * si[1] + si[2] * si[2]));
-        const double Y = materials::granular_yield(m.strength.granular, P.p[i]);
+        const double Y = materials::granular_yield(*granular, P.p[i]);
         out.worst_yield_excess = std::max(out.worst_yield_excess, (q - Y) / Y);
       }
     }
@@ -126,7 +135,7 @@ ShockRun sand_impact(const sph::Material& m, double u, double t_end) {
 
 TEST_CASE("compaction EOS: loading curve, elastic unloading and reloading, tension limit",
           "[geomaterials][eos]") {
-  const materials::Compaction& c = sand(false).eos.compaction;
+  const materials::Compaction c = std::get<materials::Compaction>(sand(false).eos);
   // On the loading curve (rho = rho_max): the table, linear between its rows.
   CHECK(materials::compaction(c, 2250.0, 2250.0).p == Approx(98.10e6));
   CHECK(materials::compaction(c, 0.5 * (2250.0 + 2380.0), 2000.0).p ==
@@ -231,7 +240,7 @@ TEST_CASE("inter-material penalty: no force at the lattice spacing, equal and op
   sph::Hydro s;
   s.particles.dim = 1;
   sph::Material gas;
-  gas.eos.kind = sph::Eos::Kind::IdealGas;
+  gas.eos = materials::IdealGas{};
   s.materials = {gas, gas};
   s.settings.penalty.pressure = 1e6;
   s.settings.alpha = s.settings.beta = 0.0;

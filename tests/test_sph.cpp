@@ -5,7 +5,15 @@
 #include "meshfree/kernels/sph_kernel.hpp"
 #include "meshfree/loads/blast.hpp"
 #include "meshfree/materials/eos.hpp"
+#include "meshfree/materials/equation_of_state.hpp"
+#include "meshfree/materials/j2_plasticity.hpp"
+#include "meshfree/materials/strength.hpp"
+#include "meshfree/sph/detonation.hpp"
 #include "meshfree/sph/hydro.hpp"
+#include "meshfree/sph/neighbours.hpp"
+#include "meshfree/sph/rates.hpp"
+#include "meshfree/sph/state.hpp"
+#include "meshfree/sph/step.hpp"
 #include "test_support.hpp"
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -216,8 +224,7 @@ SodResult run_sod(int n_left, const Riemann& exact,
   s.settings.kernel = kernel;
   sph::Material gas;
   gas.name = "gas";
-  gas.eos.kind = sph::Eos::Kind::IdealGas;
-  gas.eos.ideal_gas.gamma = 1.4;
+  gas.eos = materials::IdealGas{1.4};
   s.materials.push_back(gas);
   const double dxl = 1.0 / n_left, dxr = 8.0 * dxl, m = dxl * 1.0;
   for (int k = 0; k < n_left; ++k) {
@@ -331,11 +338,11 @@ sph::Hydro tnt_slab(int n, bool unreacted) {
   s.particles.dim = 1;
   sph::Material tnt;
   tnt.name = "tnt";
-  tnt.eos.kind = sph::Eos::Kind::Jwl;
-  tnt.eos.has_unreacted = unreacted;
-  tnt.eos.unreacted = {1630.0, 2390.0, 2.05, 1.0};
+  materials::JwlExplosive explosive;
+  if (unreacted) explosive.unreacted = materials::MieGruneisen{1630.0, 2390.0, 2.05, 1.0};
+  tnt.eos = explosive;
   s.materials.push_back(tnt);
-  const materials::Jwl& j = tnt.eos.jwl;
+  const materials::Jwl& j = explosive.jwl;
   const double dx = 0.1 / n;
   for (int k = 0; k < n; ++k) {
     const double x[3] = {(k + 0.5) * dx, 0, 0};
@@ -359,7 +366,7 @@ TEST_CASE("TNT slab: programmed burn runs at D_CJ and the front obeys the jump c
   // The next test adds the unreacted explosive, whose ZND front ends at P_CJ.
   for (int n : {400, 800}) {
     sph::Hydro s = tnt_slab(n, false);
-    const materials::Jwl& j = s.materials[0].eos.jwl;
+    const materials::Jwl& j = std::get<materials::JwlExplosive>(s.materials[0].eos).jwl;
     const double L = 0.1, D = j.detonation_speed;
     const double e0 = sph::energies(s).total();
     double t_front[2] = {-1, -1};
@@ -400,9 +407,9 @@ TEST_CASE("a detonation plane lights a 2D TNT strip as a plane wave at D_CJ", "[
   sph::Hydro s;
   s.particles.dim = 2;
   sph::Material tnt;
-  tnt.eos.kind = sph::Eos::Kind::Jwl;
+  tnt.eos = materials::JwlExplosive{};
   s.materials.push_back(tnt);
-  const materials::Jwl& j = tnt.eos.jwl;
+  const materials::Jwl& j = std::get<materials::JwlExplosive>(tnt.eos).jwl;
   const double dx = 0.5e-3, D = j.detonation_speed;
   const int nx = 80, ny = 12;
   for (int r = 0; r < ny; ++r)
@@ -451,7 +458,7 @@ TEST_CASE("TNT slab with an unreacted equation of state: a self-sustained ZND fr
   for (int n : {400, 800, 1600}) {
     sph::Hydro s = tnt_slab(n, true);
     s.settings.burn_width = 6.0;
-    const materials::Jwl& j = s.materials[0].eos.jwl;
+    const materials::Jwl& j = std::get<materials::JwlExplosive>(s.materials[0].eos).jwl;
     const double L = 0.1, D = j.detonation_speed;
     double t_front[2] = {-1, -1}, cj_sum = 0.0, spike = 0.0;
     int cj_count = 0;
@@ -495,16 +502,20 @@ namespace {
 sph::Material test_solid(double sigma_y = 0.0) {
   sph::Material al;
   al.name = "solid";
-  al.eos.kind = sph::Eos::Kind::LinearPolynomial;
-  al.eos.linear_polynomial.rho0 = 2700.0;
-  al.eos.linear_polynomial.c[1] = 70e9;
-  al.strength.enabled = true;
-  al.strength.shear_modulus = 26e9;
-  al.strength.model =
-      sigma_y > 0.0 ? sph::Strength::Model::VonMises : sph::Strength::Model::Elastic;
-  al.strength.yield.E = 2.0 * 26e9; // nu = 0: the return uses mu = G
-  al.strength.yield.nu = 0.0;
-  al.strength.yield.sigma0 = sigma_y;
+  materials::LinearPolynomial eos;
+  eos.rho0 = 2700.0;
+  eos.c[1] = 70e9;
+  al.eos = eos;
+  if (sigma_y > 0.0) {
+    materials::VonMises vm;
+    vm.shear_modulus = 26e9;
+    vm.j2.E = 2.0 * 26e9; // nu = 0: the return uses mu = G
+    vm.j2.nu = 0.0;
+    vm.j2.sigma0 = sigma_y;
+    al.strength = vm;
+  } else {
+    al.strength = materials::ElasticShear{26e9};
+  }
   return al;
 }
 
@@ -647,7 +658,7 @@ TEST_CASE("elastic-plastic bar impact: precursor at the Hugoniot elastic limit, 
 
 TEST_CASE("deviatoric radial return agrees with the implicit J2 update", "[sph][j2]") {
   // The same backward-Euler step from the same committed state: j2_update_3d on a total strain
-  // and j2_return_deviatoric on the elastic trial deviator of that strain.
+  // and j2_radial_return on the elastic trial deviator of that strain.
   materials::J2Parameters p;
   p.E = 200e9;
   p.nu = 0.3;
@@ -663,16 +674,123 @@ TEST_CASE("deviatoric radial return agrees with the implicit J2 update", "[sph][
     const materials::J2Result3D implicit = materials::j2_update_3d(p, strain, committed);
     // Trial deviator 2 mu e' (tensor shears = engineering / 2).
     const double tr = strain(0) + strain(1) + strain(2);
-    double s[6];
-    for (int k = 0; k < 3; ++k) s[k] = 2.0 * mu * (strain(k) - tr / 3.0);
-    for (int k = 3; k < 6; ++k) s[k] = mu * strain(k);
-    const double q = std::sqrt(1.5 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2] +
-                                      2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])));
-    const materials::DeviatoricReturn r = materials::j2_return_deviatoric(p, q, committed.alpha);
+    materials::Vec6 s;
+    for (int k = 0; k < 3; ++k) s(k) = 2.0 * mu * (strain(k) - tr / 3.0);
+    for (int k = 3; k < 6; ++k) s(k) = mu * strain(k);
+    const materials::J2Return r =
+        materials::j2_radial_return(p, s, materials::Vec6::Zero(), committed.alpha);
     INFO("strain scale " << scale);
-    CHECK(committed.alpha + r.dalpha == Approx(implicit.state.alpha).epsilon(1e-10));
-    CHECK(r.scale * q == Approx(materials::von_mises_3d(implicit.stress)).epsilon(1e-10));
+    CHECK(r.alpha == Approx(implicit.state.alpha).epsilon(1e-10));
+    CHECK(materials::von_mises_3d(r.deviator) ==
+          Approx(materials::von_mises_3d(implicit.stress)).epsilon(1e-10));
   }
+}
+
+TEST_CASE("SPH's deviatoric update with kinematic hardening follows j2_update_3d along a strain "
+          "path",
+          "[sph][j2]") {
+  // A solid particle integrates its deviator, S_trial = S_n + 2 mu de' (no rotation), carries
+  // its back stress and plastic strain, and returns with j2_radial_return; the Galerkin update
+  // takes the total strain and the committed state. Along a path that yields, reverses
+  // (Bauschinger) and yields again, both give the same deviator, back stress and plastic strain.
+  materials::J2Parameters p;
+  p.E = 200e9;
+  p.nu = 0.3;
+  p.sigma0 = 300e6;
+  p.hardening = materials::LinearHardening{1.0e9};
+  p.H_kinematic = 5.0e9;
+  const double mu = p.E / (2.0 * (1.0 + p.nu));
+  materials::Vec6 direction;
+  direction << 1.0, -0.3, -0.5, 0.4, -0.2, 0.6; // engineering shears
+  const std::vector<double> path = {0.5e-3,  1.0e-3,  2.0e-3,  3.0e-3, 1.5e-3, 0.0,
+                                    -1.5e-3, -3.0e-3, -2.0e-3, 1.0e-3, 4.0e-3};
+  materials::J2State galerkin;
+  materials::Vec6 S = materials::Vec6::Zero(), beta = materials::Vec6::Zero();
+  double alpha = 0.0, previous = 0.0;
+  int plastic_steps = 0;
+  for (double level : path) {
+    const materials::Vec6 strain = level * direction;
+    const materials::J2Result3D implicit = materials::j2_update_3d(p, strain, galerkin);
+    galerkin = implicit.state;
+    // The deviatoric strain increment (tensor shears = engineering / 2).
+    const materials::Vec6 de = (level - previous) * direction;
+    const double tr = de(0) + de(1) + de(2);
+    materials::Vec6 trial = S;
+    for (int k = 0; k < 3; ++k) trial(k) += 2.0 * mu * (de(k) - tr / 3.0);
+    for (int k = 3; k < 6; ++k) trial(k) += mu * de(k);
+    const materials::J2Return r = materials::j2_radial_return(p, trial, beta, alpha);
+    S = r.deviator, beta = r.back_stress, alpha = r.alpha, previous = level;
+    plastic_steps += r.plastic ? 1 : 0;
+    INFO("strain level " << level);
+    CHECK(r.plastic == implicit.plastic);
+    const double mean = implicit.stress.head<3>().sum() / 3.0;
+    for (int k = 0; k < 6; ++k) {
+      CHECK(S(k) == Approx(implicit.stress(k) - (k < 3 ? mean : 0.0)).margin(1e-12 * p.sigma0));
+      CHECK(beta(k) == Approx(galerkin.back_stress(k)).margin(1e-12 * p.sigma0));
+    }
+    CHECK(alpha == Approx(galerkin.alpha).epsilon(1e-12));
+  }
+  CHECK(plastic_steps >= 6);
+  CHECK(galerkin.back_stress.norm() > 0.0);
+}
+
+TEST_CASE("an SPH particle with kinematic hardening carries its back stress between steps like "
+          "j2_update_3d",
+          "[sph][j2]") {
+  // One solid particle driven through update_stress by prescribed rates (no spin): each step's
+  // deviatoric rate is 2G de' / dt, and the particle's stress, back stress and plastic strain
+  // follow the Galerkin update of the total strain (E = 2G, nu = 0, so the return's mu is G).
+  const double G = 26e9;
+  materials::VonMises vm;
+  vm.shear_modulus = G;
+  vm.j2.E = 2.0 * G;
+  vm.j2.nu = 0.0;
+  vm.j2.sigma0 = 150e6;
+  vm.j2.hardening = materials::LinearHardening{0.5e9};
+  vm.j2.H_kinematic = 2.0e9;
+  sph::Hydro s;
+  s.particles.dim = 3;
+  sph::Material solid = test_solid();
+  solid.strength = vm;
+  s.materials.push_back(solid);
+  const double x[3] = {0.0, 0.0, 0.0};
+  s.particles.add(x, 1.0, 2700.0, 0.0, 1.0, 0);
+  sph::group_materials(s);
+  materials::Vec6 direction; // engineering shears
+  direction << 1.0, -0.2, -0.6, 0.3, 0.5, -0.4;
+  const std::vector<double> path = {1.0e-3, 2.5e-3, 4.0e-3, 2.0e-3, -1.0e-3, -4.0e-3, 0.0, 5.0e-3};
+  materials::J2State galerkin;
+  double previous = 0.0;
+  int plastic_steps = 0;
+  for (double level : path) {
+    const materials::J2Result3D implicit =
+        materials::j2_update_3d(vm.j2, level * direction, galerkin);
+    galerkin = implicit.state;
+    plastic_steps += implicit.plastic ? 1 : 0;
+    const materials::Vec6 de = (level - previous) * direction;
+    const double tr = de(0) + de(1) + de(2);
+    sph::Rates r;
+    r.dS.assign(6, 0.0);
+    r.grad_v.assign(9, 0.0);
+    for (int k = 0; k < 3; ++k) r.dS[k] = 2.0 * G * (de(k) - tr / 3.0);
+    for (int k = 3; k < 6; ++k) r.dS[k] = G * de(k);
+    // A symmetric velocity gradient over dt = 1 (the strain rate only).
+    const double D[9] = {de(0),     de(5) / 2, de(4) / 2, de(5) / 2, de(1),
+                         de(3) / 2, de(4) / 2, de(3) / 2, de(2)};
+    for (int k = 0; k < 9; ++k) r.grad_v[k] = D[k];
+    sph::update_stress(s, sph::stress_history(s), r, 1.0);
+    previous = level;
+    INFO("strain level " << level);
+    const double mean = implicit.stress.head<3>().sum() / 3.0;
+    for (int k = 0; k < 6; ++k) {
+      CHECK(s.particles.S[k] ==
+            Approx(implicit.stress(k) - (k < 3 ? mean : 0.0)).margin(1e-12 * vm.j2.sigma0));
+      CHECK(s.particles.back_stress[k] ==
+            Approx(galerkin.back_stress(k)).margin(1e-12 * vm.j2.sigma0));
+    }
+    CHECK(s.particles.alpha[0] == Approx(galerkin.alpha).epsilon(1e-12));
+  }
+  CHECK(plastic_steps >= 4);
 }
 
 TEST_CASE("plane elastic wave in a 2D and a 3D block: stress behind the front", "[sph][solid]") {

@@ -12,6 +12,7 @@
 #include "meshfree/geometry/node_generation.hpp"
 #include "meshfree/io/problem_spec.hpp"
 #include "meshfree/quadrature/integration_points.hpp"
+#include "meshfree/sph/step.hpp"
 #include <cmath>
 #include <cstring>
 #include <filesystem>

@@ -28,8 +28,8 @@ SphRun::SphRun(sph::Hydro& h, const io::SphSpec& spec, io::OutputDirectory* out,
   gauges_.record("density", [&P](int i) { return P.rho[i]; });
   gauges_.record("von_mises", [this](int i) { return von_mises(i); });
   gauges_.record("yield_stress", [&P, &h](int i) {
-    return sph::current_yield(h.materials[P.material[i]], P.p[i], P.alpha[i], P.damage[i],
-                              P.strain_rate[i]);
+    return materials::current_yield(h.materials[P.material[i]].strength, P.p[i], P.alpha[i],
+                                    P.damage[i], P.strain_rate[i]);
   });
   gauges_.record("plastic_strain", [&P](int i) { return P.alpha[i]; });
   for (int d = 0; d < spec.dimension; ++d)

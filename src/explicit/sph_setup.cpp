@@ -2,6 +2,8 @@
 #include "meshfree/core/error.hpp"
 #include "meshfree/explicit/surface_blast.hpp"
 #include "meshfree/geometry/lattice.hpp"
+#include "meshfree/sph/detonation.hpp"
+#include "meshfree/sph/state.hpp"
 #include <algorithm>
 #include <cmath>
 
@@ -103,12 +105,11 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     for (int d = 0; d < 3; ++d) b.normal[d] = t.normal[d];
     for (int i = 0; i < P.size(); ++i) {
       if (!free_in_box(P, i, t.lo, t.hi)) continue;
-      const sph::Material& mat = h.materials[P.material[i]];
       b.particles.push_back(i);
       b.area.push_back(face_area(P, i, s.dimension));
       b.normal_impedance.push_back(P.rho[i] * P.c[i]);
-      b.shear_impedance.push_back(
-          mat.strength.enabled ? std::sqrt(P.rho[i] * sph::shear_modulus(mat, P.rho[i])) : 0.0);
+      b.shear_impedance.push_back(std::sqrt(
+          P.rho[i] * materials::shear_modulus(h.materials[P.material[i]].strength, P.rho[i])));
     }
     MF_REQUIRE(!b.particles.empty(), t.key_path, ".box: selects no free particle");
     h.transmitting.push_back(b);

@@ -6,6 +6,7 @@
 #include "meshfree/io/sph_read.hpp"
 #include <algorithm>
 #include <cmath>
+#include <variant>
 
 namespace mf::io {
 
@@ -91,18 +92,19 @@ materials::Hjc read_hjc(KeyReader& h) {
   return m;
 }
 
-sph::Eos read_eos(KeyReader& e) {
-  sph::Eos eos;
+materials::EquationOfState read_eos(KeyReader& e) {
+  materials::EquationOfState eos;
   const std::string type = e.choice(
       "type", {"ideal_gas", "jwl", "mie_gruneisen", "linear_polynomial", "compaction", "hjc"}, "");
   if (type == "ideal_gas") {
-    eos.kind = sph::Eos::Kind::IdealGas;
-    eos.ideal_gas.gamma = e.positive("gamma", 1.4);
-    if (!(eos.ideal_gas.gamma > 1.0)) e.error("gamma", "expected a ratio of specific heats > 1");
+    materials::IdealGas g;
+    g.gamma = e.positive("gamma", 1.4);
+    if (!(g.gamma > 1.0)) e.error("gamma", "expected a ratio of specific heats > 1");
+    eos = g;
   } else if (type == "jwl") {
     // Defaults: TNT, Dobratz & Crawford 1985 (materials/eos.hpp).
-    eos.kind = sph::Eos::Kind::Jwl;
-    materials::Jwl& j = eos.jwl;
+    materials::JwlExplosive x;
+    materials::Jwl& j = x.jwl;
     j.rho0 = e.positive("rho0", j.rho0);
     j.A = e.positive("A", j.A);
     j.B = e.positive("B", j.B);
@@ -114,41 +116,44 @@ sph::Eos read_eos(KeyReader& e) {
     j.e0 = e.positive("detonation_energy", j.e0 * j.rho0) / j.rho0; // given per volume [J/m^3]
     if (auto u = e.optional_map("unreacted")) {
       // The unreacted explosive's shock Hugoniot U_s = c0 + s u_p and Grueneisen gamma.
-      eos.has_unreacted = true;
-      eos.unreacted.rho0 = j.rho0;
-      eos.unreacted.c0 = u->positive("c0");
-      eos.unreacted.s = u->positive("s");
-      eos.unreacted.gamma0 = u->positive("gamma0");
+      materials::MieGruneisen unreacted;
+      unreacted.rho0 = j.rho0;
+      unreacted.c0 = u->positive("c0");
+      unreacted.s = u->positive("s");
+      unreacted.gamma0 = u->positive("gamma0");
+      x.unreacted = unreacted;
       u->finish();
     }
+    eos = x;
   } else if (type == "mie_gruneisen") {
-    eos.kind = sph::Eos::Kind::MieGruneisen;
-    materials::MieGruneisen& m = eos.mie_gruneisen;
+    materials::MieGruneisen m;
     m.rho0 = e.positive("rho0");
     m.c0 = e.positive("c0");
     m.s = e.number("s");
     m.gamma0 = e.number("gamma0");
+    eos = m;
   } else if (type == "compaction") {
     // Tabulated compaction (materials/geomaterials.hpp): [density, pressure] and
     // [density, sound speed] rows.
-    eos.kind = sph::Eos::Kind::Compaction;
-    eos.compaction.loading = read_table(e, "loading", 2, false);
-    eos.compaction.sound_speed = read_table(e, "sound_speed", 1, true);
-    if (eos.compaction.loading.y.front() != 0.0)
+    materials::Compaction c;
+    c.loading = read_table(e, "loading", 2, false);
+    c.sound_speed = read_table(e, "sound_speed", 1, true);
+    if (c.loading.y.front() != 0.0)
       e.error("loading", "the loading curve must start at zero pressure (the initial density)");
-    for (std::size_t k = 1; k < eos.compaction.loading.y.size(); ++k)
-      if (!(eos.compaction.loading.y[k] > eos.compaction.loading.y[k - 1]))
+    for (std::size_t k = 1; k < c.loading.y.size(); ++k)
+      if (!(c.loading.y[k] > c.loading.y[k - 1]))
         e.error("loading", "the pressure must increase with density");
-    eos.compaction.tensile_limit = e.number("tensile_limit", 0.0);
-    if (eos.compaction.tensile_limit < 0.0)
-      e.error("tensile_limit", "expected a tension magnitude >= 0");
+    c.tensile_limit = e.number("tensile_limit", 0.0);
+    if (c.tensile_limit < 0.0) e.error("tensile_limit", "expected a tension magnitude >= 0");
+    eos = c;
   } else if (type == "hjc") {
-    eos.kind = sph::Eos::Kind::Hjc; // constants from the material's 'hjc' map
+    eos = materials::Hjc{}; // constants from the material's 'hjc' map
   } else {
-    eos.kind = sph::Eos::Kind::LinearPolynomial;
-    eos.linear_polynomial.rho0 = e.positive("rho0");
+    materials::LinearPolynomial l;
+    l.rho0 = e.positive("rho0");
     const std::vector<double> c = e.numbers("c", 7);
-    for (int k = 0; k < 7; ++k) eos.linear_polynomial.c[k] = c[k];
+    for (int k = 0; k < 7; ++k) l.c[k] = c[k];
+    eos = l;
   }
   e.finish();
   return eos;
@@ -189,45 +194,50 @@ SphSpec parse_sph(KeyReader& r) {
       if (other.name == mat.name) m.error("name", "another material is named '" + mat.name + "'");
     KeyReader e = m.map("eos");
     mat.eos = read_eos(e);
-    if (auto h = m.optional_map("hjc")) mat.hjc = read_hjc(*h);
+    materials::Hjc hjc;
+    if (auto h = m.optional_map("hjc")) hjc = read_hjc(*h);
+    if (std::holds_alternative<materials::Hjc>(mat.eos)) mat.eos = hjc;
+    bool hjc_strength = false;
     if (auto st = m.optional_map("strength")) {
       // The deviatoric stress of a solid; the J2 return uses mu = G (E = 2G, nu = 0).
-      mat.strength.enabled = true;
       const bool yield_given = st->has("yield_stress") || st->has("hardening");
       const std::string model = st->choice("model", {"elastic", "von_mises", "granular", "hjc"},
                                            yield_given ? "von_mises" : "elastic");
-      using Model = sph::Strength::Model;
       if (model == "granular") {
-        mat.strength.model = Model::Granular;
-        mat.strength.granular.yield = read_table(*st, "yield", 2, false);
+        materials::GranularStrength granular;
+        granular.yield = read_table(*st, "yield", 2, false);
         if (st->has("shear_modulus") == st->has("shear_modulus_table"))
           st->error("shear_modulus", "give exactly one of 'shear_modulus' or "
                                      "'shear_modulus_table' [[density, G], ...]");
         if (st->has("shear_modulus")) {
-          mat.strength.shear_modulus = st->positive("shear_modulus");
+          granular.shear_modulus = {{0.0}, {st->positive("shear_modulus")}}; // a constant
         } else {
-          mat.strength.granular.shear_modulus = read_table(*st, "shear_modulus_table", 1, true);
+          granular.shear_modulus = read_table(*st, "shear_modulus_table", 1, true);
         }
+        mat.strength = granular;
       } else if (model == "hjc") {
-        mat.strength.model = Model::Hjc;
-        mat.strength.shear_modulus = mat.hjc.shear_modulus;
+        hjc_strength = true;
+        mat.strength = hjc;
       } else {
-        mat.strength.shear_modulus = st->positive("shear_modulus");
-        mat.strength.yield.E = 2.0 * mat.strength.shear_modulus;
-        mat.strength.yield.nu = 0.0;
+        const double G = st->positive("shear_modulus");
         if (model == "von_mises") {
           if (!yield_given) st->error("yield_stress", "required value is missing");
-          mat.strength.model = Model::VonMises;
-          read_hardening(*st, mat.strength.yield);
+          materials::VonMises vm;
+          vm.shear_modulus = G;
+          vm.j2.E = 2.0 * G;
+          vm.j2.nu = 0.0;
+          read_hardening(*st, vm.j2);
+          mat.strength = vm;
+        } else {
+          mat.strength = materials::ElasticShear{G};
         }
       }
-      mat.strength.failure_strain = st->positive("failure_strain", 0.0);
-      if (st->has("failure_strain") && !(mat.strength.failure_strain > 0.0))
+      mat.failure_strain = st->positive("failure_strain", 0.0);
+      if (st->has("failure_strain") && !(mat.failure_strain > 0.0))
         st->error("failure_strain", "expected a positive plastic strain");
       st->finish();
     }
-    const bool hjc_eos = mat.eos.kind == sph::Eos::Kind::Hjc;
-    const bool hjc_strength = mat.strength.model == sph::Strength::Model::Hjc;
+    const bool hjc_eos = std::holds_alternative<materials::Hjc>(mat.eos);
     if (hjc_eos != hjc_strength)
       m.error(hjc_eos ? "strength" : "eos",
               "the HJC model needs both 'eos: {type: hjc}' and 'strength: {model: hjc}'");
@@ -281,26 +291,29 @@ SphSpec parse_sph(KeyReader& r) {
       c.finish();
       block.holes.push_back(hole);
     }
-    const sph::Eos& eos = s.materials[k].eos;
+    const materials::EquationOfState& eos = s.materials[k].eos;
+    const auto* explosive = std::get_if<materials::JwlExplosive>(&eos);
+    const auto* ideal_gas = std::get_if<materials::IdealGas>(&eos);
+    const auto* hjc = std::get_if<materials::Hjc>(&eos);
+    const auto* compaction = std::get_if<materials::Compaction>(&eos);
     double natural = 0.0; // the reference density of the equation of state, where it has one
-    if (eos.kind == sph::Eos::Kind::Jwl) natural = eos.jwl.rho0;
-    if (eos.kind == sph::Eos::Kind::Hjc) natural = s.materials[k].hjc.rho0;
-    if (eos.kind == sph::Eos::Kind::Compaction) natural = eos.compaction.loading.x.front();
+    if (explosive) natural = explosive->jwl.rho0;
+    if (hjc) natural = hjc->rho0;
+    if (compaction) natural = compaction->loading.x.front();
     block.density = b.positive("density", natural);
     if (!(block.density > 0.0)) b.error("density", "required value is missing");
-    const bool energy_free =
-        eos.kind == sph::Eos::Kind::Compaction || eos.kind == sph::Eos::Kind::Hjc;
+    const bool energy_free = compaction || hjc;
     if (energy_free && b.has("energy"))
       b.error("energy", "this equation of state does not depend on the internal energy");
-    if (b.has("pressure") == b.has("energy") && eos.kind != sph::Eos::Kind::Jwl && !energy_free)
+    if (b.has("pressure") == b.has("energy") && !explosive && !energy_free)
       b.error("energy", "give exactly one of 'energy' (J/kg) or 'pressure'");
     if (b.has("pressure")) {
-      if (eos.kind != sph::Eos::Kind::IdealGas)
+      if (!ideal_gas)
         b.error("pressure", "an initial pressure is turned into energy for an ideal gas only; "
                             "give 'energy'");
-      block.energy = b.positive("pressure") / ((eos.ideal_gas.gamma - 1.0) * block.density);
+      block.energy = b.positive("pressure") / ((ideal_gas->gamma - 1.0) * block.density);
     } else {
-      block.energy = b.number("energy", eos.kind == sph::Eos::Kind::Jwl ? eos.jwl.e0 : 0.0);
+      block.energy = b.number("energy", explosive ? explosive->jwl.e0 : 0.0);
     }
     if (b.has("velocity")) block.velocity = read_point(b, "velocity", dim);
     b.allow("velocity");

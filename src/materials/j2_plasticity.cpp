@@ -80,24 +80,45 @@ double yield_slope(const J2Parameters& p, double alpha) {
   return std::visit(Slope{p.sigma0, alpha}, p.hardening);
 }
 
-DeviatoricReturn j2_return_deviatoric(const J2Parameters& p, double q_trial, double alpha) {
-  DeviatoricReturn r;
-  if (q_trial <= yield_stress(p, alpha)) return r;
-  const double mu = p.E / (2.0 * (1.0 + p.nu));
-  double d = 0.0;
-  for (int it = 0; it < 50; ++it) {
-    const double g = q_trial - 3.0 * mu * d - yield_stress(p, alpha + d);
-    const double step = g / (3.0 * mu + yield_slope(p, alpha + d));
-    d += step;
-    if (std::abs(step) <= 1e-15 * std::max(d, 1e-300) || std::abs(g) <= 1e-13 * q_trial) break;
-  }
-  r.dalpha = d;
-  r.scale = (q_trial - 3.0 * mu * d) / q_trial;
-  return r;
-}
-
 double von_mises_3d(const Vec6& s) {
   return std::sqrt(1.5) * tensor_norm(deviator(s));
+}
+
+J2Return j2_radial_return(const J2Parameters& p, const Vec6& s_trial, const Vec6& back_stress,
+                          double alpha) {
+  const double mu = p.E / (2.0 * (1.0 + p.nu));
+  J2Return r;
+  r.alpha = alpha;
+  r.deviator = s_trial;
+  r.back_stress = back_stress;
+  const Vec6 xi_trial = s_trial - back_stress;
+  const double xi_norm = tensor_norm(xi_trial);
+  r.trial_norm = xi_norm;
+  const double f_trial = xi_norm - kSqrt23 * yield_stress(p, alpha);
+  if (f_trial <= 0.0 || xi_norm == 0.0) return r;
+
+  // Consistency: g(dgamma) = |xi_trial| - 2 mu dgamma - (2/3) Hk dgamma
+  //                         - sqrt(2/3) sigma_y(alpha_n + sqrt(2/3) dgamma) = 0   (Box 3.2).
+  double dgamma = 0.0;
+  for (int it = 0;; ++it) {
+    const double a = alpha + kSqrt23 * dgamma;
+    const double g = xi_norm - 2.0 * mu * dgamma - 2.0 / 3.0 * p.H_kinematic * dgamma -
+                     kSqrt23 * yield_stress(p, a);
+    const double dg = -2.0 * mu * (1.0 + (yield_slope(p, a) + p.H_kinematic) / (3.0 * mu));
+    const double step = -g / dg;
+    dgamma += step;
+    if (std::abs(step) <= 1e-15 * std::max(dgamma, 1e-300) || std::abs(g) <= 1e-13 * xi_norm) break;
+    if (it == 50)
+      fail("J2 return mapping did not converge in 50 iterations (residual ", g, ", trial norm ",
+           xi_norm, ")");
+  }
+  r.plastic = true;
+  r.dgamma = dgamma;
+  r.alpha = alpha + kSqrt23 * dgamma;
+  r.normal = xi_trial / xi_norm; // stress-like unit normal
+  r.deviator = s_trial - 2.0 * mu * dgamma * r.normal;
+  r.back_stress = back_stress + 2.0 / 3.0 * p.H_kinematic * dgamma * r.normal;
+  return r;
 }
 
 J2Result3D j2_update_3d(const J2Parameters& p, const Vec6& strain, const J2State& committed) {
@@ -108,47 +129,29 @@ J2Result3D j2_update_3d(const J2Parameters& p, const Vec6& strain, const J2State
   I_sym.diagonal().tail<3>().setConstant(0.5); // maps engineering strain to tensor strain
   const Mat6 I_dev = I_sym - m * m.transpose() / 3.0;
 
-  // Elastic trial state (Simo & Hughes Box 3.1, step 1).
+  // Elastic trial state (Simo & Hughes Box 3.1, step 1), returned radially (Box 3.2).
   const Vec6 eps_e = strain - committed.plastic_strain;
   const double volumetric = eps_e.head<3>().sum();
   const Vec6 s_trial = 2.0 * mu * (I_dev * eps_e); // deviatoric stress, stress-like
-  const Vec6 xi_trial = s_trial - committed.back_stress;
-  const double xi_norm = tensor_norm(xi_trial);
-  const double f_trial = xi_norm - kSqrt23 * yield_stress(p, committed.alpha);
+  const J2Return ret = j2_radial_return(p, s_trial, committed.back_stress, committed.alpha);
 
   J2Result3D r;
   r.state = committed;
-  if (f_trial <= 0.0 || xi_norm == 0.0) {
+  if (!ret.plastic) {
     r.stress = kappa * volumetric * m + s_trial;
     r.tangent = kappa * m * m.transpose() + 2.0 * mu * I_dev;
     return r;
   }
-
-  // Consistency: g(dgamma) = |xi_trial| - 2 mu dgamma - (2/3) Hk dgamma
-  //                         - sqrt(2/3) sigma_y(alpha_n + sqrt(2/3) dgamma) = 0   (Box 3.2).
-  double dgamma = 0.0, alpha = committed.alpha;
-  for (int it = 0;; ++it) {
-    alpha = committed.alpha + kSqrt23 * dgamma;
-    const double g = xi_norm - 2.0 * mu * dgamma - 2.0 / 3.0 * p.H_kinematic * dgamma -
-                     kSqrt23 * yield_stress(p, alpha);
-    const double dg = -2.0 * mu * (1.0 + (yield_slope(p, alpha) + p.H_kinematic) / (3.0 * mu));
-    const double step = -g / dg;
-    dgamma += step;
-    if (std::abs(step) <= 1e-15 * std::max(dgamma, 1e-300) || std::abs(g) <= 1e-13 * xi_norm) break;
-    if (it == 50)
-      fail("J2 return mapping did not converge in 50 iterations (residual ", g, ", trial norm ",
-           xi_norm, ")");
-  }
-  alpha = committed.alpha + kSqrt23 * dgamma;
-  const Vec6 n = xi_trial / xi_norm; // stress-like unit normal
+  const double dgamma = ret.dgamma, alpha = ret.alpha;
+  const Vec6& n = ret.normal;
   r.plastic = true;
   r.state.alpha = alpha;
-  r.state.back_stress = committed.back_stress + 2.0 / 3.0 * p.H_kinematic * dgamma * n;
+  r.state.back_stress = ret.back_stress;
   r.state.plastic_strain = committed.plastic_strain + dgamma * engineering(n);
   r.stress = kappa * volumetric * m + s_trial - 2.0 * mu * dgamma * n;
 
   // Consistent tangent (Box 3.2): C = kappa 1x1 + 2 mu theta I_dev - 2 mu theta_bar n x n.
-  const double theta = 1.0 - 2.0 * mu * dgamma / xi_norm;
+  const double theta = 1.0 - 2.0 * mu * dgamma / ret.trial_norm;
   const double theta_bar =
       1.0 / (1.0 + (yield_slope(p, alpha) + p.H_kinematic) / (3.0 * mu)) - (1.0 - theta);
   r.tangent = kappa * m * m.transpose() + 2.0 * mu * theta * I_dev -

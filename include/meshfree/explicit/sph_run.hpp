@@ -8,6 +8,7 @@
 #include "meshfree/io/results.hpp"
 #include "meshfree/io/sph_spec.hpp"
 #include "meshfree/sph/hydro.hpp"
+#include "meshfree/sph/step.hpp"
 #include <string>
 #include <utility>
 #include <vector>

@@ -85,17 +85,24 @@ J2Result2D j2_update_plane_strain(const J2Parameters& p, const Vec3& strain,
 J2Result2D j2_update_plane_stress(const J2Parameters& p, const Vec3& strain,
                                   const J2State& committed);
 
-/// Radial return for codes that integrate the deviatoric stress rate (explicit SPH): a trial
-/// deviator of von Mises stress q_trial at equivalent plastic strain alpha is scaled back to the
-/// yield surface. Backward Euler with isotropic hardening, the consistency equation of
-/// j2_update_3d (Simo & Hughes 1998, Box 3.2) in von Mises form:
-///   q_trial - 3 mu dalpha - sigma_y(alpha + dalpha) = 0.
-/// Kinematic hardening is not carried here. Returns the factor on the deviator (1: elastic) and
-/// the plastic strain increment.
-struct DeviatoricReturn {
-  double scale = 1.0, dalpha = 0.0;
+/// The radial return of J2 plasticity with isotropic and linear kinematic hardening (Simo &
+/// Hughes 1998, Box 3.2): a trial deviator s_trial (stress-like Voigt) with back stress beta at
+/// equivalent plastic strain alpha. j2_update_3d forms the trial deviator from a total strain;
+/// codes that integrate the deviatoric stress rate (explicit SPH) pass the integrated deviator.
+/// Backward Euler on the consistency equation
+///   |xi_trial| - 2 mu dgamma - (2/3) Hk dgamma - sqrt(2/3) sigma_y(alpha + sqrt(2/3) dgamma) = 0,
+/// xi_trial = s_trial - beta; the deviator returns along n = xi_trial / |xi_trial|.
+struct J2Return {
+  bool plastic = false;
+  double dgamma = 0.0;     // plastic multiplier
+  double alpha = 0.0;      // equivalent plastic strain after the step
+  double trial_norm = 0.0; // |xi_trial|
+  Vec6 normal = Vec6::Zero();
+  Vec6 deviator = Vec6::Zero();    // s_trial - 2 mu dgamma n
+  Vec6 back_stress = Vec6::Zero(); // beta + (2/3) Hk dgamma n
 };
-DeviatoricReturn j2_return_deviatoric(const J2Parameters& p, double q_trial, double alpha);
+J2Return j2_radial_return(const J2Parameters& p, const Vec6& s_trial, const Vec6& back_stress,
+                          double alpha);
 
 /// Von Mises stress of a 3D stress vector.
 double von_mises_3d(const Vec6& s);

@@ -6,102 +6,18 @@
 // midpoint predictor-corrector step under the CFL bound, equations of state per material,
 // programmed burn of explosives (lighting time = distance / D_CJ) or a ZND front lit by its own
 // shock, solid strength, symmetry planes (mirror particles), transmitting boundaries, and the
-// optional kernel-gradient correction and artificial stress.
+// optional kernel-gradient correction and artificial stress. This header holds a run's data; the
+// steps that act on it are declared in sph/state.hpp, sph/neighbours.hpp, sph/rates.hpp,
+// sph/corrections.hpp, sph/step.hpp, sph/symmetry.hpp and sph/detonation.hpp.
 #include "meshfree/kernels/sph_kernel.hpp"
 #include "meshfree/loads/blast.hpp"
-#include "meshfree/materials/eos.hpp"
-#include "meshfree/materials/geomaterials.hpp"
-#include "meshfree/materials/j2_plasticity.hpp"
 #include "meshfree/neighbors/pair_list.hpp"
+#include "meshfree/sph/material.hpp"
+#include "meshfree/sph/particles.hpp"
 #include <string>
 #include <vector>
 
 namespace mf::sph {
-
-/// A material's equation of state; the kind selects which member is used. Compaction and HJC
-/// depend on the largest density a particle has reached (its rho_max).
-struct Eos {
-  enum class Kind { IdealGas, Jwl, MieGruneisen, LinearPolynomial, Compaction, Hjc };
-  Kind kind = Kind::IdealGas;
-  materials::IdealGas ideal_gas;
-  materials::Jwl jwl;
-  materials::MieGruneisen mie_gruneisen;
-  materials::LinearPolynomial linear_polynomial;
-  materials::Compaction compaction;
-  /// Optional for JWL: the unreacted explosive (Mie-Grueneisen on the JWL's rho0). It carries
-  /// the pressure share 1 - F of the burn fraction F, particles light when the shock has
-  /// compressed them (Settings::ignition_compression) and burn over burn_width h / D_CJ, so the
-  /// front is a ZND wave whose speed and CJ state follow from the equations of state.
-  bool has_unreacted = false;
-  materials::MieGruneisen unreacted;
-};
-
-/// Strength of a solid: the deviatoric stress S follows the Jaumann rate
-/// dS/dt = 2 G (D - tr(D) I / 3) + W S - S W (D, W: symmetric and skew parts of grad v) and is
-/// returned radially to the yield surface of its model after each update:
-///  - VonMises: the shared J2 layer (materials/j2_plasticity) with its hardening;
-///  - Granular: a pressure-dependent yield Y(p) and a shear modulus G(rho) (soil);
-///  - Hjc: the Holmquist-Johnson-Cook surface with damage (concrete).
-/// The pressure comes from the equation of state. A particle fails when its plastic strain
-/// reaches failure_strain (> 0) or its HJC damage reaches 1: it then carries no deviatoric
-/// stress and no tension (it flows as a crushed, cohesionless material).
-struct Strength {
-  enum class Model { Elastic, VonMises, Granular, Hjc };
-  bool enabled = false;
-  Model model = Model::Elastic;
-  double shear_modulus = 0.0;    // G; a granular G(rho) table, when given, is used instead
-  materials::J2Parameters yield; // sigma0 and hardening; E = 2G and nu = 0 give mu = G
-  materials::GranularStrength granular;
-  double failure_strain = 0.0; // 0: no failure by plastic strain
-  bool plastic() const { return model != Model::Elastic; }
-};
-
-struct Material {
-  std::string name;
-  Eos eos;
-  Strength strength;
-  materials::Hjc hjc; // the HJC equation of state and strength share one parameter set
-};
-
-/// Pressure and squared sound speed of a particle of material m.
-materials::PressureAndSound evaluate(const Material& m, double rho, double e, double rho_max,
-                                     double damage);
-
-/// The shear modulus of material m at density rho.
-double shear_modulus(const Material& m, double rho);
-
-/// The current yield stress of a particle (0 for a material without plasticity).
-double current_yield(const Material& m, double pressure, double alpha, double damage,
-                     double strain_rate);
-
-/// Particle arrays (structure of arrays; vectors have 3 components per particle, the unused ones
-/// zero in 1D and 2D).
-struct Particles {
-  int dim = 3;
-  std::vector<double> x, v;
-  std::vector<double> mass, rho, e, h;
-  std::vector<double> rho_ref, h_ref; // h = h_ref (rho_ref / rho)^(1/dim)
-  std::vector<int> material;
-  std::vector<double> light_time; // programmed burn: when the particle is lit (< 0: never burns)
-  /// Fixed (wall) particles: they do not move, but their density and energy evolve, so that they
-  /// push back on approaching particles (dynamic boundary particles, Crespo et al. 2007).
-  std::vector<char> fixed;
-  std::vector<double> p, c;        // from the equation of state, per step
-  std::vector<double> S;           // deviatoric stress, 6 per particle: xx yy zz yz xz xy
-  std::vector<double> alpha;       // equivalent plastic strain
-  std::vector<double> rho_max;     // largest density reached (compaction history)
-  std::vector<double> damage;      // HJC damage, 0..1
-  std::vector<double> strain_rate; // equivalent deviatoric strain rate sqrt(2/3 D':D') [1/s]
-  std::vector<char> failed;        // no deviatoric stress and no tension once set
-  int size() const { return static_cast<int>(mass.size()); }
-  /// Appends a copy of particle i (a mirror image starts as one).
-  void append_copy(int i);
-  /// Drops every particle from index n on.
-  void truncate(int n);
-  /// Appends a particle at rest.
-  void add(const double position[3], double mass, double rho, double e, double h, int material,
-           bool fixed = false);
-};
 
 struct Settings {
   kernels::SphKernel kernel = kernels::SphKernel::CubicSpline;
@@ -130,14 +46,6 @@ struct Settings {
     int n1 = 12, n2 = 6;
     double distance = 1.0;
   } penalty;
-};
-
-struct Rates {
-  std::vector<double> dv, drho, de, dS;
-  std::vector<double> grad_v;     // 9 per particle (solids): L_ab = d v_a / d x_b
-  std::vector<double> correction; // 9 per particle: the kernel-gradient correction matrix
-  std::vector<double> art_stress; // 6 per particle: the artificial stress R (Voigt, like S)
-  std::vector<double> spacing;    // initial spacing per particle (artificial stress, penalty)
 };
 
 /// A pressure history on a surface layer of particles (an empirical blast load): particle k of
@@ -169,6 +77,17 @@ struct SymmetryPlane {
   double at = 0.0;
 };
 
+/// The particles of each material, so that a material's laws are dispatched once for all of its
+/// particles: members[start[m], start[m + 1]) in ascending order, of which
+/// [start[m], real_end[m]) are the body's and the rest mirror images.
+struct MaterialGroups {
+  std::vector<int> start, real_end, members;
+  int built_for = -1; // the particle count they were built for
+  const int* of(std::size_t m) const { return members.data() + start[m]; }
+  int count(std::size_t m) const { return start[m + 1] - start[m]; }
+  int real(std::size_t m) const { return real_end[m] - start[m]; }
+};
+
 /// A run's state: particles, materials, settings, time and the neighbour list with its margin.
 struct Hydro {
   Particles particles;
@@ -190,43 +109,12 @@ struct Hydro {
   std::vector<int> ghost_of;
   std::vector<int> ghost_planes; // bit p set: mirrored across symmetry[p]
   int real_count() const { return real < 0 ? particles.size() : real; }
+  MaterialGroups groups;
+  bool any_solid() const;
 };
 
-/// Copies every mirror particle's state from its source, mirrored.
-void refresh_ghosts(Hydro& s);
-
-/// Lighting times for a detonation at point `at` (distance / D_CJ) of every particle of an
-/// explosive (JWL) material; other particles never burn. An explosive with an unreacted
-/// equation of state is lit on schedule only within 2 h of the point (the booster); the shock
-/// lights the rest.
-void light_from_point(Hydro& s, const double at[3]);
-
-/// The same for a detonation plane through `at` with unit normal `normal`: lighting time =
-/// distance to the plane / D_CJ (a plane wave generator).
-void light_from_plane(Hydro& s, const double at[3], const double normal[3]);
-
-/// Smoothing lengths, pressures and sound speeds from density and energy at time t; the
-/// pressure of an explosive particle is the JWL pressure times its burn fraction
-/// F = clamp((t - t_l) D / (burn_width h), 0, 1).
-void update_state(Hydro& s);
-
-/// Rebuilds the neighbour list when a pair closer than 2 h could be missing from it.
-void refresh_neighbours(Hydro& s);
-
-/// Rates of velocity, density and energy at the current state.
-void compute_rates(const Hydro& s, Rates& r);
-
-/// The CFL step courant * min_i h_i / (c_i + |v_i|) and the particle that sets it.
-double stable_step(const Hydro& s, int* limiting = nullptr);
-
-/// One midpoint predictor-corrector step of length dt (second order).
-void advance(Hydro& s, double dt);
-
-/// Kinetic and internal energy of all particles.
-struct Energies {
-  double kinetic = 0.0, internal = 0.0;
-  double total() const { return kinetic + internal; }
-};
-Energies energies(const Hydro& s);
+/// Groups the particles by material when the particle count has changed since the last grouping
+/// (or always, with `force`).
+void group_materials(Hydro& s, bool force = false);
 
 } // namespace mf::sph

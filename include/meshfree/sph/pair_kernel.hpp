@@ -1,0 +1,34 @@
+#pragma once
+// The kernel gradient of a particle pair, shared by the rate loops.
+#include "meshfree/kernels/sph_kernel.hpp"
+#include "meshfree/sph/particles.hpp"
+#include <cmath>
+
+namespace mf::sph {
+
+/// grad_i W_ij / r_ij for a pair within the support of h_bar, or 0.
+inline double pair_gradient(const Particles& P, int dim, kernels::SphKernel kernel, int i, int j,
+                            double xij[3], double& r2) {
+  r2 = 0.0;
+  for (int d = 0; d < 3; ++d) {
+    xij[d] = P.x[3 * i + d] - P.x[3 * j + d];
+    r2 += xij[d] * xij[d];
+  }
+  const double hij = 0.5 * (P.h[i] + P.h[j]);
+  if (r2 >= 4.0 * hij * hij || r2 == 0.0) return 0.0;
+  const double rr = std::sqrt(r2);
+  return kernels::sph_kernel_slope(kernel, dim, rr, hij) / rr;
+}
+
+/// The kernel gradient of a pair as a vector: g x_ij, or with the correction A g x_ij for the
+/// 3x3 matrix A (row-major).
+inline void gradient_vector(const double* A, double g, const double xij[3], double out[3]) {
+  if (!A) {
+    for (int d = 0; d < 3; ++d) out[d] = g * xij[d];
+    return;
+  }
+  for (int a = 0; a < 3; ++a)
+    out[a] = g * (A[3 * a] * xij[0] + A[3 * a + 1] * xij[1] + A[3 * a + 2] * xij[2]);
+}
+
+} // namespace mf::sph

@@ -1,0 +1,27 @@
+#pragma once
+// Rates of an SPH run: the continuity, momentum and energy equations (the thesis' eqs. 3-41,
+// 3-48 and 3-64) with Monaghan's viscosity, the Jaumann rate of the deviatoric stress, the
+// kernel-gradient correction, the artificial stress, the inter-material penalty and the forces
+// of surface loads and transmitting boundaries.
+#include "meshfree/sph/hydro.hpp"
+#include <vector>
+
+namespace mf::sph {
+
+struct Rates {
+  std::vector<double> dv, drho, de, dS;
+  std::vector<double> grad_v;     // 9 per particle (solids): L_ab = d v_a / d x_b
+  std::vector<double> correction; // 9 per particle: the kernel-gradient correction matrix
+  std::vector<double> art_stress; // 6 per particle: the artificial stress R (Voigt, like S)
+  std::vector<double> spacing;    // initial spacing per particle (artificial stress, penalty)
+};
+
+/// Rates of velocity, density and energy (and deviatoric stress, for solids) at the current
+/// state.
+void compute_rates(const Hydro& s, Rates& r);
+
+/// The forces of the surface loads and the boundaries at the current state, particle by
+/// particle (a particle may appear more than once).
+void external_forces(const Hydro& s, std::vector<int>& who, std::vector<double>& force);
+
+} // namespace mf::sph

@@ -1,0 +1,74 @@
+#include "meshfree/sph/corrections.hpp"
+#include "meshfree/sph/pair_kernel.hpp"
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <cstddef>
+
+namespace mf::sph {
+
+void correction_matrices(const Hydro& s, std::vector<double>& C) {
+  const Particles& P = s.particles;
+  const int n = s.real_count(), dim = P.dim;
+  C.assign(9 * static_cast<std::size_t>(P.size()), 0.0);
+#pragma omp parallel for schedule(dynamic, 64)
+  for (int i = 0; i < n; ++i) {
+    double M[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    for (long k = s.pairs.offset[i]; k < s.pairs.offset[i + 1]; ++k) {
+      const int j = s.pairs.partner[k];
+      double xij[3], r2;
+      const double g = pair_gradient(P, dim, s.settings.kernel, i, j, xij, r2);
+      if (g == 0.0) continue;
+      const double w = -P.mass[j] / P.rho[j] * g; // (x_j - x_i) = -x_ij
+      for (int a = 0; a < dim; ++a)
+        for (int b = 0; b < dim; ++b) M[a][b] += w * xij[a] * xij[b];
+    }
+    for (int a = dim; a < 3; ++a) M[a][a] = 1.0;
+    const double det = M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
+                       M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
+                       M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
+    double* c = &C[9 * static_cast<std::size_t>(i)];
+    if (!(std::abs(det) > 1e-6)) {
+      c[0] = c[4] = c[8] = 1.0;
+      continue;
+    }
+    c[0] = (M[1][1] * M[2][2] - M[1][2] * M[2][1]) / det;
+    c[1] = (M[0][2] * M[2][1] - M[0][1] * M[2][2]) / det;
+    c[2] = (M[0][1] * M[1][2] - M[0][2] * M[1][1]) / det;
+    c[3] = (M[1][2] * M[2][0] - M[1][0] * M[2][2]) / det;
+    c[4] = (M[0][0] * M[2][2] - M[0][2] * M[2][0]) / det;
+    c[5] = (M[0][2] * M[1][0] - M[0][0] * M[1][2]) / det;
+    c[6] = (M[1][0] * M[2][1] - M[1][1] * M[2][0]) / det;
+    c[7] = (M[0][1] * M[2][0] - M[0][0] * M[2][1]) / det;
+    c[8] = (M[0][0] * M[1][1] - M[0][1] * M[1][0]) / det;
+  }
+}
+
+void artificial_stresses(const Hydro& s, std::vector<double>& R) {
+  const Particles& P = s.particles;
+  const double eps = s.settings.artificial_stress;
+  R.assign(6 * static_cast<std::size_t>(P.size()), 0.0);
+  for (std::size_t m = 0; m < s.materials.size(); ++m) {
+    if (!s.materials[m].solid()) continue;
+    const int* members = s.groups.of(m);
+    const int count = s.groups.real(m);
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < count; ++k) {
+      const int i = members[k];
+      const double* si = &P.S[6 * static_cast<std::size_t>(i)];
+      Eigen::Matrix3d sigma;
+      sigma << si[0] - P.p[i], si[5], si[4], si[5], si[1] - P.p[i], si[3], si[4], si[3],
+          si[2] - P.p[i];
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(sigma);
+      Eigen::Vector3d ra = Eigen::Vector3d::Zero();
+      for (int a = 0; a < 3; ++a)
+        if (eig.eigenvalues()[a] > 0.0) ra[a] = -eps * eig.eigenvalues()[a] / (P.rho[i] * P.rho[i]);
+      const Eigen::Matrix3d Ri =
+          eig.eigenvectors() * ra.asDiagonal() * eig.eigenvectors().transpose();
+      double* out = &R[6 * static_cast<std::size_t>(i)];
+      out[0] = Ri(0, 0), out[1] = Ri(1, 1), out[2] = Ri(2, 2);
+      out[3] = Ri(1, 2), out[4] = Ri(0, 2), out[5] = Ri(0, 1);
+    }
+  }
+}
+
+} // namespace mf::sph

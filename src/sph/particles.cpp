@@ -1,0 +1,59 @@
+#include "meshfree/sph/particles.hpp"
+#include <cstddef>
+
+namespace mf::sph {
+
+void Particles::add(const double position[3], double m, double density, double energy,
+                    double smoothing, int mat, bool is_fixed) {
+  for (int d = 0; d < 3; ++d) {
+    x.push_back(position[d]);
+    v.push_back(0.0);
+  }
+  mass.push_back(m);
+  rho.push_back(density);
+  e.push_back(energy);
+  h.push_back(smoothing);
+  rho_ref.push_back(density);
+  h_ref.push_back(smoothing);
+  material.push_back(mat);
+  light_time.push_back(-1.0);
+  fixed.push_back(is_fixed ? 1 : 0);
+  for (int k = 0; k < 6; ++k) {
+    S.push_back(0.0);
+    back_stress.push_back(0.0);
+  }
+  alpha.push_back(0.0);
+  rho_max.push_back(density);
+  damage.push_back(0.0);
+  strain_rate.push_back(0.0);
+  failed.push_back(0);
+  p.push_back(0.0);
+  c.push_back(0.0);
+}
+
+void Particles::append_copy(int i) {
+  const std::size_t k = static_cast<std::size_t>(i);
+  const auto copy = [k](auto& a, std::size_t per) {
+    for (std::size_t c = 0; c < per; ++c) {
+      const auto value = a[per * k + c];
+      a.push_back(value);
+    }
+  };
+  copy(x, 3), copy(v, 3), copy(S, 6), copy(back_stress, 6);
+  for (auto* a : {&mass, &rho, &e, &h, &rho_ref, &h_ref, &light_time, &alpha, &rho_max, &damage,
+                  &strain_rate, &p, &c})
+    copy(*a, 1);
+  copy(material, 1), copy(failed, 1);
+  fixed.push_back(1);
+}
+
+void Particles::truncate(int n) {
+  const std::size_t m = static_cast<std::size_t>(n);
+  x.resize(3 * m), v.resize(3 * m), S.resize(6 * m), back_stress.resize(6 * m);
+  for (auto* a : {&mass, &rho, &e, &h, &rho_ref, &h_ref, &light_time, &alpha, &rho_max, &damage,
+                  &strain_rate, &p, &c})
+    a->resize(m);
+  material.resize(m), fixed.resize(m), failed.resize(m);
+}
+
+} // namespace mf::sph

@@ -1,0 +1,238 @@
+#include "meshfree/sph/rates.hpp"
+#include "meshfree/core/error.hpp"
+#include "meshfree/kernels/sph_kernel.hpp"
+#include "meshfree/sph/corrections.hpp"
+#include "meshfree/sph/pair_kernel.hpp"
+#include "meshfree/sph/symmetry.hpp"
+#include <cmath>
+#include <type_traits>
+#include <variant>
+
+namespace mf::sph {
+
+namespace {
+/// The dashpot force of particle k of a transmitting boundary at velocity v.
+inline void boundary_force(const TransmittingBoundary& b, std::size_t k, const double* v,
+                           double f[3]) {
+  const double vn = v[0] * b.normal[0] + v[1] * b.normal[1] + v[2] * b.normal[2];
+  for (int d = 0; d < 3; ++d) {
+    const double normal_part = vn * b.normal[d];
+    f[d] = -b.area[k] *
+           (b.normal_impedance[k] * normal_part + b.shear_impedance[k] * (v[d] - normal_part));
+  }
+}
+
+/// Velocity gradient L_i = sum_j (m_j / rho_j)(v_j - v_i) (x) grad_i W_ij of particle i, and the
+/// Jaumann rate of its deviatoric stress with shear modulus G.
+void jaumann_rate(const Hydro& s, Rates& r, int i, double G) {
+  const Particles& P = s.particles;
+  const Settings& S = s.settings;
+  const int dim = P.dim;
+  const bool corrected = S.gradient_correction;
+  double L[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+  for (long k = s.pairs.offset[i]; k < s.pairs.offset[i + 1]; ++k) {
+    const int j = s.pairs.partner[k];
+    double xij[3], r2;
+    const double g = pair_gradient(P, dim, S.kernel, i, j, xij, r2);
+    if (g == 0.0) continue;
+    double gv[3];
+    gradient_vector(corrected ? &r.correction[9 * static_cast<std::size_t>(i)] : nullptr, g, xij,
+                    gv);
+    const double vol = P.mass[j] / P.rho[j];
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) L[a][b] += vol * (P.v[3 * j + a] - P.v[3 * i + a]) * gv[b];
+  }
+  double D[3][3], W[3][3], Si[3][3];
+  const double* s6 = &P.S[6 * static_cast<std::size_t>(i)];
+  const double Sm[3][3] = {{s6[0], s6[5], s6[4]}, {s6[5], s6[1], s6[3]}, {s6[4], s6[3], s6[2]}};
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) {
+      D[a][b] = 0.5 * (L[a][b] + L[b][a]);
+      W[a][b] = 0.5 * (L[a][b] - L[b][a]);
+      Si[a][b] = Sm[a][b];
+    }
+  const double trD = D[0][0] + D[1][1] + D[2][2];
+  double dS[3][3];
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) {
+      double rot = 0.0;
+      for (int c = 0; c < 3; ++c) rot += W[a][c] * Si[c][b] - Si[a][c] * W[c][b];
+      dS[a][b] = 2.0 * G * (D[a][b] - (a == b ? trD / 3.0 : 0.0)) + rot;
+    }
+  double* out = &r.dS[6 * static_cast<std::size_t>(i)];
+  out[0] = dS[0][0], out[1] = dS[1][1], out[2] = dS[2][2];
+  out[3] = dS[1][2], out[4] = dS[0][2], out[5] = dS[0][1];
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) r.grad_v[9 * static_cast<std::size_t>(i) + 3 * a + b] = L[a][b];
+}
+} // namespace
+
+void compute_rates(const Hydro& s, Rates& r) {
+  const Particles& P = s.particles;
+  if (s.groups.built_for != P.size())
+    fail("SPH: the particles changed since they were grouped by material (update_state or "
+         "refresh_neighbours groups them)");
+  const Settings& S = s.settings;
+  // Rates for the body's particles; mirror particles only lend their (mirrored) state.
+  const int n = s.real_count(), all = P.size(), dim = P.dim;
+  const bool corrected = S.gradient_correction;
+  if (corrected) {
+    correction_matrices(s, r.correction);
+    mirror_matrices(s, r.correction);
+  }
+  const bool art = S.artificial_stress > 0.0;
+  if (art) {
+    artificial_stresses(s, r.art_stress);
+    mirror_voigt(s, r.art_stress);
+  }
+  if (art || S.penalty.pressure > 0.0) {
+    // Initial particle spacings (m / rho_ref)^(1/dim), once per call rather than per pair.
+    r.spacing.resize(all);
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < all; ++i) r.spacing[i] = std::pow(P.mass[i] / P.rho_ref[i], 1.0 / dim);
+  }
+  r.dv.assign(3 * static_cast<std::size_t>(all), 0.0);
+  r.drho.assign(all, 0.0);
+  r.de.assign(all, 0.0);
+  const bool solids = s.any_solid();
+  if (solids) {
+    // Velocity gradient L_i = sum_j (m_j / rho_j)(v_j - v_i) (x) grad_i W_ij, and the Jaumann
+    // rate of the deviatoric stress.
+    r.grad_v.assign(9 * static_cast<std::size_t>(all), 0.0);
+    r.dS.assign(6 * static_cast<std::size_t>(all), 0.0);
+    for (std::size_t m = 0; m < s.materials.size(); ++m) {
+      const int* members = s.groups.of(m);
+      const int count = s.groups.real(m);
+      std::visit(
+          [&](const auto& law) {
+            using Law = std::decay_t<decltype(law)>;
+            if constexpr (!std::is_same_v<Law, materials::NoStrength>) {
+#pragma omp parallel for schedule(dynamic, 64)
+              for (int k = 0; k < count; ++k) {
+                const int i = members[k];
+                jaumann_rate(s, r, i, materials::shear_modulus(law, P.rho[i]));
+              }
+            }
+          },
+          s.materials[m].strength);
+    }
+  }
+#pragma omp parallel for schedule(dynamic, 64)
+  for (int i = 0; i < n; ++i) {
+    const double pi_rho2 = P.p[i] / (P.rho[i] * P.rho[i]);
+    const double* si = &P.S[6 * static_cast<std::size_t>(i)];
+    const double ri2 = 1.0 / (P.rho[i] * P.rho[i]);
+    double acc[3] = {0.0, 0.0, 0.0}, drho = 0.0, de = 0.0;
+    for (long k = s.pairs.offset[i]; k < s.pairs.offset[i + 1]; ++k) {
+      const int j = s.pairs.partner[k];
+      double xij[3], r2;
+      const double g = pair_gradient(P, dim, S.kernel, i, j, xij, r2);
+      if (g == 0.0) continue;
+      double vij[3], vx = 0.0;
+      for (int d = 0; d < 3; ++d) {
+        vij[d] = P.v[3 * i + d] - P.v[3 * j + d];
+        vx += vij[d] * xij[d];
+      }
+      const double hij = 0.5 * (P.h[i] + P.h[j]);
+      // Monaghan's viscosity for approaching pairs.
+      double visc = 0.0;
+      if (vx < 0.0) {
+        const double mu = hij * vx / (r2 + S.phi * S.phi * hij * hij);
+        const double cij = 0.5 * (P.c[i] + P.c[j]), rhoij = 0.5 * (P.rho[i] + P.rho[j]);
+        visc = (-S.alpha * cij * mu + S.beta * mu * mu) / rhoij;
+      }
+      const double q = pi_rho2 + P.p[j] / (P.rho[j] * P.rho[j]) + visc;
+      const double mj = P.mass[j];
+      // The pair's gradient: with the correction, (C_i + C_j)/2 grad W, which stays
+      // antisymmetric in i and j, so momentum is still conserved exactly.
+      double gv[3];
+      if (corrected) {
+        double A[9];
+        const double* ci = &r.correction[9 * static_cast<std::size_t>(i)];
+        const double* cj = &r.correction[9 * static_cast<std::size_t>(j)];
+        for (int c = 0; c < 9; ++c) A[c] = 0.5 * (ci[c] + cj[c]);
+        gradient_vector(A, g, xij, gv);
+      } else {
+        gradient_vector(nullptr, g, xij, gv);
+      }
+      const double vg = vij[0] * gv[0] + vij[1] * gv[1] + vij[2] * gv[2];
+      for (int d = 0; d < 3; ++d) acc[d] -= mj * q * gv[d];
+      drho += mj * vg;
+      de += 0.5 * mj * q * vg;
+      if (solids) {
+        // Deviatoric stress: dv_i += m_j (S_i/rho_i^2 + S_j/rho_j^2) . grad W and
+        // de_i -= m_j / 2 (S_i/rho_i^2 + S_j/rho_j^2) : (v_ij (x) grad W).
+        const double* sj = &P.S[6 * static_cast<std::size_t>(j)];
+        const double rj2 = 1.0 / (P.rho[j] * P.rho[j]);
+        double T[6];
+        for (int c = 0; c < 6; ++c) T[c] = si[c] * ri2 + sj[c] * rj2;
+        if (art) {
+          // f^n (R_i + R_j), f = W(r) / W(dp) with dp the pair's mean initial spacing.
+          const double dp = 0.5 * (r.spacing[i] + r.spacing[j]);
+          const double f = kernels::sph_kernel(S.kernel, dim, std::sqrt(r2), hij) /
+                           kernels::sph_kernel(S.kernel, dim, dp, hij);
+          const double fn = std::pow(f, S.artificial_stress_exponent);
+          const double* Ri = &r.art_stress[6 * static_cast<std::size_t>(i)];
+          const double* Rj = &r.art_stress[6 * static_cast<std::size_t>(j)];
+          for (int c = 0; c < 6; ++c) T[c] += fn * (Ri[c] + Rj[c]);
+        }
+        const double* gx = gv;
+        const double Tg[3] = {T[0] * gx[0] + T[5] * gx[1] + T[4] * gx[2],
+                              T[5] * gx[0] + T[1] * gx[1] + T[3] * gx[2],
+                              T[4] * gx[0] + T[3] * gx[1] + T[2] * gx[2]};
+        for (int d = 0; d < 3; ++d) acc[d] += mj * Tg[d];
+        de -= 0.5 * mj * (vij[0] * Tg[0] + vij[1] * Tg[1] + vij[2] * Tg[2]);
+      }
+      if (S.penalty.pressure > 0.0 && P.material[i] != P.material[j]) {
+        const double a = 0.5 * (r.spacing[i] + r.spacing[j]);
+        const double r0 = S.penalty.distance * a, rr = std::sqrt(r2);
+        if (rr < r0) {
+          const double pe = r0 / rr;
+          const double f = S.penalty.pressure * std::pow(a, dim - 1) *
+                           (std::pow(pe, S.penalty.n1) - std::pow(pe, S.penalty.n2));
+          for (int d = 0; d < 3; ++d) acc[d] += f / P.mass[i] * xij[d] / rr;
+        }
+      }
+    }
+    if (!P.fixed[i])
+      for (int d = 0; d < 3; ++d) r.dv[3 * i + d] = acc[d];
+    r.drho[i] = drho;
+    r.de[i] = de;
+  }
+  for (const SurfaceLoad& load : s.loads)
+    for (std::size_t k = 0; k < load.particles.size(); ++k) {
+      const int i = load.particles[k];
+      if (P.fixed[i]) continue;
+      const double f = load.pulses[k](s.time) * load.area[k] / P.mass[i];
+      for (int d = 0; d < 3; ++d) r.dv[3 * i + d] += f * load.direction[d];
+    }
+  for (const TransmittingBoundary& b : s.transmitting)
+    for (std::size_t k = 0; k < b.particles.size(); ++k) {
+      const int i = b.particles[k];
+      double f[3];
+      boundary_force(b, k, &P.v[3 * static_cast<std::size_t>(i)], f);
+      for (int d = 0; d < 3; ++d) r.dv[3 * i + d] += f[d] / P.mass[i];
+    }
+}
+
+void external_forces(const Hydro& s, std::vector<int>& who, std::vector<double>& force) {
+  const Particles& P = s.particles;
+  who.clear();
+  force.clear();
+  for (const SurfaceLoad& load : s.loads)
+    for (std::size_t k = 0; k < load.particles.size(); ++k) {
+      const int i = load.particles[k];
+      if (P.fixed[i]) continue;
+      const double f = load.pulses[k](s.time) * load.area[k];
+      who.push_back(i);
+      for (int d = 0; d < 3; ++d) force.push_back(f * load.direction[d]);
+    }
+  for (const TransmittingBoundary& b : s.transmitting)
+    for (std::size_t k = 0; k < b.particles.size(); ++k) {
+      double f[3];
+      boundary_force(b, k, &P.v[3 * static_cast<std::size_t>(b.particles[k])], f);
+      who.push_back(b.particles[k]);
+      for (int d = 0; d < 3; ++d) force.push_back(f[d]);
+    }
+}
+} // namespace mf::sph

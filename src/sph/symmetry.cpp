@@ -1,0 +1,92 @@
+#include "meshfree/sph/symmetry.hpp"
+#include <cmath>
+#include <cstddef>
+
+namespace mf::sph {
+
+namespace {
+/// Mirrors particle k's vector and stress across the planes in `planes` (bits of s.symmetry).
+void mirror_state(Hydro& s, int k, int source, int planes) {
+  Particles& P = s.particles;
+  const std::size_t g = static_cast<std::size_t>(k), i = static_cast<std::size_t>(source);
+  for (int d = 0; d < 3; ++d) {
+    P.x[3 * g + d] = P.x[3 * i + d];
+    P.v[3 * g + d] = P.v[3 * i + d];
+  }
+  for (int c = 0; c < 6; ++c) P.S[6 * g + c] = P.S[6 * i + c];
+  // Voigt xx yy zz yz xz xy: the shear components with one index on the plane's axis flip.
+  static const int shear_of[3][2] = {{4, 5}, {3, 5}, {3, 4}};
+  for (std::size_t q = 0; q < s.symmetry.size(); ++q) {
+    if (!(planes >> q & 1)) continue;
+    const SymmetryPlane& m = s.symmetry[q];
+    P.x[3 * g + m.axis] = 2.0 * m.at - P.x[3 * g + m.axis];
+    P.v[3 * g + m.axis] = -P.v[3 * g + m.axis];
+    P.S[6 * g + shear_of[m.axis][0]] = -P.S[6 * g + shear_of[m.axis][0]];
+    P.S[6 * g + shear_of[m.axis][1]] = -P.S[6 * g + shear_of[m.axis][1]];
+  }
+  P.rho[g] = P.rho[i], P.e[g] = P.e[i], P.h[g] = P.h[i], P.p[g] = P.p[i], P.c[g] = P.c[i];
+  P.alpha[g] = P.alpha[i], P.rho_max[g] = P.rho_max[i], P.damage[g] = P.damage[i];
+  P.failed[g] = P.failed[i], P.strain_rate[g] = P.strain_rate[i];
+}
+
+} // namespace
+
+void rebuild_ghosts(Hydro& s, double band) {
+  Particles& P = s.particles;
+  if (s.real < 0) s.real = P.size();
+  P.truncate(s.real);
+  s.ghost_of.clear();
+  s.ghost_planes.clear();
+  for (std::size_t q = 0; q < s.symmetry.size(); ++q) {
+    const SymmetryPlane& m = s.symmetry[q];
+    const int count = P.size();
+    for (int i = 0; i < count; ++i) {
+      if (std::abs(P.x[3 * i + m.axis] - m.at) >= band) continue;
+      const int source = i < s.real ? i : s.ghost_of[i - s.real];
+      const int planes = (i < s.real ? 0 : s.ghost_planes[i - s.real]) | (1 << q);
+      P.append_copy(source);
+      s.ghost_of.push_back(source);
+      s.ghost_planes.push_back(planes);
+      mirror_state(s, P.size() - 1, source, planes);
+    }
+  }
+  group_materials(s, true);
+}
+
+void refresh_ghosts(Hydro& s) {
+  for (std::size_t k = 0; k < s.ghost_of.size(); ++k)
+    mirror_state(s, s.real + static_cast<int>(k), s.ghost_of[k], s.ghost_planes[k]);
+}
+
+namespace {
+/// The signs a mirror particle's tensors take: component (a, b) of the source times
+/// sign[a] sign[b], sign = -1 on each mirrored axis.
+void mirror_signs(const Hydro& s, std::size_t ghost, double sign[3]) {
+  sign[0] = sign[1] = sign[2] = 1.0;
+  for (std::size_t q = 0; q < s.symmetry.size(); ++q)
+    if (s.ghost_planes[ghost] >> q & 1) sign[s.symmetry[q].axis] = -sign[s.symmetry[q].axis];
+}
+
+} // namespace
+
+void mirror_matrices(const Hydro& s, std::vector<double>& C) {
+  for (std::size_t k = 0; k < s.ghost_of.size(); ++k) {
+    double sign[3];
+    mirror_signs(s, k, sign);
+    const std::size_t g = 9 * (s.real + k), i = 9 * static_cast<std::size_t>(s.ghost_of[k]);
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) C[g + 3 * a + b] = sign[a] * sign[b] * C[i + 3 * a + b];
+  }
+}
+
+void mirror_voigt(const Hydro& s, std::vector<double>& T) {
+  static const int rows[6] = {0, 1, 2, 1, 0, 0}, cols[6] = {0, 1, 2, 2, 2, 1};
+  for (std::size_t k = 0; k < s.ghost_of.size(); ++k) {
+    double sign[3];
+    mirror_signs(s, k, sign);
+    const std::size_t g = 6 * (s.real + k), i = 6 * static_cast<std::size_t>(s.ghost_of[k]);
+    for (int c = 0; c < 6; ++c) T[g + c] = sign[rows[c]] * sign[cols[c]] * T[i + c];
+  }
+}
+
+} // namespace mf::sph
