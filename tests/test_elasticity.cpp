@@ -1,7 +1,7 @@
 // Galerkin elasticity against exact solutions: patch test, convergence rates on Timoshenko's
 // beam and Kirsch's plate, equilibrium of reactions, and the 1D model problem.
-#include "meshfree/app/elastic_static.hpp"
-#include "meshfree/app/model_problem_1d.hpp"
+#include "meshfree/implicit/elastic_solve.hpp"
+#include "meshfree/implicit/model_problem_1d.hpp"
 #include "test_support.hpp"
 #include <catch2/catch.hpp>
 #include <iostream>
@@ -20,7 +20,7 @@ Study study(const std::string& problem, const std::vector<double>& spacings,
   for (double h : spacings) {
     std::vector<std::string> o = extra;
     o.push_back("discretisation.spacing=" + std::to_string(h));
-    const auto r = app::solve_elastic_static(load_problem(problem, o), test_session());
+    const auto r = implicit::solve_elastic_static(load_problem(problem, o), test_session());
     s.h.push_back(h);
     s.l2.push_back(r.error_l2);
     s.energy.push_back(r.error_energy);
@@ -36,7 +36,7 @@ TEST_CASE("patch test: a linear field is reproduced and the error falls with the
           "[elasticity]") {
   std::vector<double> energy;
   for (int order : {2, 4, 6, 8}) {
-    const auto r = app::solve_elastic_static(
+    const auto r = implicit::solve_elastic_static(
         load_problem("patch_test", {"discretisation.quadrature.order=" + std::to_string(order)}),
         test_session());
     energy.push_back(r.error_energy);
@@ -78,8 +78,9 @@ TEST_CASE("quadratic basis: Timoshenko energy error converges faster than with t
 
 TEST_CASE("MLS (EFG) shape functions give the same answer as RK on a uniform lattice",
           "[elasticity]") {
-  const auto rk = app::solve_elastic_static(load_problem("cantilever_timoshenko"), test_session());
-  const auto mls = app::solve_elastic_static(
+  const auto rk =
+      implicit::solve_elastic_static(load_problem("cantilever_timoshenko"), test_session());
+  const auto mls = implicit::solve_elastic_static(
       load_problem("cantilever_timoshenko", {"discretisation.approximation=mls"}), test_session());
   CHECK(mls.error_energy == Approx(rk.error_energy).epsilon(1e-3));
 }
@@ -89,7 +90,7 @@ TEST_CASE("MLS (EFG) shape functions give the same answer as RK on a uniform lat
 // which the CalculiX comparison and the exact solutions check.
 TEST_CASE("plate in tension: the reaction from the penalty forces balances the applied load",
           "[elasticity]") {
-  const auto r = app::solve_elastic_static(load_problem("plate_tension"), test_session());
+  const auto r = implicit::solve_elastic_static(load_problem("plate_tension"), test_session());
   REQUIRE(r.boundary.size() == 2);
   CHECK(r.boundary[1].force.y() == Approx(1000.0).epsilon(1e-12));
   CHECK(r.boundary[0].force.y() == Approx(-1000.0).epsilon(1e-8));
@@ -102,7 +103,7 @@ TEST_CASE("1D model problem y'' + f = 0: L2 error falls as h^2, H1 as h",
   std::vector<double> h, l2, h1;
   for (double s : {0.1, 0.05, 0.025, 0.0125}) {
     const auto spec = load_problem("ode_1d", {"discretisation.spacing=" + std::to_string(s)});
-    const auto r = app::solve_model_problem_1d(spec);
+    const auto r = implicit::solve_model_problem_1d(spec);
     h.push_back(s);
     l2.push_back(r.error_l2);
     h1.push_back(r.error_h1);

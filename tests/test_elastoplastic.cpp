@@ -1,8 +1,10 @@
 // Elastoplastic analysis through the whole solver: a homogeneous bar against the closed-form
 // uniaxial response (load, unload, reverse yielding), quadratic convergence of Newton with the
 // consistent tangent, and the load schedule's bookkeeping.
-#include "meshfree/app/elastoplastic_static.hpp"
+#include "meshfree/implicit/elasticity.hpp"
+#include "meshfree/implicit/elastoplastic_solve.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
+#include "meshfree/solvers/parallel.hpp"
 #include "test_support.hpp"
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -42,7 +44,7 @@ struct Uniaxial {
 /// Largest |reaction - sigma_exact * area| over the increments, relative to the largest stress.
 double bar_error(const std::vector<std::string>& overrides) {
   const auto spec = load_problem("bar_uniaxial_cyclic", overrides);
-  const auto r = app::solve_elastoplastic_static(spec, test_session(), nullptr);
+  const auto r = implicit::solve_elastoplastic_static(spec, test_session(), nullptr);
   REQUIRE(r.status == "completed");
   Uniaxial exact{*spec.plasticity};
   const double length = 2.0, area = 1.0; // height and width x thickness of the bar
@@ -89,7 +91,7 @@ TEST_CASE("Newton with the consistent tangent converges quadratically in plastic
   const auto spec = load_problem("beam_voce_bending",
                                  {"boundary.0.penalty_scale=1e4", "boundary.1.penalty_scale=1e4",
                                   "nonlinear.tolerance=1e-10", "steps.0.increments=25"});
-  const auto r = app::solve_elastoplastic_static(spec, test_session(), nullptr);
+  const auto r = implicit::solve_elastoplastic_static(spec, test_session(), nullptr);
   REQUIRE(r.status == "completed");
   int checked = 0;
   double lowest = 1e300, largest_C = 0.0;
@@ -130,7 +132,7 @@ TEST_CASE("a load beyond the limit load stops the run with the reason and keeps 
   const auto spec =
       load_problem("plate_plastic_thesis", {"discretisation.spacing=0.1", "steps.1.load_factor=320",
                                             "steps.1.increments=4", "nonlinear.max_cutbacks=4"});
-  const auto r = app::solve_elastoplastic_static(spec, test_session(), nullptr);
+  const auto r = implicit::solve_elastoplastic_static(spec, test_session(), nullptr);
   CHECK(r.status == "stopped");
   CHECK_THAT(r.stop_reason, Catch::Contains("step 'plastic'") && Catch::Contains("limit load") &&
                                 Catch::Contains("did not converge"));
@@ -139,4 +141,104 @@ TEST_CASE("a load beyond the limit load stops the run with the reason and keeps 
   for (const auto& inc : r.increments) CHECK(inc.newton.converged);
   CHECK(r.increments.back().factors[1] > 300.0);
   CHECK(r.increments.back().factors[1] < 313.0);
+}
+
+TEST_CASE("the converged state returned by the solver is the closed-form homogeneous state",
+          "[elastoplastic]") {
+  // The bar of the cyclic test, pulled once into plasticity with linear isotropic and linear
+  // kinematic hardening. Uniaxial stress sigma_yy = s in plane stress: beyond yield the axial
+  // plastic strain is e_p = (E eps - sigma0) / (E + H + Hk), s = E (eps - e_p); the plastic flow
+  // is isochoric (e_p,xx = e_p,zz = -e_p / 2), the back stress 2/3 Hk times the plastic strain
+  // tensor (Simo & Hughes 1998, Box 3.2), and the equivalent plastic strain alpha = e_p.
+  for (const std::vector<std::string>& overrides :
+       {std::vector<std::string>{"discretisation.method=fem", "discretisation.fem.element=q4"},
+        std::vector<std::string>{}}) {
+    auto spec = load_problem("bar_uniaxial_cyclic", overrides);
+    spec.plasticity->hardening = materials::LinearHardening{1000.0};
+    spec.plasticity->H_kinematic = 3000.0;
+    spec.steps.resize(1);
+    const materials::J2Parameters& p = *spec.plasticity;
+    const auto r = implicit::solve_elastoplastic_static(spec, test_session(), nullptr);
+    REQUIRE(r.status == "completed");
+    const implicit::ElastoplasticState& st = r.state;
+    REQUIRE(st.model);
+    const implicit::GalerkinModel& m = *st.model;
+    REQUIRE(st.parameters.size() == 2 * static_cast<std::size_t>(m.node_count()));
+    REQUIRE(st.history.size() == static_cast<std::size_t>(m.domain_table.rows()));
+    REQUIRE(st.stress.size() == st.history.size());
+    REQUIRE(st.stress_zz.size() == st.history.size());
+    CHECK(st.factors == r.increments.back().factors);
+
+    // The strain the body has, from u^h of the returned parameters at two corners (the penalty
+    // leaves the edges off their prescribed values by about 1e-7 of the stretch).
+    const implicit::ShapeTable corners = implicit::shapes_at(m, {{1.0, 2.0}, {1.0, 0.0}}, false);
+    const Vec2 top = implicit::displacement_at(corners, 0, st.parameters);
+    const Vec2 bottom = implicit::displacement_at(corners, 1, st.parameters);
+    if (test_session().rank() == 0) {
+      CHECK(std::abs(top.y() - r.increments.back().monitor_u.at(0).y()) <= 1e-14);
+      CHECK(std::abs(bottom.y() - r.increments.back().monitor_u.at(1).y()) <= 1e-14);
+    }
+    const double eps = (top.y() - bottom.y()) / 2.0;
+    const double H = 1000.0, Hk = p.H_kinematic;
+    const double ep = (p.E * eps - p.sigma0) / (p.E + H + Hk);
+    REQUIRE(ep > 0.0);
+    const double s = p.E * (eps - ep);
+    materials::Vec6 plastic, back;
+    plastic << -0.5 * ep, ep, -0.5 * ep, 0.0, 0.0, 0.0;
+    back = 2.0 / 3.0 * Hk * plastic;
+    // FE Q4 integrates the linear field exactly and every Gauss point holds the closed-form state
+    // up to round-off. The RK Galerkin solution is not exactly linear (the quadrature error of
+    // the patch test), so its points scatter about the state by up to 3e-3 (measured); their
+    // area-weighted mean, which carries the reaction, agrees as closely as the reaction does.
+    const bool fe = !overrides.empty();
+    double worst_stress = 0.0, worst_plastic = 0.0, worst_back = 0.0, worst_alpha = 0.0;
+    const auto relative = [&](double& worst, double e) { worst = std::max(worst, e); };
+    Vec3 mean_stress = Vec3::Zero();
+    materials::Vec6 mean_plastic = materials::Vec6::Zero(), mean_back = materials::Vec6::Zero();
+    double mean_alpha = 0.0, mean_szz = 0.0, area = 0.0;
+    for (std::size_t k = 0; k < st.history.size(); ++k) {
+      if (!m.domain_mine.counted[k]) continue;
+      const double w = m.domain.weight[m.domain_mine.rows[k]];
+      if (fe) {
+        relative(worst_stress, (st.stress[k] - Vec3(0.0, s, 0.0)).norm() / s);
+        relative(worst_stress, std::abs(st.stress_zz[k]) / s);
+        relative(worst_plastic, (st.history[k].plastic_strain - plastic).norm() / ep);
+        relative(worst_back, (st.history[k].back_stress - back).norm() / (Hk * ep));
+        relative(worst_alpha, std::abs(st.history[k].alpha - ep) / ep);
+      }
+      mean_stress += w * st.stress[k];
+      mean_szz += w * st.stress_zz[k];
+      mean_plastic += w * st.history[k].plastic_strain;
+      mean_back += w * st.history[k].back_stress;
+      mean_alpha += w * st.history[k].alpha;
+      area += w;
+    }
+    // The means over the whole body: each rank holds its share of the points.
+    {
+      double sums[18];
+      for (int c = 0; c < 3; ++c) sums[c] = mean_stress(c);
+      for (int c = 0; c < 6; ++c) sums[3 + c] = mean_plastic(c), sums[9 + c] = mean_back(c);
+      sums[15] = mean_szz, sums[16] = mean_alpha, sums[17] = area;
+      solvers::sum_everywhere(test_session().comm(), sums, 18);
+      for (int c = 0; c < 3; ++c) mean_stress(c) = sums[c];
+      for (int c = 0; c < 6; ++c) mean_plastic(c) = sums[3 + c], mean_back(c) = sums[9 + c];
+      mean_szz = sums[15], mean_alpha = sums[16], area = sums[17];
+    }
+    if (!fe) {
+      relative(worst_stress, (mean_stress / area - Vec3(0.0, s, 0.0)).norm() / s);
+      relative(worst_stress, std::abs(mean_szz / area) / s);
+      relative(worst_plastic, (mean_plastic / area - plastic).norm() / ep);
+      relative(worst_back, (mean_back / area - back).norm() / (Hk * ep));
+      relative(worst_alpha, std::abs(mean_alpha / area - ep) / ep);
+    }
+    const double tol = fe ? 1e-10 : 1e-6;
+    std::cout << "returned state, " << (fe ? "FE Q4, every point" : "meshfree, body mean")
+              << ": largest relative error of the stress " << worst_stress << ", plastic strain "
+              << worst_plastic << ", back stress " << worst_back << ", alpha " << worst_alpha
+              << " (" << st.history.size() << " points)\n";
+    CHECK(worst_stress < tol);
+    CHECK(worst_plastic < tol);
+    CHECK(worst_back < tol);
+    CHECK(worst_alpha < tol);
+  }
 }

@@ -1,7 +1,7 @@
 // The thesis' two elastic plates against the external CalculiX reference kept in
 // reference/calculix/ (see its README for how it was made): sampled displacements agree
 // within 1% of the largest displacement component on each line.
-#include "meshfree/app/elastic_static.hpp"
+#include "meshfree/implicit/elastic_solve.hpp"
 #include "test_support.hpp"
 #include <catch2/catch.hpp>
 #include <fstream>
@@ -36,7 +36,7 @@ RefLine read_reference(const std::string& problem, const std::string& line) {
 
 void compare(const std::string& problem) {
   const auto spec = load_problem(problem);
-  const auto result = app::solve_elastic_static(spec, test_session());
+  const auto result = implicit::solve_elastic_static(spec, test_session());
   for (const auto& [name, sample] : result.lines) {
     const RefLine ref = read_reference(problem, name);
     REQUIRE(ref.x.size() == sample.x.size());

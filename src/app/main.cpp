@@ -10,8 +10,10 @@
 #include "meshfree/explicit/pd_setup.hpp"
 #include "meshfree/explicit/sph_setup.hpp"
 #include "meshfree/geometry/node_generation.hpp"
+#include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/io/problem_spec.hpp"
 #include "meshfree/quadrature/integration_points.hpp"
+#include "meshfree/solvers/parallel.hpp"
 #include "meshfree/sph/step.hpp"
 #include <cmath>
 #include <cstring>
@@ -92,8 +94,8 @@ int check(const Command& c) {
   }
   const auto& d = spec.discretisation;
   if (d.method == mf::io::Method::Fem) {
-    const mf::fem::Mesh mesh = mf::app::read_fe_mesh(spec);
-    std::cout << "  method: " << mf::app::describe_method(d) << "\n"
+    const mf::fem::Mesh mesh = mf::implicit::read_fe_mesh(spec);
+    std::cout << "  method: " << mf::implicit::describe_method(d) << "\n"
               << "  mesh: " << mesh.element_count() << " " << mf::fem::element_name(mesh.type)
               << " elements, " << mesh.node_count() << " nodes (" << 2 * mesh.node_count()
               << " DOFs)\n";
@@ -102,7 +104,7 @@ int check(const Command& c) {
     const auto pts = mf::quadrature::domain_points(
         spec.domain, d.cell_size, d.order, d.cut_levels,
         {d.spacing, d.refinement, d.cell_size / d.spacing, d.dilation.maxCoeff()});
-    std::cout << "  method: " << mf::app::describe_method(d) << "\n"
+    std::cout << "  method: " << mf::implicit::describe_method(d) << "\n"
               << "  nodes: " << nodes.x.size() << " (" << 2 * nodes.x.size() << " DOFs)\n"
               << "  integration: " << pts.cell_count << " cells, " << pts.x.size() << " points\n";
   }
@@ -134,7 +136,7 @@ int run(Command& c) {
   try {
     spec = mf::io::read_problem(c.problem, c.overrides);
     // A finite-element mesh is input too: read and checked before anything is written.
-    if (spec.discretisation.method == mf::io::Method::Fem) mf::app::read_fe_mesh(spec);
+    if (spec.discretisation.method == mf::io::Method::Fem) mf::implicit::read_fe_mesh(spec);
   } catch (const std::exception& e) {
     if (session.rank() == 0) std::cerr << "meshfree: " << e.what() << std::endl;
     return 2;
@@ -149,10 +151,7 @@ int run(Command& c) {
     }
     mf::log::info("problem ", spec.name, ": ", spec.description);
     if (spec.analysis == mf::io::Analysis::ModelProblem1D) {
-      if (session.rank() == 0) {
-        const auto r = mf::app::solve_model_problem_1d(spec);
-        mf::app::write_model_1d_outputs(spec, r, *out);
-      }
+      if (session.rank() == 0) mf::app::model_problem_1d(spec, *out);
     } else if (spec.analysis == mf::io::Analysis::Peridynamics) {
       // Explicit dynamics runs on OpenMP threads within one process.
       MF_REQUIRE(session.size() == 1, "analysis peridynamics runs on one MPI rank (it is "
@@ -175,20 +174,11 @@ int run(Command& c) {
       log_phases(r.timer);
       if (r.status == "failed") exit_code = 1;
     } else if (spec.analysis == mf::io::Analysis::ElastoplasticStatic) {
-      mf::app::ElastoplasticResult r =
-          mf::app::solve_elastoplastic_static(spec, session, out.get());
-      {
-        mf::PhaseTimer::Scope scope(r.timer, "output");
-        if (out) mf::app::write_elastoplastic_outputs(spec, r, session, *out);
-      }
+      const auto r = mf::app::elastoplastic_static(spec, session, out.get());
       log_phases(r.timer);
       if (r.status != "completed") exit_code = 3;
     } else {
-      mf::app::ElasticResult r = mf::app::solve_elastic_static(spec, session);
-      {
-        mf::PhaseTimer::Scope scope(r.timer, "output");
-        if (out) mf::app::write_elastic_outputs(spec, r, session, *out);
-      }
+      const auto r = mf::app::elastic_static(spec, session, out.get());
       log_phases(r.timer);
     }
     if (out) {
@@ -215,7 +205,7 @@ int run(Command& c) {
         std::cerr << "meshfree: cannot record the failure: " << again.what() << std::endl;
       }
     }
-    if (session.size() > 1 && !everywhere) MPI_Abort(MPI_COMM_WORLD, 1);
+    if (session.size() > 1 && !everywhere) mf::solvers::abort_every_rank(session.comm(), 1);
     return 1;
   }
   return exit_code;

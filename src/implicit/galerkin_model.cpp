@@ -1,14 +1,12 @@
-#include "meshfree/app/galerkin_model.hpp"
-#include "meshfree/app/elastic_static.hpp"
+#include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/core/log.hpp"
-#include "meshfree/implicit/elasticity.hpp"
 #include <algorithm>
 
-namespace mf::app {
+namespace mf::implicit {
 
 namespace {
 
-RankPoints rank_points(const implicit::Csr& support, solvers::OwnedRange own, int node_count,
+RankPoints rank_points(const Csr& support, solvers::OwnedRange own, int node_count,
                        const solvers::PetscSession& s) {
   RankPoints p;
   for (int r = 0; r < support.rows(); ++r) {
@@ -48,7 +46,7 @@ std::vector<Vec2> condition_values(const io::ProblemSpec& spec, const io::Bounda
   return out;
 }
 
-void require_covered(const implicit::Csr& support, const std::vector<Vec2>& x) {
+void require_covered(const Csr& support, const std::vector<Vec2>& x) {
   for (int r = 0; r < support.rows(); ++r)
     MF_REQUIRE(support.size(r) > 0, "integration point (", x[r].x(), ", ", x[r].y(),
                ") is covered by no node: raise discretisation.dilation");
@@ -64,7 +62,7 @@ GalerkinModel build_meshfree_model(const io::ProblemSpec& spec,
   GalerkinModel m;
   {
     PhaseTimer::Scope scope(timer, "nodes");
-    m.space = std::make_unique<implicit::MeshfreeSpace>(
+    m.space = std::make_unique<MeshfreeSpace>(
         geometry::generate_nodes(spec.domain, disc.spacing, disc.refinement), disc.shape,
         disc.dilation);
   }
@@ -96,7 +94,7 @@ GalerkinModel build_meshfree_model(const io::ProblemSpec& spec,
     PhaseTimer::Scope scope(timer, "neighbours");
     m.domain_support = m.space->support_lists(m.domain.x);
     require_covered(m.domain_support, m.domain.x);
-    std::vector<const implicit::Csr*> coupling{&m.domain_support};
+    std::vector<const Csr*> coupling{&m.domain_support};
     for (auto& c : m.conditions) {
       c.support = m.space->support_lists(c.points.x);
       require_covered(c.support, c.points.x);
@@ -104,7 +102,7 @@ GalerkinModel build_meshfree_model(const io::ProblemSpec& spec,
       c.mine = rank_points(c.support, m.own, N, session);
     }
     m.domain_mine = rank_points(m.domain_support, m.own, N, session);
-    m.pattern = implicit::coupling_pattern(coupling, N, m.own.begin, m.own.end);
+    m.pattern = coupling_pattern(coupling, N, m.own.begin, m.own.end);
   }
 
   // Shape functions at this rank's points, and what each point carries.
@@ -174,10 +172,10 @@ fem::Mesh read_fe_mesh(const io::ProblemSpec& spec) {
 namespace {
 
 /// Copies the rows `rows` of a point set's shapes into a ShapeTable.
-implicit::ShapeTable table_rows(const std::vector<int>& offset, const std::vector<int>& node,
-                                const std::vector<double>& phi, const std::vector<Vec2>* dphi,
-                                const std::vector<int>& rows) {
-  implicit::ShapeTable t;
+ShapeTable table_rows(const std::vector<int>& offset, const std::vector<int>& node,
+                      const std::vector<double>& phi, const std::vector<Vec2>* dphi,
+                      const std::vector<int>& rows) {
+  ShapeTable t;
   for (int r : rows) {
     for (int k = offset[r]; k < offset[r + 1]; ++k) {
       t.node.push_back(node[k]);
@@ -256,13 +254,13 @@ GalerkinModel build_fem_model(const io::ProblemSpec& spec, const solvers::PetscS
     PhaseTimer::Scope scope(timer, "neighbours");
     m.domain_support.offset = domain.offset;
     m.domain_support.index = domain.node;
-    std::vector<const implicit::Csr*> coupling{&m.domain_support};
+    std::vector<const Csr*> coupling{&m.domain_support};
     for (auto& c : m.conditions) {
       if (c.bc->constrains) coupling.push_back(&c.support);
       c.mine = rank_points(c.support, m.own, N, session);
     }
     m.domain_mine = rank_points(m.domain_support, m.own, N, session);
-    m.pattern = implicit::coupling_pattern(coupling, N, m.own.begin, m.own.end);
+    m.pattern = coupling_pattern(coupling, N, m.own.begin, m.own.end);
   }
 
   {
@@ -289,6 +287,26 @@ GalerkinModel build_galerkin_model(const io::ProblemSpec& spec,
                                                        : build_meshfree_model(spec, session, timer);
 }
 
+std::string describe_method(const io::DiscretisationSpec& d) {
+  if (d.method == io::Method::Fem) {
+    std::string e = d.fem.element;
+    for (char& c : e) c = static_cast<char>(std::toupper(c));
+    return "FE " + e + (d.fem.mesh.empty() ? " on a structured mesh" : " on " + d.fem.mesh);
+  }
+  const auto& s = d.shape;
+  std::string m = s.approximation == kernels::Approximation::ReproducingKernel    ? "RK"
+                  : s.approximation == kernels::Approximation::MovingLeastSquares ? "MLS/EFG"
+                                                                                  : "SPH";
+  m += s.basis == kernels::Basis::Linear ? " Galerkin, linear basis, "
+                                         : " Galerkin, quadratic basis, ";
+  m += s.window.type == kernels::WindowType::CubicSpline     ? "cubic B-spline"
+       : s.window.type == kernels::WindowType::QuarticSpline ? "quartic spline"
+                                                             : "truncated Gaussian";
+  m += s.support == kernels::SupportShape::Circular ? " window, circular supports"
+                                                    : " window, rectangular supports";
+  return m;
+}
+
 io::GridCells output_cells(const GalerkinModel& m) {
   io::GridCells cells;
   if (!m.fe) return cells;
@@ -301,78 +319,18 @@ io::GridCells output_cells(const GalerkinModel& m) {
   return cells;
 }
 
-} // namespace mf::app
-
-namespace mf::app {
-
-implicit::ShapeTable shapes_at(const GalerkinModel& m, const std::vector<Vec2>& x, bool gradients) {
+ShapeTable shapes_at(const GalerkinModel& m, const std::vector<Vec2>& x, bool gradients) {
   if (m.fe) {
     const fem::PointShapes p = fem::shapes_at(m.fe->mesh, *m.fe->locator, x, gradients);
     std::vector<int> all(x.size());
     for (std::size_t i = 0; i < x.size(); ++i) all[i] = static_cast<int>(i);
     return table_rows(p.offset, p.node, p.phi, gradients ? &p.dphi : nullptr, all);
   }
-  const implicit::Csr support = m.space->support_lists(x);
+  const Csr support = m.space->support_lists(x);
   require_covered(support, x);
   std::vector<int> all(x.size());
   for (std::size_t i = 0; i < x.size(); ++i) all[i] = static_cast<int>(i);
   return m.space->shape_table(x, all, support, gradients);
 }
 
-implicit::BlockRows assemble_linear_elastic(const io::ProblemSpec& spec, const GalerkinModel& m,
-                                            const std::vector<double>& factors) {
-  MF_REQUIRE(factors.size() == spec.boundary.size() + 1, "assemble_linear_elastic: factors");
-  implicit::BlockRows rows(m.pattern);
-  const auto add_matrix = [&](const int* nodes, int n, const double* v) {
-    rows.add_matrix(nodes, n, v);
-  };
-  const auto add_vector = [&](const int* nodes, int n, const double* v) {
-    rows.add_vector(nodes, n, v);
-  };
-  implicit::add_stiffness(m.domain_table, m.domain_weight,
-                          materials::elastic_matrix(spec.material, spec.model), add_matrix);
-  if (!spec.body_force.isZero() && factors.back() != 0.0)
-    implicit::add_load(m.domain_table, m.domain_weight,
-                       std::vector<Vec2>(m.domain_weight.size(), factors.back() * spec.body_force),
-                       add_vector);
-  for (std::size_t b = 0; b < m.conditions.size(); ++b) {
-    const ConditionPoints& c = m.conditions[b];
-    std::vector<Vec2> values = c.values;
-    for (Vec2& v : values) v *= factors[b];
-    if (c.bc->constrains)
-      implicit::add_penalty(c.table, c.weight, c.bc->mask, c.bc->penalty, values, add_matrix,
-                            add_vector);
-    else
-      implicit::add_load(c.table, c.weight, values, add_vector);
-  }
-  return rows;
-}
-
-BoundaryReport boundary_report(const ConditionPoints& c, const std::vector<double>& d,
-                               double factor, const solvers::PetscSession& session) {
-  const io::BoundaryCondition& bc = *c.bc;
-  BoundaryReport rep;
-  rep.name = bc.name;
-  rep.constraint = bc.constrains;
-  double force[2] = {0, 0}, gap_max = 0.0;
-  for (int k = 0; k < c.table.rows(); ++k) {
-    if (!c.mine.counted[k]) continue;
-    if (bc.constrains) {
-      const Vec2 gap =
-          (implicit::displacement_at(c.table, k, d) - factor * c.values[k]).cwiseProduct(bc.mask);
-      force[0] -= bc.penalty * c.weight[k] * gap.x();
-      force[1] -= bc.penalty * c.weight[k] * gap.y();
-      gap_max = std::max(gap_max, gap.norm());
-    } else {
-      force[0] += factor * c.weight[k] * c.values[k].x();
-      force[1] += factor * c.weight[k] * c.values[k].y();
-    }
-  }
-  MPI_Allreduce(MPI_IN_PLACE, force, 2, MPI_DOUBLE, MPI_SUM, session.comm());
-  MPI_Allreduce(MPI_IN_PLACE, &gap_max, 1, MPI_DOUBLE, MPI_MAX, session.comm());
-  rep.force = Vec2(force[0], force[1]);
-  rep.violation_max = gap_max;
-  return rep;
-}
-
-} // namespace mf::app
+} // namespace mf::implicit

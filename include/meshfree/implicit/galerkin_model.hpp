@@ -1,8 +1,9 @@
 #pragma once
-// The solution-independent part of a meshfree Galerkin analysis on one rank: nodes and their
-// supports, integration points in the body and on the boundary conditions, the points this rank
-// integrates with their shape functions, and the pattern of its block rows. The elastic solve
-// assembles on it once; a nonlinear solve would assemble on it every iteration.
+// The solution-independent part of a Galerkin analysis (meshfree or finite elements) on one rank:
+// nodes and their supports, integration points in the body and on the boundary conditions, the
+// points this rank integrates with their shape functions, and the pattern of its block rows. The
+// elastic solve assembles on it once, the elastoplastic solve every Newton iteration; a later
+// stage evaluates a returned solution on it (shapes_at).
 #include "meshfree/core/timer.hpp"
 #include "meshfree/fem/elements.hpp"
 #include "meshfree/fem/mesh.hpp"
@@ -13,9 +14,10 @@
 #include "meshfree/quadrature/integration_points.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
 #include <memory>
+#include <string>
 #include <vector>
 
-namespace mf::app {
+namespace mf::implicit {
 
 /// The points a rank integrates: every point whose support holds one of its nodes, so that its
 /// block rows are complete without communication (points near a partition boundary are
@@ -31,9 +33,9 @@ struct RankPoints {
 struct ConditionPoints {
   const io::BoundaryCondition* bc = nullptr;
   quadrature::BoundaryPoints points; // all of the condition's points
-  implicit::Csr support;             // support lists of all of them
+  Csr support;                       // support lists of all of them
   RankPoints mine;
-  implicit::ShapeTable table; // rows: mine.rows (values only, no gradients)
+  ShapeTable table;           // rows: mine.rows (values only, no gradients)
   std::vector<double> weight; // length weight times thickness, per table row
   std::vector<Vec2> values;   // prescribed displacement or traction, per table row
 };
@@ -45,27 +47,19 @@ struct FeDiscretisation {
 };
 
 struct GalerkinModel {
-  std::unique_ptr<implicit::MeshfreeSpace> space; // meshfree nodes and supports, or
-  std::unique_ptr<FeDiscretisation> fe;           // a finite-element mesh
+  std::unique_ptr<MeshfreeSpace> space; // meshfree nodes and supports, or
+  std::unique_ptr<FeDiscretisation> fe; // a finite-element mesh
   solvers::OwnedRange own;
   quadrature::DomainPoints domain;
-  implicit::Csr domain_support;
+  Csr domain_support;
   RankPoints domain_mine;
-  implicit::ShapeTable domain_table; // rows: domain_mine.rows, with gradients
+  ShapeTable domain_table;           // rows: domain_mine.rows, with gradients
   std::vector<double> domain_weight; // area weight times thickness, per table row
   std::vector<ConditionPoints> conditions;
-  implicit::RowPattern pattern; // block rows of the owned nodes
+  RowPattern pattern; // block rows of the owned nodes
 
   int node_count() const { return fe ? fe->mesh.node_count() : space->node_count(); }
   const std::vector<Vec2>& node_positions() const { return fe ? fe->mesh.x : space->nodes().x; }
-};
-
-/// What a boundary condition does to the body after a solve.
-struct BoundaryReport {
-  std::string name;
-  bool constraint = false;
-  Vec2 force{0.0, 0.0};       // reaction (constraint) or applied load, on the body
-  double violation_max = 0.0; // max |u^h - ubar| over the constraint's Gauss points
 };
 
 /// Builds the model, meshfree or finite elements as the discretisation says; phases "nodes",
@@ -84,17 +78,9 @@ io::GridCells output_cells(const GalerkinModel& m);
 
 /// Shape functions (and gradients) of the model's approximation at arbitrary points of the body,
 /// evaluated on the calling rank.
-implicit::ShapeTable shapes_at(const GalerkinModel& m, const std::vector<Vec2>& x, bool gradients);
+ShapeTable shapes_at(const GalerkinModel& m, const std::vector<Vec2>& x, bool gradients);
 
-/// K d = f for linear elasticity: the stiffness, penalty terms, tractions and body force of this
-/// rank's rows, with each condition's value (and the body force, the last entry) times its factor.
-implicit::BlockRows assemble_linear_elastic(const io::ProblemSpec& spec, const GalerkinModel& m,
-                                            const std::vector<double>& factors);
+/// Short description of the discretisation for logs and the summary.
+std::string describe_method(const io::DiscretisationSpec& d);
 
-/// Reaction (the penalty force on the body) and largest gap of a displacement condition whose
-/// prescribed value is scaled by `factor`, or the applied force of a traction condition, summed
-/// over every rank.
-BoundaryReport boundary_report(const ConditionPoints& c, const std::vector<double>& d,
-                               double factor, const solvers::PetscSession& session);
-
-} // namespace mf::app
+} // namespace mf::implicit

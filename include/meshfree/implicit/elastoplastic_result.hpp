@@ -1,0 +1,59 @@
+#pragma once
+// What a quasi-static elastoplastic analysis returns: the record of every converged increment,
+// first yield, and the converged state itself (model, nodal parameters and the history of every
+// Gauss point), from which a later stage can evaluate the solution anywhere in the body.
+#include "meshfree/core/timer.hpp"
+#include "meshfree/implicit/elastic_limit.hpp"
+#include "meshfree/implicit/galerkin_forms.hpp"
+#include "meshfree/implicit/galerkin_model.hpp"
+#include "meshfree/materials/j2_plasticity.hpp"
+#include "meshfree/solvers/nonlinear_system.hpp"
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mf::implicit {
+
+/// One converged increment.
+struct IncrementRecord {
+  int step = 0;                // index into ProblemSpec::steps
+  double step_fraction = 0.0;  // how far through the step, in (0, 1]
+  std::vector<double> factors; // per boundary condition, then the body force
+  solvers::NewtonReport newton;
+  int cutbacks = 0; // halvings of this increment before it converged
+  std::vector<BoundaryReport> boundary;
+  std::vector<Vec2> monitor_u; // u^h at the monitor points
+  double max_plastic_strain = 0.0;
+  long plastic_points = 0;
+  double equilibrium_error = 0.0; // |sum of reactions and loads| / sum of their magnitudes
+};
+
+/// The last converged state. Gauss-point arrays run over this rank's domain points, in the order
+/// of the model's domain table: row k is the point model->domain.x[model->domain_mine.rows[k]]
+/// (points near a partition boundary appear on both neighbouring ranks;
+/// model->domain_mine.counted marks the copy that counts).
+struct ElastoplasticState {
+  std::shared_ptr<const GalerkinModel> model;
+  std::vector<double> parameters;          // nodal parameters d, all 2N of them, on every rank
+  std::vector<double> factors;             // load factors per condition, then the body force
+  std::vector<materials::J2State> history; // plastic strain, back stress, alpha per point
+  std::vector<Vec3> stress;                // [sxx, syy, sxy] per point
+  std::vector<double> stress_zz;           // per point
+};
+
+struct ElastoplasticResult {
+  std::string method, solver;
+  int nodes = 0, dofs = 0, domain_points = 0, boundary_points = 0, cells = 0;
+  double matrix_nonzeros = 0.0;
+  std::vector<IncrementRecord> increments; // increment 0 is the unloaded state
+  ElasticLimit elastic_limit;
+  ElastoplasticState state;
+  std::string status = "completed"; // or "stopped", with the reason
+  std::string stop_reason;
+  std::vector<std::pair<std::string, std::vector<std::vector<double>>>> lines; // rank 0 rows
+  PhaseTimer timer;
+  double residual_seconds = 0.0, jacobian_seconds = 0.0; // inside the "newton" phase
+};
+
+} // namespace mf::implicit

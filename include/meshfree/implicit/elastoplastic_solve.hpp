@@ -1,0 +1,21 @@
+#pragma once
+// Quasi-static elastoplastic analysis (J2, plane stress or plane strain, small strain) on the
+// same Galerkin model as the elastic solver, meshfree or finite elements: first yield from an
+// elastic solve, then the load schedule, each increment solved by Newton through PETSc SNES with
+// the consistent tangent (see elastoplastic_system.hpp and load_stepping.hpp).
+#include "meshfree/implicit/elastoplastic_result.hpp"
+#include "meshfree/io/output.hpp"
+#include "meshfree/io/problem_spec.hpp"
+#include "meshfree/solvers/petsc_session.hpp"
+
+namespace mf::implicit {
+
+/// Runs the load schedule. Fields go to `out` (rank 0; null on other ranks or to skip them) as
+/// the run goes. A run whose increment cannot converge even after the allowed cut-backs stops
+/// with status "stopped", keeping the converged increments; the returned state is the last
+/// converged one either way.
+ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
+                                               const solvers::PetscSession& session,
+                                               io::OutputDirectory* out);
+
+} // namespace mf::implicit

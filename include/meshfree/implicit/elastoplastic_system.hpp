@@ -1,0 +1,85 @@
+#pragma once
+// The discrete equilibrium equations of a quasi-static elastoplastic body (J2, plane stress or
+// plane strain, small strain) on a Galerkin model, meshfree or finite elements:
+//   R(d) = f_int(d) + K_pen d - sum_c factor_c f_c,   f_int = sum_g w_g B^T sigma_g(eps(d),
+//   history_n),
+// with f_c the traction, body-force or penalty right-hand side of condition c at factor 1, and
+// their consistent tangent. The history at the Gauss points is committed only after an increment
+// has converged (the thesis' incremental strategy B, section 3-1-2).
+#include "meshfree/implicit/coupling.hpp"
+#include "meshfree/implicit/galerkin_model.hpp"
+#include "meshfree/io/problem_spec.hpp"
+#include "meshfree/materials/j2_plasticity.hpp"
+#include <vector>
+
+namespace mf::implicit {
+
+/// The material history and the response at this rank's domain points (the rows of the model's
+/// domain table): the committed history and the stress it was committed with, and the trial
+/// response of the current iterate.
+struct PointStates {
+  std::vector<materials::J2State> committed, trial;
+  std::vector<Vec3> committed_stress;      // the stress of the committed history
+  std::vector<double> committed_stress_zz; // its out-of-plane component
+  std::vector<Vec3> stress;                // trial
+  std::vector<double> stress_zz;           // trial
+  std::vector<Mat3> tangent;               // trial, algorithmic
+  std::vector<char> plastic;               // trial
+
+  explicit PointStates(std::size_t n)
+      : committed(n), trial(n), committed_stress(n, Vec3::Zero()), committed_stress_zz(n, 0.0),
+        stress(n, Vec3::Zero()), stress_zz(n, 0.0), tangent(n, Mat3::Zero()), plastic(n, 0) {}
+};
+
+class ElastoplasticSystem {
+public:
+  /// `spec` and `m` must outlive the system.
+  ElastoplasticSystem(const io::ProblemSpec& spec, const GalerkinModel& m);
+
+  /// Load factors per boundary condition, then the body force.
+  void set_factors(const std::vector<double>& f) { factors_ = f; }
+  const std::vector<double>& factors() const { return factors_; }
+  const PointStates& states() const { return states_; }
+  double residual_seconds() const { return residual_seconds_; }
+  double jacobian_seconds() const { return jacobian_seconds_; }
+
+  /// The history of the converged increment becomes the start of the next one. The trial
+  /// response at the converged d stays valid: its stress is what the new history gives there
+  /// too, and its tangent, the consistent tangent of the converged increment, is the predictor
+  /// for the next one. Recomputed from the new history, every plastic point would sit exactly on
+  /// its yield surface and round-off would choose between the elastic and the plastic tangent.
+  void commit();
+
+  /// R(d) on the owned rows and this rank's share of the force scale |F|^2 (internal forces,
+  /// tractions and body force; not the penalty right-hand sides).
+  void residual(const std::vector<double>& d, double* r, double& scale_squared);
+  /// dR/dd as 2x2 blocks in the order of the model's block-row pattern.
+  void jacobian(const std::vector<double>& d, std::vector<double>& blocks);
+
+  /// Every node a point of this rank touches: the entries of d that the residual reads.
+  std::vector<int> needed_nodes() const;
+
+private:
+  /// Return mapping at every point from the committed history and the strain of d. Skipped when
+  /// d is the one the trial states already belong to (SNES asks for R and then J at one point).
+  void update_materials(const std::vector<double>& d);
+
+  const io::ProblemSpec& spec_;
+  const GalerkinModel& m_;
+  materials::J2Parameters params_;
+  materials::J2Result2D (*update_)(const materials::J2Parameters&, const Vec3&,
+                                   const materials::J2State&);
+  PointStates states_;
+  BlockRows penalty_;         // K_pen: constant
+  BlockRows tangent_;         // work space for the Jacobian
+  BlockScatter scatter_;      // where each point's blocks go in tangent_
+  std::vector<double> block_; // one point's block
+  std::vector<std::vector<double>> loads_;
+  std::vector<char> counts_in_scale_; // tractions and body force, not penalty right-hand sides
+  std::vector<double> factors_;
+  std::vector<double> states_d_;
+  bool states_valid_ = false;
+  double residual_seconds_ = 0.0, jacobian_seconds_ = 0.0;
+};
+
+} // namespace mf::implicit

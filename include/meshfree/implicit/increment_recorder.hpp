@@ -1,0 +1,50 @@
+#pragma once
+// What an elastoplastic analysis keeps of each converged increment: reactions and loads, the
+// plastic zone, equilibrium, u^h at the monitors, and, when due, the nodal and Gauss-point
+// fields and the line samples.
+#include "meshfree/implicit/elastoplastic_result.hpp"
+#include "meshfree/implicit/elastoplastic_system.hpp"
+#include "meshfree/implicit/galerkin_model.hpp"
+#include "meshfree/io/output.hpp"
+#include "meshfree/io/problem_spec.hpp"
+#include "meshfree/io/results.hpp"
+#include "meshfree/solvers/nonlinear_system.hpp"
+#include "meshfree/solvers/petsc_session.hpp"
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace mf::implicit {
+
+class IncrementRecorder {
+public:
+  /// Shape functions at the nodes, monitors and line points (rank 0) and the field series
+  /// (rank 0, when `out` is given), fixed for the run. Collective.
+  IncrementRecorder(const io::ProblemSpec& spec, const GalerkinModel& m,
+                    const solvers::PetscSession& session, io::OutputDirectory* out);
+  ~IncrementRecorder();
+
+  /// Completes `rec` at the converged state (d, the committed states), writes the fields when
+  /// asked, and appends it to r.increments (line samples to r.lines). Collective.
+  void record(IncrementRecord rec, const std::vector<double>& d, const PointStates& st,
+              const solvers::NonlinearBlockSystem& newton, bool write_fields,
+              ElastoplasticResult& r);
+
+  /// Closes the field series.
+  void close();
+
+private:
+  struct GaussOutput;
+  const io::ProblemSpec& spec_;
+  const GalerkinModel& m_;
+  const solvers::PetscSession& session_;
+  ShapeTable node_table_, monitor_table_;
+  std::vector<std::pair<const io::LineSpec*, std::vector<Vec2>>> line_points_;
+  std::vector<ShapeTable> line_tables_;
+  std::unique_ptr<io::FieldOutput> fields_; // nodal fields (rank 0)
+  std::vector<Vec2> node_u_, node_parameters_;
+  std::vector<double> node_values_[7]; // stresses, szz, von Mises, alpha, plastic fraction
+  std::unique_ptr<GaussOutput> gauss_;
+};
+
+} // namespace mf::implicit

@@ -1,0 +1,119 @@
+#include "meshfree/implicit/elastic_output.hpp"
+#include "meshfree/io/results.hpp"
+#include "meshfree/materials/elastic.hpp"
+#include "meshfree/verification/exact_solutions.hpp"
+#include <algorithm>
+#include <omp.h>
+
+namespace mf::implicit {
+
+void write_elastic_outputs(const io::ProblemSpec& spec, const ElasticResult& r,
+                           const solvers::PetscSession& session, io::OutputDirectory& out) {
+  if (session.rank() != 0) return;
+  const materials::IsotropicElastic exact_mat =
+      materials::plane_stress_equivalent(spec.material, spec.model);
+  std::vector<double> sxx, syy, sxy, vm;
+  for (std::size_t i = 0; i < r.node_x.size(); ++i) {
+    sxx.push_back(r.node_stress[i](0));
+    syy.push_back(r.node_stress[i](1));
+    sxy.push_back(r.node_stress[i](2));
+    vm.push_back(materials::von_mises(r.node_stress[i], r.node_szz[i]));
+  }
+  io::FieldOutput fields(&out, "fields", r.node_x, r.output_cells);
+  fields.vector2("displacement", [&](std::vector<Vec2>& v) { v = r.node_u; });
+  fields.vector2("nodal_parameters", [&](std::vector<Vec2>& v) {
+    v.resize(r.node_x.size());
+    for (std::size_t i = 0; i < v.size(); ++i)
+      v[i] = Vec2(r.parameters[2 * i], r.parameters[2 * i + 1]);
+  });
+  if (spec.exact)
+    fields.vector2("displacement_exact", [&](std::vector<Vec2>& v) {
+      v.clear();
+      for (const auto& x : r.node_x)
+        v.push_back(verification::exact_displacement(*spec.exact, exact_mat, x));
+    });
+  fields.scalar("stress_xx", sxx);
+  fields.scalar("stress_yy", syy);
+  fields.scalar("stress_xy", sxy);
+  fields.scalar("stress_zz", r.node_szz);
+  fields.scalar("von_mises", vm);
+  fields.write(1.0);
+  fields.close();
+
+  for (const auto& [name, s] : r.lines) {
+    std::vector<std::string> header{"s",  "x",         "y",         "ux",
+                                    "uy", "stress_xx", "stress_yy", "stress_xy"};
+    if (spec.exact)
+      header.insert(header.end(), {"ux_exact", "uy_exact", "stress_xx_exact", "stress_yy_exact",
+                                   "stress_xy_exact"});
+    std::vector<std::vector<double>> rows;
+    for (std::size_t k = 0; k < s.x.size(); ++k) {
+      std::vector<double> row{s.s[k],     s.x[k].x(),     s.x[k].y(),     s.u[k].x(),
+                              s.u[k].y(), s.stress[k](0), s.stress[k](1), s.stress[k](2)};
+      if (spec.exact) {
+        const Vec2 ue = verification::exact_displacement(*spec.exact, exact_mat, s.x[k]);
+        const Vec3 se = verification::exact_stress(*spec.exact, exact_mat, s.x[k]);
+        row.insert(row.end(), {ue.x(), ue.y(), se(0), se(1), se(2)});
+      }
+      rows.push_back(row);
+    }
+    out.write_csv("line_" + name + ".csv", header, rows);
+  }
+
+  double umax = 0.0, vmmax = 0.0;
+  for (const auto& u : r.node_u) umax = std::max(umax, u.norm());
+  for (double v : vm) vmmax = std::max(vmmax, v);
+  io::History history({"step", "load_factor"});
+  std::vector<double> row{1.0, 1.0};
+  for (const auto& b : r.boundary) {
+    const std::string kind = b.constraint ? "reaction_" : "load_";
+    history.add_column(kind + b.name + "_x");
+    history.add_column(kind + b.name + "_y");
+    row.push_back(b.force.x());
+    row.push_back(b.force.y());
+  }
+  for (const char* c : {"max_displacement", "max_von_mises", "solver_iterations"})
+    history.add_column(c);
+  row.insert(row.end(), {umax, vmmax, static_cast<double>(r.solve.iterations)});
+  history.append(std::move(row));
+  history.write(out);
+
+  io::Summary summary({spec.name, spec.description, spec.units, "elastic_static",
+                       describe_method(spec.discretisation)});
+  summary.set("mpi_ranks", session.size()).set("openmp_threads", omp_get_max_threads());
+  summary.section("counts")
+      .set("nodes", r.nodes)
+      .set("dofs", r.dofs)
+      .set("background_cells", r.cells)
+      .set("domain_points", r.domain_points)
+      .set("boundary_points", r.boundary_points)
+      .set("mean_nodes_per_point", r.mean_support)
+      .set("matrix_nonzeros", r.matrix_nonzeros)
+      .set("steps", 1)
+      .set("newton_iterations", 0);
+  summary.section("solver")
+      .set("type", r.solve.solver)
+      .set("iterations", r.solve.iterations)
+      .set("reason", r.solve.reason_name)
+      .set("relative_residual", r.solve.residual_norm);
+  io::Json bnd;
+  for (const auto& b : r.boundary) {
+    io::Json j;
+    j.set("kind", b.constraint ? "displacement" : "traction");
+    j.set(b.constraint ? "reaction" : "applied_force",
+          std::vector<double>{b.force.x(), b.force.y()});
+    if (b.constraint) j.set("violation_max", b.violation_max);
+    bnd.set(b.name, j);
+  }
+  io::Json& results = summary.section("results");
+  results.set("max_displacement", umax)
+      .set("max_von_mises", vmmax)
+      .set("constraint_violation_max", r.violation_max)
+      .set("constraint_violation_relative", r.violation_relative)
+      .set("boundary", bnd);
+  if (spec.exact)
+    results.set("error_l2_relative", r.error_l2).set("error_energy_relative", r.error_energy);
+  summary.write(out, r.timer);
+}
+
+} // namespace mf::implicit

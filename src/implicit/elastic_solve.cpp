@@ -1,0 +1,138 @@
+#include "meshfree/implicit/elastic_solve.hpp"
+#include "meshfree/core/log.hpp"
+#include "meshfree/implicit/coupling.hpp"
+#include "meshfree/implicit/elasticity.hpp"
+#include "meshfree/quadrature/integration_points.hpp"
+#include "meshfree/solvers/parallel.hpp"
+#include <algorithm>
+#include <cmath>
+
+namespace mf::implicit {
+
+namespace {
+
+/// Fields at arbitrary points (nodes, line samples): u^h, stress, szz.
+void evaluate_fields(const GalerkinModel& m, const io::ProblemSpec& spec,
+                     const std::vector<Vec2>& x, const std::vector<double>& d, std::vector<Vec2>& u,
+                     std::vector<Vec3>& stress, std::vector<double>& szz) {
+  const ShapeTable t = shapes_at(m, x, true);
+  const Mat3 C = materials::elastic_matrix(spec.material, spec.model);
+  u.resize(x.size());
+  stress.resize(x.size());
+  szz.resize(x.size());
+  for (int r = 0; r < t.rows(); ++r) {
+    u[r] = displacement_at(t, r, d);
+    stress[r] = C * strain_at(t, r, d);
+    szz[r] = materials::out_of_plane_stress(spec.material, spec.model, stress[r]);
+  }
+}
+
+} // namespace
+
+namespace {
+
+/// Relative L2 and energy-norm errors against the exact solution, over the whole body.
+std::pair<double, double> exact_errors(const io::ProblemSpec& spec, const GalerkinModel& m,
+                                       const std::vector<double>& d,
+                                       const solvers::PetscSession& session) {
+  const Mat3 C = materials::elastic_matrix(spec.material, spec.model);
+  const Mat3 Cinv = C.inverse();
+  const materials::IsotropicElastic exact_mat =
+      materials::plane_stress_equivalent(spec.material, spec.model);
+  double sums[4] = {0, 0, 0, 0}; // |e_u|^2, |u|^2, e_eps.C.e_eps, eps.C.eps
+  for (int k = 0; k < m.domain_table.rows(); ++k) {
+    if (!m.domain_mine.counted[k]) continue;
+    const Vec2& x = m.domain.x[m.domain_mine.rows[k]];
+    const double w = m.domain.weight[m.domain_mine.rows[k]];
+    const Vec2 ue = verification::exact_displacement(*spec.exact, exact_mat, x);
+    const Vec3 ee = Cinv * verification::exact_stress(*spec.exact, exact_mat, x);
+    const Vec2 eu = displacement_at(m.domain_table, k, d) - ue;
+    const Vec3 eps = strain_at(m.domain_table, k, d) - ee;
+    sums[0] += w * eu.squaredNorm();
+    sums[1] += w * ue.squaredNorm();
+    sums[2] += w * eps.dot(C * eps);
+    sums[3] += w * ee.dot(C * ee);
+  }
+  solvers::sum_everywhere(session.comm(), sums, 4);
+  return {std::sqrt(sums[0] / sums[1]), std::sqrt(sums[2] / sums[3])};
+}
+
+/// u^h and stresses at the nodes and along the sample lines (on the calling rank).
+void sample_fields(const io::ProblemSpec& spec, const GalerkinModel& m, ElasticResult& R) {
+  const auto& d = R.parameters;
+  R.node_x = m.node_positions();
+  evaluate_fields(m, spec, R.node_x, d, R.node_u, R.node_stress, R.node_szz);
+  for (const auto& line : spec.lines) {
+    LineSample s;
+    for (int k = 0; k < line.points; ++k) {
+      const double f = static_cast<double>(k) / (line.points - 1);
+      const Vec2 x = line.from + f * (line.to - line.from);
+      if (!spec.domain.contains(x, 1e-9)) continue;
+      s.x.push_back(x);
+      s.s.push_back(f * (line.to - line.from).norm());
+    }
+    std::vector<double> szz;
+    evaluate_fields(m, spec, s.x, d, s.u, s.stress, szz);
+    R.lines.emplace_back(line.name, std::move(s));
+  }
+}
+
+} // namespace
+
+ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
+                                   const solvers::PetscSession& session) {
+  ElasticResult R;
+  const GalerkinModel m = build_galerkin_model(spec, session, R.timer);
+  R.nodes = m.node_count();
+  R.dofs = 2 * R.nodes;
+  R.domain_points = static_cast<int>(m.domain.x.size());
+  R.cells = m.domain.cell_count;
+  for (const auto& c : m.conditions) R.boundary_points += static_cast<int>(c.points.x.size());
+  R.mean_support =
+      static_cast<double>(m.domain_support.index.size()) / std::max(1, m.domain_support.rows());
+  log::info("integration: ", R.cells, " background cells, ", R.domain_points, " domain points, ",
+            R.boundary_points, " boundary points");
+
+  std::unique_ptr<solvers::BlockLinearSystem> system;
+  {
+    PhaseTimer::Scope scope(R.timer, "assembly");
+    const BlockRows rows =
+        assemble_linear_elastic(spec, m, std::vector<double>(spec.boundary.size() + 1, 1.0));
+    const RowPattern& p = rows.pattern();
+    system = std::make_unique<solvers::BlockLinearSystem>(session.comm(), R.nodes, m.own, p.offset,
+                                                          p.column, rows.values(), rows.rhs(),
+                                                          /*spd=*/true);
+  }
+  R.matrix_nonzeros = system->global_nonzeros();
+  log::info("matrix: ", R.dofs, " x ", R.dofs, ", ", static_cast<long>(R.matrix_nonzeros),
+            " nonzeros");
+  {
+    PhaseTimer::Scope scope(R.timer, "solve");
+    R.solve = system->solve();
+    R.parameters = system->solution_everywhere();
+  }
+  log::info("solved with ", R.solve.solver, ": ", R.solve.reason_name, ", relative residual ",
+            R.solve.residual_norm);
+  for (double v : R.parameters)
+    MF_REQUIRE(std::isfinite(v), "the solution contains NaN or Inf: the system is singular; "
+                                 "check the boundary conditions");
+
+  PhaseTimer::Scope scope(R.timer, "postprocess");
+  if (spec.exact)
+    std::tie(R.error_l2, R.error_energy) = exact_errors(spec, m, R.parameters, session);
+  for (const auto& c : m.conditions) {
+    R.boundary.push_back(boundary_report(c, R.parameters, 1.0, session));
+    R.violation_max = std::max(R.violation_max, R.boundary.back().violation_max);
+  }
+  session.collective([&] {
+    if (session.rank() != 0) return;
+    sample_fields(spec, m, R);
+    R.output_cells = output_cells(m);
+    double umax = 0.0;
+    for (const auto& u : R.node_u) umax = std::max(umax, u.norm());
+    R.violation_relative = umax > 0.0 ? R.violation_max / umax : 0.0;
+  });
+  return R;
+}
+
+} // namespace mf::implicit

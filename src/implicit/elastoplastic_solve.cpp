@@ -1,0 +1,99 @@
+#include "meshfree/implicit/elastoplastic_solve.hpp"
+#include "meshfree/core/log.hpp"
+#include "meshfree/implicit/elastic_limit.hpp"
+#include "meshfree/implicit/elastoplastic_system.hpp"
+#include "meshfree/implicit/increment_recorder.hpp"
+#include "meshfree/implicit/load_stepping.hpp"
+#include "meshfree/solvers/nonlinear_system.hpp"
+#include "meshfree/solvers/parallel.hpp"
+#include <memory>
+
+namespace mf::implicit {
+
+namespace {
+
+/// Counts of the model, summed over the ranks where each rank holds a share.
+void count_model(const GalerkinModel& m, const solvers::PetscSession& session,
+                 ElastoplasticResult& R) {
+  R.nodes = m.node_count();
+  R.dofs = 2 * R.nodes;
+  R.domain_points = static_cast<int>(m.domain.x.size());
+  R.cells = m.domain.cell_count;
+  for (const auto& c : m.conditions) R.boundary_points += static_cast<int>(c.points.x.size());
+  R.matrix_nonzeros =
+      solvers::sum_everywhere(session.comm(), 4.0 * static_cast<double>(m.pattern.column.size()));
+  log::info("integration: ", R.cells, " background cells, ", R.domain_points, " domain points, ",
+            R.boundary_points, " boundary points");
+}
+
+void log_elastic_limit(const io::ProblemSpec& spec, const ElasticLimit& e) {
+  const PeakStress& g = e.gauss_points;
+  const PeakStress& n = e.nodes;
+  log::info("first yield at ", e.fraction, " of step '", spec.steps.front().name, "' (",
+            factors_text(spec, e.factors), "); elastic von Mises at its end: ", g.von_mises,
+            " at the Gauss point (", g.at.x(), ", ", g.at.y(), "), ", n.von_mises, " at the node (",
+            n.at.x(), ", ", n.at.y(), ")");
+}
+
+} // namespace
+
+ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
+                                               const solvers::PetscSession& session,
+                                               io::OutputDirectory* out) {
+  MF_REQUIRE(spec.plasticity && !spec.steps.empty(),
+             "an elastoplastic analysis needs material.plasticity and steps");
+  ElastoplasticResult R;
+  const auto model =
+      std::make_shared<const GalerkinModel>(build_galerkin_model(spec, session, R.timer));
+  const GalerkinModel& m = *model;
+  R.method = describe_method(spec.discretisation);
+  count_model(m, session, R);
+  {
+    PhaseTimer::Scope scope(R.timer, "elastic_limit");
+    session.collective([&] { R.elastic_limit = elastic_limit(spec, m, session); });
+    log_elastic_limit(spec, R.elastic_limit);
+  }
+
+  ElastoplasticSystem problem(spec, m);
+  solvers::NonlinearBlockSystem newton(
+      session.comm(), R.nodes, m.own, m.pattern.offset, m.pattern.column, problem.needed_nodes(),
+      [&](const std::vector<double>& d, double* r, double& s) { problem.residual(d, r, s); },
+      [&](const std::vector<double>& d, std::vector<double>& b) { problem.jacobian(d, b); });
+  R.solver = newton.description();
+  log::info("Newton: ", R.solver, ", tolerance |R| <= ", spec.nonlinear.tolerance, " |F|");
+
+  IncrementRecorder recorder(spec, m, session, session.rank() == 0 ? out : nullptr);
+  std::vector<double> d(2 * static_cast<std::size_t>(R.nodes), 0.0);
+  {
+    IncrementRecord zero;
+    zero.factors.assign(spec.boundary.size() + 1, 0.0);
+    zero.newton.converged = true;
+    recorder.record(zero, d, problem.states(), newton, false, R);
+  }
+  const ScheduleOutcome o = run_load_schedule(
+      spec, problem, newton, d,
+      [&](IncrementRecord rec, bool write_fields) -> const IncrementRecord& {
+        PhaseTimer::Scope scope(R.timer, "increment_output");
+        recorder.record(std::move(rec), d, problem.states(), newton, write_fields, R);
+        return R.increments.back();
+      });
+  R.status = o.status;
+  R.stop_reason = o.stop_reason;
+  R.timer.add("newton", o.newton_seconds);
+  R.residual_seconds = problem.residual_seconds();
+  R.jacobian_seconds = problem.jacobian_seconds();
+  recorder.close();
+
+  // The converged state, for whatever comes next.
+  const PointStates& st = problem.states();
+  R.state.parameters = newton.gather_on_root(d);
+  solvers::broadcast(session.comm(), R.state.parameters, 0);
+  R.state.factors = R.increments.back().factors;
+  R.state.history = st.committed;
+  R.state.stress = st.committed_stress;
+  R.state.stress_zz = st.committed_stress_zz;
+  R.state.model = model;
+  return R;
+}
+
+} // namespace mf::implicit

@@ -1,0 +1,147 @@
+#include "meshfree/implicit/elastoplastic_system.hpp"
+#include "meshfree/core/error.hpp"
+#include "meshfree/core/timer.hpp"
+#include "meshfree/implicit/elasticity.hpp"
+#include <algorithm>
+#include <chrono>
+#include <string>
+
+namespace mf::implicit {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// Adds node-block vectors into the owned rows of a plain array.
+struct OwnedRowAdder {
+  int begin, end;
+  double* r;
+  void operator()(const int* nodes, int n, const double* v) const {
+    for (int a = 0; a < n; ++a) {
+      const int I = nodes[a];
+      if (I < begin || I >= end) continue;
+      r[2 * (I - begin)] += v[2 * a];
+      r[2 * (I - begin) + 1] += v[2 * a + 1];
+    }
+  }
+};
+
+} // namespace
+
+ElastoplasticSystem::ElastoplasticSystem(const io::ProblemSpec& spec, const GalerkinModel& m)
+    : spec_(spec), m_(m), params_(*spec.plasticity), states_(m.domain_table.rows()),
+      penalty_(m.pattern), tangent_(m.pattern), scatter_(m.domain_table, m.pattern) {
+  update_ = spec.model == materials::PlaneModel::PlaneStress ? &materials::j2_update_plane_stress
+                                                             : &materials::j2_update_plane_strain;
+  const int rows = m.pattern.rows();
+  loads_.assign(spec.boundary.size() + 1, std::vector<double>(2 * rows, 0.0));
+  counts_in_scale_.assign(loads_.size(), 0);
+  const auto add_penalty_matrix = [&](const int* nodes, int n, const double* v) {
+    penalty_.add_matrix(nodes, n, v);
+  };
+  for (std::size_t b = 0; b < m.conditions.size(); ++b) {
+    const ConditionPoints& c = m.conditions[b];
+    const OwnedRowAdder into{m.pattern.begin, m.pattern.end, loads_[b].data()};
+    if (c.bc->constrains) {
+      add_penalty(c.table, c.weight, c.bc->mask, c.bc->penalty, c.values, add_penalty_matrix, into);
+    } else {
+      add_load(c.table, c.weight, c.values, into);
+      counts_in_scale_[b] = 1;
+    }
+  }
+  if (!spec.body_force.isZero()) {
+    const OwnedRowAdder into{m.pattern.begin, m.pattern.end, loads_.back().data()};
+    add_load(m.domain_table, m.domain_weight,
+             std::vector<Vec2>(m.domain_weight.size(), spec.body_force), into);
+    counts_in_scale_.back() = 1;
+  }
+  factors_.assign(loads_.size(), 0.0);
+}
+
+void ElastoplasticSystem::commit() {
+  states_.committed = states_.trial;
+  states_.committed_stress = states_.stress;
+  states_.committed_stress_zz = states_.stress_zz;
+}
+
+void ElastoplasticSystem::residual(const std::vector<double>& d, double* r, double& scale_squared) {
+  const auto t0 = Clock::now();
+  update_materials(d);
+  const int rows = m_.pattern.rows();
+  std::fill(r, r + 2 * rows, 0.0);
+  add_internal_force(m_.domain_table, m_.domain_weight, states_.stress,
+                     OwnedRowAdder{m_.pattern.begin, m_.pattern.end, r});
+  double internal = 0.0, external = 0.0;
+  for (int i = 0; i < 2 * rows; ++i) internal += r[i] * r[i];
+  penalty_.multiply_add(d, r);
+  for (int i = 0; i < 2 * rows; ++i) {
+    double applied = 0.0, load = 0.0;
+    for (std::size_t c = 0; c < loads_.size(); ++c) {
+      applied += factors_[c] * loads_[c][i];
+      if (counts_in_scale_[c]) load += factors_[c] * loads_[c][i];
+    }
+    r[i] -= applied;
+    external += load * load;
+  }
+  scale_squared = internal + external;
+  residual_seconds_ += seconds_since(t0);
+}
+
+void ElastoplasticSystem::jacobian(const std::vector<double>& d, std::vector<double>& blocks) {
+  const auto t0 = Clock::now();
+  update_materials(d);
+  tangent_.set_values(penalty_.values());
+  const ShapeTable& t = m_.domain_table;
+  for (int k = 0; k < t.rows(); ++k) {
+    const int n = t.offset[k + 1] - t.offset[k];
+    block_.resize(4 * n * n);
+    point_stiffness(t, k, m_.domain_weight[k] * states_.tangent[k], block_.data());
+    tangent_.add_matrix_at(scatter_.slots(k), n, block_.data());
+  }
+  blocks = tangent_.values();
+  jacobian_seconds_ += seconds_since(t0);
+}
+
+std::vector<int> ElastoplasticSystem::needed_nodes() const {
+  std::vector<int> nodes(m_.domain_table.node);
+  nodes.insert(nodes.end(), m_.pattern.column.begin(), m_.pattern.column.end());
+  for (const ConditionPoints& c : m_.conditions)
+    nodes.insert(nodes.end(), c.table.node.begin(), c.table.node.end());
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  return nodes;
+}
+
+void ElastoplasticSystem::update_materials(const std::vector<double>& d) {
+  if (states_valid_ && d == states_d_) return;
+  const ShapeTable& t = m_.domain_table;
+  const int n = t.rows();
+  int failed = n;
+  std::string message;
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < n; ++k) {
+    const Vec3 eps = strain_at(t, k, d);
+    try {
+      MF_REQUIRE(eps.allFinite(), "the strain is not finite");
+      const materials::J2Result2D r = update_(params_, eps, states_.committed[k]);
+      MF_REQUIRE(r.stress.allFinite(), "the stress is not finite");
+      states_.trial[k] = r.state;
+      states_.stress[k] = r.stress;
+      states_.stress_zz[k] = r.stress_zz;
+      states_.tangent[k] = r.tangent;
+      states_.plastic[k] = r.plastic;
+    } catch (const std::exception& e) {
+#pragma omp critical
+      if (k < failed) failed = k, message = e.what();
+    }
+  }
+  if (failed < n) {
+    states_valid_ = false;
+    const Vec2& x = m_.domain.x[m_.domain_mine.rows[failed]];
+    fail("material update failed at the Gauss point (", x.x(), ", ", x.y(), "): ", message);
+  }
+  states_d_ = d;
+  states_valid_ = true;
+}
+
+} // namespace mf::implicit

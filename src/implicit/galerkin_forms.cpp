@@ -1,0 +1,63 @@
+#include "meshfree/implicit/galerkin_forms.hpp"
+#include "meshfree/implicit/elasticity.hpp"
+#include "meshfree/solvers/parallel.hpp"
+#include <algorithm>
+
+namespace mf::implicit {
+
+BlockRows assemble_linear_elastic(const io::ProblemSpec& spec, const GalerkinModel& m,
+                                  const std::vector<double>& factors) {
+  MF_REQUIRE(factors.size() == spec.boundary.size() + 1, "assemble_linear_elastic: factors");
+  BlockRows rows(m.pattern);
+  const auto add_matrix = [&](const int* nodes, int n, const double* v) {
+    rows.add_matrix(nodes, n, v);
+  };
+  const auto add_vector = [&](const int* nodes, int n, const double* v) {
+    rows.add_vector(nodes, n, v);
+  };
+  add_stiffness(m.domain_table, m.domain_weight,
+                materials::elastic_matrix(spec.material, spec.model), add_matrix);
+  if (!spec.body_force.isZero() && factors.back() != 0.0)
+    add_load(m.domain_table, m.domain_weight,
+             std::vector<Vec2>(m.domain_weight.size(), factors.back() * spec.body_force),
+             add_vector);
+  for (std::size_t b = 0; b < m.conditions.size(); ++b) {
+    const ConditionPoints& c = m.conditions[b];
+    std::vector<Vec2> values = c.values;
+    for (Vec2& v : values) v *= factors[b];
+    if (c.bc->constrains)
+      add_penalty(c.table, c.weight, c.bc->mask, c.bc->penalty, values, add_matrix, add_vector);
+    else
+      add_load(c.table, c.weight, values, add_vector);
+  }
+  return rows;
+}
+
+BoundaryReport boundary_report(const ConditionPoints& c, const std::vector<double>& d,
+                               double factor, const solvers::PetscSession& session) {
+  const io::BoundaryCondition& bc = *c.bc;
+  BoundaryReport rep;
+  rep.name = bc.name;
+  rep.constraint = bc.constrains;
+  double force[2] = {0, 0}, gap_max = 0.0;
+  for (int k = 0; k < c.table.rows(); ++k) {
+    if (!c.mine.counted[k]) continue;
+    if (bc.constrains) {
+      const Vec2 gap =
+          (displacement_at(c.table, k, d) - factor * c.values[k]).cwiseProduct(bc.mask);
+      force[0] -= bc.penalty * c.weight[k] * gap.x();
+      force[1] -= bc.penalty * c.weight[k] * gap.y();
+      gap_max = std::max(gap_max, gap.norm());
+    } else {
+      force[0] += factor * c.weight[k] * c.values[k].x();
+      force[1] += factor * c.weight[k] * c.values[k].y();
+    }
+  }
+  solvers::sum_everywhere(session.comm(), force, 2);
+  gap_max = solvers::max_everywhere(session.comm(), gap_max);
+  rep.force = Vec2(force[0], force[1]);
+  rep.violation_max = gap_max;
+  return rep;
+}
+
+} // namespace mf::implicit

@@ -1,0 +1,132 @@
+#include "meshfree/implicit/model_problem_1d.hpp"
+#include "meshfree/core/gauss_legendre.hpp"
+#include "meshfree/core/log.hpp"
+#include "meshfree/implicit/meshfree_space.hpp"
+#include <Eigen/LU>
+#include <cmath>
+
+namespace mf::implicit {
+
+double model_1d_exact(const io::ModelProblem1D& p, double x) {
+  const double k = p.sine_waves * M_PI / p.length;
+  return p.sine_amplitude * std::sin(k * x) + p.linear * x * (p.length * p.length - x * x) / 6.0;
+}
+
+double model_1d_exact_slope(const io::ModelProblem1D& p, double x) {
+  const double k = p.sine_waves * M_PI / p.length;
+  return p.sine_amplitude * k * std::cos(k * x) +
+         p.linear * (p.length * p.length - 3.0 * x * x) / 6.0;
+}
+
+double model_1d_source(const io::ModelProblem1D& p, double x) { // f = -y''
+  const double k = p.sine_waves * M_PI / p.length;
+  return p.sine_amplitude * k * k * std::sin(k * x) + p.linear * x;
+}
+
+Model1DResult solve_model_problem_1d(const io::ProblemSpec& spec) {
+  Model1DResult R;
+  const io::ModelProblem1D& P = spec.model_1d;
+  const io::DiscretisationSpec& disc = spec.discretisation;
+  const double L = P.length;
+  const int n = static_cast<int>(std::round(L / disc.spacing)) + 1;
+  MF_REQUIRE(n >= 3 && n <= 4000, "discretisation.spacing: gives ", n, " nodes on [0, ", L,
+             "]; the 1D model problem takes 3 to 4000");
+  const double h = L / (n - 1);
+  geometry::NodeCloud cloud;
+  for (int i = 0; i < n; ++i) {
+    cloud.x.emplace_back(i * h, 0.0);
+    cloud.spacing.push_back(h);
+    cloud.volume.push_back(h);
+  }
+  const MeshfreeSpace space(cloud, disc.shape, disc.dilation);
+  R.nodes = n;
+
+  // Gauss points on background cells of [0, L].
+  std::vector<Vec2> gx;
+  std::vector<double> gw;
+  const GaussRule& g = gauss_legendre(disc.order);
+  const int cells = std::max(1, static_cast<int>(std::ceil(L / disc.cell_size - 1e-9)));
+  for (int c = 0; c < cells; ++c)
+    for (std::size_t q = 0; q < g.points.size(); ++q) {
+      gx.emplace_back((c + 0.5 * (g.points[q] + 1.0)) * L / cells, 0.0);
+      gw.push_back(0.5 * g.weights[q] * L / cells);
+    }
+  R.points = static_cast<int>(gx.size());
+  std::vector<int> all(gx.size());
+  for (std::size_t i = 0; i < gx.size(); ++i) all[i] = static_cast<int>(i);
+  const ShapeTable t = space.shape_table(gx, all, space.support_lists(gx), true);
+
+  // K_IJ = int phi_I' phi_J' dx + alpha (phi_I phi_J)|_{0, L};  F_I = int phi_I f dx.
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
+  Eigen::VectorXd F = Eigen::VectorXd::Zero(n);
+  {
+    PhaseTimer::Scope scope(R.timer, "assembly");
+    for (int r = 0; r < t.rows(); ++r) {
+      const double f = model_1d_source(P, gx[r].x());
+      for (int a = t.offset[r]; a < t.offset[r + 1]; ++a) {
+        F(t.node[a]) += gw[r] * t.phi[a] * f;
+        for (int b = t.offset[r]; b < t.offset[r + 1]; ++b)
+          K(t.node[a], t.node[b]) += gw[r] * t.dphi[a].x() * t.dphi[b].x();
+      }
+    }
+    const std::vector<Vec2> ends{{0.0, 0.0}, {L, 0.0}};
+    std::vector<int> both{0, 1};
+    const ShapeTable e = space.shape_table(ends, both, space.support_lists(ends), false);
+    for (int r = 0; r < e.rows(); ++r)
+      for (int a = e.offset[r]; a < e.offset[r + 1]; ++a)
+        for (int b = e.offset[r]; b < e.offset[r + 1]; ++b)
+          K(e.node[a], e.node[b]) += P.penalty * e.phi[a] * e.phi[b];
+  }
+  Eigen::VectorXd d;
+  {
+    PhaseTimer::Scope scope(R.timer, "solve");
+    d = K.partialPivLu().solve(F);
+  }
+
+  PhaseTimer::Scope scope(R.timer, "postprocess");
+  double s[4] = {0, 0, 0, 0};
+  for (int r = 0; r < t.rows(); ++r) {
+    double y = 0.0, dy = 0.0;
+    for (int a = t.offset[r]; a < t.offset[r + 1]; ++a) {
+      y += t.phi[a] * d(t.node[a]);
+      dy += t.dphi[a].x() * d(t.node[a]);
+    }
+    const double ye = model_1d_exact(P, gx[r].x()), dye = model_1d_exact_slope(P, gx[r].x());
+    s[0] += gw[r] * (y - ye) * (y - ye);
+    s[1] += gw[r] * ye * ye;
+    s[2] += gw[r] * (dy - dye) * (dy - dye);
+    s[3] += gw[r] * dye * dye;
+  }
+  R.error_l2 = std::sqrt(s[0] / s[1]);
+  R.error_h1 = std::sqrt(s[2] / s[3]);
+
+  const int samples = 10 * (n - 1) + 1;
+  std::vector<Vec2> sx;
+  std::vector<int> rows;
+  for (int k = 0; k < samples; ++k) {
+    sx.emplace_back(L * k / (samples - 1), 0.0);
+    rows.push_back(k);
+  }
+  const ShapeTable st = space.shape_table(sx, rows, space.support_lists(sx), true);
+  double ymax = 0.0, emax = 0.0;
+  for (int r = 0; r < st.rows(); ++r) {
+    double y = 0.0, dy = 0.0;
+    for (int a = st.offset[r]; a < st.offset[r + 1]; ++a) {
+      y += st.phi[a] * d(st.node[a]);
+      dy += st.dphi[a].x() * d(st.node[a]);
+    }
+    R.x.push_back(sx[r].x());
+    R.y.push_back(y);
+    R.dy.push_back(dy);
+    R.y_exact.push_back(model_1d_exact(P, sx[r].x()));
+    R.dy_exact.push_back(model_1d_exact_slope(P, sx[r].x()));
+    ymax = std::max(ymax, std::abs(R.y_exact.back()));
+    emax = std::max(emax, std::abs(y - R.y_exact.back()));
+  }
+  R.error_max = emax / ymax;
+  log::info("1D model problem: ", n, " nodes, relative errors L2 ", R.error_l2, ", H1 ", R.error_h1,
+            ", max ", R.error_max);
+  return R;
+}
+
+} // namespace mf::implicit
