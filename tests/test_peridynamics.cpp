@@ -2,7 +2,7 @@
 // moduli of the discrete model from uniform deformations, wave speeds against theory, energy
 // conservation of velocity Verlet, momentum conservation of the impactor contact, bond breaking,
 // pre-cracks, and the Haar approximation of load histories.
-#include "meshfree/app/peridynamics.hpp"
+#include "meshfree/explicit/pd_setup.hpp"
 #include "meshfree/loads/blast.hpp"
 #include "meshfree/loads/time_function.hpp"
 #include "meshfree/pd/dynamics.hpp"
@@ -47,9 +47,9 @@ pd::Model lattice_model(PdDimension dim, int nx, int ny, int nz, double dx, doub
 
 /// Strain energy density at particle `centre` under the displacement u = G x.
 double energy_density(const pd::Model& m, int centre, const Eigen::Matrix3d& G) {
-  std::vector<double> y = m.particles.x;
+  std::vector<double> y = m.particles.X;
   for (int i = 0; i < m.particles.size(); ++i) {
-    const Eigen::Vector3d x = m.particles.position(i);
+    const Eigen::Vector3d x = m.particles.reference(i);
     const Eigen::Vector3d u = G * x;
     for (int d = 0; d < 3; ++d) y[3 * i + d] += u(d);
   }
@@ -149,7 +149,7 @@ TEST_CASE("bonds break where the stretch exceeds the critical stretch, and not e
   const double s0 = 0.01, eps = 0.015;
   m.laws[0].critical_stretch = s0;
   // Uniform stretch eps along x: a bond at angle theta has s = sqrt(1 + (2 eps + eps^2) cos^2) - 1.
-  std::vector<double> y = m.particles.x;
+  std::vector<double> y = m.particles.X;
   for (int i = 0; i < m.particles.size(); ++i) y[3 * i] *= 1.0 + eps;
   pd::BondState s = pd::initial_state(m, {});
   std::vector<double> f;
@@ -157,7 +157,8 @@ TEST_CASE("bonds break where the stretch exceeds the critical stretch, and not e
   long expected = 0, wrong = 0;
   for (int i = 0; i < m.particles.size(); ++i)
     for (long k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) {
-      const Eigen::Vector3d d = m.particles.position(m.bonds.partner[k]) - m.particles.position(i);
+      const Eigen::Vector3d d =
+          m.particles.reference(m.bonds.partner[k]) - m.particles.reference(i);
       const double c2 = d.x() * d.x() / d.squaredNorm();
       const bool should_break = std::sqrt(1.0 + (2.0 * eps + eps * eps) * c2) - 1.0 > s0;
       expected += should_break;
@@ -167,7 +168,7 @@ TEST_CASE("bonds break where the stretch exceeds the critical stretch, and not e
   CHECK(r.broken == expected);
   CHECK(expected > 0);
   // Breaking is for good: back at the reference configuration the bonds stay broken.
-  pd::bond_forces(m, s, m.particles.x, f);
+  pd::bond_forces(m, s, m.particles.X, f);
   long intact = 0;
   for (unsigned char b : s.intact) intact += b;
   CHECK(intact == m.bonds.count() - expected);
@@ -182,8 +183,8 @@ TEST_CASE("a pre-crack cuts exactly the bonds that cross it", "[pd]") {
   long cut = 0, wrong = 0;
   for (int i = 0; i < m.particles.size(); ++i)
     for (long k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) {
-      const Eigen::Vector3d a = m.particles.position(i);
-      const Eigen::Vector3d b = m.particles.position(m.bonds.partner[k]);
+      const Eigen::Vector3d a = m.particles.reference(i);
+      const Eigen::Vector3d b = m.particles.reference(m.bonds.partner[k]);
       const bool crosses = (a.x() - 9.5e-3) * (b.x() - 9.5e-3) < 0.0 &&
                            a.y() + (b.y() - a.y()) * (9.5e-3 - a.x()) / (b.x() - a.x()) <= 10.2e-3;
       cut += !s.intact[k];
@@ -217,16 +218,16 @@ TEST_CASE("velocity Verlet conserves energy over 10,000 steps without breaking",
   pd::Model m = lattice_model(PdDimension::PlaneStress, 30, 15, 1, 1e-3, 3.0, 1e9, 1000.0,
                               pd::VolumeCorrection::Exact);
   pd::BondState s = pd::initial_state(m, {});
-  pd::Motion q(m.particles.size());
+  particles::ParticleSet& q = m.particles;
   // A smooth velocity field: stretching and bending modes of the free plate.
   for (int i = 0; i < m.particles.size(); ++i) {
-    const Eigen::Vector3d x = m.particles.position(i);
+    const Eigen::Vector3d x = m.particles.reference(i);
     q.v[3 * i] = 0.5 * std::sin(M_PI * x.x() / 0.03);
     q.v[3 * i + 1] = 0.3 * std::cos(M_PI * x.x() / 0.03) * std::sin(M_PI * x.y() / 0.015);
   }
   pd::Loading none;
   std::vector<pd::Impactor> no_impactors;
-  const double e0 = pd::kinetic_energy(m, q) + pd::accelerate(m, s, q, none, true).strain_energy;
+  const double e0 = pd::kinetic_energy(m) + pd::accelerate(m, s, none, true).strain_energy;
   // Velocity Verlet keeps a shadow energy: E oscillates within O(dt^2) and does not drift.
   // Measured on this plate: max |E - E0| / E0 = 2.6e-3 at 0.8 dt_crit, 1.0e-3 at 0.5, 2.4e-4 at
   // 0.25, the same in the first and the last thousand steps.
@@ -234,9 +235,9 @@ TEST_CASE("velocity Verlet conserves energy over 10,000 steps without breaking",
   double worst = 0.0, first = 0.0, last = 0.0;
   for (int step = 1; step <= 10000; ++step) {
     const bool check = step % 50 == 0;
-    const pd::StepReport r = pd::advance(m, s, q, none, no_impactors, dt, check);
+    const pd::StepReport r = pd::advance(m, s, none, no_impactors, dt, check);
     if (!check) continue;
-    const double e = std::abs(pd::kinetic_energy(m, q) + r.strain_energy - e0) / e0;
+    const double e = std::abs(pd::kinetic_energy(m) + r.strain_energy - e0) / e0;
     worst = std::max(worst, e);
     if (step <= 1000) first = std::max(first, e);
     if (step > 9000) last = std::max(last, e);
@@ -251,7 +252,7 @@ TEST_CASE("kinematic impactor contact conserves the momentum of impactor and bod
   pd::Model m = lattice_model(PdDimension::PlaneStress, 40, 10, 1, 1e-3, 3.0, 3.1e9, 1200.0,
                               pd::VolumeCorrection::Exact);
   pd::BondState s = pd::initial_state(m, {});
-  pd::Motion q(m.particles.size());
+  particles::ParticleSet& q = m.particles;
   pd::Loading none;
   std::vector<pd::Impactor> imp(1);
   imp[0].shape = pd::Impactor::Shape::Sphere;
@@ -259,7 +260,7 @@ TEST_CASE("kinematic impactor contact conserves the momentum of impactor and bod
   imp[0].mass = 0.01;
   imp[0].position = {19.5e-3, 9e-3 + 5e-3 + 0.2e-3, 0.0}; // just above the top row
   imp[0].velocity = {0.0, -10.0, 0.0};
-  pd::accelerate(m, s, q, none, false);
+  pd::accelerate(m, s, none, false);
   const double dt = 0.5 * pd::stable_time_step(m);
   const auto momentum = [&]() {
     Eigen::Vector3d p = imp[0].mass * imp[0].velocity;
@@ -271,7 +272,7 @@ TEST_CASE("kinematic impactor contact conserves the momentum of impactor and bod
   const Eigen::Vector3d p0 = momentum();
   double worst = 0.0, largest_force = 0.0;
   for (int step = 0; step < 400; ++step) {
-    pd::advance(m, s, q, none, imp, dt, false);
+    pd::advance(m, s, none, imp, dt, false);
     worst = std::max(worst, (momentum() - p0).norm() / p0.norm());
     largest_force = std::max(largest_force, imp[0].contact_force.norm());
   }
@@ -292,7 +293,7 @@ double pulse_speed(PdDimension dim, int nx, int ny, int nz, double dx, bool surf
   pd::Model m = lattice_model(dim, nx, ny, nz, dx, 3.0, E, density, pd::VolumeCorrection::Exact);
   if (surface_correction) pd::apply_surface_correction(m);
   pd::BondState s = pd::initial_state(m, {});
-  pd::Motion q(m.particles.size());
+  particles::ParticleSet& q = m.particles;
   pd::Loading loading;
   loads::TimeFunction pulse;
   pulse.kind = loads::TimeFunction::Kind::Sine;
@@ -308,14 +309,14 @@ double pulse_speed(PdDimension dim, int nx, int ny, int nz, double dx, bool surf
   drive.function = 0;
   for (int i = 0; i < m.particles.size(); ++i) {
     lateral.particles.push_back(i);
-    if (m.particles.x[3 * i] < 0.5 * dx) drive.particles.push_back(i);
+    if (m.particles.X[3 * i] < 0.5 * dx) drive.particles.push_back(i);
   }
   loading.constraints = {lateral, drive};
   const auto on_axis = [&](double x) {
     int best = 0;
     double d = 1e300;
     for (int i = 0; i < m.particles.size(); ++i) {
-      const Eigen::Vector3d p = m.particles.position(i);
+      const Eigen::Vector3d p = m.particles.reference(i);
       const double e = std::abs(p.x() - x) + std::abs(p.y() - 0.5 * (ny - 1) * dx) +
                        (plane ? 0.0 : std::abs(p.z() - 0.5 * (nz - 1) * dx));
       if (e < d) d = e, best = i;
@@ -325,12 +326,12 @@ double pulse_speed(PdDimension dim, int nx, int ny, int nz, double dx, bool surf
   const double length = (nx - 1) * dx;
   const int g1 = on_axis(0.25 * length), g2 = on_axis(0.75 * length);
   std::vector<pd::Impactor> none;
-  pd::accelerate(m, s, q, loading, false);
+  pd::accelerate(m, s, loading, false);
   const double dt = 0.8 * pd::stable_time_step(m);
   std::vector<double> t, v1, v2;
   // Until the pulse has passed the second gauge, before its reflection from the free end returns.
   while (q.time < 0.75 * length / (0.95 * expected) + 2.5e-5) {
-    pd::advance(m, s, q, loading, none, dt, false);
+    pd::advance(m, s, loading, none, dt, false);
     t.push_back(q.time);
     v1.push_back(q.v[3 * g1]);
     v2.push_back(q.v[3 * g2]);
@@ -340,7 +341,7 @@ double pulse_speed(PdDimension dim, int nx, int ny, int nz, double dx, bool surf
     const double a = v[i - 1], b = v[i], c = v[i + 1];
     return t[i] + 0.5 * dt * (a - c) / (a - 2.0 * b + c);
   };
-  return (m.particles.x[3 * g2] - m.particles.x[3 * g1]) / (peak_time(v2) - peak_time(v1));
+  return (m.particles.X[3 * g2] - m.particles.X[3 * g1]) / (peak_time(v2) - peak_time(v1));
 }
 
 } // namespace
@@ -402,11 +403,11 @@ TEST_CASE("PMB on a lattice matches LAMMPS peri/pmb step for step before any bon
   t.law_of = {0};
   pd::build_bonds(m, t, pd::VolumeCorrection::Linear);
   pd::BondState s = pd::initial_state(m, {});
-  pd::Motion q(m.particles.size());
+  particles::ParticleSet& q = m.particles;
   q.v = v0;
   pd::Loading none;
   std::vector<pd::Impactor> no_impactors;
-  pd::accelerate(m, s, q, none, false);
+  pd::accelerate(m, s, none, false);
   // LAMMPS's displacements at every 40th step.
   std::ifstream ref(dir + "displacements.csv");
   std::getline(ref, line);
@@ -425,7 +426,7 @@ TEST_CASE("PMB on a lattice matches LAMMPS peri/pmb step for step before any bon
   double worst = 0.0, largest = 0.0;
   long broken = 0;
   for (int step = 1; step <= 400; ++step) {
-    broken += pd::advance(m, s, q, none, no_impactors, 1e-8, false).broken;
+    broken += pd::advance(m, s, none, no_impactors, 1e-8, false).broken;
     const auto it = lammps.find(step);
     if (it == lammps.end()) continue;
     double scale = 0.0, diff = 0.0;
@@ -466,13 +467,13 @@ TEST_CASE("a blast gives a free slab the momentum of the Kingery-Bulmash impulse
     const io::ProblemSpec spec =
         load_problem("pd_slab_blast", {"time.safety=" + std::to_string(safety)});
     PhaseTimer timer;
-    app::PdSetup setup = app::build_pd_setup(spec, timer);
+    explicit_dynamics::PdSetup setup = explicit_dynamics::build_pd_setup(spec, timer);
     setup.loading.constraints.clear();
-    pd::Motion q(setup.model.particles.size());
-    pd::accelerate(setup.model, setup.state, q, setup.loading, false);
+    particles::ParticleSet& q = setup.model.particles;
+    pd::accelerate(setup.model, setup.state, setup.loading, false);
     while (q.time < 2.4e-3) // every positive phase has ended by 2.29 ms
-      pd::advance(setup.model, setup.state, q, setup.loading, setup.impactors, setup.dt, false);
-    const pd::Particles& p = setup.model.particles;
+      pd::advance(setup.model, setup.state, setup.loading, setup.impactors, setup.dt, false);
+    const particles::ParticleSet& p = setup.model.particles;
     double py = 0.0, px = 0.0;
     for (int i = 0; i < p.size(); ++i) {
       py += p.density[i] * p.volume[i] * q.v[3 * i + 1];

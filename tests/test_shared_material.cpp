@@ -3,6 +3,8 @@
 // refusing clearly when that part is missing), and each run is checked against a closed form.
 #include "meshfree/app/peridynamics.hpp"
 #include "meshfree/app/sph_run.hpp"
+#include "meshfree/explicit/pd_setup.hpp"
+#include "meshfree/explicit/sph_setup.hpp"
 #include "meshfree/implicit/elastoplastic_solve.hpp"
 #include "meshfree/io/key_reader.hpp"
 #include "meshfree/io/problem_spec.hpp"
@@ -145,12 +147,12 @@ TEST_CASE("shared steel, peridynamics: micromodulus from E and a free rigid tran
           "[materials][pd]") {
   const io::ProblemSpec spec = parse(kCube);
   PhaseTimer timer;
-  const app::PdSetup setup = app::build_pd_setup(spec, timer);
+  const explicit_dynamics::PdSetup setup = explicit_dynamics::build_pd_setup(spec, timer);
   const double delta = 3.0 * 0.001;
   // Bond-based 3D solid: c = 12 E / (pi delta^4) (Silling & Askari 2005, k = 2E/3).
   REQUIRE(!setup.model.laws.empty());
   CHECK(setup.model.laws[0].c == Approx(12.0 * kE / (M_PI * std::pow(delta, 4))).epsilon(1e-14));
-  const app::PdResult r = app::run_peridynamics(spec, nullptr);
+  const auto r = app::run_peridynamics(spec, nullptr);
   REQUIRE(r.status == "completed");
   for (const auto& [name, value] : r.gauge_maxima) {
     // Round-off in the bond stretches of the moving lattice is all that acts on the body.
@@ -162,7 +164,7 @@ TEST_CASE("shared steel, peridynamics: micromodulus from E and a free rigid tran
 TEST_CASE("shared steel, SPH: bulk sound speed and the stress behind an elastic front",
           "[materials][sph]") {
   const io::ProblemSpec spec = parse(kImpact);
-  sph::Hydro h = app::build_sph(*spec.sph);
+  sph::Hydro h = explicit_dynamics::build_sph(*spec.sph);
   // A solid's sound speed at rest: the longitudinal c_L = sqrt((K + 4G/3) / rho), K from the
   // linear equation of state p = K mu and G from E and nu.
   const double cl = std::sqrt((kBulk + 4.0 / 3.0 * kShear) / kRho);

@@ -1,7 +1,7 @@
 // SPH hydrodynamics: the kernel, the equations of state against the jump conditions they must
 // satisfy, Sod's shock tube against the exact Riemann solution, and a TNT slab detonation
 // against the Chapman-Jouguet pressure.
-#include "meshfree/app/sph_run.hpp"
+#include "meshfree/explicit/sph_setup.hpp"
 #include "meshfree/kernels/sph_kernel.hpp"
 #include "meshfree/loads/blast.hpp"
 #include "meshfree/materials/eos.hpp"
@@ -859,7 +859,7 @@ TEST_CASE("a blast gives a free SPH plate the momentum of the Kingery-Bulmash im
     expected += dx * f.impulse();
     peak_force += dx * f.peak;
   }
-  sph::Hydro h = app::build_sph(*spec.sph);
+  sph::Hydro h = explicit_dynamics::build_sph(*spec.sph);
   REQUIRE(h.loads.size() == 1);
   REQUIRE(h.loads[0].particles.size() == 100);
   const double e0 = sph::energies(h).total();

@@ -7,6 +7,8 @@
 #include "meshfree/app/peridynamics.hpp"
 #include "meshfree/app/sph_run.hpp"
 #include "meshfree/core/log.hpp"
+#include "meshfree/explicit/pd_setup.hpp"
+#include "meshfree/explicit/sph_setup.hpp"
 #include "meshfree/geometry/node_generation.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/io/problem_spec.hpp"
@@ -73,7 +75,7 @@ int check(const Command& c) {
     return 0;
   }
   if (spec.analysis == mf::io::Analysis::Sph) {
-    const mf::sph::Hydro h = mf::app::build_sph(*spec.sph);
+    const mf::sph::Hydro h = mf::explicit_dynamics::build_sph(*spec.sph);
     int limiting = -1;
     const double dt = mf::sph::stable_step(h, &limiting);
     std::cout << "  sph: " << h.particles.size() << " particles in " << spec.sph->dimension
@@ -83,7 +85,7 @@ int check(const Command& c) {
   }
   if (spec.analysis == mf::io::Analysis::Peridynamics) {
     mf::PhaseTimer timer;
-    const mf::app::PdSetup setup = mf::app::build_pd_setup(spec, timer);
+    const mf::explicit_dynamics::PdSetup setup = mf::explicit_dynamics::build_pd_setup(spec, timer);
     std::cout << "  peridynamics: " << setup.model.particles.size() << " particles, "
               << setup.model.bonds.count() / 2 << " bonds, horizon " << setup.model.horizon
               << "\n  time step " << setup.dt << " (" << setup.dt_limit << "), "
@@ -154,7 +156,7 @@ int run(Command& c) {
       // Explicit dynamics runs on OpenMP threads within one process.
       MF_REQUIRE(session.size() == 1, "analysis peridynamics runs on one MPI rank (it is "
                                       "parallel over OpenMP threads: set OMP_NUM_THREADS)");
-      mf::app::PdResult r = mf::app::run_peridynamics(spec, out.get());
+      mf::explicit_dynamics::PdRunResult r = mf::app::run_peridynamics(spec, out.get());
       {
         mf::PhaseTimer::Scope scope(r.timer, "output");
         if (out) mf::app::write_pd_outputs(spec, r, *out);
@@ -164,7 +166,7 @@ int run(Command& c) {
     } else if (spec.analysis == mf::io::Analysis::Sph) {
       MF_REQUIRE(session.size() == 1, "analysis sph runs on one MPI rank (it is parallel over "
                                       "OpenMP threads: set OMP_NUM_THREADS)");
-      mf::app::SphResult r = mf::app::run_sph(spec, out.get());
+      mf::explicit_dynamics::SphRunResult r = mf::app::run_sph(spec, out.get());
       {
         mf::PhaseTimer::Scope scope(r.timer, "output");
         if (out) mf::app::write_sph_outputs(spec, r, *out);

@@ -9,7 +9,7 @@ namespace {
 /// velocity that moved them there from u_before over dt), velocity constraints set v;
 /// accelerations of constrained components are zero. Without u_before only the accelerations
 /// are set.
-void impose(const Loading& loading, Motion& q, double t, double dt,
+void impose(const Loading& loading, particles::ParticleSet& q, double t, double dt,
             const std::vector<double>* u_before) {
   for (const Constraint& c : loading.constraints) {
     const double f = loading.factor(c.function, t);
@@ -31,14 +31,13 @@ void impose(const Loading& loading, Motion& q, double t, double dt,
 }
 
 /// Kinematic contact of one impactor with the particles at their current positions.
-void contact(const Model& m, Motion& q, Impactor& imp, double dt) {
-  const Particles& p = m.particles;
+void contact(particles::ParticleSet& p, Impactor& imp, double dt) {
   const int n = p.size();
   double impulse[3] = {0.0, 0.0, 0.0};
 #pragma omp parallel for schedule(static) reduction(+ : impulse[:3])
   for (int i = 0; i < n; ++i) {
-    Eigen::Vector3d y(p.x[3 * i] + q.u[3 * i], p.x[3 * i + 1] + q.u[3 * i + 1],
-                      p.x[3 * i + 2] + q.u[3 * i + 2]);
+    Eigen::Vector3d y(p.X[3 * i] + p.u[3 * i], p.X[3 * i + 1] + p.u[3 * i + 1],
+                      p.X[3 * i + 2] + p.u[3 * i + 2]);
     const Eigen::Vector3d rel = y - imp.position;
     Eigen::Vector3d target;
     if (imp.shape == Impactor::Shape::Sphere) {
@@ -55,9 +54,9 @@ void contact(const Model& m, Motion& q, Impactor& imp, double dt) {
     for (int d = 0; d < 3; ++d) {
       const std::size_t k = 3 * static_cast<std::size_t>(i) + d;
       const double moved = target(d) - y(d);
-      q.u[k] += moved;
+      p.u[k] += moved;
       const double dv = moved / dt;
-      q.v[k] += dv;
+      p.v[k] += dv;
       impulse[d] += mass * dv;
     }
   }
@@ -69,12 +68,11 @@ void contact(const Model& m, Motion& q, Impactor& imp, double dt) {
 
 } // namespace
 
-StepReport accelerate(const Model& m, BondState& s, Motion& q, const Loading& loading,
-                      bool with_energy) {
-  const Particles& p = m.particles;
-  const int n = p.size();
+StepReport accelerate(Model& m, BondState& s, const Loading& loading, bool with_energy) {
+  particles::ParticleSet& q = m.particles;
+  const int n = q.size();
   std::vector<double> y(3 * static_cast<std::size_t>(n));
-  for (std::size_t k = 0; k < y.size(); ++k) y[k] = p.x[k] + q.u[k];
+  for (std::size_t k = 0; k < y.size(); ++k) y[k] = q.X[k] + q.u[k];
   std::vector<double> f;
   const ForceReport fr = bond_forces(m, s, y, f, with_energy);
   for (const BodyLoad& load : loading.loads)
@@ -85,7 +83,7 @@ StepReport accelerate(const Model& m, BondState& s, Motion& q, const Loading& lo
     }
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i)
-    for (int d = 0; d < 3; ++d) q.a[3 * i + d] = f[3 * i + d] / p.density[i];
+    for (int d = 0; d < 3; ++d) q.a[3 * i + d] = f[3 * i + d] / q.density[i];
   impose(loading, q, q.time, 0.0, nullptr);
   StepReport r;
   r.broken = fr.broken;
@@ -93,9 +91,10 @@ StepReport accelerate(const Model& m, BondState& s, Motion& q, const Loading& lo
   return r;
 }
 
-StepReport advance(const Model& m, BondState& s, Motion& q, const Loading& loading,
-                   std::vector<Impactor>& impactors, double dt, bool with_energy) {
-  const int n = m.particles.size();
+StepReport advance(Model& m, BondState& s, const Loading& loading, std::vector<Impactor>& impactors,
+                   double dt, bool with_energy) {
+  particles::ParticleSet& q = m.particles;
+  const int n = q.size();
   const std::size_t size = 3 * static_cast<std::size_t>(n);
   // Work of the body loads over the step: the trapezoidal rule on b . du.
   double work = 0.0;
@@ -123,13 +122,13 @@ StepReport advance(const Model& m, BondState& s, Motion& q, const Loading& loadi
   impose(loading, q, q.time, dt, &u_old);
   for (Impactor& imp : impactors) {
     imp.position += dt * imp.velocity;
-    contact(m, q, imp, dt);
+    contact(q, imp, dt);
   }
   std::vector<double> du(size);
   for (std::size_t k = 0; k < size; ++k) du[k] = q.u[k] - u_old[k];
   work += 0.5 * (load_power(du, t_old) + load_power(du, q.time));
   // New accelerations and the second half kick.
-  StepReport r = accelerate(m, s, q, loading, with_energy);
+  StepReport r = accelerate(m, s, loading, with_energy);
 #pragma omp parallel for schedule(static)
   for (std::size_t k = 0; k < size; ++k) q.v[k] += 0.5 * dt * q.a[k];
   for (const Constraint& c : loading.constraints) // prescribed velocities stay as prescribed
@@ -143,12 +142,12 @@ StepReport advance(const Model& m, BondState& s, Motion& q, const Loading& loadi
   return r;
 }
 
-double kinetic_energy(const Model& m, const Motion& q) {
-  const Particles& p = m.particles;
+double kinetic_energy(const Model& m) {
+  const particles::ParticleSet& p = m.particles;
   double e = 0.0;
   for (int i = 0; i < p.size(); ++i) {
     const double v2 =
-        q.v[3 * i] * q.v[3 * i] + q.v[3 * i + 1] * q.v[3 * i + 1] + q.v[3 * i + 2] * q.v[3 * i + 2];
+        p.v[3 * i] * p.v[3 * i] + p.v[3 * i + 1] * p.v[3 * i + 1] + p.v[3 * i + 2] * p.v[3 * i + 2];
     e += 0.5 * p.density[i] * p.volume[i] * v2;
   }
   return e;

@@ -44,7 +44,8 @@ ForceReport bond_forces(const Model& m, BondState& s, const std::vector<double>&
         first = false;
       }
       if (law.breaks()) {
-        const double limit = alpha ? std::min(s.s0[i], s.s0[j]) : law.critical_stretch;
+        const double limit =
+            alpha ? std::min(s.s0.committed[i], s.s0.committed[j]) : law.critical_stretch;
         if (stretch > limit) {
           s.intact[k] = 0;
           ++broken;
@@ -56,13 +57,13 @@ ForceReport bond_forces(const Model& m, BondState& s, const std::vector<double>&
     force[3 * i + 2] = fz;
     // LAMMPS peri/pmb: the next step's s0_i follows the most compressed intact bond
     // (s00 - alpha s), so a compressed neighbourhood tolerates more stretch.
-    if (alpha) s.s0_next[i] = first ? s.s0[i] : s0_next;
+    if (alpha) s.s0.trial[i] = first ? s.s0.committed[i] : s0_next;
     if (with_energy) {
       energy += w_i * m.particles.volume[i];
       if (energy_density) (*energy_density)[i] = w_i;
     }
   }
-  if (alpha) s.s0.swap(s.s0_next);
+  if (alpha) s.s0.commit();
   return {broken, energy};
 }
 

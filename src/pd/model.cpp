@@ -42,14 +42,14 @@ double cell_fraction_inside(const Eigen::Vector3d& xi, double dx, double delta, 
 void build_bonds(Model& m, const LawTable& table, VolumeCorrection correction) {
   MF_REQUIRE(m.horizon > 0.0 && m.spacing > 0.0, "peridynamics: horizon and spacing must be set");
   MF_REQUIRE(!table.laws.empty() && table.laws.size() < 256, "peridynamics: 1 to 255 bond laws");
-  const Particles& p = m.particles;
+  const particles::ParticleSet& p = m.particles;
   const double r = 0.5 * m.spacing;
   const bool plane = m.plane();
   // Exact partial volumes reach neighbours whose cells only touch the horizon.
   const double reach = correction == VolumeCorrection::Exact
                            ? m.horizon + r * std::sqrt(plane ? 2.0 : 3.0)
                            : m.horizon;
-  const neighbors::PairList pairs = neighbors::pairs_within(p.x, reach);
+  const neighbors::PairList pairs = neighbors::pairs_within(p.X, reach);
   Bonds& b = m.bonds;
   const int n = p.size();
   std::vector<long> offset(n + 1, 0);
@@ -79,7 +79,7 @@ void build_bonds(Model& m, const LawTable& table, VolumeCorrection correction) {
   for (int i = 0; i < n; ++i) {
     for (long k = pairs.offset[i]; k < pairs.offset[i + 1]; ++k) {
       const int j = pairs.partner[k];
-      const Eigen::Vector3d d = p.position(j) - p.position(i);
+      const Eigen::Vector3d d = p.reference(j) - p.reference(i);
       const double xi = d.norm();
       double beta = 1.0;
       if (correction == VolumeCorrection::Linear && xi > m.horizon - r)
@@ -153,14 +153,13 @@ BondState initial_state(const Model& m, const std::vector<PreCrack>& cracks) {
     double s00 = 0.0;
     for (const auto& l : m.laws) s00 = std::max(s00, l.critical_stretch);
     s.s0.assign(n, s00);
-    s.s0_next.assign(n, s00);
   }
   if (!cracks.empty()) {
-    const Particles& p = m.particles;
+    const particles::ParticleSet& p = m.particles;
 #pragma omp parallel for schedule(dynamic, 256)
     for (int i = 0; i < n; ++i)
       for (long k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-        const Eigen::Vector3d xi = p.position(i), xj = p.position(b.partner[k]);
+        const Eigen::Vector3d xi = p.reference(i), xj = p.reference(b.partner[k]);
         for (const PreCrack& c : cracks) {
           const bool cut =
               m.plane() ? segments_cross(xi, xj, c.a, c.b) : segment_crosses_patch(xi, xj, c);
@@ -175,7 +174,7 @@ BondState initial_state(const Model& m, const std::vector<PreCrack>& cracks) {
 }
 
 void apply_surface_correction(Model& m) {
-  const Particles& p = m.particles;
+  const particles::ParticleSet& p = m.particles;
   const int n = p.size();
   const int dims = m.plane() ? 2 : 3;
   const int materials = static_cast<int>(m.material_names.size());
@@ -196,7 +195,7 @@ void apply_surface_correction(Model& m) {
   intact.intact.assign(m.bonds.count(), 1);
   std::vector<std::vector<double>> factor(dims, std::vector<double>(n, 1.0));
   for (int d = 0; d < dims; ++d) {
-    std::vector<double> y = p.x, f, w;
+    std::vector<double> y = p.X, f, w;
     for (int i = 0; i < n; ++i) y[3 * i + d] *= 1.0 + eps;
     bond_forces(elastic, intact, y, f, true, &w);
     for (int i = 0; i < n; ++i)
@@ -209,7 +208,7 @@ void apply_surface_correction(Model& m) {
   for (int i = 0; i < n; ++i)
     for (long k = b.offset[i]; k < b.offset[i + 1]; ++k) {
       const int j = b.partner[k];
-      const Eigen::Vector3d e = (p.position(j) - p.position(i)) / b.length[k];
+      const Eigen::Vector3d e = (p.reference(j) - p.reference(i)) / b.length[k];
       double sum = 0.0;
       for (int d = 0; d < dims; ++d) {
         const double g = 0.5 * (factor[d][i] + factor[d][j]);

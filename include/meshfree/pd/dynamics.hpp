@@ -11,15 +11,6 @@
 
 namespace mf::pd {
 
-/// Displacement, velocity and acceleration, 3 per particle, and the clock.
-struct Motion {
-  std::vector<double> u, v, a;
-  double time = 0.0;
-  long step = 0;
-  explicit Motion(int particles = 0)
-      : u(3 * static_cast<std::size_t>(particles), 0.0), v(u), a(u) {}
-};
-
 /// Prescribed components of displacement (or velocity) on a set of particles: value times the
 /// time function (`function` < 0: constant 1).
 struct Constraint {
@@ -82,16 +73,16 @@ struct StepReport {
   double external_work = 0.0; // work of the body loads over the step
 };
 
-/// Accelerations at the current state: bond forces plus body loads over density (constrained
-/// components get zero). Call once before the first step.
-StepReport accelerate(const Model& m, BondState& s, Motion& q, const Loading& loading,
-                      bool with_energy);
+/// Accelerations of the particles at their current state: bond forces plus body loads over
+/// density (constrained components get zero). Call once before the first step.
+StepReport accelerate(Model& m, BondState& s, const Loading& loading, bool with_energy);
 
-/// One velocity-Verlet step of length dt with the impactors in contact.
-StepReport advance(const Model& m, BondState& s, Motion& q, const Loading& loading,
-                   std::vector<Impactor>& impactors, double dt, bool with_energy);
+/// One velocity-Verlet step of length dt with the impactors in contact: the particles' motion
+/// and clock move on.
+StepReport advance(Model& m, BondState& s, const Loading& loading, std::vector<Impactor>& impactors,
+                   double dt, bool with_energy);
 
 /// Kinetic energy sum_i rho_i V_i |v_i|^2 / 2.
-double kinetic_energy(const Model& m, const Motion& q);
+double kinetic_energy(const Model& m);
 
 } // namespace mf::pd

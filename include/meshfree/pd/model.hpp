@@ -1,29 +1,15 @@
 #pragma once
-// A bond-based peridynamic body: particles (struct of arrays), their bonds in compressed rows,
-// and the bond laws of every pair of materials. Building it is done once; the state that changes
-// during a run (intact flags, plastic stretches) lives in BondState.
+// A bond-based peridynamic body: its particles (particles/particle_set.hpp, positions z = 0 in a
+// plane), their bonds in compressed rows, and the bond laws of every pair of materials. Building
+// it is done once; the bond state that changes during a run (intact flags, plastic stretches)
+// lives in BondState, the motion in the particle set.
 #include "meshfree/core/types.hpp"
 #include "meshfree/materials/pd_bonds.hpp"
+#include "meshfree/particles/particle_set.hpp"
 #include <string>
 #include <vector>
 
 namespace mf::pd {
-
-/// Particles as flat arrays; positions are 3-vectors (z = 0 in a plane).
-struct Particles {
-  std::vector<double> x;       // reference positions, 3 per particle
-  std::vector<double> volume;  // V_i (2D: dx^2 times the thickness)
-  std::vector<double> density; // rho_i
-  std::vector<int> material;   // index into the model's material names
-  int size() const { return static_cast<int>(volume.size()); }
-  Eigen::Vector3d position(int i) const { return {x[3 * i], x[3 * i + 1], x[3 * i + 2]}; }
-  void add(const Eigen::Vector3d& p, double v, double rho, int mat) {
-    x.insert(x.end(), {p.x(), p.y(), p.z()});
-    volume.push_back(v);
-    density.push_back(rho);
-    material.push_back(mat);
-  }
-};
 
 /// How much of a neighbour's volume a bond counts when the neighbour's cell is cut by the
 /// horizon:
@@ -50,11 +36,12 @@ struct Bonds {
 };
 
 /// What changes in a run: intact flags, plastic stretches (micro-plastic laws), and the LAMMPS
-/// rule's per-particle critical stretch.
+/// rule's per-particle critical stretch (the committed value is read, the trial one written by
+/// a force evaluation, which then commits it).
 struct BondState {
   std::vector<unsigned char> intact;
-  std::vector<double> plastic;     // per bond, empty when no law is plastic
-  std::vector<double> s0, s0_next; // per particle, empty when no law uses alpha
+  std::vector<double> plastic;  // per bond, empty when no law is plastic
+  particles::Staged<double> s0; // per particle, empty when no law uses alpha
 };
 
 struct Model {
@@ -62,7 +49,7 @@ struct Model {
   double thickness = 1.0; // 2D only
   double spacing = 0.0;   // particle spacing dx
   double horizon = 0.0;   // delta
-  Particles particles;
+  particles::ParticleSet particles;
   std::vector<std::string> material_names;
   std::vector<materials::BondLaw> laws;
   std::vector<int> law_of; // law of bonds between materials a and b: law_of[a * materials + b]

@@ -1,0 +1,50 @@
+#pragma once
+// Gauges of an explicit run: each follows the particle nearest its point at the start (a
+// Lagrangian gauge), writes the quantities it records as history columns "<gauge>_<quantity>" at
+// every recorded instant, and keeps the largest |value| of the quantities it tracks over every
+// step, recorded or not (a peak between two history rows is not lost).
+#include "meshfree/core/types.hpp"
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mf::explicit_dynamics {
+
+struct GaugePoint {
+  std::string name;
+  Vec3 at{0, 0, 0};
+};
+
+/// The particle nearest `at` among the first n (positions x, y, z per particle); the first one
+/// on a tie.
+int nearest_particle(const std::vector<double>& positions, int n, const Vec3& at);
+
+class Gauges {
+public:
+  /// A quantity of one particle.
+  using Quantity = std::function<double(int particle)>;
+  Gauges() = default;
+  Gauges(const std::vector<GaugePoint>& points, const std::vector<double>& positions, int n);
+  /// A history column per gauge.
+  void record(std::string quantity, Quantity q);
+  /// A maximum over every step per gauge.
+  void track(std::string quantity, Quantity q);
+  const std::vector<int>& particles() const { return particle_; }
+  /// "<gauge>_<quantity>" of every gauge and recorded quantity, gauge by gauge.
+  std::vector<std::string> columns() const;
+  /// Appends the recorded quantities in the order of columns().
+  void append_to(std::vector<double>& row) const;
+  /// Takes the tracked quantities of this step into the maxima.
+  void update_maxima();
+  /// "<gauge>_<quantity>" and the largest |value| so far, gauge by gauge.
+  const std::vector<std::pair<std::string, double>>& maxima() const { return maxima_; }
+
+private:
+  std::vector<std::string> names_;
+  std::vector<int> particle_;
+  std::vector<std::pair<std::string, Quantity>> recorded_, tracked_;
+  std::vector<std::pair<std::string, double>> maxima_;
+};
+
+} // namespace mf::explicit_dynamics

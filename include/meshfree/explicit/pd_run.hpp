@@ -1,0 +1,70 @@
+#pragma once
+// A peridynamic run as the explicit time loop drives it (explicit/time_loop.hpp): velocity-Verlet
+// steps of a set-up body, a history row per recorded instant (energies and their balance, broken
+// bonds, pd::damage, impactors, gauges, the crack tip), gauge maxima over every step, and fields
+// (displacement, velocity, pd::damage, material).
+#include "meshfree/explicit/gauges.hpp"
+#include "meshfree/explicit/pd_setup.hpp"
+#include "meshfree/explicit/time_loop.hpp"
+#include "meshfree/io/results.hpp"
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mf::explicit_dynamics {
+
+struct PdRunResult {
+  int particles = 0;
+  long bonds = 0; // counted once
+  long steps = 0;
+  double dt = 0.0;
+  std::string dt_limit;
+  double bond_updates_per_second = 0.0;
+  io::History history;
+  double max_damage = 0.0;
+  long broken_bonds = 0;
+  double energy_drift = 0.0; // |E_total(t) - E_total(0) - W_ext| / max(E), no dissipation only
+  /// Largest |value| of every gauge component (u, v, a) over every step, not only the recorded
+  /// ones: "<gauge>_<u|v|a><x|y|z>".
+  std::vector<std::pair<std::string, double>> gauge_maxima;
+  std::string status = "completed", stop_reason;
+  PhaseTimer timer;
+};
+
+class PdRun {
+public:
+  /// Accelerations at t = 0 and the columns of the history; fields go to `out` (null: none).
+  PdRun(PdSetup& setup, const io::PdSpec& spec, io::OutputDirectory* out, PdRunResult& result);
+
+  double time() const { return setup_.model.particles.time; }
+  long step() const { return setup_.model.particles.step; }
+  bool time_step(double remaining, double& dt, std::string&) const {
+    dt = std::min(setup_.dt, remaining);
+    return true;
+  }
+  void advance(double dt, bool history_due);
+  void track() { gauges_.update_maxima(); }
+  int nonfinite() const;
+  Vec3 position(int i) const { return setup_.model.particles.reference(i); }
+  std::string advice() const;
+  void record();
+  void write_fields();
+  std::string progress() const { return detail::concat("broken bonds ", broken_ / 2); }
+
+  /// Counts, rates, status and energy balance of the finished loop into the result.
+  void finish(const LoopReport& loop);
+
+private:
+  PdSetup& setup_;
+  const io::PdSpec& spec_;
+  PdRunResult& r_;
+  Gauges gauges_;
+  io::FieldOutput fields_;
+  pd::StepReport last_; // of the last force evaluation
+  bool last_has_energy_ = true;
+  double e0_ = 0.0, work_ = 0.0;
+  long broken_ = 0; // from both ends
+  std::vector<double> phi_;
+};
+
+} // namespace mf::explicit_dynamics

@@ -1,0 +1,28 @@
+#pragma once
+// A peridynamic body built from a problem file (analysis: peridynamics): the particle lattice,
+// bonds and their laws, pre-cracks, constraints, loads (blasts per particle), initial velocities,
+// impactors, and the time step with what set it.
+#include "meshfree/core/timer.hpp"
+#include "meshfree/io/problem_spec.hpp"
+#include "meshfree/pd/dynamics.hpp"
+#include <string>
+#include <vector>
+
+namespace mf::explicit_dynamics {
+
+/// The body at t = 0, its loading and impactors (no time stepping yet).
+struct PdSetup {
+  pd::Model model; // the particles carry their initial velocities
+  pd::BondState state;
+  pd::Loading loading;
+  std::vector<pd::Impactor> impactors;
+  double dt = 0.0;
+  std::string dt_limit; // what set the time step
+};
+
+PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer);
+
+/// The body, its bond laws, time step and blast pulses, on the log.
+void log_pd_setup(const io::ProblemSpec& spec, const PdSetup& setup);
+
+} // namespace mf::explicit_dynamics

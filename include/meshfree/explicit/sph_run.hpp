@@ -1,0 +1,67 @@
+#pragma once
+// An SPH run as the explicit time loop drives it (explicit/time_loop.hpp): CFL-limited midpoint
+// steps of a built body, a history row per recorded instant (sph::energies and their balance, peak
+// pressure, gauges), gauge maxima over every step, and fields of the body's particles.
+#include "meshfree/core/timer.hpp"
+#include "meshfree/explicit/gauges.hpp"
+#include "meshfree/explicit/time_loop.hpp"
+#include "meshfree/io/results.hpp"
+#include "meshfree/io/sph_spec.hpp"
+#include "meshfree/sph/hydro.hpp"
+#include "meshfree/sph/step.hpp"
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mf::explicit_dynamics {
+
+struct SphRunResult {
+  int particles = 0;
+  long steps = 0;
+  int neighbour_rebuilds = 0;
+  double first_dt = 0.0, smallest_dt = 0.0;
+  std::string dt_limit; // the particle that set the smallest step
+  double particle_steps_per_second = 0.0;
+  double peak_pressure = 0.0, energy_error = 0.0; // |E(t) - E(0) - W| / scale, largest
+  io::History history;
+  /// Largest |pressure| and speed of every gauge over every step: "<gauge>_<pressure|speed>".
+  std::vector<std::pair<std::string, double>> gauge_maxima;
+  std::string status = "completed", stop_reason;
+  PhaseTimer timer;
+};
+
+class SphRun {
+public:
+  /// The history's columns and the gauges of the body `h` at t = 0; fields go to `out` (null:
+  /// none).
+  SphRun(sph::Hydro& h, const io::SphSpec& spec, io::OutputDirectory* out, SphRunResult& result);
+
+  double time() const { return h_.time; }
+  long step() const { return h_.step; }
+  bool time_step(double remaining, double& dt, std::string& why);
+  void advance(double dt, bool) { sph::advance(h_, dt); }
+  void track();
+  int nonfinite() const;
+  Vec3 position(int i) const { return {x0_[3 * i], x0_[3 * i + 1], x0_[3 * i + 2]}; }
+  std::string advice() const;
+  void record();
+  void write_fields() { fields_.write(h_.time); }
+  std::string progress() const;
+
+  /// Counts, rates and status of the finished loop into the result.
+  void finish(const LoopReport& loop);
+
+private:
+  double max_pressure() const;
+  double von_mises(int i) const;
+  sph::Hydro& h_;
+  const io::SphSpec& spec_;
+  SphRunResult& r_;
+  int n_; // the body's particles (mirror images follow them)
+  std::vector<double> x0_;
+  Gauges gauges_;
+  io::FieldOutput fields_;
+  double e0_ = 0.0, dt_ = 0.0;
+};
+
+} // namespace mf::explicit_dynamics

@@ -1,0 +1,13 @@
+#pragma once
+// An SPH body built from a problem file (analysis: sph): particles of the regions (lattices less
+// holes, rings), surface blasts per particle, transmitting boundaries, symmetry planes and the
+// lighting times of a detonation.
+#include "meshfree/io/sph_spec.hpp"
+#include "meshfree/sph/hydro.hpp"
+
+namespace mf::explicit_dynamics {
+
+/// The particles of a spec, in the initial state of its regions, lit if the spec detonates.
+sph::Hydro build_sph(const io::SphSpec& s);
+
+} // namespace mf::explicit_dynamics

@@ -1,0 +1,259 @@
+#include "meshfree/explicit/pd_setup.hpp"
+#include "meshfree/core/log.hpp"
+#include "meshfree/explicit/surface_blast.hpp"
+#include "meshfree/geometry/lattice.hpp"
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mf::explicit_dynamics {
+
+namespace {
+
+using io::Vec3d;
+
+/// Cell-centred lattice of spacing dx over the body: a 3D box, or the 2D domain's bounding box
+/// with the points the domain contains; notches left out, regions with their own material.
+particles::ParticleSet lattice(const io::ProblemSpec& spec) {
+  const io::PdSpec& s = *spec.pd;
+  const double dx = s.spacing;
+  const bool solid = s.dimension == materials::PdDimension::Solid3D;
+  Vec3d lo, hi;
+  if (solid) {
+    lo = spec.box->lo;
+    hi = spec.box->hi;
+  } else {
+    const BoundingBox b = spec.domain.bounds();
+    lo = Vec3d(b.lo.x(), b.lo.y(), 0.0);
+    hi = Vec3d(b.hi.x(), b.hi.y(), 0.0);
+  }
+  const geometry::Lattice grid = geometry::Lattice::of_spacing(lo, hi, dx, solid ? 3 : 2);
+  const double estimate = grid.cells_total();
+  MF_REQUIRE(estimate <= 5e7, "discretisation.spacing: ", dx, " gives about ", estimate,
+             " particles; one run is meant for at most 5e7");
+  const double volume = solid ? dx * dx * dx : dx * dx * s.thickness;
+  particles::ParticleSet p;
+  grid.for_each([&](const Vec3d& x) {
+    if (!solid && !spec.domain.contains(Vec2(x.x(), x.y()))) return;
+    for (const io::Region& b : s.removed)
+      if (b.contains(x, 1e-9 * dx)) return;
+    int mat = s.body_material, region = 0;
+    for (std::size_t k = 0; k < s.regions.size(); ++k)
+      if (s.regions[k].region.contains(x, 1e-9 * dx)) {
+        region = static_cast<int>(k) + 1;
+        if (s.regions[k].material >= 0) mat = s.regions[k].material;
+      }
+    p.add(x, volume, s.materials[mat].density, mat, region);
+  });
+  MF_REQUIRE(p.size() > 0, "discretisation.spacing: no particle lies in the body");
+  return p;
+}
+
+/// The bond law of one material: micromodulus (from E, the bulk modulus or given), critical
+/// stretch (from G0, given, or none), micro-plastic yield stretch and the LAMMPS alpha.
+materials::BondLaw material_law(const io::PdSpec& s, const io::MaterialSpec& mat, double delta) {
+  const io::BondSpec& m = *mat.bond;
+  materials::BondLaw law;
+  law.c = m.micromodulus > 0.0 ? m.micromodulus
+          : mat.bulk_modulus > 0.0
+              ? materials::pd_micromodulus_from_bulk(mat.bulk_modulus, delta)
+              : materials::pd_micromodulus(s.dimension, mat.E, delta, s.thickness);
+  if (m.critical_stretch > 0.0) {
+    law.critical_stretch = m.critical_stretch;
+  } else if (m.fracture_energy > 0.0) {
+    law.critical_stretch =
+        mat.bulk_modulus > 0.0 || m.micromodulus > 0.0
+            ? materials::pd_critical_stretch_from_c(law.c, m.fracture_energy, delta)
+            : materials::pd_critical_stretch(s.dimension, mat.E, m.fracture_energy, delta);
+  }
+  law.yield_stretch = m.yield_stretch;
+  law.alpha = m.alpha;
+  return law;
+}
+
+/// Laws of every material pair: a material's own law, an interface's base law scaled by its
+/// factors, or (pairs with no interface) the law of the pair's softer material.
+pd::LawTable law_table(const io::PdSpec& s, double delta) {
+  pd::LawTable t;
+  const int n = static_cast<int>(s.materials.size());
+  t.materials = n;
+  for (const auto& m : s.materials) t.laws.push_back(material_law(s, m, delta));
+  t.law_of.assign(n * n, 0);
+  const auto index = [&](const std::string& name) {
+    for (int k = 0; k < n; ++k)
+      if (s.materials[k].name == name) return k;
+    return 0;
+  };
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b)
+      t.law_of[a * n + b] = a == b ? a : (t.laws[a].c <= t.laws[b].c ? a : b);
+  for (const io::PdInterface& f : s.interfaces) {
+    materials::BondLaw law = t.laws[index(f.base)];
+    law.yield_stretch *= f.yield_stretch_factor;
+    law.critical_stretch *= f.critical_stretch_factor;
+    t.laws.push_back(law);
+    const int a = index(f.a), b = index(f.b), k = static_cast<int>(t.laws.size()) - 1;
+    t.law_of[a * n + b] = t.law_of[b * n + a] = k;
+  }
+  return t;
+}
+
+std::vector<int> particles_in(const particles::ParticleSet& p,
+                              const std::optional<io::Region>& region, double tol) {
+  std::vector<int> out;
+  for (int i = 0; i < p.size(); ++i)
+    if (!region || region->contains(p.reference(i), tol)) out.push_back(i);
+  return out;
+}
+
+/// Traction t on a layer of particles as a body force: b = t A / (volume of the layer). A is
+/// given, or is the layer's volume over its thickness normal to the loaded face (the thinnest
+/// extent of the layer, one spacing per particle row), so that b = t / thickness.
+Vec3d traction_density(const io::PdCondition& c, const particles::ParticleSet& p,
+                       const std::vector<int>& group, double dx, int dims) {
+  double volume = 0.0;
+  Vec3d lo = p.reference(group.front()), hi = lo;
+  for (int i : group) {
+    volume += p.volume[i];
+    lo = lo.cwiseMin(p.reference(i));
+    hi = hi.cwiseMax(p.reference(i));
+  }
+  if (c.area > 0.0) return c.value * c.area / volume;
+  double thickness = std::numeric_limits<double>::infinity();
+  for (int d = 0; d < dims; ++d) thickness = std::min(thickness, hi(d) - lo(d) + dx);
+  return c.value / thickness;
+}
+
+} // namespace
+
+PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer) {
+  const io::PdSpec& s = *spec.pd;
+  PdSetup out;
+  pd::Model& m = out.model;
+  m.dimension = s.dimension;
+  m.thickness = s.thickness;
+  m.spacing = s.spacing;
+  m.horizon = s.horizon_factor * s.spacing;
+  for (const auto& mat : s.materials) m.material_names.push_back(mat.name);
+  {
+    PhaseTimer::Scope scope(timer, "particles");
+    m.particles = lattice(spec);
+  }
+  {
+    PhaseTimer::Scope scope(timer, "bonds");
+    const pd::VolumeCorrection correction =
+        s.volume_correction == "exact"    ? pd::VolumeCorrection::Exact
+        : s.volume_correction == "linear" ? pd::VolumeCorrection::Linear
+                                          : pd::VolumeCorrection::None;
+    pd::build_bonds(m, law_table(s, m.horizon), correction);
+    if (s.surface_correction) pd::apply_surface_correction(m);
+    std::vector<pd::PreCrack> cracks;
+    for (const auto& c : s.cracks) cracks.push_back({c.a, c.b, c.c});
+    out.state = pd::initial_state(m, cracks);
+  }
+  particles::ParticleSet& p = m.particles;
+  const double tol = 1e-6 * s.spacing;
+  for (const auto& f : s.functions) out.loading.functions.push_back(f.f);
+  for (const io::PdCondition& c : s.conditions) {
+    const std::vector<int> group = particles_in(p, c.region, tol);
+    MF_REQUIRE(!group.empty(), c.key_path, ".box: selects no particle");
+    if (c.kind == io::PdCondition::Kind::Displacement ||
+        c.kind == io::PdCondition::Kind::Velocity) {
+      pd::Constraint k;
+      k.name = c.name;
+      k.particles = group;
+      k.velocity = c.kind == io::PdCondition::Kind::Velocity;
+      for (int d = 0; d < 3; ++d) k.fixed[d] = c.fixed[d], k.value[d] = c.value(d);
+      k.function = c.function;
+      out.loading.constraints.push_back(k);
+    } else {
+      pd::BodyLoad load;
+      load.name = c.name;
+      load.particles = group;
+      load.density = c.kind == io::PdCondition::Kind::Traction
+                         ? traction_density(c, p, group, s.spacing, m.plane() ? 2 : 3)
+                         : c.value;
+      load.function = c.function;
+      if (c.kind == io::PdCondition::Kind::Blast) {
+        // Each particle of the layer gets the Friedlander history of its distance and angle of
+        // incidence; the force per volume of a unit pressure is -n / (layer thickness). In a
+        // plane model the charge lies in the plane and distances are measured in it.
+        io::PdCondition unit = c;
+        unit.value = -c.blast.normal;
+        unit.area = 0.0;
+        load.density = traction_density(unit, p, group, s.spacing, m.plane() ? 2 : 3);
+        const Charge charge{c.blast.tnt_mass, c.blast.surface_burst, c.blast.clamp_below_range,
+                            c.blast.charge, c.blast.normal};
+        load.pulses = surface_pulses(charge, p.X, group, c.key_path);
+      }
+      out.loading.loads.push_back(load);
+    }
+  }
+  for (const io::PdRegion& r : s.regions)
+    if (r.velocity)
+      for (int i : particles_in(p, r.region, tol))
+        for (int d = 0; d < 3; ++d) p.v[3 * i + d] = (*r.velocity)(d);
+  for (const io::PdImpactor& k : s.impactors) {
+    pd::Impactor imp;
+    imp.name = k.name;
+    imp.shape = k.sphere ? pd::Impactor::Shape::Sphere : pd::Impactor::Shape::Flat;
+    imp.radius = k.radius;
+    imp.half_size = k.half_size;
+    imp.mass = k.mass;
+    imp.fixed = k.fixed;
+    imp.position = k.position;
+    imp.velocity = k.velocity;
+    if (!k.sphere) imp.direction = k.velocity.normalized();
+    out.impactors.push_back(imp);
+  }
+  // The time step: the Silling-Askari bound times the safety factor, one step per load sample
+  // when a table is finer, or the step asked for (never above the bound).
+  int limiting = -1;
+  const double stable = pd::stable_time_step(m, &limiting);
+  MF_REQUIRE(std::isfinite(stable), "peridynamics: no particle has a bond; is the horizon "
+                                    "(discretisation.horizon) smaller than the spacing?");
+  out.dt = s.safety * stable;
+  const Vec3d where = p.reference(limiting);
+  out.dt_limit = detail::concat("stable step ", stable, " (Silling & Askari 2005) times safety ",
+                                s.safety, ", set by the particle at (", where.x(), ", ", where.y(),
+                                ", ", where.z(), ")");
+  for (const auto& f : s.functions)
+    if (f.f.kind == loads::TimeFunction::Kind::Table && f.f.sample_step < out.dt) {
+      out.dt = f.f.sample_step;
+      out.dt_limit = "one step per sample of the load table '" + f.name + "' (" +
+                     detail::concat(f.f.sample_step) + ")";
+    }
+  if (s.dt > 0.0) {
+    MF_REQUIRE(s.dt <= stable, "time.dt: ", s.dt, " exceeds the stable time step ", stable,
+               " (Silling & Askari 2005); velocity Verlet would diverge");
+    if (s.dt < out.dt) {
+      out.dt = s.dt;
+      out.dt_limit = "time.dt";
+    }
+  }
+  return out;
+}
+
+void log_pd_setup(const io::ProblemSpec& spec, const PdSetup& setup) {
+  const pd::Model& m = setup.model;
+  log::info("peridynamics: ", m.particles.size(), " particles, ", m.bonds.count() / 2,
+            " bonds, horizon ", m.horizon, " (", spec.pd->horizon_factor, " spacings), ",
+            m.laws.size(), " bond law(s)");
+  for (std::size_t k = 0; k < m.laws.size(); ++k)
+    log::info("  law ", k, ": c ", m.laws[k].c, ", critical stretch ", m.laws[k].critical_stretch,
+              m.laws[k].plastic() ? detail::concat(", yield stretch ", m.laws[k].yield_stretch)
+                                  : "");
+  log::info("time step ", setup.dt, ": ", setup.dt_limit);
+  for (const pd::BodyLoad& load : setup.loading.loads) {
+    if (load.pulses.empty()) continue;
+    const auto [lo, hi] = std::minmax_element(
+        load.pulses.begin(), load.pulses.end(),
+        [](const loads::Friedlander& a, const loads::Friedlander& b) { return a.peak < b.peak; });
+    log::info("blast '", load.name, "' on ", load.pulses.size(), " particles: peak ", lo->peak,
+              "..", hi->peak, " Pa, arrival ", hi->arrival, "..", lo->arrival, " s, duration ",
+              hi->duration, "..", lo->duration, " s, impulse ", lo->impulse(), "..", hi->impulse(),
+              " Pa s");
+  }
+}
+
+} // namespace mf::explicit_dynamics

@@ -1,0 +1,159 @@
+#include "meshfree/explicit/sph_setup.hpp"
+#include "meshfree/core/error.hpp"
+#include "meshfree/explicit/surface_blast.hpp"
+#include "meshfree/geometry/lattice.hpp"
+#include "meshfree/sph/detonation.hpp"
+#include "meshfree/sph/state.hpp"
+#include <algorithm>
+#include <cmath>
+
+namespace mf::explicit_dynamics {
+
+namespace {
+
+/// Whether a free particle lies in a region.
+bool free_in(const sph::Particles& P, int i, const io::Region& region) {
+  return !P.fixed[i] &&
+         region.contains(io::Point(P.x[3 * i], P.x[3 * i + 1], P.x[3 * i + 2]), 1e-9);
+}
+
+/// The face area of a particle in a surface layer one particle thick: V / spacing.
+double face_area(const sph::Particles& P, int i, int dim) {
+  const double volume = P.mass[i] / P.rho_ref[i];
+  return volume / std::pow(volume, 1.0 / dim);
+}
+
+/// The solver's material from the spec's: the equation of state, and the strength of a solid
+/// (J2 from the material's plasticity with mu = G, granular, HJC, or elastic when it has a shear
+/// modulus and no plasticity).
+sph::Material to_solver(const io::MaterialSpec& m) {
+  sph::Material out;
+  out.name = m.name;
+  out.eos = *m.eos;
+  using Model = io::StrengthSpec::Model;
+  const Model model = m.strength ? m.strength->model : Model::J2;
+  if (model == Model::Granular) {
+    materials::GranularStrength granular = m.strength->granular;
+    if (m.shear_modulus > 0.0) granular.shear_modulus = {{0.0}, {m.shear_modulus}}; // a constant
+    out.strength = granular;
+  } else if (model == Model::Hjc) {
+    out.strength = *m.hjc;
+  } else if (m.plasticity) {
+    // The J2 return uses mu = G (E = 2G, nu = 0); the pressure is the equation of state's.
+    materials::VonMises vm;
+    vm.shear_modulus = m.shear_modulus;
+    vm.j2 = *m.plasticity;
+    vm.j2.E = 2.0 * m.shear_modulus;
+    vm.j2.nu = 0.0;
+    out.strength = vm;
+  } else if (m.shear_modulus > 0.0) {
+    out.strength = materials::ElasticShear{m.shear_modulus};
+  }
+  if (m.strength) out.failure_strain = m.strength->failure_strain;
+  return out;
+}
+
+sph::Settings to_solver(const io::SphNumerics& n) {
+  sph::Settings s;
+  s.kernel = n.kernel;
+  s.gradient_correction = n.gradient_correction;
+  s.alpha = n.alpha;
+  s.beta = n.beta;
+  s.phi = n.phi;
+  s.courant = n.courant;
+  s.burn_width = n.burn_width;
+  s.ignition_compression = n.ignition_compression;
+  s.artificial_stress = n.artificial_stress;
+  s.artificial_stress_exponent = n.artificial_stress_exponent;
+  s.penalty.pressure = n.penalty.pressure;
+  s.penalty.n1 = n.penalty.n1;
+  s.penalty.n2 = n.penalty.n2;
+  s.penalty.distance = n.penalty.distance;
+  return s;
+}
+
+} // namespace
+
+sph::Hydro build_sph(const io::SphSpec& s) {
+  sph::Hydro h;
+  for (const io::MaterialSpec& m : s.materials) h.materials.push_back(to_solver(m));
+  h.settings = to_solver(s.numerics);
+  sph::Particles& P = h.particles;
+  P.dim = s.dimension;
+  for (const io::SphRegion& b : s.regions) {
+    const int mat = b.material;
+    const io::Region& g = b.region;
+    const auto add = [&](const Vec3& x, double volume) {
+      if (g.circle) {
+        const double dx = x[0] - g.circle->center[0], dy = x[1] - g.circle->center[1];
+        if (dx * dx + dy * dy > g.circle->radius * g.circle->radius) return;
+      }
+      for (const io::Circle& c : g.holes) {
+        const double dx = x[0] - c.center[0], dy = x[1] - c.center[1];
+        if (dx * dx + dy * dy < c.radius * c.radius) return;
+      }
+      const double spacing = std::pow(volume, 1.0 / s.dimension);
+      P.add(x.data(), b.density * volume, b.density, b.energy, s.smoothing * spacing, mat, b.fixed);
+      for (int d = 0; d < 3; ++d) P.v[P.v.size() - 3 + d] = b.velocity[d];
+    };
+    if (g.ring)
+      geometry::for_each_ring_point(g.ring->center, g.ring->inner_radius, g.ring->outer_radius,
+                                    b.spacing, add);
+    else {
+      const geometry::Lattice grid =
+          geometry::Lattice::fitted(g.box->lo, g.box->hi, b.spacing, s.dimension);
+      const double volume = grid.cell_volume(s.dimension);
+      grid.for_each([&](const Vec3& x) { add(x, volume); });
+    }
+  }
+  for (const io::SphBlastLoad& l : s.loads) {
+    // Each particle of the layer carries its face area V / spacing and the Friedlander history
+    // of its own distance and angle of incidence (loads/blast.hpp).
+    sph::SurfaceLoad load;
+    load.name = l.name;
+    const io::BlastSpec& blast = l.blast;
+    for (int d = 0; d < 3; ++d) load.direction[d] = -blast.normal[d];
+    for (int i = 0; i < P.size(); ++i)
+      if (free_in(P, i, l.region)) {
+        load.particles.push_back(i);
+        load.area.push_back(face_area(P, i, s.dimension));
+      }
+    const Charge charge{blast.tnt_mass, blast.surface_burst, blast.clamp_below_range, blast.charge,
+                        blast.normal};
+    load.pulses = surface_pulses(charge, P.x, load.particles, l.key_path);
+    MF_REQUIRE(!load.particles.empty(), l.key_path, ".box: selects no free particle");
+    h.loads.push_back(load);
+  }
+  for (const io::SphSymmetry& m : s.symmetry) {
+    // The body must lie on one side of each symmetry plane.
+    int below = 0, above = 0;
+    for (int i = 0; i < P.size(); ++i) (P.x[3 * i + m.axis] < m.at ? below : above) += 1;
+    MF_REQUIRE(below == 0 || above == 0, "boundary ", m.name, ": the plane ", "xyz"[m.axis], " = ",
+               m.at, " cuts the body (", below, " particles below it, ", above, " above)");
+    h.symmetry.push_back({m.axis, m.at});
+  }
+  if (s.detonation_normal)
+    sph::light_from_plane(h, s.detonation_point->data(), s.detonation_normal->data());
+  else if (s.detonation_point)
+    sph::light_from_point(h, s.detonation_point->data());
+  sph::update_state(h);
+  for (const io::SphTransmitting& t : s.transmitting) {
+    // Lysmer dashpots with the particle's initial impedances rho c_L and rho c_s.
+    sph::TransmittingBoundary b;
+    b.name = t.name;
+    for (int d = 0; d < 3; ++d) b.normal[d] = t.normal[d];
+    for (int i = 0; i < P.size(); ++i) {
+      if (!free_in(P, i, t.region)) continue;
+      b.particles.push_back(i);
+      b.area.push_back(face_area(P, i, s.dimension));
+      b.normal_impedance.push_back(P.rho[i] * P.c[i]);
+      b.shear_impedance.push_back(std::sqrt(
+          P.rho[i] * materials::shear_modulus(h.materials[P.material[i]].strength, P.rho[i])));
+    }
+    MF_REQUIRE(!b.particles.empty(), t.key_path, ".box: selects no free particle");
+    h.transmitting.push_back(b);
+  }
+  return h;
+}
+
+} // namespace mf::explicit_dynamics

@@ -1,0 +1,149 @@
+// The pieces every explicit analysis shares: the time loop's output schedule and its stop on a
+// non-finite state, gauges, particle lattices, the particle set's owned and ghost ranges, and
+// the summary.json and history.csv writer.
+#include "meshfree/explicit/gauges.hpp"
+#include "meshfree/explicit/time_loop.hpp"
+#include "meshfree/geometry/lattice.hpp"
+#include "meshfree/io/results.hpp"
+#include "meshfree/particles/particle_set.hpp"
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
+
+using namespace mf;
+
+namespace {
+
+/// One particle moving at unit speed; its motion turns non-finite at `breaks_at` (if set).
+struct Drift {
+  double t = 0.0, x = 0.0, breaks_at = -1.0;
+  long n = 0;
+  std::vector<double> recorded, written;
+  double time() const { return t; }
+  long step() const { return n; }
+  bool time_step(double remaining, double& dt, std::string&) const {
+    dt = std::min(0.1, remaining);
+    return true;
+  }
+  void advance(double dt, bool) {
+    t += dt;
+    ++n;
+    x = breaks_at >= 0.0 && t > breaks_at ? std::numeric_limits<double>::quiet_NaN() : x + dt;
+  }
+  void track() {}
+  int nonfinite() const { return std::isfinite(x) ? -1 : 0; }
+  Vec3 position(int) const { return {1.0, 2.0, 3.0}; }
+  std::string advice() const { return "advice"; }
+  void record() { recorded.push_back(t); }
+  void write_fields() { written.push_back(t); }
+  std::string progress() const { return "x " + std::to_string(x); }
+};
+
+} // namespace
+
+TEST_CASE("the explicit time loop records on its schedule and at the end", "[explicit]") {
+  Drift m;
+  const explicit_dynamics::LoopReport r = explicit_dynamics::run_time_loop(m, {1.05, 0.25, 0.5});
+  CHECK(r.completed());
+  CHECK(r.steps == 11);
+  // Rows at 0, at the first step at or past each 0.25, and at the end.
+  REQUIRE(m.recorded.size() == 6);
+  CHECK(m.recorded[1] == Approx(0.3));
+  CHECK(m.recorded[4] == Approx(1.0));
+  CHECK(m.recorded.back() == Approx(1.05));
+  REQUIRE(m.written.size() == 4); // 0, 0.5, 1.0 and the end
+  CHECK(m.written[1] == Approx(0.5));
+  CHECK(m.written.back() == Approx(1.05));
+}
+
+TEST_CASE("the explicit time loop stops where the state stops being finite", "[explicit]") {
+  Drift m;
+  m.breaks_at = 0.45;
+  const explicit_dynamics::LoopReport r = explicit_dynamics::run_time_loop(m, {1.0, 0.0, 0.0});
+  CHECK(r.status == "failed");
+  CHECK(r.stop_reason.find("step 5") != std::string::npos);
+  CHECK(r.stop_reason.find("particle 0 at (1, 2, 3)") != std::string::npos);
+  CHECK(r.stop_reason.find("advice") != std::string::npos);
+  CHECK(m.recorded.size() == 5); // t = 0 to 0.4, every step; nothing after the stop
+  CHECK(m.written.size() == 1);
+}
+
+TEST_CASE("gauges follow the nearest particle and keep maxima over every step", "[explicit]") {
+  const std::vector<double> x = {0, 0, 0, 1, 0, 0, 2, 0, 0};
+  explicit_dynamics::Gauges g({{"a", Vec3(0.9, 0.1, 0.0)}, {"b", Vec3(5.0, 0.0, 0.0)}}, x, 3);
+  CHECK(g.particles() == std::vector<int>{1, 2});
+  std::vector<double> value = {0.0, -3.0, 1.0};
+  g.record("q", [&](int i) { return value[i]; });
+  g.track("q", [&](int i) { return value[i]; });
+  CHECK(g.columns() == std::vector<std::string>{"a_q", "b_q"});
+  g.update_maxima();
+  value = {0.0, 2.0, 4.0};
+  g.update_maxima();
+  CHECK(g.maxima()[0].second == 3.0);
+  CHECK(g.maxima()[1].second == 4.0);
+  std::vector<double> row;
+  g.append_to(row);
+  CHECK(row == std::vector<double>{2.0, 4.0});
+}
+
+TEST_CASE("lattices of a spacing and fitted to a box", "[explicit][geometry]") {
+  const auto l = geometry::Lattice::of_spacing({0, 0, 5}, {1.04, 0.5, 9}, 0.1, 2);
+  CHECK(l.count[0] == 10);
+  CHECK(l.count[1] == 5);
+  CHECK(l.count[2] == 1);
+  CHECK(l.centre(9, 4, 0).isApprox(Vec3(0.95, 0.45, 0.0)));
+  const auto f = geometry::Lattice::fitted({0, 0, 0}, {1.04, 0.5, 0.3}, 0.1, 3);
+  CHECK(f.step(0) == Approx(0.104));
+  CHECK(f.cell_volume(3) == Approx(0.104 * 0.1 * 0.1));
+  long cells = 0;
+  f.for_each([&](const Vec3&) { ++cells; });
+  CHECK(cells == 150);
+  double area = 0.0;
+  geometry::for_each_ring_point({0, 0, 0}, 1.0, 2.0, 0.1,
+                                [&](const Vec3&, double a) { area += a; });
+  CHECK(area == Approx(M_PI * 3.0));
+}
+
+TEST_CASE("ghost particles follow the owned ones", "[explicit][particles]") {
+  particles::ParticleSet p;
+  p.add({1, 2, 3}, 0.5, 2.0, 1);
+  p.add({4, 5, 6}, 0.5, 2.0, 0);
+  p.u[3] = 1.0;
+  CHECK(p.position(1).isApprox(Vec3(5, 5, 6)));
+  CHECK(p.mass[0] == 1.0);
+  const int g = p.add_ghost(1);
+  CHECK(g == 2);
+  CHECK(p.owned().size() == 2);
+  CHECK(p.ghosts().first() == 2);
+  CHECK(p.all().size() == 3);
+  CHECK(p.position(2).isApprox(p.position(1)));
+  p.drop_ghosts();
+  CHECK(p.size() == 2);
+  CHECK(p.ghosts().size() == 0);
+}
+
+TEST_CASE("summary.json keeps the header, status, sections and timers in order", "[explicit][io]") {
+  io::Summary s({"p", "d", "SI", "sph", ""});
+  s.set_status("failed", "why");
+  s.set("openmp_threads", 2);
+  s.section("counts").set("particles", 3);
+  s.section("results").set("peak", 1.5);
+  s.section("time_s").set("extra", 0.25);
+  PhaseTimer timer;
+  timer.add("stepping", 1.0);
+  const std::string j = s.str(timer);
+  std::size_t at = 0;
+  for (const char* key : {"\"problem\"", "\"description\"", "\"units\"", "\"analysis\"",
+                          "\"status\"", "\"stop_reason\"", "\"openmp_threads\"", "\"counts\"",
+                          "\"time_s\"", "\"stepping\"", "\"extra\"", "\"total\"", "\"results\""}) {
+    const std::size_t k = j.find(key, at);
+    INFO(key << " in " << j);
+    REQUIRE(k != std::string::npos);
+    at = k;
+  }
+  CHECK(j.find("\"method\"") == std::string::npos);
+  io::History h({"time", "x"});
+  h.append({0.0, -2.0});
+  h.append({1.0, 1.0});
+  CHECK(h.max_abs(1) == 2.0);
+}
