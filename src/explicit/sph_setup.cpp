@@ -12,17 +12,18 @@ namespace mf::explicit_dynamics {
 namespace {
 
 /// Whether a free particle lies in the box [lo, hi].
-bool free_in_box(const sph::Particles& P, int i, const std::array<double, 3>& lo,
+bool free_in_box(const sph::Hydro& h, int i, const std::array<double, 3>& lo,
                  const std::array<double, 3>& hi) {
-  if (P.fixed[i]) return false;
+  if (h.fields.fixed[i]) return false;
+  const std::vector<double>& X = h.particles.X;
   for (int d = 0; d < 3; ++d)
-    if (P.x[3 * i + d] < lo[d] - 1e-9 || P.x[3 * i + d] > hi[d] + 1e-9) return false;
+    if (X[3 * i + d] < lo[d] - 1e-9 || X[3 * i + d] > hi[d] + 1e-9) return false;
   return true;
 }
 
 /// The face area of a particle in a surface layer one particle thick: V / spacing.
-double face_area(const sph::Particles& P, int i, int dim) {
-  const double volume = P.mass[i] / P.rho_ref[i];
+double face_area(const particles::ParticleSet& P, int i, int dim) {
+  const double volume = P.mass[i] / P.density[i];
   return volume / std::pow(volume, 1.0 / dim);
 }
 
@@ -38,8 +39,9 @@ sph::Hydro build_sph(const io::SphSpec& s) {
   sph::Hydro h;
   h.materials = s.materials;
   h.settings = s.settings;
-  sph::Particles& P = h.particles;
-  P.dim = s.dimension;
+  const particles::ParticleSet& P = h.particles;
+  const sph::ParticleFields& F = h.fields;
+  h.dim = s.dimension;
   for (const io::SphBlock& b : s.blocks) {
     const int mat = material_index(s, b.material);
     const auto add = [&](const Vec3& x, double volume) {
@@ -52,8 +54,9 @@ sph::Hydro build_sph(const io::SphSpec& s) {
         if (dx * dx + dy * dy < c.radius * c.radius) return;
       }
       const double spacing = std::pow(volume, 1.0 / s.dimension);
-      P.add(x.data(), b.density * volume, b.density, b.energy, s.smoothing * spacing, mat, b.fixed);
-      for (int d = 0; d < 3; ++d) P.v[P.v.size() - 3 + d] = b.velocity[d];
+      const int i =
+          sph::add_particle(h, x, volume, b.density, b.energy, s.smoothing * spacing, mat, b.fixed);
+      for (int d = 0; d < 3; ++d) h.particles.v[3 * i + d] = b.velocity[d];
     };
     const auto vec = [](const std::array<double, 3>& a) { return Vec3(a[0], a[1], a[2]); };
     if (b.is_ring)
@@ -73,14 +76,14 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     load.name = l.name;
     for (int d = 0; d < 3; ++d) load.direction[d] = -l.normal[d];
     for (int i = 0; i < P.size(); ++i)
-      if (free_in_box(P, i, l.lo, l.hi)) {
+      if (free_in_box(h, i, l.lo, l.hi)) {
         load.particles.push_back(i);
         load.area.push_back(face_area(P, i, s.dimension));
       }
     const Charge charge{l.tnt_mass, l.surface_burst, l.clamp_below_range,
                         Vec3(l.charge[0], l.charge[1], l.charge[2]),
                         Vec3(l.normal[0], l.normal[1], l.normal[2])};
-    load.pulses = surface_pulses(charge, P.x, load.particles, l.key_path);
+    load.pulses = surface_pulses(charge, P.X, load.particles, l.key_path);
     MF_REQUIRE(!load.particles.empty(), l.key_path, ".box: selects no free particle");
     h.loads.push_back(load);
   }
@@ -89,7 +92,7 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     // The body must lie on one side of each symmetry plane.
     const sph::SymmetryPlane& m = s.symmetry[q];
     int below = 0, above = 0;
-    for (int i = 0; i < P.size(); ++i) (P.x[3 * i + m.axis] < m.at ? below : above) += 1;
+    for (int i = 0; i < P.size(); ++i) (P.X[3 * i + m.axis] < m.at ? below : above) += 1;
     MF_REQUIRE(below == 0 || above == 0, "symmetry[", q, "]: the plane ", "xyz"[m.axis], " = ",
                m.at, " cuts the body (", below, " particles below it, ", above, " above)");
   }
@@ -104,12 +107,12 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     b.name = t.name;
     for (int d = 0; d < 3; ++d) b.normal[d] = t.normal[d];
     for (int i = 0; i < P.size(); ++i) {
-      if (!free_in_box(P, i, t.lo, t.hi)) continue;
+      if (!free_in_box(h, i, t.lo, t.hi)) continue;
       b.particles.push_back(i);
       b.area.push_back(face_area(P, i, s.dimension));
-      b.normal_impedance.push_back(P.rho[i] * P.c[i]);
+      b.normal_impedance.push_back(F.rho[i] * F.c[i]);
       b.shear_impedance.push_back(std::sqrt(
-          P.rho[i] * materials::shear_modulus(h.materials[P.material[i]].strength, P.rho[i])));
+          F.rho[i] * materials::shear_modulus(h.materials[P.material[i]].strength, F.rho[i])));
     }
     MF_REQUIRE(!b.particles.empty(), t.key_path, ".box: selects no free particle");
     h.transmitting.push_back(b);
