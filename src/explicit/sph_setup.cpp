@@ -75,7 +75,7 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     sph::SurfaceLoad load;
     load.name = l.name;
     for (int d = 0; d < 3; ++d) load.direction[d] = -l.normal[d];
-    for (int i = 0; i < P.size(); ++i)
+    for (const int i : P.owned())
       if (free_in_box(h, i, l.lo, l.hi)) {
         load.particles.push_back(i);
         load.area.push_back(face_area(P, i, s.dimension));
@@ -92,7 +92,7 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     // The body must lie on one side of each symmetry plane.
     const sph::SymmetryPlane& m = s.symmetry[q];
     int below = 0, above = 0;
-    for (int i = 0; i < P.size(); ++i) (P.X[3 * i + m.axis] < m.at ? below : above) += 1;
+    for (const int i : P.owned()) (P.X[3 * i + m.axis] < m.at ? below : above) += 1;
     MF_REQUIRE(below == 0 || above == 0, "symmetry[", q, "]: the plane ", "xyz"[m.axis], " = ",
                m.at, " cuts the body (", below, " particles below it, ", above, " above)");
   }
@@ -106,7 +106,7 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     sph::TransmittingBoundary b;
     b.name = t.name;
     for (int d = 0; d < 3; ++d) b.normal[d] = t.normal[d];
-    for (int i = 0; i < P.size(); ++i) {
+    for (const int i : P.owned()) {
       if (!free_in_box(h, i, t.lo, t.hi)) continue;
       b.particles.push_back(i);
       b.area.push_back(face_area(P, i, s.dimension));

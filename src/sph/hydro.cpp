@@ -23,7 +23,7 @@ void group_materials(Hydro& s, bool force) {
   const int owned = P.owned_count();
   g.start.assign(count + 1, 0);
   g.owned_end.assign(count, 0);
-  for (int i = 0; i < P.size(); ++i) {
+  for (const int i : P.all()) {
     if (P.material[i] < 0 || P.material[i] >= static_cast<int>(count))
       fail("SPH: particle ", i, " has material ", P.material[i], " of ", count);
     ++g.start[P.material[i] + 1];
@@ -32,7 +32,7 @@ void group_materials(Hydro& s, bool force) {
   g.members.resize(P.size());
   std::vector<int> next(g.start.begin(), g.start.end() - 1);
   // Ascending within each material: owned particles come before the ghosts.
-  for (int i = 0; i < P.size(); ++i) {
+  for (const int i : P.all()) {
     const std::size_t m = static_cast<std::size_t>(P.material[i]);
     g.members[next[m]++] = i;
     if (i < owned) g.owned_end[m] = next[m];

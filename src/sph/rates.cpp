@@ -75,7 +75,7 @@ void compute_rates(const Hydro& s, Rates& r) {
     fail("SPH: the particles changed since they were grouped by material (update_state or "
          "refresh_neighbours groups them)");
   const Settings& S = s.settings;
-  // Rates for the body's particles; mirror particles only lend their (mirrored) state.
+  // Rates for the owned particles; ghosts (mirror images) only lend their (mirrored) state.
   const int n = P.owned_count(), all = P.size(), dim = s.dim;
   const bool corrected = S.gradient_correction;
   if (corrected) {

@@ -29,7 +29,7 @@ namespace {
 void check_finite(const Hydro& s) {
   const particles::ParticleSet& P = s.particles;
   const ParticleFields& F = s.fields;
-  for (int i = 0; i < P.size(); ++i)
+  for (const int i : P.all())
     if (!std::isfinite(F.rho[i]) || !std::isfinite(F.e[i]) || !(F.rho[i] > 0.0) ||
         !std::isfinite(P.v[3 * i]) || !std::isfinite(P.v[3 * i + 1]) ||
         !std::isfinite(P.v[3 * i + 2]))
@@ -43,7 +43,7 @@ void check_finite(const Hydro& s) {
 void advance(Hydro& s, double dt) {
   particles::ParticleSet& P = s.particles;
   ParticleFields& F = s.fields;
-  const int n = P.owned_count(); // mirror particles are copied from these after each stage
+  const int n = P.owned_count(); // ghosts are mirrored from these after each stage
   const std::size_t n3 = 3 * static_cast<std::size_t>(n);
   const std::vector<double> u0 = P.u, v0 = P.v, rho0 = F.rho, e0 = F.e;
   const StressHistory start = stress_history(s);
