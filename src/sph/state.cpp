@@ -13,7 +13,6 @@ namespace {
 /// Pressure and squared sound speed of particle i of a material with equation of state `eos`.
 template <class Eos>
 materials::PressureAndSound pressure_of(const Hydro& s, const Eos& eos, int i) {
-  const particles::ParticleSet& P = s.particles;
   const ParticleFields& F = s.fields;
   return materials::pressure_and_sound(eos, F.rho[i], F.e[i], F.rho_max[i], F.damage[i]);
 }
@@ -21,7 +20,6 @@ materials::PressureAndSound pressure_of(const Hydro& s, const Eos& eos, int i) {
 /// An explosive's pressure at its burn fraction; one with an unreacted equation of state is lit
 /// here when the shock has compressed it by Settings::ignition_compression.
 materials::PressureAndSound pressure_of(Hydro& s, const materials::JwlExplosive& x, int i) {
-  particles::ParticleSet& P = s.particles;
   ParticleFields& F = s.fields;
   if (x.unreacted && F.light_time[i] < 0.0 &&
       F.rho[i] >= (1.0 + s.settings.ignition_compression) * x.jwl.rho0)
@@ -162,13 +160,11 @@ void update_state(Hydro& s) {
 }
 
 StressHistory stress_history(const Hydro& s) {
-  const particles::ParticleSet& P = s.particles;
   const ParticleFields& F = s.fields;
   return {F.S, F.back_stress, F.alpha, F.damage};
 }
 
 void update_stress(Hydro& s, const StressHistory& start, const Rates& r, double dt) {
-  particles::ParticleSet& P = s.particles;
   ParticleFields& F = s.fields;
   for (std::size_t m = 0; m < s.materials.size(); ++m) {
     const int* members = s.groups.of(m);
