@@ -17,6 +17,14 @@
 using namespace mf;
 
 namespace {
+/// Adds an SPH particle at rest at x with reference volume and density.
+int add(sph::Hydro& s, const double x[3], double volume, double rho, double e, double h, int mat,
+        bool fixed = false) {
+  return sph::add_particle(s, Vec3(x[0], x[1], x[2]), volume, rho, e, h, mat, fixed);
+}
+} // namespace
+
+namespace {
 
 /// Dry Sjoebo sand: the compaction curve of Laine & Sandvik (2001) Table 1 and the bulk sound
 /// speed, yield and shear modulus tables of MSB344 (2020) Table E:a (the values of
@@ -77,13 +85,13 @@ struct ShockRun {
 /// front, the half-level crossing of sigma_xx, is timed between 2/3 t and t.
 ShockRun sand_impact(const sph::Material& m, double u, double t_end) {
   sph::Hydro s;
-  s.particles.dim = 1;
+  s.dim = 1;
   s.materials.push_back(m);
   const int n = 500;
   const double dx = 0.05 / n, rho0 = std::get<materials::Compaction>(m.eos).loading.x.front();
   for (int k = 0; k < 2 * n; ++k) {
     const double x[3] = {-0.05 + (k + 0.5) * dx, 0, 0};
-    s.particles.add(x, rho0 * dx, rho0, 0.0, 2.0 * dx, 0);
+    add(s, x, dx, rho0, 0.0, 2.0 * dx, 0);
     s.particles.v[3 * k] = x[0] < 0.0 ? u : -u;
   }
   sph::update_state(s);
@@ -91,15 +99,17 @@ ShockRun sand_impact(const sph::Material& m, double u, double t_end) {
   const double when[2] = {2.0 / 3.0 * t_end, t_end};
   double front[2] = {0.0, 0.0};
   for (int stage = 0; stage < 2; ++stage) {
-    while (s.time < when[stage])
-      sph::advance(s, std::min(sph::stable_step(s), when[stage] - s.time));
-    const sph::Particles& P = s.particles;
+    while (s.particles.time < when[stage])
+      sph::advance(s, std::min(sph::stable_step(s), when[stage] - s.particles.time));
+    const particles::ParticleSet& P = s.particles;
+    const sph::ParticleFields& F = s.fields;
     std::vector<std::pair<double, double>> profile; // x, -sigma_xx, right slab
     double p_sum = 0.0, s_sum = 0.0;
     int count = 0;
     double reach = 0.0;
     for (int i = 0; i < P.size(); ++i)
-      if (P.x[3 * i] > 0.0) profile.emplace_back(P.x[3 * i], P.p[i] - P.S[6 * i]);
+      if ((P.X[3 * i] + P.u[3 * i]) > 0.0)
+        profile.emplace_back((P.X[3 * i] + P.u[3 * i]), F.p[i] - F.S[6 * i]);
     std::sort(profile.begin(), profile.end());
     double peak = 0.0;
     for (const auto& [x, sigma] : profile) peak = std::max(peak, sigma);
@@ -110,17 +120,17 @@ ShockRun sand_impact(const sph::Material& m, double u, double t_end) {
                                        (profile[k].second - profile[k + 1].second);
     front[stage] = reach;
     for (int i = 0; i < P.size(); ++i) {
-      const double x = P.x[3 * i];
+      const double x = (P.X[3 * i] + P.u[3 * i]);
       if (x > 0.2 * reach && x < 0.7 * reach) {
-        p_sum += P.p[i];
-        s_sum += P.p[i] - P.S[6 * i];
+        p_sum += F.p[i];
+        s_sum += F.p[i] - F.S[6 * i];
         ++count;
       }
       const auto* granular = std::get_if<materials::GranularStrength>(&m.strength);
-      if (granular && P.p[i] > 1e5) {
-        const double* si = &P.S[6 * static_cast<std::size_t>(i)];
+      if (granular && F.p[i] > 1e5) {
+        const double* si = &F.S[6 * static_cast<std::size_t>(i)];
         const double q = std::sqrt(1.5 * (si[0] * si[0] + si[1] * si[1] + si[2] * si[2]));
-        const double Y = materials::granular_yield(*granular, P.p[i]);
+        const double Y = materials::granular_yield(*granular, F.p[i]);
         out.worst_yield_excess = std::max(out.worst_yield_excess, (q - Y) / Y);
       }
     }
@@ -238,7 +248,7 @@ TEST_CASE("inter-material penalty: no force at the lattice spacing, equal and op
   // Two slabs of two materials (the same ideal gas at zero energy: no pressure) approach; only
   // the penalty acts between them.
   sph::Hydro s;
-  s.particles.dim = 1;
+  s.dim = 1;
   sph::Material gas;
   gas.eos = materials::IdealGas{};
   s.materials = {gas, gas};
@@ -247,7 +257,7 @@ TEST_CASE("inter-material penalty: no force at the lattice spacing, equal and op
   const double dx = 1e-3;
   for (int k = 0; k < 20; ++k) {
     const double x[3] = {(k - 10 + 0.5) * dx, 0, 0};
-    s.particles.add(x, dx, 1.0, 0.0, 1.5 * dx, k < 10 ? 0 : 1);
+    add(s, x, dx, 1.0, 0.0, 1.5 * dx, k < 10 ? 0 : 1);
   }
   sph::update_state(s);
   sph::refresh_neighbours(s);
@@ -255,7 +265,7 @@ TEST_CASE("inter-material penalty: no force at the lattice spacing, equal and op
   sph::compute_rates(s, r);
   for (int k = 0; k < 20; ++k) CHECK(r.dv[3 * k] == Approx(0.0).margin(1e-12));
   // Close the gap at the interface to 0.8 dx: the two facing particles repel, momentum is kept.
-  for (int k = 10; k < 20; ++k) s.particles.x[3 * k] -= 0.2 * dx;
+  for (int k = 10; k < 20; ++k) s.particles.X[3 * k] -= 0.2 * dx;
   sph::update_state(s);
   sph::refresh_neighbours(s);
   sph::compute_rates(s, r);

@@ -168,19 +168,21 @@ TEST_CASE("shared steel, SPH: bulk sound speed and the stress behind an elastic 
   // A solid's sound speed at rest: the longitudinal c_L = sqrt((K + 4G/3) / rho), K from the
   // linear equation of state p = K mu and G from E and nu.
   const double cl = std::sqrt((kBulk + 4.0 / 3.0 * kShear) / kRho);
-  CHECK(h.particles.c[0] == Approx(cl).epsilon(1e-12));
+  CHECK(h.fields.c[0] == Approx(cl).epsilon(1e-12));
   const auto* vm = std::get_if<materials::VonMises>(&h.materials[0].strength);
   REQUIRE(vm);
   CHECK(vm->shear_modulus == Approx(kShear).epsilon(1e-15));
   const double t = spec.sph->end_time, v0 = 5.0;
-  while (h.time < t) sph::advance(h, std::min(sph::stable_step(h), t - h.time));
+  while (h.particles.time < t) sph::advance(h, std::min(sph::stable_step(h), t - h.particles.time));
   // Uniaxial strain: sigma_xx = -rho c_L v0 behind the fronts.
-  const sph::Particles& P = h.particles;
+  const particles::ParticleSet& P = h.particles;
+  const sph::ParticleFields& F = h.fields;
   double sum = 0.0;
   int count = 0;
-  for (int i = 0; i < P.size(); ++i)
-    if (P.x[3 * i] > 0.1 * cl * t && P.x[3 * i] < 0.8 * cl * t)
-      sum += -P.p[i] + P.S[6 * i], ++count;
+  for (const int i : P.owned()) {
+    const double x = P.position(i).x();
+    if (x > 0.1 * cl * t && x < 0.8 * cl * t) sum += -F.p[i] + F.S[6 * i], ++count;
+  }
   REQUIRE(count > 10);
   CHECK(sum / count == Approx(-kRho * cl * v0).epsilon(0.01));
 }

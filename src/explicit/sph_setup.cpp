@@ -12,14 +12,15 @@ namespace mf::explicit_dynamics {
 namespace {
 
 /// Whether a free particle lies in a region.
-bool free_in(const sph::Particles& P, int i, const io::Region& region) {
-  return !P.fixed[i] &&
-         region.contains(io::Point(P.x[3 * i], P.x[3 * i + 1], P.x[3 * i + 2]), 1e-9);
+bool free_in(const sph::Hydro& h, int i, const io::Region& region) {
+  const std::vector<double>& X = h.particles.X;
+  return !h.fields.fixed[i] &&
+         region.contains(io::Point(X[3 * i], X[3 * i + 1], X[3 * i + 2]), 1e-9);
 }
 
 /// The face area of a particle in a surface layer one particle thick: V / spacing.
-double face_area(const sph::Particles& P, int i, int dim) {
-  const double volume = P.mass[i] / P.rho_ref[i];
+double face_area(const particles::ParticleSet& P, int i, int dim) {
+  const double volume = P.mass[i] / P.density[i];
   return volume / std::pow(volume, 1.0 / dim);
 }
 
@@ -78,8 +79,9 @@ sph::Hydro build_sph(const io::SphSpec& s) {
   sph::Hydro h;
   for (const io::MaterialSpec& m : s.materials) h.materials.push_back(to_solver(m));
   h.settings = to_solver(s.numerics);
-  sph::Particles& P = h.particles;
-  P.dim = s.dimension;
+  const particles::ParticleSet& P = h.particles;
+  const sph::ParticleFields& F = h.fields;
+  h.dim = s.dimension;
   for (const io::SphRegion& b : s.regions) {
     const int mat = b.material;
     const io::Region& g = b.region;
@@ -93,8 +95,9 @@ sph::Hydro build_sph(const io::SphSpec& s) {
         if (dx * dx + dy * dy < c.radius * c.radius) return;
       }
       const double spacing = std::pow(volume, 1.0 / s.dimension);
-      P.add(x.data(), b.density * volume, b.density, b.energy, s.smoothing * spacing, mat, b.fixed);
-      for (int d = 0; d < 3; ++d) P.v[P.v.size() - 3 + d] = b.velocity[d];
+      const int i =
+          sph::add_particle(h, x, volume, b.density, b.energy, s.smoothing * spacing, mat, b.fixed);
+      for (int d = 0; d < 3; ++d) h.particles.v[3 * i + d] = b.velocity[d];
     };
     if (g.ring)
       geometry::for_each_ring_point(g.ring->center, g.ring->inner_radius, g.ring->outer_radius,
@@ -113,21 +116,21 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     load.name = l.name;
     const io::BlastSpec& blast = l.blast;
     for (int d = 0; d < 3; ++d) load.direction[d] = -blast.normal[d];
-    for (int i = 0; i < P.size(); ++i)
-      if (free_in(P, i, l.region)) {
+    for (const int i : P.owned())
+      if (free_in(h, i, l.region)) {
         load.particles.push_back(i);
         load.area.push_back(face_area(P, i, s.dimension));
       }
     const Charge charge{blast.tnt_mass, blast.surface_burst, blast.clamp_below_range, blast.charge,
                         blast.normal};
-    load.pulses = surface_pulses(charge, P.x, load.particles, l.key_path);
+    load.pulses = surface_pulses(charge, P.X, load.particles, l.key_path);
     MF_REQUIRE(!load.particles.empty(), l.key_path, ".box: selects no free particle");
     h.loads.push_back(load);
   }
   for (const io::SphSymmetry& m : s.symmetry) {
     // The body must lie on one side of each symmetry plane.
     int below = 0, above = 0;
-    for (int i = 0; i < P.size(); ++i) (P.x[3 * i + m.axis] < m.at ? below : above) += 1;
+    for (const int i : P.owned()) (P.X[3 * i + m.axis] < m.at ? below : above) += 1;
     MF_REQUIRE(below == 0 || above == 0, "boundary ", m.name, ": the plane ", "xyz"[m.axis], " = ",
                m.at, " cuts the body (", below, " particles below it, ", above, " above)");
     h.symmetry.push_back({m.axis, m.at});
@@ -142,13 +145,13 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     sph::TransmittingBoundary b;
     b.name = t.name;
     for (int d = 0; d < 3; ++d) b.normal[d] = t.normal[d];
-    for (int i = 0; i < P.size(); ++i) {
-      if (!free_in(P, i, t.region)) continue;
+    for (const int i : P.owned()) {
+      if (!free_in(h, i, t.region)) continue;
       b.particles.push_back(i);
       b.area.push_back(face_area(P, i, s.dimension));
-      b.normal_impedance.push_back(P.rho[i] * P.c[i]);
+      b.normal_impedance.push_back(F.rho[i] * F.c[i]);
       b.shear_impedance.push_back(std::sqrt(
-          P.rho[i] * materials::shear_modulus(h.materials[P.material[i]].strength, P.rho[i])));
+          F.rho[i] * materials::shear_modulus(h.materials[P.material[i]].strength, F.rho[i])));
     }
     MF_REQUIRE(!b.particles.empty(), t.key_path, ".box: selects no free particle");
     h.transmitting.push_back(b);

@@ -7,8 +7,9 @@
 namespace mf::sph {
 
 void correction_matrices(const Hydro& s, std::vector<double>& C) {
-  const Particles& P = s.particles;
-  const int n = s.real_count(), dim = P.dim;
+  const particles::ParticleSet& P = s.particles;
+  const ParticleFields& F = s.fields;
+  const int n = P.owned_count(), dim = s.dim;
   C.assign(9 * static_cast<std::size_t>(P.size()), 0.0);
 #pragma omp parallel for schedule(dynamic, 64)
   for (int i = 0; i < n; ++i) {
@@ -16,9 +17,9 @@ void correction_matrices(const Hydro& s, std::vector<double>& C) {
     for (long k = s.pairs.offset[i]; k < s.pairs.offset[i + 1]; ++k) {
       const int j = s.pairs.partner[k];
       double xij[3], r2;
-      const double g = pair_gradient(P, dim, s.settings.kernel, i, j, xij, r2);
+      const double g = pair_gradient(P, F.h, dim, s.settings.kernel, i, j, xij, r2);
       if (g == 0.0) continue;
-      const double w = -P.mass[j] / P.rho[j] * g; // (x_j - x_i) = -x_ij
+      const double w = -P.mass[j] / F.rho[j] * g; // (x_j - x_i) = -x_ij
       for (int a = 0; a < dim; ++a)
         for (int b = 0; b < dim; ++b) M[a][b] += w * xij[a] * xij[b];
     }
@@ -44,24 +45,25 @@ void correction_matrices(const Hydro& s, std::vector<double>& C) {
 }
 
 void artificial_stresses(const Hydro& s, std::vector<double>& R) {
-  const Particles& P = s.particles;
+  const particles::ParticleSet& P = s.particles;
+  const ParticleFields& F = s.fields;
   const double eps = s.settings.artificial_stress;
   R.assign(6 * static_cast<std::size_t>(P.size()), 0.0);
   for (std::size_t m = 0; m < s.materials.size(); ++m) {
     if (!s.materials[m].solid()) continue;
     const int* members = s.groups.of(m);
-    const int count = s.groups.real(m);
+    const int count = s.groups.owned(m);
 #pragma omp parallel for schedule(static)
     for (int k = 0; k < count; ++k) {
       const int i = members[k];
-      const double* si = &P.S[6 * static_cast<std::size_t>(i)];
+      const double* si = &F.S[6 * static_cast<std::size_t>(i)];
       Eigen::Matrix3d sigma;
-      sigma << si[0] - P.p[i], si[5], si[4], si[5], si[1] - P.p[i], si[3], si[4], si[3],
-          si[2] - P.p[i];
+      sigma << si[0] - F.p[i], si[5], si[4], si[5], si[1] - F.p[i], si[3], si[4], si[3],
+          si[2] - F.p[i];
       const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(sigma);
       Eigen::Vector3d ra = Eigen::Vector3d::Zero();
       for (int a = 0; a < 3; ++a)
-        if (eig.eigenvalues()[a] > 0.0) ra[a] = -eps * eig.eigenvalues()[a] / (P.rho[i] * P.rho[i]);
+        if (eig.eigenvalues()[a] > 0.0) ra[a] = -eps * eig.eigenvalues()[a] / (F.rho[i] * F.rho[i]);
       const Eigen::Matrix3d Ri =
           eig.eigenvectors() * ra.asDiagonal() * eig.eigenvectors().transpose();
       double* out = &R[6 * static_cast<std::size_t>(i)];

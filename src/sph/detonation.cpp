@@ -9,16 +9,18 @@ namespace {
 /// only a booster of 2 h is lit on schedule, and the shock lights the rest (update_state).
 template <class Distance> void light_by_distance(Hydro& s, Distance distance) {
   group_materials(s);
-  Particles& P = s.particles;
+  particles::ParticleSet& P = s.particles;
+  ParticleFields& F = s.fields;
   for (std::size_t m = 0; m < s.materials.size(); ++m) {
     const auto* explosive = std::get_if<materials::JwlExplosive>(&s.materials[m].eos);
     if (!explosive) continue;
     const int* members = s.groups.of(m);
     for (int k = 0; k < s.groups.count(m); ++k) {
       const int i = members[k];
-      const double r = distance(&P.x[3 * static_cast<std::size_t>(i)]);
-      if (explosive->unreacted && r > 2.0 * P.h[i]) continue;
-      P.light_time[i] = r / explosive->jwl.detonation_speed;
+      const Vec3 x = P.position(i);
+      const double r = distance(x.data());
+      if (explosive->unreacted && r > 2.0 * F.h[i]) continue;
+      F.light_time[i] = r / explosive->jwl.detonation_speed;
     }
   }
 }

@@ -25,25 +25,26 @@ inline void boundary_force(const TransmittingBoundary& b, std::size_t k, const d
 /// Velocity gradient L_i = sum_j (m_j / rho_j)(v_j - v_i) (x) grad_i W_ij of particle i, and the
 /// Jaumann rate of its deviatoric stress with shear modulus G.
 void jaumann_rate(const Hydro& s, Rates& r, int i, double G) {
-  const Particles& P = s.particles;
+  const particles::ParticleSet& P = s.particles;
+  const ParticleFields& F = s.fields;
   const Settings& S = s.settings;
-  const int dim = P.dim;
+  const int dim = s.dim;
   const bool corrected = S.gradient_correction;
   double L[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
   for (long k = s.pairs.offset[i]; k < s.pairs.offset[i + 1]; ++k) {
     const int j = s.pairs.partner[k];
     double xij[3], r2;
-    const double g = pair_gradient(P, dim, S.kernel, i, j, xij, r2);
+    const double g = pair_gradient(P, F.h, dim, S.kernel, i, j, xij, r2);
     if (g == 0.0) continue;
     double gv[3];
     gradient_vector(corrected ? &r.correction[9 * static_cast<std::size_t>(i)] : nullptr, g, xij,
                     gv);
-    const double vol = P.mass[j] / P.rho[j];
+    const double vol = P.mass[j] / F.rho[j];
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) L[a][b] += vol * (P.v[3 * j + a] - P.v[3 * i + a]) * gv[b];
   }
   double D[3][3], W[3][3], Si[3][3];
-  const double* s6 = &P.S[6 * static_cast<std::size_t>(i)];
+  const double* s6 = &F.S[6 * static_cast<std::size_t>(i)];
   const double Sm[3][3] = {{s6[0], s6[5], s6[4]}, {s6[5], s6[1], s6[3]}, {s6[4], s6[3], s6[2]}};
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b) {
@@ -68,13 +69,14 @@ void jaumann_rate(const Hydro& s, Rates& r, int i, double G) {
 } // namespace
 
 void compute_rates(const Hydro& s, Rates& r) {
-  const Particles& P = s.particles;
+  const particles::ParticleSet& P = s.particles;
+  const ParticleFields& F = s.fields;
   if (s.groups.built_for != P.size())
     fail("SPH: the particles changed since they were grouped by material (update_state or "
          "refresh_neighbours groups them)");
   const Settings& S = s.settings;
-  // Rates for the body's particles; mirror particles only lend their (mirrored) state.
-  const int n = s.real_count(), all = P.size(), dim = P.dim;
+  // Rates for the owned particles; ghosts (mirror images) only lend their (mirrored) state.
+  const int n = P.owned_count(), all = P.size(), dim = s.dim;
   const bool corrected = S.gradient_correction;
   if (corrected) {
     correction_matrices(s, r.correction);
@@ -89,7 +91,7 @@ void compute_rates(const Hydro& s, Rates& r) {
     // Initial particle spacings (m / rho_ref)^(1/dim), once per call rather than per pair.
     r.spacing.resize(all);
 #pragma omp parallel for schedule(static)
-    for (int i = 0; i < all; ++i) r.spacing[i] = std::pow(P.mass[i] / P.rho_ref[i], 1.0 / dim);
+    for (int i = 0; i < all; ++i) r.spacing[i] = std::pow(P.mass[i] / P.density[i], 1.0 / dim);
   }
   r.dv.assign(3 * static_cast<std::size_t>(all), 0.0);
   r.drho.assign(all, 0.0);
@@ -102,7 +104,7 @@ void compute_rates(const Hydro& s, Rates& r) {
     r.dS.assign(6 * static_cast<std::size_t>(all), 0.0);
     for (std::size_t m = 0; m < s.materials.size(); ++m) {
       const int* members = s.groups.of(m);
-      const int count = s.groups.real(m);
+      const int count = s.groups.owned(m);
       std::visit(
           [&](const auto& law) {
             using Law = std::decay_t<decltype(law)>;
@@ -110,7 +112,7 @@ void compute_rates(const Hydro& s, Rates& r) {
 #pragma omp parallel for schedule(dynamic, 64)
               for (int k = 0; k < count; ++k) {
                 const int i = members[k];
-                jaumann_rate(s, r, i, materials::shear_modulus(law, P.rho[i]));
+                jaumann_rate(s, r, i, materials::shear_modulus(law, F.rho[i]));
               }
             }
           },
@@ -119,29 +121,29 @@ void compute_rates(const Hydro& s, Rates& r) {
   }
 #pragma omp parallel for schedule(dynamic, 64)
   for (int i = 0; i < n; ++i) {
-    const double pi_rho2 = P.p[i] / (P.rho[i] * P.rho[i]);
-    const double* si = &P.S[6 * static_cast<std::size_t>(i)];
-    const double ri2 = 1.0 / (P.rho[i] * P.rho[i]);
+    const double pi_rho2 = F.p[i] / (F.rho[i] * F.rho[i]);
+    const double* si = &F.S[6 * static_cast<std::size_t>(i)];
+    const double ri2 = 1.0 / (F.rho[i] * F.rho[i]);
     double acc[3] = {0.0, 0.0, 0.0}, drho = 0.0, de = 0.0;
     for (long k = s.pairs.offset[i]; k < s.pairs.offset[i + 1]; ++k) {
       const int j = s.pairs.partner[k];
       double xij[3], r2;
-      const double g = pair_gradient(P, dim, S.kernel, i, j, xij, r2);
+      const double g = pair_gradient(P, F.h, dim, S.kernel, i, j, xij, r2);
       if (g == 0.0) continue;
       double vij[3], vx = 0.0;
       for (int d = 0; d < 3; ++d) {
         vij[d] = P.v[3 * i + d] - P.v[3 * j + d];
         vx += vij[d] * xij[d];
       }
-      const double hij = 0.5 * (P.h[i] + P.h[j]);
+      const double hij = 0.5 * (F.h[i] + F.h[j]);
       // Monaghan's viscosity for approaching pairs.
       double visc = 0.0;
       if (vx < 0.0) {
         const double mu = hij * vx / (r2 + S.phi * S.phi * hij * hij);
-        const double cij = 0.5 * (P.c[i] + P.c[j]), rhoij = 0.5 * (P.rho[i] + P.rho[j]);
+        const double cij = 0.5 * (F.c[i] + F.c[j]), rhoij = 0.5 * (F.rho[i] + F.rho[j]);
         visc = (-S.alpha * cij * mu + S.beta * mu * mu) / rhoij;
       }
-      const double q = pi_rho2 + P.p[j] / (P.rho[j] * P.rho[j]) + visc;
+      const double q = pi_rho2 + F.p[j] / (F.rho[j] * F.rho[j]) + visc;
       const double mj = P.mass[j];
       // The pair's gradient: with the correction, (C_i + C_j)/2 grad W, which stays
       // antisymmetric in i and j, so momentum is still conserved exactly.
@@ -162,8 +164,8 @@ void compute_rates(const Hydro& s, Rates& r) {
       if (solids) {
         // Deviatoric stress: dv_i += m_j (S_i/rho_i^2 + S_j/rho_j^2) . grad W and
         // de_i -= m_j / 2 (S_i/rho_i^2 + S_j/rho_j^2) : (v_ij (x) grad W).
-        const double* sj = &P.S[6 * static_cast<std::size_t>(j)];
-        const double rj2 = 1.0 / (P.rho[j] * P.rho[j]);
+        const double* sj = &F.S[6 * static_cast<std::size_t>(j)];
+        const double rj2 = 1.0 / (F.rho[j] * F.rho[j]);
         double T[6];
         for (int c = 0; c < 6; ++c) T[c] = si[c] * ri2 + sj[c] * rj2;
         if (art) {
@@ -194,7 +196,7 @@ void compute_rates(const Hydro& s, Rates& r) {
         }
       }
     }
-    if (!P.fixed[i])
+    if (!F.fixed[i])
       for (int d = 0; d < 3; ++d) r.dv[3 * i + d] = acc[d];
     r.drho[i] = drho;
     r.de[i] = de;
@@ -202,8 +204,8 @@ void compute_rates(const Hydro& s, Rates& r) {
   for (const SurfaceLoad& load : s.loads)
     for (std::size_t k = 0; k < load.particles.size(); ++k) {
       const int i = load.particles[k];
-      if (P.fixed[i]) continue;
-      const double f = load.pulses[k](s.time) * load.area[k] / P.mass[i];
+      if (F.fixed[i]) continue;
+      const double f = load.pulses[k](s.particles.time) * load.area[k] / P.mass[i];
       for (int d = 0; d < 3; ++d) r.dv[3 * i + d] += f * load.direction[d];
     }
   for (const TransmittingBoundary& b : s.transmitting)
@@ -216,14 +218,15 @@ void compute_rates(const Hydro& s, Rates& r) {
 }
 
 void external_forces(const Hydro& s, std::vector<int>& who, std::vector<double>& force) {
-  const Particles& P = s.particles;
+  const particles::ParticleSet& P = s.particles;
+  const ParticleFields& F = s.fields;
   who.clear();
   force.clear();
   for (const SurfaceLoad& load : s.loads)
     for (std::size_t k = 0; k < load.particles.size(); ++k) {
       const int i = load.particles[k];
-      if (P.fixed[i]) continue;
-      const double f = load.pulses[k](s.time) * load.area[k];
+      if (F.fixed[i]) continue;
+      const double f = load.pulses[k](s.particles.time) * load.area[k];
       who.push_back(i);
       for (int d = 0; d < 3; ++d) force.push_back(f * load.direction[d]);
     }

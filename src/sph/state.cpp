@@ -13,22 +13,22 @@ namespace {
 /// Pressure and squared sound speed of particle i of a material with equation of state `eos`.
 template <class Eos>
 materials::PressureAndSound pressure_of(const Hydro& s, const Eos& eos, int i) {
-  const Particles& P = s.particles;
-  return materials::pressure_and_sound(eos, P.rho[i], P.e[i], P.rho_max[i], P.damage[i]);
+  const ParticleFields& F = s.fields;
+  return materials::pressure_and_sound(eos, F.rho[i], F.e[i], F.rho_max[i], F.damage[i]);
 }
 
 /// An explosive's pressure at its burn fraction; one with an unreacted equation of state is lit
 /// here when the shock has compressed it by Settings::ignition_compression.
 materials::PressureAndSound pressure_of(Hydro& s, const materials::JwlExplosive& x, int i) {
-  Particles& P = s.particles;
-  if (x.unreacted && P.light_time[i] < 0.0 &&
-      P.rho[i] >= (1.0 + s.settings.ignition_compression) * x.jwl.rho0)
-    P.light_time[i] = s.time;
+  ParticleFields& F = s.fields;
+  if (x.unreacted && F.light_time[i] < 0.0 &&
+      F.rho[i] >= (1.0 + s.settings.ignition_compression) * x.jwl.rho0)
+    F.light_time[i] = s.particles.time;
   // A particle never lit is inert.
-  const double f = P.light_time[i] >= 0.0 ? burn_fraction(x, s.time, P.light_time[i], P.h[i],
-                                                          P.rho[i], s.settings.burn_width)
+  const double f = F.light_time[i] >= 0.0 ? burn_fraction(x, s.particles.time, F.light_time[i],
+                                                          F.h[i], F.rho[i], s.settings.burn_width)
                                           : 0.0;
-  return materials::explosive_pressure(x, P.rho[i], P.e[i], f);
+  return materials::explosive_pressure(x, F.rho[i], F.e[i], f);
 }
 
 /// A solid's longitudinal sound speed adds 4G / (3 rho) to the bulk one; a fluid's adds nothing.
@@ -48,16 +48,17 @@ double von_mises(const double* s) {
 /// The elastic trial of a solid particle: S = S0 + dt dS with the plastic strain and damage of
 /// the start of the step, and the equivalent deviatoric strain rate sqrt(2/3 D':D')
 /// from the velocity gradient. A failed particle carries no deviatoric stress (returns false).
-bool elastic_trial(Particles& P, const StressHistory& start, const Rates& r, double dt, int i) {
+bool elastic_trial(ParticleFields& F, const StressHistory& start, const Rates& r, double dt,
+                   int i) {
   const std::size_t i6 = 6 * static_cast<std::size_t>(i);
-  double* si = &P.S[i6];
-  if (P.failed[i]) {
+  double* si = &F.S[i6];
+  if (F.failed[i]) {
     for (int c = 0; c < 6; ++c) si[c] = 0.0;
     return false;
   }
   for (int c = 0; c < 6; ++c) si[c] = start.S[i6 + c] + dt * r.dS[i6 + c];
-  P.alpha[i] = start.alpha[i];
-  P.damage[i] = start.damage[i];
+  F.alpha[i] = start.alpha[i];
+  F.damage[i] = start.damage[i];
   const double* L = &r.grad_v[9 * static_cast<std::size_t>(i)];
   const double tr = (L[0] + L[4] + L[8]) / 3.0;
   double dd = 0.0;
@@ -66,13 +67,13 @@ bool elastic_trial(Particles& P, const StressHistory& start, const Rates& r, dou
       const double d = 0.5 * (L[3 * a + b] + L[3 * b + a]) - (a == b ? tr : 0.0);
       dd += d * d;
     }
-  P.strain_rate[i] = std::sqrt(2.0 / 3.0 * dd);
+  F.strain_rate[i] = std::sqrt(2.0 / 3.0 * dd);
   return true;
 }
 
 /// The return of each strength model, after the elastic trial of particle i.
-void plastic_return(Particles&, const materials::ElasticShear&, const StressHistory&, const Rates&,
-                    double, int) {}
+void plastic_return(ParticleFields&, const materials::ElasticShear&, const StressHistory&,
+                    const Rates&, double, int) {}
 
 /// The Jaumann rate W b - b W of a symmetric tensor b (Voigt, stress-like) under the spin
 /// W = (L - L^T) / 2 of the velocity gradient L (row-major), the rotation that the deviatoric
@@ -92,53 +93,54 @@ materials::Vec6 jaumann_rotation(const double* L, const materials::Vec6& b) {
   return out;
 }
 
-void plastic_return(Particles& P, const materials::VonMises& law, const StressHistory& start,
+void plastic_return(ParticleFields& F, const materials::VonMises& law, const StressHistory& start,
                     const Rates& r, double dt, int i) {
   // The J2 return of the Galerkin solver on the integrated trial deviator (materials/
   // j2_plasticity), with the particle's back stress. With kinematic hardening the back stress
   // turns with the material like S: b = b0 + dt (W b - b W), b at the rates' state.
   const std::size_t i6 = 6 * static_cast<std::size_t>(i);
-  double* si = &P.S[i6];
+  double* si = &F.S[i6];
   const materials::Vec6 trial = Eigen::Map<const materials::Vec6>(si);
   materials::Vec6 beta = Eigen::Map<const materials::Vec6>(&start.back_stress[i6]);
   if (law.j2.H_kinematic > 0.0)
     beta += dt * jaumann_rotation(&r.grad_v[9 * static_cast<std::size_t>(i)],
-                                  Eigen::Map<const materials::Vec6>(&P.back_stress[i6]));
+                                  Eigen::Map<const materials::Vec6>(&F.back_stress[i6]));
   const materials::J2Return ret = materials::j2_radial_return(law.j2, trial, beta, start.alpha[i]);
   if (ret.plastic) {
     for (int c = 0; c < 6; ++c) si[c] = ret.deviator(c);
-    P.alpha[i] = ret.alpha;
+    F.alpha[i] = ret.alpha;
     beta = ret.back_stress;
   }
-  for (int c = 0; c < 6; ++c) P.back_stress[i6 + c] = beta(c);
+  for (int c = 0; c < 6; ++c) F.back_stress[i6 + c] = beta(c);
 }
 
 /// Perfectly plastic at the current pressure (and damage): radial return to Y, with the plastic
 /// strain increment (q - Y) / 3G; HJC adds its damage.
 template <class Law>
-void plastic_return(Particles& P, const Law& law, const StressHistory& start, const Rates&, double,
-                    int i) {
-  double* si = &P.S[6 * static_cast<std::size_t>(i)];
+void plastic_return(ParticleFields& F, const Law& law, const StressHistory& start, const Rates&,
+                    double, int i) {
+  double* si = &F.S[6 * static_cast<std::size_t>(i)];
   const double q = von_mises(si);
   const double Y =
-      materials::current_yield(law, P.p[i], start.alpha[i], start.damage[i], P.strain_rate[i]);
+      materials::current_yield(law, F.p[i], start.alpha[i], start.damage[i], F.strain_rate[i]);
   const materials::YieldReturn ret =
-      materials::perfectly_plastic_return(q, Y, materials::shear_modulus(law, P.rho[i]));
+      materials::perfectly_plastic_return(q, Y, materials::shear_modulus(law, F.rho[i]));
   if (ret.plastic)
     for (int c = 0; c < 6; ++c) si[c] *= ret.scale;
-  P.alpha[i] = start.alpha[i] + ret.dalpha;
+  F.alpha[i] = start.alpha[i] + ret.dalpha;
   if constexpr (std::is_same_v<Law, materials::Hjc>)
-    P.damage[i] =
-        std::min(1.0, start.damage[i] + materials::hjc_damage_increment(law, P.rho[i], P.rho_max[i],
-                                                                        P.p[i], ret.dalpha));
+    F.damage[i] =
+        std::min(1.0, start.damage[i] + materials::hjc_damage_increment(law, F.rho[i], F.rho_max[i],
+                                                                        F.p[i], ret.dalpha));
 }
 
 } // namespace
 
 void update_state(Hydro& s) {
   group_materials(s);
-  Particles& P = s.particles;
-  const double inv_dim = 1.0 / P.dim;
+  particles::ParticleSet& P = s.particles;
+  ParticleFields& F = s.fields;
+  const double inv_dim = 1.0 / s.dim;
   for (std::size_t m = 0; m < s.materials.size(); ++m) {
     const int* members = s.groups.of(m);
     const int count = s.groups.count(m);
@@ -147,10 +149,10 @@ void update_state(Hydro& s) {
 #pragma omp parallel for schedule(static)
           for (int k = 0; k < count; ++k) {
             const int i = members[k];
-            P.h[i] = P.h_ref[i] * std::pow(P.rho_ref[i] / P.rho[i], inv_dim);
+            F.h[i] = F.h_ref[i] * std::pow(P.density[i] / F.rho[i], inv_dim);
             const materials::PressureAndSound ps = pressure_of(s, eos, i);
-            P.p[i] = P.failed[i] ? std::max(ps.p, 0.0) : ps.p;
-            P.c[i] = std::sqrt(std::max(ps.c2, 0.0) + shear_speed2(strength, P.rho[i]));
+            F.p[i] = F.failed[i] ? std::max(ps.p, 0.0) : ps.p;
+            F.c[i] = std::sqrt(std::max(ps.c2, 0.0) + shear_speed2(strength, F.rho[i]));
           }
         },
         s.materials[m].eos, s.materials[m].strength);
@@ -158,15 +160,15 @@ void update_state(Hydro& s) {
 }
 
 StressHistory stress_history(const Hydro& s) {
-  const Particles& P = s.particles;
-  return {P.S, P.back_stress, P.alpha, P.damage};
+  const ParticleFields& F = s.fields;
+  return {F.S, F.back_stress, F.alpha, F.damage};
 }
 
 void update_stress(Hydro& s, const StressHistory& start, const Rates& r, double dt) {
-  Particles& P = s.particles;
+  ParticleFields& F = s.fields;
   for (std::size_t m = 0; m < s.materials.size(); ++m) {
     const int* members = s.groups.of(m);
-    const int count = s.groups.real(m);
+    const int count = s.groups.owned(m);
     std::visit(
         [&](const auto& law) {
           using Law = std::decay_t<decltype(law)>;
@@ -174,7 +176,7 @@ void update_stress(Hydro& s, const StressHistory& start, const Rates& r, double 
 #pragma omp parallel for schedule(static)
             for (int k = 0; k < count; ++k) {
               const int i = members[k];
-              if (elastic_trial(P, start, r, dt, i)) plastic_return(P, law, start, r, dt, i);
+              if (elastic_trial(F, start, r, dt, i)) plastic_return(F, law, start, r, dt, i);
             }
           }
         },
@@ -183,10 +185,11 @@ void update_stress(Hydro& s, const StressHistory& start, const Rates& r, double 
 }
 
 void commit_history(Hydro& s) {
-  Particles& P = s.particles;
+  particles::ParticleSet& P = s.particles;
+  ParticleFields& F = s.fields;
   const int n = P.size();
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) P.rho_max[i] = std::max(P.rho_max[i], P.rho[i]);
+  for (int i = 0; i < n; ++i) F.rho_max[i] = std::max(F.rho_max[i], F.rho[i]);
   for (std::size_t m = 0; m < s.materials.size(); ++m) {
     const Material& mat = s.materials[m];
     if (!mat.solid()) continue;
@@ -196,11 +199,11 @@ void commit_history(Hydro& s) {
 #pragma omp parallel for schedule(static)
     for (int k = 0; k < count; ++k) {
       const int i = members[k];
-      if (P.failed[i]) continue;
-      if ((by_damage && P.damage[i] >= 1.0) ||
-          (mat.failure_strain > 0.0 && P.alpha[i] >= mat.failure_strain)) {
-        P.failed[i] = 1;
-        for (int c = 0; c < 6; ++c) P.S[6 * static_cast<std::size_t>(i) + c] = 0.0;
+      if (F.failed[i]) continue;
+      if ((by_damage && F.damage[i] >= 1.0) ||
+          (mat.failure_strain > 0.0 && F.alpha[i] >= mat.failure_strain)) {
+        F.failed[i] = 1;
+        for (int c = 0; c < 6; ++c) F.S[6 * static_cast<std::size_t>(i) + c] = 0.0;
       }
     }
   }

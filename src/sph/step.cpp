@@ -11,13 +11,14 @@
 namespace mf::sph {
 
 double stable_step(const Hydro& s, int* limiting) {
-  const Particles& P = s.particles;
+  const particles::ParticleSet& P = s.particles;
+  const ParticleFields& F = s.fields;
   double best = std::numeric_limits<double>::infinity();
   int where = -1;
-  for (int i = 0; i < s.real_count(); ++i) {
+  for (const int i : P.owned()) {
     const double speed = std::sqrt(P.v[3 * i] * P.v[3 * i] + P.v[3 * i + 1] * P.v[3 * i + 1] +
                                    P.v[3 * i + 2] * P.v[3 * i + 2]);
-    const double dt = P.h[i] / (P.c[i] + speed);
+    const double dt = F.h[i] / (F.c[i] + speed);
     if (dt < best) best = dt, where = i;
   }
   if (limiting) *limiting = where;
@@ -26,41 +27,44 @@ double stable_step(const Hydro& s, int* limiting) {
 
 namespace {
 void check_finite(const Hydro& s) {
-  const Particles& P = s.particles;
-  for (int i = 0; i < P.size(); ++i)
-    if (!std::isfinite(P.rho[i]) || !std::isfinite(P.e[i]) || !(P.rho[i] > 0.0) ||
+  const particles::ParticleSet& P = s.particles;
+  const ParticleFields& F = s.fields;
+  for (const int i : P.all())
+    if (!std::isfinite(F.rho[i]) || !std::isfinite(F.e[i]) || !(F.rho[i] > 0.0) ||
         !std::isfinite(P.v[3 * i]) || !std::isfinite(P.v[3 * i + 1]) ||
         !std::isfinite(P.v[3 * i + 2]))
-      fail("SPH: particle ", i, " at (", P.x[3 * i], ", ", P.x[3 * i + 1], ", ", P.x[3 * i + 2],
-           ") has density ", P.rho[i], ", energy ", P.e[i], ", velocity (", P.v[3 * i], ", ",
-           P.v[3 * i + 1], ", ", P.v[3 * i + 2], ") at step ", s.step, ", t = ", s.time);
+      fail("SPH: particle ", i, " at (", P.position(i).x(), ", ", P.position(i).y(), ", ",
+           P.position(i).z(), ") has density ", F.rho[i], ", energy ", F.e[i], ", velocity (",
+           P.v[3 * i], ", ", P.v[3 * i + 1], ", ", P.v[3 * i + 2], ") at step ", s.particles.step,
+           ", t = ", s.particles.time);
 }
 } // namespace
 
 void advance(Hydro& s, double dt) {
-  Particles& P = s.particles;
-  const int n = s.real_count(); // mirror particles are copied from these after each stage
+  particles::ParticleSet& P = s.particles;
+  ParticleFields& F = s.fields;
+  const int n = P.owned_count(); // ghosts are mirrored from these after each stage
   const std::size_t n3 = 3 * static_cast<std::size_t>(n);
-  const std::vector<double> x0 = P.x, v0 = P.v, rho0 = P.rho, e0 = P.e;
+  const std::vector<double> u0 = P.u, v0 = P.v, rho0 = F.rho, e0 = F.e;
   const StressHistory start = stress_history(s);
   const bool solids = s.any_solid();
-  const double t0 = s.time;
+  const double t0 = s.particles.time;
   Rates r;
   // Predictor: half a step with the rates at the start.
   refresh_neighbours(s);
   compute_rates(s, r);
 #pragma omp parallel for schedule(static)
   for (std::size_t k = 0; k < n3; ++k) {
-    P.x[k] = x0[k] + 0.5 * dt * v0[k];
+    P.u[k] = u0[k] + 0.5 * dt * v0[k];
     P.v[k] = v0[k] + 0.5 * dt * r.dv[k];
   }
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
-    P.rho[i] = rho0[i] + 0.5 * dt * r.drho[i];
-    P.e[i] = e0[i] + 0.5 * dt * r.de[i];
+    F.rho[i] = rho0[i] + 0.5 * dt * r.drho[i];
+    F.e[i] = e0[i] + 0.5 * dt * r.de[i];
   }
   if (solids) update_stress(s, start, r, 0.5 * dt);
-  s.time = t0 + 0.5 * dt;
+  s.particles.time = t0 + 0.5 * dt;
   refresh_ghosts(s);
   update_state(s);
   // The loads' forces at the midpoint, which the corrector applies over the whole step.
@@ -72,13 +76,13 @@ void advance(Hydro& s, double dt) {
   compute_rates(s, r);
 #pragma omp parallel for schedule(static)
   for (std::size_t k = 0; k < n3; ++k) {
-    P.x[k] = x0[k] + dt * P.v[k];
+    P.u[k] = u0[k] + dt * P.v[k];
     P.v[k] = v0[k] + dt * r.dv[k];
   }
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
-    P.rho[i] = rho0[i] + dt * r.drho[i];
-    P.e[i] = e0[i] + dt * r.de[i];
+    F.rho[i] = rho0[i] + dt * r.drho[i];
+    F.e[i] = e0[i] + dt * r.de[i];
   }
   if (solids) update_stress(s, start, r, dt);
   // Their work: F_mid . (v0 + v1) / 2 dt, which is exactly the kinetic energy the corrector's
@@ -88,8 +92,8 @@ void advance(Hydro& s, double dt) {
       const std::size_t at = 3 * static_cast<std::size_t>(loaded[k]) + d;
       s.external_work += dt * mid_force[3 * k + d] * 0.5 * (v0[at] + P.v[at]);
     }
-  s.time = t0 + dt;
-  ++s.step;
+  s.particles.time = t0 + dt;
+  ++s.particles.step;
   check_finite(s);
   commit_history(s);
   refresh_ghosts(s);
@@ -97,13 +101,14 @@ void advance(Hydro& s, double dt) {
 }
 
 Energies energies(const Hydro& s) {
-  const Particles& P = s.particles;
+  const particles::ParticleSet& P = s.particles;
+  const ParticleFields& F = s.fields;
   Energies out;
-  for (int i = 0; i < s.real_count(); ++i) {
+  for (const int i : P.owned()) {
     const double v2 =
         P.v[3 * i] * P.v[3 * i] + P.v[3 * i + 1] * P.v[3 * i + 1] + P.v[3 * i + 2] * P.v[3 * i + 2];
     out.kinetic += 0.5 * P.mass[i] * v2;
-    out.internal += P.mass[i] * P.e[i];
+    out.internal += P.mass[i] * F.e[i];
   }
   return out;
 }

@@ -7,45 +7,52 @@ namespace mf::sph {
 namespace {
 /// Mirrors particle k's vector and stress across the planes in `planes` (bits of s.symmetry).
 void mirror_state(Hydro& s, int k, int source, int planes) {
-  Particles& P = s.particles;
+  particles::ParticleSet& P = s.particles;
+  ParticleFields& F = s.fields;
   const std::size_t g = static_cast<std::size_t>(k), i = static_cast<std::size_t>(source);
   for (int d = 0; d < 3; ++d) {
-    P.x[3 * g + d] = P.x[3 * i + d];
+    P.X[3 * g + d] = P.X[3 * i + d];
+    P.u[3 * g + d] = P.u[3 * i + d];
     P.v[3 * g + d] = P.v[3 * i + d];
   }
-  for (int c = 0; c < 6; ++c) P.S[6 * g + c] = P.S[6 * i + c];
+  for (int c = 0; c < 6; ++c) F.S[6 * g + c] = F.S[6 * i + c];
   // Voigt xx yy zz yz xz xy: the shear components with one index on the plane's axis flip.
   static const int shear_of[3][2] = {{4, 5}, {3, 5}, {3, 4}};
   for (std::size_t q = 0; q < s.symmetry.size(); ++q) {
     if (!(planes >> q & 1)) continue;
     const SymmetryPlane& m = s.symmetry[q];
-    P.x[3 * g + m.axis] = 2.0 * m.at - P.x[3 * g + m.axis];
+    // The image of X + u is (2 at - X) - u.
+    P.X[3 * g + m.axis] = 2.0 * m.at - P.X[3 * g + m.axis];
+    P.u[3 * g + m.axis] = -P.u[3 * g + m.axis];
     P.v[3 * g + m.axis] = -P.v[3 * g + m.axis];
-    P.S[6 * g + shear_of[m.axis][0]] = -P.S[6 * g + shear_of[m.axis][0]];
-    P.S[6 * g + shear_of[m.axis][1]] = -P.S[6 * g + shear_of[m.axis][1]];
+    F.S[6 * g + shear_of[m.axis][0]] = -F.S[6 * g + shear_of[m.axis][0]];
+    F.S[6 * g + shear_of[m.axis][1]] = -F.S[6 * g + shear_of[m.axis][1]];
   }
-  P.rho[g] = P.rho[i], P.e[g] = P.e[i], P.h[g] = P.h[i], P.p[g] = P.p[i], P.c[g] = P.c[i];
-  P.alpha[g] = P.alpha[i], P.rho_max[g] = P.rho_max[i], P.damage[g] = P.damage[i];
-  P.failed[g] = P.failed[i], P.strain_rate[g] = P.strain_rate[i];
+  F.rho[g] = F.rho[i], F.e[g] = F.e[i], F.h[g] = F.h[i], F.p[g] = F.p[i], F.c[g] = F.c[i];
+  F.alpha[g] = F.alpha[i], F.rho_max[g] = F.rho_max[i], F.damage[g] = F.damage[i];
+  F.failed[g] = F.failed[i], F.strain_rate[g] = F.strain_rate[i];
 }
 
 } // namespace
 
 void rebuild_ghosts(Hydro& s, double band) {
-  Particles& P = s.particles;
-  if (s.real < 0) s.real = P.size();
-  P.truncate(s.real);
-  s.ghost_of.clear();
+  particles::ParticleSet& P = s.particles;
+  ParticleFields& F = s.fields;
+  P.drop_ghosts();
+  F.truncate(P.size());
+  const int owned = P.owned_count();
+  s.ghost_source.clear();
   s.ghost_planes.clear();
   for (std::size_t q = 0; q < s.symmetry.size(); ++q) {
     const SymmetryPlane& m = s.symmetry[q];
     const int count = P.size();
     for (int i = 0; i < count; ++i) {
-      if (std::abs(P.x[3 * i + m.axis] - m.at) >= band) continue;
-      const int source = i < s.real ? i : s.ghost_of[i - s.real];
-      const int planes = (i < s.real ? 0 : s.ghost_planes[i - s.real]) | (1 << q);
-      P.append_copy(source);
-      s.ghost_of.push_back(source);
+      if (std::abs(P.X[3 * i + m.axis] + P.u[3 * i + m.axis] - m.at) >= band) continue;
+      const int source = i < owned ? i : s.ghost_source[i - owned];
+      const int planes = (i < owned ? 0 : s.ghost_planes[i - owned]) | (1 << q);
+      P.add_ghost(source);
+      F.append_copy(source);
+      s.ghost_source.push_back(source);
       s.ghost_planes.push_back(planes);
       mirror_state(s, P.size() - 1, source, planes);
     }
@@ -54,8 +61,9 @@ void rebuild_ghosts(Hydro& s, double band) {
 }
 
 void refresh_ghosts(Hydro& s) {
-  for (std::size_t k = 0; k < s.ghost_of.size(); ++k)
-    mirror_state(s, s.real + static_cast<int>(k), s.ghost_of[k], s.ghost_planes[k]);
+  const int owned = s.particles.owned_count();
+  for (std::size_t k = 0; k < s.ghost_source.size(); ++k)
+    mirror_state(s, owned + static_cast<int>(k), s.ghost_source[k], s.ghost_planes[k]);
 }
 
 namespace {
@@ -70,10 +78,11 @@ void mirror_signs(const Hydro& s, std::size_t ghost, double sign[3]) {
 } // namespace
 
 void mirror_matrices(const Hydro& s, std::vector<double>& C) {
-  for (std::size_t k = 0; k < s.ghost_of.size(); ++k) {
+  const std::size_t owned = static_cast<std::size_t>(s.particles.owned_count());
+  for (std::size_t k = 0; k < s.ghost_source.size(); ++k) {
     double sign[3];
     mirror_signs(s, k, sign);
-    const std::size_t g = 9 * (s.real + k), i = 9 * static_cast<std::size_t>(s.ghost_of[k]);
+    const std::size_t g = 9 * (owned + k), i = 9 * static_cast<std::size_t>(s.ghost_source[k]);
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) C[g + 3 * a + b] = sign[a] * sign[b] * C[i + 3 * a + b];
   }
@@ -81,10 +90,11 @@ void mirror_matrices(const Hydro& s, std::vector<double>& C) {
 
 void mirror_voigt(const Hydro& s, std::vector<double>& T) {
   static const int rows[6] = {0, 1, 2, 1, 0, 0}, cols[6] = {0, 1, 2, 2, 2, 1};
-  for (std::size_t k = 0; k < s.ghost_of.size(); ++k) {
+  const std::size_t owned = static_cast<std::size_t>(s.particles.owned_count());
+  for (std::size_t k = 0; k < s.ghost_source.size(); ++k) {
     double sign[3];
     mirror_signs(s, k, sign);
-    const std::size_t g = 6 * (s.real + k), i = 6 * static_cast<std::size_t>(s.ghost_of[k]);
+    const std::size_t g = 6 * (owned + k), i = 6 * static_cast<std::size_t>(s.ghost_source[k]);
     for (int c = 0; c < 6; ++c) T[g + c] = sign[rows[c]] * sign[cols[c]] * T[i + c];
   }
 }

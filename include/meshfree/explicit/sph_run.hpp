@@ -36,16 +36,16 @@ public:
   /// none).
   SphRun(sph::Hydro& h, const io::SphSpec& spec, io::OutputDirectory* out, SphRunResult& result);
 
-  double time() const { return h_.time; }
-  long step() const { return h_.step; }
+  double time() const { return h_.particles.time; }
+  long step() const { return h_.particles.step; }
   bool time_step(double remaining, double& dt, std::string& why);
   void advance(double dt, bool) { sph::advance(h_, dt); }
   void track();
   int nonfinite() const;
-  Vec3 position(int i) const { return {x0_[3 * i], x0_[3 * i + 1], x0_[3 * i + 2]}; }
+  Vec3 position(int i) const { return h_.particles.reference(i); }
   std::string advice() const;
   void record();
-  void write_fields() { fields_.write(h_.time); }
+  void write_fields() { fields_.write(h_.particles.time); }
   std::string progress() const;
 
   /// Counts, rates and status of the finished loop into the result.
@@ -57,8 +57,7 @@ private:
   sph::Hydro& h_;
   const io::SphSpec& spec_;
   SphRunResult& r_;
-  int n_; // the body's particles (mirror images follow them)
-  std::vector<double> x0_;
+  int n_; // the owned particles (ghosts, mirror images, follow them)
   Gauges gauges_;
   io::FieldOutput fields_;
   double e0_ = 0.0, dt_ = 0.0;

@@ -12,8 +12,9 @@
 #include "meshfree/kernels/sph_kernel.hpp"
 #include "meshfree/loads/blast.hpp"
 #include "meshfree/neighbors/pair_list.hpp"
+#include "meshfree/particles/particle_set.hpp"
 #include "meshfree/sph/material.hpp"
-#include "meshfree/sph/particles.hpp"
+#include "meshfree/sph/particle_fields.hpp"
 #include <string>
 #include <vector>
 
@@ -79,22 +80,24 @@ struct SymmetryPlane {
 
 /// The particles of each material, so that a material's laws are dispatched once for all of its
 /// particles: members[start[m], start[m + 1]) in ascending order, of which
-/// [start[m], real_end[m]) are the body's and the rest mirror images.
+/// [start[m], owned_end[m]) are owned particles and the rest ghosts (mirror images).
 struct MaterialGroups {
-  std::vector<int> start, real_end, members;
+  std::vector<int> start, owned_end, members;
   int built_for = -1; // the particle count they were built for
   const int* of(std::size_t m) const { return members.data() + start[m]; }
   int count(std::size_t m) const { return start[m + 1] - start[m]; }
-  int real(std::size_t m) const { return real_end[m] - start[m]; }
+  int owned(std::size_t m) const { return owned_end[m] - start[m]; }
 };
 
-/// A run's state: particles, materials, settings, time and the neighbour list with its margin.
+/// A run's state: the particle set (reference positions, volume, mass, material, u, v and the
+/// instant; the current position is X + u) with SPH's fields beside it, materials, settings and
+/// the neighbour list with its margin.
 struct Hydro {
-  Particles particles;
+  int dim = 3;
+  particles::ParticleSet particles;
+  ParticleFields fields;
   std::vector<Material> materials;
   Settings settings;
-  double time = 0.0;
-  long step = 0;
   neighbors::PairList pairs;
   std::vector<double> x_at_build, h_at_build; // positions and h when the list was built
   double build_radius = 0.0;
@@ -103,15 +106,19 @@ struct Hydro {
   std::vector<TransmittingBoundary> transmitting;
   double external_work = 0.0; // work of the surface loads and boundaries so far
   std::vector<SymmetryPlane> symmetry;
-  /// Particles [0, real) are the body; [real, size) are mirror images of ghost_of[k - real],
-  /// rebuilt with the neighbour list and refreshed from their sources at every stage.
-  int real = -1;
-  std::vector<int> ghost_of;
-  std::vector<int> ghost_planes; // bit p set: mirrored across symmetry[p]
-  int real_count() const { return real < 0 ? particles.size() : real; }
+  /// The set's ghost k (particle owned_count() + k) mirrors owned particle ghost_source[k] across
+  /// the planes of ghost_planes[k] (bit q: symmetry[q]); ghosts are rebuilt with the neighbour
+  /// list and refreshed from their sources at every stage.
+  std::vector<int> ghost_source;
+  std::vector<int> ghost_planes;
   MaterialGroups groups;
   bool any_solid() const;
 };
+
+/// Appends an owned particle at rest at x with reference volume and density, specific energy e
+/// and smoothing length h; returns its index.
+int add_particle(Hydro& s, const Vec3& x, double volume, double density, double e, double h,
+                 int material, bool fixed = false);
 
 /// Groups the particles by material when the particle count has changed since the last grouping
 /// (or always, with `force`).

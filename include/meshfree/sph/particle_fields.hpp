@@ -1,36 +1,34 @@
 #pragma once
-// The particle arrays of an SPH run (structure of arrays).
+// What SPH adds to each particle of the particle set (particles/particle_set.hpp): density,
+// energy, smoothing length, the state the equations of state and strength models give, and the
+// strength history. Arrays run over the set's particles, ghosts (mirror images) included.
 #include <vector>
 
 namespace mf::sph {
 
-/// Particle arrays; vectors have 3 components per particle, the unused ones zero in 1D and 2D.
-struct Particles {
-  int dim = 3;
-  std::vector<double> x, v;
-  std::vector<double> mass, rho, e, h;
-  std::vector<double> rho_ref, h_ref; // h = h_ref (rho_ref / rho)^(1/dim)
-  std::vector<int> material;
+/// Per-particle SPH state (structure of arrays); tensors have 6 components per particle (Voigt:
+/// xx yy zz yz xz xy).
+struct ParticleFields {
+  std::vector<double> rho, e, h;
+  std::vector<double> h_ref;      // h = h_ref (rho_ref / rho)^(1/dim), rho_ref the set's density
   std::vector<double> light_time; // programmed burn: when the particle is lit (< 0: never burns)
   /// Fixed (wall) particles: they do not move, but their density and energy evolve, so that they
   /// push back on approaching particles (dynamic boundary particles, Crespo et al. 2007).
   std::vector<char> fixed;
   std::vector<double> p, c;        // from the equation of state, per step
-  std::vector<double> S;           // deviatoric stress, 6 per particle: xx yy zz yz xz xy
-  std::vector<double> back_stress; // J2 kinematic hardening, 6 per particle like S
+  std::vector<double> S;           // deviatoric stress
+  std::vector<double> back_stress; // J2 kinematic hardening, like S
   std::vector<double> alpha;       // equivalent plastic strain
   std::vector<double> rho_max;     // largest density reached (compaction history)
   std::vector<double> damage;      // HJC damage, 0..1
   std::vector<double> strain_rate; // equivalent deviatoric strain rate sqrt(2/3 D':D') [1/s]
   std::vector<char> failed;        // no deviatoric stress and no tension once set
-  int size() const { return static_cast<int>(mass.size()); }
-  /// Appends a copy of particle i (a mirror image starts as one).
+  /// Appends the state of a particle at rest with density rho, energy e and smoothing length h.
+  void add(double rho, double e, double h, bool fixed);
+  /// Appends a copy of particle i's state as a fixed particle (a mirror image starts as one).
   void append_copy(int i);
   /// Drops every particle from index n on.
   void truncate(int n);
-  /// Appends a particle at rest.
-  void add(const double position[3], double mass, double rho, double e, double h, int material,
-           bool fixed = false);
 };
 
 } // namespace mf::sph
