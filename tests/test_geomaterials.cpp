@@ -9,20 +9,13 @@
 #include "meshfree/sph/rates.hpp"
 #include "meshfree/sph/state.hpp"
 #include "meshfree/sph/step.hpp"
+#include "sph_test_support.hpp"
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <variant>
 
 using namespace mf;
-
-namespace {
-/// Adds an SPH particle at rest at x with reference volume and density.
-int add(sph::Hydro& s, const double x[3], double volume, double rho, double e, double h, int mat,
-        bool fixed = false) {
-  return sph::add_particle(s, Vec3(x[0], x[1], x[2]), volume, rho, e, h, mat, fixed);
-}
-} // namespace
 
 namespace {
 
