@@ -6,7 +6,7 @@
 
 namespace mf::sph {
 
-void correction_matrices(const Hydro& s, std::vector<double>& C) {
+void correction_matrices(const Hydro& s, const std::vector<double>& x, std::vector<double>& C) {
   const particles::ParticleSet& P = s.particles;
   const ParticleFields& F = s.fields;
   const int n = P.owned_count(), dim = s.dim;
@@ -17,7 +17,7 @@ void correction_matrices(const Hydro& s, std::vector<double>& C) {
     for (long k = s.pairs.offset[i]; k < s.pairs.offset[i + 1]; ++k) {
       const int j = s.pairs.partner[k];
       double xij[3], r2;
-      const double g = pair_gradient(P, F.h, dim, s.settings.kernel, i, j, xij, r2);
+      const double g = pair_gradient(x, F.h, dim, s.settings.kernel, i, j, xij, r2);
       if (g == 0.0) continue;
       const double w = -P.mass[j] / F.rho[j] * g; // (x_j - x_i) = -x_ij
       for (int a = 0; a < dim; ++a)

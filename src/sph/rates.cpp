@@ -34,7 +34,7 @@ void jaumann_rate(const Hydro& s, Rates& r, int i, double G) {
   for (long k = s.pairs.offset[i]; k < s.pairs.offset[i + 1]; ++k) {
     const int j = s.pairs.partner[k];
     double xij[3], r2;
-    const double g = pair_gradient(P, F.h, dim, S.kernel, i, j, xij, r2);
+    const double g = pair_gradient(r.x, F.h, dim, S.kernel, i, j, xij, r2);
     if (g == 0.0) continue;
     double gv[3];
     gradient_vector(corrected ? &r.correction[9 * static_cast<std::size_t>(i)] : nullptr, g, xij,
@@ -77,9 +77,12 @@ void compute_rates(const Hydro& s, Rates& r) {
   const Settings& S = s.settings;
   // Rates for the owned particles; ghosts (mirror images) only lend their (mirrored) state.
   const int n = P.owned_count(), all = P.size(), dim = s.dim;
+  r.x.resize(3 * static_cast<std::size_t>(all));
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < 3 * all; ++k) r.x[k] = P.X[k] + P.u[k];
   const bool corrected = S.gradient_correction;
   if (corrected) {
-    correction_matrices(s, r.correction);
+    correction_matrices(s, r.x, r.correction);
     mirror_matrices(s, r.correction);
   }
   const bool art = S.artificial_stress > 0.0;
@@ -128,7 +131,7 @@ void compute_rates(const Hydro& s, Rates& r) {
     for (long k = s.pairs.offset[i]; k < s.pairs.offset[i + 1]; ++k) {
       const int j = s.pairs.partner[k];
       double xij[3], r2;
-      const double g = pair_gradient(P, F.h, dim, S.kernel, i, j, xij, r2);
+      const double g = pair_gradient(r.x, F.h, dim, S.kernel, i, j, xij, r2);
       if (g == 0.0) continue;
       double vij[3], vx = 0.0;
       for (int d = 0; d < 3; ++d) {

@@ -11,7 +11,8 @@ namespace mf::sph {
 /// M_i^-1 grad_i W_ij reproduces the gradient of any linear field exactly, near free surfaces
 /// too. Unused axes keep 1 on the diagonal; a particle with too few neighbours to invert M keeps
 /// the uncorrected kernel (identity).
-void correction_matrices(const Hydro& s, std::vector<double>& C);
+/// x: the current positions (X + u), 3 per particle.
+void correction_matrices(const Hydro& s, const std::vector<double>& x, std::vector<double>& C);
 
 /// The artificial stress of every solid particle: R = Q diag(R_a) Q^T with
 /// R_a = -epsilon sigma_a / rho^2 for each tensile principal stress sigma_a of sigma = -p I + S

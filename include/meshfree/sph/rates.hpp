@@ -14,6 +14,7 @@ struct Rates {
   std::vector<double> correction; // 9 per particle: the kernel-gradient correction matrix
   std::vector<double> art_stress; // 6 per particle: the artificial stress R (Voigt, like S)
   std::vector<double> spacing;    // initial spacing per particle (artificial stress, penalty)
+  std::vector<double> x;          // current positions X + u, 3 per particle, ghosts included
 };
 
 /// Rates of velocity, density and energy (and deviatoric stress, for solids) at the current
