@@ -26,11 +26,6 @@ double max_everywhere(MPI_Comm comm, double value) {
   return value;
 }
 
-double min_everywhere(MPI_Comm comm, double value) {
-  MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_DOUBLE, MPI_MIN, comm);
-  return value;
-}
-
 void sum_on_root(MPI_Comm comm, std::vector<double>& values) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);

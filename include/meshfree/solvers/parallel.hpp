@@ -14,7 +14,6 @@ long sum_everywhere(MPI_Comm comm, long value);
 /// Element-wise largest of `n` values over every rank, in place on every rank.
 void max_everywhere(MPI_Comm comm, double* values, int n);
 double max_everywhere(MPI_Comm comm, double value);
-double min_everywhere(MPI_Comm comm, double value);
 
 /// Element-wise sum over every rank, left in `values` on rank 0 (other ranks keep their own).
 void sum_on_root(MPI_Comm comm, std::vector<double>& values);
