@@ -13,6 +13,13 @@ namespace mf::stages {
 
 using materials::Vec6;
 
+/// How a position maps into the preload's part: the point there and which axes the mirror
+/// reversed.
+struct Mirrored {
+  Vec2 x;
+  bool flip[3] = {false, false, false};
+};
+
 /// The preload at the particles, increment by increment (increment 0 is the unloaded state).
 /// Stresses are 3D Voigt [xx, yy, zz, yz, xz, xy], tension positive.
 struct PreloadAtParticles {
@@ -35,13 +42,6 @@ PreloadAtParticles sample_preload(const io::ProblemSpec& preload,
                                   const std::vector<Vec3>& x,
                                   const std::vector<io::MirrorPlane>& mirror,
                                   const std::string& key_path);
-
-/// How a position maps into the preload's part: the point there and which axes the mirror
-/// reversed.
-struct Mirrored {
-  Vec2 x;
-  bool flip[3] = {false, false, false};
-};
 
 /// The image of `x` in the part of the body that `inside` (a point of the preload's part) lies
 /// in, across each mirror plane `x` is on the other side of.
