@@ -6,6 +6,7 @@
 #include "meshfree/implicit/load_stepping.hpp"
 #include "meshfree/solvers/nonlinear_system.hpp"
 #include "meshfree/solvers/parallel.hpp"
+#include <algorithm>
 #include <memory>
 
 namespace mf::implicit {
@@ -27,6 +28,10 @@ void count_model(const GalerkinModel& m, const solvers::PetscSession& session,
 }
 
 void log_elastic_limit(const io::ProblemSpec& spec, const ElasticLimit& e) {
+  if (!e.skipped.empty()) {
+    log::info("first yield is not searched: ", e.skipped);
+    return;
+  }
   const PeakStress& g = e.gauss_points;
   const PeakStress& n = e.nodes;
   log::info("first yield at ", e.fraction, " of step '", spec.steps.front().name, "' (",
@@ -40,8 +45,7 @@ void log_elastic_limit(const io::ProblemSpec& spec, const ElasticLimit& e) {
 ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
                                                const solvers::PetscSession& session,
                                                io::OutputDirectory* out) {
-  MF_REQUIRE(spec.plasticity && !spec.steps.empty(),
-             "an elastoplastic analysis needs a material with plasticity and steps");
+  MF_REQUIRE(!spec.steps.empty(), "an elastoplastic analysis needs steps");
   ElastoplasticResult R;
   const auto model =
       std::make_shared<const GalerkinModel>(build_galerkin_model(spec, session, R.timer));
@@ -77,6 +81,15 @@ ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
         recorder.record(std::move(rec), d, problem.states(), newton, write_fields, R);
         return R.increments.back();
       });
+  if (spec.initial_stress && R.increments.size() > 1) {
+    // The first increment is the equilibrium iteration at the full body force: its first
+    // residual is the out-of-balance of the initial stress.
+    const solvers::NewtonReport& n = R.increments[1].newton;
+    R.initial_out_of_balance = n.residual.front() / std::max(n.scale.front(), 1e-300);
+    log::info("initial stress: out-of-balance |R(0)|/|F| = ", R.initial_out_of_balance,
+              " before the equilibrium iteration, ", n.iterations, " Newton iterations to ",
+              n.residual.back() / std::max(n.scale.back(), 1e-300));
+  }
   R.status = o.status;
   R.stop_reason = o.stop_reason;
   R.timer.add("newton", o.newton_seconds);

@@ -8,6 +8,7 @@
 #include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
 #include "meshfree/solvers/nonlinear_system.hpp"
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -27,6 +28,9 @@ struct IncrementRecord {
   double max_plastic_strain = 0.0;
   long plastic_points = 0;
   double equilibrium_error = 0.0; // |sum of reactions and loads| / sum of their magnitudes
+  // With ProblemSpec::record_increment_parameters: the nodal parameters d of the increment, all
+  // 2N of them, on every rank (increment 0: zeros); empty otherwise.
+  std::vector<double> parameters;
 };
 
 /// The last converged state. Gauss-point arrays run over this rank's domain points, in the order
@@ -48,6 +52,8 @@ struct ElastoplasticResult {
   double matrix_nonzeros = 0.0;
   std::vector<IncrementRecord> increments; // increment 0 is the unloaded state
   ElasticLimit elastic_limit;
+  // With an initial stress: |R(0)|/|F| of the equilibrium step, before its first iteration.
+  double initial_out_of_balance = std::numeric_limits<double>::quiet_NaN();
   ElastoplasticState state;
   std::string status = "completed"; // or "stopped", with the reason
   std::string stop_reason;

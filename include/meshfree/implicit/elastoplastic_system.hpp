@@ -8,6 +8,7 @@
 // has converged (the thesis' incremental strategy B, section 3-1-2).
 #include "meshfree/implicit/coupling.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
+#include "meshfree/implicit/point_law.hpp"
 #include "meshfree/io/problem_spec.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
 #include <vector>
@@ -40,6 +41,8 @@ public:
   void set_factors(const std::vector<double>& f) { factors_ = f; }
   const std::vector<double>& factors() const { return factors_; }
   const PointStates& states() const { return states_; }
+  /// The law of each domain point (rows of the model's domain table).
+  const PointLaws& laws() const { return laws_; }
   double residual_seconds() const { return residual_seconds_; }
   double jacobian_seconds() const { return jacobian_seconds_; }
 
@@ -66,9 +69,7 @@ private:
 
   const io::ProblemSpec& spec_;
   const GalerkinModel& m_;
-  materials::J2Parameters params_;
-  materials::J2Result2D (*update_)(const materials::J2Parameters&, const Vec3&,
-                                   const materials::J2State&);
+  PointLaws laws_;
   PointStates states_;
   BlockRows penalty_;         // K_pen: constant
   BlockRows tangent_;         // work space for the Jacobian
