@@ -99,6 +99,21 @@ void ElastoplasticSystem::jacobian(const std::vector<double>& d, std::vector<dou
   jacobian_seconds_ += seconds_since(t0);
 }
 
+double ElastoplasticSystem::initial_stress_imbalance_squared() const {
+  const int rows = m_.pattern.rows();
+  std::vector<double> f(2 * static_cast<std::size_t>(rows), 0.0);
+  std::vector<Vec3> change(states_.stress.size());
+  for (std::size_t k = 0; k < change.size(); ++k)
+    change[k] = laws_.initial_stress.empty()
+                    ? states_.stress[k]
+                    : Vec3(states_.stress[k] - laws_.initial_stress[k].head<3>());
+  add_internal_force(m_.domain_table, m_.domain_weight, change,
+                     OwnedRowAdder{m_.pattern.begin, m_.pattern.end, f.data()});
+  double sum = 0.0;
+  for (double v : f) sum += v * v;
+  return sum;
+}
+
 std::vector<int> ElastoplasticSystem::needed_nodes() const {
   std::vector<int> nodes(m_.domain_table.node);
   nodes.insert(nodes.end(), m_.pattern.column.begin(), m_.pattern.column.end());

@@ -52,7 +52,10 @@ struct ElastoplasticResult {
   double matrix_nonzeros = 0.0;
   std::vector<IncrementRecord> increments; // increment 0 is the unloaded state
   ElasticLimit elastic_limit;
-  // With an initial stress: |R(0)|/|F| of the equilibrium step, before its first iteration.
+  // With an initial stress: its out-of-balance, |f_int(sigma0) + K_pen d_1 - f_ext| / |F| after
+  // the equilibrium step d_1 (the reactions at their equilibrium values), which equals
+  // |f_int(sigma_1) - f_int(sigma0)| / |F|: the load the equilibrium iteration carried by
+  // deforming. R(0) itself holds the whole support reactions.
   double initial_out_of_balance = std::numeric_limits<double>::quiet_NaN();
   ElastoplasticState state;
   std::string status = "completed"; // or "stopped", with the reason

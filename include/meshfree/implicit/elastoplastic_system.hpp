@@ -59,6 +59,13 @@ public:
   /// dR/dd as 2x2 blocks in the order of the model's block-row pattern.
   void jacobian(const std::vector<double>& d, std::vector<double>& blocks);
 
+  /// This rank's share of |f_int(sigma) - f_int(sigma0)|^2 over its owned rows, sigma the stress
+  /// of the last update and sigma0 the initial stress: after the equilibrium iteration of an
+  /// initial stress, the out-of-balance of sigma0 with the supports' reactions at their
+  /// equilibrium values (R(0) itself holds the whole reactions, which only the penalty
+  /// displacements of the iteration call up).
+  double initial_stress_imbalance_squared() const;
+
   /// Every node a point of this rank touches: the entries of d that the residual reads.
   std::vector<int> needed_nodes() const;
 
