@@ -25,6 +25,7 @@ struct HeldCondition {
   double line = 0.0;
   double value = 0.0;             // Roller: the prescribed displacement at the final factor
   double body_factor = 0.0;    // Body: the preload's final body-force factor
+  bool gravity = false;        // Body: gravity (rho g), else the uniform body force
 };
 
 /// The held conditions of `preload` (those `link.hold` names) on particles at reference positions

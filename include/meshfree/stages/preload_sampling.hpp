@@ -29,6 +29,7 @@ struct PreloadAtParticles {
   std::vector<std::vector<double>> alpha;  // [increment][particle], equivalent plastic strain
   std::vector<materials::J2State> history; // final committed history per particle
   std::vector<char> plastic;               // yielding in the last increment
+  std::vector<Mirrored> image;             // where each particle lies in the preload's part
   int increments() const { return static_cast<int>(u.size()); }
   const std::vector<Vec3>& final_u() const { return u.back(); }
   const std::vector<Vec6>& final_stress() const { return stress.back(); }
