@@ -249,7 +249,8 @@ ExplicitRelaxReport explicit_relax(Model& m, BondState& s, const Loading& loadin
     scale = ramp(t);
     for (std::size_t k = 0; k < size; ++k)
       if (st.held[k]) {
-        const double u = u_start[k] + scale * (st.target[k] - u_start[k]);
+        const double u =
+            scale < 1.0 ? u_start[k] + scale * (st.target[k] - u_start[k]) : st.target[k];
         q.v[k] = (u - q.u[k]) / dt;
         q.u[k] = u;
       }
