@@ -1,6 +1,9 @@
 // Static equilibrium of a peridynamic plate: adaptive dynamic relaxation against the closed-form
 // uniaxial-stress solution, its quiet start under velocity Verlet, explicit damped dynamic
 // relaxation against it, and per-particle held displacements.
+#include "meshfree/explicit/pd_run.hpp"
+#include "meshfree/io/key_reader.hpp"
+#include "meshfree/io/problem_spec.hpp"
 #include "meshfree/pd/relaxation.hpp"
 #include <catch2/catch.hpp>
 #include <chrono>
@@ -205,4 +208,67 @@ TEST_CASE("explicit damped dynamic relaxation reaches the adaptive one", "[pd][r
   CHECK(held_exactly(e));
   CHECK(e.m.particles.time == 0.0);
   CHECK(pd::kinetic_energy(e.m) == 0.0);
+}
+
+namespace {
+
+// The plate of the tests above as a problem file (cell-centred lattice, clamped on its first
+// three columns), pulled by a constant traction and relaxed before the first step.
+const char* kPlate = R"(
+name: relaxed_plate
+analysis: peridynamics
+model: {type: plane_stress, thickness: 0.01}
+materials:
+  - {name: plate, E: 1.0e9, density: 1000, bond: {law: pmb}}
+geometry:
+  rectangle: {origin: [0, 0], size: [0.06, 0.03]}
+discretisation: {spacing: 0.001, horizon: 3, surface_correction: energy}
+boundary:
+  - {name: clamp, box: [[0, 0], [0.003, 0.03]], displacement: {x: 0, y: 0}}
+  - {name: pull, box: [[0.059, 0], [0.06, 0.03]], traction: [1.0e6, 0]}
+relaxation: {tolerance: 1.0e-7}
+time: {end: 5.0e-4}
+output:
+  gauges: [{name: a, at: [0.0205, 0.0155]}, {name: b, at: [0.0405, 0.0155]}]
+)";
+
+} // namespace
+
+TEST_CASE("a peridynamics problem with relaxation starts from static equilibrium",
+          "[pd][relaxation]") {
+  const io::ProblemSpec spec = io::parse_problem(YAML::Load(kPlate));
+  REQUIRE(spec.pd->relaxation);
+  CHECK(spec.pd->relaxation->tolerance == 1e-7);
+  PhaseTimer timer;
+  explicit_dynamics::PdSetup setup = explicit_dynamics::build_pd_setup(spec, timer);
+  explicit_dynamics::PdRunResult result;
+  explicit_dynamics::PdRun run(setup, *spec.pd, nullptr, result);
+  run.finish(explicit_dynamics::run_time_loop(run, {spec.pd->end_time, 0.0, 0.0}));
+  REQUIRE(result.relaxation);
+  const io::History& h = result.history;
+  const auto column = [&](const std::string& name) {
+    const auto& c = h.columns();
+    return static_cast<std::size_t>(std::find(c.begin(), c.end(), name) - c.begin());
+  };
+  double kinetic = 0.0;
+  for (const auto& row : h.rows()) kinetic = std::max(kinetic, row[column("kinetic_energy")]);
+  const auto& last = h.rows().back();
+  const double strain = (last[column("b_ux")] - last[column("a_ux")]) / 0.02;
+  std::cout << "pd problem with relaxation: " << result.relaxation->iterations
+            << " iterations, residual ratio " << result.relaxation->residual_ratio << "; over "
+            << result.steps
+            << " steps kinetic / strain energy <= " << kinetic / last[column("strain_energy")]
+            << ", strain " << strain << "\n";
+  CHECK(result.relaxation->residual_ratio <= 1e-7);
+  CHECK(kinetic <= 1e-8 * last[column("strain_energy")]);
+  CHECK(strain == Approx(1e-3).epsilon(0.02)); // sigma / E
+}
+
+TEST_CASE("bad relaxation keys are refused naming the key", "[pd][relaxation][input]") {
+  YAML::Node root = YAML::Load(kPlate);
+  io::apply_override(root, "relaxation.tolerance=2");
+  CHECK_THROWS_WITH(io::parse_problem(root),
+                    Catch::StartsWith("relaxation.tolerance: expected a value below 1"));
+  io::apply_override(root, "relaxation.tolerance=0");
+  CHECK_THROWS_WITH(io::parse_problem(root), Catch::StartsWith("relaxation.tolerance:"));
 }

@@ -27,6 +27,11 @@ void write_pd_outputs(const io::ProblemSpec& spec, const explicit_dynamics::PdRu
       .set("bonds", r.bonds)
       .set("steps", r.steps);
   summary.section("time_step").set("dt", r.dt).set("limited_by", r.dt_limit);
+  if (r.relaxation)
+    summary.section("relaxation")
+        .set("iterations", r.relaxation->iterations)
+        .set("residual_ratio", r.relaxation->residual_ratio)
+        .set("seconds", r.relaxation->seconds);
   io::Json& results = summary.section("results");
   results.set("broken_bonds", r.broken_bonds)
       .set("max_damage", r.max_damage)
