@@ -26,6 +26,11 @@ void write_pd_outputs(const io::ProblemSpec& spec, const explicit_dynamics::PdRu
   io::Json& counts = summary.section("counts");
   io::Json& time_step = summary.section("time_step");
   explicit_dynamics::summarise(r, counts, time_step, summary.section("results"));
+  if (r.relaxation)
+    summary.section("relaxation")
+        .set("iterations", r.relaxation->iterations)
+        .set("residual_ratio", r.relaxation->residual_ratio)
+        .set("seconds", r.relaxation->seconds);
   summary.write(out, r.timer);
 }
 
