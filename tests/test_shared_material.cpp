@@ -187,7 +187,8 @@ TEST_CASE("shared steel, SPH: bulk sound speed and the stress behind an elastic 
   CHECK(sum / count == Approx(-kRho * cl * v0).epsilon(0.01));
 }
 
-TEST_CASE("stages: one stage runs as its analysis, more are not available yet", "[input]") {
+TEST_CASE("stages: one stage runs as its analysis; a later stage names where it starts from",
+          "[input]") {
   YAML::Node root = YAML::Load(kMaterials + R"(
 name: staged_bar
 analysis: staged
@@ -208,6 +209,9 @@ stages:
   CHECK(one.boundary.size() == 1);
   root["stages"].push_back(YAML::Load("{name: blast, analysis: sph}"));
   CHECK_THROWS_WITH(io::parse_problem(root),
-                    Catch::StartsWith("stages: staged runs of more than one stage are not "
-                                      "available yet"));
+                    Catch::StartsWith("stages[1].from: a later stage names the stage it starts "
+                                      "from"));
+  root["stages"][1]["from"] = "preload";
+  root["stages"][1]["release"] = YAML::Load("[bottom]");
+  CHECK_THROWS_WITH(io::parse_problem(root), Catch::StartsWith("stages[1].model: required"));
 }

@@ -481,8 +481,10 @@ void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
   const MaterialSpec& mat = p.materials[p.material_index];
   // A material without plasticity is elastic at its points. An elastoplastic analysis of one
   // elastic material and nothing else is an elastic_static problem; with material regions,
-  // gravity or an initial stress it is an elastic preload.
-  const bool preload = !p.material_regions.empty() || !p.gravity.isZero() || p.initial_stress;
+  // gravity or an initial stress, or as the preload stage of a staged run, it is an elastic
+  // preload.
+  const bool preload = !p.material_regions.empty() || !p.gravity.isZero() || p.initial_stress ||
+                       !p.stage.empty();
   if (plastic && !p.plasticity && !preload)
     material_error(mat, "plasticity", "analysis elastoplastic_static needs a plasticity law");
   if (!plastic && p.plasticity)

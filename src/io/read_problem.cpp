@@ -58,12 +58,14 @@ void read_geometry(KeyReader& r, ProblemSpec& p) {
 
 } // namespace
 
-ProblemSpec parse_problem(YAML::Node root, const std::string& base_dir) {
+ProblemSpec parse_problem(YAML::Node root, const std::string& base_dir, const std::string& stage) {
   KeyReader r(root, "");
   ProblemSpec p;
+  p.stage = stage;
   std::vector<std::string> analyses = kAnalyses;
   analyses.push_back("staged");
   if (r.has("analysis") && r.text("analysis") == "staged") {
+    if (!stage.empty()) r.error("analysis", "a stage cannot itself be staged");
     parse_stages(r, p, base_dir);
     r.finish();
     if (p.stages.size() == 1) return std::move(p.stages.front()); // runs as its analysis

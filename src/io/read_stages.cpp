@@ -39,18 +39,21 @@ YAML::Node stage_file(KeyReader& top, KeyReader& s) {
   return merged;
 }
 
-/// Reads a stage's problem; an error in one of the stage's own keys is given its full path
-/// (stages[k].key...), an error in a shared key keeps its top-level path.
-ProblemSpec parse_stage(YAML::Node file, const YAML::Node& own, const std::string& path,
-                        const std::string& base_dir) {
+/// Reads a stage's problem; an error in a shared key given at the top of the file keeps its
+/// top-level path, any other (a key of the stage's own, or one it lacks) is given the stage's
+/// path (stages[k].key...).
+ProblemSpec parse_stage(YAML::Node file, KeyReader& top, const std::string& path,
+                        const std::string& name, const std::string& base_dir) {
   try {
-    return parse_problem(file, base_dir);
+    return parse_problem(file, base_dir, name);
   } catch (const Error& e) {
     const std::string what = e.what();
     const std::size_t end = what.find_first_of(".[:");
     const std::string first = what.substr(0, end);
-    if (end != std::string::npos && own[first].IsDefined()) throw Error(path + "." + what);
-    throw;
+    const bool shared = std::find(std::begin(kSharedKeys), std::end(kSharedKeys), first) !=
+                        std::end(kSharedKeys);
+    if (end == std::string::npos || (shared && top.has(first))) throw;
+    throw Error(path + "." + what);
   }
 }
 
@@ -190,15 +193,15 @@ void parse_stages(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
     check_name(s, "name", name);
     for (const auto& e : p.stages)
       if (e.stage == name) s.error("name", "another stage is named '" + name + "'");
+    // The link first: where a stage starts from is checked before its own keys.
     const YAML::Node own = s.raw_map();
-    ProblemSpec stage = parse_stage(stage_file(r, s), own, s.path(), base_dir);
-    stage.stage = name;
     KeyReader link_reader(own, s.path());
     for (const auto& kv : own)
       if (!is_link_key(kv.first.Scalar())) link_reader.allow(kv.first.Scalar());
     link_reader.allow("name");
     StageLink link = read_link(link_reader, p.stages, static_cast<int>(k));
     link_reader.finish();
+    ProblemSpec stage = parse_stage(stage_file(r, s), r, s.path(), name, base_dir);
     if (link.from >= 0) {
       const ProblemSpec& from = p.stages[link.from];
       if (from.analysis != Analysis::ElastoplasticStatic || !explicit_dynamics(stage.analysis))

@@ -169,7 +169,9 @@ struct ProblemSpec {
 /// Throws mf::Error with the key path of the first problem found.
 ProblemSpec read_problem(const std::string& path, const std::vector<std::string>& overrides = {});
 /// `base_dir` (ending in '/', or empty) resolves relative paths in the file, e.g. mesh files.
-ProblemSpec parse_problem(YAML::Node root, const std::string& base_dir = "");
+/// `stage` names the stage of a staged run the file is (empty: a problem of its own).
+ProblemSpec parse_problem(YAML::Node root, const std::string& base_dir = "",
+                          const std::string& stage = "");
 
 /// The pieces of the boundary a region picks (its named edges, clipped to its box); throws
 /// naming `key_path` if none.

@@ -1,0 +1,198 @@
+// The peridynamic stage of a staged run (stages/explicit_stage.hpp).
+#include "meshfree/core/log.hpp"
+#include "meshfree/explicit/pd_run.hpp"
+#include "meshfree/explicit/pd_setup.hpp"
+#include "meshfree/explicit/run_summaries.hpp"
+#include "meshfree/explicit/time_loop.hpp"
+#include "meshfree/implicit/point_law.hpp"
+#include "meshfree/pd/relaxation.hpp"
+#include "meshfree/stages/explicit_stage.hpp"
+#include "meshfree/stages/held_conditions.hpp"
+#include "meshfree/stages/preload_sampling.hpp"
+#include <chrono>
+#include <cmath>
+#include <map>
+
+namespace mf::stages {
+
+namespace {
+
+std::vector<double> flat(const std::vector<Vec3>& u) {
+  std::vector<double> out(3 * u.size());
+  for (std::size_t i = 0; i < u.size(); ++i)
+    for (int d = 0; d < 3; ++d) out[3 * i + d] = u[i][d];
+  return out;
+}
+
+/// Body loads of per-particle forces, one load per distinct force per volume (a uniform traction
+/// or gravity gives one load).
+void add_body_loads(pd::Loading& loading, const std::string& name, const std::vector<int>& particles,
+                    const std::vector<Vec3>& density) {
+  std::map<std::array<double, 3>, std::size_t> load_of;
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    const std::array<double, 3> key{density[k].x(), density[k].y(), density[k].z()};
+    auto it = load_of.find(key);
+    if (it == load_of.end()) {
+      pd::BodyLoad l;
+      l.name = name;
+      l.density = density[k];
+      loading.loads.push_back(l);
+      it = load_of.emplace(key, loading.loads.size() - 1).first;
+    }
+    loading.loads[it->second].particles.push_back(particles[k]);
+  }
+}
+
+/// Force per volume at x of the preload's gravity (rho g) or its uniform body force.
+Vec2 body_force(const io::ProblemSpec& preload, bool gravity, const Vec2& x) {
+  if (!gravity) return preload.body_force;
+  return preload.materials[implicit::material_at(preload, x)].density * preload.gravity;
+}
+
+/// The held conditions as the body's loads and constraints; returns how each acts.
+std::vector<std::string> hold(const std::vector<HeldCondition>& held, const io::ProblemSpec& preload,
+                              const PreloadAtParticles& pa, explicit_dynamics::PdSetup& setup) {
+  pd::Model& m = setup.model;
+  const particles::ParticleSet& P = m.particles;
+  std::vector<std::string> how;
+  for (const HeldCondition& h : held) {
+    if (h.kind == HeldCondition::Kind::Force || h.kind == HeldCondition::Kind::Body) {
+      std::vector<int> particles = h.particles;
+      std::vector<Vec3> density;
+      Vec3 total = Vec3::Zero();
+      if (h.kind == HeldCondition::Kind::Body) {
+        particles.resize(P.size());
+        for (int i = 0; i < P.size(); ++i) {
+          particles[i] = i;
+          const Vec2 b = h.body_factor * body_force(preload, h.gravity, pa.image[i].x);
+          density.push_back(mirrored(Vec3(b.x(), b.y(), 0.0), pa.image[i]));
+          total += density.back() * P.volume[i];
+        }
+      } else {
+        for (std::size_t k = 0; k < particles.size(); ++k) {
+          density.push_back(h.force[k] / P.volume[particles[k]]);
+          total += h.force[k];
+        }
+      }
+      add_body_loads(setup.loading, h.name, particles, density);
+      how.push_back(detail::concat(h.name, ": constant force on ", particles.size(),
+                                   " particles, total (", total.x(), ", ", total.y(), ")"));
+      continue;
+    }
+    pd::Constraint c;
+    c.name = h.name;
+    c.particles = h.particles;
+    if (h.kind == HeldCondition::Kind::Clamp) {
+      c.fixed[0] = c.fixed[1] = true;
+    } else {
+      c.fixed[h.component] = true;
+    }
+    for (int i : h.particles) c.held.push_back(pa.final_u()[i]);
+    setup.loading.constraints.push_back(c);
+    how.push_back(detail::concat(h.name, ": ",
+                                 h.kind == HeldCondition::Kind::Clamp ? "both components"
+                                 : h.component == 0                     ? "x component"
+                                                                        : "y component",
+                                 " of ", h.particles.size(), " particles held at the preload's u"));
+  }
+  return how;
+}
+
+double norm_of_difference(const std::vector<double>& a, const std::vector<Vec3>& b, double& norm_b) {
+  double d = 0.0, n = 0.0;
+  for (std::size_t i = 0; i < b.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      d += (a[3 * i + k] - b[i][k]) * (a[3 * i + k] - b[i][k]);
+      n += b[i][k] * b[i][k];
+    }
+  norm_b = std::sqrt(n);
+  return std::sqrt(d);
+}
+
+} // namespace
+
+ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::ElastoplasticResult& pre,
+                           const io::ProblemSpec& stage, const io::StageLink& link, int index,
+                           io::OutputDirectory* out) {
+  const io::PdSpec& s = *stage.pd;
+  ExplicitStage st;
+  explicit_dynamics::PdRunResult result;
+  explicit_dynamics::PdSetup setup = explicit_dynamics::build_pd_setup(stage, result.timer);
+  explicit_dynamics::log_pd_setup(stage, setup);
+  pd::Model& m = setup.model;
+  particles::ParticleSet& P = m.particles;
+  const int n = P.size();
+  TransferReport& t = st.transfer;
+  PreloadAtParticles pa;
+  {
+    PhaseTimer::Scope scope(result.timer, "transfer");
+    const auto t0 = std::chrono::steady_clock::now();
+    std::vector<Vec3> X(n);
+    for (int i = 0; i < n; ++i) X[i] = P.reference(i);
+    pa = sample_preload(preload, pre, X, link.mirror, link.key_path);
+    t.held = hold(held_conditions(preload, pre, link, X, m.spacing), preload, pa, setup);
+    pd::set_displacement(m, flat(pa.final_u()));
+    t.particles = n;
+    for (int i = 0; i < n; ++i) {
+      t.plastic_particles += pa.plastic[i];
+      t.max_u = std::max(t.max_u, pa.final_u()[i].norm());
+    }
+    t.out_of_balance = pd::residual_ratio(m, setup.state, setup.loading);
+    t.seconds = seconds_since(t0);
+  }
+  {
+    PhaseTimer::Scope scope(result.timer, "relaxation");
+    pd::RelaxSettings rs;
+    rs.tolerance = link.relax_tolerance;
+    rs.max_iterations = link.relax_max_iterations;
+    if (link.relax_from_zero) {
+      pd::Model zero = m;
+      pd::BondState state = setup.state;
+      pd::set_displacement(zero, std::vector<double>(3 * n, 0.0));
+      const pd::RelaxReport z = pd::relax(zero, state, setup.loading, rs);
+      t.relax_iterations_from_zero = z.converged ? z.iterations : -1;
+      t.relax_seconds_from_zero = z.seconds;
+    }
+    const pd::RelaxReport r = pd::relax(m, setup.state, setup.loading, rs);
+    MF_REQUIRE(r.converged, link.key_path, ": the peridynamic body found no static equilibrium "
+               "under the held loads within ", r.iterations, " relaxation iterations (residual "
+               "ratio ", r.residual_ratio, "); raise transfer.relax_max_iterations or check the "
+               "held conditions");
+    t.relax_iterations = r.iterations;
+    t.relax_residual = r.residual_ratio;
+    t.relax_seconds = r.seconds;
+    double norm_uh = 0.0;
+    t.pd_vs_galerkin = norm_of_difference(P.u, pa.final_u(), norm_uh) / std::max(norm_uh, 1e-300);
+  }
+  log::info("transfer: ", n, " particles from stage ", preload.stage, ", residual ratio at u^h ",
+            t.out_of_balance, "; relaxed in ", t.relax_iterations, " iterations (from zero: ",
+            t.relax_iterations_from_zero, "), |u_PD - u^h| / |u^h| = ", t.pd_vs_galerkin);
+
+  explicit_dynamics::PdRun run(setup, s, out, result);
+  // The preload replayed on the particles, then the relaxed state back for t = 0.
+  const std::vector<double> u0 = P.u;
+  const int N = pa.increments() - 1;
+  for (int k = 0; k < N; ++k) {
+    pd::set_displacement(m, flat(pa.u[k]));
+    P.time = pa.pseudo_time[k];
+    run.record();
+    run.write_fields();
+  }
+  const io::History replay = take_rows(result.history);
+  pd::set_displacement(m, u0);
+  P.time = 0.0;
+  pd::accelerate(m, setup.state, setup.loading, false);
+  run.finish(
+      explicit_dynamics::run_time_loop(run, {s.end_time, s.history_interval, s.fields_interval}));
+
+  std::vector<std::string> gauges;
+  for (const auto& g : s.gauges) gauges.push_back(g.name);
+  st.history = staged_history(replay, result.history, link.from, index, gauges);
+  explicit_dynamics::summarise(result, st.counts, st.time_step, st.results);
+  st.status = result.status;
+  st.stop_reason = result.stop_reason;
+  st.timer = result.timer;
+  return st;
+}
+
+} // namespace mf::stages
