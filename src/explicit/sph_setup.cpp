@@ -3,6 +3,7 @@
 #include "meshfree/explicit/surface_blast.hpp"
 #include "meshfree/geometry/lattice.hpp"
 #include "meshfree/sph/detonation.hpp"
+#include "meshfree/sph/held_loads.hpp"
 #include "meshfree/sph/state.hpp"
 #include <algorithm>
 #include <cmath>
@@ -16,12 +17,6 @@ bool free_in(const sph::Hydro& h, int i, const io::Region& region) {
   const std::vector<double>& X = h.particles.X;
   return !h.fields.fixed[i] &&
          region.contains(io::Point(X[3 * i], X[3 * i + 1], X[3 * i + 2]), 1e-9);
-}
-
-/// The face area of a particle in a surface layer one particle thick: V / spacing.
-double face_area(const particles::ParticleSet& P, int i, int dim) {
-  const double volume = P.mass[i] / P.density[i];
-  return volume / std::pow(volume, 1.0 / dim);
 }
 
 /// The solver's material from the spec's: the equation of state, and the strength of a solid
@@ -119,7 +114,7 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     for (const int i : P.owned())
       if (free_in(h, i, l.region)) {
         load.particles.push_back(i);
-        load.area.push_back(face_area(P, i, s.dimension));
+        load.area.push_back(sph::face_area(P, i, s.dimension));
       }
     const Charge charge{blast.tnt_mass, blast.surface_burst, blast.clamp_below_range, blast.charge,
                         blast.normal};
@@ -127,6 +122,14 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     MF_REQUIRE(!load.particles.empty(), l.key_path, ".box: selects no free particle");
     h.loads.push_back(load);
   }
+  for (const io::SphTraction& t : s.tractions) {
+    std::vector<int> layer;
+    for (const int i : P.owned())
+      if (free_in(h, i, t.region)) layer.push_back(i);
+    MF_REQUIRE(!layer.empty(), t.key_path, ".box: selects no free particle");
+    h.forces.push_back(sph::traction_force(h, t.name, layer, t.traction.data()));
+  }
+  for (int d = 0; d < 3; ++d) h.gravity[d] = s.gravity[d];
   for (const io::SphSymmetry& m : s.symmetry) {
     // The body must lie on one side of each symmetry plane.
     int below = 0, above = 0;
@@ -148,7 +151,7 @@ sph::Hydro build_sph(const io::SphSpec& s) {
     for (const int i : P.owned()) {
       if (!free_in(h, i, t.region)) continue;
       b.particles.push_back(i);
-      b.area.push_back(face_area(P, i, s.dimension));
+      b.area.push_back(sph::face_area(P, i, s.dimension));
       b.normal_impedance.push_back(F.rho[i] * F.c[i]);
       b.shear_impedance.push_back(std::sqrt(
           F.rho[i] * materials::shear_modulus(h.materials[P.material[i]].strength, F.rho[i])));

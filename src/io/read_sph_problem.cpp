@@ -1,7 +1,7 @@
 // The SPH part of a problem file (analysis: sph): numerics, the regions of particles and their
 // materials' equations of state and strength, boundary conditions (blasts, transmitting
-// boundaries, symmetry planes), detonation, viscosity, time and output. Every key is checked;
-// errors name the key path.
+// boundaries, constant tractions, symmetry planes), gravity, detonation, viscosity, time and
+// output. Every key is checked; errors name the key path.
 #include "meshfree/io/analysis_read.hpp"
 #include "meshfree/io/spec_read.hpp"
 #include <algorithm>
@@ -77,13 +77,14 @@ SphRegion read_region_of_particles(KeyReader& b, int dim, double spacing,
   return block;
 }
 
-/// One entry of `boundary:`: a blast, a transmitting boundary or a symmetry plane.
+/// One entry of `boundary:`: a blast, a transmitting boundary, a constant traction or a symmetry
+/// plane.
 void read_condition(KeyReader& c, int dim, SphSpec& s) {
   const std::string name = c.text("name");
   check_name(c, "name", name);
   int given = 0;
-  for (const char* k : {"blast", "transmitting", "symmetry"}) given += c.has(k) ? 1 : 0;
-  if (given != 1) c.error("name", "give exactly one of blast, transmitting or symmetry");
+  for (const char* k : {"blast", "transmitting", "traction", "symmetry"}) given += c.has(k) ? 1 : 0;
+  if (given != 1) c.error("name", "give exactly one of blast, transmitting, traction or symmetry");
   if (c.has("symmetry")) {
     KeyReader m = c.map("symmetry");
     SphSymmetry plane;
@@ -108,6 +109,13 @@ void read_condition(KeyReader& c, int dim, SphSpec& s) {
       KeyReader b = c.map("blast");
       load.blast = read_blast(b, dim, true);
       s.loads.push_back(load);
+    } else if (c.has("traction")) {
+      SphTraction t;
+      t.key_path = c.path();
+      t.name = name;
+      t.region = region;
+      t.traction = read_point(c, "traction", dim);
+      s.tractions.push_back(t);
     } else {
       SphTransmitting t;
       t.key_path = c.path();
@@ -119,7 +127,7 @@ void read_condition(KeyReader& c, int dim, SphSpec& s) {
       s.transmitting.push_back(t);
     }
   }
-  for (const char* k : {"blast", "transmitting", "symmetry"}) c.allow(k);
+  for (const char* k : {"blast", "transmitting", "traction", "symmetry"}) c.allow(k);
   c.finish();
 }
 
@@ -159,6 +167,8 @@ SphSpec parse_sph(KeyReader& r, const ProblemSpec& front) {
   for (KeyReader& b : regions)
     s.regions.push_back(read_region_of_particles(b, dim, spacing, s.materials));
   for (KeyReader& c : r.map_list("boundary")) read_condition(c, dim, s);
+  if (r.has("gravity")) s.gravity = read_point(r, "gravity", dim);
+  r.allow("gravity");
   if (auto d = r.optional_map("detonation")) {
     if (d->has("point") == d->has("plane"))
       d->error("point", "give exactly one of 'point' or 'plane: {at, normal}'");

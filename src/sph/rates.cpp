@@ -4,6 +4,7 @@
 #include "meshfree/sph/corrections.hpp"
 #include "meshfree/sph/pair_kernel.hpp"
 #include "meshfree/sph/symmetry.hpp"
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 #include <variant>
@@ -11,7 +12,8 @@
 namespace mf::sph {
 
 namespace {
-/// The dashpot force of particle k of a transmitting boundary at velocity v.
+/// The dashpot force of particle k of a transmitting boundary at velocity v, plus its static
+/// force when it holds one.
 inline void boundary_force(const TransmittingBoundary& b, std::size_t k, const double* v,
                            double f[3]) {
   const double vn = v[0] * b.normal[0] + v[1] * b.normal[1] + v[2] * b.normal[2];
@@ -20,6 +22,8 @@ inline void boundary_force(const TransmittingBoundary& b, std::size_t k, const d
     f[d] = -b.area[k] *
            (b.normal_impedance[k] * normal_part + b.shear_impedance[k] * (v[d] - normal_part));
   }
+  if (!b.static_force.empty())
+    for (int d = 0; d < 3; ++d) f[d] += b.static_force[3 * k + d];
 }
 
 /// Velocity gradient L_i = sum_j (m_j / rho_j)(v_j - v_i) (x) grad_i W_ij of particle i, and the
@@ -122,6 +126,10 @@ void compute_rates(const Hydro& s, Rates& r) {
           s.materials[m].strength);
     }
   }
+  // Gravity and damping (a += g - c v) on the owned particles that move.
+  const bool body_force =
+      s.gravity[0] != 0.0 || s.gravity[1] != 0.0 || s.gravity[2] != 0.0 || s.damping > 0.0;
+  const double damping = std::max(s.damping, 0.0);
 #pragma omp parallel for schedule(dynamic, 64)
   for (int i = 0; i < n; ++i) {
     const double pi_rho2 = F.p[i] / (F.rho[i] * F.rho[i]);
@@ -199,8 +207,11 @@ void compute_rates(const Hydro& s, Rates& r) {
         }
       }
     }
-    if (!F.fixed[i])
+    if (!F.fixed[i]) {
+      if (body_force)
+        for (int d = 0; d < 3; ++d) acc[d] += s.gravity[d] - damping * P.v[3 * i + d];
       for (int d = 0; d < 3; ++d) r.dv[3 * i + d] = acc[d];
+    }
     r.drho[i] = drho;
     r.de[i] = de;
   }
@@ -210,6 +221,12 @@ void compute_rates(const Hydro& s, Rates& r) {
       if (F.fixed[i]) continue;
       const double f = load.pulses[k](s.particles.time) * load.area[k] / P.mass[i];
       for (int d = 0; d < 3; ++d) r.dv[3 * i + d] += f * load.direction[d];
+    }
+  for (const SurfaceForce& held : s.forces)
+    for (std::size_t k = 0; k < held.particles.size(); ++k) {
+      const int i = held.particles[k];
+      if (F.fixed[i]) continue;
+      for (int d = 0; d < 3; ++d) r.dv[3 * i + d] += held.force[3 * k + d] / P.mass[i];
     }
   for (const TransmittingBoundary& b : s.transmitting)
     for (std::size_t k = 0; k < b.particles.size(); ++k) {
@@ -232,6 +249,13 @@ void external_forces(const Hydro& s, std::vector<int>& who, std::vector<double>&
       const double f = load.pulses[k](s.particles.time) * load.area[k];
       who.push_back(i);
       for (int d = 0; d < 3; ++d) force.push_back(f * load.direction[d]);
+    }
+  for (const SurfaceForce& held : s.forces)
+    for (std::size_t k = 0; k < held.particles.size(); ++k) {
+      const int i = held.particles[k];
+      if (F.fixed[i]) continue;
+      who.push_back(i);
+      for (int d = 0; d < 3; ++d) force.push_back(held.force[3 * k + d]);
     }
   for (const TransmittingBoundary& b : s.transmitting)
     for (std::size_t k = 0; k < b.particles.size(); ++k) {

@@ -4,6 +4,7 @@
 #include "meshfree/sph/rates.hpp"
 #include "meshfree/sph/state.hpp"
 #include "meshfree/sph/symmetry.hpp"
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -38,6 +39,30 @@ void check_finite(const Hydro& s) {
            P.v[3 * i], ", ", P.v[3 * i + 1], ", ", P.v[3 * i + 2], ") at step ", s.particles.step,
            ", t = ", s.particles.time);
 }
+/// The work of gravity and damping over a step whose corrector applies the mid-step velocities
+/// P.v and the accelerations dv: m (g - c v_mid) . (v0 + v1) / 2 dt, v1 = v0 + dt dv, which is
+/// exactly the kinetic energy these forces give in the corrector's velocity update.
+void body_force_work(Hydro& s, const std::vector<double>& v0, const std::vector<double>& dv,
+                     double dt) {
+  const particles::ParticleSet& P = s.particles;
+  const ParticleFields& F = s.fields;
+  const int n = P.owned_count();
+  const double c = std::max(s.damping, 0.0);
+  double gravity = 0.0, damping = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : gravity, damping)
+  for (int i = 0; i < n; ++i) {
+    if (F.fixed[i]) continue;
+    for (int d = 0; d < 3; ++d) {
+      const std::size_t k = 3 * static_cast<std::size_t>(i) + d;
+      const double mean_v = v0[k] + 0.5 * dt * dv[k];
+      gravity += P.mass[i] * s.gravity[d] * mean_v;
+      damping -= c * P.mass[i] * P.v[k] * mean_v;
+    }
+  }
+  s.external_work += dt * (gravity + damping);
+  s.damping_work += dt * damping;
+}
+
 } // namespace
 
 void advance(Hydro& s, double dt) {
@@ -74,6 +99,8 @@ void advance(Hydro& s, double dt) {
   // Corrector: the full step with the mid-step rates.
   refresh_neighbours(s);
   compute_rates(s, r);
+  if (s.gravity[0] != 0.0 || s.gravity[1] != 0.0 || s.gravity[2] != 0.0 || s.damping > 0.0)
+    body_force_work(s, v0, r.dv, dt);
 #pragma omp parallel for schedule(static)
   for (std::size_t k = 0; k < n3; ++k) {
     P.u[k] = u0[k] + dt * P.v[k];

@@ -1,7 +1,7 @@
 #pragma once
 // An SPH body built from a problem file (analysis: sph): particles of the regions (lattices less
-// holes, rings), surface blasts per particle, transmitting boundaries, symmetry planes and the
-// lighting times of a detonation.
+// holes, rings), surface blasts per particle, constant tractions, gravity, transmitting
+// boundaries, symmetry planes and the lighting times of a detonation.
 #include "meshfree/io/sph_spec.hpp"
 #include "meshfree/sph/hydro.hpp"
 

@@ -37,6 +37,14 @@ struct SphTransmitting {
   Point normal{0, 0, 0};
 };
 
+/// A constant traction (force per area) on the particles of a region (a surface layer one
+/// particle thick), each taking it times its face area.
+struct SphTraction {
+  std::string name, key_path;
+  Region region;
+  Point traction{0, 0, 0};
+};
+
 /// A mirror plane normal to a coordinate axis.
 struct SphSymmetry {
   std::string name;
@@ -74,7 +82,9 @@ struct SphSpec {
   std::vector<GaugeSpec> gauges;
   std::vector<SphBlastLoad> loads;
   std::vector<SphTransmitting> transmitting;
+  std::vector<SphTraction> tractions;
   std::vector<SphSymmetry> symmetry;
+  Point gravity{0, 0, 0}; // body acceleration on every free particle
 };
 
 } // namespace mf::io

@@ -59,14 +59,27 @@ struct SurfaceLoad {
   double direction[3] = {0.0, 0.0, 0.0};
 };
 
+/// Constant forces on a set of particles (a held traction, a preload kept on): particle
+/// particles[k] takes force[3k..3k+2] at all times. sph/held_loads.hpp builds one from a traction.
+struct SurfaceForce {
+  std::string name;
+  std::vector<int> particles;
+  std::vector<double> force; // 3 per particle
+};
+
 /// A transmitting (non-reflecting) boundary on a surface layer: Lysmer & Kuhlemeyer (1969)
 /// dashpots, a traction -rho c_p (v.n) n - rho c_s (v - (v.n) n) on each particle's face area,
-/// which absorbs plane waves arriving along the normal.
+/// which absorbs plane waves arriving along the normal. A body cut out of a stressed medium
+/// (soil under its own weight) also needs the traction sigma0 . n that the medium beyond the
+/// boundary exerted on it, else the boundary gives way under the initial stress (the "free-field"
+/// or reaction forces of viscous boundaries; Lysmer & Kuhlemeyer 1969, and e.g. Kontoe,
+/// Zdravkovic & Potts 2009): static_force holds it, 3 per particle, constant (empty: none).
 struct TransmittingBoundary {
   std::string name;
   std::vector<int> particles;
   std::vector<double> area, normal_impedance, shear_impedance; // A, rho c_p, rho c_s per particle
   double normal[3] = {0.0, 0.0, 0.0};                          // unit, outward
+  std::vector<double> static_force;                            // 3 per particle, or empty
 };
 
 /// A symmetry plane x_axis = at (Libersky & Petschek 1991, the thesis' type-II virtual particles):
@@ -103,8 +116,19 @@ struct Hydro {
   double build_radius = 0.0;
   int rebuilds = 0;
   std::vector<SurfaceLoad> loads;
+  std::vector<SurfaceForce> forces;
   std::vector<TransmittingBoundary> transmitting;
-  double external_work = 0.0; // work of the surface loads and boundaries so far
+  /// Body acceleration (gravity) on every owned particle that is not fixed.
+  double gravity[3] = {0.0, 0.0, 0.0};
+  /// Mass-proportional viscous damping c [1/s]: a -= c v on every owned particle that is not
+  /// fixed, while c > 0. It brings a body to rest under its loads (a settle phase before an
+  /// event: dynamic relaxation, as LS-DYNA's *CONTROL_DYNAMIC_RELAXATION or Underwood 1983);
+  /// c = 2 omega_1 damps the lowest mode omega_1 critically. Switch it off (0) for the event.
+  double damping = 0.0;
+  /// Work of the surface loads, constant forces, boundaries, gravity and damping so far, so that
+  /// kinetic + internal energy - external_work stays at its start.
+  double external_work = 0.0;
+  double damping_work = 0.0; // the damping's part of external_work (not positive)
   std::vector<SymmetryPlane> symmetry;
   /// The set's ghost k (particle owned_count() + k) mirrors owned particle ghost_source[k] across
   /// the planes of ghost_planes[k] (bit q: symmetry[q]); ghosts are rebuilt with the neighbour

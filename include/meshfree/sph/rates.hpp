@@ -1,8 +1,8 @@
 #pragma once
 // Rates of an SPH run: the continuity, momentum and energy equations (the thesis' eqs. 3-41,
 // 3-48 and 3-64) with Monaghan's viscosity, the Jaumann rate of the deviatoric stress, the
-// kernel-gradient correction, the artificial stress, the inter-material penalty and the forces
-// of surface loads and transmitting boundaries.
+// kernel-gradient correction, the artificial stress, the inter-material penalty, gravity,
+// damping, and the forces of surface loads, constant surface forces and transmitting boundaries.
 #include "meshfree/sph/hydro.hpp"
 #include <vector>
 
@@ -21,8 +21,9 @@ struct Rates {
 /// state.
 void compute_rates(const Hydro& s, Rates& r);
 
-/// The forces of the surface loads and the boundaries at the current state, particle by
-/// particle (a particle may appear more than once).
+/// The forces of the surface loads, the constant surface forces and the boundaries at the
+/// current state, particle by particle (a particle may appear more than once); gravity and
+/// damping are not among them.
 void external_forces(const Hydro& s, std::vector<int>& who, std::vector<double>& force);
 
 } // namespace mf::sph
