@@ -1,4 +1,5 @@
 #include "meshfree/explicit/pd_run.hpp"
+#include "meshfree/core/error.hpp"
 #include "meshfree/core/log.hpp"
 #include <algorithm>
 #include <cmath>
@@ -25,6 +26,21 @@ PdRun::PdRun(PdSetup& setup, const io::PdSpec& spec, io::OutputDirectory* out, P
   r_.bonds = m.bonds.count() / 2;
   r_.dt = setup_.dt;
   r_.dt_limit = setup_.dt_limit;
+  if (spec_.relaxation) {
+    PhaseTimer::Scope scope(r_.timer, "relaxation");
+    const std::vector<double> v0 = m.particles.v;
+    pd::RelaxSettings settings;
+    settings.tolerance = spec_.relaxation->tolerance;
+    settings.max_iterations = spec_.relaxation->max_iterations;
+    r_.relaxation = pd::relax(m, setup_.state, setup_.loading, settings);
+    m.particles.v = v0;
+    const pd::RelaxReport& x = *r_.relaxation;
+    MF_REQUIRE(x.converged, "relaxation: no static equilibrium within ", x.iterations,
+               " iterations (residual ratio ", x.residual_ratio, " against the tolerance ",
+               settings.tolerance, "); raise relaxation.max_iterations or check the supports");
+    log::info("relaxation: static equilibrium under the loads at t = 0 in ", x.iterations,
+              " iterations (residual ratio ", x.residual_ratio, "), ", x.seconds, " s");
+  }
   last_ = pd::accelerate(m, setup_.state, setup_.loading, true);
   e0_ = pd::kinetic_energy(m) + last_.strain_energy;
   broken_ = last_.broken;

@@ -252,6 +252,14 @@ PdSpec parse_pd(KeyReader& r, const ProblemSpec& front, const std::string& base_
     k.finish();
     s.impactors.push_back(imp);
   }
+  if (auto x = r.optional_map("relaxation")) {
+    PdRelaxation relax;
+    relax.tolerance = x->positive("tolerance", relax.tolerance);
+    if (relax.tolerance >= 1.0) x->error("tolerance", "expected a value below 1");
+    relax.max_iterations = x->integer("max_iterations", relax.max_iterations, 1, 100000000);
+    x->finish();
+    s.relaxation = relax;
+  }
   {
     const TimeSpec t = read_time(r, StepControl::Safety);
     s.end_time = t.end;

@@ -7,6 +7,8 @@
 #include "meshfree/explicit/pd_setup.hpp"
 #include "meshfree/explicit/time_loop.hpp"
 #include "meshfree/io/results.hpp"
+#include "meshfree/pd/relaxation.hpp"
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,12 +30,15 @@ struct PdRunResult {
   /// ones: "<gauge>_<u|v|a><x|y|z>".
   std::vector<std::pair<std::string, double>> gauge_maxima;
   std::string status = "completed", stop_reason;
+  std::optional<pd::RelaxReport> relaxation; // when the spec asks for one before the first step
   PhaseTimer timer;
 };
 
 class PdRun {
 public:
-  /// Accelerations at t = 0 and the columns of the history; fields go to `out` (null: none).
+  /// The body relaxed to static equilibrium under its loads at t = 0 when the spec asks for it
+  /// (pd::relax; the initial velocities are kept), accelerations at t = 0 and the columns of the
+  /// history; fields go to `out` (null: none). A relaxation that does not converge is an error.
   PdRun(PdSetup& setup, const io::PdSpec& spec, io::OutputDirectory* out, PdRunResult& result);
 
   double time() const { return setup_.model.particles.time; }

@@ -68,6 +68,13 @@ struct PdCrackTracking {
   Point origin{0, 0, 0}, direction{0, 1, 0};
 };
 
+/// Adaptive dynamic relaxation of the body to static equilibrium under its loads at t = 0,
+/// before the first step (pd::relax).
+struct PdRelaxation {
+  double tolerance = 1e-6;
+  int max_iterations = 100000;
+};
+
 struct PdSpec {
   materials::PdDimension dimension = materials::PdDimension::Solid3D; // from model.type
   double thickness = 1.0;                                             // from model.thickness
@@ -88,6 +95,7 @@ struct PdSpec {
   double history_interval = 0.0, fields_interval = 0.0; // 0: every step / only the end
   std::vector<GaugeSpec> gauges;
   PdCrackTracking crack;
+  std::optional<PdRelaxation> relaxation;
 };
 
 } // namespace mf::io

@@ -12,7 +12,10 @@
 namespace mf::pd {
 
 /// Prescribed components of displacement (or velocity) on a set of particles: value times the
-/// time function (`function` < 0: constant 1).
+/// time function (`function` < 0: constant 1). A displacement constraint may instead hold each
+/// particle at its own value: when `held` is not empty, the fixed components of particles[k] are
+/// held[k] times the time function (constant when there is none), e.g. a displacement field
+/// taken over from an earlier analysis.
 struct Constraint {
   std::string name;
   std::vector<int> particles;
@@ -20,6 +23,10 @@ struct Constraint {
   bool fixed[3] = {false, false, false};
   double value[3] = {0.0, 0.0, 0.0};
   int function = -1;
+  std::vector<Eigen::Vector3d> held; // empty, or one per particle (displacement constraints only)
+
+  /// The prescribed value of component d of the k-th particle, before the time function.
+  double target(std::size_t k, int d) const { return held.empty() ? value[d] : held[k](d); }
 };
 
 /// A force per unit volume on a set of particles, times a time function. A traction t on a face
