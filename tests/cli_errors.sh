@@ -57,6 +57,9 @@ expect_error "materials[0].plasticity.hardening.points: equivalent plastic strai
 expect_error "materials[0].plasticity.hardening.points: the first point must be at equivalent plastic strain 0" "$Q" --set 'materials.0.plasticity={hardening: {type: table, points: [[0.1, 300], [0.2, 320]]}}'
 expect_error "materials[0].plasticity: analysis elastoplastic_static needs a plasticity law" "$Q" --set 'materials.0={name: steel, E: 2.0e5, nu: 0.1}'
 expect_error "materials[0].plasticity: used only by analysis elastoplastic_static" "$Q" --set analysis=elastic_static
+expect_error "material_regions[0].material: no material is named 'clay'" "$Q" --set 'material_regions=[{material: clay, box: [[0, 0], [1, 1]]}]'
+expect_error "materials[0].density: gravity needs the density of every material of the body" "$Q" --set 'gravity=[0, -9.81]'
+expect_error "initial_stress: a geostatic initial stress needs 'gravity'" "$Q" --set 'initial_stress={type: geostatic, surface: 1, k0: 0.5}'
 expect_error "steps[1].name: another step is named 'elastic'" "$Q" --set steps.1.name=elastic
 expect_error "steps[0].increments: expected an integer from 1 to 1000000, got 0" "$Q" --set steps.0.increments=0
 expect_error "steps[0].factors.roof: unknown key" "$Q" --set 'steps.0.factors={roof: 2}'

@@ -15,6 +15,7 @@
 #include "meshfree/quadrature/integration_points.hpp"
 #include "meshfree/solvers/parallel.hpp"
 #include "meshfree/sph/step.hpp"
+#include "meshfree/stages/staged_run.hpp"
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -184,6 +185,8 @@ int run(Command& c) {
       }
       log_phases(r.timer);
       if (r.status == "failed") exit_code = 1;
+    } else if (spec.analysis == mf::io::Analysis::Staged) {
+      exit_code = mf::stages::run_staged(spec, session, out.get()).exit_code;
     } else if (spec.analysis == mf::io::Analysis::ElastoplasticStatic) {
       const auto r = mf::app::elastoplastic_static(spec, session, out.get());
       log_phases(r.timer);

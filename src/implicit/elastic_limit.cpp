@@ -1,5 +1,6 @@
 #include "meshfree/implicit/elastic_limit.hpp"
 #include "meshfree/implicit/elasticity.hpp"
+#include "meshfree/implicit/point_law.hpp"
 #include "meshfree/materials/elastic.hpp"
 #include "meshfree/solvers/parallel.hpp"
 
@@ -7,23 +8,37 @@ namespace mf::implicit {
 
 namespace {
 
-/// The largest of the candidates (value, position) over every rank.
-PeakStress peak(double value, const Vec2& at, double sigma_y,
+/// The largest of the candidates over every rank: `score` is the von Mises stress scaled to
+/// the reference yield stress (score = vm sigma_ref / sigma_y of the point's material), `vm`
+/// the von Mises stress itself.
+PeakStress peak(double score, double vm, const Vec2& at, double sigma_ref,
                 const solvers::PetscSession& session) {
-  double x[2] = {at.x(), at.y()};
-  const solvers::RankMax top = solvers::max_with_location(session.comm(), value, x, 2);
+  double x[3] = {at.x(), at.y(), vm};
+  const solvers::RankMax top = solvers::max_with_location(session.comm(), score, x, 3);
   PeakStress p;
-  p.von_mises = top.value;
+  p.von_mises = x[2];
   p.at = Vec2(x[0], x[1]);
-  if (top.value > 0.0) p.fraction = sigma_y / top.value;
+  if (top.value > 0.0) p.fraction = sigma_ref / top.value;
   return p;
 }
 
 } // namespace
 
+std::string elastic_limit_skipped(const io::ProblemSpec& spec) {
+  bool plastic = spec.plasticity.has_value();
+  for (const io::MaterialRegion& r : spec.material_regions)
+    plastic = plastic || spec.materials[r.material].plasticity.has_value();
+  if (!plastic) return "no material of the body has plasticity";
+  if (spec.initial_stress)
+    return "the body starts from an initial stress, so the stresses do not scale with the load";
+  return "";
+}
+
 ElasticLimit elastic_limit(const io::ProblemSpec& spec, const GalerkinModel& m,
                            const solvers::PetscSession& session) {
   ElasticLimit lim;
+  lim.skipped = elastic_limit_skipped(spec);
+  if (!lim.skipped.empty()) return lim;
   const std::vector<double>& target = spec.steps.front().target;
   const BlockRows rows = assemble_linear_elastic(spec, m, target);
   const RowPattern& p = rows.pattern();
@@ -31,28 +46,37 @@ ElasticLimit elastic_limit(const io::ProblemSpec& spec, const GalerkinModel& m,
                                     rows.values(), rows.rhs(), /*spd=*/true);
   system.solve();
   const std::vector<double> d = system.solution_everywhere();
-  const Mat3 C = materials::elastic_matrix(spec.material, spec.model);
-  const auto vm_at = [&](const ShapeTable& t, int k) {
-    const Vec3 s = C * strain_at(t, k, d);
-    return materials::von_mises(s, materials::out_of_plane_stress(spec.material, spec.model, s));
+  // First yield where sigma_vm / sigma_y of the point's material peaks, over the points of
+  // plastic materials; sigma_ref is the yield stress of the analysis' material (or of the first
+  // plastic one), so that one material gives the von Mises peak itself.
+  double sigma_ref = spec.plasticity ? spec.plasticity->sigma0 : 0.0;
+  for (const io::MaterialRegion& r : spec.material_regions)
+    if (!(sigma_ref > 0.0) && spec.materials[r.material].plasticity)
+      sigma_ref = spec.materials[r.material].plasticity->sigma0;
+  const auto best_of = [&](const ShapeTable& t, const std::vector<Vec2>& x, const char* counted,
+                           double& score, double& vm_best, Vec2& where) {
+    const PointLaws laws = point_laws(spec, x);
+    score = -1.0;
+    for (int k = 0; k < t.rows(); ++k) {
+      const int mat = laws.material[k];
+      if (!laws.plastic[mat] || (counted && !counted[k])) continue;
+      const materials::IsotropicElastic e{laws.params[mat].E, laws.params[mat].nu};
+      const Vec3 s = laws.elastic[mat] * strain_at(t, k, d);
+      const double vm = materials::von_mises(s, materials::out_of_plane_stress(e, spec.model, s));
+      const double sc = vm * (sigma_ref / laws.params[mat].sigma0);
+      if (sc > score) score = sc, vm_best = vm, where = x[k];
+    }
   };
-  const double sigma_y = spec.plasticity->sigma0;
-  double best = -1.0;
+  double score = -1.0, vm = 0.0;
   Vec2 where(0.0, 0.0);
-  for (int k = 0; k < m.domain_table.rows(); ++k) {
-    const double vm = vm_at(m.domain_table, k);
-    if (m.domain_mine.counted[k] && vm > best) best = vm, where = m.domain.x[m.domain_mine.rows[k]];
-  }
-  lim.gauss_points = peak(best, where, sigma_y, session);
-  best = -1.0;
+  best_of(m.domain_table, domain_rows(m), m.domain_mine.counted.data(), score, vm, where);
+  lim.gauss_points = peak(score, vm, where, sigma_ref, session);
+  score = -1.0;
   if (session.rank() == 0) {
     const ShapeTable t = shapes_at(m, m.node_positions(), true);
-    for (int k = 0; k < t.rows(); ++k) {
-      const double vm = vm_at(t, k);
-      if (vm > best) best = vm, where = m.node_positions()[k];
-    }
+    best_of(t, m.node_positions(), nullptr, score, vm, where);
   }
-  lim.nodes = peak(best, where, sigma_y, session);
+  lim.nodes = peak(score, vm, where, sigma_ref, session);
   lim.fraction = lim.nodes.fraction;
   for (double f : target) lim.factors.push_back(lim.fraction * f);
   for (std::size_t b = 0; b < m.conditions.size(); ++b) {

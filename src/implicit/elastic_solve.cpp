@@ -2,6 +2,7 @@
 #include "meshfree/core/log.hpp"
 #include "meshfree/implicit/coupling.hpp"
 #include "meshfree/implicit/elasticity.hpp"
+#include "meshfree/implicit/point_law.hpp"
 #include "meshfree/quadrature/integration_points.hpp"
 #include "meshfree/solvers/parallel.hpp"
 #include <algorithm>
@@ -16,14 +17,16 @@ void evaluate_fields(const GalerkinModel& m, const io::ProblemSpec& spec,
                      const std::vector<Vec2>& x, const std::vector<double>& d, std::vector<Vec2>& u,
                      std::vector<Vec3>& stress, std::vector<double>& szz) {
   const ShapeTable t = shapes_at(m, x, true);
-  const Mat3 C = materials::elastic_matrix(spec.material, spec.model);
+  const PointLaws laws = point_laws(spec, x); // the material of each point
   u.resize(x.size());
   stress.resize(x.size());
   szz.resize(x.size());
   for (int r = 0; r < t.rows(); ++r) {
+    const int mat = laws.material[r];
     u[r] = displacement_at(t, r, d);
-    stress[r] = C * strain_at(t, r, d);
-    szz[r] = materials::out_of_plane_stress(spec.material, spec.model, stress[r]);
+    stress[r] = laws.elastic[mat] * strain_at(t, r, d);
+    szz[r] = materials::out_of_plane_stress({laws.params[mat].E, laws.params[mat].nu}, spec.model,
+                                            stress[r]);
   }
 }
 

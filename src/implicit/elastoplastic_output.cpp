@@ -75,8 +75,9 @@ void write_elastoplastic_outputs(const io::ProblemSpec& spec, const Elastoplasti
 
   io::Json limit, last, steps;
   const ElasticLimit& e = r.elastic_limit;
+  if (!e.skipped.empty()) limit.set("skipped", e.skipped);
   io::Json lim_factors, lim_forces;
-  for (std::size_t c = 0; c < spec.boundary.size(); ++c) {
+  for (std::size_t c = 0; c < spec.boundary.size() && e.skipped.empty(); ++c) {
     lim_factors.set(spec.boundary[c].name, e.factors[c]);
     lim_forces.set(spec.boundary[c].name,
                    std::vector<double>{e.boundary[c].force.x(), e.boundary[c].force.y()});
@@ -88,11 +89,12 @@ void write_elastoplastic_outputs(const io::ProblemSpec& spec, const Elastoplasti
         .set("fraction_of_first_step", p.fraction);
     return j;
   };
-  limit.set("fraction_of_first_step", e.fraction)
-      .set("factors", lim_factors)
-      .set("forces", lim_forces)
-      .set("gauss_points", peak_json(e.gauss_points))
-      .set("nodes", peak_json(e.nodes));
+  if (e.skipped.empty())
+    limit.set("fraction_of_first_step", e.fraction)
+        .set("factors", lim_factors)
+        .set("forces", lim_forces)
+        .set("gauss_points", peak_json(e.gauss_points))
+        .set("nodes", peak_json(e.nodes));
 
   const IncrementRecord& fin = r.increments.back();
   io::Json fin_factors, fin_forces, fin_monitors;
@@ -121,7 +123,13 @@ void write_elastoplastic_outputs(const io::ProblemSpec& spec, const Elastoplasti
         .set("newton_iterations", its);
     steps.set(spec.steps[s].name, js);
   }
-  summary.section("results").set("elastic_limit", limit).set("final", last).set("steps", steps);
+  io::Json& results = summary.section("results");
+  results.set("elastic_limit", limit);
+  if (spec.initial_stress)
+    results.set(
+        "initial_stress",
+        io::Json().set("type", "geostatic").set("out_of_balance", r.initial_out_of_balance));
+  results.set("final", last).set("steps", steps);
   summary.write(out, r.timer);
 }
 

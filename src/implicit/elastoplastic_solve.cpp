@@ -6,6 +6,8 @@
 #include "meshfree/implicit/load_stepping.hpp"
 #include "meshfree/solvers/nonlinear_system.hpp"
 #include "meshfree/solvers/parallel.hpp"
+#include <algorithm>
+#include <cmath>
 #include <memory>
 
 namespace mf::implicit {
@@ -27,6 +29,10 @@ void count_model(const GalerkinModel& m, const solvers::PetscSession& session,
 }
 
 void log_elastic_limit(const io::ProblemSpec& spec, const ElasticLimit& e) {
+  if (!e.skipped.empty()) {
+    log::info("first yield is not searched: ", e.skipped);
+    return;
+  }
   const PeakStress& g = e.gauss_points;
   const PeakStress& n = e.nodes;
   log::info("first yield at ", e.fraction, " of step '", spec.steps.front().name, "' (",
@@ -40,8 +46,7 @@ void log_elastic_limit(const io::ProblemSpec& spec, const ElasticLimit& e) {
 ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
                                                const solvers::PetscSession& session,
                                                io::OutputDirectory* out) {
-  MF_REQUIRE(spec.plasticity && !spec.steps.empty(),
-             "an elastoplastic analysis needs a material with plasticity and steps");
+  MF_REQUIRE(!spec.steps.empty(), "an elastoplastic analysis needs steps");
   ElastoplasticResult R;
   const auto model =
       std::make_shared<const GalerkinModel>(build_galerkin_model(spec, session, R.timer));
@@ -75,8 +80,23 @@ ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
       [&](IncrementRecord rec, bool write_fields) -> const IncrementRecord& {
         PhaseTimer::Scope scope(R.timer, "increment_output");
         recorder.record(std::move(rec), d, problem.states(), newton, write_fields, R);
+        if (spec.initial_stress && R.increments.size() == 2) {
+          const double f = std::sqrt(
+              solvers::sum_everywhere(session.comm(), problem.initial_stress_imbalance_squared()));
+          const solvers::NewtonReport& n = R.increments[1].newton;
+          R.initial_out_of_balance = f / std::max(n.scale.back(), 1e-300);
+        }
         return R.increments.back();
       });
+  if (spec.initial_stress && R.increments.size() > 1) {
+    // The first increment is the equilibrium iteration at the full body force. The system
+    // still holds its converged stress unless later increments followed.
+    const solvers::NewtonReport& n = R.increments[1].newton;
+    log::info("initial stress: equilibrium iteration in ", n.iterations,
+              " Newton iterations, |R(0)|/|F| = ", n.residual.front() / n.scale.front(),
+              " (support reactions included), out-of-balance of the initial stress ",
+              R.initial_out_of_balance);
+  }
   R.status = o.status;
   R.stop_reason = o.stop_reason;
   R.timer.add("newton", o.newton_seconds);

@@ -29,10 +29,8 @@ struct OwnedRowAdder {
 } // namespace
 
 ElastoplasticSystem::ElastoplasticSystem(const io::ProblemSpec& spec, const GalerkinModel& m)
-    : spec_(spec), m_(m), params_(*spec.plasticity), states_(m.domain_table.rows()),
+    : spec_(spec), m_(m), laws_(point_laws(spec, domain_rows(m))), states_(m.domain_table.rows()),
       penalty_(m.pattern), tangent_(m.pattern), scatter_(m.domain_table, m.pattern) {
-  update_ = spec.model == materials::PlaneModel::PlaneStress ? &materials::j2_update_plane_stress
-                                                             : &materials::j2_update_plane_strain;
   const int rows = m.pattern.rows();
   loads_.assign(spec.boundary.size() + 1, std::vector<double>(2 * rows, 0.0));
   counts_in_scale_.assign(loads_.size(), 0);
@@ -49,10 +47,9 @@ ElastoplasticSystem::ElastoplasticSystem(const io::ProblemSpec& spec, const Gale
       counts_in_scale_[b] = 1;
     }
   }
-  if (!spec.body_force.isZero()) {
+  if (has_body_force(spec)) {
     const OwnedRowAdder into{m.pattern.begin, m.pattern.end, loads_.back().data()};
-    add_load(m.domain_table, m.domain_weight,
-             std::vector<Vec2>(m.domain_weight.size(), spec.body_force), into);
+    add_load(m.domain_table, m.domain_weight, laws_.body_force, into);
     counts_in_scale_.back() = 1;
   }
   factors_.assign(loads_.size(), 0.0);
@@ -102,6 +99,21 @@ void ElastoplasticSystem::jacobian(const std::vector<double>& d, std::vector<dou
   jacobian_seconds_ += seconds_since(t0);
 }
 
+double ElastoplasticSystem::initial_stress_imbalance_squared() const {
+  const int rows = m_.pattern.rows();
+  std::vector<double> f(2 * static_cast<std::size_t>(rows), 0.0);
+  std::vector<Vec3> change(states_.stress.size());
+  for (std::size_t k = 0; k < change.size(); ++k)
+    change[k] = laws_.initial_stress.empty()
+                    ? states_.stress[k]
+                    : Vec3(states_.stress[k] - laws_.initial_stress[k].head<3>());
+  add_internal_force(m_.domain_table, m_.domain_weight, change,
+                     OwnedRowAdder{m_.pattern.begin, m_.pattern.end, f.data()});
+  double sum = 0.0;
+  for (double v : f) sum += v * v;
+  return sum;
+}
+
 std::vector<int> ElastoplasticSystem::needed_nodes() const {
   std::vector<int> nodes(m_.domain_table.node);
   nodes.insert(nodes.end(), m_.pattern.column.begin(), m_.pattern.column.end());
@@ -118,12 +130,13 @@ void ElastoplasticSystem::update_materials(const std::vector<double>& d) {
   const int n = t.rows();
   int failed = n;
   std::string message;
+  const materials::PlaneModel model = spec_.model;
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < n; ++k) {
     const Vec3 eps = strain_at(t, k, d);
     try {
       MF_REQUIRE(eps.allFinite(), "the strain is not finite");
-      const materials::J2Result2D r = update_(params_, eps, states_.committed[k]);
+      const materials::J2Result2D r = laws_.update(model, k, eps, states_.committed[k]);
       MF_REQUIRE(r.stress.allFinite(), "the stress is not finite");
       states_.trial[k] = r.state;
       states_.stress[k] = r.stress;

@@ -1,5 +1,6 @@
 #include "meshfree/implicit/galerkin_forms.hpp"
 #include "meshfree/implicit/elasticity.hpp"
+#include "meshfree/implicit/point_law.hpp"
 #include "meshfree/solvers/parallel.hpp"
 #include <algorithm>
 
@@ -15,12 +16,29 @@ BlockRows assemble_linear_elastic(const io::ProblemSpec& spec, const GalerkinMod
   const auto add_vector = [&](const int* nodes, int n, const double* v) {
     rows.add_vector(nodes, n, v);
   };
-  add_stiffness(m.domain_table, m.domain_weight,
-                materials::elastic_matrix(spec.material, spec.model), add_matrix);
-  if (!spec.body_force.isZero() && factors.back() != 0.0)
-    add_load(m.domain_table, m.domain_weight,
-             std::vector<Vec2>(m.domain_weight.size(), factors.back() * spec.body_force),
-             add_vector);
+  const bool regions = !spec.material_regions.empty() || has_gravity(spec);
+  const PointLaws laws = regions ? point_laws(spec, domain_rows(m)) : PointLaws{};
+  if (!regions || laws.one_material) {
+    const Mat3 C = regions ? laws.elastic[laws.material.empty() ? 0 : laws.material.front()]
+                           : materials::elastic_matrix(spec.material, spec.model);
+    add_stiffness(m.domain_table, m.domain_weight, C, add_matrix);
+  } else {
+    // Each point with the elastic matrix of its material.
+    const ShapeTable& t = m.domain_table;
+    std::vector<double> K;
+    for (int r = 0; r < t.rows(); ++r) {
+      const int n = t.offset[r + 1] - t.offset[r];
+      K.resize(4 * n * n);
+      point_stiffness(t, r, m.domain_weight[r] * laws.elastic[laws.material[r]], K.data());
+      add_matrix(t.node.data() + t.offset[r], n, K.data());
+    }
+  }
+  if (has_body_force(spec) && factors.back() != 0.0) {
+    std::vector<Vec2> b =
+        regions ? laws.body_force : std::vector<Vec2>(m.domain_weight.size(), spec.body_force);
+    for (Vec2& v : b) v *= factors.back();
+    add_load(m.domain_table, m.domain_weight, b, add_vector);
+  }
   for (std::size_t b = 0; b < m.conditions.size(); ++b) {
     const ConditionPoints& c = m.conditions[b];
     std::vector<Vec2> values = c.values;

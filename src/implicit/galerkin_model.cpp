@@ -37,6 +37,8 @@ std::vector<Vec2> condition_values(const io::ProblemSpec& spec, const io::Bounda
     if (bc.constrains)
       out.push_back(bc.value_from_exact ? verification::exact_displacement(*spec.exact, m, pts.x[r])
                                         : bc.value);
+    else if (bc.pressure_load)
+      out.push_back(-bc.pressure * pts.normal[r]); // t = -p n, n the outward normal
     else
       out.push_back(
           bc.traction_from_exact
@@ -285,6 +287,13 @@ GalerkinModel build_galerkin_model(const io::ProblemSpec& spec,
                                    const solvers::PetscSession& session, PhaseTimer& timer) {
   return spec.discretisation.method == io::Method::Fem ? build_fem_model(spec, session, timer)
                                                        : build_meshfree_model(spec, session, timer);
+}
+
+std::vector<Vec2> domain_rows(const GalerkinModel& m) {
+  std::vector<Vec2> x;
+  x.reserve(m.domain_mine.rows.size());
+  for (int r : m.domain_mine.rows) x.push_back(m.domain.x[r]);
+  return x;
 }
 
 std::string describe_method(const io::DiscretisationSpec& d) {

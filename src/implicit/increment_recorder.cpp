@@ -2,6 +2,7 @@
 #include "meshfree/implicit/elasticity.hpp"
 #include "meshfree/implicit/galerkin_forms.hpp"
 #include "meshfree/implicit/nodal_average.hpp"
+#include "meshfree/implicit/point_law.hpp"
 #include "meshfree/io/results.hpp"
 #include "meshfree/materials/elastic.hpp"
 #include "meshfree/solvers/parallel.hpp"
@@ -84,6 +85,19 @@ IncrementRecorder::IncrementRecorder(const io::ProblemSpec& spec, const Galerkin
                          "von_mises", "plastic_strain", "plastic_fraction"};
   for (int f = 0; f < 7; ++f) fields_->scalar(names[f], node_values_[f]);
   gauss_ = std::make_unique<GaussOutput>(m, session, root ? out : nullptr);
+  if (has_gravity(spec)) {
+    // The body force over the body at factor 1: sum of w b over the counted points.
+    double f[2] = {0.0, 0.0};
+    for (int k = 0; k < m.domain_table.rows(); ++k) {
+      if (!m.domain_mine.counted[k]) continue;
+      const int r = m.domain_mine.rows[k];
+      const Vec2 b = body_force_at(spec, m.domain.x[r]) * (m.domain.weight[r] * spec.thickness);
+      f[0] += b.x();
+      f[1] += b.y();
+    }
+    solvers::sum_everywhere(session.comm(), f, 2);
+    body_load_ = Vec2(f[0], f[1]);
+  }
 }
 
 IncrementRecorder::~IncrementRecorder() = default;
@@ -113,12 +127,18 @@ void IncrementRecorder::record(IncrementRecord rec, const std::vector<double>& d
   rec.max_plastic_strain = solvers::max_everywhere(session.comm(), alpha_max);
   rec.plastic_points = solvers::sum_everywhere(session.comm(), plastic);
   body_area = solvers::sum_everywhere(session.comm(), body_area);
-  Vec2 total = rec.factors.back() * spec.body_force * body_area * spec.thickness;
+  Vec2 total = has_gravity(spec)
+                   ? Vec2(rec.factors.back() * body_load_)
+                   : Vec2(rec.factors.back() * spec.body_force * body_area * spec.thickness);
   double magnitude = total.norm();
   for (const auto& b : rec.boundary) total += b.force, magnitude += b.force.norm();
   rec.equilibrium_error = magnitude > 0.0 ? total.norm() / magnitude : 0.0;
 
   const std::vector<double> all = newton.gather_on_root(d);
+  if (spec.record_increment_parameters) {
+    rec.parameters = all;
+    solvers::broadcast(session.comm(), rec.parameters, 0);
+  }
   if (root)
     for (int k = 0; k < monitor_table_.rows(); ++k)
       rec.monitor_u.push_back(displacement_at(monitor_table_, k, all));

@@ -1,6 +1,7 @@
 #include "meshfree/implicit/load_stepping.hpp"
 #include "meshfree/core/log.hpp"
 #include "meshfree/core/timer.hpp"
+#include "meshfree/implicit/point_law.hpp"
 #include <algorithm>
 #include <chrono>
 
@@ -14,7 +15,8 @@ using Clock = std::chrono::steady_clock;
 /// traction (a clamp's factor does not matter).
 bool drives(const io::BoundaryCondition& bc) {
   if (bc.value_from_exact || bc.traction_from_exact) return true;
-  return bc.constrains ? !bc.value.cwiseProduct(bc.mask).isZero() : !bc.traction.isZero();
+  if (bc.constrains) return !bc.value.cwiseProduct(bc.mask).isZero();
+  return bc.pressure_load ? bc.pressure != 0.0 : !bc.traction.isZero();
 }
 
 } // namespace
@@ -24,8 +26,7 @@ std::string factors_text(const io::ProblemSpec& spec, const std::vector<double>&
   for (std::size_t c = 0; c < spec.boundary.size(); ++c)
     if (drives(spec.boundary[c]))
       s += (s.empty() ? "" : ", ") + spec.boundary[c].name + " " + detail::concat(f[c]);
-  if (!spec.body_force.isZero())
-    s += (s.empty() ? "" : ", ") + detail::concat("body_force ", f.back());
+  if (has_body_force(spec)) s += (s.empty() ? "" : ", ") + detail::concat("body_force ", f.back());
   return s.empty() ? "no load" : s;
 }
 

@@ -138,6 +138,12 @@ BoundaryCondition read_condition(KeyReader& bc, double stiffness_scale) {
       c.traction = bc.vec2("traction");
   }
   bc.allow("traction");
+  if (bc.has("pressure")) {
+    if (c.constrains || c.loads)
+      bc.error("pressure", "give one of 'displacement', 'traction' or 'pressure'");
+    c.loads = c.pressure_load = true;
+    c.pressure = bc.number("pressure");
+  }
   if (c.constrains == c.loads)
     bc.error("name", "a boundary condition needs exactly one of 'displacement' or 'traction'");
   bc.finish();
@@ -172,13 +178,26 @@ std::optional<verification::ExactSolution> read_exact(KeyReader& r) {
   return out;
 }
 
-/// steps: [{name, increments, load_factor, factors: {condition: target}}]; see LoadStep.
-std::vector<LoadStep> read_steps(KeyReader& r, const std::vector<BoundaryCondition>& boundary) {
+/// steps: [{name, increments, load_factor, factors: {condition: target}}]; see LoadStep. With a
+/// geostatic initial stress the schedule starts with the step "geostatic": one increment with
+/// the body force at its full value and every condition at 0, the equilibrium iteration of the
+/// initial stress; `load_factor` then moves the conditions only (the body force stays on unless
+/// `factors` names it).
+std::vector<LoadStep> read_steps(KeyReader& r, const std::vector<BoundaryCondition>& boundary,
+                                 bool geostatic) {
   std::vector<LoadStep> steps;
   const std::size_t n = boundary.size() + 1; // the body force is the last factor
   std::vector<double> current(n, 0.0);
+  if (geostatic) {
+    LoadStep g;
+    g.name = "geostatic";
+    g.target = current;
+    g.target.back() = 1.0;
+    current = g.target;
+    steps.push_back(g);
+  }
   std::vector<KeyReader> list = r.map_list("steps");
-  if (list.empty())
+  if (list.empty() && !geostatic)
     r.error("steps", "an elastoplastic analysis needs a load schedule: a list of "
                      "{name, load_factor, increments}");
   for (KeyReader& k : list) {
@@ -207,7 +226,7 @@ std::vector<LoadStep> read_steps(KeyReader& r, const std::vector<BoundaryConditi
     if (k.has("load_factor")) {
       const double lf = k.number("load_factor");
       for (std::size_t c = 0; c < n; ++c)
-        if (!named[c]) s.target[c] = lf;
+        if (!named[c] && !(geostatic && c + 1 == n)) s.target[c] = lf;
     } else if (!k.has("factors")) {
       k.error("load_factor", "give the step's target 'load_factor' or 'factors'");
     }
@@ -359,6 +378,66 @@ void take_material(KeyReader& r, ProblemSpec& p, const std::string& analysis) {
   p.plasticity = m.plasticity;
 }
 
+/// A material a Galerkin body uses: it needs E and nu, and plasticity only in an elastoplastic
+/// analysis.
+void check_body_material(const MaterialSpec& m, const std::string& analysis, bool plastic) {
+  if (!(m.E > 0.0)) material_error(m, "E", "analysis " + analysis + " needs Young's modulus E");
+  if (!m.has_nu)
+    material_error(m, "nu",
+                   "analysis " + analysis + " needs Poisson's ratio nu (or the shear modulus)");
+  if (!plastic && m.plasticity)
+    material_error(m, "plasticity", "used only by analysis elastoplastic_static");
+}
+
+/// material_regions: [{material, box | circle | ring | holes}], later entries winning.
+void read_material_regions(KeyReader& r, ProblemSpec& p, const std::string& analysis,
+                           bool plastic) {
+  for (KeyReader& g : r.map_list("material_regions")) {
+    MaterialRegion mr;
+    mr.key_path = g.path();
+    mr.material = find_material(g, "material", p.materials, g.text("material"));
+    mr.region = read_region(g, 2, kSolids);
+    if (mr.region.everything())
+      g.error("material", "give the region of the material: a box, circle, ring or holes");
+    g.finish();
+    check_body_material(p.materials[mr.material], analysis, plastic);
+    p.material_regions.push_back(mr);
+  }
+}
+
+/// gravity: [gx, gy] (an acceleration; every material of the body needs its density) and
+/// initial_stress: {type: geostatic, surface, k0}.
+void read_gravity_and_initial_stress(KeyReader& r, ProblemSpec& p, bool plastic) {
+  if (r.has("gravity")) {
+    p.gravity = r.vec2("gravity");
+    std::vector<int> used{p.material_index};
+    for (const MaterialRegion& mr : p.material_regions) used.push_back(mr.material);
+    for (int k : used)
+      if (!(p.materials[k].density > 0.0))
+        material_error(p.materials[k], "density",
+                       "gravity needs the density of every material of the body");
+  }
+  auto s = r.optional_map("initial_stress");
+  if (!s) return;
+  if (!plastic)
+    r.error("initial_stress",
+            "used only by analysis elastoplastic_static (its first step is the equilibrium "
+            "iteration)");
+  s->choice("type", {"geostatic"}, "");
+  if (p.gravity.isZero())
+    r.error("initial_stress", "a geostatic initial stress needs 'gravity' (the weight of the "
+                              "column above each point)");
+  if (p.gravity.x() != 0.0 || !(p.gravity.y() < 0.0))
+    r.error("gravity", "a geostatic initial stress needs gravity along -y, [0, -g] (the column "
+                       "above each point lies towards +y)");
+  GeostaticStress g;
+  g.surface = s->number("surface");
+  g.k0 = s->number("k0");
+  if (!(g.k0 >= 0.0)) s->error("k0", "expected a number >= 0, got " + detail::concat(g.k0));
+  s->finish();
+  p.initial_stress = g;
+}
+
 } // namespace
 
 void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
@@ -377,6 +456,8 @@ void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
   p.exact = read_exact(r);
   if (r.has("body_force")) p.body_force = r.vec2("body_force");
   r.allow("body_force");
+  read_material_regions(r, p, analysis, plastic);
+  read_gravity_and_initial_stress(r, p, plastic);
   // Default penalty: alpha = 1e6 E / h, stiff enough that the constraint error is ~1e-6 of the
   // boundary displacement scale, and far from the round-off limit of a direct solve.
   const double stiffness_scale = p.material.E / p.discretisation.spacing;
@@ -398,12 +479,16 @@ void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
     r.error("boundary", "no displacement condition: the body is free to move as a rigid body");
 
   const MaterialSpec& mat = p.materials[p.material_index];
-  if (plastic && !p.plasticity)
+  // A material without plasticity is elastic at its points. An elastoplastic analysis of one
+  // elastic material and nothing else is an elastic_static problem; with material regions,
+  // gravity or an initial stress it is an elastic preload.
+  const bool preload = !p.material_regions.empty() || !p.gravity.isZero() || p.initial_stress;
+  if (plastic && !p.plasticity && !preload)
     material_error(mat, "plasticity", "analysis elastoplastic_static needs a plasticity law");
   if (!plastic && p.plasticity)
     material_error(mat, "plasticity", "used only by analysis elastoplastic_static");
   if (plastic) {
-    p.steps = read_steps(r, p.boundary);
+    p.steps = read_steps(r, p.boundary, p.initial_stress.has_value());
     p.nonlinear = read_nonlinear(r);
   } else {
     for (const char* key : {"steps", "nonlinear"})

@@ -177,6 +177,7 @@ std::vector<std::string> stage_conditions(const ProblemSpec& p) {
   std::vector<std::string> out;
   for (const auto& bc : p.boundary) out.push_back(bc.name);
   if (p.body_force.norm() > 0.0) out.push_back("body_force");
+  if (p.gravity.norm() > 0.0) out.push_back("gravity");
   return out;
 }
 

@@ -6,6 +6,7 @@
 #include "meshfree/io/problem_spec.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace mf::implicit {
@@ -29,9 +30,14 @@ struct ElasticLimit {
   double fraction = std::numeric_limits<double>::quiet_NaN(); // of the first step's targets
   std::vector<double> factors;                                // at first yield
   std::vector<BoundaryReport> boundary;                       // reactions and loads there
+  std::string skipped; // why first yield was not searched (empty when it was)
 };
 
-/// Solves the first step's elastic problem on every rank and finds first yield.
+/// Why first yield is not searched (no plastic material, or an initial stress), or "".
+std::string elastic_limit_skipped(const io::ProblemSpec& spec);
+
+/// Solves the first step's elastic problem on every rank and finds first yield; over the points
+/// of plastic materials, each against its own yield stress.
 ElasticLimit elastic_limit(const io::ProblemSpec& spec, const GalerkinModel& m,
                            const solvers::PetscSession& session);
 

@@ -8,6 +8,7 @@
 #include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
 #include "meshfree/solvers/nonlinear_system.hpp"
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -27,6 +28,9 @@ struct IncrementRecord {
   double max_plastic_strain = 0.0;
   long plastic_points = 0;
   double equilibrium_error = 0.0; // |sum of reactions and loads| / sum of their magnitudes
+  // With ProblemSpec::record_increment_parameters: the nodal parameters d of the increment, all
+  // 2N of them, on every rank (increment 0: zeros); empty otherwise.
+  std::vector<double> parameters;
 };
 
 /// The last converged state. Gauss-point arrays run over this rank's domain points, in the order
@@ -48,6 +52,11 @@ struct ElastoplasticResult {
   double matrix_nonzeros = 0.0;
   std::vector<IncrementRecord> increments; // increment 0 is the unloaded state
   ElasticLimit elastic_limit;
+  // With an initial stress: its out-of-balance, |f_int(sigma0) + K_pen d_1 - f_ext| / |F| after
+  // the equilibrium step d_1 (the reactions at their equilibrium values), which equals
+  // |f_int(sigma_1) - f_int(sigma0)| / |F|: the load the equilibrium iteration carried by
+  // deforming. R(0) itself holds the whole support reactions.
+  double initial_out_of_balance = std::numeric_limits<double>::quiet_NaN();
   ElastoplasticState state;
   std::string status = "completed"; // or "stopped", with the reason
   std::string stop_reason;

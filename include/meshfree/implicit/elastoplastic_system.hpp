@@ -8,6 +8,7 @@
 // has converged (the thesis' incremental strategy B, section 3-1-2).
 #include "meshfree/implicit/coupling.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
+#include "meshfree/implicit/point_law.hpp"
 #include "meshfree/io/problem_spec.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
 #include <vector>
@@ -40,6 +41,8 @@ public:
   void set_factors(const std::vector<double>& f) { factors_ = f; }
   const std::vector<double>& factors() const { return factors_; }
   const PointStates& states() const { return states_; }
+  /// The law of each domain point (rows of the model's domain table).
+  const PointLaws& laws() const { return laws_; }
   double residual_seconds() const { return residual_seconds_; }
   double jacobian_seconds() const { return jacobian_seconds_; }
 
@@ -56,6 +59,13 @@ public:
   /// dR/dd as 2x2 blocks in the order of the model's block-row pattern.
   void jacobian(const std::vector<double>& d, std::vector<double>& blocks);
 
+  /// This rank's share of |f_int(sigma) - f_int(sigma0)|^2 over its owned rows, sigma the stress
+  /// of the last update and sigma0 the initial stress: after the equilibrium iteration of an
+  /// initial stress, the out-of-balance of sigma0 with the supports' reactions at their
+  /// equilibrium values (R(0) itself holds the whole reactions, which only the penalty
+  /// displacements of the iteration call up).
+  double initial_stress_imbalance_squared() const;
+
   /// Every node a point of this rank touches: the entries of d that the residual reads.
   std::vector<int> needed_nodes() const;
 
@@ -66,9 +76,7 @@ private:
 
   const io::ProblemSpec& spec_;
   const GalerkinModel& m_;
-  materials::J2Parameters params_;
-  materials::J2Result2D (*update_)(const materials::J2Parameters&, const Vec3&,
-                                   const materials::J2State&);
+  PointLaws laws_;
   PointStates states_;
   BlockRows penalty_;         // K_pen: constant
   BlockRows tangent_;         // work space for the Jacobian

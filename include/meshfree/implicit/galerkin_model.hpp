@@ -80,6 +80,9 @@ io::GridCells output_cells(const GalerkinModel& m);
 /// evaluated on the calling rank.
 ShapeTable shapes_at(const GalerkinModel& m, const std::vector<Vec2>& x, bool gradients);
 
+/// The positions of this rank's domain points, in the order of the model's domain table.
+std::vector<Vec2> domain_rows(const GalerkinModel& m);
+
 /// Short description of the discretisation for logs and the summary.
 std::string describe_method(const io::DiscretisationSpec& d);
 

@@ -45,6 +45,7 @@ private:
   std::vector<Vec2> node_u_, node_parameters_;
   std::vector<double> node_values_[7]; // stresses, szz, von Mises, alpha, plastic fraction
   std::unique_ptr<GaussOutput> gauss_;
+  Vec2 body_load_{0.0, 0.0}; // gravity and body force over the body at factor 1
 };
 
 } // namespace mf::implicit

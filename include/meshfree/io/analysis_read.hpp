@@ -25,7 +25,7 @@ SphSpec parse_sph(KeyReader& r, const ProblemSpec& front);
 /// starts from an earlier one (ProblemSpec::stages and ::links).
 void parse_stages(KeyReader& r, ProblemSpec& p, const std::string& base_dir);
 /// The names of the conditions of a stage a later stage holds or releases: its boundary
-/// conditions and its body force.
+/// conditions, its body force ("body_force") and its gravity ("gravity").
 std::vector<std::string> stage_conditions(const ProblemSpec& p);
 
 } // namespace mf::io

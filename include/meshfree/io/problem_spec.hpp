@@ -65,6 +65,26 @@ struct BoundaryCondition {
   bool loads = false;
   Vec2 traction{0.0, 0.0};
   bool traction_from_exact = false;
+  // Normal pressure (force per area, positive pushing into the body): the traction -p n with n
+  // the outward normal of the boundary piece at each point; a load like a traction.
+  bool pressure_load = false;
+  double pressure = 0.0;
+};
+
+/// A region of a Galerkin body made of one entry of the `materials:` list.
+struct MaterialRegion {
+  int material = 0;     // index into ProblemSpec::materials
+  std::string key_path; // e.g. "material_regions[1]", for messages
+  Region region;        // box, circle, ring, holes
+};
+
+/// The initial stress of a Galerkin body before its first load step (Abaqus *GEOSTATIC, FLAC
+/// `initialize-stresses ratio`): at (x, y) the vertical stress is the weight of the column above,
+/// sigma_v = -int_y^surface rho(x, z) |g| dz (compression negative), the horizontal and
+/// out-of-plane stresses k0 sigma_v (0 out of plane in plane stress), no shear.
+struct GeostaticStress {
+  double surface = 0.0; // y of the ground surface
+  double k0 = 0.5;      // lateral earth pressure coefficient
 };
 
 /// A named step of a load schedule: over `increments` equal increments, the factor of every
@@ -120,6 +140,16 @@ struct ProblemSpec {
   DiscretisationSpec discretisation;
   std::vector<BoundaryCondition> boundary;
   Vec2 body_force{0.0, 0.0}; // force per volume
+  // Galerkin analyses: the material of each region (later entries win; points in no region take
+  // `material_index`), gravity (acceleration: body force rho g with rho of the point's
+  // material; with body_force, scaled by the body-force factor of the steps) and the initial
+  // stress.
+  std::vector<MaterialRegion> material_regions;
+  Vec2 gravity{0.0, 0.0};
+  std::optional<GeostaticStress> initial_stress;
+  // Keep the nodal parameters of every converged increment (IncrementRecord::parameters), so
+  // that a point can be carried through the increments as a passive material point.
+  bool record_increment_parameters = false;
   std::optional<verification::ExactSolution> exact;
   std::vector<LineSpec> lines;
   std::vector<GaugeSpec> gauges; // points whose displacement history is recorded

@@ -13,6 +13,13 @@ namespace mf::stages {
 
 using materials::Vec6;
 
+/// How a position maps into the preload's part: the point there and which axes the mirror
+/// reversed.
+struct Mirrored {
+  Vec2 x;
+  bool flip[3] = {false, false, false};
+};
+
 /// The preload at the particles, increment by increment (increment 0 is the unloaded state).
 /// Stresses are 3D Voigt [xx, yy, zz, yz, xz, xy], tension positive.
 struct PreloadAtParticles {
@@ -22,6 +29,7 @@ struct PreloadAtParticles {
   std::vector<std::vector<double>> alpha;  // [increment][particle], equivalent plastic strain
   std::vector<materials::J2State> history; // final committed history per particle
   std::vector<char> plastic;               // yielding in the last increment
+  std::vector<Mirrored> image;             // where each particle lies in the preload's part
   int increments() const { return static_cast<int>(u.size()); }
   const std::vector<Vec3>& final_u() const { return u.back(); }
   const std::vector<Vec6>& final_stress() const { return stress.back(); }
@@ -35,13 +43,6 @@ PreloadAtParticles sample_preload(const io::ProblemSpec& preload,
                                   const std::vector<Vec3>& x,
                                   const std::vector<io::MirrorPlane>& mirror,
                                   const std::string& key_path);
-
-/// How a position maps into the preload's part: the point there and which axes the mirror
-/// reversed.
-struct Mirrored {
-  Vec2 x;
-  bool flip[3] = {false, false, false};
-};
 
 /// The image of `x` in the part of the body that `inside` (a point of the preload's part) lies
 /// in, across each mirror plane `x` is on the other side of.

@@ -1,0 +1,214 @@
+#include "meshfree/implicit/point_law.hpp"
+#include "meshfree/materials/elastic.hpp"
+#include <algorithm>
+#include <cmath>
+
+namespace mf::implicit {
+
+namespace {
+
+/// Tolerance of region membership: a point on a region's boundary belongs to it.
+double region_tolerance(const io::ProblemSpec& spec) {
+  return 1e-9 * spec.domain.bounds().size().maxCoeff();
+}
+
+/// Where the vertical line through x crosses a circle (none if it misses it).
+void add_circle_crossings(double x, const Vec2& center, double radius, std::vector<double>& ys) {
+  const double dx = x - center.x();
+  if (std::abs(dx) >= radius) return;
+  const double h = std::sqrt(radius * radius - dx * dx);
+  ys.push_back(center.y() - h);
+  ys.push_back(center.y() + h);
+}
+
+void add_region_crossings(double x, const io::Region& g, std::vector<double>& ys) {
+  const auto c2 = [](const io::Point& p) { return Vec2(p.x(), p.y()); };
+  if (g.box) {
+    ys.push_back(g.box->lo.y());
+    ys.push_back(g.box->hi.y());
+  }
+  if (g.circle) add_circle_crossings(x, c2(g.circle->center), g.circle->radius, ys);
+  if (g.ring) {
+    add_circle_crossings(x, c2(g.ring->center), g.ring->inner_radius, ys);
+    add_circle_crossings(x, c2(g.ring->center), g.ring->outer_radius, ys);
+  }
+  for (const io::Circle& h : g.holes) add_circle_crossings(x, c2(h.center), h.radius, ys);
+}
+
+/// The 3D compliance applied to [xx, yy, xy, zz]: the elastic strain of a stress, engineering
+/// shear (Hooke's law, e.g. Timoshenko & Goodier 1970, eq. 3).
+Vec4 compliance(const materials::J2Parameters& p, const Vec4& s) {
+  const double E = p.E, nu = p.nu;
+  return {(s(0) - nu * (s(1) + s(3))) / E, (s(1) - nu * (s(0) + s(3))) / E,
+          2.0 * (1.0 + nu) / E * s(2), (s(3) - nu * (s(0) + s(1))) / E};
+}
+
+bool is_zero(const Vec4& v) {
+  return (v.array() == 0.0).all();
+}
+
+} // namespace
+
+int material_at(const io::ProblemSpec& spec, const Vec2& x) {
+  const io::Point p(x.x(), x.y(), 0.0);
+  const double tol = region_tolerance(spec);
+  for (auto r = spec.material_regions.rbegin(); r != spec.material_regions.rend(); ++r)
+    if (r->region.contains(p, tol)) return r->material;
+  return spec.material_index;
+}
+
+materials::J2Parameters material_parameters(const io::ProblemSpec& spec, int material) {
+  // The analysis' own material as the spec holds it (spec.material, spec.plasticity), the
+  // others from the materials list.
+  const bool own = material == spec.material_index;
+  const io::MaterialSpec& m = spec.materials.at(static_cast<std::size_t>(material));
+  const auto& plasticity = own ? spec.plasticity : m.plasticity;
+  materials::J2Parameters p;
+  if (plasticity) p = *plasticity;
+  p.E = own ? spec.material.E : m.E;
+  p.nu = own ? spec.material.nu : m.nu;
+  return p;
+}
+
+Vec4 initial_stress_at(const io::ProblemSpec& spec, const Vec2& x) {
+  if (!spec.initial_stress) return Vec4::Zero();
+  const io::GeostaticStress& g = *spec.initial_stress;
+  const double top = g.surface;
+  if (!(x.y() < top)) return Vec4::Zero();
+  // The breaks of the column: where it crosses a region's, a hole's or the outline's boundary.
+  std::vector<double> ys{x.y(), top};
+  for (const io::MaterialRegion& mr : spec.material_regions)
+    add_region_crossings(x.x(), mr.region, ys);
+  for (const geometry::Circle& h : spec.domain.holes())
+    add_circle_crossings(x.x(), h.center, h.radius, ys);
+  const std::vector<Vec2>& v = spec.domain.vertices();
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const Vec2& a = v[i];
+    const Vec2& b = v[(i + 1) % v.size()];
+    if ((a.x() - x.x()) * (b.x() - x.x()) < 0.0)
+      ys.push_back(a.y() + (x.x() - a.x()) / (b.x() - a.x()) * (b.y() - a.y()));
+    else if (a.x() == x.x())
+      ys.push_back(a.y());
+  }
+  std::sort(ys.begin(), ys.end());
+  double weight = 0.0; // int_y^top rho dz
+  for (std::size_t i = 0; i + 1 < ys.size(); ++i) {
+    const double lo = std::max(ys[i], x.y()), hi = std::min(ys[i + 1], top);
+    if (!(hi > lo)) continue;
+    const Vec2 mid(x.x(), 0.5 * (lo + hi));
+    if (!spec.domain.contains(mid)) continue; // a hole or outside the outline: no weight
+    weight += spec.materials[material_at(spec, mid)].density * (hi - lo);
+  }
+  const double sv = -weight * spec.gravity.norm();
+  const double szz = spec.model == materials::PlaneModel::PlaneStrain ? g.k0 * sv : 0.0;
+  return {g.k0 * sv, sv, 0.0, szz};
+}
+
+PointLaw point_law(const io::ProblemSpec& spec, const Vec2& x) {
+  PointLaw law;
+  law.material = material_at(spec, x);
+  law.params = material_parameters(spec, law.material);
+  law.plastic = law.material == spec.material_index
+                    ? spec.plasticity.has_value()
+                    : spec.materials[law.material].plasticity.has_value();
+  law.initial_stress = initial_stress_at(spec, x);
+  return law;
+}
+
+Vec2 body_force_at(const io::ProblemSpec& spec, const Vec2& x) {
+  if (!has_gravity(spec)) return spec.body_force;
+  return spec.body_force + spec.materials[material_at(spec, x)].density * spec.gravity;
+}
+
+materials::J2Result2D update_law(materials::PlaneModel model, const materials::J2Parameters& p,
+                                 bool plastic, const Vec4& sigma0, const Vec3& strain,
+                                 const materials::J2State& committed) {
+  const bool plane_strain = model == materials::PlaneModel::PlaneStrain;
+  const bool initial = !is_zero(sigma0);
+  if (!plastic) {
+    // sigma = sigma0 + C (eps - eps_p), eps_p = 0 at an elastic point.
+    const materials::IsotropicElastic e{p.E, p.nu};
+    materials::J2Result2D r;
+    r.tangent = materials::elastic_matrix(e, model);
+    r.stress = r.tangent * strain;
+    r.stress_zz = materials::out_of_plane_stress(e, model, r.stress);
+    r.strain_zz = plane_strain ? 0.0 : -p.nu / (1.0 - p.nu) * (strain(0) + strain(1));
+    if (initial) {
+      r.stress += sigma0.head<3>();
+      r.stress_zz += sigma0(3);
+    }
+    r.state = committed;
+    return r;
+  }
+  if (!initial)
+    return plane_strain ? materials::j2_update_plane_strain(p, strain, committed)
+                        : materials::j2_update_plane_stress(p, strain, committed);
+  // The initial elastic strain eps0 = C^-1 sigma0 added to the strain of the displacement.
+  const Vec4 e0 = compliance(p, sigma0);
+  const Vec3 total(strain(0) + e0(0), strain(1) + e0(1), strain(2) + e0(2));
+  if (!plane_strain) {
+    // sigma0_zz = 0 in plane stress; the return finds eps_zz with sigma_zz = 0 itself.
+    materials::J2Result2D r = materials::j2_update_plane_stress(p, total, committed);
+    r.strain_zz -= e0(3);
+    return r;
+  }
+  materials::Vec6 e3;
+  e3 << total(0), total(1), e0(3), 0.0, 0.0, total(2);
+  const materials::J2Result3D r3 = materials::j2_update_3d(p, e3, committed);
+  constexpr int kPlane[3] = {0, 1, 5}; // 3D Voigt indices of xx, yy, xy
+  materials::J2Result2D r;
+  for (int a = 0; a < 3; ++a) {
+    r.stress(a) = r3.stress(kPlane[a]);
+    for (int b = 0; b < 3; ++b) r.tangent(a, b) = r3.tangent(kPlane[a], kPlane[b]);
+  }
+  r.stress_zz = r3.stress(2);
+  r.strain_zz = 0.0;
+  r.state = r3.state;
+  r.plastic = r3.plastic;
+  return r;
+}
+
+materials::J2Result2D update_point(const io::ProblemSpec& spec, const PointLaw& law,
+                                   const Vec3& strain, const materials::J2State& committed) {
+  return update_law(spec.model, law.params, law.plastic, law.initial_stress, strain, committed);
+}
+
+PointLaws point_laws(const io::ProblemSpec& spec, const std::vector<Vec2>& x) {
+  PointLaws L;
+  const std::size_t nm = spec.materials.size();
+  L.params.resize(nm);
+  L.plastic.assign(nm, 0);
+  L.elastic.assign(nm, Mat3::Zero());
+  std::vector<char> used(nm, 0);
+  L.material.resize(x.size());
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    L.material[k] = material_at(spec, x[k]);
+    used[L.material[k]] = 1;
+  }
+  std::vector<double> density(nm, 0.0);
+  for (std::size_t m = 0; m < nm; ++m) {
+    if (!used[m]) continue;
+    const int i = static_cast<int>(m);
+    L.params[m] = material_parameters(spec, i);
+    L.plastic[m] = i == spec.material_index ? spec.plasticity.has_value()
+                                            : spec.materials[m].plasticity.has_value();
+    L.elastic[m] = materials::elastic_matrix({L.params[m].E, L.params[m].nu}, spec.model);
+    density[m] = spec.materials[m].density;
+    L.any_plastic = L.any_plastic || L.plastic[m];
+  }
+  L.one_material = std::count(used.begin(), used.end(), 1) <= 1;
+  if (has_body_force(spec)) {
+    L.body_force.resize(x.size());
+    for (std::size_t k = 0; k < x.size(); ++k)
+      L.body_force[k] = !has_gravity(spec)
+                            ? spec.body_force
+                            : Vec2(spec.body_force + density[L.material[k]] * spec.gravity);
+  }
+  if (spec.initial_stress) {
+    L.initial_stress.resize(x.size());
+    for (std::size_t k = 0; k < x.size(); ++k) L.initial_stress[k] = initial_stress_at(spec, x[k]);
+  }
+  return L;
+}
+
+} // namespace mf::implicit
