@@ -210,6 +210,28 @@ TEST_CASE("explicit damped dynamic relaxation reaches the adaptive one", "[pd][r
   CHECK(pd::kinetic_energy(e.m) == 0.0);
 }
 
+TEST_CASE("per-particle load densities act as the one density they repeat", "[pd][relaxation]") {
+  Plate a = plate(), b = plate();
+  pd::BodyLoad& pull = b.loading.loads[0];
+  pull.densities.assign(pull.particles.size(), pull.density);
+  pull.density.setZero();
+  pd::relax(a.m, a.s, a.loading, {});
+  pd::relax(b.m, b.s, b.loading, {});
+  CHECK(a.m.particles.u == b.m.particles.u);
+  // and under velocity Verlet, with the work of the loads
+  std::vector<pd::Impactor> none;
+  const double dt = 0.8 * pd::stable_time_step(a.m);
+  for (Plate* p : {&a, &b}) {
+    for (double& v : p->m.particles.v) v = 1e-3;
+    pd::accelerate(p->m, p->s, p->loading, false);
+  }
+  const double wa = pd::advance(a.m, a.s, a.loading, none, dt, false).external_work;
+  const double wb = pd::advance(b.m, b.s, b.loading, none, dt, false).external_work;
+  CHECK(a.m.particles.u == b.m.particles.u);
+  CHECK(wa == wb);
+  CHECK(wa != 0.0);
+}
+
 namespace {
 
 // The plate of the tests above as a problem file (cell-centred lattice, clamped on its first

@@ -79,7 +79,7 @@ StepReport accelerate(Model& m, BondState& s, const Loading& loading, bool with_
     for (std::size_t k = 0; k < load.particles.size(); ++k) {
       const int i = load.particles[k];
       const double g = loading.factor(load, k, q.time);
-      for (int d = 0; d < 3; ++d) f[3 * i + d] += g * load.density(d);
+      for (int d = 0; d < 3; ++d) f[3 * i + d] += g * load.density_of(k, d);
     }
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i)
@@ -105,7 +105,7 @@ StepReport advance(Model& m, BondState& s, const Loading& loading, std::vector<I
         const int i = load.particles[k];
         const double g = loading.factor(load, k, t);
         for (int d = 0; d < 3; ++d)
-          w += g * load.density(d) * m.particles.volume[i] * du[3 * i + d];
+          w += g * load.density_of(k, d) * m.particles.volume[i] * du[3 * i + d];
       }
     return w;
   };

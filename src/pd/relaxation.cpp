@@ -36,7 +36,7 @@ Statics statics(const Model& m, const Loading& loading) {
   for (const BodyLoad& load : loading.loads)
     for (std::size_t k = 0; k < load.particles.size(); ++k) {
       const double g = loading.factor(load, k, t);
-      for (int d = 0; d < 3; ++d) st.b[3 * load.particles[k] + d] += g * load.density(d);
+      for (int d = 0; d < 3; ++d) st.b[3 * load.particles[k] + d] += g * load.density_of(k, d);
     }
   for (const Constraint& c : loading.constraints) {
     const double f = loading.factor(c.function, t);

@@ -32,13 +32,20 @@ struct Constraint {
 /// A force per unit volume on a set of particles, times a time function. A traction t on a face
 /// of area A becomes b = t A / (volume of the loaded layer of particles). A blast load gives each
 /// particle its own pressure history (`pulses`, one per particle, in Pa) and `density` is the
-/// force per volume of a unit pressure.
+/// force per volume of a unit pressure. Forces that differ from particle to particle (those of
+/// an earlier analysis' boundary, say) go in `densities`, one per particle, instead of `density`.
 struct BodyLoad {
   std::string name;
   std::vector<int> particles;
   Eigen::Vector3d density{0.0, 0.0, 0.0};
   int function = -1;
   std::vector<loads::Friedlander> pulses;
+  std::vector<Eigen::Vector3d> densities; // empty, or one per particle
+
+  /// Component d of the force per volume of the k-th particle, before the factors.
+  double density_of(std::size_t k, int d) const {
+    return densities.empty() ? density(d) : densities[k](d);
+  }
 };
 
 /// A rigid impactor: a sphere (a disk in a plane) or a flat-nosed block, with its mass and
