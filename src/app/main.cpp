@@ -15,6 +15,7 @@
 #include "meshfree/quadrature/integration_points.hpp"
 #include "meshfree/solvers/parallel.hpp"
 #include "meshfree/sph/step.hpp"
+#include "meshfree/stages/staged_run.hpp"
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -69,6 +70,17 @@ Command parse(int argc, char** argv) {
 int check(const Command& c) {
   const mf::io::ProblemSpec spec = mf::io::read_problem(c.problem, c.overrides);
   std::cout << "problem " << spec.name << ": valid\n";
+  if (spec.analysis == mf::io::Analysis::Staged) {
+    for (std::size_t k = 0; k < spec.stages.size(); ++k) {
+      const mf::io::StageLink& l = spec.links[k];
+      std::cout << "  stage " << spec.stages[k].stage;
+      if (l.from >= 0)
+        std::cout << " from " << spec.stages[l.from].stage << " (" << l.hold.size()
+                  << " condition(s) held, " << l.release.size() << " released)";
+      std::cout << "\n";
+    }
+    return 0;
+  }
   if (spec.analysis == mf::io::Analysis::ModelProblem1D) {
     std::cout << "  1D model problem on [0, " << spec.model_1d.length << "], spacing "
               << spec.discretisation.spacing << "\n";
@@ -173,6 +185,8 @@ int run(Command& c) {
       }
       log_phases(r.timer);
       if (r.status == "failed") exit_code = 1;
+    } else if (spec.analysis == mf::io::Analysis::Staged) {
+      exit_code = mf::stages::run_staged(spec, session, out.get()).exit_code;
     } else if (spec.analysis == mf::io::Analysis::ElastoplasticStatic) {
       const auto r = mf::app::elastoplastic_static(spec, session, out.get());
       log_phases(r.timer);

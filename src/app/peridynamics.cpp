@@ -1,4 +1,5 @@
 #include "meshfree/app/peridynamics.hpp"
+#include "meshfree/explicit/run_summaries.hpp"
 #include "meshfree/explicit/time_loop.hpp"
 #include <omp.h>
 
@@ -22,24 +23,9 @@ void write_pd_outputs(const io::ProblemSpec& spec, const explicit_dynamics::PdRu
   io::Summary summary({spec.name, spec.description, spec.units, "peridynamics", ""});
   summary.set_status(r.status, r.stop_reason);
   summary.set("openmp_threads", omp_get_max_threads());
-  summary.section("counts")
-      .set("particles", r.particles)
-      .set("bonds", r.bonds)
-      .set("steps", r.steps);
-  summary.section("time_step").set("dt", r.dt).set("limited_by", r.dt_limit);
-  io::Json& results = summary.section("results");
-  results.set("broken_bonds", r.broken_bonds)
-      .set("max_damage", r.max_damage)
-      .set("energy_balance_relative", r.energy_drift)
-      .set("bond_evaluations_per_second", r.bond_updates_per_second);
-  // Largest magnitudes of every recorded history column (gauges, impactor, crack).
-  io::Json maxima;
-  for (std::size_t c = 2; c < r.history.columns().size(); ++c)
-    maxima.set(r.history.columns()[c], r.history.max_abs(c));
-  results.set("max_abs", maxima);
-  io::Json gauges;
-  for (const auto& [name, v] : r.gauge_maxima) gauges.set(name, v);
-  results.set("gauge_max_abs_every_step", gauges);
+  io::Json& counts = summary.section("counts");
+  io::Json& time_step = summary.section("time_step");
+  explicit_dynamics::summarise(r, counts, time_step, summary.section("results"));
   summary.write(out, r.timer);
 }
 

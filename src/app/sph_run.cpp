@@ -1,5 +1,6 @@
 #include "meshfree/app/sph_run.hpp"
 #include "meshfree/core/log.hpp"
+#include "meshfree/explicit/run_summaries.hpp"
 #include "meshfree/explicit/sph_setup.hpp"
 #include "meshfree/explicit/time_loop.hpp"
 
@@ -26,21 +27,9 @@ void write_sph_outputs(const io::ProblemSpec& spec, const explicit_dynamics::Sph
   r.history.write(out);
   io::Summary summary({spec.name, spec.description, spec.units, "sph", ""});
   summary.set_status(r.status, r.stop_reason);
-  summary.section("counts")
-      .set("particles", r.particles)
-      .set("steps", r.steps)
-      .set("neighbour_list_builds", r.neighbour_rebuilds);
-  summary.section("time_step")
-      .set("first", r.first_dt)
-      .set("smallest", r.smallest_dt)
-      .set("limited_by", r.dt_limit);
-  io::Json gauges;
-  for (const auto& [name, value] : r.gauge_maxima) gauges.set(name, value);
-  summary.section("results")
-      .set("peak_pressure", r.peak_pressure)
-      .set("energy_error_relative", r.energy_error)
-      .set("particle_steps_per_second", r.particle_steps_per_second)
-      .set("gauge_maxima", gauges);
+  io::Json& counts = summary.section("counts");
+  io::Json& time_step = summary.section("time_step");
+  explicit_dynamics::summarise(r, counts, time_step, summary.section("results"));
   summary.write(out, r.timer);
 }
 

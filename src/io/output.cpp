@@ -31,15 +31,21 @@ void OutputDirectory::clear_previous() const {
     const std::string name = entry.path().filename().string();
     const std::string ext = entry.path().extension().string();
     const std::string stem = entry.path().stem().string();
+    // A staged run's stage files carry the stage's name and an underscore before these names.
+    const auto is = [](const std::string& s, const std::string& what) {
+      return s == what || (s.size() > what.size() && s.compare(s.size() - what.size() - 1,
+                                                               std::string::npos, "_" + what) == 0);
+    };
     const bool ours =
-        ((stem == "fields" || stem == "gauss_points") && (ext == ".h5" || ext == ".xmf")) ||
-        name == "history.csv" || name == "summary.json" ||
+        ((is(stem, "fields") || is(stem, "gauss_points")) && (ext == ".h5" || ext == ".xmf")) ||
+        is(name, "history.csv") || is(name, "summary.json") ||
         (name.rfind("line_", 0) == 0 && entry.path().extension() == ".csv");
     if (ours) fs::remove(entry.path());
   }
 }
 
-std::string OutputDirectory::temp_path(const std::string& file) {
+std::string OutputDirectory::temp_path(const std::string& name) {
+  const std::string file = name_of(name);
   MF_REQUIRE(std::find(pending_.begin(), pending_.end(), file) == pending_.end(), dir_, "/", file,
              ": written twice in one run");
   pending_.push_back(file);
@@ -133,7 +139,8 @@ FieldSeries::FieldSeries(OutputDirectory& out, const std::string& stem,
 
 void FieldSeries::open(const std::vector<double>& xyz, const GridCells& cells) {
   const std::string h5_temp = out_.temp_path(stem_ + ".h5");
-  const std::string h5 = stem_ + ".h5";
+  h5_ = out_.name_of(stem_ + ".h5");
+  const std::string& h5 = h5_;
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); // our messages say what failed, not HDF5's stack
   const hid_t file = H5Fcreate(h5_temp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   MF_REQUIRE(file >= 0, h5_temp,
@@ -171,7 +178,7 @@ FieldSeries::~FieldSeries() {
 
 void FieldSeries::add_step(const FieldStep& step) {
   MF_REQUIRE(file_ >= 0, stem_, ".h5: the series is closed");
-  const std::string h5 = stem_ + ".h5";
+  const std::string& h5 = h5_;
   const std::size_t n = points_;
   std::ostringstream group;
   group << "/step_" << std::setw(6) << std::setfill('0') << steps_;

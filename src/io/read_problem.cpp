@@ -56,32 +56,6 @@ void read_geometry(KeyReader& r, ProblemSpec& p) {
   }
 }
 
-/// The file of a one-stage `stages:` list as a one-analysis file: the shared keys and the
-/// stage's own.
-YAML::Node stage_file(KeyReader& r, ProblemSpec& p) {
-  std::vector<KeyReader> stages = r.map_list("stages");
-  if (stages.empty()) r.error("stages", "expected a list of stages {name, analysis, ...}");
-  if (stages.size() > 1)
-    r.error("stages", "staged runs of more than one stage are not available yet (the file lists " +
-                          std::to_string(stages.size()) + " stages)");
-  KeyReader& s = stages.front();
-  p.stage = s.text("name");
-  check_name(s, "name", p.stage);
-  s.choice("analysis", kAnalyses, "");
-  YAML::Node merged(YAML::NodeType::Map);
-  for (const char* key : {"name", "description", "units", "model", "materials", "geometry"})
-    if (r.has(key)) merged[key] = YAML::Clone(r.raw(key));
-  for (const auto& kv : s.raw_map()) {
-    const std::string key = kv.first.Scalar();
-    if (key == "name") continue;
-    if (merged[key].IsDefined() && !merged[key].IsNull())
-      s.error(key, "given at the top of the file already");
-    merged[key] = YAML::Clone(kv.second);
-  }
-  r.finish();
-  return merged;
-}
-
 } // namespace
 
 ProblemSpec parse_problem(YAML::Node root, const std::string& base_dir) {
@@ -90,14 +64,19 @@ ProblemSpec parse_problem(YAML::Node root, const std::string& base_dir) {
   std::vector<std::string> analyses = kAnalyses;
   analyses.push_back("staged");
   if (r.has("analysis") && r.text("analysis") == "staged") {
-    std::string stage;
-    {
-      ProblemSpec front;
-      YAML::Node one = stage_file(r, front);
-      stage = front.stage;
-      p = parse_problem(one, base_dir);
-    }
-    p.stage = stage;
+    parse_stages(r, p, base_dir);
+    r.finish();
+    if (p.stages.size() == 1) return std::move(p.stages.front()); // runs as its analysis
+    const ProblemSpec& first = p.stages.front();
+    p.name = first.name;
+    p.description = first.description;
+    p.units = first.units;
+    p.analysis = Analysis::Staged;
+    p.model_type = first.model_type;
+    p.dimension = first.dimension;
+    p.model = first.model;
+    p.thickness = first.thickness;
+    p.materials = first.materials;
     return p;
   }
   p.name = r.text("name");

@@ -21,5 +21,11 @@ PdSpec parse_pd(KeyReader& r, const ProblemSpec& front, const std::string& base_
 /// sph: discretisation, regions (the bodies of particles), boundary, detonation, viscosity,
 /// artificial stress, interface, time and output.
 SphSpec parse_sph(KeyReader& r, const ProblemSpec& front);
+/// staged: the `stages:` list, each stage a problem of the shared keys and its own, and how each
+/// starts from an earlier one (ProblemSpec::stages and ::links).
+void parse_stages(KeyReader& r, ProblemSpec& p, const std::string& base_dir);
+/// The names of the conditions of a stage a later stage holds or releases: its boundary
+/// conditions and its body force.
+std::vector<std::string> stage_conditions(const ProblemSpec& p);
 
 } // namespace mf::io

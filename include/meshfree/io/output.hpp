@@ -35,6 +35,11 @@ public:
   explicit OutputDirectory(std::string dir);
   ~OutputDirectory(); // removes uncommitted temporary files
   const std::string& dir() const { return dir_; }
+  /// Files written from now on are named prefix + file (a staged run's stages keep their own
+  /// files side by side: preload_fields.h5 beside fields.h5).
+  void set_prefix(std::string prefix) { prefix_ = std::move(prefix); }
+  /// The name `file` is written under.
+  std::string name_of(const std::string& file) const { return prefix_ + file; }
 
   /// Removes results of an earlier run (fields.*, history.csv, summary.json, line_*.csv).
   void clear_previous() const;
@@ -52,6 +57,7 @@ private:
   friend class FieldSeries;
   std::string temp_path(const std::string& file);
   std::string dir_;
+  std::string prefix_;
   std::vector<std::string> pending_; // final file names
 };
 
@@ -74,6 +80,7 @@ private:
   void open(const std::vector<double>& xyz, const GridCells& cells);
   OutputDirectory& out_;
   std::string stem_;
+  std::string h5_; // the data file as the .xmf names it
   long file_ = -1; // hid_t
   std::size_t points_ = 0;
   int steps_ = 0;

@@ -9,6 +9,7 @@
 #include "meshfree/io/pd_spec.hpp"
 #include "meshfree/io/region_spec.hpp"
 #include "meshfree/io/sph_spec.hpp"
+#include "meshfree/io/stage_spec.hpp"
 #include "meshfree/kernels/shape_functions.hpp"
 #include "meshfree/materials/elastic.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
@@ -20,7 +21,7 @@
 
 namespace mf::io {
 
-enum class Analysis { ElasticStatic, ElastoplasticStatic, ModelProblem1D, Peridynamics, Sph };
+enum class Analysis { ElasticStatic, ElastoplasticStatic, ModelProblem1D, Peridynamics, Sph, Staged };
 
 /// model.type: the kinematic model of every analysis (uniaxial strain is 1D SPH).
 enum class ModelType { PlaneStress, PlaneStrain, Solid3D, UniaxialStrain };
@@ -158,6 +159,10 @@ struct ProblemSpec {
   std::optional<SphSpec> sph; // analysis: sph
   std::optional<PdSpec> pd;   // analysis: peridynamics
   ModelProblem1D model_1d;
+  // analysis: staged with more than one stage: each stage as a one-analysis problem (the shared
+  // keys copied into it) and how it starts from an earlier one (links[k] for stages[k]).
+  std::vector<ProblemSpec> stages;
+  std::vector<StageLink> links;
 };
 
 /// Reads and validates a problem file. `overrides` are "key.path=value" strings applied first.

@@ -1,0 +1,49 @@
+#pragma once
+// The explicit stage of a staged run, started from the preload: its particles are built from the
+// stage's own spec, take the preload's state (sample_preload) and its held conditions
+// (held_conditions), are settled (SPH, optional) or relaxed to their own equilibrium
+// (peridynamics, adaptive dynamic relaxation), and then run to the stage's end time. The
+// preload's increments are replayed on the particles first, at pseudo-times -1..0, so that the
+// history and the field series of the particles cover the whole run.
+#include "meshfree/core/timer.hpp"
+#include "meshfree/implicit/elastoplastic_result.hpp"
+#include "meshfree/io/problem_spec.hpp"
+#include "meshfree/io/results.hpp"
+#include "meshfree/stages/transfer_report.hpp"
+#include <string>
+#include <vector>
+
+namespace mf::stages {
+
+struct ExplicitStage {
+  io::History history; // "time", "stage" (the index of the stage in `stages:`), the run's columns
+  TransferReport transfer;
+  std::string status = "completed", stop_reason;
+  io::Json counts, time_step, results;
+  PhaseTimer timer;
+};
+
+ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::ElastoplasticResult& pre,
+                           const io::ProblemSpec& stage, const io::StageLink& link, int index,
+                           io::OutputDirectory* out);
+ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
+                            const implicit::ElastoplasticResult& pre, const io::ProblemSpec& stage,
+                            const io::StageLink& link, int index, io::OutputDirectory* out);
+
+/// One history of the rows of the replayed preload (stage `from`) and of the run (stage `index`),
+/// with a "stage" column after "time". Of the preload's rows only time and the gauge columns
+/// (named "<gauge>_...") are kept; the rest (energies, rates) belong to the explicit run and are
+/// NaN there.
+io::History staged_history(const io::History& preload, const io::History& run, int from,
+                           int index, const std::vector<std::string>& gauges);
+
+/// Moves the rows recorded so far out of `h` (leaving its columns): the replayed preload's rows
+/// are kept apart from the run's, whose summaries they must not enter.
+io::History take_rows(io::History& h);
+
+/// Elastic strain energy of stresses sigma (3D Voigt) of volumes V with each its E and nu:
+/// sum V sigma : C^-1 sigma / 2.
+double elastic_energy(const std::vector<materials::Vec6>& sigma, const std::vector<double>& volume,
+                      const std::vector<double>& E, const std::vector<double>& nu);
+
+} // namespace mf::stages

@@ -1,0 +1,54 @@
+#pragma once
+// The preload seen by the particles of the next stage: each particle is carried as a passive
+// material point through the preload's converged increments. Its strain is the Galerkin strain at
+// its reference position, its stress the one the same constitutive update gives from its own
+// committed history (implicit::update_point: material, initial stress, J2 return), so no
+// projection is made and no particle overshoots its yield surface. A preload computed on a
+// symmetric part is mirrored across the given planes to the whole body.
+#include "meshfree/implicit/elastoplastic_result.hpp"
+#include "meshfree/io/problem_spec.hpp"
+#include <vector>
+
+namespace mf::stages {
+
+using materials::Vec6;
+
+/// How a position maps into the preload's part: the point there and which axes the mirror
+/// reversed.
+struct Mirrored {
+  Vec2 x;
+  bool flip[3] = {false, false, false};
+};
+
+/// The preload at the particles, increment by increment (increment 0 is the unloaded state).
+/// Stresses are 3D Voigt [xx, yy, zz, yz, xz, xy], tension positive.
+struct PreloadAtParticles {
+  std::vector<double> pseudo_time;         // n / N - 1 per increment: -1 (unloaded) .. 0
+  std::vector<std::vector<Vec3>> u;        // [increment][particle]
+  std::vector<std::vector<Vec6>> stress;   // [increment][particle]
+  std::vector<std::vector<double>> alpha;  // [increment][particle], equivalent plastic strain
+  std::vector<materials::J2State> history; // final committed history per particle
+  std::vector<char> plastic;               // yielding in the last increment
+  int increments() const { return static_cast<int>(u.size()); }
+  const std::vector<Vec3>& final_u() const { return u.back(); }
+  const std::vector<Vec6>& final_stress() const { return stress.back(); }
+};
+
+/// The preload `r` of `preload` at the particles' reference positions `x` (3 per particle), after
+/// mirroring each position into the preload's part. Throws mf::Error naming `key_path` for a
+/// particle that no node of the preload covers.
+PreloadAtParticles sample_preload(const io::ProblemSpec& preload,
+                                  const implicit::ElastoplasticResult& r,
+                                  const std::vector<Vec3>& x,
+                                  const std::vector<io::MirrorPlane>& mirror,
+                                  const std::string& key_path);
+
+/// The image of `x` in the part of the body that `inside` (a point of the preload's part) lies
+/// in, across each mirror plane `x` is on the other side of.
+Mirrored mirror_into(const Vec3& x, const std::vector<io::MirrorPlane>& mirror, const Vec2& inside);
+
+/// A vector and a stress of the part, seen from the mirrored image.
+Vec3 mirrored(const Vec3& v, const Mirrored& m);
+Vec6 mirrored(const Vec6& s, const Mirrored& m);
+
+} // namespace mf::stages
