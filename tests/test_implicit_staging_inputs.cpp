@@ -195,14 +195,13 @@ std::pair<double, double> bimaterial_error(const std::vector<std::string>& overr
     worst = std::max(worst, (r.node_u[n] - bimaterial_exact(r.node_x[n])).norm());
     largest = std::max(largest, bimaterial_exact(r.node_x[n]).norm());
   }
-  return {worst / largest, r.boundary.at(0).force.x()};
+  return {largest > 0.0 ? worst / largest : 0.0, r.boundary.at(0).force.x()};
 }
 
 } // namespace
 
 TEST_CASE("two materials in series carry one stress with a kink in the displacement",
           "[implicit][staging]") {
-  if (test_session().rank() != 0) return; // node fields live on rank 0
   // Q4 elements with a node line on the interface contain the piecewise-linear field: what is
   // left is the penalty's (about 1e-7 of the displacement). The RK functions are smooth across
   // the interface and spread the kink over a support (2 h): an O(h) error near it (measured
@@ -216,7 +215,7 @@ TEST_CASE("two materials in series carry one stress with a kink in the displacem
             << rk_reaction << " (exact -0.5)\n";
   CHECK(fe < 1e-6);
   CHECK(rk < 5e-3);
-  CHECK(rk_fine < 0.7 * rk);
+  if (test_session().rank() == 0) CHECK(rk_fine < 0.7 * rk); // node fields live on rank 0
   CHECK(std::abs(fe_reaction + 0.5) < 1e-6);
   CHECK(std::abs(rk_reaction + 0.5) < 1e-6);
 }
@@ -244,7 +243,6 @@ boundary:
 
 TEST_CASE("a uniform pressure on every boundary piece, the hole's arc included, is hydrostatic",
           "[implicit][staging]") {
-  if (test_session().rank() != 0) return;
   // The quarter of a plate with a hole, symmetry rollers on the cut edges, pressure p on the
   // outer edges and in the hole: sigma = -p I in the plane whatever the shape (t = -p n on
   // every piece), so u = eps x with eps = -p (1 + nu)(1 - 2 nu) / E in plane strain. A linear
