@@ -56,7 +56,8 @@ Layer layer_of(const std::vector<Vec3>& x, const std::vector<Vec2>& pts,
   Layer l;
   for (std::size_t i = 0; i < x.size(); ++i)
     if (point[i] >= 0)
-      l.particles.push_back(static_cast<int>(i)), l.point.push_back(point[i]), l.how.push_back(how[i]);
+      l.particles.push_back(static_cast<int>(i)), l.point.push_back(point[i]),
+          l.how.push_back(how[i]);
   return l;
 }
 
@@ -79,8 +80,9 @@ std::vector<HeldCondition> held_conditions(const io::ProblemSpec& preload,
       out.push_back(h);
       continue;
     }
-    const auto c = std::find_if(model.conditions.begin(), model.conditions.end(),
-                                [&](const implicit::ConditionPoints& p) { return p.bc->name == name; });
+    const auto c =
+        std::find_if(model.conditions.begin(), model.conditions.end(),
+                     [&](const implicit::ConditionPoints& p) { return p.bc->name == name; });
     MF_REQUIRE(c != model.conditions.end(), link.key_path, ".hold: no condition '", name, "'");
     const io::BoundaryCondition& bc = *c->bc;
     const double f = factor[static_cast<std::size_t>(&bc - preload.boundary.data())];
@@ -113,7 +115,8 @@ std::vector<HeldCondition> held_conditions(const io::ProblemSpec& preload,
       h.value = f * bc.value[h.component];
       h.on_axis_line = true;
       h.line = pts.front()[h.component];
-      for (const Vec2& p : pts) h.on_axis_line = h.on_axis_line && std::abs(p[h.component] - h.line) <= tol;
+      for (const Vec2& p : pts)
+        h.on_axis_line = h.on_axis_line && std::abs(p[h.component] - h.line) <= tol;
     }
     out.push_back(h);
   }

@@ -26,8 +26,8 @@ std::vector<double> flat(const std::vector<Vec3>& u) {
 
 /// Body loads of per-particle forces, one load per distinct force per volume (a uniform traction
 /// or gravity gives one load).
-void add_body_loads(pd::Loading& loading, const std::string& name, const std::vector<int>& particles,
-                    const std::vector<Vec3>& density) {
+void add_body_loads(pd::Loading& loading, const std::string& name,
+                    const std::vector<int>& particles, const std::vector<Vec3>& density) {
   std::map<std::array<double, 3>, std::size_t> load_of;
   for (std::size_t k = 0; k < particles.size(); ++k) {
     const std::array<double, 3> key{density[k].x(), density[k].y(), density[k].z()};
@@ -50,8 +50,9 @@ Vec2 body_force(const io::ProblemSpec& preload, bool gravity, const Vec2& x) {
 }
 
 /// The held conditions as the body's loads and constraints; returns how each acts.
-std::vector<std::string> hold(const std::vector<HeldCondition>& held, const io::ProblemSpec& preload,
-                              const PreloadAtParticles& pa, explicit_dynamics::PdSetup& setup) {
+std::vector<std::string> hold(const std::vector<HeldCondition>& held,
+                              const io::ProblemSpec& preload, const PreloadAtParticles& pa,
+                              explicit_dynamics::PdSetup& setup) {
   pd::Model& m = setup.model;
   const particles::ParticleSet& P = m.particles;
   std::vector<std::string> how;
@@ -91,14 +92,15 @@ std::vector<std::string> hold(const std::vector<HeldCondition>& held, const io::
     setup.loading.constraints.push_back(c);
     how.push_back(detail::concat(h.name, ": ",
                                  h.kind == HeldCondition::Kind::Clamp ? "both components"
-                                 : h.component == 0                     ? "x component"
-                                                                        : "y component",
+                                 : h.component == 0                   ? "x component"
+                                                                      : "y component",
                                  " of ", h.particles.size(), " particles held at the preload's u"));
   }
   return how;
 }
 
-double norm_of_difference(const std::vector<double>& a, const std::vector<Vec3>& b, double& norm_b) {
+double norm_of_difference(const std::vector<double>& a, const std::vector<Vec3>& b,
+                          double& norm_b) {
   double d = 0.0, n = 0.0;
   for (std::size_t i = 0; i < b.size(); ++i)
     for (int k = 0; k < 3; ++k) {
@@ -154,9 +156,14 @@ ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::Elast
       t.relax_seconds_from_zero = z.seconds;
     }
     const pd::RelaxReport r = pd::relax(m, setup.state, setup.loading, rs);
-    MF_REQUIRE(r.converged, link.key_path, ": the peridynamic body found no static equilibrium "
-               "under the held loads within ", r.iterations, " relaxation iterations (residual "
-               "ratio ", r.residual_ratio, "); raise transfer.relax_max_iterations or check the "
+    MF_REQUIRE(r.converged, link.key_path,
+               ": the peridynamic body found no static equilibrium "
+               "under the held loads within ",
+               r.iterations,
+               " relaxation iterations (residual "
+               "ratio ",
+               r.residual_ratio,
+               "); raise transfer.relax_max_iterations or check the "
                "held conditions");
     t.relax_iterations = r.iterations;
     t.relax_residual = r.residual_ratio;
@@ -165,8 +172,9 @@ ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::Elast
     t.pd_vs_galerkin = norm_of_difference(P.u, pa.final_u(), norm_uh) / std::max(norm_uh, 1e-300);
   }
   log::info("transfer: ", n, " particles from stage ", preload.stage, ", residual ratio at u^h ",
-            t.out_of_balance, "; relaxed in ", t.relax_iterations, " iterations (from zero: ",
-            t.relax_iterations_from_zero, "), |u_PD - u^h| / |u^h| = ", t.pd_vs_galerkin);
+            t.out_of_balance, "; relaxed in ", t.relax_iterations,
+            " iterations (from zero: ", t.relax_iterations_from_zero,
+            "), |u_PD - u^h| / |u^h| = ", t.pd_vs_galerkin);
 
   explicit_dynamics::PdRun run(setup, s, out, result);
   // The preload replayed on the particles, then the relaxed state back for t = 0.

@@ -43,8 +43,8 @@ io::History take_rows(io::History& h) {
   return rows;
 }
 
-io::History staged_history(const io::History& preload, const io::History& run, int from,
-                           int index, const std::vector<std::string>& gauges) {
+io::History staged_history(const io::History& preload, const io::History& run, int from, int index,
+                           const std::vector<std::string>& gauges) {
   std::vector<std::string> columns = run.columns();
   columns.insert(columns.begin() + 1, "stage");
   io::History out(columns);
@@ -88,8 +88,9 @@ StagedOutcome run_staged(const io::ProblemSpec& spec, const solvers::PetscSessio
                          io::OutputDirectory* out) {
   MF_REQUIRE(session.size() == 1, "a staged run runs on one MPI rank (its explicit stage is "
                                   "parallel over OpenMP threads: set OMP_NUM_THREADS)");
-  MF_REQUIRE(spec.stages.size() == 2 && spec.links[1].from == 0,
-             "stages: a staged run is a preload followed by one explicit stage that starts from it");
+  MF_REQUIRE(
+      spec.stages.size() == 2 && spec.links[1].from == 0,
+      "stages: a staged run is a preload followed by one explicit stage that starts from it");
   StagedOutcome outcome;
   io::ProblemSpec preload = spec.stages[0];
   preload.record_increment_parameters = true; // each particle is carried through them
@@ -105,15 +106,15 @@ StagedOutcome run_staged(const io::ProblemSpec& spec, const solvers::PetscSessio
   if (out) out->set_prefix("");
   for (const auto& [phase, s] : pre.timer.phases()) timer.add(preload.stage + "." + phase, s);
   const implicit::IncrementRecord& last = pre.increments.back();
-  summary.section("stages").set(
-      preload.stage, io::Json()
-                         .set("analysis", "elastoplastic_static")
-                         .set("status", pre.status)
-                         .set("increments", static_cast<long>(pre.increments.size()) - 1)
-                         .set("max_plastic_strain", last.max_plastic_strain)
-                         .set("plastic_points", last.plastic_points)
-                         .set("equilibrium_error", last.equilibrium_error)
-                         .set("seconds", pre.timer.total()));
+  summary.section("stages").set(preload.stage,
+                                io::Json()
+                                    .set("analysis", "elastoplastic_static")
+                                    .set("status", pre.status)
+                                    .set("increments", static_cast<long>(pre.increments.size()) - 1)
+                                    .set("max_plastic_strain", last.max_plastic_strain)
+                                    .set("plastic_points", last.plastic_points)
+                                    .set("equilibrium_error", last.equilibrium_error)
+                                    .set("seconds", pre.timer.total()));
   if (pre.status != "completed") {
     outcome.status = "stopped";
     outcome.stop_reason = "stage " + preload.stage + ": " + pre.stop_reason;

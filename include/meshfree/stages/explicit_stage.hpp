@@ -34,8 +34,8 @@ ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
 /// with a "stage" column after "time". Of the preload's rows only time and the gauge columns
 /// (named "<gauge>_...") are kept; the rest (energies, rates) belong to the explicit run and are
 /// NaN there.
-io::History staged_history(const io::History& preload, const io::History& run, int from,
-                           int index, const std::vector<std::string>& gauges);
+io::History staged_history(const io::History& preload, const io::History& run, int from, int index,
+                           const std::vector<std::string>& gauges);
 
 /// Moves the rows recorded so far out of `h` (leaving its columns): the replayed preload's rows
 /// are kept apart from the run's, whose summaries they must not enter.

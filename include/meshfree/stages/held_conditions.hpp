@@ -23,9 +23,9 @@ struct HeldCondition {
   int component = -1;         // Roller: the component held
   bool on_axis_line = false;  // Roller: its boundary is the straight line x_component = line
   double line = 0.0;
-  double value = 0.0;             // Roller: the prescribed displacement at the final factor
-  double body_factor = 0.0;    // Body: the preload's final body-force factor
-  bool gravity = false;        // Body: gravity (rho g), else the uniform body force
+  double value = 0.0;       // Roller: the prescribed displacement at the final factor
+  double body_factor = 0.0; // Body: the preload's final body-force factor
+  bool gravity = false;     // Body: gravity (rho g), else the uniform body force
 };
 
 /// The held conditions of `preload` (those `link.hold` names) on particles at reference positions

@@ -9,9 +9,9 @@ namespace mf::stages {
 
 struct TransferReport {
   int particles = 0;
-  int plastic_particles = 0;   // yielding in the preload's last increment
-  double max_u = 0.0;          // largest |u^h| at the particles
-  double stored_energy = 0.0;  // elastic strain energy of the transferred stress
+  int plastic_particles = 0;     // yielding in the preload's last increment
+  double max_u = 0.0;            // largest |u^h| at the particles
+  double stored_energy = 0.0;    // elastic strain energy of the transferred stress
   std::vector<std::string> held; // how each held condition acts on the particles
   // SPH: particles over their yield surface (and returned to it), the largest q / Y, and
   // max |p_EOS(rho, e) + tr(sigma)/3| / max |sigma|.

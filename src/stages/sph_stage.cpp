@@ -1,0 +1,253 @@
+// The SPH stage of a staged run (stages/explicit_stage.hpp).
+#include "meshfree/core/log.hpp"
+#include "meshfree/explicit/run_summaries.hpp"
+#include "meshfree/explicit/sph_run.hpp"
+#include "meshfree/explicit/sph_setup.hpp"
+#include "meshfree/explicit/time_loop.hpp"
+#include "meshfree/implicit/point_law.hpp"
+#include "meshfree/sph/held_loads.hpp"
+#include "meshfree/sph/initial_state.hpp"
+#include "meshfree/sph/step.hpp"
+#include "meshfree/stages/explicit_stage.hpp"
+#include "meshfree/stages/held_conditions.hpp"
+#include "meshfree/stages/preload_sampling.hpp"
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace mf::stages {
+
+namespace {
+
+std::vector<double> flat(const std::vector<Vec3>& u) {
+  std::vector<double> out(3 * u.size());
+  for (std::size_t i = 0; i < u.size(); ++i)
+    for (int d = 0; d < 3; ++d) out[3 * i + d] = u[i][d];
+  return out;
+}
+
+std::vector<materials::Vec6> back_stresses(const PreloadAtParticles& pa) {
+  std::vector<materials::Vec6> b;
+  for (const auto& h : pa.history) b.push_back(h.back_stress);
+  return b;
+}
+
+/// The particle's state at increment k of the preload (the last: with its plastic history).
+sph::InitialStateReport put_increment(sph::Hydro& h, const PreloadAtParticles& pa, int k,
+                                      bool return_to_surface) {
+  sph::set_displacement(h, flat(pa.u[k]));
+  const bool last = k + 1 == pa.increments();
+  return sph::set_initial_state(h, pa.stress[k], pa.alpha[k],
+                                last ? back_stresses(pa) : std::vector<materials::Vec6>{},
+                                return_to_surface);
+}
+
+/// The transmitting boundary of the stage most of whose particles a held condition acts on, or
+/// -1: a roller or clamp there becomes the dashpot with its static force.
+int transmitting_of(const sph::Hydro& h, const std::vector<int>& particles) {
+  for (std::size_t b = 0; b < h.transmitting.size(); ++b) {
+    const auto& p = h.transmitting[b].particles;
+    std::size_t shared = 0;
+    for (int i : particles) shared += std::binary_search(p.begin(), p.end(), i);
+    if (2 * shared > particles.size()) return static_cast<int>(b);
+  }
+  return -1;
+}
+
+struct Holding {
+  std::vector<std::string> how;
+  std::vector<std::vector<int>> force_layers; // layers of held forces, to be balanced
+  std::vector<int> held_boundaries;           // transmitting boundaries holding their stress
+};
+
+/// The held conditions on the SPH body: forces, fixed particles, symmetry planes, dashpots with
+/// their static force, gravity.
+Holding hold(const std::vector<HeldCondition>& held, const io::ProblemSpec& preload,
+             const io::StageLink& link, sph::Hydro& h) {
+  Holding out;
+  for (const HeldCondition& c : held) {
+    switch (c.kind) {
+    case HeldCondition::Kind::Force: {
+      sph::SurfaceForce f;
+      f.name = c.name;
+      f.particles = c.particles;
+      Vec3 total = Vec3::Zero();
+      for (const Vec3& F : c.force) {
+        f.force.insert(f.force.end(), {F.x(), F.y(), F.z()});
+        total += F;
+      }
+      h.forces.push_back(f);
+      out.force_layers.push_back(c.particles);
+      out.how.push_back(detail::concat(c.name, ": constant force on ", c.particles.size(),
+                                       " particles, total (", total.x(), ", ", total.y(), ")"));
+      break;
+    }
+    case HeldCondition::Kind::Body: {
+      MF_REQUIRE(c.gravity, link.key_path, ".hold: '", c.name,
+                 "': SPH holds gravity, not a "
+                 "uniform body force (give the preload 'gravity')");
+      for (int d = 0; d < 2; ++d) h.gravity[d] = c.body_factor * preload.gravity[d];
+      out.how.push_back(detail::concat(c.name, ": gravity (", h.gravity[0], ", ", h.gravity[1],
+                                       ") on every particle"));
+      break;
+    }
+    case HeldCondition::Kind::Clamp:
+    case HeldCondition::Kind::Roller: {
+      const int b = transmitting_of(h, c.particles);
+      if (b >= 0) {
+        out.held_boundaries.push_back(b);
+        out.how.push_back(detail::concat(c.name, ": transmitting boundary '",
+                                         h.transmitting[b].name,
+                                         "' with the static force of the preload's stress"));
+      } else if (c.kind == HeldCondition::Kind::Clamp) {
+        for (int i : c.particles) h.fields.fixed[i] = 1;
+        out.how.push_back(detail::concat(c.name, ": ", c.particles.size(),
+                                         " fixed particles at the preload's displacement"));
+      } else {
+        MF_REQUIRE(c.on_axis_line && c.value == 0.0, link.key_path, ".hold: '", c.name,
+                   "' holds one displacement component; SPH holds it only as a symmetry plane "
+                   "(a zero displacement normal to a straight edge along an axis) or as a "
+                   "transmitting boundary of the stage on the same edge");
+        h.symmetry.push_back({c.component, c.line});
+        out.how.push_back(
+            detail::concat(c.name, ": symmetry plane ", "xyz"[c.component], " = ", c.line));
+      }
+      break;
+    }
+    }
+  }
+  return out;
+}
+
+double largest_force(const sph::Hydro& h) {
+  double f = 0.0;
+  const particles::ParticleSet& P = h.particles;
+  for (const auto& s : h.forces)
+    for (std::size_t k = 0; k < s.particles.size(); ++k)
+      f = std::max(f, Vec3(s.force[3 * k], s.force[3 * k + 1], s.force[3 * k + 2]).norm());
+  for (const auto& b : h.transmitting)
+    for (std::size_t k = 0; k < b.static_force.size() / 3; ++k)
+      f = std::max(
+          f,
+          Vec3(b.static_force[3 * k], b.static_force[3 * k + 1], b.static_force[3 * k + 2]).norm());
+  const double g = Vec3(h.gravity[0], h.gravity[1], h.gravity[2]).norm();
+  for (int i = 0; i < P.owned_count(); ++i) f = std::max(f, P.mass[i] * g);
+  return f;
+}
+
+} // namespace
+
+ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
+                            const implicit::ElastoplasticResult& pre, const io::ProblemSpec& stage,
+                            const io::StageLink& link, int index, io::OutputDirectory* out) {
+  const io::SphSpec& s = *stage.sph;
+  ExplicitStage st;
+  explicit_dynamics::SphRunResult result;
+  sph::Hydro h;
+  {
+    PhaseTimer::Scope scope(result.timer, "particles");
+    h = explicit_dynamics::build_sph(s);
+  }
+  const int n = h.particles.owned_count();
+  TransferReport& t = st.transfer;
+  PreloadAtParticles pa;
+  {
+    PhaseTimer::Scope scope(result.timer, "transfer");
+    const auto t0 = std::chrono::steady_clock::now();
+    std::vector<Vec3> X(n);
+    for (int i = 0; i < n; ++i) X[i] = h.particles.reference(i);
+    pa = sample_preload(preload, pre, X, link.mirror, link.key_path);
+    double spacing = s.regions.front().spacing;
+    for (const auto& r : s.regions) spacing = std::min(spacing, r.spacing);
+    const Holding held = hold(held_conditions(preload, pre, link, X, spacing), preload, link, h);
+    t.held = held.how;
+    const sph::InitialStateReport rep =
+        put_increment(h, pa, pa.increments() - 1, link.return_to_surface);
+    std::vector<materials::Vec6> sigma(h.particles.size(), materials::Vec6::Zero());
+    std::copy(pa.final_stress().begin(), pa.final_stress().end(), sigma.begin());
+    for (int b : held.held_boundaries) {
+      sph::hold_stress(h.transmitting[b], sigma);
+      // A body on dashpots has no stiffness against rigid motion: its supporting band takes the
+      // resultant the discretisation leaves (sph/held_loads.hpp).
+      h.forces.push_back(sph::balancing_force(h, h.transmitting[b].name + "_balance",
+                                              sph::within_reach(h, h.transmitting[b].particles),
+                                              true));
+    }
+    for (std::size_t k = 0; k < held.force_layers.size(); ++k)
+      h.forces.push_back(sph::balancing_force(h, "held_force_balance_" + std::to_string(k),
+                                              sph::within_reach(h, held.force_layers[k])));
+    const std::vector<double> ob = sph::out_of_balance(h);
+    double worst = 0.0;
+    for (int i = 0; i < n; ++i)
+      worst = std::max(worst, Vec3(ob[3 * i], ob[3 * i + 1], ob[3 * i + 2]).norm());
+    t.out_of_balance = worst / std::max(largest_force(h), 1e-300);
+    t.particles = n;
+    t.over_surface = rep.over_surface;
+    t.returned = rep.returned;
+    t.worst_yield_ratio = rep.worst_ratio;
+    t.density_mismatch = rep.density_mismatch;
+    std::vector<double> volume(n), E(n), nu(n);
+    for (int i = 0; i < n; ++i) {
+      t.plastic_particles += pa.plastic[i];
+      t.max_u = std::max(t.max_u, pa.final_u()[i].norm());
+      const implicit::PointLaw law = implicit::point_law(preload, pa.image[i].x);
+      volume[i] = h.particles.mass[i] / h.fields.rho[i];
+      E[i] = law.params.E;
+      nu[i] = law.params.nu;
+    }
+    t.stored_energy = elastic_energy(pa.final_stress(), volume, E, nu);
+    t.seconds = seconds_since(t0);
+  }
+  if (link.settle_time > 0.0) {
+    PhaseTimer::Scope scope(result.timer, "settle");
+    const std::vector<double> u0 = h.particles.u;
+    h.damping = link.settle_damping;
+    while (h.particles.time < link.settle_time)
+      sph::advance(h, std::min(sph::stable_step(h), link.settle_time - h.particles.time));
+    double drift = 0.0;
+    for (int i = 0; i < n; ++i)
+      drift = std::max(drift, Vec3(h.particles.u[3 * i] - u0[3 * i],
+                                   h.particles.u[3 * i + 1] - u0[3 * i + 1],
+                                   h.particles.u[3 * i + 2] - u0[3 * i + 2])
+                                  .norm());
+    t.settle_time = link.settle_time;
+    t.settle_drift = drift / std::max(t.max_u, 1e-300);
+    h.damping = 0.0;
+    sph::set_displacement(
+        h, std::vector<double>(h.particles.u.begin(), h.particles.u.begin() + 3 * n));
+    h.particles.time = 0.0;
+    h.particles.step = 0;
+    h.external_work = h.damping_work = 0.0;
+  }
+  log::info("transfer: ", n, " particles from stage ", preload.stage, ", ", t.plastic_particles,
+            " plastic, ", t.over_surface, " over their yield surface (worst q/Y ",
+            t.worst_yield_ratio, "), out-of-balance ", t.out_of_balance,
+            link.settle_time > 0.0 ? detail::concat(", settle drift ", t.settle_drift) : "");
+
+  explicit_dynamics::SphRun run(h, s, out, result);
+  // The preload replayed on the particles, then the transferred state back for t = 0.
+  const sph::Hydro start = h;
+  const int N = pa.increments() - 1;
+  for (int k = 0; k < N; ++k) {
+    put_increment(h, pa, k, false);
+    h.particles.time = pa.pseudo_time[k];
+    run.record();
+    run.write_fields();
+  }
+  h = start;
+  const io::History replay = take_rows(result.history);
+  result.energy_error = 0.0;
+  run.finish(
+      explicit_dynamics::run_time_loop(run, {s.end_time, s.history_interval, s.fields_interval}));
+
+  std::vector<std::string> gauges;
+  for (const auto& g : s.gauges) gauges.push_back(g.name);
+  st.history = staged_history(replay, result.history, link.from, index, gauges);
+  explicit_dynamics::summarise(result, st.counts, st.time_step, st.results);
+  st.status = result.status;
+  st.stop_reason = result.stop_reason;
+  st.timer = result.timer;
+  return st;
+}
+
+} // namespace mf::stages
