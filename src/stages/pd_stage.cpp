@@ -11,7 +11,6 @@
 #include "meshfree/stages/preload_sampling.hpp"
 #include <chrono>
 #include <cmath>
-#include <map>
 
 namespace mf::stages {
 
@@ -24,23 +23,14 @@ std::vector<double> flat(const std::vector<Vec3>& u) {
   return out;
 }
 
-/// Body loads of per-particle forces, one load per distinct force per volume (a uniform traction
-/// or gravity gives one load).
-void add_body_loads(pd::Loading& loading, const std::string& name,
-                    const std::vector<int>& particles, const std::vector<Vec3>& density) {
-  std::map<std::array<double, 3>, std::size_t> load_of;
-  for (std::size_t k = 0; k < particles.size(); ++k) {
-    const std::array<double, 3> key{density[k].x(), density[k].y(), density[k].z()};
-    auto it = load_of.find(key);
-    if (it == load_of.end()) {
-      pd::BodyLoad l;
-      l.name = name;
-      l.density = density[k];
-      loading.loads.push_back(l);
-      it = load_of.emplace(key, loading.loads.size() - 1).first;
-    }
-    loading.loads[it->second].particles.push_back(particles[k]);
-  }
+/// A body load of per-particle forces per volume.
+void add_body_load(pd::Loading& loading, const std::string& name, const std::vector<int>& particles,
+                   const std::vector<Vec3>& density) {
+  pd::BodyLoad l;
+  l.name = name;
+  l.particles = particles;
+  l.densities = density;
+  loading.loads.push_back(l);
 }
 
 /// Force per volume at x of the preload's gravity (rho g) or its uniform body force.
@@ -75,7 +65,7 @@ std::vector<std::string> hold(const std::vector<HeldCondition>& held,
           total += h.force[k];
         }
       }
-      add_body_loads(setup.loading, h.name, particles, density);
+      add_body_load(setup.loading, h.name, particles, density);
       how.push_back(detail::concat(h.name, ": constant force on ", particles.size(),
                                    " particles, total (", total.x(), ", ", total.y(), ")"));
       continue;
@@ -179,12 +169,14 @@ ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::Elast
   explicit_dynamics::PdRun run(setup, s, out, result);
   // The preload replayed on the particles, then the relaxed state back for t = 0.
   const std::vector<double> u0 = P.u;
+  // The last increment is recorded (at t = 0, as the preload's end) but not written as a field
+  // step: the run's first step is the same instant.
   const int N = pa.increments() - 1;
-  for (int k = 0; k < N; ++k) {
+  for (int k = 0; k <= N; ++k) {
     pd::set_displacement(m, flat(pa.u[k]));
     P.time = pa.pseudo_time[k];
     run.record();
-    run.write_fields();
+    if (k < N) run.write_fields();
   }
   const io::History replay = take_rows(result.history);
   pd::set_displacement(m, u0);
@@ -200,6 +192,8 @@ ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::Elast
   st.status = result.status;
   st.stop_reason = result.stop_reason;
   st.timer = result.timer;
+  st.displacement = P.u;
+  st.position = P.X;
   return st;
 }
 

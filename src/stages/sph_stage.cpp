@@ -119,9 +119,13 @@ Holding hold(const std::vector<HeldCondition>& held, const io::ProblemSpec& prel
   return out;
 }
 
-double largest_force(const sph::Hydro& h) {
+/// The scale of the out-of-balance forces: the largest held force on a particle, or the largest
+/// stress component times a particle's face area.
+double largest_force(const sph::Hydro& h, const std::vector<materials::Vec6>& sigma) {
   double f = 0.0;
   const particles::ParticleSet& P = h.particles;
+  for (std::size_t i = 0; i < sigma.size(); ++i)
+    f = std::max(f, sigma[i].cwiseAbs().maxCoeff() * sph::face_area(P, static_cast<int>(i), h.dim));
   for (const auto& s : h.forces)
     for (std::size_t k = 0; k < s.particles.size(); ++k)
       f = std::max(f, Vec3(s.force[3 * k], s.force[3 * k + 1], s.force[3 * k + 2]).norm());
@@ -180,7 +184,7 @@ ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
     double worst = 0.0;
     for (int i = 0; i < n; ++i)
       worst = std::max(worst, Vec3(ob[3 * i], ob[3 * i + 1], ob[3 * i + 2]).norm());
-    t.out_of_balance = worst / std::max(largest_force(h), 1e-300);
+    t.out_of_balance = worst / std::max(largest_force(h, pa.final_stress()), 1e-300);
     t.particles = n;
     t.over_surface = rep.over_surface;
     t.returned = rep.returned;
@@ -227,12 +231,14 @@ ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
   explicit_dynamics::SphRun run(h, s, out, result);
   // The preload replayed on the particles, then the transferred state back for t = 0.
   const sph::Hydro start = h;
+  // The last increment is recorded (at t = 0, as the preload's end) but not written as a field
+  // step: the run's first step is the same instant.
   const int N = pa.increments() - 1;
-  for (int k = 0; k < N; ++k) {
+  for (int k = 0; k <= N; ++k) {
     put_increment(h, pa, k, false);
     h.particles.time = pa.pseudo_time[k];
     run.record();
-    run.write_fields();
+    if (k < N) run.write_fields();
   }
   h = start;
   const io::History replay = take_rows(result.history);
@@ -247,6 +253,14 @@ ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
   st.status = result.status;
   st.stop_reason = result.stop_reason;
   st.timer = result.timer;
+  st.plastic_strain.assign(h.fields.alpha.begin(), h.fields.alpha.begin() + n);
+  for (int i = 0; i < n; ++i) {
+    materials::Vec6 sigma;
+    for (int k = 0; k < 6; ++k) sigma[k] = h.fields.S[6 * i + k] - (k < 3 ? h.fields.p[i] : 0.0);
+    st.stress.push_back(sigma);
+  }
+  st.displacement.assign(h.particles.u.begin(), h.particles.u.begin() + 3 * n);
+  st.position.assign(h.particles.X.begin(), h.particles.X.begin() + 3 * n);
   return st;
 }
 

@@ -21,6 +21,11 @@ struct ExplicitStage {
   std::string status = "completed", stop_reason;
   io::Json counts, time_step, results;
   PhaseTimer timer;
+  // The owned particles at the end: reference positions and displacements (3 per particle), and
+  // for SPH the stress (3D Voigt, tension positive) and equivalent plastic strain.
+  std::vector<double> position, displacement;
+  std::vector<materials::Vec6> stress;
+  std::vector<double> plastic_strain;
 };
 
 ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::ElastoplasticResult& pre,
