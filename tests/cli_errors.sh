@@ -101,8 +101,20 @@ expect_run_failure "boundary[0].blast: particle at (-0.375, -0.125, 0): Kingery-
 # One materials list, each analysis takes its part; staged runs.
 expect_error "materials[0].eos: analysis sph needs an equation of state" "$S" --set 'materials.0={name: gas}'
 expect_error "materials[0].bond: analysis peridynamics needs bond parameters" "$B" --set 'materials.0={name: concrete, E: 30.0e9, density: 2400}'
-printf 'name: x\nanalysis: staged\nstages:\n  - {name: a, analysis: elastic_static}\n  - {name: b, analysis: sph}\n' > "$WORK/staged.yaml"
-expect_error "stages: staged runs of more than one stage are not available yet" "$WORK/staged.yaml"
+# Staged runs: every link error names its key before anything runs.
+G="$ROOT/problems/staged_strip_blast.yaml"
+expect_error "stages[1].from: unknown stage 'nothing' (earlier stages: preload)" "$G" --set 'stages.1.from=nothing'
+expect_error "stages[1].hold: the condition 'symmetry' of stage 'preload' is neither held nor released" "$G" --set 'stages.1.hold=[pull]'
+expect_error "stages[1].hold: stage 'preload' has no condition 'jack'" "$G" --set 'stages.1.hold=[pull, symmetry, jack]'
+expect_error "stages[1].release: 'pull' is held and released" "$G" --set 'stages.1.release=[pull]'
+expect_error "model: analysis sph takes model.type uniaxial_strain, plane_strain or solid_3d" "$G" --set 'model.type=plane_stress'
+expect_error "stages[1].mirror[0].axis" "$G" --set 'stages.1.mirror=[{axis: w}]'
+expect_error "stages[1].regions[0].spacing" "$G" --set 'stages.1.regions.0.spacing=-1'
+expect_error "stages[1].settle.damping" "$G" --set 'stages.1.settle={time: 1.0e-4}'
+printf 'name: x\nanalysis: staged\nmodel: {type: plane_stress}\nmaterials: [{name: m, E: 1.0e9, nu: 0.3, density: 1000, bond: {law: pmb, critical_stretch: 0.01}, plasticity: {yield_stress: 1.0e6, hardening: perfect}}]\ngeometry: {rectangle: {origin: [0, 0], size: [1, 1]}}\nstages:\n  - {name: a, analysis: elastoplastic_static, discretisation: {spacing: 0.25}, boundary: [{name: b, edges: bottom, displacement: {x: 0, y: 0}}], steps: [{name: s, load_factor: 1, increments: 1}]}\n  - {name: i, analysis: peridynamics, from: a, hold: [b], discretisation: {spacing: 0.05, horizon: 3}, time: {end: 1.0e-6}}\n' > "$WORK/staged_pd.yaml"
+expect_error "materials[0].plasticity: a J2 preload (plastic strain, back stress) cannot start a bond-based peridynamic stage" "$WORK/staged_pd.yaml"
+expect_error "materials[0].nu: bond-based peridynamics in plane stress has Poisson's ratio 0.3333333333" "$WORK/staged_pd.yaml" --set 'materials.0.plasticity=null'
+expect_error "stages[1].hold" "$WORK/staged_pd.yaml" --set 'stages.1.hold=[]' --set 'materials.0.plasticity=null' --set 'materials.0.nu=0.3333333333333333'
 # usage errors
 "$MF" 2>/dev/null; [ $? -eq 2 ] && echo "ok: no command -> exit 2" || { echo "FAIL: no command"; fails=$((fails+1)); }
 "$MF" check "$P" >/dev/null || { echo "FAIL: check on a good problem"; fails=$((fails+1)); }
