@@ -16,13 +16,6 @@ namespace mf::stages {
 
 namespace {
 
-std::vector<double> flat(const std::vector<Vec3>& u) {
-  std::vector<double> out(3 * u.size());
-  for (std::size_t i = 0; i < u.size(); ++i)
-    for (int d = 0; d < 3; ++d) out[3 * i + d] = u[i][d];
-  return out;
-}
-
 /// A body load of per-particle forces per volume.
 void add_body_load(pd::Loading& loading, const std::string& name, const std::vector<int>& particles,
                    const std::vector<Vec3>& density) {
@@ -185,13 +178,9 @@ ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::Elast
   run.finish(
       explicit_dynamics::run_time_loop(run, {s.end_time, s.history_interval, s.fields_interval}));
 
-  std::vector<std::string> gauges;
-  for (const auto& g : s.gauges) gauges.push_back(g.name);
-  st.history = staged_history(replay, result.history, link.from, index, gauges);
   explicit_dynamics::summarise(result, st.counts, st.time_step, st.results);
-  st.status = result.status;
-  st.stop_reason = result.stop_reason;
-  st.timer = result.timer;
+  record_stage(st, replay, result.history, s.gauges, link.from, index, result.status,
+               result.stop_reason, result.timer);
   st.displacement = P.u;
   st.position = P.X;
   return st;

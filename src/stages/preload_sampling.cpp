@@ -20,6 +20,13 @@ Mirrored mirror_into(const Vec3& x, const std::vector<io::MirrorPlane>& mirror,
   return m;
 }
 
+std::vector<double> flat(const std::vector<Vec3>& u) {
+  std::vector<double> out(3 * u.size());
+  for (std::size_t i = 0; i < u.size(); ++i)
+    for (int d = 0; d < 3; ++d) out[3 * i + d] = u[i][d];
+  return out;
+}
+
 Vec3 mirrored(const Vec3& v, const Mirrored& m) {
   Vec3 w = v;
   for (int a = 0; a < 3; ++a)

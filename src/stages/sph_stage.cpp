@@ -19,13 +19,6 @@ namespace mf::stages {
 
 namespace {
 
-std::vector<double> flat(const std::vector<Vec3>& u) {
-  std::vector<double> out(3 * u.size());
-  for (std::size_t i = 0; i < u.size(); ++i)
-    for (int d = 0; d < 3; ++d) out[3 * i + d] = u[i][d];
-  return out;
-}
-
 std::vector<materials::Vec6> back_stresses(const PreloadAtParticles& pa) {
   std::vector<materials::Vec6> b;
   for (const auto& h : pa.history) b.push_back(h.back_stress);
@@ -246,13 +239,9 @@ ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
   run.finish(
       explicit_dynamics::run_time_loop(run, {s.end_time, s.history_interval, s.fields_interval}));
 
-  std::vector<std::string> gauges;
-  for (const auto& g : s.gauges) gauges.push_back(g.name);
-  st.history = staged_history(replay, result.history, link.from, index, gauges);
   explicit_dynamics::summarise(result, st.counts, st.time_step, st.results);
-  st.status = result.status;
-  st.stop_reason = result.stop_reason;
-  st.timer = result.timer;
+  record_stage(st, replay, result.history, s.gauges, link.from, index, result.status,
+               result.stop_reason, result.timer);
   st.plastic_strain.assign(h.fields.alpha.begin(), h.fields.alpha.begin() + n);
   for (int i = 0; i < n; ++i) {
     materials::Vec6 sigma;

@@ -69,6 +69,18 @@ io::History staged_history(const io::History& preload, const io::History& run, i
   return out;
 }
 
+void record_stage(ExplicitStage& st, const io::History& replay, const io::History& run,
+                  const std::vector<io::GaugeSpec>& gauges, int from, int index,
+                  const std::string& status, const std::string& stop_reason,
+                  const PhaseTimer& timer) {
+  std::vector<std::string> names;
+  for (const auto& g : gauges) names.push_back(g.name);
+  st.history = staged_history(replay, run, from, index, names);
+  st.status = status;
+  st.stop_reason = stop_reason;
+  st.timer = timer;
+}
+
 double elastic_energy(const std::vector<materials::Vec6>& sigma, const std::vector<double>& volume,
                       const std::vector<double>& E, const std::vector<double>& nu) {
   // sigma : C^-1 sigma = [(s11^2 + s22^2 + s33^2) - 2 nu (s11 s22 + s22 s33 + s33 s11)

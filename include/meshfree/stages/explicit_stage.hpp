@@ -42,6 +42,12 @@ ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
 io::History staged_history(const io::History& preload, const io::History& run, int from, int index,
                            const std::vector<std::string>& gauges);
 
+/// The stage's history (staged_history of the replayed preload and the run), status and timer.
+void record_stage(ExplicitStage& st, const io::History& replay, const io::History& run,
+                  const std::vector<io::GaugeSpec>& gauges, int from, int index,
+                  const std::string& status, const std::string& stop_reason,
+                  const PhaseTimer& timer);
+
 /// Moves the rows recorded so far out of `h` (leaving its columns): the replayed preload's rows
 /// are kept apart from the run's, whose summaries they must not enter.
 io::History take_rows(io::History& h);

@@ -48,6 +48,9 @@ PreloadAtParticles sample_preload(const io::ProblemSpec& preload,
 /// in, across each mirror plane `x` is on the other side of.
 Mirrored mirror_into(const Vec3& x, const std::vector<io::MirrorPlane>& mirror, const Vec2& inside);
 
+/// Vectors as a flat array, x, y, z of each in turn (the particle set's layout).
+std::vector<double> flat(const std::vector<Vec3>& v);
+
 /// A vector and a stress of the part, seen from the mirrored image.
 Vec3 mirrored(const Vec3& v, const Mirrored& m);
 Vec6 mirrored(const Vec6& s, const Mirrored& m);
