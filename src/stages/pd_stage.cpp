@@ -108,6 +108,7 @@ ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::Elast
   particles::ParticleSet& P = m.particles;
   const int n = P.size();
   TransferReport& t = st.transfer;
+  t.peridynamic = true;
   PreloadAtParticles pa;
   {
     PhaseTimer::Scope scope(result.timer, "transfer");

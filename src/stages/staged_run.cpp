@@ -18,7 +18,7 @@ io::Json TransferReport::json() const {
   for (std::size_t k = 0; k < held.size(); ++k) h.set(std::to_string(k), held[k]);
   j.set("held", h);
   j.set("initial_out_of_balance", out_of_balance);
-  if (relax_iterations > 0) {
+  if (peridynamic) {
     j.set("relaxation_iterations", relax_iterations)
         .set("relaxation_iterations_from_zero", relax_iterations_from_zero)
         .set("relaxation_residual_ratio", relax_residual)

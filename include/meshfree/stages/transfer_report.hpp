@@ -8,6 +8,7 @@
 namespace mf::stages {
 
 struct TransferReport {
+  bool peridynamic = false; // which of the sections below applies
   int particles = 0;
   int plastic_particles = 0;     // yielding in the preload's last increment
   double max_u = 0.0;            // largest |u^h| at the particles
