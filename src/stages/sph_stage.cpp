@@ -169,8 +169,11 @@ ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
         put_increment(h, pa, pa.increments() - 1, link.return_to_surface);
     std::vector<materials::Vec6> sigma(h.particles.size(), materials::Vec6::Zero());
     std::copy(pa.final_stress().begin(), pa.final_stress().end(), sigma.begin());
+    // Every held boundary takes its static force before any balance is computed: a balance
+    // taken while another boundary still lacks its static force would carry that boundary's
+    // share of the body's weight and stress.
+    for (int b : held.held_boundaries) sph::hold_stress(h.transmitting[b], sigma);
     for (int b : held.held_boundaries) {
-      sph::hold_stress(h.transmitting[b], sigma);
       // A body on dashpots has no stiffness against rigid motion: its supporting band takes the
       // resultant the discretisation leaves (sph/held_loads.hpp).
       h.forces.push_back(sph::balancing_force(h, h.transmitting[b].name + "_balance",
