@@ -227,19 +227,17 @@ TEST_CASE("greenfield sand column: a K0 = 0.5 geostatic preload is held quietly 
 TEST_CASE("greenfield sand column: held on transmitting sides and bottom, as the tunnel is",
           "[staged]") {
   // The side rollers and the base become three transmitting boundaries with their static
-  // forces; each boundary's balance is taken once all of them carry their static force, so no
-  // band is left holding another boundary's share of the weight.
+  // forces. Each boundary's balance is taken once all of them carry their static force (else one
+  // band holds the others' share of the weight), and the supporting bands together take the
+  // resultant and the moment of the rest's residual (a body on dashpots has no stiffness against
+  // rigid translation or rotation: with the resultant alone on one band the column rotated,
+  // kinetic 8e-5 of the stored energy, sigma_v 7% off). Measured: kinetic <= 1.0e-9 of the
+  // stored 436 J; in the middle two columns below 1.5 m sigma_v within 0.41% of rho g z,
+  // sigma_h / sigma_v and sigma_zz / sigma_v within 0.29% of K0; largest q / Y(p) 0.867.
   const double k0 = 0.5;
   const Column c = run_column(k0, 0.1, 0.3, true);
   CHECK(c.st.transfer.over_surface == 0);
   const Measured m = measure(c, k0, 1.5, 1.0, 0.75);
-  for (std::size_t i = 0; i < c.st.stress.size(); ++i) {
-    const auto& s = c.st.stress[i];
-    const double z = -c.st.position[3 * i + 1];
-    if (static_cast<int>(std::lround(z / 0.25 - 0.5)) % 4 != 0 && z < 9) continue;
-    std::printf("x %6.3f z %6.3f sv %+.3e K %.4f uy %.3e ux %.3e\n", c.st.position[3 * i], z,
-                s[1] / (-kRho * kGravity * z) - 1.0, s[0] / s[1], c.st.displacement[3 * i + 1], c.st.displacement[3 * i]);
-  }
   CHECK(m.kinetic <= 1e-6);
   CHECK(m.sv <= 0.01);
   CHECK(m.ratio <= 0.01);
