@@ -253,9 +253,14 @@ ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
   if (link.settle_time > 0.0) {
     PhaseTimer::Scope scope(result.timer, "settle");
     const std::vector<double> u0 = h.particles.u;
+    // The settle is the preload's, under the held loads alone: the event's own pressure
+    // histories (a blast) start at t = 0, after it.
+    std::vector<sph::SurfaceLoad> event_loads;
+    std::swap(event_loads, h.loads);
     h.damping = link.settle_damping;
     while (h.particles.time < link.settle_time)
       sph::advance(h, std::min(sph::stable_step(h), link.settle_time - h.particles.time));
+    std::swap(event_loads, h.loads);
     double drift = 0.0;
     for (int i = 0; i < n; ++i)
       drift = std::max(drift, Vec3(h.particles.u[3 * i] - u0[3 * i],
