@@ -132,6 +132,49 @@ double largest_force(const sph::Hydro& h, const std::vector<materials::Vec6>& si
   return f;
 }
 
+/// Constant forces on the supporting particles that take the rigid-body part of the
+/// out-of-balance of the rest of the body: -m_i (a + alpha e_z x (x_i - x_c)), a and alpha the
+/// rigid translational and angular accelerations (about the supports' mass centre x_c, in the
+/// plane) the rest's resultant F and moment M would give the supports, a = F / m, alpha = M / I,
+/// I = sum m_i |x_i - x_c|^2. The supports then carry -F and -M and the body keeps only
+/// self-equilibrated residuals (sph/held_loads.hpp, balancing_force).
+sph::SurfaceForce rigid_balance(sph::Hydro& h, std::vector<int> support) {
+  std::sort(support.begin(), support.end());
+  support.erase(std::unique(support.begin(), support.end()), support.end());
+  const particles::ParticleSet& P = h.particles;
+  const std::vector<double> f = sph::out_of_balance(h);
+  const auto x = [&P](int i, int d) { return P.X[3 * i + d] + P.u[3 * i + d]; };
+  std::vector<char> in(P.owned_count(), 0);
+  double m = 0.0, c[2] = {0.0, 0.0};
+  sph::SurfaceForce out;
+  out.name = "rigid_balance";
+  for (int i : support) {
+    if (h.fields.fixed[i]) continue;
+    in[i] = 1;
+    out.particles.push_back(i);
+    m += P.mass[i];
+    for (int d = 0; d < 2; ++d) c[d] += P.mass[i] * x(i, d);
+  }
+  if (out.particles.empty()) return out;
+  for (double& v : c) v /= m;
+  double F[2] = {0.0, 0.0}, M = 0.0, I = 0.0;
+  for (int i = 0; i < P.owned_count(); ++i) {
+    if (in[i]) {
+      I += P.mass[i] * (std::pow(x(i, 0) - c[0], 2) + std::pow(x(i, 1) - c[1], 2));
+      continue;
+    }
+    F[0] += f[3 * i], F[1] += f[3 * i + 1];
+    M += (x(i, 0) - c[0]) * f[3 * i + 1] - (x(i, 1) - c[1]) * f[3 * i];
+  }
+  const double alpha = I > 0.0 ? M / I : 0.0;
+  for (int i : out.particles) {
+    const double rx = x(i, 0) - c[0], ry = x(i, 1) - c[1];
+    out.force.insert(out.force.end(), {-P.mass[i] * (F[0] / m - alpha * ry),
+                                       -P.mass[i] * (F[1] / m + alpha * rx), 0.0});
+  }
+  return out;
+}
+
 } // namespace
 
 ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
@@ -162,17 +205,22 @@ ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
         put_increment(h, pa, pa.increments() - 1, link.return_to_surface);
     std::vector<materials::Vec6> sigma(h.particles.size(), materials::Vec6::Zero());
     std::copy(pa.final_stress().begin(), pa.final_stress().end(), sigma.begin());
+    // Every held boundary takes its static force before any balance is computed: a balance
+    // taken while another boundary still lacks its static force would carry that boundary's
+    // share of the body's weight and stress.
+    for (int b : held.held_boundaries) sph::hold_stress(h.transmitting[b], sigma);
+    std::vector<int> support;
     for (int b : held.held_boundaries) {
-      sph::hold_stress(h.transmitting[b], sigma);
-      // A body on dashpots has no stiffness against rigid motion: its supporting band takes the
-      // resultant the discretisation leaves (sph/held_loads.hpp).
-      h.forces.push_back(sph::balancing_force(h, h.transmitting[b].name + "_balance",
-                                              sph::within_reach(h, h.transmitting[b].particles),
-                                              true));
+      const std::vector<int> band = sph::within_reach(h, h.transmitting[b].particles);
+      h.forces.push_back(sph::balancing_force(h, h.transmitting[b].name + "_balance", band));
+      support.insert(support.end(), band.begin(), band.end());
     }
     for (std::size_t k = 0; k < held.force_layers.size(); ++k)
       h.forces.push_back(sph::balancing_force(h, "held_force_balance_" + std::to_string(k),
                                               sph::within_reach(h, held.force_layers[k])));
+    // A body on dashpots has no stiffness against rigid motion, in translation or in rotation:
+    // the supporting bands take the resultant and the moment the discretisation leaves.
+    if (!support.empty()) h.forces.push_back(rigid_balance(h, support));
     const std::vector<double> ob = sph::out_of_balance(h);
     double worst = 0.0;
     for (int i = 0; i < n; ++i)
@@ -198,9 +246,14 @@ ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
   if (link.settle_time > 0.0) {
     PhaseTimer::Scope scope(result.timer, "settle");
     const std::vector<double> u0 = h.particles.u;
+    // The settle is the preload's, under the held loads alone: the event's own pressure
+    // histories (a blast) start at t = 0, after it.
+    std::vector<sph::SurfaceLoad> event_loads;
+    std::swap(event_loads, h.loads);
     h.damping = link.settle_damping;
     while (h.particles.time < link.settle_time)
       sph::advance(h, std::min(sph::stable_step(h), link.settle_time - h.particles.time));
+    std::swap(event_loads, h.loads);
     double drift = 0.0;
     for (int i = 0; i < n; ++i)
       drift = std::max(drift, Vec3(h.particles.u[3 * i] - u0[3 * i],
