@@ -236,7 +236,9 @@ ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
       t.plastic_particles += pa.plastic[i];
       t.max_u = std::max(t.max_u, pa.final_u()[i].norm());
       const implicit::PointLaw law = implicit::point_law(preload, pa.image[i].x);
-      volume[i] = h.particles.mass[i] / h.fields.rho[i];
+      // The small-strain energy is an integral over the reference body (the preload's), so
+      // the reference volume, not the preloaded one m / rho.
+      volume[i] = h.particles.volume[i];
       E[i] = law.params.E;
       nu[i] = law.params.nu;
     }
