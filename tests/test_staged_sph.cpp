@@ -105,7 +105,8 @@ std::string homogeneous(const std::string& plasticity, const std::string& steps)
        "      - {name: axis, edges: left, displacement: {x: 0}}\n"
        "      - {name: base, edges: bottom, displacement: {y: 0}}\n"
     << "      - {name: pull_x, edges: right, traction: [" << kSx << ", 0]}\n"
-    << "      - {name: pull_y, edges: top, traction: [0, " << kSy << "]}\n"
+    << "      - {name: pull_y, edges: top, traction: [0, " << kSy
+    << "]}\n"
        "    steps:\n"
     << steps
     << "  - name: event\n"
@@ -189,9 +190,9 @@ void check_homogeneous(const std::string& yaml, const Homogeneous& c) {
   double applied = 0.0, s_max = 0.0;
   for (std::size_t n = 0; n < c.factors.size(); ++n) {
     s_max = std::max(s_max, stress_3d(exact[n]).cwiseAbs().maxCoeff());
-    applied = std::max({applied, std::abs(exact[n].stress(0) - kSx * c.factors[n]),
-                        std::abs(exact[n].stress(1) - kSy * c.factors[n]),
-                        std::abs(exact[n].stress(2))});
+    applied =
+        std::max({applied, std::abs(exact[n].stress(0) - kSx * c.factors[n]),
+                  std::abs(exact[n].stress(1) - kSy * c.factors[n]), std::abs(exact[n].stress(2))});
   }
   INFO("the law at the preload's strain against the applied tractions: " << applied / s_max);
   CHECK(applied <= 1e-10 * s_max);
@@ -208,8 +209,7 @@ void check_homogeneous(const std::string& yaml, const Homogeneous& c) {
   for (std::size_t n = 0; n < c.factors.size(); ++n) {
     const materials::Vec6 s = stress_3d(exact[n]);
     for (int p = 0; p < np; ++p) {
-      const Vec3 u(ab[n].x() * X[p].x() + shift[n].x(), ab[n].y() * X[p].y() + shift[n].y(),
-                   0.0);
+      const Vec3 u(ab[n].x() * X[p].x() + shift[n].x(), ab[n].y() * X[p].y() + shift[n].y(), 0.0);
       eu = std::max(eu, (pa.u[n][p] - u).cwiseAbs().maxCoeff() / su);
       es = std::max(es, (pa.stress[n][p] - s).cwiseAbs().maxCoeff() / ss);
       if (sa > 0.0) ea = std::max(ea, rel(pa.alpha[n][p], exact[n].state.alpha, sa));
@@ -332,6 +332,10 @@ namespace {
 // 2, 3, 5, 7. A plain strip, the quarter [0, 0.05] x [0, 0.1] of a 0.1 x 0.2 strip in plane strain
 // pulled along y by a traction T on its ends: rollers on the symmetry lines x = 0 and y = 0, the
 // traction on the top edge. The exact state is uniform: sigma_yy = T, sigma_xx = sigma_xy = 0.
+// The preload is solved with Q8 elements, which give it exactly: with the RK shapes the Gauss-point
+// stress is uniform only to ~1e-4 of T near the loaded edge, and the SPH body, which takes that
+// field as it is, starts out of balance by 3e-4 of a particle's held force there (enough to
+// ratchet the plastic strain of the particles at the loaded corner by 1.03e-3 of its maximum).
 
 const double kW = 0.05, kHeight = 0.1, kSpacing = 0.0025;
 
@@ -347,7 +351,7 @@ std::string strip(const std::string& plasticity, double traction, int increments
        "stages:\n"
        "  - name: preload\n"
        "    analysis: elastoplastic_static\n"
-       "    discretisation: {spacing: 0.005}\n"
+       "    discretisation: {method: fem, spacing: 0.005}\n"
        "    boundary:\n"
        "      - {name: axis, edges: left, displacement: {x: 0}}\n"
        "      - {name: symmetry, edges: bottom, displacement: {y: 0}}\n"
@@ -592,8 +596,15 @@ TEST_CASE("the implicit preload agrees with explicit dynamic relaxation in SPH",
   }
   const double explicit_seconds = seconds_since(t1);
 
+  // The monitors lie on the net sections at half and a quarter of the height, on the axis and at
+  // the free side. Near the loaded face, SPH's own static solution under a traction on its outer
+  // layer of particles departs from the uniform state (the kernel is cut off by the surface: the
+  // relaxed particles of the loaded layer differ from it by 25% at the loaded corner and 3% at
+  // the axis, 7% at the corner five rows below), which the staged transfer's balancing forces on
+  // that band remove for the transferred state.
   double worst = 0.0;
-  for (const Vec3& at : {Vec3(kW, kHeight, 0), Vec3(0, kHeight, 0), Vec3(kW, 0.5 * kHeight, 0)}) {
+  for (const Vec3& at : {Vec3(kW, 0.5 * kHeight, 0), Vec3(0, 0.5 * kHeight, 0),
+                         Vec3(kW, 0.25 * kHeight, 0), Vec3(0, 0.25 * kHeight, 0)}) {
     const int i = nearest(X, at);
     const Vec3 dr(h.particles.u[3 * i], h.particles.u[3 * i + 1], h.particles.u[3 * i + 2]);
     const double e = (dr - pa.final_u()[i]).norm() / pa.final_u()[i].norm();
