@@ -214,4 +214,8 @@ stages:
   root["stages"][1]["from"] = "preload";
   root["stages"][1]["release"] = YAML::Load("[bottom]");
   CHECK_THROWS_WITH(io::parse_problem(root), Catch::StartsWith("stages[1].model: required"));
+  root["stages"].push_back(YAML::Load("{name: after, analysis: sph, from: blast}"));
+  CHECK_THROWS_WITH(io::parse_problem(root),
+                    Catch::StartsWith("stages: a staged run is a preload followed by one "
+                                      "explicit stage"));
 }

@@ -186,6 +186,11 @@ std::vector<std::string> stage_conditions(const ProblemSpec& p) {
 void parse_stages(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
   std::vector<KeyReader> list = r.map_list("stages");
   if (list.empty()) r.error("stages", "expected a list of stages {name, analysis, ...}");
+  // What runs: one stage as its analysis, or a preload and one explicit stage starting from it.
+  if (list.size() > 2)
+    r.error("stages", "a staged run is a preload followed by one explicit stage that starts from "
+                      "it (the file lists " +
+                          std::to_string(list.size()) + " stages)");
   for (std::size_t k = 0; k < list.size(); ++k) {
     KeyReader& s = list[k];
     const std::string name = s.text("name");

@@ -100,9 +100,6 @@ StagedOutcome run_staged(const io::ProblemSpec& spec, const solvers::PetscSessio
                          io::OutputDirectory* out) {
   MF_REQUIRE(session.size() == 1, "a staged run runs on one MPI rank (its explicit stage is "
                                   "parallel over OpenMP threads: set OMP_NUM_THREADS)");
-  MF_REQUIRE(
-      spec.stages.size() == 2 && spec.links[1].from == 0,
-      "stages: a staged run is a preload followed by one explicit stage that starts from it");
   StagedOutcome outcome;
   io::ProblemSpec preload = spec.stages[0];
   preload.record_increment_parameters = true; // each particle is carried through them
