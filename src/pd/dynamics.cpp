@@ -11,23 +11,16 @@ namespace {
 /// are set.
 void impose(const Loading& loading, particles::ParticleSet& q, double t, double dt,
             const std::vector<double>* u_before) {
-  for (const Constraint& c : loading.constraints) {
-    const double f = loading.factor(c.function, t);
-    for (std::size_t p = 0; p < c.particles.size(); ++p)
-      for (int d = 0; d < 3; ++d) {
-        if (!c.fixed[d]) continue;
-        const std::size_t k = 3 * static_cast<std::size_t>(c.particles[p]) + d;
-        q.a[k] = 0.0;
-        if (!u_before) continue;
-        if (c.velocity) {
-          q.v[k] = c.value[d] * f;
-        } else {
-          const double target = c.target(p, d) * f;
-          q.v[k] = (target - (*u_before)[k]) / dt;
-          q.u[k] = target;
-        }
-      }
-  }
+  loading.for_each_fixed(t, [&](std::size_t k, const Constraint& c, double value) {
+    q.a[k] = 0.0;
+    if (!u_before) return;
+    if (c.velocity) {
+      q.v[k] = value;
+    } else {
+      q.v[k] = (value - (*u_before)[k]) / dt;
+      q.u[k] = value;
+    }
+  });
 }
 
 /// Kinematic contact of one impactor with the particles at their current positions.

@@ -38,16 +38,10 @@ Statics statics(const Model& m, const Loading& loading) {
       const double g = loading.factor(load, k, t);
       for (int d = 0; d < 3; ++d) st.b[3 * load.particles[k] + d] += g * load.density_of(k, d);
     }
-  for (const Constraint& c : loading.constraints) {
-    const double f = loading.factor(c.function, t);
-    for (std::size_t p = 0; p < c.particles.size(); ++p)
-      for (int d = 0; d < 3; ++d) {
-        if (!c.fixed[d]) continue;
-        const std::size_t k = 3 * static_cast<std::size_t>(c.particles[p]) + d;
-        st.held[k] = 1;
-        if (!c.velocity) st.target[k] = c.target(p, d) * f;
-      }
-  }
+  loading.for_each_fixed(t, [&st](std::size_t k, const Constraint& c, double value) {
+    st.held[k] = 1;
+    if (!c.velocity) st.target[k] = value;
+  });
   if (m.plane())
     for (std::size_t k = 2; k < size; k += 3) st.held[k] = 1;
   return st;

@@ -79,6 +79,18 @@ struct Loading {
     const double g = factor(load.function, t);
     return load.pulses.empty() ? g : g * load.pulses[k](t);
   }
+  /// Calls f(k, c, value) for every fixed component of every constraint at time t: k indexes the
+  /// component (3 per particle), c is its constraint and value its prescribed displacement (or
+  /// velocity) times the time function.
+  template <class F> void for_each_fixed(double t, F&& f) const {
+    for (const Constraint& c : constraints) {
+      const double g = factor(c.function, t);
+      for (std::size_t p = 0; p < c.particles.size(); ++p)
+        for (int d = 0; d < 3; ++d)
+          if (c.fixed[d])
+            f(3 * static_cast<std::size_t>(c.particles[p]) + d, c, c.target(p, d) * g);
+    }
+  }
 };
 
 struct StepReport {
