@@ -283,6 +283,26 @@ std::vector<double> ramp(std::vector<double> f, double to, int increments) {
   return f;
 }
 
+/// J2 with linear isotropic hardening and the given kinematic modulus.
+Homogeneous plastic(double kinematic) {
+  Homogeneous c;
+  c.plastic = true;
+  c.law.E = kE, c.law.nu = kNu, c.law.sigma0 = kYield;
+  c.law.hardening = materials::LinearHardening{kH};
+  c.law.H_kinematic = kinematic;
+  return c;
+}
+
+/// The material's `plasticity:` entry for a case's law.
+std::string plasticity(const Homogeneous& c) {
+  std::ostringstream p;
+  p << "    plasticity: {yield_stress: " << kYield << ", hardening: {type: linear, H: " << kH
+    << "}";
+  if (c.law.H_kinematic > 0.0) p << ", kinematic_modulus: " << c.law.H_kinematic;
+  p << "}\n";
+  return p.str();
+}
+
 } // namespace
 
 TEST_CASE("a homogeneous elastic plane-strain preload reaches every particle exactly",
@@ -295,34 +315,23 @@ TEST_CASE("a homogeneous elastic plane-strain preload reaches every particle exa
 TEST_CASE("a homogeneous plastic state with linear isotropic hardening reaches every particle "
           "exactly",
           "[staged][sph]") {
-  Homogeneous c;
-  c.plastic = true;
-  c.law.E = kE, c.law.nu = kNu, c.law.sigma0 = kYield;
-  c.law.hardening = materials::LinearHardening{kH};
+  Homogeneous c = plastic(0.0);
   c.factors = ramp({0.0}, 1.0, 4);
-  std::ostringstream p;
-  p << "    plasticity: {yield_stress: " << kYield << ", hardening: {type: linear, H: " << kH
-    << "}}\n";
-  check_homogeneous(homogeneous(p.str(), "      - {name: pull, load_factor: 1.0, increments: 4}\n"),
+  check_homogeneous(homogeneous(plasticity(c), "      - {name: pull, load_factor: 1.0, increments: "
+                                               "4}\n"),
                     c);
 }
 
 TEST_CASE("a homogeneous plastic state with kinematic hardening, loaded and partly reversed, "
           "reaches every particle exactly",
           "[staged][sph]") {
-  Homogeneous c;
-  c.plastic = true;
-  c.law.E = kE, c.law.nu = kNu, c.law.sigma0 = kYield;
-  c.law.hardening = materials::LinearHardening{kH};
-  c.law.H_kinematic = kHk;
+  Homogeneous c = plastic(kHk);
   c.factors = ramp(ramp({0.0}, 1.0, 4), -0.6, 4);
   c.reversed_at = 4;
-  std::ostringstream p;
-  p << "    plasticity: {yield_stress: " << kYield << ", hardening: {type: linear, H: " << kH
-    << "}, kinematic_modulus: " << kHk << "}\n";
-  check_homogeneous(homogeneous(p.str(), "      - {name: pull, load_factor: 1.0, increments: 4}\n"
-                                         "      - {name: back, load_factor: -0.6, increments: "
-                                         "4}\n"),
+  check_homogeneous(homogeneous(plasticity(c),
+                                "      - {name: pull, load_factor: 1.0, increments: 4}\n"
+                                "      - {name: back, load_factor: -0.6, increments: "
+                                "4}\n"),
                     c);
 }
 
