@@ -11,6 +11,7 @@ int ParticleSet::add(const Vec3& x, double vol, double rho, int mat, int b) {
   mass.push_back(rho * vol);
   material.push_back(mat);
   body.push_back(b);
+  id.push_back(id.empty() ? 0 : id.back() + 1);
   u.insert(u.end(), 3, 0.0);
   v.insert(v.end(), 3, 0.0);
   a.insert(a.end(), 3, 0.0);
@@ -31,6 +32,7 @@ int ParticleSet::add_ghost(int source) {
   mass.push_back(mass[source]);
   material.push_back(material[source]);
   body.push_back(body[source]);
+  id.push_back(id[source]);
   return size() - 1;
 }
 
@@ -43,6 +45,7 @@ void ParticleSet::drop_ghosts() {
   mass.resize(n);
   material.resize(n);
   body.resize(n);
+  id.resize(n);
   owned_ = -1;
 }
 

@@ -58,6 +58,7 @@ struct ParticleSet {
   std::vector<double> mass;    // density times volume
   std::vector<int> material;   // index into the analysis' materials
   std::vector<int> body;       // the block or region the particle was generated in
+  std::vector<long> id;        // global id: the index in the whole body, whichever rank holds it
   std::vector<double> u, v, a; // displacement, velocity, acceleration
   double time = 0.0;           // the instant of u, v and a
   long step = 0;
@@ -72,7 +73,8 @@ struct ParticleSet {
     return {X[3 * i] + u[3 * i], X[3 * i + 1] + u[3 * i + 1], X[3 * i + 2] + u[3 * i + 2]};
   }
 
-  /// Appends an owned particle at rest; there must be no ghost yet. Returns its index.
+  /// Appends an owned particle at rest with the next global id; there must be no ghost yet.
+  /// Returns its index.
   int add(const Vec3& x, double volume, double density, int material, int body = 0);
   /// Appends a ghost particle, a copy of particle `source` (the caller mirrors or moves it).
   int add_ghost(int source);
