@@ -73,26 +73,45 @@ void OutputDirectory::write_csv(const std::string& file, const std::vector<std::
 
 namespace {
 
-/// A rows x cols dataset (1-D when cols is 1), creating the groups on its path.
+/// A rows x cols dataset (1-D when cols is 1), creating the groups on its path. With a slice,
+/// `rows` are this rank's rows offset .. offset + rows of slice.total, written collectively.
 template <class T>
 void write_dataset(hid_t file, const std::string& name, const std::vector<T>& data, hsize_t rows,
-                   hsize_t cols, hid_t type) {
-  hsize_t dims[2] = {rows, cols};
-  const hid_t space = H5Screate_simple(cols > 1 ? 2 : 1, dims, nullptr);
+                   hsize_t cols, hid_t type, const PointSlice* slice = nullptr) {
+  hsize_t dims[2] = {slice ? slice->total : rows, cols};
+  const int rank = cols > 1 ? 2 : 1;
+  const hid_t space = H5Screate_simple(rank, dims, nullptr);
   const hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
   H5Pset_create_intermediate_group(lcpl, 1);
   const hid_t set = H5Dcreate2(file, name.c_str(), type, space, lcpl, H5P_DEFAULT, H5P_DEFAULT);
   MF_REQUIRE(set >= 0, "HDF5: cannot create dataset ", name);
-  MF_REQUIRE(H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) >= 0,
-             "HDF5: cannot write dataset ", name);
+  herr_t status;
+  if (!slice) {
+    status = H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data());
+  } else {
+    const hsize_t start[2] = {slice->offset, 0}, count[2] = {rows, cols};
+    const hid_t memory = H5Screate_simple(rank, count, nullptr);
+    if (rows == 0) {
+      H5Sselect_none(space);
+      H5Sselect_none(memory);
+    } else {
+      H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, count, nullptr);
+    }
+    const hid_t transfer = H5Pcreate(H5P_DATASET_XFER);
+    H5Pset_dxpl_mpio(transfer, H5FD_MPIO_COLLECTIVE);
+    status = H5Dwrite(set, type, memory, space, transfer, data.data());
+    H5Pclose(transfer);
+    H5Sclose(memory);
+  }
+  MF_REQUIRE(status >= 0, "HDF5: cannot write dataset ", name);
   H5Dclose(set);
   H5Pclose(lcpl);
   H5Sclose(space);
 }
 
 void write_dataset(hid_t file, const std::string& name, const std::vector<double>& data,
-                   hsize_t rows, hsize_t cols) {
-  write_dataset(file, name, data, rows, cols, H5T_NATIVE_DOUBLE);
+                   hsize_t rows, hsize_t cols, const PointSlice* slice = nullptr) {
+  write_dataset(file, name, data, rows, cols, H5T_NATIVE_DOUBLE, slice);
 }
 
 std::string data_item(const std::string& h5, const std::string& set, std::size_t rows, int cols) {
@@ -116,15 +135,15 @@ void OutputDirectory::write_fields(const std::vector<Vec2>& points,
 namespace {
 
 void write_int_dataset(hid_t file, const std::string& name, const std::vector<int>& data,
-                       hsize_t rows, hsize_t cols) {
-  write_dataset(file, name, data, rows, cols, H5T_NATIVE_INT);
+                       hsize_t rows, hsize_t cols, const PointSlice* slice = nullptr) {
+  write_dataset(file, name, data, rows, cols, H5T_NATIVE_INT, slice);
 }
 
 } // namespace
 
 FieldSeries::FieldSeries(OutputDirectory& out, const std::string& stem,
                          const std::vector<Vec2>& points, const GridCells& cells)
-    : out_(out), stem_(stem), points_(points.size()) {
+    : out_(&out), stem_(stem), points_(points.size()) {
   const std::size_t n = points.size();
   std::vector<double> xyz(3 * n, 0.0);
   for (std::size_t i = 0; i < n; ++i) xyz[3 * i] = points[i].x(), xyz[3 * i + 1] = points[i].y();
@@ -133,32 +152,54 @@ FieldSeries::FieldSeries(OutputDirectory& out, const std::string& stem,
 
 FieldSeries::FieldSeries(OutputDirectory& out, const std::string& stem,
                          const std::vector<double>& xyz)
-    : out_(out), stem_(stem), points_(xyz.size() / 3) {
+    : out_(&out), stem_(stem), points_(xyz.size() / 3) {
+  open(xyz, {});
+}
+
+FieldSeries::FieldSeries(OutputDirectory* out, const std::string& stem,
+                         const std::vector<double>& xyz, const PointSlice& slice)
+    : out_(out), slice_(slice), stem_(stem), points_(xyz.size() / 3) {
   open(xyz, {});
 }
 
 void FieldSeries::open(const std::vector<double>& xyz, const GridCells& cells) {
-  const std::string h5_temp = out_.temp_path(stem_ + ".h5");
-  h5_ = out_.name_of(stem_ + ".h5");
+  // The rank with the output directory names the file; a spread series shares that name.
+  std::string h5_temp = out_ ? out_->temp_path(stem_ + ".h5") : std::string();
+  h5_ = out_ ? out_->name_of(stem_ + ".h5") : std::string();
+  const PointSlice* slice = slice_.spread() ? &slice_ : nullptr;
+  if (slice) {
+    for (std::string* s : {&h5_temp, &h5_}) {
+      int length = static_cast<int>(s->size());
+      MPI_Bcast(&length, 1, MPI_INT, 0, slice->comm);
+      s->resize(length);
+      MPI_Bcast(s->data(), length, MPI_CHAR, 0, slice->comm);
+    }
+  }
   const std::string& h5 = h5_;
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); // our messages say what failed, not HDF5's stack
-  const hid_t file = H5Fcreate(h5_temp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t access = H5Pcreate(H5P_FILE_ACCESS);
+  if (slice) H5Pset_fapl_mpio(access, slice->comm, MPI_INFO_NULL);
+  const hid_t file = H5Fcreate(h5_temp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access);
+  H5Pclose(access);
   MF_REQUIRE(file >= 0, h5_temp,
              ": cannot create the HDF5 file (no space or permission, or another run is writing "
              "into the same folder)");
   file_ = file;
-  const std::size_t n = points_;
-  write_dataset(file, "/geometry/coordinates", xyz, n, 3);
+  const std::size_t n = points_, total = slice ? slice->total : n;
+  write_dataset(file, "/geometry/coordinates", xyz, n, 3, slice);
   std::ostringstream g;
   if (cells.nodes_per_cell == 0) { // Polyvertex: point i is vertex i
+    const std::size_t first = slice ? slice->offset : 0;
     std::vector<int> vertex(n);
-    for (std::size_t i = 0; i < n; ++i) vertex[i] = static_cast<int>(i);
-    write_int_dataset(file, "/geometry/vertices", vertex, n, 1);
-    g << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n
+    for (std::size_t i = 0; i < n; ++i) vertex[i] = static_cast<int>(first + i);
+    write_int_dataset(file, "/geometry/vertices", vertex, n, 1, slice);
+    g << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << total
       << "\" NodesPerElement=\"1\">"
-      << "<DataItem Dimensions=\"" << n << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">"
-      << h5 << ":/geometry/vertices</DataItem></Topology>\n";
+      << "<DataItem Dimensions=\"" << total
+      << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5
+      << ":/geometry/vertices</DataItem></Topology>\n";
   } else {
+    MF_REQUIRE(!slice, stem_, ".h5: cells are written by one rank");
     const std::size_t ne = cells.connectivity.size() / cells.nodes_per_cell;
     write_int_dataset(file, "/geometry/cells", cells.connectivity, ne, cells.nodes_per_cell);
     g << "    <Topology TopologyType=\"" << cells.xdmf_type << "\" NumberOfElements=\"" << ne
@@ -167,7 +208,7 @@ void FieldSeries::open(const std::vector<double>& xyz, const GridCells& cells) {
       << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5
       << ":/geometry/cells</DataItem></Topology>\n";
   }
-  g << "    <Geometry GeometryType=\"XYZ\">" << data_item(h5, "/geometry/coordinates", n, 3)
+  g << "    <Geometry GeometryType=\"XYZ\">" << data_item(h5, "/geometry/coordinates", total, 3)
     << "</Geometry>\n";
   grid_ = g.str();
 }
@@ -180,6 +221,8 @@ void FieldSeries::add_step(const FieldStep& step) {
   MF_REQUIRE(file_ >= 0, stem_, ".h5: the series is closed");
   const std::string& h5 = h5_;
   const std::size_t n = points_;
+  const PointSlice* slice = slice_.spread() ? &slice_ : nullptr;
+  const std::size_t total = slice ? slice->total : n;
   std::ostringstream group;
   group << "/step_" << std::setw(6) << std::setfill('0') << steps_;
   std::ostringstream x;
@@ -188,23 +231,23 @@ void FieldSeries::add_step(const FieldStep& step) {
     << grid_;
   for (const auto& [name, v] : step.scalars) {
     MF_ASSERT(v.size() == n);
-    write_dataset(file_, group.str() + "/" + name, v, n, 1);
+    write_dataset(file_, group.str() + "/" + name, v, n, 1, slice);
     x << "    <Attribute Name=\"" << name << "\" AttributeType=\"Scalar\" Center=\"Node\">"
-      << data_item(h5, group.str() + "/" + name, n, 1) << "</Attribute>\n";
+      << data_item(h5, group.str() + "/" + name, total, 1) << "</Attribute>\n";
   }
   for (const auto& [name, v] : step.vectors) {
     MF_ASSERT(v.size() == n);
     std::vector<double> d(3 * n, 0.0);
     for (std::size_t i = 0; i < n; ++i) d[3 * i] = v[i].x(), d[3 * i + 1] = v[i].y();
-    write_dataset(file_, group.str() + "/" + name, d, n, 3);
+    write_dataset(file_, group.str() + "/" + name, d, n, 3, slice);
     x << "    <Attribute Name=\"" << name << "\" AttributeType=\"Vector\" Center=\"Node\">"
-      << data_item(h5, group.str() + "/" + name, n, 3) << "</Attribute>\n";
+      << data_item(h5, group.str() + "/" + name, total, 3) << "</Attribute>\n";
   }
   for (const auto& [name, v] : step.vectors3) {
     MF_ASSERT(v.size() == 3 * n);
-    write_dataset(file_, group.str() + "/" + name, v, n, 3);
+    write_dataset(file_, group.str() + "/" + name, v, n, 3, slice);
     x << "    <Attribute Name=\"" << name << "\" AttributeType=\"Vector\" Center=\"Node\">"
-      << data_item(h5, group.str() + "/" + name, n, 3) << "</Attribute>\n";
+      << data_item(h5, group.str() + "/" + name, total, 3) << "</Attribute>\n";
   }
   x << "   </Grid>\n";
   xml_ += x.str();
@@ -219,7 +262,7 @@ void FieldSeries::close() {
   x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
     << "  <Grid Name=\"" << stem_ << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n"
     << xml_ << "  </Grid>\n </Domain>\n</Xdmf>\n";
-  out_.write_text(stem_ + ".xmf", x.str());
+  if (out_) out_->write_text(stem_ + ".xmf", x.str());
 }
 
 void OutputDirectory::commit() {

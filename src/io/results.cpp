@@ -70,6 +70,19 @@ FieldOutput::FieldOutput(OutputDirectory* out, const std::string& stem,
 }
 
 FieldOutput::FieldOutput(OutputDirectory* out, const std::string& stem,
+                         const std::vector<double>& xyz, const PointSlice& slice)
+    : points_(xyz.size() / 3) {
+  if (!slice.spread()) {
+    if (out) series_ = std::make_unique<FieldSeries>(*out, stem, xyz);
+    return;
+  }
+  // Every rank opens the file together; whether there is one is decided on rank 0.
+  int open = out ? 1 : 0;
+  MPI_Bcast(&open, 1, MPI_INT, 0, slice.comm);
+  if (open) series_ = std::make_unique<FieldSeries>(out, stem, xyz, slice);
+}
+
+FieldOutput::FieldOutput(OutputDirectory* out, const std::string& stem,
                          const std::vector<Vec2>& points, const GridCells& cells)
     : points_(points.size()) {
   if (out) series_ = std::make_unique<FieldSeries>(*out, stem, points, cells);

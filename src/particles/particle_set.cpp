@@ -18,21 +18,26 @@ int ParticleSet::add(const Vec3& x, double vol, double rho, int mat, int b) {
   return size() - 1;
 }
 
-int ParticleSet::add_ghost(int source) {
+int ParticleSet::add_ghost(const ParticleSet& from, int source) {
   if (owned_ < 0) owned_ = size();
-  const auto copy3 = [source](std::vector<double>& w) {
-    for (int d = 0; d < 3; ++d) w.push_back(w[3 * static_cast<std::size_t>(source) + d]);
+  const std::size_t k = 3 * static_cast<std::size_t>(source);
+  const auto copy3 = [k](std::vector<double>& to, const std::vector<double>& w) {
+    const double c[3] = {w[k], w[k + 1], w[k + 2]}; // `to` may be `w`: read before growing it
+    to.insert(to.end(), c, c + 3);
   };
-  copy3(X);
-  copy3(u);
-  copy3(v);
-  copy3(a);
-  volume.push_back(volume[source]);
-  density.push_back(density[source]);
-  mass.push_back(mass[source]);
-  material.push_back(material[source]);
-  body.push_back(body[source]);
-  id.push_back(id[source]);
+  copy3(X, from.X);
+  copy3(u, from.u);
+  copy3(v, from.v);
+  copy3(a, from.a);
+  const double vol = from.volume[source], rho = from.density[source], m = from.mass[source];
+  const int mat = from.material[source], b = from.body[source];
+  const long i = from.id[source];
+  volume.push_back(vol);
+  density.push_back(rho);
+  mass.push_back(m);
+  material.push_back(mat);
+  body.push_back(b);
+  id.push_back(i);
   return size() - 1;
 }
 

@@ -4,6 +4,7 @@
 // renamed only when the run has succeeded, so a failed run never leaves a result that looks good.
 #include "meshfree/core/types.hpp"
 #include <map>
+#include <mpi.h>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,15 @@ struct GridCells {
   std::string xdmf_type;
   int nodes_per_cell = 0;
   std::vector<int> connectivity;
+};
+
+/// This rank's share of a series' points when a run is spread over MPI ranks: the points
+/// offset .. offset + (its count) of `total`, written collectively into one file (parallel HDF5
+/// through MPI-IO), so that ParaView reads one fields.h5 whatever the number of ranks.
+struct PointSlice {
+  MPI_Comm comm = MPI_COMM_NULL;
+  std::size_t offset = 0, total = 0;
+  bool spread() const { return comm != MPI_COMM_NULL; }
 };
 
 class FieldSeries;
@@ -69,6 +79,11 @@ public:
               const GridCells& cells = {});
   /// Points in space: x, y, z of each point in turn.
   FieldSeries(OutputDirectory& out, const std::string& stem, const std::vector<double>& xyz);
+  /// This rank's points of a series spread over the ranks of slice.comm; every rank constructs
+  /// it, writes each step and closes it together. `out` is the output directory on the rank
+  /// that has one (rank 0: it names the file and writes the .xmf), null on the others.
+  FieldSeries(OutputDirectory* out, const std::string& stem, const std::vector<double>& xyz,
+              const PointSlice& slice);
   ~FieldSeries();
   FieldSeries(const FieldSeries&) = delete;
   FieldSeries& operator=(const FieldSeries&) = delete;
@@ -78,7 +93,8 @@ public:
 
 private:
   void open(const std::vector<double>& xyz, const GridCells& cells);
-  OutputDirectory& out_;
+  OutputDirectory* out_;
+  PointSlice slice_;
   std::string stem_;
   std::string h5_; // the data file as the .xmf names it
   long file_ = -1; // hid_t

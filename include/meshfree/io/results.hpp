@@ -73,6 +73,10 @@ public:
   using Fill2 = std::function<void(std::vector<Vec2>&)>;
   /// Points in space, x, y, z of each in turn.
   FieldOutput(OutputDirectory* out, const std::string& stem, const std::vector<double>& xyz);
+  /// This rank's points of a series spread over MPI ranks (see FieldSeries); written on every
+  /// rank of slice.comm, `out` being the directory of the rank that has one.
+  FieldOutput(OutputDirectory* out, const std::string& stem, const std::vector<double>& xyz,
+              const PointSlice& slice);
   /// Points of a plane, with the cells of a mesh if any.
   FieldOutput(OutputDirectory* out, const std::string& stem, const std::vector<Vec2>& points,
               const GridCells& cells = {});

@@ -77,7 +77,10 @@ struct ParticleSet {
   /// Returns its index.
   int add(const Vec3& x, double volume, double density, int material, int body = 0);
   /// Appends a ghost particle, a copy of particle `source` (the caller mirrors or moves it).
-  int add_ghost(int source);
+  int add_ghost(int source) { return add_ghost(*this, source); }
+  /// Appends a ghost particle, a copy of particle `source` of `from` (this set or the whole body
+  /// another rank owns a part of), id included.
+  int add_ghost(const ParticleSet& from, int source);
   /// Removes every ghost particle.
   void drop_ghosts();
 

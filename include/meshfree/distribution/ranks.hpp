@@ -1,0 +1,29 @@
+#pragma once
+// The MPI ranks an explicit run is spread over, and the split of a body's global particle ids
+// into one contiguous block per rank. Particles are numbered along a space-filling curve before
+// they are split, so a block of ids is a compact piece of the body:
+// the decomposition balances particle counts exactly and keeps each rank's halo small, as the
+// space-filling-curve partitioners of p4est and Zoltan's HSFC do.
+#include <mpi.h>
+
+namespace mf::distribution {
+
+struct Ranks {
+  MPI_Comm comm = MPI_COMM_SELF;
+  int rank = 0;
+  int size = 1;
+  static Ranks of(MPI_Comm comm);
+  bool serial() const { return size == 1; }
+};
+
+/// Ids 0 .. total-1 split into `ranks` contiguous blocks whose sizes differ by at most one.
+struct IdBlocks {
+  long total = 0;
+  int ranks = 1;
+  /// The first id of rank r's block (r = ranks gives total).
+  long first(int r) const { return static_cast<long>((static_cast<__int128>(total) * r) / ranks); }
+  /// The rank whose block holds `id`.
+  int owner(long id) const;
+};
+
+} // namespace mf::distribution
