@@ -29,7 +29,7 @@ ALLOWED = {
     "loads": {"core"},
     "verification": {"core", "materials"},
     "particles": {"core"},
-    "distribution": {"core", "particles"},
+    "distribution": {"core", "particles", "solvers"},
     "quadrature": {"core", "geometry"},
     "solvers": {"core"},
     "fem": {"core", "geometry", "materials", "neighbors"},

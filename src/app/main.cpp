@@ -165,10 +165,8 @@ int run(Command& c) {
     if (spec.analysis == mf::io::Analysis::ModelProblem1D) {
       if (session.rank() == 0) mf::app::model_problem_1d(spec, *out);
     } else if (spec.analysis == mf::io::Analysis::Peridynamics) {
-      // Explicit dynamics runs on OpenMP threads within one process.
-      MF_REQUIRE(session.size() == 1, "analysis peridynamics runs on one MPI rank (it is "
-                                      "parallel over OpenMP threads: set OMP_NUM_THREADS)");
-      mf::explicit_dynamics::PdRunResult r = mf::app::run_peridynamics(spec, out.get());
+      mf::explicit_dynamics::PdRunResult r =
+          mf::app::run_peridynamics(spec, out.get(), mf::distribution::Ranks::of(session.comm()));
       {
         mf::PhaseTimer::Scope scope(r.timer, "output");
         if (out) mf::app::write_pd_outputs(spec, r, *out);

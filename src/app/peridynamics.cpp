@@ -6,11 +6,13 @@
 namespace mf::app {
 
 explicit_dynamics::PdRunResult run_peridynamics(const io::ProblemSpec& spec,
-                                                io::OutputDirectory* out) {
+                                                io::OutputDirectory* out,
+                                                const distribution::Ranks& ranks) {
   const io::PdSpec& s = *spec.pd;
   explicit_dynamics::PdRunResult result;
-  explicit_dynamics::PdSetup setup = explicit_dynamics::build_pd_setup(spec, result.timer);
+  explicit_dynamics::PdSetup setup = explicit_dynamics::build_pd_setup(spec, result.timer, ranks);
   explicit_dynamics::log_pd_setup(spec, setup);
+  result.mpi_ranks = ranks.size;
   explicit_dynamics::PdRun run(setup, s, out, result);
   run.finish(
       explicit_dynamics::run_time_loop(run, {s.end_time, s.history_interval, s.fields_interval}));
@@ -23,6 +25,7 @@ void write_pd_outputs(const io::ProblemSpec& spec, const explicit_dynamics::PdRu
   io::Summary summary({spec.name, spec.description, spec.units, "peridynamics", ""});
   summary.set_status(r.status, r.stop_reason);
   summary.set("openmp_threads", omp_get_max_threads());
+  summary.set("mpi_ranks", r.mpi_ranks);
   io::Json& counts = summary.section("counts");
   io::Json& time_step = summary.section("time_step");
   explicit_dynamics::summarise(r, counts, time_step, summary.section("results"));

@@ -1,4 +1,5 @@
 #include "meshfree/distribution/ranks.hpp"
+#include "meshfree/solvers/parallel.hpp"
 
 namespace mf::distribution {
 
@@ -17,6 +18,43 @@ int IdBlocks::owner(long id) const {
   while (r > 0 && first(r) > id) --r;
   while (r + 1 < ranks && first(r + 1) <= id) ++r;
   return r;
+}
+
+double Ranks::sum(double value) const {
+  if (serial()) return value;
+  return solvers::sum_everywhere(comm, value);
+}
+
+long Ranks::sum(long value) const {
+  if (serial()) return value;
+  return solvers::sum_everywhere(comm, value);
+}
+
+void Ranks::sum(double* values, int n) const {
+  if (!serial()) solvers::sum_everywhere(comm, values, n);
+}
+
+double Ranks::max(double value) const {
+  if (serial()) return value;
+  return solvers::max_everywhere(comm, value);
+}
+
+double Ranks::min(double value) const {
+  return -max(-value);
+}
+
+int Ranks::rank_of_min(double value) const {
+  if (serial()) return 0;
+  struct {
+    double value;
+    int rank;
+  } mine{value, rank}, best{};
+  MPI_Allreduce(&mine, &best, 1, MPI_DOUBLE_INT, MPI_MINLOC, comm);
+  return best.rank;
+}
+
+void Ranks::broadcast(double* values, int n, int root) const {
+  if (!serial()) MPI_Bcast(values, n, MPI_DOUBLE, root, comm);
 }
 
 } // namespace mf::distribution

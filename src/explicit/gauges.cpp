@@ -17,10 +17,17 @@ int nearest_particle(const std::vector<double>& positions, int n, const Vec3& at
   return best;
 }
 
-Gauges::Gauges(const std::vector<GaugePoint>& points, const std::vector<double>& positions, int n) {
+Gauges::Gauges(const std::vector<GaugePoint>& points, const std::vector<double>& positions, int n,
+               const distribution::Ranks& ranks)
+    : ranks_(ranks) {
   for (const GaugePoint& g : points) {
     names_.push_back(g.name);
-    particle_.push_back(nearest_particle(positions, n, g.at));
+    const int i = nearest_particle(positions, n, g.at);
+    double d2 = std::numeric_limits<double>::infinity();
+    if (n > 0)
+      d2 =
+          (Vec3(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]) - g.at).squaredNorm();
+    particle_.push_back(ranks.rank_of_min(d2) == ranks.rank ? i : -1);
   }
 }
 
@@ -45,14 +52,27 @@ std::vector<std::string> Gauges::columns() const {
 }
 
 void Gauges::append_to(std::vector<double>& row) const {
+  const std::size_t first = row.size();
   for (int i : particle_)
-    for (const auto& [name, f] : recorded_) row.push_back(f(i));
+    for (const auto& [name, f] : recorded_) row.push_back(i >= 0 ? f(i) : 0.0);
+  // Each value comes from the one rank that holds its gauge; the others add zero.
+  ranks_.sum(row.data() + first, static_cast<int>(row.size() - first));
+}
+
+std::vector<std::pair<std::string, double>> Gauges::maxima() const {
+  std::vector<std::pair<std::string, double>> m = maxima_;
+  for (auto& [name, value] : m) value = ranks_.max(value);
+  return m;
 }
 
 void Gauges::update_maxima() {
   std::size_t k = 0;
   for (int i : particle_)
     for (const auto& [name, f] : tracked_) {
+      if (i < 0) {
+        ++k;
+        continue;
+      }
       maxima_[k].second = std::max(maxima_[k].second, std::abs(f(i)));
       ++k;
     }

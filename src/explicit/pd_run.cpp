@@ -3,6 +3,7 @@
 #include "meshfree/core/log.hpp"
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace mf::explicit_dynamics {
 
@@ -14,19 +15,36 @@ std::vector<GaugePoint> gauge_points(const io::PdSpec& s) {
   return g;
 }
 
+std::vector<double> owned_positions(const particles::ParticleSet& p) {
+  return {p.X.begin(), p.X.begin() + 3 * static_cast<std::size_t>(p.owned_count())};
+}
+
+/// Where this rank's particles go in the one field file: its block of ids.
+io::PointSlice field_slice(const PdSetup& setup) {
+  const distribution::Ranks& ranks = setup.model.halo.ranks();
+  if (ranks.serial()) return {};
+  return {ranks.comm, static_cast<std::size_t>(setup.first_id),
+          static_cast<std::size_t>(setup.particles_total)};
+}
+
 } // namespace
 
 PdRun::PdRun(PdSetup& setup, const io::PdSpec& spec, io::OutputDirectory* out, PdRunResult& result)
     : setup_(setup), spec_(spec), r_(result),
-      gauges_(gauge_points(spec), setup.model.particles.X, setup.model.particles.size()),
-      fields_(out, "fields", setup.model.particles.X) {
+      gauges_(gauge_points(spec), setup.model.particles.X, setup.model.particles.owned_count(),
+              setup.model.halo.ranks()),
+      fields_(out, "fields", owned_positions(setup.model.particles), field_slice(setup)) {
   pd::Model& m = setup_.model;
   const particles::ParticleSet& p = m.particles;
-  r_.particles = p.size();
-  r_.bonds = m.bonds.count() / 2;
+  r_.particles = static_cast<int>(setup_.particles_total);
+  r_.bonds = ranks().sum(m.bonds.count()) / 2;
   r_.dt = setup_.dt;
   r_.dt_limit = setup_.dt_limit;
   if (spec_.relaxation) {
+    MF_REQUIRE(ranks().serial(),
+               "relaxation: the static relaxation before the first step runs on "
+               "one MPI rank (",
+               ranks().size, " given)");
     PhaseTimer::Scope scope(r_.timer, "relaxation");
     const std::vector<double> v0 = m.particles.v;
     pd::RelaxSettings settings;
@@ -87,11 +105,25 @@ void PdRun::advance(double dt, bool history_due) {
 }
 
 int PdRun::nonfinite() const {
-  const std::vector<double>& u = setup_.model.particles.u;
-  for (std::size_t k = 0; k < u.size(); k += 3)
-    if (!std::isfinite(u[k]) || !std::isfinite(u[k + 1]) || !std::isfinite(u[k + 2]))
-      return static_cast<int>(k / 3);
-  return -1;
+  const particles::ParticleSet& p = setup_.model.particles;
+  const std::vector<double>& u = p.u;
+  double first = std::numeric_limits<double>::infinity(); // the lowest id over every rank
+  for (int i : p.owned())
+    if (!std::isfinite(u[3 * i]) || !std::isfinite(u[3 * i + 1]) || !std::isfinite(u[3 * i + 2])) {
+      first = static_cast<double>(p.id[i]);
+      break;
+    }
+  first = ranks().min(first);
+  return std::isfinite(first) ? static_cast<int>(first) : -1;
+}
+
+Vec3 PdRun::position(int id) const {
+  const particles::ParticleSet& p = setup_.model.particles;
+  const long i = id - setup_.first_id;
+  Vec3 x(0.0, 0.0, 0.0);
+  if (i >= 0 && i < p.owned_count()) x = p.reference(static_cast<int>(i));
+  ranks().sum(x.data(), 3); // from the one rank that owns it
+  return x;
 }
 
 std::string PdRun::advice() const {
@@ -108,6 +140,8 @@ void PdRun::record() {
                        : pd::accelerate(m, setup_.state, setup_.loading, true).strain_energy;
   pd::damage(m, setup_.state, phi_);
   const double kinetic = pd::kinetic_energy(m);
+  double max_damage = 0.0;
+  for (int i : p.owned()) max_damage = std::max(max_damage, phi_[i]);
   std::vector<double> row{p.time,
                           static_cast<double>(p.step),
                           kinetic,
@@ -115,7 +149,7 @@ void PdRun::record() {
                           work_,
                           kinetic + strain_energy - e0_ - work_,
                           static_cast<double>(broken_ / 2),
-                          *std::max_element(phi_.begin(), phi_.end())};
+                          ranks().max(max_damage)};
   const int dims = m.plane() ? 2 : 3;
   for (const auto& imp : setup_.impactors) {
     if (!imp.fixed) {
@@ -136,6 +170,10 @@ void PdRun::record() {
       const double along = (p.reference(i) - spec_.crack.origin).dot(spec_.crack.direction);
       if (along > reach) reach = along, tip = p.reference(i);
     }
+    // The farthest over every rank (the lowest rank on a tie, as one rank's first).
+    const int holder = ranks().rank_of_min(-reach);
+    reach = ranks().max(reach);
+    ranks().broadcast(tip.data(), 3, holder);
     row.insert(row.end(), {tip.x(), tip.y(), tip.z(), reach});
   }
   r_.max_damage = row[7];

@@ -1,5 +1,6 @@
 #include "meshfree/explicit/pd_setup.hpp"
 #include "meshfree/core/log.hpp"
+#include "meshfree/distribution/local_part.hpp"
 #include "meshfree/explicit/surface_blast.hpp"
 #include "meshfree/geometry/lattice.hpp"
 #include <algorithm>
@@ -126,7 +127,8 @@ Vec3d traction_density(const io::PdCondition& c, const particles::ParticleSet& p
 
 } // namespace
 
-PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer) {
+PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer,
+                       const distribution::Ranks& ranks) {
   const io::PdSpec& s = *spec.pd;
   PdSetup out;
   pd::Model& m = out.model;
@@ -139,19 +141,10 @@ PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer) {
     PhaseTimer::Scope scope(timer, "particles");
     m.particles = lattice(spec);
   }
-  {
-    PhaseTimer::Scope scope(timer, "bonds");
-    const pd::VolumeCorrection correction =
-        s.volume_correction == "exact"    ? pd::VolumeCorrection::Exact
-        : s.volume_correction == "linear" ? pd::VolumeCorrection::Linear
-                                          : pd::VolumeCorrection::None;
-    pd::build_bonds(m, law_table(s, m.horizon), correction);
-    if (s.surface_correction) pd::apply_surface_correction(m);
-    std::vector<pd::PreCrack> cracks;
-    for (const auto& c : s.cracks) cracks.push_back({c.a, c.b, c.c});
-    out.state = pd::initial_state(m, cracks);
-  }
+  // Loads, constraints and initial velocities are set on the whole body (a traction's layer and
+  // a blast's pulses are properties of the whole layer), then each rank keeps its part.
   particles::ParticleSet& p = m.particles;
+  out.particles_total = p.size();
   const double tol = 1e-6 * s.spacing;
   for (const auto& f : s.functions) out.loading.functions.push_back(f.f);
   for (const io::PdCondition& c : s.conditions) {
@@ -193,6 +186,36 @@ PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer) {
     if (r.velocity)
       for (int i : particles_in(p, r.region, tol))
         for (int d = 0; d < 3; ++d) p.v[3 * i + d] = (*r.velocity)(d);
+  const pd::VolumeCorrection correction =
+      s.volume_correction == "exact"    ? pd::VolumeCorrection::Exact
+      : s.volume_correction == "linear" ? pd::VolumeCorrection::Linear
+                                        : pd::VolumeCorrection::None;
+  if (!ranks.serial()) {
+    PhaseTimer::Scope scope(timer, "decomposition");
+    // Exact partial volumes reach neighbours whose cells only touch the horizon.
+    const double reach = correction == pd::VolumeCorrection::Exact
+                             ? m.horizon + 0.5 * m.spacing * std::sqrt(m.plane() ? 2.0 : 3.0)
+                             : m.horizon;
+    distribution::LocalPart part = distribution::local_part(p, ranks, reach * (1.0 + 1e-9));
+    for (pd::Constraint& k : out.loading.constraints)
+      distribution::keep_owned(k.particles, k.held, part);
+    for (pd::BodyLoad& load : out.loading.loads) {
+      std::vector<int> group = load.particles;
+      distribution::keep_owned(load.particles, load.pulses, part);
+      distribution::keep_owned(group, load.densities, part);
+    }
+    out.first_id = part.first;
+    m.particles = std::move(part.particles);
+    m.halo = std::move(part.halo);
+  }
+  {
+    PhaseTimer::Scope scope(timer, "bonds");
+    pd::build_bonds(m, law_table(s, m.horizon), correction);
+    if (s.surface_correction) pd::apply_surface_correction(m);
+    std::vector<pd::PreCrack> cracks;
+    for (const auto& c : s.cracks) cracks.push_back({c.a, c.b, c.c});
+    out.state = pd::initial_state(m, cracks);
+  }
   for (const io::PdImpactor& k : s.impactors) {
     pd::Impactor imp;
     imp.name = k.name;
@@ -209,11 +232,15 @@ PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer) {
   // The time step: the Silling-Askari bound times the safety factor, one step per load sample
   // when a table is finer, or the step asked for (never above the bound).
   int limiting = -1;
-  const double stable = pd::stable_time_step(m, &limiting);
+  const double local_stable = pd::stable_time_step(m, &limiting);
+  const double stable = ranks.min(local_stable);
   MF_REQUIRE(std::isfinite(stable), "peridynamics: no particle has a bond; is the horizon "
                                     "(discretisation.horizon) smaller than the spacing?");
   out.dt = s.safety * stable;
-  const Vec3d where = p.reference(limiting);
+  Vec3d where(0.0, 0.0, 0.0);
+  const int holder = ranks.rank_of_min(local_stable);
+  if (ranks.rank == holder) where = p.reference(limiting);
+  ranks.broadcast(where.data(), 3, holder);
   out.dt_limit = detail::concat("stable step ", stable, " (Silling & Askari 2005) times safety ",
                                 s.safety, ", set by the particle at (", where.x(), ", ", where.y(),
                                 ", ", where.z(), ")");

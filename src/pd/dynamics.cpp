@@ -23,9 +23,11 @@ void impose(const Loading& loading, particles::ParticleSet& q, double t, double 
   });
 }
 
-/// Kinematic contact of one impactor with the particles at their current positions.
-void contact(particles::ParticleSet& p, Impactor& imp, double dt) {
-  const int n = p.size();
+/// Kinematic contact of one impactor with the owned particles at their current positions; the
+/// momentum they gain is summed over the ranks.
+void contact(particles::ParticleSet& p, Impactor& imp, double dt,
+             const distribution::Ranks& ranks) {
+  const int n = p.owned_count();
   double impulse[3] = {0.0, 0.0, 0.0};
 #pragma omp parallel for schedule(static) reduction(+ : impulse[:3])
   for (int i = 0; i < n; ++i) {
@@ -54,6 +56,7 @@ void contact(particles::ParticleSet& p, Impactor& imp, double dt) {
     }
   }
   // The particles' momentum gain is the impactor's loss.
+  ranks.sum(impulse, 3);
   const Eigen::Vector3d J(impulse[0], impulse[1], impulse[2]);
   if (!imp.fixed) imp.velocity -= J / imp.mass;
   imp.contact_force = -J / dt;
@@ -63,11 +66,13 @@ void contact(particles::ParticleSet& p, Impactor& imp, double dt) {
 
 StepReport accelerate(Model& m, BondState& s, const Loading& loading, bool with_energy) {
   particles::ParticleSet& q = m.particles;
-  const int n = q.size();
-  std::vector<double> y(3 * static_cast<std::size_t>(n));
+  m.halo.exchange(q.u, 3); // the ghosts' positions, as their owners moved them
+  const int n = q.owned_count();
+  std::vector<double> y(q.X.size());
   for (std::size_t k = 0; k < y.size(); ++k) y[k] = q.X[k] + q.u[k];
   std::vector<double> f;
   const ForceReport fr = bond_forces(m, s, y, f, with_energy);
+  if (!s.s0.empty()) m.halo.exchange(s.s0.committed); // the ghosts' critical stretch
   for (const BodyLoad& load : loading.loads)
     for (std::size_t k = 0; k < load.particles.size(); ++k) {
       const int i = load.particles[k];
@@ -78,17 +83,17 @@ StepReport accelerate(Model& m, BondState& s, const Loading& loading, bool with_
   for (int i = 0; i < n; ++i)
     for (int d = 0; d < 3; ++d) q.a[3 * i + d] = f[3 * i + d] / q.density[i];
   impose(loading, q, q.time, 0.0, nullptr);
+  const distribution::Ranks& ranks = m.halo.ranks();
   StepReport r;
-  r.broken = fr.broken;
-  r.strain_energy = fr.strain_energy;
+  r.broken = ranks.sum(fr.broken);
+  r.strain_energy = with_energy ? ranks.sum(fr.strain_energy) : 0.0;
   return r;
 }
 
 StepReport advance(Model& m, BondState& s, const Loading& loading, std::vector<Impactor>& impactors,
                    double dt, bool with_energy) {
   particles::ParticleSet& q = m.particles;
-  const int n = q.size();
-  const std::size_t size = 3 * static_cast<std::size_t>(n);
+  const std::size_t size = 3 * static_cast<std::size_t>(q.owned_count());
   // Work of the body loads over the step: the trapezoidal rule on b . du.
   double work = 0.0;
   const auto load_power = [&](const std::vector<double>& du, double t) {
@@ -115,7 +120,7 @@ StepReport advance(Model& m, BondState& s, const Loading& loading, std::vector<I
   impose(loading, q, q.time, dt, &u_old);
   for (Impactor& imp : impactors) {
     imp.position += dt * imp.velocity;
-    contact(q, imp, dt);
+    contact(q, imp, dt, m.halo.ranks());
   }
   std::vector<double> du(size);
   for (std::size_t k = 0; k < size; ++k) du[k] = q.u[k] - u_old[k];
@@ -131,19 +136,19 @@ StepReport advance(Model& m, BondState& s, const Loading& loading, std::vector<I
         for (int d = 0; d < 3; ++d)
           if (c.fixed[d]) q.v[3 * i + d] = c.value[d] * f;
     }
-  r.external_work = work;
+  r.external_work = m.halo.ranks().sum(work);
   return r;
 }
 
 double kinetic_energy(const Model& m) {
   const particles::ParticleSet& p = m.particles;
   double e = 0.0;
-  for (int i = 0; i < p.size(); ++i) {
+  for (int i : p.owned()) {
     const double v2 =
         p.v[3 * i] * p.v[3 * i] + p.v[3 * i + 1] * p.v[3 * i + 1] + p.v[3 * i + 2] * p.v[3 * i + 2];
     e += 0.5 * p.density[i] * p.volume[i] * v2;
   }
-  return e;
+  return m.halo.ranks().sum(e);
 }
 
 } // namespace mf::pd

@@ -76,9 +76,16 @@ void build_bonds(Model& m, const LawTable& table, VolumeCorrection correction) {
     fraction_of_offset.emplace(key, f);
     return f;
   };
+  const int owned = p.owned_count();
+  std::vector<int> row;
   for (int i = 0; i < n; ++i) {
-    for (long k = pairs.offset[i]; k < pairs.offset[i + 1]; ++k) {
-      const int j = pairs.partner[k];
+    // Partners in increasing global id: a particle's force sums its bonds in the same order
+    // whichever rank holds it and wherever its partners are.
+    row.assign(pairs.partner.begin() + pairs.offset[i],
+               pairs.partner.begin() + pairs.offset[i + 1]);
+    std::sort(row.begin(), row.end(), [&p](int a, int b) { return p.id[a] < p.id[b]; });
+    for (std::size_t r = 0; r < row.size() && i < owned; ++r) {
+      const int j = row[r];
       const Eigen::Vector3d d = p.reference(j) - p.reference(i);
       const double xi = d.norm();
       double beta = 1.0;
@@ -200,6 +207,7 @@ void apply_surface_correction(Model& m) {
     bond_forces(elastic, intact, y, f, true, &w);
     for (int i = 0; i < n; ++i)
       if (w[i] > 0.0) factor[d][i] = classical(p.material[i]) / w[i];
+    m.halo.exchange(factor[d]); // a bond to a ghost takes its owner's factor
   }
   // Each bond takes the mean factor of its ends along each axis, combined by its direction
   // (Madenci & Oterkus 2014, eq. 4.12).

@@ -7,9 +7,11 @@
 
 namespace mf::app {
 
-/// Runs the problem to its end time; fields go to `out` (null: none).
+/// Runs the problem to its end time, spread over `ranks`; fields go to `out` (null: none; on
+/// rank 0 only when there are several).
 explicit_dynamics::PdRunResult run_peridynamics(const io::ProblemSpec& spec,
-                                                io::OutputDirectory* out);
+                                                io::OutputDirectory* out,
+                                                const distribution::Ranks& ranks = {});
 
 /// history.csv and summary.json.
 void write_pd_outputs(const io::ProblemSpec& spec, const explicit_dynamics::PdRunResult& r,

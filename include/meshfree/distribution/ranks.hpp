@@ -14,6 +14,16 @@ struct Ranks {
   int size = 1;
   static Ranks of(MPI_Comm comm);
   bool serial() const { return size == 1; }
+  // Reductions over every rank (collective; no message on one rank).
+  double sum(double value) const;
+  long sum(long value) const;
+  void sum(double* values, int n) const;
+  double max(double value) const;
+  double min(double value) const;
+  /// The rank holding the smallest value (the lowest such rank on a tie).
+  int rank_of_min(double value) const;
+  /// `n` values of rank `root`, copied to every rank.
+  void broadcast(double* values, int n, int root) const;
 };
 
 /// Ids 0 .. total-1 split into `ranks` contiguous blocks whose sizes differ by at most one.

@@ -4,6 +4,7 @@
 // every recorded instant, and keeps the largest |value| of the quantities it tracks over every
 // step, recorded or not (a peak between two history rows is not lost).
 #include "meshfree/core/types.hpp"
+#include "meshfree/distribution/ranks.hpp"
 #include <functional>
 #include <string>
 #include <utility>
@@ -25,22 +26,28 @@ public:
   /// A quantity of one particle.
   using Quantity = std::function<double(int particle)>;
   Gauges() = default;
-  Gauges(const std::vector<GaugePoint>& points, const std::vector<double>& positions, int n);
+  /// Each gauge follows the particle nearest its point among the first n of `positions`; on a
+  /// run spread over MPI ranks (n: the owned ones) among every rank's, held by the rank that
+  /// owns it (the lowest rank on a tie, which holds the lowest ids). Collective.
+  Gauges(const std::vector<GaugePoint>& points, const std::vector<double>& positions, int n,
+         const distribution::Ranks& ranks = {});
   /// A history column per gauge.
   void record(std::string quantity, Quantity q);
   /// A maximum over every step per gauge.
   void track(std::string quantity, Quantity q);
+  /// The particle of each gauge, -1 where another rank holds it.
   const std::vector<int>& particles() const { return particle_; }
   /// "<gauge>_<quantity>" of every gauge and recorded quantity, gauge by gauge.
   std::vector<std::string> columns() const;
-  /// Appends the recorded quantities in the order of columns().
+  /// Appends the recorded quantities in the order of columns(). Collective.
   void append_to(std::vector<double>& row) const;
   /// Takes the tracked quantities of this step into the maxima.
   void update_maxima();
-  /// "<gauge>_<quantity>" and the largest |value| so far, gauge by gauge.
-  const std::vector<std::pair<std::string, double>>& maxima() const { return maxima_; }
+  /// "<gauge>_<quantity>" and the largest |value| so far, gauge by gauge. Collective.
+  std::vector<std::pair<std::string, double>> maxima() const;
 
 private:
+  distribution::Ranks ranks_;
   std::vector<std::string> names_;
   std::vector<int> particle_;
   std::vector<std::pair<std::string, Quantity>> recorded_, tracked_;

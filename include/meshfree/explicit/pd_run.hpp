@@ -16,8 +16,9 @@
 namespace mf::explicit_dynamics {
 
 struct PdRunResult {
-  int particles = 0;
-  long bonds = 0; // counted once
+  int particles = 0; // over every rank
+  long bonds = 0;    // counted once, over every rank
+  int mpi_ranks = 1;
   long steps = 0;
   double dt = 0.0;
   std::string dt_limit;
@@ -49,8 +50,10 @@ public:
   }
   void advance(double dt, bool history_due);
   void track() { gauges_.update_maxima(); }
+  /// The lowest id of a particle whose motion is not finite, or -1. Collective.
   int nonfinite() const;
-  Vec3 position(int i) const { return setup_.model.particles.reference(i); }
+  /// The reference position of particle `id`. Collective.
+  Vec3 position(int id) const;
   std::string advice() const;
   void record();
   void write_fields();
@@ -60,6 +63,7 @@ public:
   void finish(const LoopReport& loop);
 
 private:
+  const distribution::Ranks& ranks() const { return setup_.model.halo.ranks(); }
   PdSetup& setup_;
   const io::PdSpec& spec_;
   PdRunResult& r_;

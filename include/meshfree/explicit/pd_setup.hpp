@@ -17,10 +17,15 @@ struct PdSetup {
   pd::Loading loading;
   std::vector<pd::Impactor> impactors;
   double dt = 0.0;
-  std::string dt_limit; // what set the time step
+  std::string dt_limit;     // what set the time step
+  long particles_total = 0; // over every rank
+  long first_id = 0;        // of this rank's first owned particle (owned ids are contiguous)
 };
 
-PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer);
+/// On a run spread over MPI ranks (`ranks`), each rank sets up its block of particles and the
+/// ghosts within reach of them (distribution/local_part.hpp). Collective.
+PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer,
+                       const distribution::Ranks& ranks = {});
 
 /// The body, its bond laws, time step and blast pulses, on the log.
 void log_pd_setup(const io::ProblemSpec& spec, const PdSetup& setup);

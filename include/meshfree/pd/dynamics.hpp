@@ -99,6 +99,10 @@ struct StepReport {
   double external_work = 0.0; // work of the body loads over the step
 };
 
+/// On a run spread over MPI ranks every function below is collective (each rank calls it): the
+/// ghosts are refreshed before the forces, and the step's counts, energies, work and contact
+/// impulses are summed over the ranks.
+///
 /// Accelerations of the particles at their current state: bond forces plus body loads over
 /// density (constrained components get zero). Call once before the first step.
 StepReport accelerate(Model& m, BondState& s, const Loading& loading, bool with_energy);

@@ -4,6 +4,7 @@
 // it is done once; the bond state that changes during a run (intact flags, plastic stretches)
 // lives in BondState, the motion in the particle set.
 #include "meshfree/core/types.hpp"
+#include "meshfree/distribution/halo.hpp"
 #include "meshfree/materials/pd_bonds.hpp"
 #include "meshfree/particles/particle_set.hpp"
 #include <string>
@@ -55,6 +56,9 @@ struct Model {
   std::vector<int> law_of; // law of bonds between materials a and b: law_of[a * materials + b]
   Bonds bonds;
   std::vector<double> weight_sum; // sum of a particle's bond weights at t = 0 (damage)
+  /// On a run spread over MPI ranks: the ghosts' copies of other ranks' particles, refreshed
+  /// before every force evaluation. Bonds are built for owned particles only.
+  distribution::Halo halo;
 
   bool plane() const { return dimension != materials::PdDimension::Solid3D; }
   bool any_plastic() const;
@@ -68,7 +72,8 @@ struct LawTable {
   std::vector<int> law_of;
 };
 
-/// Builds the bonds of `m.particles` within m.horizon (|xi| <= delta), with the volume correction
+/// Builds the bonds of the owned particles of `m.particles` within m.horizon (a ghost is a
+/// partner, never a row) (|xi| <= delta), with the volume correction
 /// and the laws of the material pairs; fills bonds, laws and weight_sum.
 void build_bonds(Model& m, const LawTable& table, VolumeCorrection correction);
 
