@@ -84,8 +84,8 @@ void build_bonds(Model& m, const LawTable& table, VolumeCorrection correction) {
     row.assign(pairs.partner.begin() + pairs.offset[i],
                pairs.partner.begin() + pairs.offset[i + 1]);
     std::sort(row.begin(), row.end(), [&p](int a, int b) { return p.id[a] < p.id[b]; });
-    for (std::size_t r = 0; r < row.size() && i < owned; ++r) {
-      const int j = row[r];
+    for (std::size_t q = 0; q < row.size() && i < owned; ++q) {
+      const int j = row[q];
       const Eigen::Vector3d d = p.reference(j) - p.reference(i);
       const double xi = d.norm();
       double beta = 1.0;
