@@ -6,7 +6,7 @@ namespace mf::pd {
 void kinematic_contact(particles::ParticleSet& p, Impactor& imp, double dt) {
   const int n = p.size();
   double impulse[3] = {0.0, 0.0, 0.0};
-  double gain = 0.0; // kinetic energy the particles gain in the exchange
+  double gain = 0.0; // kinetic energy the particles gain in the exchange (see below)
 #pragma omp parallel for schedule(static) reduction(+ : impulse[:3], gain)
   for (int i = 0; i < n; ++i) {
     Eigen::Vector3d y(p.X[3 * i] + p.u[3 * i], p.X[3 * i + 1] + p.u[3 * i + 1],
@@ -29,8 +29,11 @@ void kinematic_contact(particles::ParticleSet& p, Impactor& imp, double dt) {
       const double moved = target(d) - y(d);
       p.u[k] += moved;
       const double dv = moved / dt;
-      // m (v + dv)^2 / 2 - m v^2 / 2 with v the velocity before the exchange.
-      gain += mass * dv * (p.v[k] + 0.5 * dv);
+      // What the exchange adds to the kinetic energy of the full steps that velocity Verlet
+      // balances against the trapezoidal work of the forces: m dv . (v^n + dv / 2), v^n =
+      // v^{n+1/2} - dt a^n / 2 the velocity at the start of the step (a particle held on a
+      // support, pushed back each step by dv = -dt a, gains nothing).
+      gain += mass * dv * (p.v[k] - 0.5 * dt * p.a[k] + 0.5 * dv);
       p.v[k] += dv;
       impulse[d] += mass * dv;
     }
