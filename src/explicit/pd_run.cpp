@@ -59,8 +59,10 @@ PdRun::PdRun(PdSetup& setup, const io::PdSpec& spec, io::OutputDirectory* out, P
     log::info("relaxation: static equilibrium under the loads at t = 0 in ", x.iterations,
               " iterations (residual ratio ", x.residual_ratio, "), ", x.seconds, " s");
   }
-  last_ = pd::accelerate(m, setup_.state, setup_.loading, true);
+  contact_ = !setup_.impactors.empty() || setup_.short_range;
+  last_ = pd::accelerate(m, setup_.state, setup_.loading, interactions(), true);
   e0_ = pd::kinetic_energy(m) + last_.strain_energy;
+  if (contact_) e0_ += last_.contact_energy + impactor_energy();
   broken_ = last_.broken;
 
   const char* axes[] = {"x", "y", "z"};
@@ -78,6 +80,13 @@ PdRun::PdRun(PdSetup& setup, const io::PdSpec& spec, io::OutputDirectory* out, P
   std::vector<std::string> H = {"time",          "step",          "kinetic_energy",
                                 "strain_energy", "external_work", "energy_balance",
                                 "broken_bonds",  "max_damage"};
+  // With contact the balance also holds the contact potential energy, the free impactors'
+  // kinetic energy, the work of prescribed impactors' drives and what kinematic contact
+  // dissipates, and the strain energy broken bonds took with them: E = KE + SE + contact +
+  // impactors' KE, E - E0 - W_ext - W_drive + D_contact + D_fracture = 0.
+  if (contact_)
+    H.insert(H.end(), {"contact_energy", "impactor_kinetic_energy", "impactor_work",
+                       "contact_dissipation", "fracture_energy"});
   for (const auto& imp : setup_.impactors) { // a fixed support records only its force
     if (!imp.fixed) {
       for (int d = 0; d < dims; ++d) H.push_back(imp.name + "_position_" + axes[d]);
@@ -97,8 +106,8 @@ PdRun::PdRun(PdSetup& setup, const io::PdSpec& spec, io::OutputDirectory* out, P
 }
 
 void PdRun::advance(double dt, bool history_due) {
-  last_ =
-      pd::advance(setup_.model, setup_.state, setup_.loading, setup_.impactors, dt, history_due);
+  last_ = pd::advance(setup_.model, setup_.state, setup_.loading, interactions(), dt, history_due);
+  fracture_ += last_.fracture_energy - last_.fracture_work;
   last_has_energy_ = history_due;
   work_ += last_.external_work;
   broken_ += last_.broken;
@@ -135,9 +144,12 @@ void PdRun::record() {
   pd::Model& m = setup_.model;
   const particles::ParticleSet& p = m.particles;
   // A row between history instants (the last one) needs the strain energy of the state.
-  const double strain_energy =
-      last_has_energy_ ? last_.strain_energy
-                       : pd::accelerate(m, setup_.state, setup_.loading, true).strain_energy;
+  if (!last_has_energy_) {
+    last_ = pd::accelerate(m, setup_.state, setup_.loading, interactions(), true);
+    fracture_ += last_.fracture_energy;
+  }
+  last_has_energy_ = true;
+  const double strain_energy = last_.strain_energy;
   pd::damage(m, setup_.state, phi_);
   const double kinetic = pd::kinetic_energy(m);
   double max_damage = 0.0;
@@ -150,6 +162,16 @@ void PdRun::record() {
                           kinetic + strain_energy - e0_ - work_,
                           static_cast<double>(broken_ / 2),
                           ranks().max(max_damage)};
+  if (contact_) {
+    double drive = 0.0, dissipated = 0.0;
+    for (const auto& imp : setup_.impactors) drive += imp.work, dissipated += imp.dissipated;
+    const double moving = impactor_energy();
+    // The strain energy of the last evaluation still holds the bonds it broke.
+    const double fracture = fracture_ - last_.fracture_energy;
+    row[5] = kinetic + strain_energy + last_.contact_energy + moving - e0_ - work_ - drive +
+             dissipated + fracture;
+    row.insert(row.end(), {last_.contact_energy, moving, drive, dissipated, fracture});
+  }
   const int dims = m.plane() ? 2 : 3;
   for (const auto& imp : setup_.impactors) {
     if (!imp.fixed) {
@@ -201,6 +223,9 @@ void PdRun::finish(const LoopReport& loop) {
   double emax = 0.0, drift = 0.0;
   for (const auto& row : r_.history.rows()) {
     emax = std::max({emax, row[2] + row[3], std::abs(row[4])});
+    if (contact_) // contact energy, impactors' kinetic energy, drive work, dissipations
+      emax = std::max({emax, row[2] + row[3] + row[8] + row[9], std::abs(row[10]),
+                       std::abs(row[11]), std::abs(row[12])});
     drift = std::max(drift, std::abs(row[5]));
   }
   r_.energy_drift = emax > 0.0 ? drift / emax : 0.0;

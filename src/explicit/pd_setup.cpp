@@ -224,6 +224,9 @@ PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer,
     imp.half_size = k.half_size;
     imp.mass = k.mass;
     imp.fixed = k.fixed;
+    imp.prescribed = k.prescribed;
+    imp.law = k.penalty ? pd::Impactor::Law::Penalty : pd::Impactor::Law::Kinematic;
+    imp.stiffness = k.stiffness;
     imp.position = k.position;
     imp.velocity = k.velocity;
     if (!k.sphere) imp.direction = k.velocity.normalized();
@@ -236,6 +239,13 @@ PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer,
   const double stable = ranks.min(local_stable);
   MF_REQUIRE(std::isfinite(stable), "peridynamics: no particle has a bond; is the horizon "
                                     "(discretisation.horizon) smaller than the spacing?");
+  for (pd::Impactor& imp : out.impactors)
+    if (imp.law == pd::Impactor::Law::Penalty && imp.stiffness == 0.0)
+      imp.stiffness = pd::derived_penalty_stiffness(p.density[limiting], stable, s.spacing);
+  // A fragment may fly beyond the ghosts, which are fixed at the start: one rank sees it all.
+  MF_REQUIRE(!s.short_range_contact || ranks.serial(),
+             "discretisation.short_range_contact: runs on one MPI rank (", ranks.size, " given)");
+  if (s.short_range_contact) out.short_range.emplace(m);
   out.dt = s.safety * stable;
   Vec3d where(0.0, 0.0, 0.0);
   const int holder = ranks.rank_of_min(local_stable);
@@ -271,6 +281,11 @@ void log_pd_setup(const io::ProblemSpec& spec, const PdSetup& setup) {
               m.laws[k].plastic() ? detail::concat(", yield stretch ", m.laws[k].yield_stretch)
                                   : "");
   log::info("time step ", setup.dt, ": ", setup.dt_limit);
+  for (const pd::Impactor& imp : setup.impactors)
+    if (imp.law == pd::Impactor::Law::Penalty)
+      log::info("impactor '", imp.name, "': penalty contact (LAMMPS fix indent), stiffness ",
+                imp.stiffness);
+  if (setup.short_range) log::info("short-range contact of particles (LAMMPS peri/pmb): on");
   for (const pd::BodyLoad& load : setup.loading.loads) {
     if (load.pulses.empty()) continue;
     const auto [lo, hi] = std::minmax_element(

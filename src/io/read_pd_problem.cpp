@@ -177,6 +177,7 @@ PdSpec parse_pd(KeyReader& r, const ProblemSpec& front, const std::string& base_
     s.volume_correction = d.choice("volume_correction", {"exact", "linear", "none"}, "exact");
     const std::string surface = d.choice("surface_correction", {"none", "energy"}, "none");
     s.surface_correction = surface == "energy";
+    s.short_range_contact = d.choice("short_range_contact", {"false", "true"}, "false") == "true";
     d.finish();
   }
   for (KeyReader& g : r.map_list("regions")) {
@@ -235,15 +236,29 @@ PdSpec parse_pd(KeyReader& r, const ProblemSpec& front, const std::string& base_
     k.allow(imp.sphere ? "size" : "radius");
     if (k.has(imp.sphere ? "size" : "radius"))
       k.error(imp.sphere ? "size" : "radius", "does not belong to this shape");
-    imp.fixed = k.choice("motion", {"free", "fixed"}, "free") == "fixed";
+    const std::string motion = k.choice("motion", {"free", "fixed", "prescribed"}, "free");
+    imp.fixed = motion == "fixed";
+    imp.prescribed = motion == "prescribed";
     if (imp.fixed) {
       if (k.has("mass") || k.has("velocity"))
         k.error("motion", "a fixed impactor (a support) has no mass or velocity");
       k.allow("mass");
       k.allow("velocity");
+    } else if (imp.prescribed) {
+      if (k.has("mass")) k.error("mass", "a prescribed motion does not depend on a mass");
+      k.allow("mass");
+      imp.velocity = read_point(k, "velocity", dim);
     } else {
       imp.mass = k.positive("mass");
       imp.velocity = read_point(k, "velocity", dim);
+    }
+    if (auto c = k.optional_map("contact")) {
+      imp.penalty = c->choice("type", {"kinematic", "penalty"}, "kinematic") == "penalty";
+      if (c->has("stiffness") && !imp.penalty)
+        c->error("stiffness", "only a penalty contact has a stiffness");
+      if (imp.penalty) imp.stiffness = c->positive("stiffness", 0.0);
+      c->allow("stiffness");
+      c->finish();
     }
     imp.position = read_point(k, "position", dim);
     if (imp.velocity.norm() == 0.0 && !imp.sphere)

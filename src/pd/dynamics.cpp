@@ -23,54 +23,22 @@ void impose(const Loading& loading, particles::ParticleSet& q, double t, double 
   });
 }
 
-/// Kinematic contact of one impactor with the owned particles at their current positions; the
-/// momentum they gain is summed over the ranks.
-void contact(particles::ParticleSet& p, Impactor& imp, double dt,
-             const distribution::Ranks& ranks) {
-  const int n = p.owned_count();
-  double impulse[3] = {0.0, 0.0, 0.0};
-#pragma omp parallel for schedule(static) reduction(+ : impulse[:3])
-  for (int i = 0; i < n; ++i) {
-    Eigen::Vector3d y(p.X[3 * i] + p.u[3 * i], p.X[3 * i + 1] + p.u[3 * i + 1],
-                      p.X[3 * i + 2] + p.u[3 * i + 2]);
-    const Eigen::Vector3d rel = y - imp.position;
-    Eigen::Vector3d target;
-    if (imp.shape == Impactor::Shape::Sphere) {
-      const double r = rel.norm();
-      if (r >= imp.radius || r == 0.0) continue;
-      target = imp.position + rel * (imp.radius / r);
-    } else {
-      if ((rel.cwiseAbs() - imp.half_size).maxCoeff() >= 0.0) continue;
-      // Onto the leading face: the face whose outward normal is the impact direction.
-      const double ahead = imp.half_size.dot(imp.direction.cwiseAbs());
-      target = y + (ahead - rel.dot(imp.direction)) * imp.direction;
-    }
-    const double mass = p.density[i] * p.volume[i];
-    for (int d = 0; d < 3; ++d) {
-      const std::size_t k = 3 * static_cast<std::size_t>(i) + d;
-      const double moved = target(d) - y(d);
-      p.u[k] += moved;
-      const double dv = moved / dt;
-      p.v[k] += dv;
-      impulse[d] += mass * dv;
-    }
-  }
-  // The particles' momentum gain is the impactor's loss.
-  ranks.sum(impulse, 3);
-  const Eigen::Vector3d J(impulse[0], impulse[1], impulse[2]);
-  if (!imp.fixed) imp.velocity -= J / imp.mass;
-  imp.contact_force = -J / dt;
-}
-
 } // namespace
 
 StepReport accelerate(Model& m, BondState& s, const Loading& loading, bool with_energy) {
+  return accelerate(m, s, loading, Interactions{}, with_energy);
+}
+
+StepReport accelerate(Model& m, BondState& s, const Loading& loading, const Interactions& x,
+                      bool with_energy) {
   particles::ParticleSet& q = m.particles;
   m.halo.exchange(q.u, 3); // the ghosts' positions, as their owners moved them
   const int n = q.owned_count();
   std::vector<double> y(q.X.size());
   for (std::size_t k = 0; k < y.size(); ++k) y[k] = q.X[k] + q.u[k];
   std::vector<double> f;
+  std::vector<unsigned char> intact_before;
+  if (x.fracture) intact_before = s.intact;
   const ForceReport fr = bond_forces(m, s, y, f, with_energy);
   if (!s.s0.empty()) m.halo.exchange(s.s0.committed); // the ghosts' critical stretch
   for (const BodyLoad& load : loading.loads)
@@ -79,6 +47,14 @@ StepReport accelerate(Model& m, BondState& s, const Loading& loading, bool with_
       const double g = loading.factor(load, k, q.time);
       for (int d = 0; d < 3; ++d) f[3 * i + d] += g * load.density_of(k, d);
     }
+  double contact_energy = 0.0;
+  if (x.short_range) contact_energy += m.halo.ranks().sum(x.short_range->add_forces(m, y, f));
+  if (x.impactors)
+    for (Impactor& imp : *x.impactors)
+      if (imp.law == Impactor::Law::Penalty) {
+        penalty_contact(q, y, imp, f, m.halo.ranks());
+        contact_energy += imp.contact_energy;
+      }
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i)
     for (int d = 0; d < 3; ++d) q.a[3 * i + d] = f[3 * i + d] / q.density[i];
@@ -87,12 +63,24 @@ StepReport accelerate(Model& m, BondState& s, const Loading& loading, bool with_
   StepReport r;
   r.broken = ranks.sum(fr.broken);
   r.strain_energy = with_energy ? ranks.sum(fr.strain_energy) : 0.0;
+  r.contact_energy = contact_energy;
+  if (r.broken > 0 && x.fracture)
+    r.fracture_energy = ranks.sum(x.fracture->broken(m, s, intact_before, y));
   return r;
 }
 
 StepReport advance(Model& m, BondState& s, const Loading& loading, std::vector<Impactor>& impactors,
                    double dt, bool with_energy) {
+  Interactions x;
+  x.impactors = &impactors;
+  return advance(m, s, loading, x, dt, with_energy);
+}
+
+StepReport advance(Model& m, BondState& s, const Loading& loading, const Interactions& x, double dt,
+                   bool with_energy) {
   particles::ParticleSet& q = m.particles;
+  std::vector<Impactor> none;
+  std::vector<Impactor>& impactors = x.impactors ? *x.impactors : none;
   const std::size_t size = 3 * static_cast<std::size_t>(q.owned_count());
   // Work of the body loads over the step: the trapezoidal rule on b . du.
   double work = 0.0;
@@ -118,17 +106,36 @@ StepReport advance(Model& m, BondState& s, const Loading& loading, std::vector<I
   q.time += dt;
   ++q.step;
   impose(loading, q, q.time, dt, &u_old);
-  for (Impactor& imp : impactors) {
-    imp.position += dt * imp.velocity;
-    contact(q, imp, dt, m.halo.ranks());
+  // Impactors: a free penalty impactor takes its half kick from the last contact force; each
+  // moving one drifts; kinematic ones then push the particles out.
+  std::vector<Eigen::Vector3d> start(impactors.size()), force_before(impactors.size());
+  for (std::size_t k = 0; k < impactors.size(); ++k) {
+    Impactor& imp = impactors[k];
+    start[k] = imp.position;
+    force_before[k] = imp.contact_force;
+    if (imp.law == Impactor::Law::Penalty && imp.free())
+      imp.velocity += 0.5 * dt * imp.contact_force / imp.mass;
+    if (!imp.fixed) imp.position += dt * imp.velocity;
+    if (imp.law == Impactor::Law::Kinematic) kinematic_contact(q, imp, dt, m.halo.ranks());
   }
   std::vector<double> du(size);
   for (std::size_t k = 0; k < size; ++k) du[k] = q.u[k] - u_old[k];
   work += 0.5 * (load_power(du, t_old) + load_power(du, q.time));
+  const double fracture_work =
+      x.fracture ? m.halo.ranks().sum(x.fracture->work_over_step(du)) : 0.0;
   // New accelerations and the second half kick.
-  StepReport r = accelerate(m, s, loading, with_energy);
+  StepReport r = accelerate(m, s, loading, x, with_energy);
 #pragma omp parallel for schedule(static)
   for (std::size_t k = 0; k < size; ++k) q.v[k] += 0.5 * dt * q.a[k];
+  for (std::size_t k = 0; k < impactors.size(); ++k) {
+    Impactor& imp = impactors[k];
+    if (imp.law != Impactor::Law::Penalty) continue;
+    if (imp.free()) imp.velocity += 0.5 * dt * imp.contact_force / imp.mass;
+    // The drive holds a prescribed impactor against the contact force F: its work on the body
+    // over the step is -F . dx (trapezoidal rule).
+    if (imp.prescribed)
+      imp.work -= 0.5 * (force_before[k] + imp.contact_force).dot(imp.position - start[k]);
+  }
   for (const Constraint& c : loading.constraints) // prescribed velocities stay as prescribed
     if (c.velocity) {
       const double f = loading.factor(c.function, q.time);
@@ -137,6 +144,7 @@ StepReport advance(Model& m, BondState& s, const Loading& loading, std::vector<I
           if (c.fixed[d]) q.v[3 * i + d] = c.value[d] * f;
     }
   r.external_work = m.halo.ranks().sum(work);
+  r.fracture_work = fracture_work;
   return r;
 }
 

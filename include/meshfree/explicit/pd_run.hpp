@@ -26,7 +26,9 @@ struct PdRunResult {
   io::History history;
   double max_damage = 0.0;
   long broken_bonds = 0;
-  double energy_drift = 0.0; // |E_total(t) - E_total(0) - W_ext| / max(E), no dissipation only
+  /// max |E(t) - E(0) - W_ext - W_drive + D| / max(E, |W|) (pd_run.cpp: E with the contact and
+  /// impactor energies, W_drive of prescribed impactors, D dissipated by kinematic contact).
+  double energy_drift = 0.0;
   /// Largest |value| of every gauge component (u, v, a) over every step, not only the recorded
   /// ones: "<gauge>_<u|v|a><x|y|z>".
   std::vector<std::pair<std::string, double>> gauge_maxima;
@@ -69,7 +71,25 @@ private:
   PdRunResult& r_;
   Gauges gauges_;
   io::FieldOutput fields_;
-  pd::StepReport last_; // of the last force evaluation
+  /// The impactors, the short-range contact and, with contact, the fracture energy.
+  pd::Interactions interactions() {
+    pd::Interactions x;
+    x.impactors = &setup_.impactors;
+    x.short_range = setup_.short_range ? &*setup_.short_range : nullptr;
+    x.fracture = contact_ ? &fracture_account_ : nullptr;
+    return x;
+  }
+  /// Kinetic energy of the free impactors.
+  double impactor_energy() const {
+    double e = 0.0;
+    for (const auto& imp : setup_.impactors) e += imp.kinetic_energy();
+    return e;
+  }
+
+  pd::StepReport last_;   // of the last force evaluation
+  bool contact_ = false;  // impactors or short-range contact: the balance has their energies
+  double fracture_ = 0.0; // energy of the bonds broken so far (with contact)
+  pd::FractureEnergy fracture_account_;
   bool last_has_energy_ = true;
   double e0_ = 0.0, work_ = 0.0;
   long broken_ = 0; // from both ends

@@ -5,6 +5,7 @@
 #include "meshfree/core/timer.hpp"
 #include "meshfree/io/problem_spec.hpp"
 #include "meshfree/pd/dynamics.hpp"
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@ struct PdSetup {
   pd::BondState state;
   pd::Loading loading;
   std::vector<pd::Impactor> impactors;
+  std::optional<pd::ShortRangeContact> short_range; // discretisation.short_range_contact
   double dt = 0.0;
   std::string dt_limit;     // what set the time step
   long particles_total = 0; // over every rank

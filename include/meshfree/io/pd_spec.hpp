@@ -57,8 +57,11 @@ struct PdImpactor {
   bool sphere = true;
   double radius = 0.0;
   Point half_size{0, 0, 0};
-  double mass = 0.0; // 0 for a fixed support
+  double mass = 0.0; // 0 for a fixed support or a prescribed motion
   bool fixed = false;
+  bool prescribed = false; // moves at its velocity whatever the contact pushes
+  bool penalty = false;    // contact.type: penalty (LAMMPS fix indent) rather than kinematic
+  double stiffness = 0.0;  // penalty K; 0: derived (pd::derived_penalty_stiffness)
   Point position{0, 0, 0}, velocity{0, 0, 0};
 };
 
@@ -82,6 +85,7 @@ struct PdSpec {
   double horizon_factor = 3.0;             // delta = horizon_factor * spacing
   std::string volume_correction = "exact"; // exact | linear | none
   bool surface_correction = false;
+  bool short_range_contact = false;    // LAMMPS peri/pmb's short-range repulsion of particles
   std::vector<MaterialSpec> materials; // each with density and bond
   int body_material = 0;
   std::vector<PdInterface> interfaces;

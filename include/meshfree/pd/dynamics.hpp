@@ -1,11 +1,15 @@
 #pragma once
 // Explicit dynamics of a peridynamic body: velocity Verlet (the half kick, drift, force, half
 // kick of LAMMPS's fix nve; paper 000 eq. 9), body forces and tractions turned into body forces,
-// prescribed displacement and velocity components, and rigid impactors with kinematic contact.
+// prescribed displacement and velocity components, rigid impactors (pd/contact.hpp) and the
+// optional short-range contact of particles (pd/short_range.hpp).
 #include "meshfree/loads/blast.hpp"
 #include "meshfree/loads/time_function.hpp"
+#include "meshfree/pd/contact.hpp"
 #include "meshfree/pd/forces.hpp"
+#include "meshfree/pd/fracture_energy.hpp"
 #include "meshfree/pd/model.hpp"
+#include "meshfree/pd/short_range.hpp"
 #include <string>
 #include <vector>
 
@@ -48,25 +52,6 @@ struct BodyLoad {
   }
 };
 
-/// A rigid impactor: a sphere (a disk in a plane) or a flat-nosed block, with its mass and
-/// velocity. Contact is kinematic (Madenci & Oterkus 2014, sec. 10.3): a particle found inside
-/// after the drift is put back on the surface (a sphere radially, a flat nose along the impact
-/// direction onto the leading face), its velocity becomes the one that moved it there, and the
-/// momentum it gained is taken from the impactor.
-struct Impactor {
-  enum class Shape { Sphere, Flat };
-  std::string name;
-  Shape shape = Shape::Sphere;
-  double radius = 0.0;                      // sphere
-  Eigen::Vector3d half_size{0.0, 0.0, 0.0}; // flat: half extents of the block
-  Eigen::Vector3d direction{0.0, -1.0,
-                            0.0}; // flat: unit impact direction (the leading face's normal)
-  double mass = 0.0;
-  bool fixed = false; // a support: it does not move, whatever the contact pushes
-  Eigen::Vector3d position{0.0, 0.0, 0.0}, velocity{0.0, 0.0, 0.0};
-  Eigen::Vector3d contact_force{0.0, 0.0, 0.0}; // on the impactor, last step
-};
-
 struct Loading {
   std::vector<loads::TimeFunction> functions;
   std::vector<Constraint> constraints;
@@ -94,9 +79,12 @@ struct Loading {
 };
 
 struct StepReport {
-  long broken = 0;            // bonds broken in this step (from both ends)
-  double strain_energy = 0.0; // if asked for
-  double external_work = 0.0; // work of the body loads over the step
+  long broken = 0;              // bonds broken in this step (from both ends)
+  double strain_energy = 0.0;   // if asked for
+  double external_work = 0.0;   // work of the body loads over the step
+  double contact_energy = 0.0;  // penalty impactors' and short-range contact's potential energy
+  double fracture_energy = 0.0; // strain energy of the bonds broken in this evaluation
+  double fracture_work = 0.0;   // half work of the bonds broken before this step, over it
 };
 
 /// On a run spread over MPI ranks every function below is collective (each rank calls it): the
@@ -107,10 +95,26 @@ struct StepReport {
 /// density (constrained components get zero). Call once before the first step.
 StepReport accelerate(Model& m, BondState& s, const Loading& loading, bool with_energy);
 
+/// What a step adds to the bonds and the loads: impactors, the short-range contact of
+/// particles, and (when not null) the account of the energy breaking bonds take.
+struct Interactions {
+  std::vector<Impactor>* impactors = nullptr;
+  ShortRangeContact* short_range = nullptr;
+  FractureEnergy* fracture = nullptr;
+};
+
+/// The same with the interactions: the short-range contact force and the penalty impactors'
+/// forces are added after the bond forces, as LAMMPS adds fix indent's (post_force).
+StepReport accelerate(Model& m, BondState& s, const Loading& loading, const Interactions& x,
+                      bool with_energy);
+
 /// One velocity-Verlet step of length dt with the impactors in contact: the particles' motion
-/// and clock move on.
+/// and clock move on. The order is LAMMPS's: half kick and drift of particles and impactors,
+/// kinematic contact, forces (bonds, short-range contact, penalty impactors), half kick.
 StepReport advance(Model& m, BondState& s, const Loading& loading, std::vector<Impactor>& impactors,
                    double dt, bool with_energy);
+StepReport advance(Model& m, BondState& s, const Loading& loading, const Interactions& x, double dt,
+                   bool with_energy);
 
 /// Kinetic energy sum_i rho_i V_i |v_i|^2 / 2.
 double kinetic_energy(const Model& m);

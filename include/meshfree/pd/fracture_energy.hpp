@@ -1,0 +1,30 @@
+#pragma once
+// The energy that breaking bonds take out of a peridynamic body. A bond that breaks in a force
+// evaluation at positions y^n counts its strain energy and its force in that evaluation
+// (pd/forces.hpp) and neither after it. In velocity Verlet its force still does its half of the
+// trapezoidal work (F^n + F^{n+1}) . dy / 2 of the next step (the half kick after the
+// evaluation), so what the body's energy loses with the bond is its energy e(y^n) less that
+// half work W = F^n . (y^{n+1} - y^n) / 2, counted once the next drift is known. e is the
+// strain energy's own term V_i w_ij w(s_ij) / 2 from each end.
+#include "meshfree/pd/model.hpp"
+#include <vector>
+
+namespace mf::pd {
+
+class FractureEnergy {
+public:
+  /// The strain energy, at positions y, of the bonds intact in `before` and broken in s.intact;
+  /// remembers their forces for work_over_step.
+  double broken(const Model& m, const BondState& s, const std::vector<unsigned char>& before,
+                const std::vector<double>& y);
+
+  /// Half the work, over a step with displacement increments du (3 per particle), of the forces
+  /// of the bonds broken in the evaluation before it; forgets them.
+  double work_over_step(const std::vector<double>& du);
+
+private:
+  std::vector<int> particle_; // particles with a bond broken in the last evaluation
+  std::vector<double> force_; // their broken bonds' force (3 per entry), not per volume
+};
+
+} // namespace mf::pd

@@ -1,0 +1,71 @@
+#!/usr/bin/env python3
+"""problems/pd_disk_impact.yaml against LAMMPS's run of the same example
+(reference/lammps/disk_impact, made by scripts/pd_reference/make_lammps_disk_impact.py).
+
+Every 10 steps over the whole run (1000 steps): the number of damaged particles (damage > 0, from
+fields.h5) within 5% of LAMMPS's, and the force on the indenter within 5% of LAMMPS's peak force
+(the force passes through zero); the peak force within 5% of LAMMPS's. The energy balance of the
+run (energy_balance column: kinetic + strain + contact energy - drive work + fracture energy)
+within 1e-3 of the largest energy up to step 150; after it the indenter's centre passes the top
+particles, where the penalty potential K (R - r)^3 / 3 has a cusp (its force, K R^2 at r = 0,
+reverses direction) that a step crosses at once (the indenter force drops from 93 N to 36 N in
+one step, in LAMMPS too), which the balance reports; the whole run's value is printed.
+Usage: pd_disk_impact_vs_lammps.py MESHFREE SOURCE_DIR [OUT_DIR]
+"""
+import csv
+import json
+import os
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import h5py
+import numpy as np
+
+
+def main():
+    meshfree, source = sys.argv[1], Path(sys.argv[2])
+    out = Path(sys.argv[3]) if len(sys.argv) > 3 else Path(tempfile.mkdtemp()) / "disk_impact"
+    env = dict(os.environ, OMP_NUM_THREADS="1")
+    subprocess.run([meshfree, "run", str(source / "problems/pd_disk_impact.yaml"), "--out", str(out),
+                    "--set", "output.history_interval=1e-7"], check=True, env=env,
+                   stdout=subprocess.DEVNULL)
+    ref = {int(r["step"]): r for r in csv.DictReader(open(source / "reference/lammps/disk_impact/history.csv"))}
+    rows = {int(float(r["step"])): r for r in csv.DictReader(open(out / "history.csv"))}
+    lammps_force = np.array([float(ref[s]["indenter_force_y"]) for s in sorted(ref)])
+    ours_force = np.array([float(rows[s]["indenter_force_z"]) for s in sorted(ref)])
+    peak = np.abs(lammps_force).max()
+    force_error = np.abs(ours_force - lammps_force).max() / peak
+    peak_error = abs(np.abs(ours_force).max() - peak) / peak
+    worst_damage = 0.0
+    with h5py.File(out / "fields.h5", "r") as f:
+        for key in sorted(k for k in f.keys() if k.startswith("step_")):
+            step = int(key.split("_")[1]) * 10  # fields every 1e-6 s = 10 steps
+            if step not in ref:  # the frame of the end, written again
+                continue
+            n_ours = int((np.array(f[key]["damage"]) > 0).sum())
+            n_lammps = int(ref[step]["damaged_particles"])
+            err = abs(n_ours - n_lammps) / max(n_lammps, 1)
+            worst_damage = max(worst_damage, err)
+            if step % 100 == 0:
+                print("step %4d: damaged particles %4d (LAMMPS %4d), indenter force %8.4f N "
+                      "(LAMMPS %8.4f N)" % (step, n_ours, n_lammps, float(rows[step]["indenter_force_z"]),
+                                             float(ref[step]["indenter_force_y"])))
+    energy = [float(r["kinetic_energy"]) + float(r["strain_energy"]) + float(r["contact_energy"])
+              for s, r in sorted(rows.items()) if s <= 150]
+    balance = max(abs(float(r["energy_balance"])) for s, r in rows.items() if s <= 150)
+    drive = max(abs(float(r["impactor_work"])) for s, r in rows.items() if s <= 150)
+    early_balance = balance / max(max(energy), drive)
+    summary = json.load(open(out / "summary.json"))
+    whole = summary["results"]["energy_balance_relative"]
+    print("peak indenter force %.4f N (LAMMPS %.4f N), largest force difference %.2e of the peak, "
+          "damaged-particle count within %.2e, energy balance %.2e up to step 150 (%.2e over the "
+          "whole run)" % (np.abs(ours_force).max(), peak, force_error, worst_damage, early_balance,
+                          whole))
+    ok = force_error <= 0.05 and peak_error <= 0.05 and worst_damage <= 0.05 and early_balance <= 1e-3
+    sys.exit(0 if ok else 1)
+
+
+if __name__ == "__main__":
+    main()
