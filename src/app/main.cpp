@@ -99,7 +99,7 @@ int check(const Command& c) {
     mf::PhaseTimer timer;
     const mf::explicit_dynamics::PdSetup setup = mf::explicit_dynamics::build_pd_setup(spec, timer);
     std::cout << "  peridynamics: " << setup.model.particles.size() << " particles, "
-              << setup.model.bonds.count() / 2 << " bonds, horizon " << setup.model.horizon
+              << setup.model.bonds.pairs() << " bonds, horizon " << setup.model.horizon
               << "\n  time step " << setup.dt << " (" << setup.dt_limit << "), "
               << static_cast<long>(std::ceil(spec.pd->end_time / setup.dt)) << " steps\n";
     return 0;

@@ -2,6 +2,7 @@
 #include "meshfree/core/log.hpp"
 #include "meshfree/explicit/surface_blast.hpp"
 #include "meshfree/geometry/lattice.hpp"
+#include "meshfree/pd/particle_order.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -134,10 +135,13 @@ PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer) {
   m.thickness = s.thickness;
   m.spacing = s.spacing;
   m.horizon = s.horizon_factor * s.spacing;
+  m.deterministic = s.deterministic;
   for (const auto& mat : s.materials) m.material_names.push_back(mat.name);
   {
     PhaseTimer::Scope scope(timer, "particles");
     m.particles = lattice(spec);
+    // Neighbours close in space close in memory; everything below is built in this order.
+    pd::order_along_curve(m.particles, s.spacing);
   }
   {
     PhaseTimer::Scope scope(timer, "bonds");
@@ -236,7 +240,7 @@ PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer) {
 
 void log_pd_setup(const io::ProblemSpec& spec, const PdSetup& setup) {
   const pd::Model& m = setup.model;
-  log::info("peridynamics: ", m.particles.size(), " particles, ", m.bonds.count() / 2,
+  log::info("peridynamics: ", m.particles.size(), " particles, ", m.bonds.pairs(),
             " bonds, horizon ", m.horizon, " (", spec.pd->horizon_factor, " spacings), ",
             m.laws.size(), " bond law(s)");
   for (std::size_t k = 0; k < m.laws.size(); ++k)

@@ -177,6 +177,7 @@ PdSpec parse_pd(KeyReader& r, const ProblemSpec& front, const std::string& base_
     s.volume_correction = d.choice("volume_correction", {"exact", "linear", "none"}, "exact");
     const std::string surface = d.choice("surface_correction", {"none", "energy"}, "none");
     s.surface_correction = surface == "energy";
+    s.deterministic = d.choice("deterministic", {"true", "false"}, "false") == "true";
     d.finish();
   }
   for (KeyReader& g : r.map_list("regions")) {
