@@ -14,7 +14,7 @@ two bond evaluations, as LAMMPS's full neighbour list evaluates it twice. meshfr
 over the whole step (velocity Verlet, forces, breaking); LAMMPS's is given over its loop time
 (the whole step) and over its pair time (bond forces and short-range contact). Bytes per bond:
 meshfree's results.bond_bytes_per_bond (steady and at the peak while building), LAMMPS's 'Per MPI
-rank memory allocated' over its bonds.
+rank memory allocation' over its bonds.
 
     scripts/pd_benchmark.py [--sizes 22 43 65 100] [--threads 1 2] [--repeats 2] [--out DIR]
 
@@ -84,7 +84,7 @@ def run_lammps(lmp, workdir, n, steps, ranks):
             prefix.append("--allow-run-as-root")
     text, _ = lref.run_lmp(lmp, workdir, deck.name, prefix=prefix)
     p = lref.parse_log(text)
-    m = re.search(r"Per MPI rank memory allocated \(min/avg/max\) = \S+ \| (\S+) \| \S+ Mbytes",
+    m = re.search(r"Per MPI rank memory allocation \(min/avg/max\) = \S+ \| (\S+) \| \S+ Mbytes",
                   text)
     mem = float(m.group(1)) * 2 ** 20 * ranks if m else float("nan")
     return p["bonds"], p["loop"], p["pair"], mem / p["bonds"]

@@ -19,9 +19,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <unistd.h>
 #include <filesystem>
 #include <iostream>
+#include <unistd.h>
 
 namespace {
 

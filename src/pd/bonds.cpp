@@ -185,25 +185,27 @@ void build_bonds(Model& m, const LawTable& table, VolumeCorrection correction) {
     return;
   }
   const CellList cells(p.X, reach);
-  // On a lattice a bond's geometry depends only on its offset in spacings: the offset is snapped
-  // to the lattice, so that every bond of an offset has the same length and weight (one class),
-  // whatever the round-off of the positions; the partial volume is computed once per offset.
+  // A bond's length is |X_j - X_i| evaluated as the force loop evaluates |y_j - y_i|, so that
+  // the reference configuration is free of force to the last bit; on a lattice the lengths of
+  // an offset then differ only by the round-off of the positions, and the classes stay few. The
+  // exact partial volume depends only on the offset in spacings there: computed once per offset.
   std::unordered_map<long long, double> fraction_of_offset;
   struct Geometry {
     double length, beta;
   };
   const auto geometry = [&](int i, int j) {
-    Eigen::Vector3d d = p.reference(j) - p.reference(i);
-    const Eigen::Vector3d spacings = d / dx;
-    const Eigen::Vector3d rounded = spacings.array().round();
-    const bool lattice = (spacings - rounded).cwiseAbs().maxCoeff() <= 1e-6;
-    if (lattice) d = rounded * dx;
-    const double xi = d.norm();
+    const double ex = p.X[3 * j] - p.X[3 * i], ey = p.X[3 * j + 1] - p.X[3 * i + 1],
+                 ez = p.X[3 * j + 2] - p.X[3 * i + 2];
+    const double xi = std::sqrt(ex * ex + ey * ey + ez * ez);
     double beta = 1.0;
     if (correction == VolumeCorrection::Linear && xi > m.horizon - r) {
       beta = (m.horizon + r - xi) / (2.0 * r);
     } else if (correction == VolumeCorrection::Exact && xi > inner) {
-      if (!lattice) return Geometry{xi, cell_fraction_inside(d, dx, m.horizon, plane)};
+      const Eigen::Vector3d d(ex, ey, ez);
+      const Eigen::Vector3d spacings = d / dx;
+      const Eigen::Vector3d rounded = spacings.array().round();
+      if ((spacings - rounded).cwiseAbs().maxCoeff() > 1e-6)
+        return Geometry{xi, cell_fraction_inside(d, dx, m.horizon, plane)};
       const long long key = ((static_cast<long long>(rounded.x()) + 1000) * 2001 +
                              (static_cast<long long>(rounded.y()) + 1000)) *
                                 2001 +

@@ -27,14 +27,15 @@ struct Arrays {
 
 /// One bond's scalar force factors. With the stretch s = |y_j - y_i| / |xi| - 1 and the plastic
 /// stretch s_p (Macek & Silling 2007: |s - s_p| <= s_Y, the return is exact), the force density
-/// on i is c w_ij (s - s_p) (y_j - y_i) / |y_j - y_i| (Silling & Askari 2005, eq. 3 and 6); the
-/// class holds c w_ij and 1 / |xi|, so that the bond costs a square root and one division.
+/// on i is c w_ij (s - s_p) (y_j - y_i) / |y_j - y_i| (Silling & Askari 2005, eq. 3 and 6;
+/// LAMMPS pair_peri_pmb.cpp, PairPeriPMB::compute, computes dr = r - r0 the same way); the class
+/// holds c w_ij and 1 / |xi|, so that the bond costs a square root and one division.
 template <bool Plastic> struct Bond {
   double s, e, inv_r; // stretch, elastic stretch s - s_p, 1 / r
   Bond(const BondClass& c, double r2, double* plastic_stretch) {
     const double r = std::sqrt(r2);
     inv_r = r > 0.0 ? 1.0 / r : 0.0;
-    s = r * c.inv_length - 1.0;
+    s = (r - c.length) * c.inv_length; // r - |xi| is exact near |xi| (Sterbenz)
     e = s;
     if constexpr (Plastic) {
       double sp = *plastic_stretch;
