@@ -11,6 +11,7 @@ summary.json, every history.csv column and every field of the last output step.
     scripts/compare_problem_runs.py --old-meshfree OLD/meshfree --old-problems OLD/problems \\
         --new-meshfree build/meshfree --new-problems problems --out out/compare_runs
 
+--match-positions pairs particles by position when the two builds order them differently.
 --reuse-old keeps the old runs already in OUT/old (or --old-runs DIR).
 Runs use OMP_NUM_THREADS=1 unless --threads says otherwise, so that sums are in one order.
 """
@@ -58,6 +59,8 @@ def main():
     ap.add_argument("--rtol", type=float, default=1e-10)
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--reuse-old", action="store_true")
+    ap.add_argument("--match-positions", action="store_true",
+                    help="pair particles by position (compare_runs.py --match-positions)")
     ap.add_argument("--old-runs", help="folder of existing old runs (default OUT/old); implies --reuse-old")
     ap.add_argument("--only-old", action="store_true", help="run the old side only")
     ap.add_argument("problems", nargs="*", help="file names to compare (default: all)")
@@ -87,7 +90,8 @@ def main():
         rc, t = run(args.new_meshfree, new_problem, new_dir, args.explicit_fraction,
                     args.threads, out / "new" / f"{stem}.log")
         cmp = subprocess.run(["/usr/bin/python3", str(ROOT / "scripts" / "compare_runs.py"),
-                              str(old_dir), str(new_dir), "--rtol", str(args.rtol)],
+                              str(old_dir), str(new_dir), "--rtol", str(args.rtol)]
+                             + (["--match-positions"] if args.match_positions else []),
                              capture_output=True, text=True)
         last = (cmp.stdout.strip().splitlines() or [""])[-1]
         verdict = "ok" if rc == 0 and cmp.returncode == 0 else "FAIL"

@@ -3,13 +3,19 @@
 of the last step in fields.h5 (relative to that field's largest magnitude), every column of
 history.csv (relative to the column's largest magnitude; solver iteration counts and residuals
 excepted) and every number under "results" in summary.json (relative to the largest magnitude of
-its section, e.g. all reactions of a condition, or all monitor displacements).
+its section, e.g. all reactions of a condition, or all monitor displacements). The components of
+a vector (names ending in _x, _y, _z) are measured against the largest of them.
 
-    scripts/compare_runs.py OUT_A OUT_B [--rtol 1e-8]
+    scripts/compare_runs.py OUT_A OUT_B [--rtol 1e-8] [--match-positions]
+
+--match-positions pairs the nodes (particles) of the two runs by their coordinates when the two
+runs write them in different orders (e.g. particles renumbered along a space-filling curve);
+the two sets of coordinates must then be equal as sets.
 """
 import argparse
 import csv
 import json
+import re
 import sys
 
 import h5py
@@ -21,10 +27,21 @@ def main():
     ap.add_argument("a")
     ap.add_argument("b")
     ap.add_argument("--rtol", type=float, default=1e-8)
+    ap.add_argument("--match-positions", action="store_true",
+                    help="pair nodes by coordinates when the runs order them differently")
     args = ap.parse_args()
     with h5py.File(f"{args.a}/fields.h5", "r") as fa, h5py.File(f"{args.b}/fields.h5", "r") as fb:
-        if not np.array_equal(fa["geometry/coordinates"][...], fb["geometry/coordinates"][...]):
-            sys.exit("the two runs have different nodes")
+        xa, xb = fa["geometry/coordinates"][...], fb["geometry/coordinates"][...]
+        order_a = order_b = slice(None)
+        if not np.array_equal(xa, xb):
+            if not args.match_positions or xa.shape != xb.shape:
+                sys.exit("the two runs have different nodes")
+            # Lexicographic order of the coordinates on both sides pairs equal positions.
+            order_a = np.lexsort(xa.T[::-1])
+            order_b = np.lexsort(xb.T[::-1])
+            if not np.array_equal(xa[order_a], xb[order_b]):
+                sys.exit("the two runs have different nodes (as sets of positions)")
+            print(f"nodes paired by position ({len(xa)})")
         step = sorted(k for k in fa.keys() if k.startswith("step_"))[-1]
         worst = 0.0
         # Stress components are measured against the largest of them (szz of plane stress is
@@ -32,7 +49,7 @@ def main():
         stress_scale = max([np.abs(fa[step][n][...]).max() for n in fa[step]
                             if n.startswith("stress_") or n == "von_mises"] or [0.0])
         for name in fa[step]:
-            x, y = fa[step][name][...], fb[step][name][...]
+            x, y = fa[step][name][...][order_a], fb[step][name][...][order_b]
             own = np.abs(x).max()
             scale = max(stress_scale if name.startswith("stress_") else own, 1e-300)
             rel = np.abs(x - y).max() / scale
@@ -50,16 +67,19 @@ def main():
 
     ra = dict(numbers(json.loads(open(f"{args.a}/summary.json").read())["results"]))
     rb = dict(numbers(json.loads(open(f"{args.b}/summary.json").read())["results"]))
-    # Iteration counts, rates measured in wall time, round-off quantities, and where a maximum lies (symmetric problems
+    # Iteration counts, rates measured in wall time, memory use, round-off quantities, and where a maximum lies (symmetric problems
     # have ties that round-off decides).
-    solver_keys = ("newton_iterations", "equilibrium_error", ".at.", "per_second")
+    solver_keys = ("newton_iterations", "equilibrium_error", ".at.", "per_second", "bond_bytes")
     ra = {k: v for k, v in ra.items() if not any(s in k for s in solver_keys)}
     rb = {k: v for k, v in rb.items() if not any(s in k for s in solver_keys)}
     if ra.keys() != rb.keys():
         sys.exit("the two summaries report different results")
 
+    def vector(name):  # a vector's components are measured against the largest of them
+        return re.sub(r"_[xyz]$", "", name)
+
     def section(key):
-        return ".".join(key.split(".")[:2])
+        return vector(".".join(key.split(".")[:2]))
 
     sections = {}
     for k, v in ra.items():
@@ -89,7 +109,7 @@ def main():
               "solver_iterations"}
     def kind(col):  # forces and displacements are measured against the largest of their kind
         return ("force" if col.startswith(("reaction_", "load_")) else
-                "displacement" if col.startswith(("ux_", "uy_")) else col)
+                "displacement" if col.startswith(("ux_", "uy_")) else vector(col))
 
     columns = [c for c in (ha[0].keys() if ha else []) if c not in solver]
     kinds = {}

@@ -17,9 +17,11 @@
 #include "meshfree/sph/step.hpp"
 #include "meshfree/stages/staged_run.hpp"
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <unistd.h>
 
 namespace {
 
@@ -99,7 +101,7 @@ int check(const Command& c) {
     mf::PhaseTimer timer;
     const mf::explicit_dynamics::PdSetup setup = mf::explicit_dynamics::build_pd_setup(spec, timer);
     std::cout << "  peridynamics: " << setup.model.particles.size() << " particles, "
-              << setup.model.bonds.count() / 2 << " bonds, horizon " << setup.model.horizon
+              << setup.model.bonds.pairs() << " bonds, horizon " << setup.model.horizon
               << "\n  time step " << setup.dt << " (" << setup.dt_limit << "), "
               << static_cast<long>(std::ceil(spec.pd->end_time / setup.dt)) << " steps\n";
     return 0;
@@ -225,7 +227,19 @@ int run(Command& c) {
 
 } // namespace
 
+/// OpenMP threads that wait at the end of a loop sleep instead of spinning, unless the user chose
+/// a policy: with another job on one of the cores a spinning team waits for its slowest thread
+/// at every loop, a sleeping one gives the core away. libgomp reads OMP_WAIT_POLICY when it is
+/// loaded, before main, so the program runs itself again once with the policy set (on failure it
+/// goes on with the default).
+void wait_passively(char** argv) {
+  if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
+  setenv("OMP_WAIT_POLICY", "passive", 1);
+  execv("/proc/self/exe", argv);
+}
+
 int main(int argc, char** argv) {
+  wait_passively(argv);
   Command c;
   try {
     c = parse(argc, argv);

@@ -37,7 +37,10 @@ PdRun::PdRun(PdSetup& setup, const io::PdSpec& spec, io::OutputDirectory* out, P
   pd::Model& m = setup_.model;
   const particles::ParticleSet& p = m.particles;
   r_.particles = static_cast<int>(setup_.particles_total);
-  r_.bonds = ranks().sum(m.bonds.count()) / 2;
+  r_.bonds = ranks().sum(m.bonds.directed) / 2; // a bond between two ranks is held by both
+  const double directed = std::max(1.0, static_cast<double>(m.bonds.directed));
+  r_.bond_bytes_steady = m.bonds.bytes(!setup_.state.plastic.empty()) / directed;
+  r_.bond_bytes_peak = std::max(m.bonds.peak_bytes / directed, r_.bond_bytes_steady);
   r_.dt = setup_.dt;
   r_.dt_limit = setup_.dt_limit;
   if (spec_.relaxation) {
@@ -216,10 +219,12 @@ void PdRun::finish(const LoopReport& loop) {
   r_.broken_bonds = broken_ / 2;
   r_.timer.add("stepping", loop.seconds);
   r_.gauge_maxima = gauges_.maxima();
-  // Each step evaluates every intact bond from both of its ends.
-  r_.bond_updates_per_second = loop.advance_seconds > 0.0 ? 2.0 * static_cast<double>(r_.bonds) *
-                                                                loop.steps / loop.advance_seconds
-                                                          : 0.0;
+  // Bond evaluations counted as directed bonds, as LAMMPS's 'total # of bonds' (the half bond
+  // layout computes each pair once for both of its ends).
+  r_.bond_updates_per_second =
+      loop.advance_seconds > 0.0
+          ? static_cast<double>(setup_.model.bonds.directed) * loop.steps / loop.advance_seconds
+          : 0.0;
   double emax = 0.0, drift = 0.0;
   for (const auto& row : r_.history.rows()) {
     emax = std::max({emax, row[2] + row[3], std::abs(row[4])});

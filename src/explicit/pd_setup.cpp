@@ -3,6 +3,7 @@
 #include "meshfree/distribution/local_part.hpp"
 #include "meshfree/explicit/surface_blast.hpp"
 #include "meshfree/geometry/lattice.hpp"
+#include "meshfree/pd/particle_order.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -136,10 +137,13 @@ PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer,
   m.thickness = s.thickness;
   m.spacing = s.spacing;
   m.horizon = s.horizon_factor * s.spacing;
+  m.deterministic = s.deterministic;
   for (const auto& mat : s.materials) m.material_names.push_back(mat.name);
   {
     PhaseTimer::Scope scope(timer, "particles");
     m.particles = lattice(spec);
+    // Neighbours close in space close in memory; everything below is built in this order.
+    pd::order_along_curve(m.particles, s.spacing);
   }
   // Loads, constraints and initial velocities are set on the whole body (a traction's layer and
   // a blast's pulses are properties of the whole layer), then each rank keeps its part.
@@ -273,7 +277,7 @@ PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer,
 
 void log_pd_setup(const io::ProblemSpec& spec, const PdSetup& setup) {
   const pd::Model& m = setup.model;
-  log::info("peridynamics: ", m.particles.size(), " particles, ", m.bonds.count() / 2,
+  log::info("peridynamics: ", setup.particles_total, " particles, ", m.bonds.pairs(),
             " bonds, horizon ", m.horizon, " (", spec.pd->horizon_factor, " spacings), ",
             m.laws.size(), " bond law(s)");
   for (std::size_t k = 0; k < m.laws.size(); ++k)

@@ -22,6 +22,9 @@ void summarise(const PdRunResult& r, io::Json& counts, io::Json& time_step, io::
       .set("max_damage", r.max_damage)
       .set("energy_balance_relative", r.energy_drift)
       .set("bond_evaluations_per_second", r.bond_updates_per_second);
+  io::Json bytes;
+  bytes.set("steady", r.bond_bytes_steady).set("peak", r.bond_bytes_peak);
+  results.set("bond_bytes_per_bond", bytes);
   // Largest magnitudes of every recorded history column (gauges, impactor, crack), from the
   // third column on (the first two are time and step).
   io::Json maxima;

@@ -178,6 +178,7 @@ PdSpec parse_pd(KeyReader& r, const ProblemSpec& front, const std::string& base_
     const std::string surface = d.choice("surface_correction", {"none", "energy"}, "none");
     s.surface_correction = surface == "energy";
     s.short_range_contact = d.choice("short_range_contact", {"false", "true"}, "false") == "true";
+    s.deterministic = d.choice("deterministic", {"true", "false"}, "false") == "true";
     d.finish();
   }
   for (KeyReader& g : r.map_list("regions")) {

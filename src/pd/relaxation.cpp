@@ -55,12 +55,14 @@ public:
     if (!active_) return;
     laws_ = m.laws;
     for (materials::BondLaw& law : m.laws) law.critical_stretch = 0.0;
+    fold_laws(m);
     s0_ = std::move(s.s0);
     s.s0 = {};
   }
   ~NoBreaking() {
     if (!active_) return;
     m_.laws = std::move(laws_);
+    fold_laws(m_);
     s_.s0 = std::move(s0_);
   }
   NoBreaking(const NoBreaking&) = delete;
@@ -124,21 +126,17 @@ Norms net_force(const Model& m, BondState& s, const Statics& st, double scale,
 /// intact bonds at the reference directions e.
 std::vector<double> fictitious_density(const Model& m, const BondState& s) {
   const particles::ParticleSet& q = m.particles;
-  const Bonds& b = m.bonds;
   const int n = q.size();
   std::vector<double> lambda(3 * static_cast<std::size_t>(n), 0.0);
-#pragma omp parallel for schedule(dynamic, 512)
-  for (int i = 0; i < n; ++i)
-    for (long k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      if (!s.intact[k]) continue;
-      const int j = b.partner[k];
-      const double L = b.length[k];
-      const double e[3] = {(q.X[3 * j] - q.X[3 * i]) / L, (q.X[3 * j + 1] - q.X[3 * i + 1]) / L,
-                           (q.X[3 * j + 2] - q.X[3 * i + 2]) / L};
-      const double stiffness = m.laws[b.law[k]].c * b.weight[k] / L;
-      const double row = std::abs(e[0]) + std::abs(e[1]) + std::abs(e[2]);
-      for (int d = 0; d < 3; ++d) lambda[3 * i + d] += 0.5 * stiffness * std::abs(e[d]) * row;
-    }
+  for_each_directed_bond(m, [&](int i, int j, long k, double w, const BondClass& c) {
+    if (!s.intact[k]) return;
+    const double L = c.length;
+    const double e[3] = {(q.X[3 * j] - q.X[3 * i]) / L, (q.X[3 * j + 1] - q.X[3 * i + 1]) / L,
+                         (q.X[3 * j + 2] - q.X[3 * i + 2]) / L};
+    const double stiffness = m.laws[c.law].c * w / L;
+    const double row = std::abs(e[0]) + std::abs(e[1]) + std::abs(e[2]);
+    for (int d = 0; d < 3; ++d) lambda[3 * i + d] += 0.5 * stiffness * std::abs(e[d]) * row;
+  });
   return lambda;
 }
 

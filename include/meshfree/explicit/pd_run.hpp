@@ -22,7 +22,9 @@ struct PdRunResult {
   long steps = 0;
   double dt = 0.0;
   std::string dt_limit;
-  double bond_updates_per_second = 0.0;
+  double bond_updates_per_second = 0.0; // directed bonds x steps / stepping seconds
+  double bond_bytes_steady = 0.0;       // bytes per directed bond held by the bonds in a run
+  double bond_bytes_peak = 0.0;         // ... and at most while they were built
   io::History history;
   double max_damage = 0.0;
   long broken_bonds = 0;

@@ -86,6 +86,7 @@ struct PdSpec {
   std::string volume_correction = "exact"; // exact | linear | none
   bool surface_correction = false;
   bool short_range_contact = false;    // LAMMPS peri/pmb's short-range repulsion of particles
+  bool deterministic = false; // discretisation.deterministic: bonds in full rows, global-id order
   std::vector<MaterialSpec> materials; // each with density and bond
   int body_material = 0;
   std::vector<PdInterface> interfaces;

@@ -2,15 +2,19 @@
 // The bond forces of a peridynamic body: the hot loop. For particle i at current position y_i,
 //   F_i = sum_j mu_ij f(s_ij) e_ij w_ij   (force per unit volume; w_ij = V_j times corrections),
 // with f from the bond law (materials::bond_force), s the bond stretch and e the current bond
-// direction (Silling & Askari 2005, eq. 3 discretised). Each bond is stored and evaluated from
-// both ends, so rows are independent: OpenMP over particles, no atomics, no virtual calls.
+// direction (Silling & Askari 2005, eq. 3 discretised). The loop is chosen once per call by the
+// bond layout (BondLayout: each pair once with Newton's third law and per-thread buffers, or full
+// rows summed in global-id order) and by the kind of law (elastic or micro-plastic, with or
+// without the LAMMPS alpha rule, with or without energies): no per-bond law lookup, no virtual
+// call; the per-bond constants come from the bond's class.
 #include "meshfree/pd/model.hpp"
 #include <vector>
 
 namespace mf::pd {
 
 struct ForceReport {
-  long broken = 0;            // bonds broken in this evaluation (each bond counted from both ends)
+  long broken = 0; // bonds broken in this evaluation: directed bonds (a pair of owned particles
+                   // counts 2, an owned-ghost pair 1)
   double strain_energy = 0.0; // sum_i V_i W_i, W_i = 1/2 sum_j w(s_ij) w_ij, if asked for
 };
 

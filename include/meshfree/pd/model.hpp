@@ -7,6 +7,7 @@
 #include "meshfree/distribution/halo.hpp"
 #include "meshfree/materials/pd_bonds.hpp"
 #include "meshfree/particles/particle_set.hpp"
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -25,23 +26,58 @@ namespace mf::pd {
 ///    (plane stress, uniaxial strain; it falls to 0.7% at delta = 5 dx).
 enum class VolumeCorrection { None, Linear, Exact };
 
-/// Bonds in compressed rows, each bond stored in both its particles' rows. Per bond: partner,
-/// initial length |xi|, weight V_j times the volume and surface corrections, law index.
-struct Bonds {
-  std::vector<long> offset{0};
-  std::vector<int> partner;
-  std::vector<double> length;
-  std::vector<double> weight;
-  std::vector<unsigned char> law;
-  long count() const { return static_cast<long>(partner.size()); }
+/// What a bond's force needs besides its partner, shared by every bond with the same geometry,
+/// weights and law (on a lattice: bonds of the same offset), so that a bond stores a partner and a
+/// class index. Classes are deduplicated by exact equality of (law, length, weight,
+/// weight_partner); the folded constants follow from those and the law (fold_laws).
+struct BondClass {
+  int law = 0;
+  double length = 0.0;         // |xi|
+  double inv_length = 0.0;     // 1 / |xi|
+  double weight = 0.0;         // w_ij = V_j times the volume and surface corrections
+  double weight_partner = 0.0; // w_ji = V_i times the same corrections
+  // Folded from the law:
+  double cw = 0.0, cw_partner = 0.0; // c w_ij, c w_ji
+  double limit = 0.0;                // critical stretch; +inf where the law never breaks
+  double alpha_floor = 0.0;          // LAMMPS rule: the limit is max(min(s0_i, s0_j), alpha_floor)
+  double s00 = 0.0;                  // LAMMPS rule: s0 candidate s00 - alpha s
+  double alpha = 0.0;
+  double yield = 0.0; // micro-plastic yield stretch; +inf for an elastic law
 };
 
-/// What changes in a run: intact flags, plastic stretches (micro-plastic laws), and the LAMMPS
-/// rule's per-particle critical stretch (the committed value is read, the trial one written by
-/// a force evaluation, which then commits it).
+/// How the bonds of the owned particles are stored (both in compressed rows, one row per owned
+/// particle):
+///  - Half: each pair once, in the row of its particle of smaller index (an owned-ghost pair in
+///    the owned particle's row); the force loop applies Newton's third law. Rows sorted by
+///    partner index.
+///  - Full: each bond in the rows of both its owned particles, rows sorted by the partner's
+///    global id; each particle sums its own row in that order, so that its force does not depend
+///    on the thread count or on which rank holds which particle.
+enum class BondLayout { Half, Full };
+
+struct Bonds {
+  BondLayout layout = BondLayout::Half;
+  std::vector<long> offset{0};
+  std::vector<int> partner;
+  std::vector<std::uint32_t> cls; // index into classes
+  std::vector<BondClass> classes;
+  std::vector<materials::BondLaw> folded; // the laws the classes were folded from
+  long directed = 0;       // directed bonds: a pair of owned particles counts 2, owned-ghost 1
+  double peak_bytes = 0.0; // the most memory building them held (bond arrays and scratch)
+
+  long stored() const { return static_cast<long>(partner.size()); }
+  long pairs() const { return layout == BondLayout::Half ? stored() : directed / 2; }
+  /// Bytes held in steady state: rows, partners, classes, the intact flags and (micro-plastic
+  /// laws) the plastic stretches of BondState.
+  double bytes(bool plastic) const;
+};
+
+/// What changes in a run: intact flags and plastic stretches (one per stored bond; the plastic
+/// ones only with a micro-plastic law), and the LAMMPS rule's per-particle critical stretch (the
+/// committed value is read, the trial one written by a force evaluation, which then commits it).
 struct BondState {
   std::vector<unsigned char> intact;
-  std::vector<double> plastic;  // per bond, empty when no law is plastic
+  std::vector<double> plastic;  // per stored bond, empty when no law is plastic
   particles::Staged<double> s0; // per particle, empty when no law uses alpha
 };
 
@@ -53,7 +89,8 @@ struct Model {
   particles::ParticleSet particles;
   std::vector<std::string> material_names;
   std::vector<materials::BondLaw> laws;
-  std::vector<int> law_of; // law of bonds between materials a and b: law_of[a * materials + b]
+  std::vector<int> law_of;    // law of bonds between materials a and b: law_of[a * materials + b]
+  bool deterministic = false; // Full bond layout (see BondLayout) instead of Half
   Bonds bonds;
   std::vector<double> weight_sum; // sum of a particle's bond weights at t = 0 (damage)
   /// On a run spread over MPI ranks: the ghosts' copies of other ranks' particles, refreshed
@@ -72,10 +109,33 @@ struct LawTable {
   std::vector<int> law_of;
 };
 
-/// Builds the bonds of the owned particles of `m.particles` within m.horizon (a ghost is a
-/// partner, never a row) (|xi| <= delta), with the volume correction
-/// and the laws of the material pairs; fills bonds, laws and weight_sum.
+/// Builds the bonds of the owned particles of `m.particles` (partners may be ghosts) within
+/// m.horizon (|xi| <= delta), with the volume correction and the laws of the material pairs, in
+/// the layout m.deterministic asks for; fills bonds, laws and weight_sum. The rows are built in
+/// place (a counting pass, then a filling pass over a cell list), so that building holds no
+/// more than the bonds themselves and per-particle scratch.
 void build_bonds(Model& m, const LawTable& table, VolumeCorrection correction);
+
+/// Folds m.laws into the bond classes. Call it after changing m.laws: bond_forces otherwise
+/// folds the changed laws into a copy of the classes at every call.
+void fold_laws(Model& m);
+void fold_laws(std::vector<BondClass>& classes, const std::vector<materials::BondLaw>& laws);
+
+/// Calls f(i, j, k, w, c) for every directed bond i -> j of an owned particle i: k its stored
+/// index, w its weight seen from i (w_ij), c its class. In the Half layout a pair of owned
+/// particles is visited from both ends (the second time with w = c.weight_partner). Serial.
+template <class F> void for_each_directed_bond(const Model& m, F&& f) {
+  const Bonds& b = m.bonds;
+  const int owned = m.particles.owned_count();
+  const bool half = b.layout == BondLayout::Half;
+  for (int i = 0; i < owned; ++i)
+    for (long k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const int j = b.partner[k];
+      const BondClass& c = b.classes[b.cls[k]];
+      f(i, j, k, c.weight, c);
+      if (half && j < owned) f(j, i, k, c.weight_partner, c);
+    }
+}
 
 /// A crack present at t = 0: the bonds whose segment crosses it are broken. In a plane the crack
 /// is a segment from a to b; in 3D it is the parallelogram a + s (b - a) + t (c - a), s, t in [0,
