@@ -1,7 +1,9 @@
 #include "meshfree/sph/neighbours.hpp"
+#include "meshfree/core/timer.hpp"
 #include "meshfree/neighbors/reach_pairs.hpp"
 #include "meshfree/sph/symmetry.hpp"
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -9,6 +11,7 @@
 namespace mf::sph {
 
 void refresh_neighbours(Hydro& s) {
+  const auto start = std::chrono::steady_clock::now();
   group_materials(s);
   const particles::ParticleSet& P = s.particles;
   const ParticleFields& F = s.fields;
@@ -28,7 +31,10 @@ void refresh_neighbours(Hydro& s) {
       const double grown = std::max(0.0, F.h[i] - s.h_at_build[i]);
       if (std::sqrt(d2) + grown > skin * s.h_at_build[i]) stale = true;
     }
-    if (!stale) return;
+    if (!stale) {
+      s.neighbour_seconds += seconds_since(start);
+      return;
+    }
   }
   const double h_max = *std::max_element(F.h.begin(), F.h.begin() + P.owned_count());
   s.build_radius = 2.0 * h_max * (1.0 + skin);
@@ -45,6 +51,7 @@ void refresh_neighbours(Hydro& s) {
   s.x_at_build = std::move(x);
   s.h_at_build = std::move(h);
   ++s.rebuilds;
+  s.neighbour_seconds += seconds_since(start);
 }
 
 } // namespace mf::sph
