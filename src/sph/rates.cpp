@@ -101,7 +101,7 @@ void jaumann_rate(const Hydro& s, Rates& r, int i, double G, const LivePairs& li
     const double xij[3] = {live.x0[t], live.x1[t], live.x2[t]};
     double gv[3];
     gradient_vector(C, live.g[t], xij, gv);
-    const double vol = P.mass[j] / F.rho[j];
+    const double vol = r.volume[j];
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) L[a][b] += vol * (P.v[3 * j + a] - P.v[3 * i + a]) * gv[b];
   }
@@ -158,6 +158,17 @@ void compute_rates(const Hydro& s, Rates& r) {
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < all; ++i) r.spacing[i] = std::pow(P.mass[i] / P.density[i], 1.0 / dim);
   }
+  // The per-particle factors of the pair terms, p / rho^2, 1 / rho^2 and m / rho: once per
+  // particle here rather than once per pair (the same operations, so the same values).
+  r.p_rho2.resize(all);
+  r.inv_rho2.resize(all);
+  r.volume.resize(all);
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < all; ++i) {
+    r.p_rho2[i] = F.p[i] / (F.rho[i] * F.rho[i]);
+    r.inv_rho2[i] = 1.0 / (F.rho[i] * F.rho[i]);
+    r.volume[i] = P.mass[i] / F.rho[i];
+  }
   r.dv.assign(3 * static_cast<std::size_t>(all), 0.0);
   r.drho.assign(all, 0.0);
   r.de.assign(all, 0.0);
@@ -194,9 +205,9 @@ void compute_rates(const Hydro& s, Rates& r) {
     for (int i = 0; i < n; ++i) {
       const int count = live_pairs(s, r.x, i, live);
       if (solids && r.shear[i] >= 0.0) jaumann_rate(s, r, i, r.shear[i], live, count);
-      const double pi_rho2 = F.p[i] / (F.rho[i] * F.rho[i]);
+      const double pi_rho2 = r.p_rho2[i];
       const double* si = &F.S[6 * static_cast<std::size_t>(i)];
-      const double ri2 = 1.0 / (F.rho[i] * F.rho[i]);
+      const double ri2 = r.inv_rho2[i];
       double acc[3] = {0.0, 0.0, 0.0}, drho = 0.0, de = 0.0;
       for (int t = 0; t < count; ++t) {
         const int j = live.j[t];
@@ -214,7 +225,7 @@ void compute_rates(const Hydro& s, Rates& r) {
         const double mu = hij * vx / (r2 + S.phi * S.phi * hij * hij);
         const double cij = 0.5 * (F.c[i] + F.c[j]), rhoij = 0.5 * (F.rho[i] + F.rho[j]);
         const double visc = vx < 0.0 ? (-S.alpha * cij * mu + S.beta * mu * mu) / rhoij : 0.0;
-        const double q = pi_rho2 + F.p[j] / (F.rho[j] * F.rho[j]) + visc;
+        const double q = pi_rho2 + r.p_rho2[j] + visc;
         const double mj = P.mass[j];
         // The pair's gradient: with the correction, (C_i + C_j)/2 grad W, which stays
         // antisymmetric in i and j, so momentum is still conserved exactly.
@@ -236,7 +247,7 @@ void compute_rates(const Hydro& s, Rates& r) {
           // Deviatoric stress: dv_i += m_j (S_i/rho_i^2 + S_j/rho_j^2) . grad W and
           // de_i -= m_j / 2 (S_i/rho_i^2 + S_j/rho_j^2) : (v_ij (x) grad W).
           const double* sj = &F.S[6 * static_cast<std::size_t>(j)];
-          const double rj2 = 1.0 / (F.rho[j] * F.rho[j]);
+          const double rj2 = r.inv_rho2[j];
           double T[6];
           for (int c = 0; c < 6; ++c) T[c] = si[c] * ri2 + sj[c] * rj2;
           if (art) {
