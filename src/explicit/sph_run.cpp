@@ -154,13 +154,18 @@ void SphRun::finish(const LoopReport& loop) {
   r_.timer.add("stepping", loop.seconds);
   r_.steps = h_.particles.step;
   r_.neighbour_rebuilds = h_.rebuilds;
+  r_.neighbour_seconds = h_.neighbour_seconds;
+  r_.neighbour_pairs = static_cast<long>(h_.pairs.partner.size());
+  r_.neighbour_list_bytes = static_cast<long>(h_.pairs.partner.size() * sizeof(int) +
+                                              h_.pairs.offset.size() * sizeof(long));
   r_.gauge_maxima = gauges_.maxima();
   r_.particle_steps_per_second =
       loop.seconds > 0.0 ? static_cast<double>(n_) * h_.particles.step / loop.seconds : 0.0;
   if (!loop.completed()) log::info("stopped: ", r_.stop_reason);
-  log::info("done: ", r_.steps, " steps, ", r_.neighbour_rebuilds, " neighbour-list builds, ",
-            r_.particle_steps_per_second, " particle steps/s, largest energy error ",
-            r_.energy_error);
+  log::info("done: ", r_.steps, " steps, ", r_.neighbour_rebuilds, " neighbour-list builds (",
+            loop.seconds > 0.0 ? 100.0 * r_.neighbour_seconds / loop.seconds : 0.0,
+            "% of the stepping time), ", r_.particle_steps_per_second,
+            " particle steps/s, largest energy error ", r_.energy_error);
   log::info("smallest step: ", r_.dt_limit);
 }
 

@@ -1,6 +1,9 @@
 #include "meshfree/sph/neighbours.hpp"
+#include "meshfree/core/timer.hpp"
+#include "meshfree/neighbors/reach_pairs.hpp"
 #include "meshfree/sph/symmetry.hpp"
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -8,6 +11,7 @@
 namespace mf::sph {
 
 void refresh_neighbours(Hydro& s) {
+  const auto start = std::chrono::steady_clock::now();
   group_materials(s);
   const particles::ParticleSet& P = s.particles;
   const ParticleFields& F = s.fields;
@@ -27,35 +31,27 @@ void refresh_neighbours(Hydro& s) {
       const double grown = std::max(0.0, F.h[i] - s.h_at_build[i]);
       if (std::sqrt(d2) + grown > skin * s.h_at_build[i]) stale = true;
     }
-    if (!stale) return;
+    if (!stale) {
+      s.neighbour_seconds += seconds_since(start);
+      return;
+    }
   }
   const double h_max = *std::max_element(F.h.begin(), F.h.begin() + P.owned_count());
   s.build_radius = 2.0 * h_max * (1.0 + skin);
   if (!s.symmetry.empty()) rebuild_ghosts(s, s.build_radius);
   std::vector<double> x(P.X.size()); // current positions X + u, ghosts included
   for (std::size_t k = 0; k < x.size(); ++k) x[k] = P.X[k] + P.u[k];
-  const neighbors::PairList all = neighbors::pairs_within(x, s.build_radius);
-  // Keep the pairs within (h_i + h_j)(1 + skin): with smoothing lengths that differ across the
-  // body, the global radius would hand small particles many far partners.
-  const int with_ghosts = P.size();
-  s.pairs.offset.assign(with_ghosts + 1, 0);
-  s.pairs.partner.clear();
-  for (int i = 0; i < with_ghosts; ++i) {
-    for (long k = all.offset[i]; k < all.offset[i + 1]; ++k) {
-      const int j = all.partner[k];
-      double r2 = 0.0;
-      for (int d = 0; d < 3; ++d) {
-        const double dx = x[3 * i + d] - x[3 * j + d];
-        r2 += dx * dx;
-      }
-      const double reach = (F.h[i] + F.h[j]) * (1.0 + skin);
-      if (r2 < reach * reach) s.pairs.partner.push_back(j);
-    }
-    s.pairs.offset[i + 1] = static_cast<long>(s.pairs.partner.size());
-  }
+  // Pairs within (h_i + h_j)(1 + skin), searched per class of h so that a small particle does
+  // not examine every particle within the largest h's reach. Rows for the owned particles, whose
+  // rates are computed; ghosts only lend their state, so their rows are empty.
+  const int owned = P.owned_count(), with_ghosts = P.size();
+  std::vector<double> h(F.h.begin(), F.h.begin() + with_ghosts);
+  s.pairs = neighbors::pairs_within_reach(x, h, 1.0 + skin, owned);
+  s.pairs.offset.resize(with_ghosts + 1, s.pairs.offset.back());
   s.x_at_build = std::move(x);
-  s.h_at_build = F.h;
+  s.h_at_build = std::move(h);
   ++s.rebuilds;
+  s.neighbour_seconds += seconds_since(start);
 }
 
 } // namespace mf::sph

@@ -19,6 +19,9 @@ struct SphRunResult {
   int particles = 0;
   long steps = 0;
   int neighbour_rebuilds = 0;
+  double neighbour_seconds = 0.0; // of the stepping time, in neighbour checks and builds
+  long neighbour_pairs = 0;       // directed pairs in the last neighbour list
+  long neighbour_list_bytes = 0;  // its size: partners and row offsets
   double first_dt = 0.0, smallest_dt = 0.0;
   std::string dt_limit; // the particle that set the smallest step
   double particle_steps_per_second = 0.0;

@@ -20,12 +20,12 @@ inline double cubic_spline(int dim, double r, double h) {
   return 0.0;
 }
 
-/// dW/dr.
+/// dW/dr. Both pieces are evaluated and one selected, so that a loop over pairs compiles to
+/// packed code without branches.
 inline double cubic_spline_slope(int dim, double r, double h) {
   const double q = r / h, a = cubic_spline_norm(dim, h) / h;
-  if (q < 1.0) return a * (-3.0 * q + 2.25 * q * q);
-  if (q < 2.0) return -a * 0.75 * (2.0 - q) * (2.0 - q);
-  return 0.0;
+  const double inner = a * (-3.0 * q + 2.25 * q * q), outer = -a * 0.75 * (2.0 - q) * (2.0 - q);
+  return q < 1.0 ? inner : q < 2.0 ? outer : 0.0;
 }
 
 /// The Wendland C2 kernel (Wendland 1995; Dehnen & Aly 2012), support 2h, s = q / 2:

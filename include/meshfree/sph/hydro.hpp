@@ -115,6 +115,7 @@ struct Hydro {
   std::vector<double> x_at_build, h_at_build; // positions and h when the list was built
   double build_radius = 0.0;
   int rebuilds = 0;
+  double neighbour_seconds = 0.0; // wall time in refresh_neighbours (checks and builds)
   std::vector<SurfaceLoad> loads;
   std::vector<SurfaceForce> forces;
   std::vector<TransmittingBoundary> transmitting;

@@ -15,6 +15,8 @@ struct Rates {
   std::vector<double> art_stress; // 6 per particle: the artificial stress R (Voigt, like S)
   std::vector<double> spacing;    // initial spacing per particle (artificial stress, penalty)
   std::vector<double> x;          // current positions X + u, 3 per particle, ghosts included
+  std::vector<double> p_rho2, inv_rho2, volume; // p / rho^2, 1 / rho^2, m / rho per particle
+  std::vector<double> shear; // shear modulus per owned particle (solids), -1: no strength
 };
 
 /// Rates of velocity, density and energy (and deviatoric stress, for solids) at the current
