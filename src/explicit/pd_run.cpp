@@ -38,6 +38,10 @@ PdRun::PdRun(PdSetup& setup, const io::PdSpec& spec, io::OutputDirectory* out, P
   const particles::ParticleSet& p = m.particles;
   r_.particles = static_cast<int>(setup_.particles_total);
   r_.bonds = ranks().sum(m.bonds.directed) / 2; // a bond between two ranks is held by both
+  // The halo: each ghost is 24 bytes of displacement received before every force evaluation.
+  const long ghosts = p.ghosts().size();
+  r_.ghosts = ranks().sum(ghosts);
+  r_.ghosts_largest = static_cast<long>(ranks().max(static_cast<double>(ghosts)));
   const double directed = std::max(1.0, static_cast<double>(m.bonds.directed));
   r_.bond_bytes_steady = m.bonds.bytes(!setup_.state.plastic.empty()) / directed;
   r_.bond_bytes_peak = std::max(m.bonds.peak_bytes / directed, r_.bond_bytes_steady);

@@ -17,6 +17,8 @@ void summarise(const SphRunResult& r, io::Json& counts, io::Json& time_step, io:
 
 void summarise(const PdRunResult& r, io::Json& counts, io::Json& time_step, io::Json& results) {
   counts.set("particles", r.particles).set("bonds", r.bonds).set("steps", r.steps);
+  if (r.mpi_ranks > 1)
+    counts.set("ghost_particles", r.ghosts).set("ghost_particles_largest_rank", r.ghosts_largest);
   time_step.set("dt", r.dt).set("limited_by", r.dt_limit);
   results.set("broken_bonds", r.broken_bonds)
       .set("max_damage", r.max_damage)

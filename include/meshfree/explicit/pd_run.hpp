@@ -19,6 +19,7 @@ struct PdRunResult {
   int particles = 0; // over every rank
   long bonds = 0;    // counted once, over every rank
   int mpi_ranks = 1;
+  long ghosts = 0, ghosts_largest = 0; // over every rank, and on the rank with the most
   long steps = 0;
   double dt = 0.0;
   std::string dt_limit;
