@@ -126,6 +126,24 @@ Vec3d traction_density(const io::PdCondition& c, const particles::ParticleSet& p
   return c.value / thickness;
 }
 
+/// Keeps this rank's block of particles and the ghosts within `reach` of it
+/// (distribution::local_part), and the owned members of every constraint and load with their own
+/// per-particle values; the halo goes to the model.
+void keep_rank_part(PdSetup& out, const distribution::Ranks& ranks, double reach) {
+  pd::Model& m = out.model;
+  distribution::LocalPart part = distribution::local_part(m.particles, ranks, reach * (1.0 + 1e-9));
+  for (pd::Constraint& k : out.loading.constraints)
+    distribution::keep_owned(k.particles, k.held, part);
+  for (pd::BodyLoad& load : out.loading.loads) {
+    std::vector<int> group = load.particles; // filtered once per per-particle array
+    distribution::keep_owned(load.particles, load.pulses, part);
+    distribution::keep_owned(group, load.densities, part);
+  }
+  out.first_id = part.first;
+  m.particles = std::move(part.particles);
+  m.halo = std::move(part.halo);
+}
+
 } // namespace
 
 PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer,
@@ -196,21 +214,7 @@ PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer,
                                         : pd::VolumeCorrection::None;
   if (!ranks.serial()) {
     PhaseTimer::Scope scope(timer, "decomposition");
-    // Exact partial volumes reach neighbours whose cells only touch the horizon.
-    const double reach = correction == pd::VolumeCorrection::Exact
-                             ? m.horizon + 0.5 * m.spacing * std::sqrt(m.plane() ? 2.0 : 3.0)
-                             : m.horizon;
-    distribution::LocalPart part = distribution::local_part(p, ranks, reach * (1.0 + 1e-9));
-    for (pd::Constraint& k : out.loading.constraints)
-      distribution::keep_owned(k.particles, k.held, part);
-    for (pd::BodyLoad& load : out.loading.loads) {
-      std::vector<int> group = load.particles;
-      distribution::keep_owned(load.particles, load.pulses, part);
-      distribution::keep_owned(group, load.densities, part);
-    }
-    out.first_id = part.first;
-    m.particles = std::move(part.particles);
-    m.halo = std::move(part.halo);
+    keep_rank_part(out, ranks, pd::bond_reach(m, correction));
   }
   {
     PhaseTimer::Scope scope(timer, "bonds");

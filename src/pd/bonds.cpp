@@ -161,6 +161,13 @@ void fold_laws(Model& m) {
   m.bonds.folded = m.laws;
 }
 
+double bond_reach(const Model& m, VolumeCorrection correction) {
+  // Exact partial volumes reach neighbours whose cells only touch the horizon.
+  return correction == VolumeCorrection::Exact
+             ? m.horizon + 0.5 * m.spacing * std::sqrt(m.plane() ? 2.0 : 3.0)
+             : m.horizon;
+}
+
 void build_bonds(Model& m, const LawTable& table, VolumeCorrection correction) {
   MF_REQUIRE(m.horizon > 0.0 && m.spacing > 0.0, "peridynamics: horizon and spacing must be set");
   MF_REQUIRE(!table.laws.empty() && table.laws.size() < 256, "peridynamics: 1 to 255 bond laws");
@@ -168,10 +175,7 @@ void build_bonds(Model& m, const LawTable& table, VolumeCorrection correction) {
   const double dx = m.spacing, r = 0.5 * dx;
   const bool plane = m.plane();
   const bool half = !m.deterministic;
-  // Exact partial volumes reach neighbours whose cells only touch the horizon.
-  const double reach = correction == VolumeCorrection::Exact
-                           ? m.horizon + r * std::sqrt(plane ? 2.0 : 3.0)
-                           : m.horizon;
+  const double reach = bond_reach(m, correction);
   const double reach2 = reach * reach;
   const double inner = m.horizon - r * std::sqrt(plane ? 2.0 : 3.0);
   const int owned = p.owned_count();

@@ -9,7 +9,8 @@
 //   void advance(double dt, bool history_due)  // may throw mf::Error: the run stops with it
 //   void track()                                // after every step (gauge maxima)
 //   int nonfinite() const                       // a particle whose motion is not finite, or -1
-//   Vec3 position(int particle) const
+//                                               // (over MPI ranks: collective, its global id)
+//   Vec3 position(int particle) const           // of the particle nonfinite() named
 //   std::string advice() const                  // what a non-finite state suggests
 //   void record()                               // a history row at the current instant
 //   void write_fields()

@@ -116,6 +116,10 @@ struct LawTable {
 /// more than the bonds themselves and per-particle scratch.
 void build_bonds(Model& m, const LawTable& table, VolumeCorrection correction);
 
+/// The farthest a bond reaches: the horizon, or with exact partial volumes the horizon plus half
+/// a cell diagonal (neighbours whose cells only touch the horizon ball).
+double bond_reach(const Model& m, VolumeCorrection correction);
+
 /// Folds m.laws into the bond classes. Call it after changing m.laws: bond_forces otherwise
 /// folds the changed laws into a copy of the classes at every call.
 void fold_laws(Model& m);
