@@ -7,18 +7,24 @@
 #  - Fast layout (each pair once, Newton's third law): the sums run in another order on 2 ranks;
 #    before any bond breaks the runs agree to 1e-8, and after breaking the broken-bond count
 #    agrees within 1%.
+#  - SPH: on more than one rank every neighbour row is sorted by global id (the one-rank order),
+#    so the particle fields of 2 ranks equal those of one rank bit for bit: 1e-12 relative.
 # The runs are shortened; the slab's window includes bond breaking (thousands of bonds), the
 # beam's the kinematic contact of its striker, the disk's the penalty contact of LAMMPS's
-# indenter and its first damage (short-range contact runs on one rank).
+# indenter and its first damage (short-range contact runs on one rank). SPH: the TNT slab's
+# detonation (ZND front), the tunnel's blast loads and transmitting boundaries, the Taylor bar's
+# three symmetry planes (mirror images of other ranks' particles) and J2 plasticity, and a shear
+# layer whose particles cross the ranks' slabs and migrate at every list build.
 set -eu
 MF="$1"; ROOT="$2"
 WORK="$(mktemp -d)"; trap 'rm -rf "$WORK"' EXIT
-run_both() { # tag, name, end time, more --set options
+run_both() { # tag, name (problems/ or tests/data/), end time, more --set options
   local tag="$1" name="$2" end="$3"
   shift 3
-  "$MF" run "$ROOT/problems/$name.yaml" --out "$WORK/$tag-1" --set time.end=$end "$@" > /dev/null
-  mpirun -n 2 "$MF" run "$ROOT/problems/$name.yaml" --out "$WORK/$tag-2" --set time.end=$end \
-    "$@" > /dev/null
+  local file="$ROOT/problems/$name.yaml"
+  test -f "$file" || file="$ROOT/tests/data/$name.yaml"
+  "$MF" run "$file" --out "$WORK/$tag-1" --set time.end=$end "$@" > /dev/null
+  mpirun -n 2 "$MF" run "$file" --out "$WORK/$tag-2" --set time.end=$end "$@" > /dev/null
   grep -q '"mpi_ranks": 2' "$WORK/$tag-2/summary.json"
   test "$(ls "$WORK/$tag-2" | grep -c '\.h5$')" = 1 # one field file, written by both ranks
 }
@@ -50,4 +56,19 @@ import csv, sys
 one, two = (float(list(csv.DictReader(open(f)))[-1]["broken_bonds"]) for f in sys.argv[1:3])
 print(f"fast layout: broken bonds {one:.0f} on one rank, {two:.0f} on two")
 assert one > 1000 and abs(two - one) <= 0.01 * one
+PY
+# SPH, in the one order it has.
+check_sph() { # name, end time
+  run_both "$1" "$1" "$2"
+  /usr/bin/python3 "$ROOT/scripts/compare_runs.py" "$WORK/$1-1" "$WORK/$1-2" --rtol 1e-12
+}
+check_sph sph_tnt_slab 1.4e-5
+check_sph sph_tunnel_blast 5.0e-3
+check_sph sph_taylor_bar 5.0e-6
+check_sph sph_shear_layer 0.3
+/usr/bin/python3 - "$WORK/sph_shear_layer-2/summary.json" <<'PY'
+import json, sys
+counts = json.load(open(sys.argv[1]))["counts"]
+print(f"shear layer: {counts['migrated_particles']} particles migrated between the 2 ranks")
+assert counts["migrated_particles"] > 100, "the shear layer's particles must change rank"
 PY

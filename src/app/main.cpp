@@ -176,9 +176,8 @@ int run(Command& c) {
       log_phases(r.timer);
       if (r.status == "failed") exit_code = 1;
     } else if (spec.analysis == mf::io::Analysis::Sph) {
-      MF_REQUIRE(session.size() == 1, "analysis sph runs on one MPI rank (it is parallel over "
-                                      "OpenMP threads: set OMP_NUM_THREADS)");
-      mf::explicit_dynamics::SphRunResult r = mf::app::run_sph(spec, out.get());
+      mf::explicit_dynamics::SphRunResult r =
+          mf::app::run_sph(spec, out.get(), mf::distribution::Ranks::of(session.comm()));
       {
         mf::PhaseTimer::Scope scope(r.timer, "output");
         if (out) mf::app::write_sph_outputs(spec, r, *out);

@@ -3,10 +3,12 @@
 #include "meshfree/explicit/run_summaries.hpp"
 #include "meshfree/explicit/sph_setup.hpp"
 #include "meshfree/explicit/time_loop.hpp"
+#include "meshfree/sph/decomposition.hpp"
 
 namespace mf::app {
 
-explicit_dynamics::SphRunResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out) {
+explicit_dynamics::SphRunResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out,
+                                        const distribution::Ranks& ranks) {
   const io::SphSpec& s = *spec.sph;
   explicit_dynamics::SphRunResult result;
   sph::Hydro h;
@@ -16,6 +18,12 @@ explicit_dynamics::SphRunResult run_sph(const io::ProblemSpec& spec, io::OutputD
   }
   log::info("sph: ", h.particles.size(), " particles in ", s.dimension, "D, ", s.materials.size(),
             " material(s)", s.detonation_point ? ", detonation lit" : "");
+  {
+    PhaseTimer::Scope scope(result.timer, "split over ranks");
+    sph::distribute(h, ranks);
+  }
+  if (!ranks.serial())
+    log::info("sph: spread over ", ranks.size, " MPI ranks (slabs, rebalanced at each list build)");
   explicit_dynamics::SphRun run(h, s, out, result);
   run.finish(
       explicit_dynamics::run_time_loop(run, {s.end_time, s.history_interval, s.fields_interval}));
@@ -27,6 +35,7 @@ void write_sph_outputs(const io::ProblemSpec& spec, const explicit_dynamics::Sph
   r.history.write(out);
   io::Summary summary({spec.name, spec.description, spec.units, "sph", ""});
   summary.set_status(r.status, r.stop_reason);
+  summary.set("mpi_ranks", r.mpi_ranks);
   io::Json& counts = summary.section("counts");
   io::Json& time_step = summary.section("time_step");
   explicit_dynamics::summarise(r, counts, time_step, summary.section("results"));

@@ -48,7 +48,7 @@ Halo::Halo(const Ranks& ranks, const std::vector<long>& owned_ids,
   }
 }
 
-void Halo::exchange_bytes(unsigned char* a, std::size_t item) {
+void Halo::exchange_bytes(unsigned char* a, std::size_t item) const {
   const std::size_t peers = peers_.size();
   buf_.resize(send_index_.size() * item);
   for (std::size_t k = 0; k < send_index_.size(); ++k)

@@ -18,7 +18,7 @@ int nearest_particle(const std::vector<double>& positions, int n, const Vec3& at
 }
 
 Gauges::Gauges(const std::vector<GaugePoint>& points, const std::vector<double>& positions, int n,
-               const distribution::Ranks& ranks)
+               const distribution::Ranks& ranks, const std::vector<long>& ids)
     : ranks_(ranks) {
   for (const GaugePoint& g : points) {
     names_.push_back(g.name);
@@ -28,6 +28,15 @@ Gauges::Gauges(const std::vector<GaugePoint>& points, const std::vector<double>&
       d2 =
           (Vec3(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]) - g.at).squaredNorm();
     particle_.push_back(ranks.rank_of_min(d2) == ranks.rank ? i : -1);
+    if (!ids.empty()) // the holder's id, the others adding zero
+      id_.push_back(ranks.sum(particle_.back() >= 0 ? ids[i] : 0L));
+  }
+}
+
+void Gauges::follow(const std::vector<long>& ids, int n) {
+  for (std::size_t g = 0; g < id_.size(); ++g) {
+    const auto it = std::lower_bound(ids.begin(), ids.begin() + n, id_[g]);
+    particle_[g] = it != ids.begin() + n && *it == id_[g] ? static_cast<int>(it - ids.begin()) : -1;
   }
 }
 

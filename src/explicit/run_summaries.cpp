@@ -6,6 +6,10 @@ void summarise(const SphRunResult& r, io::Json& counts, io::Json& time_step, io:
   counts.set("particles", r.particles)
       .set("steps", r.steps)
       .set("neighbour_list_builds", r.neighbour_rebuilds);
+  if (r.mpi_ranks > 1)
+    counts.set("ghost_particles", r.remote_ghosts)
+        .set("ghost_particles_largest_rank", r.remote_ghosts_largest)
+        .set("migrated_particles", r.migrated);
   time_step.set("first", r.first_dt).set("smallest", r.smallest_dt).set("limited_by", r.dt_limit);
   io::Json gauges;
   for (const auto& [name, value] : r.gauge_maxima) gauges.set(name, value);

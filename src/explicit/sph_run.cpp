@@ -14,21 +14,53 @@ std::vector<GaugePoint> gauge_points(const io::SphSpec& s) {
   return g;
 }
 
-/// The reference positions of the owned particles, where the fields are written.
-std::vector<double> reference_of(const sph::Hydro& h) {
-  const std::vector<double>& X = h.particles.X;
-  return {X.begin(), X.begin() + 3 * static_cast<std::ptrdiff_t>(h.particles.owned_count())};
+/// Where this rank's block of ids goes in the one field file (none on one rank).
+io::PointSlice field_slice(const sph::Hydro& h, long total) {
+  const distribution::Ranks& ranks = h.ranks;
+  if (ranks.serial()) return {};
+  const distribution::IdBlocks blocks{total, ranks.size};
+  return {ranks.comm, static_cast<std::size_t>(blocks.first(ranks.rank)),
+          static_cast<std::size_t>(total)};
+}
+
+/// The first `per` x owned values of `a`, as doubles.
+template <class T>
+io::FieldOutput::Fill owned_values(const sph::Hydro& h, const std::vector<T>& a, int per) {
+  return [&h, &a, per](std::vector<double>& out) {
+    out.assign(a.begin(), a.begin() + per * static_cast<std::size_t>(h.particles.owned_count()));
+  };
+}
+
+/// Owned values (`per` a particle, local order) in this rank's block of global ids.
+std::vector<double> in_id_order(const sph::Hydro& h, long total, const std::vector<double>& v,
+                                int per) {
+  if (h.ranks.serial()) return v; // the owned particles are the whole body, in id order
+  return distribution::to_id_blocks(h.ranks, {total, h.ranks.size}, h.particles.id,
+                                    h.particles.owned_count(), v, per);
+}
+
+std::vector<double> reference_in_id_order(const sph::Hydro& h, long total) {
+  std::vector<double> x;
+  owned_values(h, h.particles.X, 3)(x);
+  return in_id_order(h, total, x, 3);
+}
+
+long particles_total(const sph::Hydro& h) {
+  return h.ranks.sum(static_cast<long>(h.particles.owned_count()));
 }
 
 } // namespace
 
 SphRun::SphRun(sph::Hydro& h, const io::SphSpec& spec, io::OutputDirectory* out,
                SphRunResult& result)
-    : h_(h), spec_(spec), r_(result), n_(h.particles.owned_count()),
-      gauges_(gauge_points(spec), h.particles.X, n_), fields_(out, "fields", reference_of(h)) {
+    : h_(h), spec_(spec), r_(result), gauges_(gauge_points(spec), h.particles.X,
+                                              h.particles.owned_count(), h.ranks, h.particles.id),
+      fields_(out, "fields", reference_in_id_order(h, particles_total(h)),
+              field_slice(h, particles_total(h))) {
   const particles::ParticleSet& P = h_.particles;
   const sph::ParticleFields& F = h_.fields;
-  r_.particles = n_;
+  r_.particles = static_cast<int>(particles_total(h_));
+  r_.mpi_ranks = h_.ranks.size;
   r_.smallest_dt = std::numeric_limits<double>::infinity();
   const char* axes[] = {"x", "y", "z"};
   gauges_.record("pressure", [&F](int i) { return F.p[i]; });
@@ -55,25 +87,47 @@ SphRun::SphRun(sph::Hydro& h, const io::SphSpec& spec, io::OutputDirectory* out,
   r_.history = io::History(H);
   e0_ = sph::energies(h_).total();
 
-  // The body's particles only (mirror images beyond them are not written).
-  fields_.vector("displacement", P.u);
-  fields_.vector("velocity", P.v);
-  fields_.scalar("density", F.rho);
-  fields_.scalar("pressure", F.p);
-  fields_.scalar("specific_energy", F.e);
-  fields_.scalar("smoothing_length", F.h);
-  fields_.scalar("von_mises", [this](std::vector<double>& mises) {
-    mises.resize(n_);
-    for (int i = 0; i < n_; ++i) mises[i] = von_mises(i);
+  // The body's particles only (ghosts, copies and mirror images, are not written).
+  field("displacement", 3, owned_values(h_, P.u, 3));
+  field("velocity", 3, owned_values(h_, P.v, 3));
+  field("density", 1, owned_values(h_, F.rho, 1));
+  field("pressure", 1, owned_values(h_, F.p, 1));
+  field("specific_energy", 1, owned_values(h_, F.e, 1));
+  field("smoothing_length", 1, owned_values(h_, F.h, 1));
+  field("von_mises", 1, [this](std::vector<double>& mises) {
+    mises.resize(h_.particles.owned_count());
+    for (int i = 0; i < h_.particles.owned_count(); ++i) mises[i] = von_mises(i);
   });
-  fields_.scalar("plastic_strain", F.alpha);
-  fields_.scalar("damage", F.damage);
-  fields_.scalar("failed", F.failed);
-  fields_.scalar("material", P.material);
+  field("plastic_strain", 1, owned_values(h_, F.alpha, 1));
+  field("damage", 1, owned_values(h_, F.damage, 1));
+  field("failed", 1, owned_values(h_, F.failed, 1));
+  field("material", 1, owned_values(h_, P.material, 1));
+}
+
+void SphRun::field(std::string name, int per, io::FieldOutput::Fill owned) {
+  const long total = r_.particles;
+  io::FieldOutput::Fill fill = [this, per, total, owned](std::vector<double>& out) {
+    std::vector<double> mine;
+    owned(mine);
+    out = in_id_order(h_, total, mine, per);
+  };
+  if (per == 3)
+    fields_.vector(std::move(name), std::move(fill));
+  else
+    fields_.scalar(std::move(name), std::move(fill));
+}
+
+void SphRun::advance(double dt, bool) {
+  sph::advance(h_, dt);
+  // Particles may have moved to another rank: each gauge follows its particle there.
+  if (!h_.ranks.serial()) gauges_.follow(h_.particles.id, h_.particles.owned_count());
 }
 
 double SphRun::max_pressure() const {
-  return *std::max_element(h_.fields.p.begin(), h_.fields.p.end());
+  const std::vector<double>& p = h_.fields.p;
+  double most = -std::numeric_limits<double>::infinity(); // a rank may hold no particle
+  for (const int i : h_.particles.owned()) most = std::max(most, p[i]);
+  return h_.ranks.max(most);
 }
 
 double SphRun::von_mises(int i) const {
@@ -88,19 +142,30 @@ bool SphRun::time_step(double remaining, double& dt, std::string& why) {
   const double stable = sph::stable_step(h_, &limiting);
   if (!(stable > 0.0) || !std::isfinite(stable)) {
     why = detail::concat("no finite CFL step at t = ", h_.particles.time, " (step ",
-                         h_.particles.step, ", particle ", limiting, ")");
+                         h_.particles.step, ")");
     return false;
   }
   dt = dt_ = std::min(stable, remaining);
   if (h_.particles.step == 0) r_.first_dt = dt;
   if (stable < r_.smallest_dt) {
-    const Vec3 x = h_.particles.position(limiting);
-    const sph::ParticleFields& F = h_.fields;
+    // The particle that set it, from the rank that holds it.
+    double at[6] = {0, 0, 0, 0, 0, 0}; // x, y, z, h, c, id
+    if (limiting >= 0) {
+      const Vec3 x = h_.particles.position(limiting);
+      const double mine[6] = {x.x(),
+                              x.y(),
+                              x.z(),
+                              h_.fields.h[limiting],
+                              h_.fields.c[limiting],
+                              static_cast<double>(h_.particles.id[limiting])};
+      std::copy(mine, mine + 6, at);
+    }
+    h_.ranks.sum(at, 6);
     r_.smallest_dt = stable;
     r_.dt_limit =
         detail::concat("CFL step ", stable, " (Courant ", spec_.numerics.courant, ") set at step ",
-                       h_.particles.step, " by particle ", limiting, " at (", x.x(), ", ", x.y(),
-                       ", ", x.z(), "), h ", F.h[limiting], ", c ", F.c[limiting]);
+                       h_.particles.step, " by particle ", static_cast<long>(at[5]), " at (", at[0],
+                       ", ", at[1], ", ", at[2], "), h ", at[3], ", c ", at[4]);
   }
   return true;
 }
@@ -112,10 +177,22 @@ void SphRun::track() {
 
 int SphRun::nonfinite() const {
   const particles::ParticleSet& P = h_.particles;
+  double first = std::numeric_limits<double>::infinity(); // the lowest id over every rank
   for (const int i : P.owned())
     for (int d = 0; d < 3; ++d)
-      if (!std::isfinite(P.u[3 * i + d]) || !std::isfinite(P.v[3 * i + d])) return i;
-  return -1;
+      if (!std::isfinite(P.u[3 * i + d]) || !std::isfinite(P.v[3 * i + d]))
+        first = std::min(first, static_cast<double>(P.id[i]));
+  first = h_.ranks.min(first);
+  return std::isfinite(first) ? static_cast<int>(first) : -1;
+}
+
+Vec3 SphRun::position(int id) const {
+  const particles::ParticleSet& P = h_.particles;
+  Vec3 x(0.0, 0.0, 0.0);
+  for (const int i : P.owned())
+    if (P.id[i] == id) x = P.reference(i);
+  h_.ranks.sum(x.data(), 3); // from the one rank that owns it
+  return x;
 }
 
 std::string SphRun::advice() const {
@@ -125,10 +202,11 @@ std::string SphRun::advice() const {
 
 void SphRun::record() {
   const sph::Energies E = sph::energies(h_);
+  const double work = h_.ranks.sum(h_.external_work); // each rank's loads' part
   // The balance: total energy against its start plus the work of the loads.
-  const double err = std::abs(E.total() - e0_ - h_.external_work) /
-                     std::max({std::abs(e0_), std::abs(h_.external_work), E.kinetic,
-                               std::abs(E.internal), 1e-300});
+  const double err =
+      std::abs(E.total() - e0_ - work) /
+      std::max({std::abs(e0_), std::abs(work), E.kinetic, std::abs(E.internal), 1e-300});
   r_.energy_error = std::max(r_.energy_error, err);
   std::vector<double> row{h_.particles.time,
                           static_cast<double>(h_.particles.step),
@@ -136,7 +214,7 @@ void SphRun::record() {
                           E.kinetic,
                           E.internal,
                           E.total(),
-                          h_.external_work,
+                          work,
                           err,
                           max_pressure()};
   gauges_.append_to(row);
@@ -154,13 +232,18 @@ void SphRun::finish(const LoopReport& loop) {
   r_.timer.add("stepping", loop.seconds);
   r_.steps = h_.particles.step;
   r_.neighbour_rebuilds = h_.rebuilds;
-  r_.neighbour_seconds = h_.neighbour_seconds;
-  r_.neighbour_pairs = static_cast<long>(h_.pairs.partner.size());
-  r_.neighbour_list_bytes = static_cast<long>(h_.pairs.partner.size() * sizeof(int) +
-                                              h_.pairs.offset.size() * sizeof(long));
+  const distribution::Ranks& ranks = h_.ranks;
+  r_.neighbour_seconds = ranks.max(h_.neighbour_seconds);
+  r_.neighbour_pairs = ranks.sum(static_cast<long>(h_.pairs.partner.size()));
+  r_.neighbour_list_bytes = ranks.sum(static_cast<long>(h_.pairs.partner.size() * sizeof(int) +
+                                                        h_.pairs.offset.size() * sizeof(long)));
+  r_.remote_ghosts = ranks.sum(static_cast<long>(h_.remote));
+  r_.remote_ghosts_largest = static_cast<long>(ranks.max(static_cast<double>(h_.remote)));
+  r_.migrated = ranks.sum(h_.migrated);
   r_.gauge_maxima = gauges_.maxima();
   r_.particle_steps_per_second =
-      loop.seconds > 0.0 ? static_cast<double>(n_) * h_.particles.step / loop.seconds : 0.0;
+      loop.seconds > 0.0 ? static_cast<double>(r_.particles) * h_.particles.step / loop.seconds
+                         : 0.0;
   if (!loop.completed()) log::info("stopped: ", r_.stop_reason);
   log::info("done: ", r_.steps, " steps, ", r_.neighbour_rebuilds, " neighbour-list builds (",
             loop.seconds > 0.0 ? 100.0 * r_.neighbour_seconds / loop.seconds : 0.0,

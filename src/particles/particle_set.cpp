@@ -54,4 +54,11 @@ void ParticleSet::drop_ghosts() {
   owned_ = -1;
 }
 
+void ParticleSet::drop_ghosts_from(int first) {
+  MF_ASSERT(first >= owned_count() && first <= size());
+  if (first == owned_count()) return drop_ghosts();
+  const std::size_t n = static_cast<std::size_t>(first);
+  for_each_array([n](auto& w, int per) { w.resize(per * n); });
+}
+
 } // namespace mf::particles

@@ -1,7 +1,7 @@
 #include "meshfree/sph/initial_state.hpp"
 #include "meshfree/core/error.hpp"
+#include "meshfree/sph/decomposition.hpp"
 #include "meshfree/sph/state.hpp"
-#include "meshfree/sph/symmetry.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>

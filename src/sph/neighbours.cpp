@@ -1,6 +1,7 @@
 #include "meshfree/sph/neighbours.hpp"
 #include "meshfree/core/timer.hpp"
 #include "meshfree/neighbors/reach_pairs.hpp"
+#include "meshfree/sph/decomposition.hpp"
 #include "meshfree/sph/symmetry.hpp"
 #include <algorithm>
 #include <chrono>
@@ -10,7 +11,7 @@
 
 namespace mf::sph {
 
-void refresh_neighbours(Hydro& s) {
+void refresh_neighbours(Hydro& s, bool may_migrate) {
   const auto start = std::chrono::steady_clock::now();
   group_materials(s);
   const particles::ParticleSet& P = s.particles;
@@ -31,14 +32,20 @@ void refresh_neighbours(Hydro& s) {
       const double grown = std::max(0.0, F.h[i] - s.h_at_build[i]);
       if (std::sqrt(d2) + grown > skin * s.h_at_build[i]) stale = true;
     }
+    if (!s.ranks.serial()) stale = s.ranks.max(stale ? 1.0 : 0.0) > 0.0;
     if (!stale) {
       s.neighbour_seconds += seconds_since(start);
       return;
     }
   }
-  const double h_max = *std::max_element(F.h.begin(), F.h.begin() + P.owned_count());
+  if (may_migrate) migrate(s);
+  double h_max = 0.0; // over every rank's owned particles (a rank may hold none)
+  for (const int i : P.owned()) h_max = std::max(h_max, F.h[i]);
+  h_max = s.ranks.max(h_max);
   s.build_radius = 2.0 * h_max * (1.0 + skin);
-  if (!s.symmetry.empty()) rebuild_ghosts(s, s.build_radius);
+  if (!s.ranks.serial()) fetch_remote_ghosts(s, s.build_radius);
+  if (!s.symmetry.empty()) rebuild_mirrors(s, s.build_radius);
+  group_materials(s);                // when particles came or went
   std::vector<double> x(P.X.size()); // current positions X + u, ghosts included
   for (std::size_t k = 0; k < x.size(); ++k) x[k] = P.X[k] + P.u[k];
   // Pairs within (h_i + h_j)(1 + skin), searched per class of h so that a small particle does
@@ -48,6 +55,7 @@ void refresh_neighbours(Hydro& s) {
   std::vector<double> h(F.h.begin(), F.h.begin() + with_ghosts);
   s.pairs = neighbors::pairs_within_reach(x, h, 1.0 + skin, owned);
   s.pairs.offset.resize(with_ghosts + 1, s.pairs.offset.back());
+  if (!s.ranks.serial()) sort_rows_by_id(s);
   s.x_at_build = std::move(x);
   s.h_at_build = std::move(h);
   ++s.rebuilds;

@@ -25,27 +25,18 @@ void ParticleFields::add(double density, double energy, double smoothing, bool i
 
 void ParticleFields::append_copy(int i) {
   const std::size_t k = static_cast<std::size_t>(i);
-  const auto copy = [k](auto& a, std::size_t per) {
-    for (std::size_t c = 0; c < per; ++c) {
-      const auto value = a[per * k + c];
+  for_each_array([k](auto& a, int per) {
+    for (std::size_t c = 0; c < static_cast<std::size_t>(per); ++c) {
+      const auto value = a[per * k + c]; // read before `a` grows
       a.push_back(value);
     }
-  };
-  copy(S, 6), copy(back_stress, 6);
-  for (auto* a :
-       {&rho, &e, &h, &h_ref, &light_time, &alpha, &rho_max, &damage, &strain_rate, &p, &c})
-    copy(*a, 1);
-  copy(failed, 1);
-  fixed.push_back(1);
+  });
+  fixed.back() = 1;
 }
 
 void ParticleFields::truncate(int n) {
   const std::size_t m = static_cast<std::size_t>(n);
-  S.resize(6 * m), back_stress.resize(6 * m);
-  for (auto* a :
-       {&rho, &e, &h, &h_ref, &light_time, &alpha, &rho_max, &damage, &strain_rate, &p, &c})
-    a->resize(m);
-  fixed.resize(m), failed.resize(m);
+  for_each_array([m](auto& a, int per) { a.resize(per * m); });
 }
 
 } // namespace mf::sph

@@ -2,6 +2,7 @@
 #include "meshfree/core/error.hpp"
 #include "meshfree/kernels/sph_kernel.hpp"
 #include "meshfree/sph/corrections.hpp"
+#include "meshfree/sph/decomposition.hpp"
 #include "meshfree/sph/pair_kernel.hpp"
 #include "meshfree/sph/symmetry.hpp"
 #include <algorithm>
@@ -168,7 +169,8 @@ void compute_rates(const Hydro& s, Rates& r) {
     fail("SPH: the particles changed since they were grouped by material (update_state or "
          "refresh_neighbours groups them)");
   const Settings& S = s.settings;
-  // Rates for the owned particles; ghosts (mirror images) only lend their (mirrored) state.
+  // Rates for the owned particles; ghosts (other ranks' particles, mirror images) only lend
+  // their state.
   const int n = P.owned_count(), all = P.size(), dim = s.dim;
   r.x.resize(3 * static_cast<std::size_t>(all));
 #pragma omp parallel for schedule(static)
@@ -176,11 +178,13 @@ void compute_rates(const Hydro& s, Rates& r) {
   const bool corrected = S.gradient_correction;
   if (corrected) {
     correction_matrices(s, r.x, r.correction);
+    exchange_remote(s, r.correction, 9);
     mirror_matrices(s, r.correction);
   }
   const bool art = S.artificial_stress > 0.0;
   if (art) {
     artificial_stresses(s, r.art_stress);
+    exchange_remote(s, r.art_stress, 6);
     mirror_voigt(s, r.art_stress);
   }
   if (art || S.penalty.pressure > 0.0) {

@@ -1,9 +1,9 @@
 #include "meshfree/sph/step.hpp"
 #include "meshfree/core/error.hpp"
+#include "meshfree/sph/decomposition.hpp"
 #include "meshfree/sph/neighbours.hpp"
 #include "meshfree/sph/rates.hpp"
 #include "meshfree/sph/state.hpp"
-#include "meshfree/sph/symmetry.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -22,6 +22,11 @@ double stable_step(const Hydro& s, int* limiting) {
     const double dt = F.h[i] / (F.c[i] + speed);
     if (dt < best) best = dt, where = i;
   }
+  // The rank that holds the smallest step names its particle; the others name none.
+  if (!s.ranks.serial()) {
+    if (s.ranks.rank_of_min(best) != s.ranks.rank) where = -1;
+    best = s.ranks.min(best);
+  }
   if (limiting) *limiting = where;
   return s.settings.courant * best;
 }
@@ -30,14 +35,39 @@ namespace {
 void check_finite(const Hydro& s) {
   const particles::ParticleSet& P = s.particles;
   const ParticleFields& F = s.fields;
+  int bad = -1;
   for (const int i : P.all())
     if (!std::isfinite(F.rho[i]) || !std::isfinite(F.e[i]) || !(F.rho[i] > 0.0) ||
         !std::isfinite(P.v[3 * i]) || !std::isfinite(P.v[3 * i + 1]) ||
-        !std::isfinite(P.v[3 * i + 2]))
-      fail("SPH: particle ", i, " at (", P.position(i).x(), ", ", P.position(i).y(), ", ",
-           P.position(i).z(), ") has density ", F.rho[i], ", energy ", F.e[i], ", velocity (",
-           P.v[3 * i], ", ", P.v[3 * i + 1], ", ", P.v[3 * i + 2], ") at step ", s.particles.step,
-           ", t = ", s.particles.time);
+        !std::isfinite(P.v[3 * i + 2])) {
+      bad = i;
+      break;
+    }
+  // On more than one rank, every rank fails with the report of the lowest rank that found one.
+  double report[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  if (bad >= 0) {
+    const Vec3 x = P.position(bad);
+    const double values[10] = {static_cast<double>(P.id[bad]),
+                               x.x(),
+                               x.y(),
+                               x.z(),
+                               F.rho[bad],
+                               F.e[bad],
+                               P.v[3 * bad],
+                               P.v[3 * bad + 1],
+                               P.v[3 * bad + 2],
+                               1.0};
+    std::copy(values, values + 10, report);
+  }
+  if (!s.ranks.serial()) {
+    const int holder = s.ranks.rank_of_min(bad >= 0 ? static_cast<double>(s.ranks.rank) : 1e300);
+    s.ranks.broadcast(report, 10, holder);
+  }
+  if (report[9] == 0.0) return;
+  fail("SPH: particle ", static_cast<long>(report[0]), " at (", report[1], ", ", report[2], ", ",
+       report[3], ") has density ", report[4], ", energy ", report[5], ", velocity (", report[6],
+       ", ", report[7], ", ", report[8], ") at step ", s.particles.step,
+       ", t = ", s.particles.time);
 }
 /// The work of gravity and damping over a step whose corrector applies the mid-step velocities
 /// P.v and the accelerations dv: m (g - c v_mid) . (v0 + v1) / 2 dt, v1 = v0 + dt dv, which is
@@ -68,7 +98,9 @@ void body_force_work(Hydro& s, const std::vector<double>& v0, const std::vector<
 void advance(Hydro& s, double dt) {
   particles::ParticleSet& P = s.particles;
   ParticleFields& F = s.fields;
-  const int n = P.owned_count(); // ghosts are mirrored from these after each stage
+  // A build at the start of the step may move particles to other ranks: before anything is kept.
+  refresh_neighbours(s, true);
+  const int n = P.owned_count(); // ghosts are refreshed from these after each stage
   const std::size_t n3 = 3 * static_cast<std::size_t>(n);
   const std::vector<double> u0 = P.u, v0 = P.v, rho0 = F.rho, e0 = F.e;
   const StressHistory start = stress_history(s);
@@ -76,7 +108,6 @@ void advance(Hydro& s, double dt) {
   const double t0 = s.particles.time;
   Rates r;
   // Predictor: half a step with the rates at the start.
-  refresh_neighbours(s);
   compute_rates(s, r);
 #pragma omp parallel for schedule(static)
   for (std::size_t k = 0; k < n3; ++k) {
@@ -136,6 +167,11 @@ Energies energies(const Hydro& s) {
         P.v[3 * i] * P.v[3 * i] + P.v[3 * i + 1] * P.v[3 * i + 1] + P.v[3 * i + 2] * P.v[3 * i + 2];
     out.kinetic += 0.5 * P.mass[i] * v2;
     out.internal += P.mass[i] * F.e[i];
+  }
+  if (!s.ranks.serial()) {
+    double sums[2] = {out.kinetic, out.internal};
+    s.ranks.sum(sums, 2);
+    out.kinetic = sums[0], out.internal = sums[1];
   }
   return out;
 }

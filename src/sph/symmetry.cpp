@@ -35,12 +35,12 @@ void mirror_state(Hydro& s, int k, int source, int planes) {
 
 } // namespace
 
-void rebuild_ghosts(Hydro& s, double band) {
+void rebuild_mirrors(Hydro& s, double band) {
   particles::ParticleSet& P = s.particles;
   ParticleFields& F = s.fields;
-  P.drop_ghosts();
+  const int first = P.owned_count() + s.remote; // the first mirror image
+  P.drop_ghosts_from(first);
   F.truncate(P.size());
-  const int owned = P.owned_count();
   s.ghost_source.clear();
   s.ghost_planes.clear();
   for (std::size_t q = 0; q < s.symmetry.size(); ++q) {
@@ -48,8 +48,8 @@ void rebuild_ghosts(Hydro& s, double band) {
     const int count = P.size();
     for (int i = 0; i < count; ++i) {
       if (std::abs(P.X[3 * i + m.axis] + P.u[3 * i + m.axis] - m.at) >= band) continue;
-      const int source = i < owned ? i : s.ghost_source[i - owned];
-      const int planes = (i < owned ? 0 : s.ghost_planes[i - owned]) | (1 << q);
+      const int source = i < first ? i : s.ghost_source[i - first];
+      const int planes = (i < first ? 0 : s.ghost_planes[i - first]) | (1 << q);
       P.add_ghost(source);
       F.append_copy(source);
       s.ghost_source.push_back(source);
@@ -60,10 +60,10 @@ void rebuild_ghosts(Hydro& s, double band) {
   group_materials(s, true);
 }
 
-void refresh_ghosts(Hydro& s) {
-  const int owned = s.particles.owned_count();
+void refresh_mirrors(Hydro& s) {
+  const int first = s.particles.owned_count() + s.remote;
   for (std::size_t k = 0; k < s.ghost_source.size(); ++k)
-    mirror_state(s, owned + static_cast<int>(k), s.ghost_source[k], s.ghost_planes[k]);
+    mirror_state(s, first + static_cast<int>(k), s.ghost_source[k], s.ghost_planes[k]);
 }
 
 namespace {
@@ -78,11 +78,11 @@ void mirror_signs(const Hydro& s, std::size_t ghost, double sign[3]) {
 } // namespace
 
 void mirror_matrices(const Hydro& s, std::vector<double>& C) {
-  const std::size_t owned = static_cast<std::size_t>(s.particles.owned_count());
+  const std::size_t first = static_cast<std::size_t>(s.particles.owned_count() + s.remote);
   for (std::size_t k = 0; k < s.ghost_source.size(); ++k) {
     double sign[3];
     mirror_signs(s, k, sign);
-    const std::size_t g = 9 * (owned + k), i = 9 * static_cast<std::size_t>(s.ghost_source[k]);
+    const std::size_t g = 9 * (first + k), i = 9 * static_cast<std::size_t>(s.ghost_source[k]);
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) C[g + 3 * a + b] = sign[a] * sign[b] * C[i + 3 * a + b];
   }
@@ -90,11 +90,11 @@ void mirror_matrices(const Hydro& s, std::vector<double>& C) {
 
 void mirror_voigt(const Hydro& s, std::vector<double>& T) {
   static const int rows[6] = {0, 1, 2, 1, 0, 0}, cols[6] = {0, 1, 2, 2, 2, 1};
-  const std::size_t owned = static_cast<std::size_t>(s.particles.owned_count());
+  const std::size_t first = static_cast<std::size_t>(s.particles.owned_count() + s.remote);
   for (std::size_t k = 0; k < s.ghost_source.size(); ++k) {
     double sign[3];
     mirror_signs(s, k, sign);
-    const std::size_t g = 6 * (owned + k), i = 6 * static_cast<std::size_t>(s.ghost_source[k]);
+    const std::size_t g = 6 * (first + k), i = 6 * static_cast<std::size_t>(s.ghost_source[k]);
     for (int c = 0; c < 6; ++c) T[g + c] = sign[rows[c]] * sign[cols[c]] * T[i + c];
   }
 }

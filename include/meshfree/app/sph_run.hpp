@@ -1,14 +1,17 @@
 #pragma once
 // An SPH run from a problem file (analysis: sph): particles from the regions, lighting times from
 // the detonation point, CFL-limited steps to the end time, histories, gauges and fields.
+#include "meshfree/distribution/ranks.hpp"
 #include "meshfree/explicit/sph_run.hpp"
 #include "meshfree/io/output.hpp"
 #include "meshfree/io/problem_spec.hpp"
 
 namespace mf::app {
 
-/// Runs the problem to its end time; fields go to `out` (null: none).
-explicit_dynamics::SphRunResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out);
+/// Runs the problem to its end time spread over `ranks`; fields go to `out` (null: none; the
+/// ranks other than the first have none). Collective.
+explicit_dynamics::SphRunResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out,
+                                        const distribution::Ranks& ranks = {});
 
 /// history.csv and summary.json.
 void write_sph_outputs(const io::ProblemSpec& spec, const explicit_dynamics::SphRunResult& r,

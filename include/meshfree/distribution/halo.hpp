@@ -21,7 +21,7 @@ public:
 
   /// Copies the owners' values into the ghost slots of `a` (`per` values per particle).
   /// Collective.
-  template <class T> void exchange(std::vector<T>& a, int per = 1) {
+  template <class T> void exchange(std::vector<T>& a, int per = 1) const {
     if (peers_.empty()) return;
     exchange_bytes(reinterpret_cast<unsigned char*>(a.data()), per * sizeof(T));
   }
@@ -32,15 +32,15 @@ public:
   const Ranks& ranks() const { return ranks_; }
 
 private:
-  void exchange_bytes(unsigned char* a, std::size_t item);
+  void exchange_bytes(unsigned char* a, std::size_t item) const;
   Ranks ranks_;
   int owned_ = 0, ghosts_ = 0;
-  std::vector<int> peers_;         // ranks exchanged with, increasing
-  std::vector<int> send_start_;    // per peer + 1: offsets into send_index_
-  std::vector<int> send_index_;    // owned local indices sent, grouped by peer
-  std::vector<int> recv_start_;    // per peer + 1: ghost offsets (from owned_)
-  std::vector<unsigned char> buf_; // packed values to send
-  std::vector<MPI_Request> requests_;
+  std::vector<int> peers_;                 // ranks exchanged with, increasing
+  std::vector<int> send_start_;            // per peer + 1: offsets into send_index_
+  std::vector<int> send_index_;            // owned local indices sent, grouped by peer
+  std::vector<int> recv_start_;            // per peer + 1: ghost offsets (from owned_)
+  mutable std::vector<unsigned char> buf_; // scratch: packed values to send
+  mutable std::vector<MPI_Request> requests_;
 };
 
 } // namespace mf::distribution

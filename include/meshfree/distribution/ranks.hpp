@@ -5,6 +5,7 @@
 // the decomposition balances particle counts exactly and keeps each rank's halo small, as the
 // space-filling-curve partitioners of p4est and Zoltan's HSFC do.
 #include <mpi.h>
+#include <vector>
 
 namespace mf::distribution {
 
@@ -35,5 +36,12 @@ struct IdBlocks {
   /// The rank whose block holds `id`.
   int owner(long id) const;
 };
+
+/// Per-particle values of particles spread over the ranks in any way (this rank's: the first n of
+/// `ids`, `per` values each in `values`), returned as this rank's block of `blocks` in id order:
+/// the layout of a field file written by id blocks. Collective.
+std::vector<double> to_id_blocks(const Ranks& ranks, const IdBlocks& blocks,
+                                 const std::vector<long>& ids, int n,
+                                 const std::vector<double>& values, int per);
 
 } // namespace mf::distribution

@@ -29,8 +29,12 @@ public:
   /// Each gauge follows the particle nearest its point among the first n of `positions`; on a
   /// run spread over MPI ranks (n: the owned ones) among every rank's, held by the rank that
   /// owns it (the lowest rank on a tie, which holds the lowest ids). Collective.
+  /// `ids`: the particles' global ids (empty: the gauges cannot follow() particles).
   Gauges(const std::vector<GaugePoint>& points, const std::vector<double>& positions, int n,
-         const distribution::Ranks& ranks = {});
+         const distribution::Ranks& ranks = {}, const std::vector<long>& ids = {});
+  /// After particles moved between ranks: each gauge's particle is looked up again among the
+  /// first n of `ids` (increasing), this rank's owned particles.
+  void follow(const std::vector<long>& ids, int n);
   /// A history column per gauge.
   void record(std::string quantity, Quantity q);
   /// A maximum over every step per gauge.
@@ -50,6 +54,7 @@ private:
   distribution::Ranks ranks_;
   std::vector<std::string> names_;
   std::vector<int> particle_;
+  std::vector<long> id_; // each gauge's particle's global id, when given
   std::vector<std::pair<std::string, Quantity>> recorded_, tracked_;
   std::vector<std::pair<std::string, double>> maxima_;
 };

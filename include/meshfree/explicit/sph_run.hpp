@@ -16,12 +16,15 @@
 namespace mf::explicit_dynamics {
 
 struct SphRunResult {
-  int particles = 0;
+  int particles = 0; // over every rank
+  int mpi_ranks = 1;
+  long remote_ghosts = 0, remote_ghosts_largest = 0; // at the last list build: all, fullest rank
+  long migrated = 0; // particles that moved to another rank over the run
   long steps = 0;
   int neighbour_rebuilds = 0;
   double neighbour_seconds = 0.0; // of the stepping time, in neighbour checks and builds
-  long neighbour_pairs = 0;       // directed pairs in the last neighbour list
-  long neighbour_list_bytes = 0;  // its size: partners and row offsets
+  long neighbour_pairs = 0;       // directed pairs in the last neighbour lists of every rank
+  long neighbour_list_bytes = 0;  // their size: partners and row offsets
   double first_dt = 0.0, smallest_dt = 0.0;
   std::string dt_limit; // the particle that set the smallest step
   double particle_steps_per_second = 0.0;
@@ -36,16 +39,19 @@ struct SphRunResult {
 class SphRun {
 public:
   /// The history's columns and the gauges of the body `h` at t = 0; fields go to `out` (null:
-  /// none).
+  /// none; on more than one rank: the ranks without it). Every call below is collective over the
+  /// ranks the body is spread over (sph/decomposition.hpp).
   SphRun(sph::Hydro& h, const io::SphSpec& spec, io::OutputDirectory* out, SphRunResult& result);
 
   double time() const { return h_.particles.time; }
   long step() const { return h_.particles.step; }
   bool time_step(double remaining, double& dt, std::string& why);
-  void advance(double dt, bool) { sph::advance(h_, dt); }
+  void advance(double dt, bool);
   void track();
+  /// The lowest global id of a particle whose motion is not finite, or -1.
   int nonfinite() const;
-  Vec3 position(int i) const { return h_.particles.reference(i); }
+  /// The reference position of the particle with global id `id`.
+  Vec3 position(int id) const;
   std::string advice() const;
   void record();
   void write_fields() { fields_.write(h_.particles.time); }
@@ -57,10 +63,12 @@ public:
 private:
   double max_pressure() const;
   double von_mises(int i) const;
+  /// Registers a field whose owned values `owned` fills (`per` a particle, in local order);
+  /// it is written in global-id order.
+  void field(std::string name, int per, io::FieldOutput::Fill owned);
   sph::Hydro& h_;
   const io::SphSpec& spec_;
   SphRunResult& r_;
-  int n_; // the owned particles (ghosts, mirror images, follow them)
   Gauges gauges_;
   io::FieldOutput fields_;
   double e0_ = 0.0, dt_ = 0.0;

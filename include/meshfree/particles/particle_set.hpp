@@ -83,6 +83,19 @@ struct ParticleSet {
   int add_ghost(const ParticleSet& from, int source);
   /// Removes every ghost particle.
   void drop_ghosts();
+  /// Removes the ghost particles from index `first` on (first >= owned_count()).
+  void drop_ghosts_from(int first);
+  /// Particles appended from now on (by whoever fills the arrays: a rank's received copies) are
+  /// ghosts.
+  void begin_ghosts() {
+    if (owned_ < 0) owned_ = size();
+  }
+  /// Calls visit(array, values per particle) for every per-particle array: what a particle that
+  /// moves to another rank takes with it.
+  template <class Visit> void for_each_array(Visit&& visit) {
+    visit(X, 3), visit(volume, 1), visit(density, 1), visit(mass, 1), visit(material, 1);
+    visit(body, 1), visit(id, 1), visit(u, 3), visit(v, 3), visit(a, 3);
+  }
 
 private:
   int owned_ = -1; // -1: no ghost particle, every particle is owned

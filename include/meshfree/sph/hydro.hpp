@@ -9,6 +9,7 @@
 // optional kernel-gradient correction and artificial stress. This header holds a run's data; the
 // steps that act on it are declared in sph/state.hpp, sph/neighbours.hpp, sph/rates.hpp,
 // sph/corrections.hpp, sph/step.hpp, sph/symmetry.hpp and sph/detonation.hpp.
+#include "meshfree/distribution/halo.hpp"
 #include "meshfree/kernels/sph_kernel.hpp"
 #include "meshfree/loads/blast.hpp"
 #include "meshfree/neighbors/pair_list.hpp"
@@ -131,11 +132,29 @@ struct Hydro {
   double external_work = 0.0;
   double damping_work = 0.0; // the damping's part of external_work (not positive)
   std::vector<SymmetryPlane> symmetry;
-  /// The set's ghost k (particle owned_count() + k) mirrors owned particle ghost_source[k] across
-  /// the planes of ghost_planes[k] (bit q: symmetry[q]); ghosts are rebuilt with the neighbour
-  /// list and refreshed from their sources at every stage.
+  /// The set's mirror image k (particle owned_count() + remote + k) mirrors particle
+  /// ghost_source[k] (owned or a remote ghost) across the planes of ghost_planes[k] (bit q:
+  /// symmetry[q]); images are rebuilt with the neighbour list and refreshed from their sources at
+  /// every stage.
   std::vector<int> ghost_source;
   std::vector<int> ghost_planes;
+  /// The MPI ranks the body is spread over (sph/decomposition.hpp). On one rank every particle
+  /// of the body is owned and there is no remote ghost.
+  distribution::Ranks ranks;
+  long particles_total = 0; // over every rank
+  /// Remote ghosts: copies of other ranks' particles within reach of this rank's, particles
+  /// owned_count() .. owned_count() + remote - 1, refreshed through `halo`; the mirror images
+  /// follow them.
+  int remote = 0;
+  distribution::Halo halo;
+  long migrated = 0; // particles that moved to another rank so far
+  /// The loads, held forces and transmitting boundaries of the whole body, by global id, from
+  /// which each rank cuts its own lists after particles migrate (empty on one rank).
+  struct WholeBody {
+    std::vector<SurfaceLoad> loads;
+    std::vector<SurfaceForce> forces;
+    std::vector<TransmittingBoundary> transmitting;
+  } whole;
   MaterialGroups groups;
   bool any_solid() const;
 };

@@ -29,6 +29,14 @@ struct ParticleFields {
   void append_copy(int i);
   /// Drops every particle from index n on.
   void truncate(int n);
+  /// Calls visit(array, values per particle) for every array above: what a particle that moves
+  /// to another rank takes with it.
+  template <class Visit> void for_each_array(Visit&& visit) {
+    visit(rho, 1), visit(e, 1), visit(h, 1), visit(h_ref, 1), visit(light_time, 1);
+    visit(fixed, 1), visit(p, 1), visit(c, 1), visit(S, 6), visit(back_stress, 6);
+    visit(alpha, 1), visit(rho_max, 1), visit(damage, 1), visit(strain_rate, 1);
+    visit(failed, 1);
+  }
 };
 
 } // namespace mf::sph

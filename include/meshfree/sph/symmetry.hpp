@@ -7,12 +7,12 @@
 
 namespace mf::sph {
 
-/// Drops the old mirror particles and mirrors every particle within `band` of each plane, the
-/// images of earlier planes included (corners of two or three planes).
-void rebuild_ghosts(Hydro& s, double band);
+/// Drops the old mirror particles and mirrors every particle (owned or a remote ghost) within
+/// `band` of each plane, the images of earlier planes included (corners of two or three planes).
+void rebuild_mirrors(Hydro& s, double band);
 
 /// Copies every mirror particle's state from its source, mirrored.
-void refresh_ghosts(Hydro& s);
+void refresh_mirrors(Hydro& s);
 
 /// Fills the mirror particles' 3x3 matrices (9 per particle, row-major) from their sources.
 void mirror_matrices(const Hydro& s, std::vector<double>& C);
