@@ -310,18 +310,19 @@ void exchange_remote(const Hydro& s, std::vector<double>& a, int per) {
 
 void sort_rows_by_id(Hydro& s) {
   const particles::ParticleSet& P = s.particles;
-  const int first_mirror = P.owned_count() + s.remote, rows = P.owned_count();
-  // The key (mirror planes, id) in one integer: ids stay below 2^48.
-  const auto key = [&](int j) -> unsigned long {
-    const unsigned long planes =
-        j < first_mirror ? 0UL : static_cast<unsigned long>(s.ghost_planes[j - first_mirror]);
-    return planes << 48 | static_cast<unsigned long>(P.id[j]);
-  };
+  const int first_mirror = P.owned_count() + s.remote, rows = P.owned_count(), all = P.size();
+  // The key (mirror planes, id) of every particle in one integer (ids stay below 2^48), once.
+  std::vector<unsigned long> key(all);
+#pragma omp parallel for schedule(static)
+  for (int j = 0; j < all; ++j) {
+    const unsigned long planes = j < first_mirror ? 0UL : s.ghost_planes[j - first_mirror];
+    key[j] = planes << 48 | static_cast<unsigned long>(P.id[j]);
+  }
   neighbors::PairList& L = s.pairs;
 #pragma omp parallel for schedule(dynamic, 256)
   for (int i = 0; i < rows; ++i)
     std::sort(L.partner.begin() + L.offset[i], L.partner.begin() + L.offset[i + 1],
-              [&key](int a, int b) { return key(a) < key(b); });
+              [&key](int a, int b) { return key[a] < key[b]; });
 }
 
 } // namespace mf::sph

@@ -161,19 +161,19 @@ void advance(Hydro& s, double dt) {
 Energies energies(const Hydro& s) {
   const particles::ParticleSet& P = s.particles;
   const ParticleFields& F = s.fields;
-  Energies out;
+  // Summed in extended precision: a sum of 10^5 terms of one sign in doubles carries round-off
+  // of about 1e-12 that depends on the order, which would make a run spread over ranks (each
+  // rank's part summed first) differ from one rank by more than its fields do.
+  long double kinetic = 0.0L, internal = 0.0L;
   for (const int i : P.owned()) {
     const double v2 =
         P.v[3 * i] * P.v[3 * i] + P.v[3 * i + 1] * P.v[3 * i + 1] + P.v[3 * i + 2] * P.v[3 * i + 2];
-    out.kinetic += 0.5 * P.mass[i] * v2;
-    out.internal += P.mass[i] * F.e[i];
+    kinetic += 0.5 * P.mass[i] * v2;
+    internal += P.mass[i] * F.e[i];
   }
-  if (!s.ranks.serial()) {
-    double sums[2] = {out.kinetic, out.internal};
-    s.ranks.sum(sums, 2);
-    out.kinetic = sums[0], out.internal = sums[1];
-  }
-  return out;
+  double sums[2] = {static_cast<double>(kinetic), static_cast<double>(internal)};
+  s.ranks.sum(sums, 2);
+  return {sums[0], sums[1]};
 }
 
 } // namespace mf::sph
