@@ -11,8 +11,9 @@ Two parts:
             neighbour-list builds and the neighbour search's share of the run.
   blocks    2D gas blocks of 10^4 .. 10^6 particles (a blast tube in a plane: p = 1 | 0.1 at rho = 1),
             either at one spacing ("uniform") or with the right half 8 times coarser ("h 8:1",
-            smoothing lengths varying 8:1), at 1 and 2 threads: particle-steps/s and interacting
-            pair evaluations per second per thread (pairs within 2 h_ij counted on the initial
+            smoothing lengths varying 8:1), at 1 and 2 threads, and the new binary on 2 MPI
+            ranks x 1 thread (--ranks): particle-steps/s and interacting pair evaluations per
+            second per core (pairs within 2 h_ij counted on the initial
             lattice, two rate evaluations per step), bytes per pair of the neighbour list, and the
             growth exponent of the run time with the particle count. The old binary's search
             holds every pair within the largest reach; it is left out of blocks where that list
@@ -34,11 +35,15 @@ from scipy.spatial import cKDTree
 ROOT = Path(__file__).resolve().parent.parent
 
 
-def run(binary, problem, out, threads, sets):
+def run(binary, problem, out, threads, sets, ranks=1):
     args = [str(binary), "run", str(problem), "--out", str(out)]
     for s in sets:
         args += ["--set", s]
     env = dict(os.environ, OMP_NUM_THREADS=str(threads), OMP_WAIT_POLICY="passive")
+    if ranks > 1:
+        args = ["mpirun", "-n", str(ranks), "--oversubscribe"] + args
+        if os.geteuid() == 0:  # containers run as root; OpenMPI refuses that unless told
+            env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     p = subprocess.run(args, capture_output=True, text=True, env=env)
     if p.returncode != 0:
         sys.exit(f"{binary} {problem} failed:\n{p.stdout[-2000:]}\n{p.stderr[-2000:]}")
@@ -127,6 +132,7 @@ def main():
     ap.add_argument("--sizes", default="1e4,1e5,1e6")
     ap.add_argument("--steps", type=int, default=10, help="steps per block run")
     ap.add_argument("--threads", default="1,2")
+    ap.add_argument("--ranks", default="2", help="MPI ranks x 1 thread for the new binary")
     ap.add_argument("--old-pair-limit", type=float, default=3e8)
     ap.add_argument("--skip-problems", action="store_true")
     ap.add_argument("--skip-blocks", action="store_true")
@@ -161,7 +167,7 @@ def main():
         lines += ["## 2D gas blocks (best of %d interleaved runs, %d steps)" % (args.repeats,
                                                                               args.steps), "",
                   "| case | particles | threads | binary | particle-steps/s | pair evals/s "
-                  "per thread | listed pairs per particle | bytes per listed pair | bytes per "
+                  "per core | listed pairs per particle | bytes per listed pair | bytes per "
                   "interacting pair | builds | neighbour share | speed-up |",
                   "|---|---|---|---|---|---|---|---|---|---|---|---|"]
         growth = {}
@@ -176,6 +182,7 @@ def main():
                 sides = [("new", args.new)]
                 if 1.5 ** 2 * old_examined <= args.old_pair_limit:
                     sides.insert(0, ("old", args.old))
+                one = None  # the new binary on 1 rank x 1 thread
                 for t in threads:
                     res = {side: [] for side, _ in sides}
                     for _ in range(args.repeats):
@@ -201,6 +208,18 @@ def main():
                     if "old" not in res:
                         lines.append(f"| {case} | {len(h)} | {t} | old | left out: its search "
                                      f"would list {1.5 ** 2 * old_examined:.3g} pairs | | | | | | | |")
+                    if t == 1:
+                        one = best(res["new"])
+                # The new binary spread over MPI ranks, one thread each; the speed-up is against
+                # its own one-rank, one-thread run.
+                for ranks in [int(r) for r in args.ranks.split(",") if r]:
+                    r = best([run(args.new, problem, out / "block_ranks", 1, sets, ranks)
+                              for _ in range(args.repeats)])
+                    evals = live * 2 * r["steps"] / r["stepping_s"] / ranks
+                    up = f"{r['rate'] / one['rate']:.2f} (vs 1 x 1)" if one else "-"
+                    lines.append(f"| {case} | {r['particles']} | {ranks} ranks x 1 | new | "
+                                 f"{r['rate']:.4g} | {evals:.4g} | | | | {r['builds']} | | {up} |")
+                    print(lines[-1], flush=True)
         lines += ["", "Growth of the time per step with the particle count, t ~ N^b "
                   "(least squares over the sizes run):", ""]
         for (case, t, side), pts in growth.items():
