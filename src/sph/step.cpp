@@ -32,7 +32,9 @@ double stable_step(const Hydro& s, int* limiting) {
 }
 
 namespace {
-void check_finite(const Hydro& s) {
+/// Fails, naming the particle, when a particle's density is not positive or its energy or
+/// velocity not finite (`stage`: which state of the step is checked). Collective.
+void check_finite(const Hydro& s, const char* stage) {
   const particles::ParticleSet& P = s.particles;
   const ParticleFields& F = s.fields;
   int bad = -1;
@@ -43,21 +45,14 @@ void check_finite(const Hydro& s) {
       bad = i;
       break;
     }
-  // On more than one rank, every rank fails with the report of the lowest rank that found one.
-  double report[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  // On more than one rank, every rank fails with the report of the lowest rank that found one:
+  // id, position, density, energy, velocity, and 1 for found.
+  double report[10] = {};
   if (bad >= 0) {
     const Vec3 x = P.position(bad);
-    const double values[10] = {static_cast<double>(P.id[bad]),
-                               x.x(),
-                               x.y(),
-                               x.z(),
-                               F.rho[bad],
-                               F.e[bad],
-                               P.v[3 * bad],
-                               P.v[3 * bad + 1],
-                               P.v[3 * bad + 2],
-                               1.0};
-    std::copy(values, values + 10, report);
+    report[0] = static_cast<double>(P.id[bad]);
+    for (int d = 0; d < 3; ++d) report[1 + d] = x[d], report[6 + d] = P.v[3 * bad + d];
+    report[4] = F.rho[bad], report[5] = F.e[bad], report[9] = 1.0;
   }
   if (!s.ranks.serial()) {
     const int holder = s.ranks.rank_of_min(bad >= 0 ? static_cast<double>(s.ranks.rank) : 1e300);
@@ -66,7 +61,7 @@ void check_finite(const Hydro& s) {
   if (report[9] == 0.0) return;
   fail("SPH: particle ", static_cast<long>(report[0]), " at (", report[1], ", ", report[2], ", ",
        report[3], ") has density ", report[4], ", energy ", report[5], ", velocity (", report[6],
-       ", ", report[7], ", ", report[8], ") at step ", s.particles.step,
+       ", ", report[7], ", ", report[8], ") ", stage, " of step ", s.particles.step + 1,
        ", t = ", s.particles.time);
 }
 /// The work of gravity and damping over a step whose corrector applies the mid-step velocities
@@ -121,6 +116,9 @@ void advance(Hydro& s, double dt) {
   }
   if (solids) update_stress(s, start, r, 0.5 * dt);
   s.particles.time = t0 + 0.5 * dt;
+  // A density that is not positive at the half step would give its neighbours a non-finite h
+  // (h follows rho^(-1/dim)): the failure names this particle, not theirs.
+  check_finite(s, "at the half step");
   refresh_ghosts(s);
   update_state(s);
   // The loads' forces at the midpoint, which the corrector applies over the whole step.
@@ -151,8 +149,8 @@ void advance(Hydro& s, double dt) {
       s.external_work += dt * mid_force[3 * k + d] * 0.5 * (v0[at] + P.v[at]);
     }
   s.particles.time = t0 + dt;
+  check_finite(s, "at the end");
   ++s.particles.step;
-  check_finite(s);
   commit_history(s);
   refresh_ghosts(s);
   update_state(s);
