@@ -70,10 +70,6 @@ void drop_ghosts(Hydro& s) {
   s.groups.built_for = -1;
 }
 
-Vec3 current(const particles::ParticleSet& P, int i) {
-  return P.position(i);
-}
-
 /// The rank of each owned particle's slab. `replicated`: every rank holds the whole body, and
 /// computes the same split without a message.
 std::vector<int> slab_owners(const Hydro& s, bool replicated) {
@@ -83,7 +79,7 @@ std::vector<int> slab_owners(const Hydro& s, bool replicated) {
   double lo[3], hi[3];
   for (int d = 0; d < 3; ++d) lo[d] = std::numeric_limits<double>::infinity(), hi[d] = -lo[d];
   for (int i = 0; i < n; ++i) {
-    const Vec3 x = current(P, i);
+    const Vec3 x = P.position(i);
     for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], x[d]), hi[d] = std::max(hi[d], x[d]);
   }
   if (!replicated)
@@ -96,7 +92,7 @@ std::vector<int> slab_owners(const Hydro& s, bool replicated) {
   const double extent = hi[axis] - lo[axis];
   const auto bin_of = [&](int i) {
     if (!(extent > 0.0)) return 0;
-    const int b = static_cast<int>((current(P, i)[axis] - lo[axis]) / extent * bins);
+    const int b = static_cast<int>((P.position(i)[axis] - lo[axis]) / extent * bins);
     return std::clamp(b, 0, bins - 1);
   };
   std::vector<double> count(bins, 0.0);
@@ -203,9 +199,9 @@ std::vector<int> send_records(Hydro& s, const std::vector<std::vector<int>>& to)
 /// Puts the owned particles (no ghost present) in increasing global id.
 void sort_by_id(Hydro& s) {
   const std::vector<long>& id = s.particles.id;
+  if (std::is_sorted(id.begin(), id.end())) return;
   std::vector<int> order(id.size());
   std::iota(order.begin(), order.end(), 0);
-  if (std::is_sorted(id.begin(), id.end())) return;
   std::sort(order.begin(), order.end(), [&id](int a, int b) { return id[a] < id[b]; });
   keep_only(s, order);
 }
@@ -260,7 +256,7 @@ void fetch_remote_ghosts(Hydro& s, double reach) {
   for (int d = 0; d < 3; ++d)
     box[d] = std::numeric_limits<double>::infinity(), box[3 + d] = -box[d];
   for (int i = 0; i < n; ++i) {
-    const Vec3 x = current(P, i);
+    const Vec3 x = P.position(i);
     for (int d = 0; d < 3; ++d)
       box[d] = std::min(box[d], x[d]), box[3 + d] = std::max(box[3 + d], x[d]);
   }
@@ -271,7 +267,7 @@ void fetch_remote_ghosts(Hydro& s, double reach) {
     const double* b = &boxes[6 * static_cast<std::size_t>(r)];
     if (r == ranks.rank || b[0] > b[3]) continue;
     for (int i = 0; i < n; ++i) {
-      const Vec3 x = current(P, i);
+      const Vec3 x = P.position(i);
       double d2 = 0.0;
       for (int d = 0; d < 3; ++d) {
         const double out = std::max({b[d] - x[d], 0.0, x[d] - b[3 + d]});
