@@ -13,6 +13,8 @@ summary.json, every history.csv column and every field of the last output step.
 
 --match-positions pairs particles by position when the two builds order them differently.
 --reuse-old keeps the old runs already in OUT/old (or --old-runs DIR).
+--new-set KEY=VALUE (repeatable) passes --set to the new side's explicit runs only, for an option
+the old build lacks (discretisation.deterministic=true: SPH's rows summed whole).
 Runs use OMP_NUM_THREADS=1 unless --threads says otherwise, so that sums are in one order.
 """
 import argparse
@@ -35,11 +37,13 @@ def explicit(problem: Path):
     return re.search(r"^analysis:\s*(peridynamics|sph)\b", problem.read_text(), re.M) is not None
 
 
-def run(binary, problem: Path, out: Path, fraction, threads, log):
+def run(binary, problem: Path, out: Path, fraction, threads, log, sets=()):
     args = [str(binary), "run", str(problem), "--out", str(out)]
     end = end_time(problem) if explicit(problem) else None
     if end is not None:
         args += ["--set", f"time.end={fraction * end:.6g}"]
+        for s in sets:
+            args += ["--set", s]
     env = dict(os.environ, OMP_NUM_THREADS=str(threads))
     t0 = time.time()
     with open(log, "w") as f:
@@ -59,6 +63,8 @@ def main():
     ap.add_argument("--rtol", type=float, default=1e-10)
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--reuse-old", action="store_true")
+    ap.add_argument("--new-set", action="append", default=[], metavar="KEY=VALUE",
+                    help="--set for the new side's explicit runs")
     ap.add_argument("--match-positions", action="store_true",
                     help="pair particles by position (compare_runs.py --match-positions)")
     ap.add_argument("--old-runs", help="folder of existing old runs (default OUT/old); implies --reuse-old")
@@ -88,7 +94,7 @@ def main():
             failures += 1
             continue
         rc, t = run(args.new_meshfree, new_problem, new_dir, args.explicit_fraction,
-                    args.threads, out / "new" / f"{stem}.log")
+                    args.threads, out / "new" / f"{stem}.log", args.new_set)
         cmp = subprocess.run(["/usr/bin/python3", str(ROOT / "scripts" / "compare_runs.py"),
                               str(old_dir), str(new_dir), "--rtol", str(args.rtol)]
                              + (["--match-positions"] if args.match_positions else []),

@@ -7,8 +7,10 @@ LAMMPS has no counterpart here: its SPH and SMD packages are missing from Debian
 
 Two parts:
   problems  Sod's tube (problems/sph_sod_tube.yaml) and tunnel case 1
-            (problems/sph_tunnel_blast.yaml) over --fraction of their end time: particle-steps/s,
-            neighbour-list builds and the neighbour search's share of the run.
+            (problems/sph_tunnel_blast.yaml) over --fraction of their end time on one thread:
+            particle-steps/s, neighbour-list builds and the neighbour search's share of the run;
+            the new binary with its default sums (each pair once) and with
+            discretisation.deterministic (every row summed whole, the old binary's order).
   blocks    2D gas blocks of 10^4 .. 10^6 particles (a blast tube in a plane: p = 1 | 0.1 at rho = 1),
             either at one spacing ("uniform") or with the right half 8 times coarser ("h 8:1",
             smoothing lengths varying 8:1), at 1 and 2 threads, and the new binary on 2 MPI
@@ -148,17 +150,22 @@ def main():
         for name in ("sph_sod_tube", "sph_tunnel_blast"):
             problem = ROOT / "problems" / f"{name}.yaml"
             sets = [f"time.end={args.fraction * end_time(problem):.6g}"]
-            res = {"old": [], "new": []}
+            # The new binary twice: its default (each pair once) and with the rows summed whole
+            # in global-id order (discretisation.deterministic), the old binary's order.
+            sides = (("old", args.old, []), ("new", args.new, []),
+                     ("new, deterministic", args.new, ["discretisation.deterministic=true"]))
+            res = {side: [] for side, _, _ in sides}
             for _ in range(args.repeats):
-                for side, binary in (("old", args.old), ("new", args.new)):
-                    res[side].append(run(binary, problem, out / f"{name}_{side}", 1, sets))
-            o, nw = best(res["old"]), best(res["new"])
-            for side, r in (("old", o), ("new", nw)):
+                for k, (side, binary, more) in enumerate(sides):
+                    res[side].append(run(binary, problem, out / f"{name}_{k}", 1, sets + more))
+            o = best(res["old"])
+            for side, _, _ in sides:
+                r = best(res[side])
                 share = "-" if r["share"] is None else f"{100 * r['share']:.1f}%"
                 lines.append(f"| {name} | {side} | {r['particles']} | {r['steps']} | "
                              f"{r['rate']:.4g} | {r['builds']} | {share} | "
                              f"{r['rate'] / o['rate']:.2f} |")
-            print("\n".join(lines[-2:]), flush=True)
+            print("\n".join(lines[-3:]), flush=True)
         lines.append("")
 
     if not args.skip_blocks:

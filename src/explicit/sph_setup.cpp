@@ -53,6 +53,7 @@ sph::Settings to_solver(const io::SphNumerics& n) {
   sph::Settings s;
   s.kernel = n.kernel;
   s.gradient_correction = n.gradient_correction;
+  s.deterministic = n.deterministic;
   s.alpha = n.alpha;
   s.beta = n.beta;
   s.phi = n.phi;

@@ -148,6 +148,7 @@ SphSpec parse_sph(KeyReader& r, const ProblemSpec& front) {
             ? kernels::SphKernel::CubicSpline
             : kernels::SphKernel::WendlandC2;
     s.numerics.gradient_correction = m->choice("gradient_correction", {"off", "on"}, "off") == "on";
+    s.numerics.deterministic = m->choice("deterministic", {"true", "false"}, "false") == "true";
     if (s.smoothing < 1.0 || s.smoothing > 3.0)
       m->error("smoothing",
                "expected h / spacing between 1 and 3, got " + std::to_string(s.smoothing));

@@ -11,6 +11,28 @@
 
 namespace mf::sph {
 
+namespace {
+/// The rows of `full` with only the partners j > i: each pair among owned particles once, and
+/// every pair with a ghost (ghosts come after the owned particles).
+neighbors::PairList later_partners(const neighbors::PairList& full, int owned) {
+  neighbors::PairList half;
+  half.offset.assign(owned + 1, 0);
+  for (int i = 0; i < owned; ++i) {
+    long later = 0;
+    for (long k = full.offset[i]; k < full.offset[i + 1]; ++k) later += full.partner[k] > i;
+    half.offset[i + 1] = half.offset[i] + later;
+  }
+  half.partner.resize(half.offset[owned]);
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < owned; ++i) {
+    long at = half.offset[i];
+    for (long k = full.offset[i]; k < full.offset[i + 1]; ++k)
+      if (full.partner[k] > i) half.partner[at++] = full.partner[k];
+  }
+  return half;
+}
+} // namespace
+
 void refresh_neighbours(Hydro& s, bool may_migrate) {
   const auto start = std::chrono::steady_clock::now();
   group_materials(s);
@@ -56,6 +78,7 @@ void refresh_neighbours(Hydro& s, bool may_migrate) {
   s.pairs = neighbors::pairs_within_reach(x, h, 1.0 + skin, owned);
   s.pairs.offset.resize(with_ghosts + 1, s.pairs.offset.back());
   if (!s.ranks.serial()) sort_rows_by_id(s);
+  if (!s.settings.deterministic) s.half_pairs = later_partners(s.pairs, owned);
   s.x_at_build = std::move(x);
   s.h_at_build = std::move(h);
   ++s.rebuilds;

@@ -56,6 +56,7 @@ struct SphSymmetry {
 struct SphNumerics {
   kernels::SphKernel kernel = kernels::SphKernel::CubicSpline;
   bool gradient_correction = false;
+  bool deterministic = false; // discretisation.deterministic: rows summed in global-id order
   double alpha = 1.0, beta = 1.0, phi = 0.1; // Monaghan artificial viscosity
   double courant = 0.3;
   double burn_width = 2.0;

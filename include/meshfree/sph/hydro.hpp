@@ -31,6 +31,10 @@ struct Settings {
   bool gradient_correction = false;  // kernel-gradient correction (Bonet & Lok 1999)
   double ignition_compression = 0.1; // rho / rho0 - 1 that lights an explosive with an
                                      // unreacted equation of state
+  /// Sum every particle's pairs in its row's order (increasing global id), so that the rates do
+  /// not depend on the number of threads or ranks; else (the default) each pair is evaluated once
+  /// and its terms go to both ends (Newton's third law), 1.3x faster on the tunnel blast.
+  bool deterministic = false;
   /// Artificial stress against the tensile instability of solids (Monaghan 2000; Gray,
   /// Monaghan & Swift 2001): each particle's tensile principal stresses give
   /// R = -epsilon sigma_tensile / rho^2, and a pair adds f^n (R_i + R_j) to its stress term with
@@ -112,7 +116,8 @@ struct Hydro {
   ParticleFields fields;
   std::vector<Material> materials;
   Settings settings;
-  neighbors::PairList pairs;
+  neighbors::PairList pairs;      // rows of the owned particles: every partner, ascending
+  neighbors::PairList half_pairs; // the same rows with partners j > i only (unless deterministic)
   std::vector<double> x_at_build, h_at_build; // positions and h when the list was built
   double build_radius = 0.0;
   int rebuilds = 0;
