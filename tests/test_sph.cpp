@@ -505,28 +505,6 @@ TEST_CASE("TNT slab with an unreacted equation of state: a self-sustained ZND fr
 
 namespace {
 
-/// The solid of the wave tests: linear EOS p = K mu with K = 70 GPa, rho = 2700 kg/m^3,
-/// G = 26 GPa, and J2 yield sigma_y (<= 0: elastic).
-sph::Material test_solid(double sigma_y = 0.0) {
-  sph::Material al;
-  al.name = "solid";
-  materials::LinearPolynomial eos;
-  eos.rho0 = 2700.0;
-  eos.c[1] = 70e9;
-  al.eos = eos;
-  if (sigma_y > 0.0) {
-    materials::VonMises vm;
-    vm.shear_modulus = 26e9;
-    vm.j2.E = 2.0 * 26e9; // nu = 0: the return uses mu = G
-    vm.j2.nu = 0.0;
-    vm.j2.sigma0 = sigma_y;
-    al.strength = vm;
-  } else {
-    al.strength = materials::ElasticShear{26e9};
-  }
-  return al;
-}
-
 struct BarImpact {
   double elastic_stress = 0.0, final_stress = 0.0; // mean sigma_xx over the two plateaus
   double elastic_speed = 0.0, plastic_speed = 0.0; // of the half-level crossings, 2/3 t to t

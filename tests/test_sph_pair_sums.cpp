@@ -27,13 +27,7 @@ namespace {
 sph::Hydro mixed_block(int dim, int n) {
   sph::Hydro s;
   s.dim = dim;
-  sph::Material solid;
-  solid.name = "solid";
-  materials::LinearPolynomial eos;
-  eos.rho0 = 2700.0;
-  eos.c[1] = 70e9;
-  solid.eos = eos;
-  solid.strength = materials::ElasticShear{26e9};
+  const sph::Material solid = test_solid();
   sph::Material gas;
   gas.name = "gas";
   gas.eos = materials::IdealGas{};
