@@ -10,7 +10,7 @@ Two parts:
             (problems/sph_tunnel_blast.yaml) over --fraction of their end time on one thread:
             particle-steps/s, neighbour-list builds and the neighbour search's share of the run;
             the new binary with its default sums (each pair once) and with
-            discretisation.deterministic (every row summed whole, the old binary's order).
+            discretisation.deterministic (every row summed whole in global-id order).
   blocks    2D gas blocks of 10^4 .. 10^6 particles (a blast tube in a plane: p = 1 | 0.1 at rho = 1),
             either at one spacing ("uniform") or with the right half 8 times coarser ("h 8:1",
             smoothing lengths varying 8:1), at 1 and 2 threads, and the new binary on 2 MPI
@@ -151,7 +151,7 @@ def main():
             problem = ROOT / "problems" / f"{name}.yaml"
             sets = [f"time.end={args.fraction * end_time(problem):.6g}"]
             # The new binary twice: its default (each pair once) and with the rows summed whole
-            # in global-id order (discretisation.deterministic), the old binary's order.
+            # in global-id order (discretisation.deterministic).
             sides = (("old", args.old, []), ("new", args.new, []),
                      ("new, deterministic", args.new, ["discretisation.deterministic=true"]))
             res = {side: [] for side, _, _ in sides}

@@ -95,7 +95,7 @@ TEST_CASE("a geostatic soil column is in equilibrium under gravity from the star
   // leave. Q4 integrates the balance exactly; the rational RK functions do not, and the
   // out-of-balance of sigma0 is their quadrature error (measured: 7e-4 with 3 x 3 Gauss points
   // per cell, 7e-6 with 6 x 6, used here).
-  for (const std::string& method : {"fem", "meshfree"}) {
+  for (const std::string method : {"fem", "meshfree"}) {
     const auto spec =
         parse(kColumn, {"discretisation.method=" + method, "discretisation.fem={element: q4}",
                         "discretisation.quadrature={order: 6}"});
@@ -124,7 +124,7 @@ TEST_CASE("gravity turned on without an initial stress gives K0 = nu / (1 - nu)"
   // sigma_xx = sigma_zz = nu / (1 - nu) sigma_yy. The exact u_y is quadratic in y, which Q8
   // elements and the quadratic RK basis contain; relative errors below the first row of Gauss
   // points (0.25 m), where the stress tends to 0 at the surface.
-  for (const std::string& basis : {"fem", "quadratic"}) {
+  for (const std::string basis : {"fem", "quadratic"}) {
     YAML::Node root = YAML::Load(kColumn);
     root.remove("initial_stress");
     io::apply_override(root, "steps=[{name: gravity, factors: {body_force: 1}, increments: 1}]");
@@ -351,7 +351,7 @@ TEST_CASE("a point carried through the increments by update_point has the Gauss 
   // ends in the state the solver committed there: the same numbers with the meshfree shape
   // functions (evaluated by the same code), to round-off with finite elements (whose shapes_at
   // maps the point back into its element).
-  for (const std::string& method : {"meshfree", "fem"}) {
+  for (const std::string method : {"meshfree", "fem"}) {
     io::ProblemSpec spec = parse(kLayers, {"discretisation.method=" + method});
     spec.record_increment_parameters = true;
     REQUIRE(spec.steps.size() == 2);

@@ -10,16 +10,30 @@
 namespace mf::sph {
 
 namespace {
-/// The pairs of a row that interact now (r < 2 h_ij, r > 0), one array per quantity so that the
-/// kernel loop runs on packed registers: partner, x_i - x_j, r^2, h_ij and grad_i W_ij / r_ij.
+/// The pairs of a row that interact now (r < 2 h_ij, r > 0) and their terms, one array per
+/// quantity so that the pair arithmetic runs as packed loops: the partner's values are gathered
+/// once, every term is computed pass by pass over the row, and the sums read the results.
 struct LivePairs {
   std::vector<int> j;
-  std::vector<double> x0, x1, x2, r2, h, g;
-  std::vector<double> vx, c, rho, visc; // v_ij . x_ij, c_j, rho_j, Monaghan's Pi_ij
+  std::vector<double> x[3], r2, h, g; // x_i - x_j, r^2, h_ij, grad_i W_ij / r_ij
+  std::vector<double> v[3];           // v_i - v_j
+  std::vector<double> m, vol;         // m_j, m_j / rho_j
+  std::vector<double> c, rho;         // c_j, rho_j
+  std::vector<double> q;              // p_i / rho_i^2 + p_j / rho_j^2 + Pi_ij
+  std::vector<double> T[6];           // S_i / rho_i^2 + S_j / rho_j^2 (+ artificial stress)
+  std::vector<double> gv[3];          // the pair's kernel gradient
+  std::vector<double> gi[3], gj[3];   // C_i g x_ij and C_j g x_ij (with the correction)
+  std::vector<double> f[3];           // q gv - T gv: the momentum term per m_i m_j
+  std::vector<double> vg, w;          // v_ij . gv and q v_ij . gv - v_ij . T gv
+  std::vector<double> push;           // inter-material penalty force / r (0: none)
   void reserve(std::size_t n) {
     if (j.size() >= n) return;
-    for (std::vector<double>* v : {&x0, &x1, &x2, &r2, &h, &g, &vx, &c, &rho, &visc}) v->resize(n);
     j.resize(n);
+    for (std::vector<double>* a : {&r2, &h, &g, &m, &vol, &c, &rho, &q, &vg, &w, &push})
+      a->resize(n);
+    for (int d = 0; d < 3; ++d)
+      for (std::vector<double>* a : {&x[d], &v[d], &gv[d], &gi[d], &gj[d], &f[d]}) a->resize(n);
+    for (std::vector<double>& a : T) a.resize(n);
   }
 };
 
@@ -31,12 +45,12 @@ template <int Dim> void kernel_slopes(kernels::SphKernel kernel, LivePairs& live
   if (kernel == kernels::SphKernel::CubicSpline)
     for (int t = 0; t < count; ++t) {
       const double rr = std::sqrt(r2[t]);
-      g[t] = kernels::cubic_spline_slope(Dim, rr, h[t]) / rr;
+      g[t] = kernels::cubic_spline_slope_over_r(Dim, rr, h[t]);
     }
   else
     for (int t = 0; t < count; ++t) {
       const double rr = std::sqrt(r2[t]);
-      g[t] = kernels::wendland_c2_slope(Dim, rr, h[t]) / rr;
+      g[t] = kernels::wendland_c2_slope_over_r(Dim, rr, h[t]);
     }
 }
 
@@ -45,28 +59,29 @@ template <int Dim> void kernel_slopes(kernels::SphKernel kernel, LivePairs& live
 /// one walking the list with pair_gradient. Dim: the model's dimension; the coordinates beyond
 /// it are zero for every particle, so their terms (exact zeros) are left out.
 template <int Dim>
-int live_pairs(const Hydro& s, const neighbors::PairList& list, const std::vector<double>& x, int i,
+int live_pairs(const Hydro& s, const neighbors::PairList& list, const Rates& r, int i,
                LivePairs& live) {
   const long begin = list.offset[i], end = list.offset[i + 1];
   live.reserve(static_cast<std::size_t>(end - begin));
-  const double* h = s.fields.h.data();
-  const double xi[3] = {x[3 * i], x[3 * i + 1], x[3 * i + 2]};
+  const double* xh = r.xh.data();
+  const double xi[3] = {xh[4 * i], xh[4 * i + 1], xh[4 * i + 2]}, hi = xh[4 * i + 3];
   int count = 0;
   // Without a branch: every pair is written at the next free slot, which advances only for an
   // interacting pair (about half of the list is the skin, in no predictable pattern).
   for (long k = begin; k < end; ++k) {
     const int j = list.partner[k];
-    const double d0 = xi[0] - x[3 * j];
-    const double d1 = Dim > 1 ? xi[1] - x[3 * j + 1] : 0.0;
-    const double d2 = Dim > 2 ? xi[2] - x[3 * j + 2] : 0.0;
+    const double* xj = &xh[4 * static_cast<std::size_t>(j)];
+    const double d0 = xi[0] - xj[0];
+    const double d1 = Dim > 1 ? xi[1] - xj[1] : 0.0;
+    const double d2 = Dim > 2 ? xi[2] - xj[2] : 0.0;
     double r2 = d0 * d0;
     if constexpr (Dim > 1) r2 += d1 * d1;
     if constexpr (Dim > 2) r2 += d2 * d2;
-    const double hij = 0.5 * (h[i] + h[j]);
+    const double hij = 0.5 * (hi + xj[3]);
     live.j[count] = j;
-    live.x0[count] = d0;
-    if constexpr (Dim > 1) live.x1[count] = d1;
-    if constexpr (Dim > 2) live.x2[count] = d2;
+    live.x[0][count] = d0;
+    if constexpr (Dim > 1) live.x[1][count] = d1;
+    if constexpr (Dim > 2) live.x[2][count] = d2;
     live.r2[count] = r2, live.h[count] = hij;
     count += !(r2 >= 4.0 * hij * hij) & (r2 != 0.0);
   }
@@ -74,40 +89,79 @@ int live_pairs(const Hydro& s, const neighbors::PairList& list, const std::vecto
   return count;
 }
 
-/// Monaghan's artificial viscosity Pi_ij of pairs [0, count) of particle i (Monaghan 1992, eq.
-/// 4.2): mu = h_ij v_ij.x_ij / (r^2 + (phi h_ij)^2), Pi = (-alpha c_ij mu + beta mu^2) / rho_ij
-/// for approaching pairs (v_ij.x_ij < 0), else 0. The partners' values are gathered first so that
-/// the arithmetic, two divisions a pair, runs as one packed loop with a select for the sign test.
-template <int Dim> void viscosities(const Hydro& s, int i, LivePairs& live, int count) {
-  const particles::ParticleSet& P = s.particles;
-  const ParticleFields& F = s.fields;
-  const Settings& S = s.settings;
+/// The values of a row's own particle i that every pair of the row reads, gathered once per row.
+struct RowParticle {
+  int i;
+  double v[3], p_rho2, mass, volume, spacing, c, rho;
+  double T[6];     // S_i / rho_i^2 (solids)
+  const double* C; // the correction matrix, or null
+  const double* R; // the artificial stress, or null
+  int material;
+};
+
+template <bool Solids> RowParticle row_particle(const Hydro& s, const Rates& r, int i) {
+  const std::size_t k = static_cast<std::size_t>(i);
+  const double* q = &r.records[Record::size * k];
+  RowParticle o;
+  o.i = i;
+  for (int d = 0; d < 3; ++d) o.v[d] = q[Record::v + d];
+  o.p_rho2 = q[Record::p_rho2];
+  o.mass = q[Record::mass];
+  o.volume = q[Record::volume];
+  const bool spaced = s.settings.artificial_stress > 0.0 || s.settings.penalty.pressure > 0.0;
+  o.spacing = spaced ? r.spacing[k] : 0.0;
+  o.c = q[Record::c];
+  o.rho = q[Record::rho];
+  if constexpr (Solids)
+    for (int c = 0; c < 6; ++c) o.T[c] = q[Record::T + c];
+  o.C = s.settings.gradient_correction ? &r.correction[9 * k] : nullptr;
+  o.R = s.settings.artificial_stress > 0.0 ? &r.art_stress[6 * k] : nullptr;
+  o.material = s.particles.material[k];
+  return o;
+}
+
+/// The stress components (Voigt xx yy zz yz xz xy) that act in Dim dimensions: the in-plane or
+/// in-line ones (the others multiply zero gradient components).
+template <int Dim> constexpr bool stress_component_acts(int c) {
+  return Dim == 3 || c == 0 || (Dim == 2 && (c == 1 || c == 5));
+}
+
+/// The partners' values of pairs [0, count), gathered into the row's arrays: v_ij, m_j, V_j,
+/// c_j, rho_j, p_j / rho_j^2 and, for solids, T = S_i / rho_i^2 + S_j / rho_j^2.
+template <int Dim, bool Solids>
+void gather_partners(const Rates& r, const RowParticle& o, LivePairs& live, int count) {
   for (int t = 0; t < count; ++t) {
-    const int j = live.j[t];
-    double vx = (P.v[3 * i] - P.v[3 * j]) * live.x0[t];
-    if constexpr (Dim > 1) vx += (P.v[3 * i + 1] - P.v[3 * j + 1]) * live.x1[t];
-    if constexpr (Dim > 2) vx += (P.v[3 * i + 2] - P.v[3 * j + 2]) * live.x2[t];
-    live.vx[t] = vx;
-    live.c[t] = F.c[j];
-    live.rho[t] = F.rho[j];
-  }
-  const double ci = F.c[i], rhoi = F.rho[i], phi = S.phi, alpha = S.alpha, beta = S.beta;
-  const double *vxs = live.vx.data(), *r2 = live.r2.data(), *h = live.h.data();
-  const double *cj = live.c.data(), *rhoj = live.rho.data();
-  double* visc = live.visc.data();
-  for (int t = 0; t < count; ++t) {
-    const double hij = h[t], vx = vxs[t];
-    const double mu = hij * vx / (r2[t] + phi * phi * hij * hij);
-    const double cij = 0.5 * (ci + cj[t]), rhoij = 0.5 * (rhoi + rhoj[t]);
-    visc[t] = vx < 0.0 ? (-alpha * cij * mu + beta * mu * mu) / rhoij : 0.0;
+    const double* q = &r.records[Record::size * static_cast<std::size_t>(live.j[t])];
+    for (int d = 0; d < Dim; ++d) live.v[d][t] = o.v[d] - q[Record::v + d];
+    live.m[t] = q[Record::mass];
+    live.vol[t] = q[Record::volume];
+    live.q[t] = q[Record::p_rho2];
+    live.c[t] = q[Record::c];
+    live.rho[t] = q[Record::rho];
+    if constexpr (Solids)
+      for (int c = 0; c < 6; ++c)
+        if (stress_component_acts<Dim>(c)) live.T[c][t] = o.T[c] + q[Record::T + c];
   }
 }
 
-/// x_ij of slot t of `live`, with zeros beyond the model's dimension.
-template <int Dim> inline void separation(const LivePairs& live, int t, double xij[3]) {
-  xij[0] = live.x0[t];
-  xij[1] = Dim > 1 ? live.x1[t] : 0.0;
-  xij[2] = Dim > 2 ? live.x2[t] : 0.0;
+/// Monaghan's artificial viscosity Pi_ij (Monaghan 1992, eq. 4.2) added to q:
+/// mu = h_ij v_ij.x_ij / D with D = r^2 + (phi h_ij)^2, Pi = (-alpha c_ij mu + beta mu^2) / rho_ij
+/// for approaching pairs (v_ij.x_ij < 0), else 0; q = p_i / rho_i^2 + p_j / rho_j^2 + Pi_ij.
+/// Pi is evaluated as h v.x (beta h v.x - alpha c_ij D) / (D^2 rho_ij), one division a pair.
+template <int Dim>
+void viscosities(const Settings& S, const RowParticle& o, LivePairs& live, int count) {
+  const double phi2 = S.phi * S.phi, alpha = S.alpha, beta = S.beta;
+#pragma GCC ivdep
+  for (int t = 0; t < count; ++t) {
+    double vx = live.v[0][t] * live.x[0][t];
+    if constexpr (Dim > 1) vx += live.v[1][t] * live.x[1][t];
+    if constexpr (Dim > 2) vx += live.v[2][t] * live.x[2][t];
+    const double hij = live.h[t], hvx = hij * vx;
+    const double D = live.r2[t] + phi2 * hij * hij;
+    const double cij = 0.5 * (o.c + live.c[t]), rhoij = 0.5 * (o.rho + live.rho[t]);
+    const double visc = vx < 0.0 ? hvx * (beta * hvx - alpha * cij * D) / (D * D * rhoij) : 0.0;
+    live.q[t] = o.p_rho2 + live.q[t] + visc;
+  }
 }
 
 /// gradient_vector over the model's Dim axes: g x_ij, or g A x_ij for the 3x3 correction A
@@ -127,162 +181,169 @@ inline void gradient_along(const double* A, double g, const double xij[3], doubl
   }
 }
 
-/// Velocity gradient L_i = sum_j (m_j / rho_j)(v_j - v_i) (x) grad_i W_ij of particle i over its
-/// interacting pairs (row-major, L_ab = d v_a / d x_b; rows and columns beyond Dim stay zero).
+/// The kernel gradients of pairs [0, count): g x_ij or, with the correction, the pair's
+/// (C_i + C_j)/2 g x_ij, which stays antisymmetric in i and j so that momentum is still conserved
+/// exactly, and each end's own C g x_ij for the velocity gradient.
 template <int Dim>
-void velocity_gradient(const Hydro& s, const Rates& r, int i, const LivePairs& live, int count,
-                       double L[9]) {
-  const particles::ParticleSet& P = s.particles;
-  const double* C =
-      s.settings.gradient_correction ? &r.correction[9 * static_cast<std::size_t>(i)] : nullptr;
-  for (int c = 0; c < 9; ++c) L[c] = 0.0;
-  for (int t = 0; t < count; ++t) {
-    const int j = live.j[t];
-    double xij[3], gv[3];
-    separation<Dim>(live, t, xij);
-    gradient_along<Dim>(C, live.g[t], xij, gv);
-    const double vol = r.volume[j];
-    for (int a = 0; a < Dim; ++a)
-      for (int b = 0; b < Dim; ++b) L[3 * a + b] += vol * (P.v[3 * j + a] - P.v[3 * i + a]) * gv[b];
+void kernel_gradients(const Rates& r, const RowParticle& o, LivePairs& live, int count) {
+  if (!o.C) {
+#pragma GCC ivdep
+    for (int t = 0; t < count; ++t)
+      for (int d = 0; d < Dim; ++d) live.gv[d][t] = live.g[t] * live.x[d][t];
+    return;
   }
+  for (int t = 0; t < count; ++t) {
+    const double* Cj = &r.correction[9 * static_cast<std::size_t>(live.j[t])];
+    double A[9], xij[3] = {live.x[0][t], 0.0, 0.0}, gv[3], gi[3], gj[3];
+    for (int d = 1; d < Dim; ++d) xij[d] = live.x[d][t];
+    for (int c = 0; c < 9; ++c) A[c] = 0.5 * (o.C[c] + Cj[c]);
+    gradient_along<Dim>(A, live.g[t], xij, gv);
+    gradient_along<Dim>(o.C, live.g[t], xij, gi);
+    gradient_along<Dim>(Cj, live.g[t], xij, gj);
+    for (int d = 0; d < Dim; ++d)
+      live.gv[d][t] = gv[d], live.gi[d][t] = gi[d], live.gj[d][t] = gj[d];
+  }
+}
+
+/// Gray, Monaghan & Swift's (2001) artificial stress added to T: f^n (R_i + R_j) with
+/// f = W(r) / W(dp), dp the pair's mean initial spacing.
+template <int Dim>
+void artificial_stress(const Hydro& s, const Rates& r, const RowParticle& o, LivePairs& live,
+                       int count) {
+  const Settings& S = s.settings;
+  for (int t = 0; t < count; ++t) {
+    const std::size_t j = static_cast<std::size_t>(live.j[t]);
+    const double dp = 0.5 * (o.spacing + r.spacing[j]), hij = live.h[t];
+    const double f = kernels::sph_kernel(S.kernel, s.dim, std::sqrt(live.r2[t]), hij) /
+                     kernels::sph_kernel(S.kernel, s.dim, dp, hij);
+    const double fn = std::pow(f, S.artificial_stress_exponent);
+    const double* Rj = &r.art_stress[6 * j];
+    for (int c = 0; c < 6; ++c)
+      if (stress_component_acts<Dim>(c)) live.T[c][t] += fn * (o.R[c] + Rj[c]);
+  }
+}
+
+/// The terms of pairs [0, count) that both ends share (the thesis' eqs. 3-41, 3-48 and 3-64):
+/// the momentum term f = q gv - T gv (dv_i = -m_j f, dv_j = +m_i f), v_ij . gv (drho_i = m_j v.gv)
+/// and w = q v_ij . gv - v_ij . T gv (de_i = m_j w / 2). Each is symmetric in i and j or changes
+/// sign with x_ij, so one evaluation serves both ends. Components beyond Dim are zero: the
+/// motion and the shear stresses out of the model's plane or line are.
+template <int Dim, bool Solids> void pair_terms(LivePairs& live, int count) {
+  constexpr int voigt[3][3] = {{0, 5, 4}, {5, 1, 3}, {4, 3, 2}};
+#pragma GCC ivdep
+  for (int t = 0; t < count; ++t) {
+    double vg = live.v[0][t] * live.gv[0][t];
+    for (int d = 1; d < Dim; ++d) vg += live.v[d][t] * live.gv[d][t];
+    const double q = live.q[t];
+    live.vg[t] = vg;
+    if constexpr (Solids) {
+      double Tg[3], vTg = 0.0;
+      for (int a = 0; a < Dim; ++a) {
+        double sum = live.T[voigt[a][0]][t] * live.gv[0][t];
+        for (int b = 1; b < Dim; ++b) sum += live.T[voigt[a][b]][t] * live.gv[b][t];
+        Tg[a] = sum;
+        vTg += live.v[a][t] * sum;
+      }
+      for (int d = 0; d < Dim; ++d) live.f[d][t] = q * live.gv[d][t] - Tg[d];
+      live.w[t] = q * vg - vTg;
+    } else {
+      for (int d = 0; d < Dim; ++d) live.f[d][t] = q * live.gv[d][t];
+      live.w[t] = q * vg;
+    }
+  }
+}
+
+/// The inter-material penalty of pairs [0, count) (Settings::Penalty): a repulsion
+/// P a^(dim-1) ((r0/r)^n1 - (r0/r)^n2) along x_ij for r < r0 = distance * a between particles
+/// of different materials, a the pair's mean spacing; push = that force / r, or 0.
+void penalties(const Hydro& s, const Rates& r, const RowParticle& o, LivePairs& live, int count) {
+  const Settings::Penalty& pen = s.settings.penalty;
+  for (int t = 0; t < count; ++t) {
+    const std::size_t j = static_cast<std::size_t>(live.j[t]);
+    live.push[t] = 0.0;
+    if (o.material == s.particles.material[j]) continue;
+    const double a = 0.5 * (o.spacing + r.spacing[j]);
+    const double r0 = pen.distance * a, rr = std::sqrt(live.r2[t]);
+    if (rr >= r0) continue;
+    const double pe = r0 / rr;
+    live.push[t] =
+        pen.pressure * std::pow(a, s.dim - 1) * (std::pow(pe, pen.n1) - std::pow(pe, pen.n2)) / rr;
+  }
+}
+
+/// Row i's interacting pairs and all their terms, pass by pass.
+template <int Dim, bool Solids>
+int row_terms(const Hydro& s, const Rates& r, const neighbors::PairList& list, const RowParticle& o,
+              LivePairs& live) {
+  const int count = live_pairs<Dim>(s, list, r, o.i, live);
+  gather_partners<Dim, Solids>(r, o, live, count);
+  viscosities<Dim>(s.settings, o, live, count);
+  kernel_gradients<Dim>(r, o, live, count);
+  if (Solids && o.R) artificial_stress<Dim>(s, r, o, live, count);
+  pair_terms<Dim, Solids>(live, count);
+  if (s.settings.penalty.pressure > 0.0) penalties(s, r, o, live, count);
+  return count;
+}
+
+/// Row i's own sums over its pairs: dv_i = -sum m_j f (+ the penalty / m_i), drho_i, de_i and,
+/// for solids, L_i = -sum V_j v_ij (x) C_i g x_ij. Even and odd pairs are summed apart (two
+/// chains of additions instead of one, in packed registers) and the two sums added at the end,
+/// an order fixed by the row alone.
+template <int Dim, bool Solids>
+void row_sums(const Settings& S, const RowParticle& o, const LivePairs& live, int count,
+              double a[3], double& drho, double& de, double L[9]) {
+  constexpr int width = 2 + Dim + (Solids ? Dim * Dim : 0);
+  double sum[2][width] = {};
+  const std::vector<double>* gi = o.C ? live.gi : live.gv;
+  const bool penalty = S.penalty.pressure > 0.0;
+  const auto add = [&](int t, double* u) {
+    const double mj = live.m[t];
+    for (int d = 0; d < Dim; ++d) u[d] -= mj * live.f[d][t];
+    u[Dim] += mj * live.vg[t];
+    u[Dim + 1] += 0.5 * mj * live.w[t];
+    if (penalty)
+      for (int d = 0; d < Dim; ++d) u[d] += live.push[t] / o.mass * live.x[d][t];
+    if constexpr (Solids)
+      for (int p = 0; p < Dim; ++p)
+        for (int q = 0; q < Dim; ++q)
+          u[Dim + 2 + Dim * p + q] -= live.vol[t] * live.v[p][t] * gi[q][t];
+  };
+  int t = 0;
+  for (; t + 1 < count; t += 2) add(t, sum[0]), add(t + 1, sum[1]);
+  if (t < count) add(t, sum[0]);
+  for (int d = 0; d < Dim; ++d) a[d] += sum[0][d] + sum[1][d];
+  drho += sum[0][Dim] + sum[1][Dim];
+  de += sum[0][Dim + 1] + sum[1][Dim + 1];
+  if constexpr (Solids)
+    for (int p = 0; p < Dim; ++p)
+      for (int q = 0; q < Dim; ++q)
+        L[3 * p + q] += sum[0][Dim + 2 + Dim * p + q] + sum[1][Dim + 2 + Dim * p + q];
 }
 
 /// The Jaumann rate of a deviatoric stress S (Voigt: xx yy zz yz xz xy) under the velocity
 /// gradient L with shear modulus G: dS = 2 G dev D + W S - S W, D and W the symmetric and
-/// antisymmetric parts of L.
+/// antisymmetric parts of L. L is zero beyond the model's Dim axes and so are the shear stresses
+/// out of its plane or line, so the rotation terms over the other axes (exact zeros) are left out.
+template <int Dim>
 void jaumann_rate(const double L[9], const double s6[6], double G, double out[6]) {
-  double D[3][3], W[3][3], Si[3][3];
+  double D[3][3], W[3][3];
   const double Sm[3][3] = {{s6[0], s6[5], s6[4]}, {s6[5], s6[1], s6[3]}, {s6[4], s6[3], s6[2]}};
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b) {
       D[a][b] = 0.5 * (L[3 * a + b] + L[3 * b + a]);
       W[a][b] = 0.5 * (L[3 * a + b] - L[3 * b + a]);
-      Si[a][b] = Sm[a][b];
     }
   const double trD = D[0][0] + D[1][1] + D[2][2];
   double dS[3][3];
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b) {
       double rot = 0.0;
-      for (int c = 0; c < 3; ++c) rot += W[a][c] * Si[c][b] - Si[a][c] * W[c][b];
+      if (a < Dim && b < Dim)
+        for (int c = 0; c < Dim; ++c) rot += W[a][c] * Sm[c][b] - Sm[a][c] * W[c][b];
       dS[a][b] = 2.0 * G * (D[a][b] - (a == b ? trD / 3.0 : 0.0)) + rot;
     }
   out[0] = dS[0][0], out[1] = dS[1][1], out[2] = dS[2][2];
   out[3] = dS[1][2], out[4] = dS[0][2], out[5] = dS[0][1];
-}
-
-/// What pair (i, j) (slot t of `live`) contributes to the momentum, continuity and energy
-/// equations before the partner's mass is applied (the thesis' eqs. 3-41, 3-48 and 3-64):
-/// the pair's kernel gradient gv, q = p_i / rho_i^2 + p_j / rho_j^2 + Pi_ij, v_ij . gv and, for
-/// solids, the stress term T gv with T = S_i / rho_i^2 + S_j / rho_j^2 (+ the artificial stress)
-/// and v_ij . T gv. Each of them is symmetric in i and j or changes sign with x_ij, bit for bit,
-/// so one evaluation serves both ends of the pair. Components beyond Dim are zero: the motion
-/// and the shear stresses out of the model's plane or line are (the terms left out are zeros).
-/// The values of a row's own particle i that every pair of the row reads, gathered once per row
-/// (the pair loops store through pointers the compiler cannot tell apart from these arrays, so
-/// it would read them again after every store).
-struct RowParticle {
-  int i;
-  double v[3], p_rho2, mass, volume, spacing;
-  double T[6];     // S_i / rho_i^2 (solids)
-  const double* C; // the correction matrix, or null
-  const double* R; // the artificial stress, or null
-  int material;
-};
-
-template <bool Solids> RowParticle row_particle(const Hydro& s, const Rates& r, int i) {
-  const std::size_t k = static_cast<std::size_t>(i);
-  RowParticle o;
-  o.i = i;
-  for (int d = 0; d < 3; ++d) o.v[d] = s.particles.v[3 * k + d];
-  o.p_rho2 = r.p_rho2[k];
-  o.mass = s.particles.mass[k];
-  o.volume = r.volume[k];
-  const bool spaced = s.settings.artificial_stress > 0.0 || s.settings.penalty.pressure > 0.0;
-  o.spacing = spaced ? r.spacing[k] : 0.0;
-  if constexpr (Solids)
-    for (int c = 0; c < 6; ++c) o.T[c] = s.fields.S[6 * k + c] * r.inv_rho2[k];
-  o.C = s.settings.gradient_correction ? &r.correction[9 * k] : nullptr;
-  o.R = s.settings.artificial_stress > 0.0 ? &r.art_stress[6 * k] : nullptr;
-  o.material = s.particles.material[k];
-  return o;
-}
-
-struct PairTerms {
-  double xij[3], vij[3], gv[3], q, vg;
-  double Tg[3], vTg; // solids
-  bool penalty;      // the inter-material penalty acts: force `push` along x_ij / r
-  double push, r;
-};
-
-template <int Dim, bool Solids>
-[[gnu::always_inline]] inline void pair_terms(const Hydro& s, const Rates& r, const RowParticle& o,
-                                              int t, const LivePairs& live, PairTerms& p) {
-  const particles::ParticleSet& P = s.particles;
-  const ParticleFields& F = s.fields;
-  const Settings& S = s.settings;
-  const int j = live.j[t];
-  separation<Dim>(live, t, p.xij);
-  const double r2 = live.r2[t], g = live.g[t], hij = live.h[t];
-  for (int d = 0; d < 3; ++d) p.vij[d] = d < Dim ? o.v[d] - P.v[3 * j + d] : 0.0;
-  p.q = o.p_rho2 + r.p_rho2[j] + live.visc[t];
-  // The pair's gradient: with the correction, (C_i + C_j)/2 grad W, which stays antisymmetric
-  // in i and j, so momentum is still conserved exactly.
-  if (S.gradient_correction) {
-    double A[9];
-    const double* ci = o.C;
-    const double* cj = &r.correction[9 * static_cast<std::size_t>(j)];
-    for (int c = 0; c < 9; ++c) A[c] = 0.5 * (ci[c] + cj[c]);
-    gradient_along<Dim>(A, g, p.xij, p.gv);
-  } else {
-    gradient_along<Dim>(nullptr, g, p.xij, p.gv);
-  }
-  p.vg = p.vij[0] * p.gv[0];
-  for (int d = 1; d < Dim; ++d) p.vg += p.vij[d] * p.gv[d];
-  if constexpr (Solids) {
-    // Deviatoric stress: dv_i += m_j (S_i/rho_i^2 + S_j/rho_j^2) . grad W and
-    // de_i -= m_j / 2 (S_i/rho_i^2 + S_j/rho_j^2) : (v_ij (x) grad W).
-    const double* sj = &F.S[6 * static_cast<std::size_t>(j)];
-    const double rj2 = r.inv_rho2[j];
-    double T[6];
-    for (int c = 0; c < 6; ++c) T[c] = o.T[c] + sj[c] * rj2;
-    if (o.R) {
-      // f^n (R_i + R_j), f = W(r) / W(dp) with dp the pair's mean initial spacing.
-      const double dp = 0.5 * (o.spacing + r.spacing[j]);
-      const double f = kernels::sph_kernel(S.kernel, s.dim, std::sqrt(r2), hij) /
-                       kernels::sph_kernel(S.kernel, s.dim, dp, hij);
-      const double fn = std::pow(f, S.artificial_stress_exponent);
-      const double* Ri = o.R;
-      const double* Rj = &r.art_stress[6 * static_cast<std::size_t>(j)];
-      for (int c = 0; c < 6; ++c) T[c] += fn * (Ri[c] + Rj[c]);
-    }
-    // T gv with T symmetric (Voigt xx yy zz yz xz xy), over the first Dim rows and columns.
-    const double* gx = p.gv;
-    const int voigt[3][3] = {{0, 5, 4}, {5, 1, 3}, {4, 3, 2}};
-    for (int a = 0; a < 3; ++a) {
-      if (a >= Dim) {
-        p.Tg[a] = 0.0;
-        continue;
-      }
-      double sum = T[voigt[a][0]] * gx[0];
-      for (int b = 1; b < Dim; ++b) sum += T[voigt[a][b]] * gx[b];
-      p.Tg[a] = sum;
-    }
-    p.vTg = p.vij[0] * p.Tg[0];
-    for (int d = 1; d < Dim; ++d) p.vTg += p.vij[d] * p.Tg[d];
-  }
-  p.penalty = false;
-  if (S.penalty.pressure > 0.0 && o.material != P.material[j]) {
-    const double a = 0.5 * (o.spacing + r.spacing[j]);
-    const double r0 = S.penalty.distance * a, rr = std::sqrt(r2);
-    if (rr < r0) {
-      const double pe = r0 / rr;
-      p.penalty = true;
-      p.push = S.penalty.pressure * std::pow(a, s.dim - 1) *
-               (std::pow(pe, S.penalty.n1) - std::pow(pe, S.penalty.n2));
-      p.r = rr;
-    }
-  }
 }
 
 /// Adds gravity and damping (a += g - c v) to an owned particle's acceleration and stores it,
@@ -302,7 +363,7 @@ inline void store_acceleration(const Hydro& s, Rates& r, int i, double acc[3]) {
 
 /// The velocity gradient and Jaumann rate of owned particle i from its summed L; particles
 /// without strength keep zeros.
-inline void store_stress_rate(const Hydro& s, Rates& r, int i, const double L[9]) {
+template <int Dim> void store_stress_rate(const Hydro& s, Rates& r, int i, const double L[9]) {
   double* grad = &r.grad_v[9 * static_cast<std::size_t>(i)];
   double* dS = &r.dS[6 * static_cast<std::size_t>(i)];
   if (r.shear[i] < 0.0) {
@@ -311,47 +372,51 @@ inline void store_stress_rate(const Hydro& s, Rates& r, int i, const double L[9]
     return;
   }
   for (int c = 0; c < 9; ++c) grad[c] = L[c];
-  jaumann_rate(L, &s.fields.S[6 * static_cast<std::size_t>(i)], r.shear[i], dS);
+  jaumann_rate<Dim>(L, &s.fields.S[6 * static_cast<std::size_t>(i)], r.shear[i], dS);
 }
 
 /// Deterministic sums (settings.deterministic): every owned particle sums its whole row in the
 /// row's order (increasing global id, mirror images after), so its rates do not depend on the
 /// threads or the ranks; each pair is evaluated from both ends.
 template <int Dim, bool Solids> void full_rows(const Hydro& s, Rates& r) {
-  const particles::ParticleSet& P = s.particles;
-  const int n = P.owned_count();
+  const int n = s.particles.owned_count();
 #pragma omp parallel
   {
     LivePairs live;
-    PairTerms p;
 #pragma omp for schedule(dynamic, 64)
     for (int i = 0; i < n; ++i) {
-      const int count = live_pairs<Dim>(s, s.pairs, r.x, i, live);
-      if constexpr (Solids) {
-        double L[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-        if (r.shear[i] >= 0.0) velocity_gradient<Dim>(s, r, i, live, count, L);
-        store_stress_rate(s, r, i, L);
-      }
-      viscosities<Dim>(s, i, live, count);
       const RowParticle o = row_particle<Solids>(s, r, i);
-      double acc[3] = {0.0, 0.0, 0.0}, drho = 0.0, de = 0.0;
-      for (int t = 0; t < count; ++t) {
-        pair_terms<Dim, Solids>(s, r, o, t, live, p);
-        const double mj = P.mass[live.j[t]];
-        for (int d = 0; d < Dim; ++d) acc[d] -= mj * p.q * p.gv[d];
-        drho += mj * p.vg;
-        de += 0.5 * mj * p.q * p.vg;
-        if constexpr (Solids) {
-          for (int d = 0; d < Dim; ++d) acc[d] += mj * p.Tg[d];
-          de -= 0.5 * mj * p.vTg;
-        }
-        if (p.penalty)
-          for (int d = 0; d < Dim; ++d) acc[d] += p.push / o.mass * p.xij[d] / p.r;
-      }
-      store_acceleration(s, r, i, acc);
+      const int count = row_terms<Dim, Solids>(s, r, s.pairs, o, live);
+      double a[3] = {0.0, 0.0, 0.0}, drho = 0.0, de = 0.0;
+      double L[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+      row_sums<Dim, Solids>(s.settings, o, live, count, a, drho, de, L);
+      store_acceleration(s, r, i, a);
       r.drho[i] = drho;
       r.de[i] = de;
+      if constexpr (Solids) store_stress_rate<Dim>(s, r, i, L);
     }
+  }
+}
+
+/// The partners' side of row i's pairs (x_ji = -x_ij, v_ji = -v_ij: f changes sign, v.gv and w do
+/// not), added at j - base of the thread's outputs; ghosts (j >= n) are left to their owners.
+template <int Dim, bool Solids>
+void partner_sums(const Settings& S, const RowParticle& o, const LivePairs& live, int count, int n,
+                  int base, double* acc, double* drho, double* de, double* L) {
+  const double mi = o.mass, vol_i = o.volume;
+  const std::vector<double>* gj = o.C ? live.gj : live.gv;
+  for (int t = 0; t < count; ++t) {
+    const int j = live.j[t];
+    if (j >= n) continue;
+    const std::size_t k = static_cast<std::size_t>(j - base);
+    for (int d = 0; d < Dim; ++d) acc[3 * k + d] += mi * live.f[d][t];
+    drho[k] += mi * live.vg[t];
+    de[k] += 0.5 * mi * live.w[t];
+    if (S.penalty.pressure > 0.0)
+      for (int d = 0; d < Dim; ++d) acc[3 * k + d] -= live.push[t] / live.m[t] * live.x[d][t];
+    if constexpr (Solids)
+      for (int p = 0; p < Dim; ++p)
+        for (int q = 0; q < Dim; ++q) L[9 * k + 3 * p + q] -= vol_i * live.v[p][t] * gj[q][t];
   }
 }
 
@@ -363,8 +428,7 @@ template <int Dim, bool Solids> void full_rows(const Hydro& s, Rates& r) {
 /// its terms to the owned particle only; the ghost's owner sums its own side. The sums run in an
 /// order that depends on the threads and ranks.
 template <int Dim, bool Solids> void half_rows(const Hydro& s, Rates& r) {
-  const particles::ParticleSet& P = s.particles;
-  const int n = P.owned_count();
+  const int n = s.particles.owned_count();
   const neighbors::PairList& half = s.half_pairs;
   const long total = half.offset[n];
   // Per particle: acceleration (3), drho, de and with strength L (9).
@@ -399,65 +463,13 @@ template <int Dim, bool Solids> void half_rows(const Hydro& s, Rates& r) {
       buffers[t] = own.data();
     }
     LivePairs live;
-    PairTerms p;
     for (int i = lo; i < hi; ++i) {
-      const int count = live_pairs<Dim>(s, half, r.x, i, live);
-      viscosities<Dim>(s, i, live, count);
       const RowParticle o = row_particle<Solids>(s, r, i);
-      const double mi = o.mass, vol_i = o.volume;
-      const bool corrected = s.settings.gradient_correction;
-      const double* Ci = o.C;
+      const int count = row_terms<Dim, Solids>(s, r, half, o, live);
       double ai[3] = {0.0, 0.0, 0.0}, drho_i = 0.0, de_i = 0.0;
       double Li[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-      for (int k = 0; k < count; ++k) {
-        pair_terms<Dim, Solids>(s, r, o, k, live, p);
-        const int j = live.j[k];
-        const double mj = P.mass[j];
-        for (int d = 0; d < Dim; ++d) ai[d] -= mj * p.q * p.gv[d];
-        drho_i += mj * p.vg;
-        de_i += 0.5 * mj * p.q * p.vg;
-        // The velocity gradient's kernel gradients: C_i g x_ij for i and, for j, C_j g x_ij
-        // (grad_j W_ji = -g x_ij and v_j - v_i = -v_ij: the signs cancel); without the
-        // correction both are the pair's gv.
-        double gi[3], gj[3];
-        if constexpr (Solids) {
-          for (int d = 0; d < Dim; ++d) ai[d] += mj * p.Tg[d];
-          de_i -= 0.5 * mj * p.vTg;
-          const double* gl = p.gv;
-          if (corrected) {
-            gradient_along<Dim>(Ci, live.g[k], p.xij, gi);
-            gl = gi;
-          }
-          const double vol_j = r.volume[j];
-          for (int a = 0; a < Dim; ++a)
-            for (int b = 0; b < Dim; ++b) Li[3 * a + b] -= vol_j * p.vij[a] * gl[b];
-        }
-        if (p.penalty)
-          for (int d = 0; d < Dim; ++d) ai[d] += p.push / mi * p.xij[d] / p.r;
-        if (j >= n) continue; // a ghost: its owner sums its side
-        // Partner j: x_ji = -x_ij and v_ji = -v_ij, so gv and T gv change sign while q, v.gv and
-        // v.T gv do not.
-        const std::size_t jb = static_cast<std::size_t>(j - base);
-        double* aj = &acc[3 * jb];
-        for (int d = 0; d < Dim; ++d) aj[d] += mi * p.q * p.gv[d];
-        drho[jb] += mi * p.vg;
-        de[jb] += 0.5 * mi * p.q * p.vg;
-        if constexpr (Solids) {
-          for (int d = 0; d < Dim; ++d) aj[d] -= mi * p.Tg[d];
-          de[jb] -= 0.5 * mi * p.vTg;
-          const double* gl = p.gv;
-          if (corrected) {
-            const double* Cj = &r.correction[9 * static_cast<std::size_t>(j)];
-            gradient_along<Dim>(Cj, live.g[k], p.xij, gj);
-            gl = gj;
-          }
-          double* Lj = &L[9 * jb];
-          for (int a = 0; a < Dim; ++a)
-            for (int b = 0; b < Dim; ++b) Lj[3 * a + b] -= vol_i * p.vij[a] * gl[b];
-        }
-        if (p.penalty)
-          for (int d = 0; d < Dim; ++d) aj[d] -= p.push / P.mass[j] * p.xij[d] / p.r;
-      }
+      row_sums<Dim, Solids>(s.settings, o, live, count, ai, drho_i, de_i, Li);
+      partner_sums<Dim, Solids>(s.settings, o, live, count, n, base, acc, drho, de, L);
       const std::size_t ib = static_cast<std::size_t>(i - base);
       for (int d = 0; d < 3; ++d) acc[3 * ib + d] += ai[d];
       drho[ib] += drho_i;
@@ -484,7 +496,7 @@ template <int Dim, bool Solids> void half_rows(const Hydro& s, Rates& r) {
       if constexpr (Solids) {
         double Lsum[9];
         for (int c = 0; c < 9; ++c) Lsum[c] = r.grad_v[9 * i + c];
-        store_stress_rate(s, r, i, Lsum);
+        store_stress_rate<Dim>(s, r, i, Lsum);
       }
     }
   }

@@ -59,21 +59,29 @@ void compute_rates(const Hydro& s, Rates& r) {
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < all; ++i) r.spacing[i] = std::pow(P.mass[i] / P.density[i], 1.0 / dim);
   }
-  // The per-particle factors of the pair terms, p / rho^2, 1 / rho^2 and m / rho: once per
-  // particle here rather than once per pair (the same operations, so the same values).
-  r.p_rho2.resize(all);
-  r.inv_rho2.resize(all);
-  r.volume.resize(all);
+  // What the pairs read of each particle, gathered here once per particle (the same operations
+  // as per pair, so the same values).
+  const bool solids = s.any_solid();
+  r.xh.resize(4 * static_cast<std::size_t>(all));
+  r.records.resize(Record::size * static_cast<std::size_t>(all));
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < all; ++i) {
-    r.p_rho2[i] = F.p[i] / (F.rho[i] * F.rho[i]);
-    r.inv_rho2[i] = 1.0 / (F.rho[i] * F.rho[i]);
-    r.volume[i] = P.mass[i] / F.rho[i];
+    const std::size_t k = static_cast<std::size_t>(i);
+    for (int d = 0; d < 3; ++d) r.xh[4 * k + d] = r.x[3 * k + d];
+    r.xh[4 * k + 3] = F.h[k];
+    double* q = &r.records[Record::size * k];
+    for (int d = 0; d < 3; ++d) q[Record::v + d] = P.v[3 * k + d];
+    q[Record::mass] = P.mass[k];
+    q[Record::volume] = P.mass[k] / F.rho[k];
+    q[Record::p_rho2] = F.p[k] / (F.rho[k] * F.rho[k]);
+    q[Record::c] = F.c[k];
+    q[Record::rho] = F.rho[k];
+    const double inv_rho2 = 1.0 / (F.rho[k] * F.rho[k]);
+    for (int c = 0; c < 6; ++c) q[Record::T + c] = solids ? F.S[6 * k + c] * inv_rho2 : 0.0;
   }
   r.dv.assign(3 * static_cast<std::size_t>(all), 0.0);
   r.drho.assign(all, 0.0);
   r.de.assign(all, 0.0);
-  const bool solids = s.any_solid();
   if (solids) {
     // Velocity gradient L_i = sum_j (m_j / rho_j)(v_j - v_i) (x) grad_i W_ij, and the Jaumann
     // rate of the deviatoric stress.

@@ -20,12 +20,29 @@ inline double cubic_spline(int dim, double r, double h) {
   return 0.0;
 }
 
-/// dW/dr. Both pieces are evaluated and one selected, so that a loop over pairs compiles to
-/// packed code without branches.
-inline double cubic_spline_slope(int dim, double r, double h) {
-  const double q = r / h, a = cubic_spline_norm(dim, h) / h;
-  const double inner = a * (-3.0 * q + 2.25 * q * q), outer = -a * 0.75 * (2.0 - q) * (2.0 - q);
+/// c / h^(k+1) for 1 / h given.
+inline double over_power(double c, double inv_h, int k) {
+  double x = c * inv_h;
+  for (int e = 0; e < k; ++e) x *= inv_h;
+  return x;
+}
+
+/// dW/dr / r for r > 0, the factor of x_ij in grad_i W_ij, evaluated for every interacting pair:
+/// 1 / h and 1 / r come from the one division 1 / (h r). Both pieces are evaluated and one
+/// selected, so that a loop over pairs compiles to packed code without branches. Inner piece:
+/// a_d / h^2 (-3 + 9/4 q); outer: -3/4 a_d / h (2 - q)^2 / r.
+inline double cubic_spline_slope_over_r(int dim, double r, double h) {
+  const double c = dim == 1 ? 2.0 / 3.0 : dim == 2 ? 10.0 / (7.0 * M_PI) : 1.0 / M_PI; // a_d h^d
+  const double inv = 1.0 / (h * r), inv_h = r * inv, inv_r = h * inv, q = r * inv_h;
+  const double a = over_power(c, inv_h, dim); // a_d / h
+  const double inner = a * inv_h * (-3.0 + 2.25 * q),
+               outer = -a * 0.75 * (2.0 - q) * (2.0 - q) * inv_r;
   return q < 1.0 ? inner : q < 2.0 ? outer : 0.0;
+}
+
+/// dW/dr.
+inline double cubic_spline_slope(int dim, double r, double h) {
+  return r > 0.0 ? r * cubic_spline_slope_over_r(dim, r, h) : 0.0;
 }
 
 /// The Wendland C2 kernel (Wendland 1995; Dehnen & Aly 2012), support 2h, s = q / 2:
@@ -42,14 +59,20 @@ inline double wendland_c2(int dim, double r, double h) {
   return a * t * t * t * t * (2.0 * q + 1.0);
 }
 
-/// dW/dr of the Wendland C2 kernel.
-inline double wendland_c2_slope(int dim, double r, double h) {
-  const double q = r / h;
+/// dW/dr / r of the Wendland C2 kernel, for every interacting pair: -15/8 / h^3 (1 - s)^2 in 1D,
+/// -5 a_d / h^2 (1 - s)^3 in 2D and 3D (q / r = 1 / h, so no division by r).
+inline double wendland_c2_slope_over_r(int dim, double r, double h) {
+  const double inv_h = 1.0 / h, q = r * inv_h;
   if (q >= 2.0) return 0.0;
   const double t = 1.0 - 0.5 * q;
-  if (dim == 1) return -3.0 * 5.0 / (8.0 * h * h) * q * t * t;
-  const double a = dim == 2 ? 7.0 / (4.0 * M_PI * h * h) : 21.0 / (16.0 * M_PI * h * h * h);
-  return -5.0 * a / h * q * t * t * t;
+  if (dim == 1) return -3.0 * over_power(5.0 / 8.0, inv_h, 2) * t * t;
+  const double c = dim == 2 ? 7.0 / (4.0 * M_PI) : 21.0 / (16.0 * M_PI); // a_d h^d
+  return -5.0 * over_power(c, inv_h, dim + 1) * t * t * t;
+}
+
+/// dW/dr of the Wendland C2 kernel.
+inline double wendland_c2_slope(int dim, double r, double h) {
+  return r * wendland_c2_slope_over_r(dim, r, h);
 }
 
 enum class SphKernel { CubicSpline, WendlandC2 };
@@ -57,8 +80,9 @@ enum class SphKernel { CubicSpline, WendlandC2 };
 inline double sph_kernel(SphKernel k, int dim, double r, double h) {
   return k == SphKernel::CubicSpline ? cubic_spline(dim, r, h) : wendland_c2(dim, r, h);
 }
-inline double sph_kernel_slope(SphKernel k, int dim, double r, double h) {
-  return k == SphKernel::CubicSpline ? cubic_spline_slope(dim, r, h) : wendland_c2_slope(dim, r, h);
+inline double sph_kernel_slope_over_r(SphKernel k, int dim, double r, double h) {
+  return k == SphKernel::CubicSpline ? cubic_spline_slope_over_r(dim, r, h)
+                                     : wendland_c2_slope_over_r(dim, r, h);
 }
 
 } // namespace mf::kernels

@@ -19,7 +19,7 @@ inline double pair_gradient(const std::vector<double>& x, const std::vector<doub
   const double hij = 0.5 * (h[i] + h[j]);
   if (r2 >= 4.0 * hij * hij || r2 == 0.0) return 0.0;
   const double rr = std::sqrt(r2);
-  return kernels::sph_kernel_slope(kernel, dim, rr, hij) / rr;
+  return kernels::sph_kernel_slope_over_r(kernel, dim, rr, hij);
 }
 
 /// The kernel gradient of a pair as a vector: g x_ij, or with the correction A g x_ij for the

@@ -8,6 +8,13 @@
 
 namespace mf::sph {
 
+/// What a pair reads of each of its particles, in one record per particle, so that a partner's
+/// values come from two cache lines rather than from one line per array: the velocity, m, the
+/// volume m / rho, p / rho^2, c, rho and (solids) T = S / rho^2 in Voigt order.
+struct Record {
+  enum : int { v = 0, mass = 3, volume = 4, p_rho2 = 5, c = 6, rho = 7, T = 8, size = 16 };
+};
+
 struct Rates {
   std::vector<double> dv, drho, de, dS;
   std::vector<double> grad_v;     // 9 per particle (solids): L_ab = d v_a / d x_b
@@ -15,8 +22,9 @@ struct Rates {
   std::vector<double> art_stress; // 6 per particle: the artificial stress R (Voigt, like S)
   std::vector<double> spacing;    // initial spacing per particle (artificial stress, penalty)
   std::vector<double> x;          // current positions X + u, 3 per particle, ghosts included
-  std::vector<double> p_rho2, inv_rho2, volume; // p / rho^2, 1 / rho^2, m / rho per particle
-  std::vector<double> shear; // shear modulus per owned particle (solids), -1: no strength
+  std::vector<double> xh;         // x, y, z and h per particle, ghosts included
+  std::vector<double> records;    // Record::size per particle, ghosts included
+  std::vector<double> shear;      // shear modulus per owned particle (solids), -1: no strength
 };
 
 /// Rates of velocity, density and energy (and deviatoric stress, for solids) at the current
