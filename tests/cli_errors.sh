@@ -115,6 +115,21 @@ printf 'name: x\nanalysis: staged\nmodel: {type: plane_stress}\nmaterials: [{nam
 expect_error "materials[0].plasticity: a J2 preload (plastic strain, back stress) cannot start a bond-based peridynamic stage" "$WORK/staged_pd.yaml"
 expect_error "materials[0].nu: bond-based peridynamics in plane stress has Poisson's ratio 0.3333333333" "$WORK/staged_pd.yaml" --set 'materials.0.plasticity=null'
 expect_error "stages[1].hold" "$WORK/staged_pd.yaml" --set 'stages.1.hold=[]' --set 'materials.0.plasticity=null' --set 'materials.0.nu=0.3333333333333333'
+# Results that overflow a double, or a solve that did not solve the system, are failures with
+# their cause, never a "completed" run.
+O="$ROOT/problems/ode_1d.yaml"
+expect_run_failure "problem_1d: the source f = -y'' is not finite at x = " "$O" --set problem_1d.sine_amplitude=1e308
+expect_run_failure "problem_1d: the solution's norms overflow a double" "$O" --set problem_1d.linear=1e300
+# PETSc reports CONVERGED_ITS for preonly without a preconditioner (x = b); the true residual,
+# 2e5 here, decides.
+rm -rf "$WORK/out"
+msg="$("$MF" run "$P" --out "$WORK/out" -- -pc_type none 2>&1 >/dev/null)"; rc=$?
+if [ $rc -eq 1 ] && grep -qF "linear solve did not solve the system: relative residual" <<<"$msg" &&
+   [ "$(ls -A "$WORK/out")" = "summary.json" ] && grep -q '"status": "failed"' "$WORK/out/summary.json"; then
+  echo "ok: a linear solve with a large true residual fails"
+else
+  echo "FAIL (exit $rc, '$msg'): -pc_type none"; fails=$((fails+1))
+fi
 # usage errors
 "$MF" 2>/dev/null; [ $? -eq 2 ] && echo "ok: no command -> exit 2" || { echo "FAIL: no command"; fails=$((fails+1)); }
 "$MF" check "$P" >/dev/null || { echo "FAIL: check on a good problem"; fails=$((fails+1)); }

@@ -63,6 +63,10 @@ Model1DResult solve_model_problem_1d(const io::ProblemSpec& spec) {
     PhaseTimer::Scope scope(R.timer, "assembly");
     for (int r = 0; r < t.rows(); ++r) {
       const double f = model_1d_source(P, gx[r].x());
+      MF_REQUIRE(std::isfinite(f),
+                 "problem_1d: the source f = -y'' is not finite at x = ", gx[r].x(),
+                 " (sine_amplitude ", P.sine_amplitude, ", sine_waves ", P.sine_waves, ", linear ",
+                 P.linear, ")");
       for (int a = t.offset[r]; a < t.offset[r + 1]; ++a) {
         F(t.node[a]) += gw[r] * t.phi[a] * f;
         for (int b = t.offset[r]; b < t.offset[r + 1]; ++b)
@@ -81,6 +85,9 @@ Model1DResult solve_model_problem_1d(const io::ProblemSpec& spec) {
   {
     PhaseTimer::Scope scope(R.timer, "solve");
     d = K.partialPivLu().solve(F);
+    MF_REQUIRE(d.allFinite() && (K * d - F).norm() <= 1e-8 * F.norm(),
+               "the 1D model problem's linear solve failed: relative residual ",
+               (K * d - F).norm() / F.norm());
   }
 
   PhaseTimer::Scope scope(R.timer, "postprocess");
@@ -97,6 +104,11 @@ Model1DResult solve_model_problem_1d(const io::ProblemSpec& spec) {
     s[2] += gw[r] * (dy - dye) * (dy - dye);
     s[3] += gw[r] * dye * dye;
   }
+  for (const double sum : s)
+    MF_REQUIRE(std::isfinite(sum),
+               "problem_1d: the solution's norms overflow a double "
+               "(sine_amplitude ",
+               P.sine_amplitude, ", linear ", P.linear, ")");
   R.error_l2 = std::sqrt(s[0] / s[1]);
   R.error_h1 = std::sqrt(s[2] / s[3]);
 
