@@ -156,13 +156,18 @@ int run(Command& c) {
     return 2;
   }
   const std::string dir = c.out_dir.empty() ? "out/" + spec.name : c.out_dir;
-  int exit_code = 0;
+  // The output folder is input too: one that cannot be written is refused before the run.
   std::unique_ptr<mf::io::OutputDirectory> out;
-  try {
-    if (session.rank() == 0) {
+  double unusable = 0.0;
+  if (session.rank() == 0) try {
       out = std::make_unique<mf::io::OutputDirectory>(dir);
-      out->clear_previous();
+    } catch (const std::exception& e) {
+      std::cerr << "meshfree: " << e.what() << std::endl;
+      unusable = 1.0;
     }
+  if (mf::distribution::Ranks::of(session.comm()).max(unusable) > 0.0) return 2;
+  int exit_code = 0;
+  try {
     mf::log::info("problem ", spec.name, ": ", spec.description);
     if (spec.analysis == mf::io::Analysis::ModelProblem1D) {
       if (session.rank() == 0) mf::app::model_problem_1d(spec, *out);
@@ -194,9 +199,16 @@ int run(Command& c) {
       const auto r = mf::app::elastic_static(spec, session, out.get());
       log_phases(r.timer);
     }
-    if (out) {
+    if (out && exit_code == 0) {
       out->commit();
       mf::log::info("results in ", std::filesystem::absolute(dir).string());
+    } else if (out) {
+      const std::string kept = out->keep_unfinished(exit_code == 3 ? "stopped" : "failed");
+      mf::log::info("the run did not complete; its files are in ",
+                    std::filesystem::absolute(kept).string(),
+                    ", and the last completed run's "
+                    "results in ",
+                    dir, " are untouched");
     }
   } catch (const std::exception& e) {
     // A CollectiveError reached every rank: each returns normally. Any other error may have
@@ -207,13 +219,16 @@ int run(Command& c) {
                 << (everywhere ? "" : " on rank " + std::to_string(session.rank())) << ": "
                 << e.what() << std::endl;
     if (out) {
+      // What the run wrote up to the failure is kept for diagnosis under DIR/failed, with a
+      // summary that says why; a good result in DIR stays as it was.
       mf::io::Json summary;
       summary.set("problem", spec.name).set("status", "failed").set("error", e.what());
-      out.reset(); // drop partial files
       try {
-        mf::io::OutputDirectory failed(dir);
-        failed.write_text("summary.json", summary.str() + "\n");
-        failed.commit();
+        out->set_prefix("");
+        out->replace_summary(summary.str() + "\n");
+        const std::string kept = out->keep_unfinished("failed");
+        mf::log::info("the files written up to the failure are in ",
+                      std::filesystem::absolute(kept).string());
       } catch (const std::exception& again) {
         std::cerr << "meshfree: cannot record the failure: " << again.what() << std::endl;
       }

@@ -14,6 +14,8 @@ explicit_dynamics::PdRunResult run_peridynamics(const io::ProblemSpec& spec,
   explicit_dynamics::log_pd_setup(spec, setup);
   result.mpi_ranks = ranks.size;
   explicit_dynamics::PdRun run(setup, s, out, result);
+  // history.csv grows on disk as the run goes: a run that is killed keeps it up to then.
+  if (out) result.history.stream_to(*out);
   run.finish(
       explicit_dynamics::run_time_loop(run, {s.end_time, s.history_interval, s.fields_interval}));
   return result;

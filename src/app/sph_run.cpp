@@ -25,6 +25,8 @@ explicit_dynamics::SphRunResult run_sph(const io::ProblemSpec& spec, io::OutputD
   if (!ranks.serial())
     log::info("sph: spread over ", ranks.size, " MPI ranks (slabs, rebalanced at each list build)");
   explicit_dynamics::SphRun run(h, s, out, result);
+  // history.csv grows on disk as the run goes: a run that is killed keeps it up to then.
+  if (out) result.history.stream_to(*out);
   run.finish(
       explicit_dynamics::run_time_loop(run, {s.end_time, s.history_interval, s.fields_interval}));
   return result;

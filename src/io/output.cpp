@@ -1,8 +1,10 @@
 #include "meshfree/io/output.hpp"
 #include "meshfree/core/error.hpp"
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <hdf5.h>
@@ -13,65 +15,40 @@ namespace mf::io {
 
 namespace fs = std::filesystem;
 
-OutputDirectory::OutputDirectory(std::string dir) : dir_(std::move(dir)) {
-  std::error_code ec;
-  fs::create_directories(dir_, ec);
-  MF_REQUIRE(!ec, dir_, ": cannot create the output directory: ", ec.message());
+std::string csv_line(const std::vector<std::string>& names) {
+  std::string line;
+  for (std::size_t i = 0; i < names.size(); ++i) line += (i ? "," : "") + names[i];
+  return line + "\n";
 }
 
-OutputDirectory::~OutputDirectory() {
-  for (const auto& f : pending_) {
-    std::error_code ec;
-    fs::remove(fs::path(dir_) / (f + ".partial"), ec);
-  }
-}
-
-void OutputDirectory::clear_previous() const {
-  for (const auto& entry : fs::directory_iterator(dir_)) {
-    const std::string name = entry.path().filename().string();
-    const std::string ext = entry.path().extension().string();
-    const std::string stem = entry.path().stem().string();
-    // A staged run's stage files carry the stage's name and an underscore before these names.
-    const auto is = [](const std::string& s, const std::string& what) {
-      return s == what || (s.size() > what.size() && s.compare(s.size() - what.size() - 1,
-                                                               std::string::npos, "_" + what) == 0);
-    };
-    const bool ours =
-        ((is(stem, "fields") || is(stem, "gauss_points")) && (ext == ".h5" || ext == ".xmf")) ||
-        is(name, "history.csv") || is(name, "summary.json") ||
-        (name.rfind("line_", 0) == 0 && entry.path().extension() == ".csv");
-    if (ours) fs::remove(entry.path());
-  }
-}
-
-std::string OutputDirectory::temp_path(const std::string& name) {
-  const std::string file = name_of(name);
-  MF_REQUIRE(std::find(pending_.begin(), pending_.end(), file) == pending_.end(), dir_, "/", file,
-             ": written twice in one run");
-  pending_.push_back(file);
-  return (fs::path(dir_) / (file + ".partial")).string();
-}
-
-void OutputDirectory::write_text(const std::string& file, const std::string& text) {
-  std::ofstream out(temp_path(file));
-  MF_REQUIRE(out.good(), dir_, "/", file, ": cannot write");
-  out << text;
+std::string csv_line(const std::vector<double>& values) {
+  std::ostringstream os;
+  os << std::setprecision(12);
+  for (std::size_t i = 0; i < values.size(); ++i) os << (i ? "," : "") << values[i];
+  os << "\n";
+  return os.str();
 }
 
 void OutputDirectory::write_csv(const std::string& file, const std::vector<std::string>& header,
                                 const std::vector<std::vector<double>>& rows) {
-  std::ostringstream os;
-  for (std::size_t i = 0; i < header.size(); ++i) os << (i ? "," : "") << header[i];
-  os << "\n" << std::setprecision(12);
+  std::string text = csv_line(header);
   for (const auto& row : rows) {
     MF_ASSERT(row.size() == header.size());
-    for (std::size_t i = 0; i < row.size(); ++i) os << (i ? "," : "") << row[i];
-    os << "\n";
+    text += csv_line(row);
   }
-  write_text(file, os.str());
+  write_text(file, text);
 }
 
 namespace {
+
+/// Stops with what failed in an HDF5 file: the system's reason when the call left one (no space,
+/// file too large), and the file's path.
+[[noreturn]] void hdf5_failure(hid_t file, const std::string& what, int error) {
+  char name[4096] = {};
+  if (file < 0 || H5Fget_name(file, name, sizeof name - 1) < 0) std::strcpy(name, "an HDF5 file");
+  fail(error ? system_reason(error) : std::string("HDF5 failed"), " writing ", name, " (", what,
+       ")");
+}
 
 /// A rows x cols dataset (1-D when cols is 1), creating the groups on its path. With a slice,
 /// `rows` are this rank's rows offset .. offset + rows of slice.total, written collectively.
@@ -83,8 +60,9 @@ void write_dataset(hid_t file, const std::string& name, const std::vector<T>& da
   const hid_t space = H5Screate_simple(rank, dims, nullptr);
   const hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
   H5Pset_create_intermediate_group(lcpl, 1);
+  errno = 0;
   const hid_t set = H5Dcreate2(file, name.c_str(), type, space, lcpl, H5P_DEFAULT, H5P_DEFAULT);
-  MF_REQUIRE(set >= 0, "HDF5: cannot create dataset ", name);
+  if (set < 0) hdf5_failure(file, "creating dataset " + name, errno);
   herr_t status;
   if (!slice) {
     status = H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data());
@@ -103,8 +81,8 @@ void write_dataset(hid_t file, const std::string& name, const std::vector<T>& da
     H5Pclose(transfer);
     H5Sclose(memory);
   }
-  MF_REQUIRE(status >= 0, "HDF5: cannot write dataset ", name);
-  H5Dclose(set);
+  if (status < 0) hdf5_failure(file, "dataset " + name, errno);
+  if (H5Dclose(set) < 0) hdf5_failure(file, "dataset " + name, errno);
   H5Pclose(lcpl);
   H5Sclose(space);
 }
@@ -179,11 +157,13 @@ void FieldSeries::open(const std::vector<double>& xyz, const GridCells& cells) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); // our messages say what failed, not HDF5's stack
   const hid_t access = H5Pcreate(H5P_FILE_ACCESS);
   if (slice) H5Pset_fapl_mpio(access, slice->comm, MPI_INFO_NULL);
-  const hid_t file = H5Fcreate(h5_temp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access);
+  // Exclusive: the staging folder is this run's own, so a file already there is an error.
+  errno = 0;
+  const hid_t file = H5Fcreate(h5_temp.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, access);
+  const int error = errno;
   H5Pclose(access);
-  MF_REQUIRE(file >= 0, h5_temp,
-             ": cannot create the HDF5 file (no space or permission, or another run is writing "
-             "into the same folder)");
+  if (file < 0)
+    fail("cannot create ", h5_temp, error ? ": " + system_reason(error) : std::string());
   file_ = file;
   const std::size_t n = points_, total = slice ? slice->total : n;
   write_dataset(file, "/geometry/coordinates", xyz, n, 3, slice);
@@ -256,25 +236,22 @@ void FieldSeries::add_step(const FieldStep& step) {
 
 void FieldSeries::close() {
   if (file_ < 0) return;
-  MF_REQUIRE(H5Fclose(file_) >= 0, stem_, ".h5: cannot close the HDF5 file");
+  // The data reach the disk here at the latest, so this is where a full disk shows.
+  errno = 0;
+  if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) hdf5_failure(file_, "flushing", errno);
+  char name[4096] = {};
+  H5Fget_name(file_, name, sizeof name - 1);
+  errno = 0;
+  const herr_t closed = H5Fclose(file_);
   file_ = -1;
+  if (closed < 0)
+    fail(errno ? system_reason(errno) : std::string("HDF5 failed"), " writing ", name,
+         " (closing)");
   std::ostringstream x;
   x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
     << "  <Grid Name=\"" << stem_ << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n"
     << xml_ << "  </Grid>\n </Domain>\n</Xdmf>\n";
   if (out_) out_->write_text(stem_ + ".xmf", x.str());
-}
-
-void OutputDirectory::commit() {
-  // summary.json goes last: a directory without it is not a finished run.
-  std::stable_partition(pending_.begin(), pending_.end(),
-                        [](const std::string& f) { return f != "summary.json"; });
-  for (const auto& f : pending_) {
-    std::error_code ec;
-    fs::rename(fs::path(dir_) / (f + ".partial"), fs::path(dir_) / f, ec);
-    MF_REQUIRE(!ec, dir_, "/", f, ": cannot move the result into place: ", ec.message());
-  }
-  pending_.clear();
 }
 
 namespace {

@@ -7,7 +7,15 @@ namespace mf::io {
 
 void History::append(std::vector<double> row) {
   MF_ASSERT(row.size() == columns_.size());
+  if (stream_) stream_->append(csv_line(row));
   rows_.push_back(std::move(row));
+}
+
+void History::stream_to(OutputDirectory& out, const std::string& file) {
+  std::string text = csv_line(columns_);
+  for (const auto& row : rows_) text += csv_line(row);
+  stream_ = out.open_stream(file);
+  stream_->append(text);
 }
 
 double History::max_abs(std::size_t c) const {
@@ -17,7 +25,10 @@ double History::max_abs(std::size_t c) const {
 }
 
 void History::write(OutputDirectory& out, const std::string& file) const {
-  out.write_csv(file, columns_, rows_);
+  if (stream_)
+    stream_->close();
+  else
+    out.write_csv(file, columns_, rows_);
 }
 
 void Summary::set_status(std::string status, std::string stop_reason) {

@@ -1,9 +1,10 @@
 #pragma once
 // Run outputs (DESIGN.md, "the run contract"): fields.h5 + fields.xmf (ParaView reads the .xmf),
-// history.csv, line_<name>.csv and summary.json. Files are written under temporary names and
-// renamed only when the run has succeeded, so a failed run never leaves a result that looks good.
+// history.csv, line_<name>.csv and summary.json, written into a staging folder and put in place
+// only when the run has completed, so a failed or killed run never replaces a good result.
 #include "meshfree/core/types.hpp"
 #include <map>
+#include <memory>
 #include <mpi.h>
 #include <string>
 #include <vector>
@@ -39,20 +40,57 @@ struct PointSlice {
 
 class FieldSeries;
 
-/// Collects output files in a directory; nothing appears under the final names until commit().
+/// A file written piece by piece (history.csv as a run goes): created exclusively (never
+/// through an existing name or link), each append() written out at once and checked, close()
+/// flushing it to disk; a failed write stops with "<reason> writing <file>".
+class OutputStream {
+public:
+  OutputStream(const std::string& path, std::string shown);
+  ~OutputStream();
+  OutputStream(const OutputStream&) = delete;
+  OutputStream& operator=(const OutputStream&) = delete;
+  void append(const std::string& text);
+  void close();
+
+private:
+  int fd_ = -1;
+  std::string shown_; // the name messages give
+};
+
+/// One CSV line (with its newline) of names, or of values with 12 significant digits.
+std::string csv_line(const std::vector<std::string>& names);
+std::string csv_line(const std::vector<double>& values);
+
+/// The system's reason for an error number (strerror), lower-case, to stand in a sentence:
+/// "no space left on device writing DIR/fields.h5".
+std::string system_reason(int error);
+
+/// The output folder DIR of a run. Files are written into a staging folder of this run inside
+/// DIR (`.meshfree-staging-<host>-<pid>`, created fresh and private), each created exclusively
+/// and every write checked; commit() moves them into DIR only when the run has completed, so
+/// the previous result stays whole until then (and DIR/failed, DIR/stopped of earlier runs go
+/// then). A manifest (`.meshfree-manifest`) lists what a run put in DIR: the next run removes
+/// or replaces those files and no others. A run that
+/// failed or stopped keeps its files under DIR/failed or DIR/stopped instead (keep_unfinished).
+/// Staging folders of earlier runs that were killed are removed on start, with a line saying so.
 class OutputDirectory {
 public:
+  /// DIR must be, or become, a directory this user can write into.
   explicit OutputDirectory(std::string dir);
-  ~OutputDirectory(); // removes uncommitted temporary files
+  ~OutputDirectory();
+  OutputDirectory(const OutputDirectory&) = delete;
+  OutputDirectory& operator=(const OutputDirectory&) = delete;
   const std::string& dir() const { return dir_; }
+  /// The staging folder, where this run's files are until commit().
+  const std::string& staging() const { return staging_; }
   /// Files written from now on are named prefix + file (a staged run's stages keep their own
   /// files side by side: preload_fields.h5 beside fields.h5).
   void set_prefix(std::string prefix) { prefix_ = std::move(prefix); }
   /// The name `file` is written under.
   std::string name_of(const std::string& file) const { return prefix_ + file; }
+  /// DIR/name_of(file), as messages show it.
+  std::string shown(const std::string& file) const;
 
-  /// Removes results of an earlier run (fields.*, history.csv, summary.json, line_*.csv).
-  void clear_previous() const;
   /// fields.h5 + fields.xmf with every step at once.
   void write_fields(const std::vector<Vec2>& points, const std::vector<FieldStep>& steps,
                     const GridCells& cells = {});
@@ -60,15 +98,26 @@ public:
   void write_csv(const std::string& file, const std::vector<std::string>& header,
                  const std::vector<std::vector<double>>& rows);
   void write_text(const std::string& file, const std::string& text);
-  /// Renames every temporary file to its final name.
+  /// A file of this run written piece by piece; it is put in place with the others.
+  std::unique_ptr<OutputStream> open_stream(const std::string& file);
+  /// summary.json written again (a run that fails after writing it records the failure).
+  void replace_summary(const std::string& text);
+  /// The run completed: its files replace the previous result in DIR (summary.json last).
   void commit();
+  /// The run failed or stopped: its files go to DIR/<status> (replacing an earlier run's kept
+  /// files there, and nothing else), or stay in the staging folder when that name is taken.
+  /// Returns where they are.
+  std::string keep_unfinished(const std::string& status);
 
 private:
   friend class FieldSeries;
   std::string temp_path(const std::string& file);
+  void write_manifest(const std::string& folder) const;
   std::string dir_;
+  std::string staging_;
   std::string prefix_;
   std::vector<std::string> pending_; // final file names
+  bool finished_ = false;            // committed or kept
 };
 
 /// Fields written step by step as a run goes (long runs do not keep every step in memory):

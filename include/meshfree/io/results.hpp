@@ -27,11 +27,16 @@ public:
   const std::vector<double>& last() const { return rows_.back(); }
   /// Largest |value| of column c over every row (0 without rows).
   double max_abs(std::size_t c) const;
+  /// From now on each row goes to `file` of `out` as it is appended (the rows so far at once),
+  /// so that a run that is killed keeps its history up to then in its staging folder.
+  void stream_to(OutputDirectory& out, const std::string& file = "history.csv");
+  /// Writes `file`; a streamed history is finished instead (flushed to disk and closed).
   void write(OutputDirectory& out, const std::string& file = "history.csv") const;
 
 private:
   std::vector<std::string> columns_;
   std::vector<std::vector<double>> rows_;
+  std::shared_ptr<OutputStream> stream_; // while the rows are streamed
 };
 
 /// The first keys of summary.json; an empty method is left out.
