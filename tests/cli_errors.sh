@@ -118,6 +118,27 @@ printf 'name: x\nanalysis: staged\nmodel: {type: plane_stress}\nmaterials: [{nam
 expect_error "materials[0].plasticity: a J2 preload (plastic strain, back stress) cannot start a bond-based peridynamic stage" "$WORK/staged_pd.yaml"
 expect_error "materials[0].nu: bond-based peridynamics in plane stress has Poisson's ratio 0.3333333333" "$WORK/staged_pd.yaml" --set 'materials.0.plasticity=null'
 expect_error "stages[1].hold" "$WORK/staged_pd.yaml" --set 'stages.1.hold=[]' --set 'materials.0.plasticity=null' --set 'materials.0.nu=0.3333333333333333'
+# Slips a reader of YAML lets through, values that overflow, and keys or values that would break
+# the message's line.
+sed 's/{name: steel, E: 2.0e5, nu: 0.1}/{name: steel, E: 2.0e5, nu: 0.1, E: -1}/' "$P" > "$WORK/duplicate.yaml"
+expect_error "materials[0].E: given twice" "$WORK/duplicate.yaml"
+expect_error "--set boundary.99999999999999999999.name: index 99999999999999999999 is out of range" "$P" --set boundary.99999999999999999999.name=x
+expect_error "geometry.rectangle.origin: lies too far from 0 for a body of this size" "$P" --set 'geometry.rectangle.origin=[1e30, 0]'
+expect_error "name: a name of at most 64 characters, got 200" "$P" --set "name=$(printf 'x%.0s' {1..200})"
+printf 'name: "a\0b"\n' > "$WORK/nul.yaml"; grep -v '^name:' "$P" >> "$WORK/nul.yaml"
+expect_error "name: expected a name of letters, digits, '_' or '-', got 'a?b'" "$WORK/nul.yaml"
+expect_error "discretisation.refinement[0].box: lies outside the body" "$P" --set 'discretisation.refinement=[{box: [[5, 5], [6, 6]], spacing: 0.02}]'
+# A refinement box reaching far outside the body is clipped to it (node generation walked it whole).
+if timeout 20 "$MF" check "$P" --set 'discretisation.refinement=[{box: [[-1e9, -1e9], [1e9, 1e9]], spacing: 0.02}]' >/dev/null 2>&1; then
+  echo "ok: a refinement box far outside the body is clipped"
+else
+  echo "FAIL: a refinement box far outside the body"; fails=$((fails+1))
+fi
+R="$ROOT/problems/pd_rc_cantilever.yaml"
+expect_run_failure "regions[0]: holds no particle of the body" "$R" --set 'regions.0.box=[[5, 5, 5], [6, 6, 6]]'
+W="$ROOT/problems/pd_cantilever_random_load.yaml"
+{ echo "index,value"; echo "0,0"; echo "1,1e999"; } > "$WORK/overflow.csv"
+expect_error "overflow.csv:3: not a finite number: '1,1e999'" "$W" --set "functions.0.file=$WORK/overflow.csv"
 # Results that overflow a double, or a solve that did not solve the system, are failures with
 # their cause, never a "completed" run.
 O="$ROOT/problems/ode_1d.yaml"

@@ -35,6 +35,7 @@ particles::ParticleSet lattice(const io::ProblemSpec& spec) {
              " particles; one run is meant for at most 5e7");
   const double volume = solid ? dx * dx * dx : dx * dx * s.thickness;
   particles::ParticleSet p;
+  std::vector<long> in_region(s.regions.size(), 0);
   grid.for_each([&](const Vec3d& x) {
     if (!solid && !spec.domain.contains(Vec2(x.x(), x.y()))) return;
     for (const io::Region& b : s.removed)
@@ -42,12 +43,15 @@ particles::ParticleSet lattice(const io::ProblemSpec& spec) {
     int mat = s.body_material, region = 0;
     for (std::size_t k = 0; k < s.regions.size(); ++k)
       if (s.regions[k].region.contains(x, 1e-9 * dx)) {
+        ++in_region[k];
         region = static_cast<int>(k) + 1;
         if (s.regions[k].material >= 0) mat = s.regions[k].material;
       }
     p.add(x, volume, s.materials[mat].density, mat, region);
   });
   MF_REQUIRE(p.size() > 0, "discretisation.spacing: no particle lies in the body");
+  for (std::size_t k = 0; k < in_region.size(); ++k)
+    MF_REQUIRE(in_region[k] > 0, "regions[", k, "]: holds no particle of the body");
   return p;
 }
 

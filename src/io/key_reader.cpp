@@ -1,15 +1,28 @@
 #include "meshfree/io/key_reader.hpp"
 #include <cmath>
+#include <set>
 #include <sstream>
 
 namespace mf::io {
+
+std::string one_line(const std::string& text, std::size_t limit) {
+  std::string out;
+  for (const char c : text) {
+    if (out.size() == limit) {
+      out.replace(limit - 3, 3, "...");
+      break;
+    }
+    out += static_cast<unsigned char>(c) < 0x20 || c == 0x7f ? '?' : c;
+  }
+  return out;
+}
 
 namespace {
 std::string show(const YAML::Node& n) {
   if (!n.IsDefined() || n.IsNull()) return "nothing";
   YAML::Emitter e;
   e << YAML::Flow << n;
-  return e.c_str();
+  return one_line(std::string(e.c_str(), e.size()));
 }
 } // namespace
 
@@ -196,10 +209,14 @@ std::vector<KeyReader> KeyReader::map_list(const std::string& key) {
 }
 
 void KeyReader::finish() const {
+  std::set<std::string> seen;
   for (const auto& kv : node_) {
     if (!kv.first.IsScalar())
       fail(path_.empty() ? "document" : path_, ": keys must be plain names, got ", show(kv.first));
     const std::string key = kv.first.Scalar();
+    // YAML reads the first of two equal keys and drops the other without a word; a slip such as
+    // a second E further down a material is refused instead.
+    if (!seen.insert(key).second) fail(path_of(key), ": given twice");
     if (!used_.count(key)) {
       std::string known;
       for (const auto& u : used_) known += (known.empty() ? "" : ", ") + u;
@@ -213,9 +230,10 @@ namespace {
 std::size_t list_index(const std::string& part, std::size_t size, const std::string& path) {
   if (part.empty() || part.find_first_not_of("0123456789") != std::string::npos)
     fail("--set ", path, ": '", part, "' indexes a list and must be a number");
-  const std::size_t idx = std::stoul(part);
+  const std::size_t idx = part.size() > 9 ? size : std::stoul(part);
   if (idx >= size)
-    fail("--set ", path, ": index ", idx, " is out of range (the list has ", size, " items)");
+    fail("--set ", path, ": index ", part.substr(0, 20), " is out of range (the list has ", size,
+         " items)");
   return idx;
 }
 } // namespace

@@ -45,6 +45,14 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
       f.error("spacing", "a refinement must be finer than discretisation.spacing");
     const Vec2 lo = ref.box.lo.cwiseMax(bounds.lo), hi = ref.box.hi.cwiseMin(bounds.hi);
     const Vec2 extent = (hi - lo).cwiseMax(Vec2::Zero());
+    // The box is clipped to the body's bounds and one spacing around them: what lies farther
+    // out refines nothing, and node generation walks the whole box.
+    const Vec2 margin(s.spacing, s.spacing);
+    const Vec2 clip_lo = ref.box.lo.cwiseMax(bounds.lo - margin);
+    const Vec2 clip_hi = ref.box.hi.cwiseMin(bounds.hi + margin);
+    if (!(clip_lo.array() < clip_hi.array()).all())
+      f.error("box", "lies outside the body: it refines nothing");
+    ref.box = BoundingBox{clip_lo, clip_hi};
     const double nodes = (extent.x() / ref.spacing + 1.0) * (extent.y() / ref.spacing + 1.0);
     if (nodes > 2e7)
       f.error("spacing", detail::concat("puts about ", static_cast<float>(nodes),
@@ -264,6 +272,10 @@ geometry::Domain read_domain(KeyReader& g) {
     rr.allow("origin");
     const Vec2 size = rr.vec2("size");
     if (!(size.x() > 0.0 && size.y() > 0.0)) rr.error("size", "expected positive width and height");
+    // Coordinates carry 16 digits: a body far from 0 against its size loses its shape.
+    if (origin.cwiseAbs().maxCoeff() * 1e-9 > size.minCoeff())
+      rr.error("origin", "lies too far from 0 for a body of this size (more than 1e9 times its "
+                         "smallest side): place the body nearer the origin");
     rr.finish();
     d = geometry::Domain::rectangle(origin, size);
   } else {
@@ -483,8 +495,8 @@ void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
   // elastic material and nothing else is an elastic_static problem; with material regions,
   // gravity or an initial stress, or as the preload stage of a staged run, it is an elastic
   // preload.
-  const bool preload = !p.material_regions.empty() || !p.gravity.isZero() || p.initial_stress ||
-                       !p.stage.empty();
+  const bool preload =
+      !p.material_regions.empty() || !p.gravity.isZero() || p.initial_stress || !p.stage.empty();
   if (plastic && !p.plasticity && !preload)
     material_error(mat, "plasticity", "analysis elastoplastic_static needs a plasticity law");
   if (!plastic && p.plasticity)

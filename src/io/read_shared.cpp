@@ -9,7 +9,10 @@ void check_name(KeyReader& r, const std::string& key, const std::string& name, b
   if (name.empty() ||
       name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") !=
           std::string::npos)
-    r.error(key, "expected a name of letters, digits, '_' or '-', got '" + name + "'");
+    r.error(key, "expected a name of letters, digits, '_' or '-', got '" + one_line(name) + "'");
+  // Names become file names (out/<name>, line_<name>.csv, <stage>_fields.h5).
+  if (name.size() > 64)
+    r.error(key, "a name of at most 64 characters, got " + std::to_string(name.size()));
 }
 
 Point read_point(KeyReader& r, const std::string& key, int dim) {

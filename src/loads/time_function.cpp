@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 namespace mf::loads {
 
@@ -61,7 +62,9 @@ std::vector<double> read_samples(const std::string& path) {
       out.push_back(std::stod(v, &used));
       MF_REQUIRE(std::isfinite(out.back()), path, ":", row, ": not a finite number");
     } catch (const std::invalid_argument&) {
-      fail(path, ":", row, ": not a number: '", line, "'");
+      fail(path, ":", row, ": not a number: '", line.substr(0, 80), "'");
+    } catch (const std::out_of_range&) {
+      fail(path, ":", row, ": not a finite number: '", line.substr(0, 80), "'");
     }
   }
   MF_REQUIRE(!out.empty(), path, ": the table has no samples");

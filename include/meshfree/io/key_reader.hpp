@@ -12,13 +12,18 @@
 
 namespace mf::io {
 
+/// Text as messages quote it: on one line (line breaks and other control characters, a NUL
+/// among them, become '?') and at most `limit` characters, cut with "...".
+std::string one_line(const std::string& text, std::size_t limit = 80);
+
 class KeyReader {
 public:
   KeyReader(YAML::Node node, std::string path);
 
   const std::string& path() const { return path_; }
+  /// The key's path for messages: one line, the key cut to 80 characters.
   std::string path_of(const std::string& key) const {
-    return path_.empty() ? key : path_ + "." + key;
+    return path_.empty() ? one_line(key) : path_ + "." + one_line(key);
   }
   bool has(const std::string& key) const;
   /// Marks an optional key as known without reading it.

@@ -85,7 +85,7 @@ struct PdSpec {
   double horizon_factor = 3.0;             // delta = horizon_factor * spacing
   std::string volume_correction = "exact"; // exact | linear | none
   bool surface_correction = false;
-  bool short_range_contact = false;    // LAMMPS peri/pmb's short-range repulsion of particles
+  bool short_range_contact = false; // LAMMPS peri/pmb's short-range repulsion of particles
   bool deterministic = false; // discretisation.deterministic: bonds in full rows, global-id order
   std::vector<MaterialSpec> materials; // each with density and bond
   int body_material = 0;

@@ -21,7 +21,14 @@
 
 namespace mf::io {
 
-enum class Analysis { ElasticStatic, ElastoplasticStatic, ModelProblem1D, Peridynamics, Sph, Staged };
+enum class Analysis {
+  ElasticStatic,
+  ElastoplasticStatic,
+  ModelProblem1D,
+  Peridynamics,
+  Sph,
+  Staged
+};
 
 /// model.type: the kinematic model of every analysis (uniaxial strain is 1D SPH).
 enum class ModelType { PlaneStress, PlaneStrain, Solid3D, UniaxialStrain };
