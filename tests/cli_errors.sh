@@ -45,7 +45,7 @@ expect_error "output.lines[1].name: another line is named 'y07'" "$P" --set 'out
 expect_error "output.lines[0].from: no sample point of the line lies in the body" "$P" --set 'output.lines.0.from=[5, 5]' --set 'output.lines.0.to=[6, 6]'
 expect_error "geometry.holes[0].center: the hole 'hole0' does not cut the body" "$P" --set 'geometry.holes=[{center: [5, 5], radius: 0.1}]'
 expect_error "geometry.holes[0].radius: the hole covers the whole body" "$P" --set 'geometry.holes=[{center: [0.5, 0.5], radius: 5}]'
-expect_error "discretisation.refinement[0].spacing: puts about" "$P" --set 'discretisation.refinement=[{box: [[0, 0], [0.1, 0.1]], spacing: 1e-9}]'
+expect_error "discretisation.refinement[0].spacing: nodes in the box: about" "$P" --set 'discretisation.refinement=[{box: [[0, 0], [0.1, 0.1]], spacing: 1e-9}]'
 expect_error "boundary[1].name: 'clamp' is used by boundary[0] already" "$P" --set boundary.1.name=clamp
 expect_error "name: expected a name of letters, digits" "$P" --set name=a/b
 expect_error "discretisation.quadrature.order: expected an integer from 2 to 10, got 1e30" "$P" --set discretisation.quadrature.order=1e30
@@ -139,6 +139,11 @@ expect_run_failure "regions[0]: holds no particle of the body" "$R" --set 'regio
 W="$ROOT/problems/pd_cantilever_random_load.yaml"
 { echo "index,value"; echo "0,0"; echo "1,1e999"; } > "$WORK/overflow.csv"
 expect_error "overflow.csv:3: not a finite number: '1,1e999'" "$W" --set "functions.0.file=$WORK/overflow.csv"
+# Discretisations that would not fit in memory, refused before anything is allocated (an SPH
+# spacing of 1e-9 grew to 24 GB and was killed by the kernel).
+expect_error "regions[0].spacing: particles in this region: about" "$ROOT/problems/sph_plate_blast.yaml" --set regions.0.spacing=1e-9
+expect_error "discretisation.spacing: nodes over the body: about" "$P" --set discretisation.spacing=1e-7
+expect_run_failure "discretisation.spacing: particles in the body: about" "$ROOT/problems/pd_pmma_beam_impact.yaml" --set discretisation.spacing=1e-9
 # Results that overflow a double, or a solve that did not solve the system, are failures with
 # their cause, never a "completed" run.
 O="$ROOT/problems/ode_1d.yaml"

@@ -197,8 +197,24 @@ FieldSeries::~FieldSeries() {
   if (file_ >= 0) H5Fclose(file_);
 }
 
+namespace {
+/// Stops the run at a field value that is not a number, naming the field, the point and the time.
+void require_finite(const std::string& stem, const std::string& field, const double* v,
+                    std::size_t count, int per_point, double time) {
+  for (std::size_t k = 0; k < count; ++k)
+    MF_REQUIRE(std::isfinite(v[k]), stem, ": field ", field, " is ", v[k], " at point ",
+               k / per_point, " at t = ", time);
+}
+} // namespace
+
 void FieldSeries::add_step(const FieldStep& step) {
   MF_REQUIRE(file_ >= 0, stem_, ".h5: the series is closed");
+  for (const auto& [name, v] : step.scalars)
+    require_finite(stem_, name, v.data(), v.size(), 1, step.time);
+  for (const auto& [name, v] : step.vectors)
+    require_finite(stem_, name, v.empty() ? nullptr : v[0].data(), 2 * v.size(), 2, step.time);
+  for (const auto& [name, v] : step.vectors3)
+    require_finite(stem_, name, v.data(), v.size(), 3, step.time);
   const std::string& h5 = h5_;
   const std::size_t n = points_;
   const PointSlice* slice = slice_.spread() ? &slice_ : nullptr;

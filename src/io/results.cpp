@@ -7,6 +7,15 @@ namespace mf::io {
 
 void History::append(std::vector<double> row) {
   MF_ASSERT(row.size() == columns_.size());
+  // A value that is not a number is never a result: the run fails, naming where it appeared.
+  for (std::size_t c = 0; c < row.size(); ++c)
+    MF_REQUIRE(std::isfinite(row[c]), "history: ", columns_[c], " is ", row[c], " in row ",
+               rows_.size() + 1, " (", columns_[0], " = ", row[0], ")");
+  append_with_gaps(std::move(row));
+}
+
+void History::append_with_gaps(std::vector<double> row) {
+  MF_ASSERT(row.size() == columns_.size());
   if (stream_) stream_->append(csv_line(row));
   rows_.push_back(std::move(row));
 }

@@ -59,7 +59,7 @@ io::History staged_history(const io::History& preload, const io::History& run, i
     std::vector<double> r{row[0], static_cast<double>(from)};
     for (std::size_t c = 1; c < row.size(); ++c)
       r.push_back(keep[c] ? row[c] : std::numeric_limits<double>::quiet_NaN());
-    out.append(std::move(r));
+    out.append_with_gaps(std::move(r));
   }
   for (const auto& row : run.rows()) {
     std::vector<double> r = row;

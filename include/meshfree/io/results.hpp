@@ -20,8 +20,12 @@ public:
   explicit History(std::vector<std::string> columns) : columns_(std::move(columns)) {}
   void add_column(std::string name) { columns_.push_back(std::move(name)); }
   const std::vector<std::string>& columns() const { return columns_; }
-  /// Appends a row with one value per column.
+  /// Appends a row with one value per column; a value that is not finite stops the run with
+  /// the column and the row.
   void append(std::vector<double> row);
+  /// Appends a row whose NaN mark values that do not apply (a staged run's preload rows have no
+  /// energies of the explicit stage).
+  void append_with_gaps(std::vector<double> row);
   const std::vector<std::vector<double>>& rows() const { return rows_; }
   bool empty() const { return rows_.empty(); }
   const std::vector<double>& last() const { return rows_.back(); }
