@@ -159,6 +159,14 @@ if [ $rc -eq 1 ] && grep -qF "linear solve did not solve the system: relative re
 else
   echo "FAIL (exit $rc, '$msg'): -pc_type none"; fails=$((fails+1))
 fi
+# A PETSc option nothing read (a typo) is reported; the run itself goes on.
+rm -rf "$WORK/out"
+msg="$("$MF" run "$P" --out "$WORK/out" -- -ksp_typo gmres 2>&1 >/dev/null)"; rc=$?
+if [ $rc -eq 0 ] && grep -qF "PETSc option -ksp_typo gmres was given but not used by this run" <<<"$msg"; then
+  echo "ok: an unused PETSc option is reported"
+else
+  echo "FAIL (exit $rc, '$msg'): -ksp_typo"; fails=$((fails+1))
+fi
 # usage errors
 "$MF" 2>/dev/null; [ $? -eq 2 ] && echo "ok: no command -> exit 2" || { echo "FAIL: no command"; fails=$((fails+1)); }
 "$MF" check "$P" >/dev/null || { echo "FAIL: check on a good problem"; fails=$((fails+1)); }

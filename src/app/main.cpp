@@ -199,6 +199,10 @@ int run(Command& c) {
       const auto r = mf::app::elastic_static(spec, session, out.get());
       log_phases(r.timer);
     }
+    for (const std::string& option : session.unused_options())
+      mf::log::warn("PETSc option ", option,
+                    " was given but not used by this run (a typo, or an option of a solver this "
+                    "analysis does not use)");
     if (out && exit_code == 0) {
       out->commit();
       mf::log::info("results in ", std::filesystem::absolute(dir).string());

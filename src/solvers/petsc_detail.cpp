@@ -104,8 +104,15 @@ void set_direct_solver(KSP ksp, bool symmetric) {
   // allow 100 percent unless the user chose a value.
   PetscBool set = PETSC_FALSE;
   check(PetscOptionsHasName(nullptr, nullptr, "-mat_mumps_icntl_14", &set), "PetscOptionsHasName");
-  if (!set)
+  if (!set) {
     check(PetscOptionsSetValue(nullptr, "-mat_mumps_icntl_14", "100"), "PetscOptionsSetValue");
+    options_set_by_code().insert("mat_mumps_icntl_14");
+  }
+}
+
+std::set<std::string>& options_set_by_code() {
+  static std::set<std::string> names;
+  return names;
 }
 
 std::vector<double> gather(Vec x, bool everywhere) {

@@ -3,6 +3,8 @@
 #include "meshfree/core/error.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
 #include <petscksp.h>
+#include <set>
+#include <string>
 #include <vector>
 
 namespace mf::solvers::detail {
@@ -26,6 +28,10 @@ void set_block_values(Mat A, OwnedRange owned, const std::vector<int>& row_offse
 /// matrices, LDL^T when they may be indefinite, LU otherwise), set before the command-line
 /// options so that every -ksp_/-pc_ option overrides it.
 void set_direct_solver(KSP ksp, bool symmetric);
+
+/// Names (without the '-') of the options the code itself puts in PETSc's database as defaults,
+/// which are not the user's and so never reported unused.
+std::set<std::string>& options_set_by_code();
 
 /// The whole of a distributed vector on every rank (`everywhere`) or on rank 0 alone (empty
 /// elsewhere).

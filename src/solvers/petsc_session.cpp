@@ -40,6 +40,20 @@ void PetscSession::collective(const std::function<void()>& work) const {
   throw CollectiveError(size_ > 1 ? message + " (on rank " + std::to_string(first) + ")" : message);
 }
 
+std::vector<std::string> PetscSession::unused_options() const {
+  PetscInt count = 0;
+  char** names = nullptr;
+  char** values = nullptr;
+  check(PetscOptionsLeftGet(nullptr, &count, &names, &values), "PetscOptionsLeftGet");
+  std::vector<std::string> left;
+  for (PetscInt k = 0; k < count; ++k)
+    if (!detail::options_set_by_code().count(names[k]))
+      left.push_back("-" + std::string(names[k]) +
+                     (values[k] ? " " + std::string(values[k]) : std::string()));
+  check(PetscOptionsLeftRestore(nullptr, &count, &names, &values), "PetscOptionsLeftRestore");
+  return left;
+}
+
 OwnedRange owned_nodes(int n, int rank, int size) {
   const int base = n / size, extra = n % size;
   const int begin = rank * base + std::min(rank, extra);

@@ -32,6 +32,10 @@ public:
   /// collective call. Use it around work that can fail on some ranks only.
   void collective(const std::function<void()>& work) const;
 
+  /// The PETSc options given (after --) that nothing has read so far, as "-name value": at the
+  /// end of a run, a typo or an option of a solver the run does not use.
+  std::vector<std::string> unused_options() const;
+
 private:
   int rank_ = 0, size_ = 1;
 };
