@@ -1,0 +1,126 @@
+#!/usr/bin/env python3
+"""Mutated problem files against `meshfree check`: every mutant is accepted (exit 0) or refused
+cleanly (exit 2 with one line on stderr, "meshfree: ...", of at most 400 characters), within 20
+seconds, never with a crash, a hang or another exit code.
+
+The mutants are drawn from every problems/*.yaml with a fixed seed (so a failure is reproduced by
+its number): a number replaced by an extreme or wrong value, a line deleted, doubled or moved,
+a key renamed, stray characters inserted, the file cut short. A failing mutant is written to
+OUT/mutant_<n>.yaml with its output.
+Usage: fuzz_inputs.py MESHFREE SOURCE_DIR [--count N] [--seed S] [--out DIR]
+"""
+import argparse
+import os
+import random
+import re
+import subprocess
+import sys
+import tempfile
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+VALUES = ["-1", "0", "1e308", "-1e308", "1e-308", "1e999", ".nan", ".inf", "-.inf",
+          "99999999999999999999", "abc", "[]", "{}", "[1, 2, 3, 4]", "''", "null", "true",
+          "0x10", "1e30", "-0", "2147483648", "'\\x00'", "\"a\\tb\""]
+KEYS = ["E", "spacing", "material", "box", "end", "name", "type", "radius", "x", "zz", "points"]
+NUMBER = re.compile(r"(?<![\w.])-?\d+(\.\d*)?([eE][-+]?\d+)?(?![\w.])")
+
+
+def mutate(text, rng):
+    lines = text.split("\n")
+    kind = rng.randrange(8)
+    if kind <= 1:  # a number replaced (twice as often: most keys are numbers)
+        spots = [m for m in NUMBER.finditer(text)]
+        if spots:
+            m = rng.choice(spots)
+            return text[:m.start()] + rng.choice(VALUES) + text[m.end():]
+    if kind == 2 and len(lines) > 1:  # a line deleted
+        del lines[rng.randrange(len(lines))]
+    elif kind == 3:  # a line doubled (duplicate keys, duplicate list items)
+        k = rng.randrange(len(lines))
+        lines.insert(k, lines[k])
+    elif kind == 4 and len(lines) > 2:  # a line moved
+        line = lines.pop(rng.randrange(len(lines)))
+        lines.insert(rng.randrange(len(lines)), line)
+    elif kind == 5:  # a key renamed
+        keyed = [i for i, l in enumerate(lines) if re.search(r"\w+:", l)]
+        if keyed:
+            i = rng.choice(keyed)
+            lines[i] = re.sub(r"\w+:", rng.choice(KEYS) + ":", lines[i], count=1)
+    elif kind == 6:  # stray characters
+        at = rng.randrange(len(text) + 1)
+        junk = "".join(rng.choice("{}[],:&*!|>'\"#%@`\t\\-?0.e ") for _ in range(rng.randint(1, 4)))
+        return text[:at] + junk + text[at:]
+    else:  # cut short
+        return text[:rng.randrange(len(text) + 1)]
+    return "\n".join(lines)
+
+
+def check(meshfree, path, workdir):
+    try:
+        p = subprocess.run([meshfree, "check", str(path)], capture_output=True, timeout=20,
+                           cwd=workdir)
+    except subprocess.TimeoutExpired:
+        return "hung (over 20 s)", b"", b""
+    err_lines = p.stderr.decode(errors="replace").strip().split("\n") if p.stderr.strip() else []
+    if p.returncode == 0:
+        return None, p.stdout, p.stderr
+    if p.returncode != 2:
+        return "exit %d" % p.returncode, p.stdout, p.stderr
+    if len(err_lines) != 1 or not err_lines[0].startswith("meshfree: ") or len(err_lines[0]) > 400:
+        return "not one clean line on stderr", p.stdout, p.stderr
+    return None, p.stdout, p.stderr
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("meshfree")
+    ap.add_argument("source")
+    ap.add_argument("--count", type=int, default=2000)
+    ap.add_argument("--seed", type=int, default=20261124)
+    ap.add_argument("--out", default=None)
+    a = ap.parse_args()
+    a.meshfree = os.path.abspath(a.meshfree)
+    source = Path(a.source).resolve()
+    bases = sorted((source / "problems").glob("*.yaml"))
+    rng = random.Random(a.seed)
+    work = Path(tempfile.mkdtemp())
+    out = Path(a.out) if a.out else work / "failures"
+    jobs = []
+    for n in range(a.count):
+        base = rng.choice(bases)
+        text = base.read_text()
+        for _ in range(rng.choice([1, 1, 1, 2, 3])):
+            text = mutate(text, rng)
+        # Beside the original, so that relative paths (meshes, load tables) resolve as there.
+        path = base.parent / (".fuzz_%d_%s" % (n, base.name))
+        jobs.append((n, base, path, text))
+    failures, refused = [], 0
+
+    def run(job):
+        n, base, path, text = job
+        path.write_text(text, errors="replace")
+        try:
+            return n, base, text, check(a.meshfree, path, work)
+        finally:
+            path.unlink()
+
+    with ThreadPoolExecutor(max_workers=max(1, os.cpu_count() or 1)) as pool:
+        for n, base, text, (why, stdout, stderr) in pool.map(run, jobs):
+            if why:
+                failures.append(n)
+                out.mkdir(parents=True, exist_ok=True)
+                (out / ("mutant_%d.yaml" % n)).write_text(text, errors="replace")
+                (out / ("mutant_%d.txt" % n)).write_bytes(stdout + b"\n--- stderr ---\n" + stderr)
+                print("FAIL mutant %d of %s: %s: %s" % (n, base.name, why,
+                      stderr.decode(errors="replace").strip()[:300]))
+            elif b"meshfree: " in stderr:
+                refused += 1
+    print("%d mutants of %d problem files: %d refused cleanly, %d accepted, %d failures%s" %
+          (a.count, len(bases), refused, a.count - refused - len(failures), len(failures),
+           " (in %s)" % out if failures else ""))
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()
