@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# The unit tests built with AddressSanitizer and UndefinedBehaviorSanitizer (build-asan/): an
+# invalid memory access, a use after free, a signed overflow, a misaligned or null access or any
+# other undefined behaviour stops them. Leak checking is off: Open MPI's plugins hold memory
+# until exit and are unloaded before the leak report, so their stacks read "unknown module" and
+# cannot be told from others (measured: 117 KB in 3,340 blocks, none with a meshfree frame).
+# Usage: scripts/sanitize.sh [Catch2 test filter]
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+BUILD="${MESHFREE_ASAN_DIR:-$ROOT/build-asan}"
+mkdir -p "$BUILD"
+cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \
+  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" > "$BUILD/configure.log" 2>&1 ||
+  { cat "$BUILD/configure.log"; exit 1; }
+cmake --build "$BUILD" --parallel "$(nproc)" --target meshfree_tests
+export ASAN_OPTIONS="detect_leaks=0:detect_odr_violation=0"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+export OMP_NUM_THREADS=2
+"$BUILD/tests/meshfree_tests" "$@"
