@@ -9,12 +9,13 @@ set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD="${MESHFREE_ASAN_DIR:-$ROOT/build-asan}"
 mkdir -p "$BUILD"
+# Set before the build too: the build lists the test cases by running the sanitized binary.
+export ASAN_OPTIONS="detect_leaks=0:detect_odr_violation=0"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" > "$BUILD/configure.log" 2>&1 ||
   { cat "$BUILD/configure.log"; exit 1; }
 cmake --build "$BUILD" --parallel "$(nproc)" --target meshfree_tests
-export ASAN_OPTIONS="detect_leaks=0:detect_odr_violation=0"
-export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export OMP_NUM_THREADS=2
 "$BUILD/tests/meshfree_tests" "$@"
