@@ -29,10 +29,6 @@ std::string host_name() {
   return s;
 }
 
-std::string reason(int error) {
-  return system_reason(error);
-}
-
 /// The names a folder's manifest lists: plain file names only (none without a manifest).
 std::vector<std::string> read_manifest(const fs::path& folder) {
   std::vector<std::string> names;
@@ -189,7 +185,7 @@ OutputDirectory::OutputDirectory(std::string dir) : dir_(std::move(dir)) {
     MF_REQUIRE(!ec, "--out ", dir_, ": cannot create the output directory: ", ec.message());
   }
   MF_REQUIRE(::access(dir_.c_str(), W_OK | X_OK) == 0, "--out ", dir_,
-             ": not a directory this user can write into (", reason(errno), ")");
+             ": not a directory this user can write into (", system_reason(errno), ")");
   remove_stale_staging(dir_);
   // This run's own folder inside DIR, created fresh (mkdir fails on anything already there) and
   // private to the user, so nothing can be planted in it; results move out of it only when the
@@ -197,7 +193,8 @@ OutputDirectory::OutputDirectory(std::string dir) : dir_(std::move(dir)) {
   staging_ =
       (fs::path(dir_) / (kStagingPrefix + host_name() + "-" + std::to_string(getpid()))).string();
   if (::mkdir(staging_.c_str(), 0700) != 0)
-    fail("--out ", dir_, ": cannot create the staging folder ", staging_, ": ", reason(errno));
+    fail("--out ", dir_, ": cannot create the staging folder ", staging_, ": ",
+         system_reason(errno));
 }
 
 OutputDirectory::~OutputDirectory() = default;

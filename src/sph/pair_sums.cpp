@@ -1,7 +1,6 @@
 #include "meshfree/sph/pair_sums.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/kernels/sph_kernel.hpp"
-#include "meshfree/sph/pair_kernel.hpp"
 #include <algorithm>
 #include <cmath>
 #include <omp.h>
@@ -164,8 +163,8 @@ void viscosities(const Settings& S, const RowParticle& o, LivePairs& live, int c
   }
 }
 
-/// gradient_vector over the model's Dim axes: g x_ij, or g A x_ij for the 3x3 correction A
-/// (row-major); components beyond Dim are zero, as are the terms left out.
+/// The pair's kernel gradient over the model's Dim axes: g x_ij, or g A x_ij for the 3x3 correction
+/// A (row-major); components beyond Dim are zero, as are the terms left out.
 template <int Dim>
 inline void gradient_along(const double* A, double g, const double xij[3], double out[3]) {
   for (int a = 0; a < 3; ++a) {

@@ -22,15 +22,4 @@ inline double pair_gradient(const std::vector<double>& x, const std::vector<doub
   return kernels::sph_kernel_slope_over_r(kernel, dim, rr, hij);
 }
 
-/// The kernel gradient of a pair as a vector: g x_ij, or with the correction A g x_ij for the
-/// 3x3 matrix A (row-major).
-inline void gradient_vector(const double* A, double g, const double xij[3], double out[3]) {
-  if (!A) {
-    for (int d = 0; d < 3; ++d) out[d] = g * xij[d];
-    return;
-  }
-  for (int a = 0; a < 3; ++a)
-    out[a] = g * (A[3 * a] * xij[0] + A[3 * a + 1] * xij[1] + A[3 * a + 2] * xij[2]);
-}
-
 } // namespace mf::sph
