@@ -34,7 +34,7 @@ ALLOWED = {
     "solvers": {"core"},
     "fem": {"core", "geometry", "materials", "neighbors"},
     "io": {"core", "geometry", "materials", "loads", "kernels", "verification", "particles",
-           "neighbors"},
+           "neighbors", "distribution"},
     "implicit": {"core", "geometry", "materials", "kernels", "quadrature", "neighbors", "fem",
                  "solvers", "io", "verification", "loads"},
     "pd": {"core", "geometry", "materials", "particles", "neighbors", "loads", "distribution"},

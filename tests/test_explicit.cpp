@@ -8,6 +8,7 @@
 #include "meshfree/particles/particle_set.hpp"
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 using namespace mf;
@@ -37,9 +38,53 @@ struct Drift {
   void record() { recorded.push_back(t); }
   void write_fields() { written.push_back(t); }
   std::string progress() const { return "x " + std::to_string(x); }
+  void save(io::Checkpoints&, const io::Saver& save) {
+    save("t", t), save("x", x), save("n", n), save("recorded", recorded);
+    save("written", written);
+  }
+  void restore(const io::Loader& load) {
+    load("t", t), load("x", x), load("n", n), load("recorded", recorded);
+    load("written", written);
+  }
 };
 
 } // namespace
+
+TEST_CASE("a loop restarted from its checkpoint goes on as the run it came from",
+          "[explicit][checkpoint]") {
+  const std::string dir = "test_loop_checkpoint";
+  std::filesystem::remove_all(dir);
+  const explicit_dynamics::Schedule schedule{2.05, 0.25, 0.5};
+  Drift whole;
+  const explicit_dynamics::LoopReport all = explicit_dynamics::run_time_loop(whole, schedule);
+  // The same run with a checkpoint every 0.7: the last one, at t = 1.4 (step 14), stays.
+  {
+    Drift first;
+    io::Checkpoints checkpoints(dir, {}, {0.7, 0.0}, {{"time.end", "2.05"}});
+    explicit_dynamics::run_time_loop(first, schedule, &checkpoints);
+    CHECK(checkpoints.written() == 2);
+  }
+  const io::Restart restart = io::find_restart(dir, {{"time.end", "3.0"}}, 1);
+  CHECK(restart.step == 14);
+  CHECK(restart.time == Approx(1.4));
+  Drift resumed;
+  const auto state = restart.open(0);
+  const explicit_dynamics::LoopReport rest =
+      explicit_dynamics::run_time_loop(resumed, schedule, nullptr, state.get());
+  CHECK(rest.steps == all.steps);
+  CHECK(rest.steps_timed == all.steps - 14);
+  CHECK(resumed.recorded == whole.recorded);
+  CHECK(resumed.written == whole.written);
+  CHECK(resumed.x == whole.x);
+  // A key other than the end time and the output intervals may not change.
+  CHECK_THROWS_WITH(io::find_restart(dir, {{"time.end", "2.05"}, {"materials.0.E", "1"}}, 1),
+                    Catch::Contains("materials.0.E changed since the checkpoint"));
+  CHECK_THROWS_WITH(io::find_restart(dir, {{"time.end", "2.05"}}, 2),
+                    Catch::Contains("restart it on as many"));
+  io::remove_checkpoints(dir);
+  CHECK_FALSE(std::filesystem::exists(dir + "/checkpoint"));
+  std::filesystem::remove_all(dir);
+}
 
 TEST_CASE("the explicit time loop records on its schedule and at the end", "[explicit]") {
   Drift m;

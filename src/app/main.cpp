@@ -1,5 +1,6 @@
 // meshfree command line (DESIGN.md, "the run contract"):
-//   meshfree run PROBLEM.yaml [--out DIR] [--set key.path=value ...] [-- PETSc options]
+//   meshfree run PROBLEM.yaml [--out DIR | --restart DIR] [--set key.path=value ...]
+//                [-- PETSc options]
 //   meshfree check PROBLEM.yaml [--set key.path=value ...]
 #include "meshfree/app/elastic_static.hpp"
 #include "meshfree/app/elastoplastic_static.hpp"
@@ -11,6 +12,7 @@
 #include "meshfree/explicit/sph_setup.hpp"
 #include "meshfree/geometry/node_generation.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
+#include "meshfree/io/checkpoint.hpp"
 #include "meshfree/io/problem_spec.hpp"
 #include "meshfree/quadrature/integration_points.hpp"
 #include "meshfree/solvers/parallel.hpp"
@@ -21,22 +23,26 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <omp.h>
+#include <optional>
 #include <unistd.h>
 
 namespace {
 
 constexpr const char* kUsage =
     "usage:\n"
-    "  meshfree run PROBLEM.yaml [--out DIR] [--set key.path=value ...] [-- PETSc options]\n"
+    "  meshfree run PROBLEM.yaml [--out DIR | --restart DIR] [--set key.path=value ...]\n"
+    "               [-- PETSc options]\n"
     "  meshfree check PROBLEM.yaml [--set key.path=value ...]\n"
     "\n"
     "run    solves the problem and writes fields.h5/.xmf, history.csv, line_*.csv and\n"
     "       summary.json into DIR (default out/<problem name>/)\n"
+    "       --restart DIR goes on from the last checkpoint in DIR/checkpoint (explicit runs)\n"
     "check  validates the problem file and prints the discretisation it would use\n"
     "Options after '--' go to PETSc, e.g. -- -ksp_type cg -pc_type gamg -ksp_view\n";
 
 struct Command {
-  std::string verb, problem, out_dir;
+  std::string verb, problem, out_dir, restart_dir;
   std::vector<std::string> overrides;
   std::vector<char*> petsc_argv; // program name + everything after "--"
 };
@@ -52,9 +58,11 @@ Command parse(int argc, char** argv) {
       break;
     }
     if (a == "-h" || a == "--help") mf::fail("help");
-    if (a == "--out" || a == "--set") {
+    if (a == "--out" || a == "--restart" || a == "--set") {
       MF_REQUIRE(i + 1 < argc, a, " needs a value");
-      (a == "--out" ? c.out_dir : (c.overrides.emplace_back(), c.overrides.back())) = argv[++i];
+      (a == "--out"       ? c.out_dir
+       : a == "--restart" ? c.restart_dir
+                          : (c.overrides.emplace_back(), c.overrides.back())) = argv[++i];
     } else if (c.verb.empty()) {
       c.verb = a;
     } else if (c.problem.empty()) {
@@ -66,6 +74,10 @@ Command parse(int argc, char** argv) {
   MF_REQUIRE(c.verb == "run" || c.verb == "check",
              c.verb.empty() ? "no command given" : "unknown command '" + c.verb + "'");
   MF_REQUIRE(!c.problem.empty(), "no problem file given");
+  MF_REQUIRE(c.restart_dir.empty() || c.verb == "run", "--restart is an option of run");
+  MF_REQUIRE(c.restart_dir.empty() || c.out_dir.empty() || c.out_dir == c.restart_dir, "--restart ",
+             c.restart_dir, " with --out ", c.out_dir,
+             ": a restart writes into the folder it restarts from");
   return c;
 }
 
@@ -147,15 +159,29 @@ int run(Command& c) {
   char** pargv = c.petsc_argv.data();
   mf::solvers::PetscSession session(&pargc, &pargv);
   mf::io::ProblemSpec spec;
+  std::optional<mf::io::Restart> restart;
   try {
     spec = mf::io::read_problem(c.problem, c.overrides);
     // A finite-element mesh is input too: read and checked before anything is written.
     if (spec.discretisation.method == mf::io::Method::Fem) mf::implicit::read_fe_mesh(spec);
+    if (!c.restart_dir.empty()) {
+      MF_REQUIRE(
+          spec.analysis == mf::io::Analysis::Peridynamics || spec.analysis == mf::io::Analysis::Sph,
+          "--restart ", c.restart_dir, ": only peridynamics and sph analyses write checkpoints");
+      restart = mf::io::find_restart(c.restart_dir, spec.settings, session.size());
+      if (restart->threads != omp_get_max_threads())
+        mf::log::warn("the checkpoint was written with ", restart->threads,
+                      " OpenMP thread(s) and this run has ", omp_get_max_threads(),
+                      ": the sums may differ in the last digits from the run it continues");
+    }
   } catch (const std::exception& e) {
     if (session.rank() == 0) std::cerr << "meshfree: " << e.what() << std::endl;
     return 2;
   }
-  const std::string dir = c.out_dir.empty() ? "out/" + spec.name : c.out_dir;
+  const std::string dir = !c.restart_dir.empty() ? c.restart_dir
+                          : c.out_dir.empty()    ? "out/" + spec.name
+                                                 : c.out_dir;
+  const mf::io::Restart* from = restart ? &*restart : nullptr;
   // The output folder is input too: one that cannot be written is refused before the run.
   std::unique_ptr<mf::io::OutputDirectory> out;
   double unusable = 0.0;
@@ -167,13 +193,20 @@ int run(Command& c) {
     }
   if (mf::distribution::Ranks::of(session.comm()).max(unusable) > 0.0) return 2;
   int exit_code = 0;
+  const bool explicit_run =
+      spec.analysis == mf::io::Analysis::Peridynamics || spec.analysis == mf::io::Analysis::Sph;
   try {
+    // An explicit run's set-up is input checking too (the particles of every block and region,
+    // the bonds, the time step): its folder is created when the first file is written, and an
+    // error before that is refused as input, with nothing written. Implicit runs keep what they
+    // wrote up to a failure of their solve.
+    if (out && !explicit_run) out->open();
     mf::log::info("problem ", spec.name, ": ", spec.description);
     if (spec.analysis == mf::io::Analysis::ModelProblem1D) {
       if (session.rank() == 0) mf::app::model_problem_1d(spec, *out);
     } else if (spec.analysis == mf::io::Analysis::Peridynamics) {
-      mf::explicit_dynamics::PdRunResult r =
-          mf::app::run_peridynamics(spec, out.get(), mf::distribution::Ranks::of(session.comm()));
+      mf::explicit_dynamics::PdRunResult r = mf::app::run_peridynamics(
+          spec, out.get(), mf::distribution::Ranks::of(session.comm()), dir, from);
       {
         mf::PhaseTimer::Scope scope(r.timer, "output");
         if (out) mf::app::write_pd_outputs(spec, r, *out);
@@ -182,7 +215,7 @@ int run(Command& c) {
       if (r.status == "failed") exit_code = 1;
     } else if (spec.analysis == mf::io::Analysis::Sph) {
       mf::explicit_dynamics::SphRunResult r =
-          mf::app::run_sph(spec, out.get(), mf::distribution::Ranks::of(session.comm()));
+          mf::app::run_sph(spec, out.get(), mf::distribution::Ranks::of(session.comm()), dir, from);
       {
         mf::PhaseTimer::Scope scope(r.timer, "output");
         if (out) mf::app::write_sph_outputs(spec, r, *out);
@@ -205,6 +238,7 @@ int run(Command& c) {
                     "analysis does not use)");
     if (out && exit_code == 0) {
       out->commit();
+      mf::io::remove_checkpoints(dir); // the completed results supersede them
       mf::log::info("results in ", std::filesystem::absolute(dir).string());
     } else if (out) {
       const std::string kept = out->keep_unfinished(exit_code == 3 ? "stopped" : "failed");
@@ -218,6 +252,11 @@ int run(Command& c) {
     // A CollectiveError reached every rank: each returns normally. Any other error may have
     // reached this rank only, and the others would wait for it forever: abort them.
     const bool everywhere = dynamic_cast<const mf::solvers::CollectiveError*>(&e) != nullptr;
+    if (explicit_run && session.size() == 1 && dynamic_cast<const mf::Error*>(&e) && out &&
+        !out->opened()) {
+      std::cerr << "meshfree: " << e.what() << std::endl; // refused in set-up: nothing written
+      return 2;
+    }
     if (session.rank() == 0 || !everywhere)
       std::cerr << "meshfree: run failed"
                 << (everywhere ? "" : " on rank " + std::to_string(session.rank())) << ": "

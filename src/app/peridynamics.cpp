@@ -7,7 +7,9 @@ namespace mf::app {
 
 explicit_dynamics::PdRunResult run_peridynamics(const io::ProblemSpec& spec,
                                                 io::OutputDirectory* out,
-                                                const distribution::Ranks& ranks) {
+                                                const distribution::Ranks& ranks,
+                                                const std::string& dir,
+                                                const io::Restart* restart) {
   const io::PdSpec& s = *spec.pd;
   explicit_dynamics::PdRunResult result;
   explicit_dynamics::PdSetup setup = explicit_dynamics::build_pd_setup(spec, result.timer, ranks);
@@ -16,8 +18,11 @@ explicit_dynamics::PdRunResult run_peridynamics(const io::ProblemSpec& spec,
   explicit_dynamics::PdRun run(setup, s, out, result);
   // history.csv grows on disk as the run goes: a run that is killed keeps it up to then.
   if (out) result.history.stream_to(*out);
-  run.finish(
-      explicit_dynamics::run_time_loop(run, {s.end_time, s.history_interval, s.fields_interval}));
+  io::Checkpoints checkpoints(dir, ranks, s.checkpoint, spec.settings, restart);
+  const auto resume = restart ? restart->open(ranks.rank) : nullptr;
+  run.finish(explicit_dynamics::run_time_loop(
+      run, {s.end_time, s.history_interval, s.fields_interval}, &checkpoints, resume.get()));
+  result.checkpoints = checkpoints.counts();
   return result;
 }
 
@@ -31,6 +36,7 @@ void write_pd_outputs(const io::ProblemSpec& spec, const explicit_dynamics::PdRu
   io::Json& counts = summary.section("counts");
   io::Json& time_step = summary.section("time_step");
   explicit_dynamics::summarise(r, counts, time_step, summary.section("results"));
+  summary.section("checkpoints") = r.checkpoints.describe(r.timer.total());
   if (r.relaxation)
     summary.section("relaxation")
         .set("iterations", r.relaxation->iterations)

@@ -8,7 +8,8 @@
 namespace mf::app {
 
 explicit_dynamics::SphRunResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out,
-                                        const distribution::Ranks& ranks) {
+                                        const distribution::Ranks& ranks, const std::string& dir,
+                                        const io::Restart* restart) {
   const io::SphSpec& s = *spec.sph;
   explicit_dynamics::SphRunResult result;
   sph::Hydro h;
@@ -27,8 +28,20 @@ explicit_dynamics::SphRunResult run_sph(const io::ProblemSpec& spec, io::OutputD
   explicit_dynamics::SphRun run(h, s, out, result);
   // history.csv grows on disk as the run goes: a run that is killed keeps it up to then.
   if (out) result.history.stream_to(*out);
-  run.finish(
-      explicit_dynamics::run_time_loop(run, {s.end_time, s.history_interval, s.fields_interval}));
+  io::CheckpointPolicy policy = s.checkpoint;
+  if (!ranks.serial() && policy.any()) {
+    // Particles migrate between ranks: a rank's state is not yet kept.
+    if (s.checkpoint.interval > 0.0)
+      log::warn("output.checkpoint_interval: checkpoints of SPH runs are written on one MPI rank "
+                "only; this run over ",
+                ranks.size, " ranks writes none");
+    policy = {0.0, 0.0};
+  }
+  io::Checkpoints checkpoints(dir, ranks, policy, spec.settings, restart);
+  const auto resume = restart ? restart->open(ranks.rank) : nullptr;
+  run.finish(explicit_dynamics::run_time_loop(
+      run, {s.end_time, s.history_interval, s.fields_interval}, &checkpoints, resume.get()));
+  result.checkpoints = checkpoints.counts();
   return result;
 }
 
@@ -50,6 +63,7 @@ void write_sph_outputs(const io::ProblemSpec& spec, const explicit_dynamics::Sph
       .set("listed_pairs", r.neighbour_pairs)
       .set("list_bytes", r.neighbour_list_bytes)
       .set("share_of_run", stepping > 0.0 ? r.neighbour_seconds / stepping : 0.0);
+  summary.section("checkpoints") = r.checkpoints.describe(stepping);
   summary.write(out, r.timer);
 }
 

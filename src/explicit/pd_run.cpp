@@ -215,6 +215,59 @@ void PdRun::write_fields() {
   fields_.write(time());
 }
 
+template <class Visit> void PdRun::for_each_state(const Visit& visit) {
+  particles::ParticleSet& p = setup_.model.particles;
+  visit("particles.u", p.u), visit("particles.v", p.v), visit("particles.a", p.a);
+  visit("particles.time", p.time), visit("particles.step", p.step);
+  pd::BondState& b = setup_.state;
+  visit("bonds.intact", b.intact), visit("bonds.plastic", b.plastic);
+  visit("bonds.s0", b.s0.committed), visit("bonds.s0_trial", b.s0.trial);
+  // Each impactor's motion, the force of its last contact and its energy accounts.
+  std::vector<double> impactors;
+  for (const pd::Impactor& imp : setup_.impactors) {
+    for (const Eigen::Vector3d* v : {&imp.position, &imp.velocity, &imp.contact_force})
+      impactors.insert(impactors.end(), v->data(), v->data() + 3);
+    impactors.insert(impactors.end(), {imp.contact_energy, imp.work, imp.dissipated});
+  }
+  visit("impactors", impactors);
+  MF_REQUIRE(impactors.size() == 12 * setup_.impactors.size(),
+             "checkpoint: ", impactors.size() / 12, " impactors kept for ",
+             setup_.impactors.size());
+  for (std::size_t k = 0; k < setup_.impactors.size(); ++k) {
+    pd::Impactor& imp = setup_.impactors[k];
+    const double* v = &impactors[12 * k];
+    imp.position = Eigen::Vector3d(v[0], v[1], v[2]);
+    imp.velocity = Eigen::Vector3d(v[3], v[4], v[5]);
+    imp.contact_force = Eigen::Vector3d(v[6], v[7], v[8]);
+    imp.contact_energy = v[9], imp.work = v[10], imp.dissipated = v[11];
+  }
+  if (setup_.short_range) setup_.short_range->for_each_state(visit / "short_range");
+  fracture_account_.for_each_state(visit / "fracture_account");
+  visit("last.broken", last_.broken), visit("last.strain_energy", last_.strain_energy);
+  visit("last.external_work", last_.external_work);
+  visit("last.contact_energy", last_.contact_energy);
+  visit("last.fracture_energy", last_.fracture_energy);
+  visit("last.fracture_work", last_.fracture_work);
+  visit("last_has_energy", last_has_energy_), visit("fracture", fracture_);
+  visit("e0", e0_), visit("work", work_), visit("broken", broken_);
+  visit("max_damage", r_.max_damage);
+  gauges_.for_each_state(visit / "gauges");
+  fields_.for_each_state(visit / "fields");
+}
+
+void PdRun::save(io::Checkpoints& checkpoints, const io::Saver& save) {
+  fields_.split(checkpoints.part("fields", checkpoints.generation()));
+  for_each_state(save);
+  save("history", r_.history.flat());
+}
+
+void PdRun::restore(const io::Loader& load) {
+  for_each_state(load);
+  std::vector<double> rows;
+  load("history", rows);
+  r_.history.restore(rows);
+}
+
 void PdRun::finish(const LoopReport& loop) {
   fields_.close();
   r_.steps = loop.steps;
@@ -225,10 +278,10 @@ void PdRun::finish(const LoopReport& loop) {
   r_.gauge_maxima = gauges_.maxima();
   // Bond evaluations counted as directed bonds, as LAMMPS's 'total # of bonds' (the half bond
   // layout computes each pair once for both of its ends).
-  r_.bond_updates_per_second =
-      loop.advance_seconds > 0.0
-          ? static_cast<double>(setup_.model.bonds.directed) * loop.steps / loop.advance_seconds
-          : 0.0;
+  r_.bond_updates_per_second = loop.advance_seconds > 0.0
+                                   ? static_cast<double>(setup_.model.bonds.directed) *
+                                         loop.steps_timed / loop.advance_seconds
+                                   : 0.0;
   double emax = 0.0, drift = 0.0;
   for (const auto& row : r_.history.rows()) {
     emax = std::max({emax, row[2] + row[3], std::abs(row[4])});

@@ -225,6 +225,29 @@ std::string SphRun::progress() const {
   return detail::concat("dt ", dt_, ", max pressure ", max_pressure());
 }
 
+template <class Visit> void SphRun::for_each_state(const Visit& visit) {
+  MF_REQUIRE(h_.ranks.serial(), "checkpoints of SPH runs are written on one MPI rank");
+  h_.for_each_state(visit / "sph");
+  visit("e0", e0_), visit("dt", dt_), visit("first_dt", r_.first_dt);
+  visit("smallest_dt", r_.smallest_dt), visit("dt_limit", r_.dt_limit);
+  visit("peak_pressure", r_.peak_pressure), visit("energy_error", r_.energy_error);
+  gauges_.for_each_state(visit / "gauges");
+  fields_.for_each_state(visit / "fields");
+}
+
+void SphRun::save(io::Checkpoints& checkpoints, const io::Saver& save) {
+  fields_.split(checkpoints.part("fields", checkpoints.generation()));
+  for_each_state(save);
+  save("history", r_.history.flat());
+}
+
+void SphRun::restore(const io::Loader& load) {
+  for_each_state(load);
+  std::vector<double> rows;
+  load("history", rows);
+  r_.history.restore(rows);
+}
+
 void SphRun::finish(const LoopReport& loop) {
   fields_.close();
   r_.status = loop.status;
@@ -244,7 +267,7 @@ void SphRun::finish(const LoopReport& loop) {
   r_.migrated = ranks.sum(h_.migrated);
   r_.gauge_maxima = gauges_.maxima();
   r_.particle_steps_per_second =
-      loop.seconds > 0.0 ? static_cast<double>(r_.particles) * h_.particles.step / loop.seconds
+      loop.seconds > 0.0 ? static_cast<double>(r_.particles) * loop.steps_timed / loop.seconds
                          : 0.0;
   if (!loop.completed()) log::info("stopped: ", r_.stop_reason);
   log::info("done: ", r_.steps, " steps, ", r_.neighbour_rebuilds, " neighbour-list builds (",

@@ -153,18 +153,10 @@ void FieldSeries::open(const std::vector<double>& xyz, const GridCells& cells) {
       MPI_Bcast(s->data(), length, MPI_CHAR, 0, slice->comm);
     }
   }
+  h5_temp_ = h5_temp;
   const std::string& h5 = h5_;
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); // our messages say what failed, not HDF5's stack
-  const hid_t access = H5Pcreate(H5P_FILE_ACCESS);
-  if (slice) H5Pset_fapl_mpio(access, slice->comm, MPI_INFO_NULL);
-  // Exclusive: the staging folder is this run's own, so a file already there is an error.
-  errno = 0;
-  const hid_t file = H5Fcreate(h5_temp.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, access);
-  const int error = errno;
-  H5Pclose(access);
-  if (file < 0)
-    fail("cannot create ", h5_temp, error ? ": " + system_reason(error) : std::string());
-  file_ = file;
+  create_file();
+  const hid_t file = file_;
   const std::size_t n = points_, total = slice ? slice->total : n;
   write_dataset(file, "/geometry/coordinates", xyz, n, 3, slice);
   std::ostringstream g;
@@ -191,6 +183,20 @@ void FieldSeries::open(const std::vector<double>& xyz, const GridCells& cells) {
   g << "    <Geometry GeometryType=\"XYZ\">" << data_item(h5, "/geometry/coordinates", total, 3)
     << "</Geometry>\n";
   grid_ = g.str();
+}
+
+void FieldSeries::create_file() {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); // our messages say what failed, not HDF5's stack
+  const hid_t access = H5Pcreate(H5P_FILE_ACCESS);
+  if (slice_.spread()) H5Pset_fapl_mpio(access, slice_.comm, MPI_INFO_NULL);
+  // Exclusive: the staging folder is this run's own, so a file already there is an error.
+  errno = 0;
+  const hid_t file = H5Fcreate(h5_temp_.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, access);
+  const int error = errno;
+  H5Pclose(access);
+  if (file < 0)
+    fail("cannot create ", h5_temp_, error ? ": " + system_reason(error) : std::string());
+  file_ = file;
 }
 
 FieldSeries::~FieldSeries() {
@@ -250,8 +256,7 @@ void FieldSeries::add_step(const FieldStep& step) {
   ++steps_;
 }
 
-void FieldSeries::close() {
-  if (file_ < 0) return;
+void FieldSeries::close_file() {
   // The data reach the disk here at the latest, so this is where a full disk shows.
   errno = 0;
   if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) hdf5_failure(file_, "flushing", errno);
@@ -263,6 +268,75 @@ void FieldSeries::close() {
   if (closed < 0)
     fail(errno ? system_reason(errno) : std::string("HDF5 failed"), " writing ", name,
          " (closing)");
+}
+
+void FieldSeries::split(const std::string& part) {
+  MF_REQUIRE(file_ >= 0, stem_, ".h5: the series is closed");
+  close_file();
+  if (out_) {
+    std::error_code ec;
+    std::filesystem::rename(h5_temp_, part, ec);
+    MF_REQUIRE(!ec, part, ": cannot keep the field steps so far: ", ec.message());
+  }
+  if (slice_.spread()) MPI_Barrier(slice_.comm);
+  parts_ += part + "\n";
+  create_file();
+}
+
+namespace {
+
+/// Copies every step group of `from` into `to`, and its geometry when `to` has none yet.
+void copy_steps(hid_t to, const std::string& from) {
+  const hid_t source = H5Fopen(from.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  MF_REQUIRE(source >= 0, from, ": cannot read the field steps it holds");
+  std::vector<std::string> names;
+  H5Literate(
+      source, H5_INDEX_NAME, H5_ITER_INC, nullptr,
+      [](hid_t, const char* name, const H5L_info_t*, void* data) -> herr_t {
+        static_cast<std::vector<std::string>*>(data)->emplace_back(name);
+        return 0;
+      },
+      &names);
+  for (const std::string& name : names) {
+    if (name != "geometry" && name.rfind("step_", 0) != 0) continue;
+    if (name == "geometry" && H5Lexists(to, name.c_str(), H5P_DEFAULT) > 0) continue;
+    errno = 0;
+    if (H5Ocopy(source, name.c_str(), to, name.c_str(), H5P_DEFAULT, H5P_DEFAULT) < 0) {
+      const int error = errno;
+      H5Fclose(source);
+      hdf5_failure(to, "copying /" + name + " from " + from, error);
+    }
+  }
+  H5Fclose(source);
+}
+
+} // namespace
+
+void FieldSeries::merge_parts() {
+  // On the rank that names the file; the others have closed theirs.
+  if (!out_) return;
+  const std::string last = h5_temp_ + ".last";
+  std::error_code ec;
+  std::filesystem::rename(h5_temp_, last, ec);
+  MF_REQUIRE(!ec, h5_temp_, ": cannot merge the field steps: ", ec.message());
+  errno = 0;
+  const hid_t merged = H5Fcreate(h5_temp_.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT);
+  if (merged < 0) hdf5_failure(merged, "creating " + h5_temp_, errno);
+  std::istringstream parts(parts_);
+  for (std::string part; std::getline(parts, part);) copy_steps(merged, part);
+  copy_steps(merged, last);
+  file_ = merged;
+  close_file();
+  std::filesystem::remove(last, ec);
+}
+
+void FieldSeries::close() {
+  if (file_ < 0) return;
+  close_file();
+  if (!parts_.empty()) {
+    if (slice_.spread()) MPI_Barrier(slice_.comm);
+    merge_parts();
+  }
   std::ostringstream x;
   x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
     << "  <Grid Name=\"" << stem_ << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n"

@@ -180,21 +180,34 @@ OutputDirectory::OutputDirectory(std::string dir) : dir_(std::move(dir)) {
   const fs::file_status st = fs::status(dir_, ec);
   if (fs::exists(st)) {
     MF_REQUIRE(fs::is_directory(st), "--out ", dir_, ": not a directory");
-  } else {
-    fs::create_directories(dir_, ec);
-    MF_REQUIRE(!ec, "--out ", dir_, ": cannot create the output directory: ", ec.message());
+    MF_REQUIRE(::access(dir_.c_str(), W_OK | X_OK) == 0, "--out ", dir_,
+               ": not a directory this user can write into (", system_reason(errno), ")");
+    return;
   }
-  MF_REQUIRE(::access(dir_.c_str(), W_OK | X_OK) == 0, "--out ", dir_,
-             ": not a directory this user can write into (", system_reason(errno), ")");
+  // It will be created in its nearest existing ancestor, which must be a writable directory.
+  fs::path parent = fs::absolute(dir_, ec).parent_path();
+  while (!parent.empty() && !fs::exists(fs::status(parent, ec)) && parent != parent.root_path())
+    parent = parent.parent_path();
+  MF_REQUIRE(fs::is_directory(fs::status(parent, ec)) && ::access(parent.c_str(), W_OK | X_OK) == 0,
+             "--out ", dir_, ": cannot be created in ", parent.string(),
+             " (not a directory this user can write into)");
+}
+
+void OutputDirectory::open() {
+  if (opened()) return;
+  std::error_code ec;
+  fs::create_directories(dir_, ec);
+  MF_REQUIRE(!ec, "--out ", dir_, ": cannot create the output directory: ", ec.message());
   remove_stale_staging(dir_);
   // This run's own folder inside DIR, created fresh (mkdir fails on anything already there) and
   // private to the user, so nothing can be planted in it; results move out of it only when the
   // run has completed.
-  staging_ =
+  const std::string staging =
       (fs::path(dir_) / (kStagingPrefix + host_name() + "-" + std::to_string(getpid()))).string();
-  if (::mkdir(staging_.c_str(), 0700) != 0)
-    fail("--out ", dir_, ": cannot create the staging folder ", staging_, ": ",
+  if (::mkdir(staging.c_str(), 0700) != 0)
+    fail("--out ", dir_, ": cannot create the staging folder ", staging, ": ",
          system_reason(errno));
+  staging_ = staging;
 }
 
 OutputDirectory::~OutputDirectory() = default;
@@ -204,6 +217,7 @@ std::string OutputDirectory::shown(const std::string& file) const {
 }
 
 std::string OutputDirectory::temp_path(const std::string& name) {
+  open();
   const std::string file = name_of(name);
   MF_REQUIRE(!finished_, shown(name), ": written after the run's files were put in place");
   MF_REQUIRE(std::find(pending_.begin(), pending_.end(), file) == pending_.end(), shown(name),
@@ -230,6 +244,7 @@ void OutputDirectory::write_manifest(const std::string& folder) const {
 
 void OutputDirectory::commit() {
   MF_REQUIRE(!finished_, dir_, ": the run's files were put in place already");
+  open();
   const fs::path dir(dir_), staging(staging_);
   write_manifest(staging_);
   const std::vector<std::string> previous = read_manifest(dir);
@@ -273,6 +288,7 @@ void OutputDirectory::replace_summary(const std::string& text) {
 
 std::string OutputDirectory::keep_unfinished(const std::string& status) {
   MF_REQUIRE(!finished_, dir_, ": the run's files were put in place already");
+  open();
   finished_ = true;
   // Only the names that were written (a file may have failed before its creation).
   std::vector<std::string> written;

@@ -287,6 +287,7 @@ PdSpec parse_pd(KeyReader& r, const ProblemSpec& front, const std::string& base_
     s.history_interval = series.history_interval;
     s.fields_interval = series.fields_interval;
     s.gauges = std::move(series.gauges);
+    s.checkpoint = series.checkpoint;
     if (auto c = o->optional_map("crack")) {
       s.crack.enabled = true;
       s.crack.threshold = c->positive("damage_threshold", 0.38);

@@ -56,6 +56,21 @@ void read_geometry(KeyReader& r, ProblemSpec& p) {
   }
 }
 
+/// Every scalar under `node` as "path = value" (list items by index), in the file's order.
+void flatten(const YAML::Node& node, const std::string& path, ProblemSettings& out) {
+  if (node.IsMap()) {
+    for (const auto& item : node) {
+      const std::string key = item.first.IsScalar() ? item.first.Scalar() : "?";
+      flatten(item.second, path.empty() ? key : path + "." + key, out);
+    }
+  } else if (node.IsSequence()) {
+    for (std::size_t k = 0; k < node.size(); ++k)
+      flatten(node[k], path + "." + std::to_string(k), out);
+  } else {
+    out.emplace_back(path, node.IsScalar() ? node.Scalar() : std::string("~"));
+  }
+}
+
 } // namespace
 
 ProblemSpec parse_problem(YAML::Node root, const std::string& base_dir, const std::string& stage) {
@@ -125,7 +140,10 @@ ProblemSpec read_problem(const std::string& path, const std::vector<std::string>
   for (const auto& o : overrides) apply_override(root, o);
   try {
     const std::size_t slash = path.find_last_of('/');
-    return parse_problem(root, slash == std::string::npos ? "" : path.substr(0, slash + 1));
+    ProblemSpec spec =
+        parse_problem(root, slash == std::string::npos ? "" : path.substr(0, slash + 1));
+    flatten(root, "", spec.settings);
+    return spec;
   } catch (const YAML::Exception& e) {
     fail(path, ": malformed input: ", e.what());
   }

@@ -134,6 +134,11 @@ SeriesOutputSpec read_series_output(KeyReader& output, int dim) {
   s.history_interval = output.positive("history_interval", 0.0);
   s.fields_interval = output.positive("fields_interval", 0.0);
   s.gauges = read_gauges(output, dim);
+  s.checkpoint.interval = output.positive("checkpoint_interval", 0.0);
+  s.checkpoint.wall_interval = output.number("checkpoint_wall_interval", 600.0);
+  if (!(s.checkpoint.wall_interval >= 0.0) || !std::isfinite(s.checkpoint.wall_interval))
+    output.error("checkpoint_wall_interval", "expected seconds of wall time, 0 for none, got " +
+                                                 detail::concat(s.checkpoint.wall_interval));
   return s;
 }
 

@@ -229,6 +229,7 @@ SphSpec parse_sph(KeyReader& r, const ProblemSpec& front) {
     s.history_interval = series.history_interval;
     s.fields_interval = series.fields_interval;
     s.gauges = std::move(series.gauges);
+    s.checkpoint = series.checkpoint;
     o->finish();
   }
   return s;

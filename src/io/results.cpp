@@ -27,6 +27,26 @@ void History::stream_to(OutputDirectory& out, const std::string& file) {
   stream_->append(text);
 }
 
+std::vector<double> History::flat() const {
+  std::vector<double> v;
+  v.reserve(rows_.size() * columns_.size());
+  for (const auto& row : rows_) v.insert(v.end(), row.begin(), row.end());
+  return v;
+}
+
+void History::restore(const std::vector<double>& flat) {
+  const std::size_t n = columns_.size();
+  MF_REQUIRE(n > 0 && flat.size() % n == 0, "history: ", flat.size(),
+             " values kept do not make rows of ", n, " columns");
+  MF_REQUIRE(rows_.empty(), "history: rows restored after some were appended");
+  std::string text;
+  for (std::size_t k = 0; k < flat.size(); k += n) {
+    rows_.emplace_back(flat.begin() + k, flat.begin() + k + n);
+    text += csv_line(rows_.back());
+  }
+  if (stream_) stream_->append(text);
+}
+
 double History::max_abs(std::size_t c) const {
   double v = 0.0;
   for (const auto& row : rows_) v = std::max(v, std::abs(row[c]));

@@ -8,10 +8,13 @@
 namespace mf::app {
 
 /// Runs the problem to its end time, spread over `ranks`; fields go to `out` (null: none; on
-/// rank 0 only when there are several).
+/// rank 0 only when there are several). Checkpoints go to `dir`/checkpoint (empty: none); with
+/// `restart` the run goes on from that checkpoint.
 explicit_dynamics::PdRunResult run_peridynamics(const io::ProblemSpec& spec,
                                                 io::OutputDirectory* out,
-                                                const distribution::Ranks& ranks = {});
+                                                const distribution::Ranks& ranks = {},
+                                                const std::string& dir = {},
+                                                const io::Restart* restart = nullptr);
 
 /// history.csv and summary.json.
 void write_pd_outputs(const io::ProblemSpec& spec, const explicit_dynamics::PdRunResult& r,

@@ -9,9 +9,12 @@
 namespace mf::app {
 
 /// Runs the problem to its end time spread over `ranks`; fields go to `out` (null: none; the
-/// ranks other than the first have none). Collective.
+/// ranks other than the first have none). Collective. Checkpoints go to `dir`/checkpoint (empty:
+/// none; on one rank only); with `restart` the run goes on from that checkpoint.
 explicit_dynamics::SphRunResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out,
-                                        const distribution::Ranks& ranks = {});
+                                        const distribution::Ranks& ranks = {},
+                                        const std::string& dir = {},
+                                        const io::Restart* restart = nullptr);
 
 /// history.csv and summary.json.
 void write_sph_outputs(const io::ProblemSpec& spec, const explicit_dynamics::SphRunResult& r,

@@ -3,6 +3,7 @@
 // Lagrangian gauge), writes the quantities it records as history columns "<gauge>_<quantity>" at
 // every recorded instant, and keeps the largest |value| of the quantities it tracks over every
 // step, recorded or not (a peak between two history rows is not lost).
+#include "meshfree/core/error.hpp"
 #include "meshfree/core/types.hpp"
 #include "meshfree/distribution/ranks.hpp"
 #include <functional>
@@ -49,6 +50,16 @@ public:
   void update_maxima();
   /// "<gauge>_<quantity>" and the largest |value| so far, gauge by gauge. Collective.
   std::vector<std::pair<std::string, double>> maxima() const;
+
+  /// The particles followed and the maxima so far (a checkpoint keeps them).
+  template <class Visit> void for_each_state(Visit&& visit) {
+    std::vector<double> most;
+    for (const auto& m : maxima_) most.push_back(m.second);
+    visit("particle", particle_), visit("id", id_), visit("maxima", most);
+    MF_REQUIRE(most.size() == maxima_.size(), "gauges: ", most.size(), " maxima kept for ",
+               maxima_.size());
+    for (std::size_t k = 0; k < most.size(); ++k) maxima_[k].second = most[k];
+  }
 
 private:
   distribution::Ranks ranks_;

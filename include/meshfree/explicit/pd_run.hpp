@@ -37,6 +37,7 @@ struct PdRunResult {
   std::vector<std::pair<std::string, double>> gauge_maxima;
   std::string status = "completed", stop_reason;
   std::optional<pd::RelaxReport> relaxation; // when the spec asks for one before the first step
+  io::CheckpointCounts checkpoints;
   PhaseTimer timer;
 };
 
@@ -63,11 +64,16 @@ public:
   void record();
   void write_fields();
   std::string progress() const { return detail::concat("broken bonds ", broken_ / 2); }
+  /// The run's whole state into a checkpoint (the field steps so far split off into a part of
+  /// it), and back on a restart.
+  void save(io::Checkpoints& checkpoints, const io::Saver& save);
+  void restore(const io::Loader& load);
 
   /// Counts, rates, status and energy balance of the finished loop into the result.
   void finish(const LoopReport& loop);
 
 private:
+  template <class Visit> void for_each_state(const Visit& visit);
   const distribution::Ranks& ranks() const { return setup_.model.halo.ranks(); }
   PdSetup& setup_;
   const io::PdSpec& spec_;

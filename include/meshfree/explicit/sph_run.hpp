@@ -33,6 +33,7 @@ struct SphRunResult {
   /// Largest |pressure| and speed of every gauge over every step: "<gauge>_<pressure|speed>".
   std::vector<std::pair<std::string, double>> gauge_maxima;
   std::string status = "completed", stop_reason;
+  io::CheckpointCounts checkpoints;
   PhaseTimer timer;
 };
 
@@ -56,11 +57,16 @@ public:
   void record();
   void write_fields() { fields_.write(h_.particles.time); }
   std::string progress() const;
+  /// The run's whole state into a checkpoint (the field steps so far split off into a part of
+  /// it), and back on a restart. On one MPI rank.
+  void save(io::Checkpoints& checkpoints, const io::Saver& save);
+  void restore(const io::Loader& load);
 
   /// Counts, rates and status of the finished loop into the result.
   void finish(const LoopReport& loop);
 
 private:
+  template <class Visit> void for_each_state(const Visit& visit);
   double max_pressure() const;
   double von_mises(int i) const;
   /// Registers a field whose owned values `owned` fills (`per` a particle, in local order);

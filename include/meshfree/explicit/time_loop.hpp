@@ -15,10 +15,16 @@
 //   void record()                               // a history row at the current instant
 //   void write_fields()
 //   std::string progress() const                // the model's part of the progress line
+//   void save(io::Checkpoints&, const io::Saver&) // its state into a checkpoint
+//   void restore(const io::Loader&)             // ... and back, on a restart
+// With checkpoints (io/checkpoint.hpp) one is written at the end of every step where it is due,
+// holding the model's state and the loop's own (what is due next); a loop given a checkpoint to
+// resume from goes on from there as the run it came from would have.
 #include "meshfree/core/error.hpp"
 #include "meshfree/core/log.hpp"
 #include "meshfree/core/timer.hpp"
 #include "meshfree/core/types.hpp"
+#include "meshfree/io/checkpoint.hpp"
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -31,27 +37,72 @@ struct Schedule {
   double fields_interval = 0.0;  // <= 0: at the start and the end only
 };
 
-struct LoopReport {
+/// What a loop has still to do, between two steps (a checkpoint keeps it).
+struct LoopState {
+  double recorded = 0.0; // the instant of the last history row
+  double next_history = 0.0, next_fields = 0.0;
+  double history_interval = 0.0, fields_interval = 0.0; // as scheduled when it was kept
   long steps = 0;
+  template <class Visit> void for_each_state(Visit&& visit) {
+    visit("recorded", recorded), visit("next_history", next_history);
+    visit("next_fields", next_fields), visit("history_interval", history_interval);
+    visit("fields_interval", fields_interval), visit("steps", steps);
+  }
+  /// After a restart whose schedule changed an interval: the next instant is the first multiple
+  /// of the new interval after t.
+  void reschedule(const Schedule& s, double t) {
+    const auto after = [t](double interval) {
+      return interval * (std::floor(t / interval * (1 + 1e-12)) + 1.0);
+    };
+    if (s.history_interval != history_interval && s.history_interval > 0.0)
+      next_history = after(s.history_interval);
+    if (s.fields_interval != fields_interval && s.fields_interval > 0.0)
+      next_fields = after(s.fields_interval);
+    history_interval = s.history_interval;
+    fields_interval = s.fields_interval;
+  }
+};
+
+struct LoopReport {
+  long steps = 0;               // of the whole run, before a restart included
+  long steps_timed = 0;         // taken by this process, in `seconds`
   double seconds = 0.0;         // wall time of the loop
   double advance_seconds = 0.0; // of which in the model's advance()
   std::string status = "completed", stop_reason;
   bool completed() const { return status == "completed"; }
 };
 
-template <class Model> LoopReport run_time_loop(Model& model, const Schedule& s) {
+template <class Model>
+LoopReport run_time_loop(Model& model, const Schedule& s, io::Checkpoints* checkpoints = nullptr,
+                         const io::StateReader* resume = nullptr) {
   using Clock = std::chrono::steady_clock;
   LoopReport r;
   const auto stop = [&r](std::string reason) {
     r.status = "failed";
     r.stop_reason = std::move(reason);
   };
-  model.track();
-  model.record();
-  model.write_fields();
-  double recorded = model.time();
-  double next_history = s.history_interval, next_fields = s.fields_interval;
+  LoopState state;
+  if (resume) {
+    const io::Loader load{*resume, ""};
+    state.for_each_state(load / "loop");
+    model.restore(load);
+    state.reschedule(s, model.time());
+    log::info("restarted at t = ", model.time(), " (step ", model.step(), ")");
+  } else {
+    model.track();
+    model.record();
+    model.write_fields();
+    state.recorded = model.time();
+    state.next_history = state.history_interval = s.history_interval;
+    state.next_fields = state.fields_interval = s.fields_interval;
+  }
+  double& recorded = state.recorded;
+  double& next_history = state.next_history;
+  double& next_fields = state.next_fields;
   double next_progress = 0.1 * s.end_time;
+  while (next_progress <= model.time()) next_progress += 0.1 * s.end_time;
+  r.steps = state.steps;
+  const double t_begin = model.time();
   const auto start = Clock::now();
   while (model.time() < s.end_time * (1.0 - 1e-12)) {
     double dt = 0.0;
@@ -71,6 +122,7 @@ template <class Model> LoopReport run_time_loop(Model& model, const Schedule& s)
     }
     r.advance_seconds += seconds_since(t0);
     ++r.steps;
+    ++r.steps_timed;
     model.track();
     if (history_due) {
       // Checked where a row is written: a state that is no longer finite stops the run there.
@@ -93,11 +145,20 @@ template <class Model> LoopReport run_time_loop(Model& model, const Schedule& s)
     }
     if (model.time() >= next_progress) {
       const double elapsed = seconds_since(start);
-      const double left = elapsed * (s.end_time - model.time()) / model.time();
+      const double left = elapsed * (s.end_time - model.time()) / (model.time() - t_begin);
       log::info("  t = ", model.time(), " (",
                 static_cast<int>(std::lround(100 * model.time() / s.end_time)), "%), step ",
                 model.step(), ", ", model.progress(), ", ", elapsed, " s, about ", left, " s left");
       next_progress += 0.1 * s.end_time;
+    }
+    if (checkpoints && model.time() < s.end_time * (1.0 - 1e-12) &&
+        checkpoints->due(model.time())) {
+      state.steps = r.steps;
+      checkpoints->write(model.time(), model.step(), [&](io::StateWriter& file) {
+        const io::Saver save{file, ""};
+        state.for_each_state(save / "loop");
+        model.save(*checkpoints, save);
+      });
     }
   }
   r.seconds = seconds_since(start);

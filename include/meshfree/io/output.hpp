@@ -75,14 +75,18 @@ std::string system_reason(int error);
 /// Staging folders of earlier runs that were killed are removed on start, with a line saying so.
 class OutputDirectory {
 public:
-  /// DIR must be, or become, a directory this user can write into.
+  /// DIR must be, or be creatable as, a directory this user can write into. Nothing is created
+  /// until the first file is written (or open()), so a run that stops in its set-up leaves
+  /// nothing behind.
   explicit OutputDirectory(std::string dir);
   ~OutputDirectory();
   OutputDirectory(const OutputDirectory&) = delete;
   OutputDirectory& operator=(const OutputDirectory&) = delete;
   const std::string& dir() const { return dir_; }
-  /// The staging folder, where this run's files are until commit().
-  const std::string& staging() const { return staging_; }
+  /// Creates DIR if need be and this run's staging folder in it, where its files are until
+  /// commit(); earlier runs' staging folders that were left by killed runs go.
+  void open();
+  bool opened() const { return !staging_.empty(); }
   /// Files written from now on are named prefix + file (a staged run's stages keep their own
   /// files side by side: preload_fields.h5 beside fields.h5).
   void set_prefix(std::string prefix) { prefix_ = std::move(prefix); }
@@ -137,16 +141,29 @@ public:
   FieldSeries(const FieldSeries&) = delete;
   FieldSeries& operator=(const FieldSeries&) = delete;
   void add_step(const FieldStep& step);
+  /// Writes the .xmf; a series that was split is merged into one file first.
   void close();
   int steps() const { return steps_; }
+  /// The steps so far become a file of their own, moved to `part` (a checkpoint keeps it), and
+  /// the series goes on in a new file; close() merges the parts. Collective.
+  void split(const std::string& part);
+  /// What split() and the steps left: the parts' paths, the step count and the .xmf entries.
+  template <class Visit> void for_each_state(Visit&& visit) {
+    visit("parts", parts_), visit("steps", steps_), visit("xdmf", xml_);
+  }
 
 private:
   void open(const std::vector<double>& xyz, const GridCells& cells);
+  void create_file();
+  void close_file();
+  void merge_parts();
   OutputDirectory* out_;
   PointSlice slice_;
   std::string stem_;
-  std::string h5_; // the data file as the .xmf names it
-  long file_ = -1; // hid_t
+  std::string h5_;      // the data file as the .xmf names it
+  std::string h5_temp_; // where it is written
+  std::string parts_;   // paths of the parts split off, one per line
+  long file_ = -1;      // hid_t
   std::size_t points_ = 0;
   int steps_ = 0;
   std::string grid_; // the XDMF topology and geometry of every step

@@ -99,6 +99,7 @@ struct PdSpec {
   double end_time = 0.0, dt = 0.0, safety = 0.8;
   double history_interval = 0.0, fields_interval = 0.0; // 0: every step / only the end
   std::vector<GaugeSpec> gauges;
+  CheckpointPolicy checkpoint;
   PdCrackTracking crack;
   std::optional<PdRelaxation> relaxation;
 };

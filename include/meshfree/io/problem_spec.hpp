@@ -132,7 +132,8 @@ struct ProblemSpec {
   std::string description;
   std::string units;
   Analysis analysis = Analysis::ElasticStatic;
-  std::string stage; // the stage's name when the file lists `stages:`
+  std::string stage;        // the stage's name when the file lists `stages:`
+  ProblemSettings settings; // every scalar of the file after --set (a restart compares them)
   ModelType model_type = ModelType::PlaneStress;
   int dimension = 2;
   materials::PlaneModel model = materials::PlaneModel::PlaneStress; // Galerkin: from model_type

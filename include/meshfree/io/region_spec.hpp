@@ -6,6 +6,7 @@
 #include "meshfree/core/types.hpp"
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mf::io {
@@ -76,10 +77,24 @@ struct TimeSpec {
   double courant = 0.3;
 };
 
-/// output of an explicit run: the intervals of the history and field series and the gauges.
+/// When an explicit run writes checkpoints (output.checkpoint_interval of simulated time,
+/// output.checkpoint_wall_interval seconds of wall time; io/checkpoint.hpp).
+struct CheckpointPolicy {
+  double interval = 0.0;        // of simulated time; 0: none on the simulated clock
+  double wall_interval = 600.0; // seconds of wall time; 0: none on the wall clock
+  bool any() const { return interval > 0.0 || wall_interval > 0.0; }
+};
+
+/// The problem as run, one "key.path = value" per scalar of the file after --set (what a restart
+/// compares with its checkpoint's).
+using ProblemSettings = std::vector<std::pair<std::string, std::string>>;
+
+/// output of an explicit run: the intervals of the history and field series, the gauges and the
+/// checkpoints.
 struct SeriesOutputSpec {
   double history_interval = 0.0, fields_interval = 0.0; // 0: every step / start and end only
   std::vector<GaugeSpec> gauges;
+  CheckpointPolicy checkpoint;
 };
 
 /// A TNT charge whose air blast loads a face (Kingery-Bulmash, loads/blast.hpp).

@@ -36,6 +36,10 @@ public:
   void stream_to(OutputDirectory& out, const std::string& file = "history.csv");
   /// Writes `file`; a streamed history is finished instead (flushed to disk and closed).
   void write(OutputDirectory& out, const std::string& file = "history.csv") const;
+  /// The rows so far, row after row (a checkpoint keeps them).
+  std::vector<double> flat() const;
+  /// Rows taken back from flat() in place of any appended so far (streamed, when streaming).
+  void restore(const std::vector<double>& flat);
 
 private:
   std::vector<std::string> columns_;
@@ -107,6 +111,13 @@ public:
   bool active() const { return series_ != nullptr; }
   /// Every registered field at time t.
   void write(double t);
+  /// See FieldSeries::split and FieldSeries::for_each_state (nothing without a series).
+  void split(const std::string& part) {
+    if (series_) series_->split(part);
+  }
+  template <class Visit> void for_each_state(Visit&& visit) {
+    if (series_) series_->for_each_state(visit);
+  }
   void close();
 
 private:

@@ -81,6 +81,7 @@ struct SphSpec {
   double end_time = 0.0;
   double history_interval = 0.0, fields_interval = 0.0; // 0: every step / start and end only
   std::vector<GaugeSpec> gauges;
+  CheckpointPolicy checkpoint;
   std::vector<SphBlastLoad> loads;
   std::vector<SphTransmitting> transmitting;
   std::vector<SphTraction> tractions;

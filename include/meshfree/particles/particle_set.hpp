@@ -97,6 +97,14 @@ struct ParticleSet {
     visit(body, 1), visit(id, 1), visit(u, 3), visit(v, 3), visit(a, 3);
   }
 
+  /// Every array by name, the instant and where the ghosts begin (a checkpoint keeps them).
+  template <class Visit> void for_each_state(Visit&& visit) {
+    visit("X", X), visit("volume", volume), visit("density", density), visit("mass", mass);
+    visit("material", material), visit("body", body), visit("id", id), visit("u", u);
+    visit("v", v), visit("a", a), visit("time", time), visit("step", step);
+    visit("owned", owned_);
+  }
+
 private:
   int owned_ = -1; // -1: no ghost particle, every particle is owned
 };

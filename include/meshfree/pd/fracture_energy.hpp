@@ -22,6 +22,11 @@ public:
   /// of the bonds broken in the evaluation before it; forgets them.
   double work_over_step(const std::vector<double>& du);
 
+  /// The bonds broken in the last evaluation, not yet accounted for (a checkpoint keeps them).
+  template <class Visit> void for_each_state(Visit&& visit) {
+    visit("particle", particle_), visit("force", force_);
+  }
+
 private:
   std::vector<int> particle_; // particles with a bond broken in the last evaluation
   std::vector<double> force_; // their broken bonds' force (3 per entry), not per volume

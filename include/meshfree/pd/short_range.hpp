@@ -27,6 +27,12 @@ public:
 
   long rebuilds() const { return rebuilds_; }
 
+  /// The pair list and where the particles were when it was built (a checkpoint keeps them).
+  template <class Visit> void for_each_state(Visit&& visit) {
+    visit("offset", pairs_.offset), visit("partner", pairs_.partner);
+    visit("y_built", y_built_), visit("rebuilds", rebuilds_);
+  }
+
 private:
   void rebuild(const std::vector<double>& y);
 

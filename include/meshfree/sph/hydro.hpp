@@ -162,6 +162,23 @@ struct Hydro {
   } whole;
   MaterialGroups groups;
   bool any_solid() const;
+  /// What changes as a run goes on one rank: particles, fields, the neighbour lists, the mirror
+  /// images, the material groups and the work of the loads (a checkpoint keeps them; the loads
+  /// and boundaries are fixed).
+  template <class Visit> void for_each_state(Visit&& visit) {
+    particles.for_each_state(visit / "particles");
+    fields.for_each_state(visit / "fields");
+    visit("pairs.offset", pairs.offset), visit("pairs.partner", pairs.partner);
+    visit("half_pairs.offset", half_pairs.offset);
+    visit("half_pairs.partner", half_pairs.partner);
+    visit("x_at_build", x_at_build), visit("h_at_build", h_at_build);
+    visit("build_radius", build_radius), visit("rebuilds", rebuilds);
+    visit("damping", damping), visit("external_work", external_work);
+    visit("damping_work", damping_work), visit("ghost_source", ghost_source);
+    visit("ghost_planes", ghost_planes), visit("groups.start", groups.start);
+    visit("groups.owned_end", groups.owned_end), visit("groups.members", groups.members);
+    visit("groups.built_for", groups.built_for);
+  }
 };
 
 /// Appends an owned particle at rest at x with reference volume and density, specific energy e

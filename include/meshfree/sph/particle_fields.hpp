@@ -31,6 +31,14 @@ struct ParticleFields {
   void truncate(int n);
   /// Calls visit(array, values per particle) for every array above: what a particle that moves
   /// to another rank takes with it.
+  /// Every array by name (a checkpoint keeps them).
+  template <class Visit> void for_each_state(Visit&& visit) {
+    visit("rho", rho), visit("e", e), visit("h", h), visit("h_ref", h_ref);
+    visit("light_time", light_time), visit("fixed", fixed), visit("p", p), visit("c", c);
+    visit("S", S), visit("back_stress", back_stress), visit("alpha", alpha);
+    visit("rho_max", rho_max), visit("damage", damage), visit("strain_rate", strain_rate);
+    visit("failed", failed);
+  }
   template <class Visit> void for_each_array(Visit&& visit) {
     visit(rho, 1), visit(e, 1), visit(h, 1), visit(h_ref, 1), visit(light_time, 1);
     visit(fixed, 1), visit(p, 1), visit(c, 1), visit(S, 6), visit(back_stress, 6);

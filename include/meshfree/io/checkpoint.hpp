@@ -1,0 +1,100 @@
+#pragma once
+// Checkpoints of an explicit run (DIR/checkpoint/): the whole state at one instant, from which
+// `meshfree run FILE --restart DIR` goes on as the run would have, bit for bit with the same
+// numbers of ranks and threads. One is written every output.checkpoint_interval of simulated time
+// and every output.checkpoint_wall_interval seconds of wall time (600 by default), at the end of
+// a step.
+//
+// Layout: each rank writes its state into state-<g>.<rank>.h5 (io/state_file.hpp); once every
+// rank has, rank 0 names generation g in checkpoint.txt (a new file renamed over the old one, so
+// the name always points at a whole checkpoint) and removes generation g - 1. The field steps
+// written up to a checkpoint are closed into <stem>.part-<k>.h5 beside them (io/output.hpp,
+// FieldSeries::split), so that a killed run's fields survive whole; the run that completes
+// merges them into DIR/fields.h5 and removes the folder.
+#include "meshfree/distribution/ranks.hpp"
+#include "meshfree/io/output.hpp"
+#include "meshfree/io/region_spec.hpp"
+#include "meshfree/io/state_file.hpp"
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mf::io {
+
+/// The keys a restart may change: the end time and the output intervals.
+bool restart_may_change(const std::string& key);
+
+/// The checkpoint a restart starts from (find_restart).
+struct Restart {
+  std::string folder;
+  long generation = 0;
+  int ranks = 1;
+  int threads = 1;
+  double time = 0.0;
+  long step = 0;
+  /// This rank's state file.
+  std::unique_ptr<StateReader> open(int rank) const;
+};
+
+/// The last checkpoint in DIR/checkpoint, checked against the problem as given now (`settings`,
+/// on `ranks` MPI ranks): a key that changed other than those a restart may change, a different
+/// number of ranks, or no checkpoint at all is an input error naming it.
+Restart find_restart(const std::string& dir, const ProblemSettings& settings, int ranks);
+
+/// What a run's checkpoints cost (summary.json's "checkpoints").
+struct CheckpointCounts {
+  int written = 0;
+  double seconds = 0.0;       // writing them
+  double bytes = 0.0;         // of the last one, over every rank
+  double restarted_at = -1.0; // the instant the run restarted from, or < 0
+  /// The counts and their share of a run of `run_seconds`.
+  Json describe(double run_seconds) const;
+};
+
+/// Removes DIR/checkpoint (a run into DIR completed, and its results supersede the checkpoint):
+/// the files meshfree writes there and no others.
+void remove_checkpoints(const std::string& dir);
+
+/// The checkpoints a run writes into DIR/checkpoint (every rank holds one; collective calls).
+class Checkpoints {
+public:
+  /// `restart`: the checkpoint this run started from (its generation is continued), or null. An
+  /// empty `dir` or a policy without intervals writes none.
+  Checkpoints(std::string dir, const distribution::Ranks& ranks, CheckpointPolicy policy,
+              ProblemSettings settings, const Restart* restart = nullptr);
+  /// True when one is due at the end of a step reaching simulated time t (collective on the wall
+  /// clock: rank 0's decides).
+  bool due(double t);
+  /// The next instant one is due on the simulated clock (a run's loop state keeps it).
+  double next_time() const { return next_time_; }
+  void set_next_time(double t) { next_time_ = t; }
+  const CheckpointPolicy& policy() const { return policy_; }
+  /// Writes one at (t, step): save() fills this rank's file. Collective.
+  void write(double t, long step, const std::function<void(StateWriter&)>& save);
+  /// Where part k of a field series of this name is kept.
+  std::string part(const std::string& stem, int k) const;
+  CheckpointCounts counts() const { return {written_, seconds_, bytes_, restarted_at_}; }
+  /// The checkpoint being written (in write's save()), or the last one.
+  long generation() const { return generation_; }
+  int written() const { return written_; }
+  double seconds() const { return seconds_; }
+  double bytes() const { return bytes_; } // over every rank, the last checkpoint
+
+private:
+  std::string dir_, folder_;
+  distribution::Ranks ranks_;
+  CheckpointPolicy policy_;
+  ProblemSettings settings_;
+  long generation_ = 0;
+  bool cleared_ = false; // an earlier run's checkpoint was removed (or continued)
+  double next_time_ = 0.0;
+  std::chrono::steady_clock::time_point last_;
+  int written_ = 0;
+  double seconds_ = 0.0, bytes_ = 0.0;
+  double restarted_at_ = -1.0;
+};
+
+} // namespace mf::io

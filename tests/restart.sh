@@ -1,0 +1,114 @@
+#!/usr/bin/env bash
+# Checkpoint and restart: explicit runs killed with SIGKILL after their second checkpoint and
+# restarted with --restart give history.csv and fields.xmf byte for byte, every dataset of
+# fields.h5 and every number of summary.json's results (rates aside) equal to the run that was
+# never stopped; a restart that changed the problem, or that has no checkpoint, is refused.
+set -u
+MF="$1"; ROOT="$2"
+WORK="$(mktemp -d)"; trap 'rm -rf "$WORK"' EXIT
+fails=0
+check() { # check "what" condition...
+  local what="$1"; shift
+  if "$@"; then echo "ok: $what"; else echo "FAIL: $what"; fails=$((fails+1)); fi
+}
+same_results() { # same_results A B: every output equal, bit for bit
+  cmp -s "$1/history.csv" "$2/history.csv" && cmp -s "$1/fields.xmf" "$2/fields.xmf" &&
+    /usr/bin/python3 - "$1" "$2" <<'EOF'
+import json, sys
+import h5py, numpy as np
+a, b = (h5py.File(d + "/fields.h5", "r") for d in sys.argv[1:3])
+names = []
+a.visit(lambda n: names.append(n) if isinstance(a[n], h5py.Dataset) else None)
+other = []
+b.visit(lambda n: other.append(n) if isinstance(b[n], h5py.Dataset) else None)
+assert sorted(names) == sorted(other), "the field files hold other datasets"
+differ = [n for n in names if not np.array_equal(a[n][()], b[n][()])]
+assert not differ, "datasets differ: %s" % differ[:5]
+sa, sb = (json.load(open(d + "/summary.json")) for d in sys.argv[1:3])
+for section in ("counts", "time_step", "results"):
+    for key, value in sa[section].items():
+        if key.endswith("_per_second"):
+            continue  # a rate of this machine, not a result
+        assert sb[section].get(key) == value, "%s.%s: %s then, %s now" % (
+            section, key, value, sb[section].get(key))
+print("  %d datasets equal" % len(names))
+EOF
+}
+generation() { sed -n 's/^generation //p' "$1/checkpoint/checkpoint.txt" 2>/dev/null || echo 0; }
+# kill_after_checkpoint OUT command...: starts a run, kills it with SIGKILL once its second
+# checkpoint is in place.
+kill_after_checkpoint() {
+  local out="$1"; shift
+  "$@" >"$WORK/killed.log" 2>&1 &
+  local pid=$!
+  for _ in $(seq 3000); do
+    [ "$(generation "$out")" -ge 2 ] && break
+    kill -0 $pid 2>/dev/null || break
+    sleep 0.01
+  done
+  pkill -9 -P $pid 2>/dev/null; kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
+}
+# restart_case NAME PROBLEM INTERVAL [--set ...] -- [launcher...]
+restart_case() {
+  local name="$1" problem="$ROOT/problems/$2.yaml" interval="$3"; shift 3
+  local sets=() launch=()
+  while [ $# -gt 0 ] && [ "$1" != "--" ]; do sets+=("$1"); shift; done
+  [ $# -gt 0 ] && shift && launch=("$@")
+  sets+=(--set "output.checkpoint_interval=$interval")
+  local whole="$WORK/$name-whole" cut="$WORK/$name-cut"
+  "${launch[@]}" "$MF" run "$problem" --out "$whole" "${sets[@]}" >/dev/null 2>&1 ||
+    { echo "FAIL: $name: the uninterrupted run"; fails=$((fails+1)); return; }
+  check "$name: the uninterrupted run wrote checkpoints and removed them at the end" \
+    grep -q '"written": [1-9]' "$whole/summary.json"
+  check "$name: no checkpoint is left after a completed run" [ ! -e "$whole/checkpoint" ]
+  kill_after_checkpoint "$cut" "${launch[@]}" "$MF" run "$problem" --out "$cut" "${sets[@]}"
+  check "$name: the run was killed before it completed" [ ! -e "$cut/summary.json" ]
+  check "$name: the killed run left its checkpoint" [ "$(generation "$cut")" -ge 2 ]
+  "${launch[@]}" "$MF" run "$problem" --restart "$cut" "${sets[@]}" >"$WORK/restart.log" 2>&1
+  check "$name: the restart completes" grep -q '"status": "completed"' "$cut/summary.json"
+  check "$name: the restart says where it started" grep -q "restarted at t = " "$WORK/restart.log"
+  check "$name: the restart loses at most one checkpoint interval" /usr/bin/python3 -c "
+import json, sys
+s = json.load(open('$cut/summary.json'))['checkpoints']
+sys.exit(not s['restarted_at_time'] >= 2 * $interval * (1 - 1e-9))"
+  check "$name: the restarted run equals the uninterrupted one, bit for bit" \
+    same_results "$whole" "$cut"
+}
+
+# Peridynamics with a free penalty impactor (contact forces, fracture), one rank, two threads.
+OMP_NUM_THREADS=2 restart_case pd_disk pd_disk_impact 1.0e-5
+# SPH of a solid (strength, plastic strain, neighbour lists), one rank, two threads.
+OMP_NUM_THREADS=2 restart_case sph_taylor sph_taylor_bar 5.0e-6 --set time.end=2.5e-5
+# Peridynamics spread over two MPI ranks (blast loads, broken bonds across the ranks' border).
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+OMP_NUM_THREADS=1 restart_case pd_slab_2ranks pd_slab_blast 3.0e-4 -- mpirun -n 2
+
+# What a restart refuses, with one line naming the key, exit 2, and the checkpoint untouched.
+D="$ROOT/problems/pd_disk_impact.yaml"
+CUT="$WORK/refusals"
+kill_after_checkpoint "$CUT" "$MF" run "$D" --out "$CUT" --set output.checkpoint_interval=1.0e-5
+before="$(md5sum "$CUT"/checkpoint/* | sort)"
+msg="$("$MF" run "$D" --restart "$CUT" --set output.checkpoint_interval=1.0e-5 \
+  --set time.dt=2.0e-7 2>&1)"; rc=$?
+check "a changed time step is refused (exit 2)" [ $rc -eq 2 ]
+check "... naming the key" grep -qF "time.dt changed since the checkpoint" <<<"$msg"
+check "... in one line" [ "$(wc -l <<<"$msg")" -eq 1 ]
+msg="$("$MF" run "$D" --restart "$WORK/nowhere" 2>&1)"; rc=$?
+check "a folder without a checkpoint is refused (exit 2)" [ $rc -eq 2 ]
+check "... saying so" grep -qF "no checkpoint in" <<<"$msg"
+msg="$("$MF" run "$ROOT/problems/plate_tension.yaml" --restart "$CUT" 2>&1)"; rc=$?
+check "an implicit problem is refused (exit 2)" [ $rc -eq 2 ]
+msg="$("$MF" run "$D" --restart "$CUT" --out "$WORK/elsewhere" 2>&1)"; rc=$?
+check "--out elsewhere is refused (exit 2)" [ $rc -eq 2 ]
+check "the refusals left the checkpoint as it was" [ "$(md5sum "$CUT"/checkpoint/* | sort)" = "$before" ]
+# The end time and the output intervals may change: the run goes on to the new end.
+"$MF" run "$D" --restart "$CUT" --set output.checkpoint_interval=2.0e-5 --set time.end=1.2e-4 \
+  --set output.history_interval=5.0e-6 >/dev/null 2>&1; rc=$?
+check "a restart with a later end time and other intervals completes" [ $rc -eq 0 ]
+check "... to the new end" /usr/bin/python3 -c "
+import csv, sys
+rows = list(csv.reader(open('$CUT/history.csv')))
+sys.exit(not abs(float(rows[-1][0]) - 1.2e-4) < 1e-12)"
+
+echo "$fails failure(s)"
+[ $fails -eq 0 ]
