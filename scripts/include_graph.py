@@ -36,7 +36,7 @@ ALLOWED = {
     "io": {"core", "geometry", "materials", "loads", "kernels", "verification", "particles",
            "neighbors", "distribution"},
     "implicit": {"core", "geometry", "materials", "kernels", "quadrature", "neighbors", "fem",
-                 "solvers", "io", "verification", "loads"},
+                 "solvers", "io", "verification", "loads", "distribution"},
     "pd": {"core", "geometry", "materials", "particles", "neighbors", "loads", "distribution"},
     "sph": {"core", "geometry", "materials", "particles", "neighbors", "kernels", "loads",
             "distribution"},

@@ -165,9 +165,13 @@ int run(Command& c) {
     // A finite-element mesh is input too: read and checked before anything is written.
     if (spec.discretisation.method == mf::io::Method::Fem) mf::implicit::read_fe_mesh(spec);
     if (!c.restart_dir.empty()) {
-      MF_REQUIRE(
-          spec.analysis == mf::io::Analysis::Peridynamics || spec.analysis == mf::io::Analysis::Sph,
-          "--restart ", c.restart_dir, ": only peridynamics and sph analyses write checkpoints");
+      MF_REQUIRE(spec.analysis == mf::io::Analysis::Peridynamics ||
+                     spec.analysis == mf::io::Analysis::Sph ||
+                     spec.analysis == mf::io::Analysis::Staged ||
+                     spec.analysis == mf::io::Analysis::ElastoplasticStatic,
+                 "--restart ", c.restart_dir,
+                 ": only runs that go step by step write checkpoints (peridynamics, sph, "
+                 "elastoplastic_static and staged runs)");
       restart = mf::io::find_restart(c.restart_dir, spec.settings, session.size());
       if (restart->threads != omp_get_max_threads())
         mf::log::warn("the checkpoint was written with ", restart->threads,
@@ -223,9 +227,9 @@ int run(Command& c) {
       log_phases(r.timer);
       if (r.status == "failed") exit_code = 1;
     } else if (spec.analysis == mf::io::Analysis::Staged) {
-      exit_code = mf::stages::run_staged(spec, session, out.get()).exit_code;
+      exit_code = mf::stages::run_staged(spec, session, out.get(), dir, from).exit_code;
     } else if (spec.analysis == mf::io::Analysis::ElastoplasticStatic) {
-      const auto r = mf::app::elastoplastic_static(spec, session, out.get());
+      const auto r = mf::app::elastoplastic_static(spec, session, out.get(), dir, from);
       log_phases(r.timer);
       if (r.status != "completed") exit_code = 3;
     } else {

@@ -130,6 +130,7 @@ void write_elastoplastic_outputs(const io::ProblemSpec& spec, const Elastoplasti
         "initial_stress",
         io::Json().set("type", "geostatic").set("out_of_balance", r.initial_out_of_balance));
   results.set("final", last).set("steps", steps);
+  summary.section("checkpoints") = r.checkpoints.describe(r.timer.total());
   summary.write(out, r.timer);
 }
 

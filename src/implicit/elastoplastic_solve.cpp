@@ -1,5 +1,6 @@
 #include "meshfree/implicit/elastoplastic_solve.hpp"
 #include "meshfree/core/log.hpp"
+#include "meshfree/distribution/ranks.hpp"
 #include "meshfree/implicit/elastic_limit.hpp"
 #include "meshfree/implicit/elastoplastic_system.hpp"
 #include "meshfree/implicit/increment_recorder.hpp"
@@ -9,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <type_traits>
 
 namespace mf::implicit {
 
@@ -41,11 +43,28 @@ void log_elastic_limit(const io::ProblemSpec& spec, const ElasticLimit& e) {
             n.at.x(), ", ", n.at.y(), ")");
 }
 
+/// The rows of every line sampled so far (rank 0).
+template <class Visit>
+void visit_lines(Visit&& visit, decltype(ElastoplasticResult::lines)& lines) {
+  long count = static_cast<long>(lines.size());
+  visit("lines.count", count);
+  lines.resize(count);
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    const auto at = visit / ("lines." + std::to_string(k));
+    auto& [name, rows] = lines[k];
+    long n = static_cast<long>(rows.size());
+    at("name", name), at("rows", n);
+    rows.resize(n);
+    for (std::size_t j = 0; j < rows.size(); ++j) at("row." + std::to_string(j), rows[j]);
+  }
+}
+
 } // namespace
 
 ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
                                                const solvers::PetscSession& session,
-                                               io::OutputDirectory* out) {
+                                               io::OutputDirectory* out, const std::string& dir,
+                                               const io::Restart* restart) {
   MF_REQUIRE(!spec.steps.empty(), "an elastoplastic analysis needs steps");
   ElastoplasticResult R;
   const auto model =
@@ -69,12 +88,60 @@ ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
 
   IncrementRecorder recorder(spec, m, session, session.rank() == 0 ? out : nullptr);
   std::vector<double> d(2 * static_cast<std::size_t>(R.nodes), 0.0);
-  {
+  SchedulePosition at;
+  // What a checkpoint keeps besides the field series: every rank's share of the state, the
+  // schedule's position and the increments recorded so far.
+  const auto records = [&](const auto& visit) {
+    long count = static_cast<long>(R.increments.size());
+    visit("increments.count", count);
+    R.increments.resize(count);
+    for (std::size_t i = 0; i < R.increments.size(); ++i)
+      R.increments[i].for_each_state(visit / ("increments." + std::to_string(i)));
+    visit_lines(visit, R.lines);
+  };
+  const auto state = [&](const auto& visit) {
+    visit("d", d);
+    problem.for_each_state(visit / "system");
+    at.for_each_state(visit / "schedule");
+    visit("initial_out_of_balance", R.initial_out_of_balance);
+    // The increments and line rows so far, packed into one array.
+    std::vector<char> packed;
+    if constexpr (std::decay_t<decltype(visit)>::loads) {
+      visit("records", packed);
+      std::size_t read = 0;
+      records(io::Unpacker{packed, read});
+    } else {
+      records(io::Packer{packed});
+      visit("records", packed);
+    }
+  };
+  if (restart) {
+    const auto file = restart->open(session.rank());
+    const io::Loader load{*file, ""};
+    state(load);
+    recorder.restore(load / "recorder");
+    log::info("restarted after increment ", R.increments.size() - 1, " (step '",
+              spec.steps[std::min<std::size_t>(at.step, spec.steps.size() - 1)].name, "' at ",
+              at.tau, ")");
+  } else {
     IncrementRecord zero;
     zero.factors.assign(spec.boundary.size() + 1, 0.0);
     zero.newton.converged = true;
     recorder.record(zero, d, problem.states(), newton, false, R);
   }
+  // The checkpoints' clock counts converged increments.
+  io::Checkpoints checkpoints(dir, distribution::Ranks::of(session.comm()), spec.checkpoint,
+                              spec.settings, restart);
+  const auto keep = [&](const SchedulePosition&, bool finished) {
+    const long done = static_cast<long>(R.increments.size()) - 1;
+    if (finished || !checkpoints.due(static_cast<double>(done))) return;
+    PhaseTimer::Scope scope(R.timer, "checkpoints");
+    checkpoints.write(static_cast<double>(done), done, [&](io::StateWriter& file) {
+      const io::Saver save{file, ""};
+      recorder.save(checkpoints, save / "recorder");
+      state(save);
+    });
+  };
   const ScheduleOutcome o = run_load_schedule(
       spec, problem, newton, d,
       [&](IncrementRecord rec, bool write_fields) -> const IncrementRecord& {
@@ -87,7 +154,9 @@ ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
           R.initial_out_of_balance = f / std::max(n.scale.back(), 1e-300);
         }
         return R.increments.back();
-      });
+      },
+      at, keep);
+  R.checkpoints = checkpoints.counts();
   if (spec.initial_stress && R.increments.size() > 1) {
     // The first increment is the equilibrium iteration at the full body force. The system
     // still holds its converged stress unless later increments followed.

@@ -183,4 +183,16 @@ void IncrementRecorder::close() {
   gauss_->series->close();
 }
 
+void IncrementRecorder::save(io::Checkpoints& checkpoints, const io::Saver& save) {
+  fields_->split(checkpoints.part("fields", checkpoints.generation()));
+  gauss_->series->split(checkpoints.part("gauss_points", checkpoints.generation()));
+  fields_->for_each_state(save / "fields");
+  gauss_->series->for_each_state(save / "gauss_points");
+}
+
+void IncrementRecorder::restore(const io::Loader& load) {
+  fields_->for_each_state(load / "fields");
+  gauss_->series->for_each_state(load / "gauss_points");
+}
+
 } // namespace mf::implicit

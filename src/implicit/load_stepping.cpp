@@ -32,20 +32,27 @@ std::string factors_text(const io::ProblemSpec& spec, const std::vector<double>&
 
 ScheduleOutcome run_load_schedule(const io::ProblemSpec& spec, ElastoplasticSystem& problem,
                                   solvers::NonlinearBlockSystem& newton, std::vector<double>& d,
-                                  const IncrementDone& done) {
+                                  const IncrementDone& done, SchedulePosition& at,
+                                  const PositionKept& kept) {
   ScheduleOutcome o;
   const std::size_t nf = spec.boundary.size() + 1;
-  std::vector<double> current(nf, 0.0);
+  if (at.current.empty()) at.current.assign(nf, 0.0);
+  if (at.start.empty()) at.start = at.current;
+  std::vector<double>& current = at.current;
   solvers::NewtonSettings settings;
   settings.tolerance = spec.nonlinear.tolerance;
   settings.max_iterations = spec.nonlinear.max_iterations;
-  int since_output = 0;
-  for (std::size_t s = 0; s < spec.steps.size() && o.status == "completed"; ++s) {
+  int& since_output = at.since_output;
+  for (; at.step < static_cast<int>(spec.steps.size()) && o.status == "completed";) {
+    const std::size_t s = static_cast<std::size_t>(at.step);
     const io::LoadStep& step = spec.steps[s];
-    const std::vector<double> start = current;
+    const std::vector<double>& start = at.start;
     const double nominal = 1.0 / step.increments;
-    double tau = 0.0, dtau = nominal;
-    int cuts = 0, easy = 0;
+    double& tau = at.tau;
+    double& dtau = at.dtau;
+    if (dtau <= 0.0) dtau = nominal;
+    int& cuts = at.cuts;
+    int& easy = at.easy;
     while (tau < 1.0 - 1e-12) {
       dtau = std::min(dtau, 1.0 - tau);
       const bool last = tau + dtau >= 1.0 - 1e-12;
@@ -102,7 +109,14 @@ ScheduleOutcome run_load_schedule(const io::ProblemSpec& spec, ElastoplasticSyst
         easy = 0;
       }
       cuts = 0;
+      if (kept) kept(at, step_end && s + 1 == spec.steps.size());
     }
+    if (o.status != "completed") break;
+    // The next step starts where this one ended.
+    ++at.step;
+    at.tau = at.dtau = 0.0;
+    at.cuts = at.easy = 0;
+    at.start = at.current;
   }
   return o;
 }

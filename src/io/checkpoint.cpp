@@ -73,12 +73,19 @@ std::map<std::string, std::string> settings_map(const std::string& text) {
 
 } // namespace
 
-bool restart_may_change(const std::string& key) {
+bool restart_may_change(const std::string& path) {
+  // A staged run's keys are those of its stages: stages.<k>.time.end and so on.
+  std::string key = path;
+  if (key.rfind("stages.", 0) == 0) {
+    const std::size_t dot = key.find('.', 7);
+    key = dot == std::string::npos ? std::string() : key.substr(dot + 1);
+  }
   const auto ends = [&](const std::string& e) {
     return key.size() > e.size() && key.compare(key.size() - e.size(), e.size(), e) == 0;
   };
-  return key == "time.end" || (key.rfind("output.", 0) == 0 && ends("_interval") &&
-                               key.find('.', 7) == std::string::npos);
+  return key == "time.end" || key == "output.checkpoint_every" ||
+         (key.rfind("output.", 0) == 0 && ends("_interval") &&
+          key.find('.', 7) == std::string::npos);
 }
 
 std::unique_ptr<StateReader> Restart::open(int rank) const {

@@ -283,6 +283,17 @@ void FieldSeries::split(const std::string& part) {
   create_file();
 }
 
+void FieldSeries::start_afresh() {
+  MF_REQUIRE(file_ >= 0, stem_, ".h5: the series is closed");
+  close_file();
+  if (out_) {
+    std::error_code ec;
+    std::filesystem::remove(h5_temp_, ec);
+  }
+  if (slice_.spread()) MPI_Barrier(slice_.comm);
+  create_file();
+}
+
 namespace {
 
 /// Copies every step group of `from` into `to`, and its geometry when `to` has none yet.

@@ -529,6 +529,14 @@ void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
              detail::concat(at.x(), ", ", at.y()), ") is not in the body");
     }
     p.fields_every = out->integer("fields_every", 1, 1, 1000000);
+    for (const char* key : {"checkpoint_every", "checkpoint_wall_interval"})
+      if (!plastic && out->has(key))
+        out->error(key, "checkpoints are written only by analysis elastoplastic_static");
+    p.checkpoint.interval = out->integer("checkpoint_every", 0, 0, 1000000);
+    p.checkpoint.wall_interval = out->number("checkpoint_wall_interval", 600.0);
+    if (!(p.checkpoint.wall_interval >= 0.0) || !std::isfinite(p.checkpoint.wall_interval))
+      out->error("checkpoint_wall_interval", "expected seconds of wall time, 0 for none, got " +
+                                                 detail::concat(p.checkpoint.wall_interval));
     for (KeyReader& l : out->map_list("lines")) {
       LineSpec s;
       s.name = l.text("name");

@@ -206,12 +206,6 @@ void parse_stages(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
     StageLink link = read_link(link_reader, p.stages, static_cast<int>(k));
     link_reader.finish();
     ProblemSpec stage = parse_stage(stage_file(r, s), r, s.path(), name, base_dir);
-    const CheckpointPolicy* policy = stage.pd    ? &stage.pd->checkpoint
-                                     : stage.sph ? &stage.sph->checkpoint
-                                                 : nullptr;
-    if (list.size() == 2 && policy && policy->interval > 0.0)
-      s.error("output.checkpoint_interval",
-              "a staged run writes no checkpoints; run the explicit stage on its own for them");
     if (link.from >= 0) {
       const ProblemSpec& from = p.stages[link.from];
       if (from.analysis != Analysis::ElastoplasticStatic || !explicit_dynamics(stage.analysis))

@@ -113,6 +113,10 @@ template <class T> void StateReader::get(const std::string& name, std::vector<T>
              same_type ? std::string() : std::string(" (another type than expected)"));
 }
 
+void Unpacker::short_of(const std::string& name) {
+  fail("checkpoint: the packed records end before '", name, "' (a damaged file?)");
+}
+
 void StateReader::wrong_size(const std::string& name, std::size_t size) const {
   fail(path_, ": '", name, "' holds ", size, " values where one was expected");
 }

@@ -98,7 +98,7 @@ double norm_of_difference(const std::vector<double>& a, const std::vector<Vec3>&
 
 ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::ElastoplasticResult& pre,
                            const io::ProblemSpec& stage, const io::StageLink& link, int index,
-                           io::OutputDirectory* out) {
+                           io::OutputDirectory* out, const StageCheckpoints& checkpoints) {
   const io::PdSpec& s = *stage.pd;
   ExplicitStage st;
   explicit_dynamics::PdRunResult result;
@@ -176,8 +176,9 @@ ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::Elast
   pd::set_displacement(m, u0);
   P.time = 0.0;
   pd::accelerate(m, setup.state, setup.loading, false);
-  run.finish(
-      explicit_dynamics::run_time_loop(run, {s.end_time, s.history_interval, s.fields_interval}));
+  run.finish(explicit_dynamics::run_time_loop(run,
+                                              {s.end_time, s.history_interval, s.fields_interval},
+                                              checkpoints.checkpoints, checkpoints.resume));
 
   explicit_dynamics::summarise(result, st.counts, st.time_step, st.results);
   record_stage(st, replay, result.history, s.gauges, link.from, index, result.status,

@@ -179,7 +179,8 @@ sph::SurfaceForce rigid_balance(sph::Hydro& h, std::vector<int> support) {
 
 ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
                             const implicit::ElastoplasticResult& pre, const io::ProblemSpec& stage,
-                            const io::StageLink& link, int index, io::OutputDirectory* out) {
+                            const io::StageLink& link, int index, io::OutputDirectory* out,
+                            const StageCheckpoints& checkpoints) {
   const io::SphSpec& s = *stage.sph;
   ExplicitStage st;
   explicit_dynamics::SphRunResult result;
@@ -291,8 +292,9 @@ ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
   h = start;
   const io::History replay = take_rows(result.history);
   result.energy_error = 0.0;
-  run.finish(
-      explicit_dynamics::run_time_loop(run, {s.end_time, s.history_interval, s.fields_interval}));
+  run.finish(explicit_dynamics::run_time_loop(run,
+                                              {s.end_time, s.history_interval, s.fields_interval},
+                                              checkpoints.checkpoints, checkpoints.resume));
 
   explicit_dynamics::summarise(result, st.counts, st.time_step, st.results);
   record_stage(st, replay, result.history, s.gauges, link.from, index, result.status,

@@ -97,7 +97,8 @@ double elastic_energy(const std::vector<materials::Vec6>& sigma, const std::vect
 }
 
 StagedOutcome run_staged(const io::ProblemSpec& spec, const solvers::PetscSession& session,
-                         io::OutputDirectory* out) {
+                         io::OutputDirectory* out, const std::string& dir,
+                         const io::Restart* restart) {
   MF_REQUIRE(session.size() == 1, "a staged run runs on one MPI rank (its explicit stage is "
                                   "parallel over OpenMP threads: set OMP_NUM_THREADS)");
   StagedOutcome outcome;
@@ -130,9 +131,16 @@ StagedOutcome run_staged(const io::ProblemSpec& spec, const solvers::PetscSessio
     outcome.exit_code = 3;
   } else {
     log::info("stage ", event.stage, " from ", preload.stage);
+    const io::CheckpointPolicy& policy =
+        event.analysis == io::Analysis::Sph ? event.sph->checkpoint : event.pd->checkpoint;
+    io::Checkpoints checkpoints(dir, distribution::Ranks::of(session.comm()), policy, spec.settings,
+                                restart);
+    const auto resume = restart ? restart->open(0) : nullptr;
+    const StageCheckpoints kept{&checkpoints, resume.get()};
     ExplicitStage st = event.analysis == io::Analysis::Sph
-                           ? run_sph_stage(preload, pre, event, link, 1, out)
-                           : run_pd_stage(preload, pre, event, link, 1, out);
+                           ? run_sph_stage(preload, pre, event, link, 1, out, kept)
+                           : run_pd_stage(preload, pre, event, link, 1, out, kept);
+    summary.section("checkpoints") = checkpoints.counts().describe(st.timer.total());
     for (const auto& [phase, s] : st.timer.phases()) timer.add(event.stage + "." + phase, s);
     io::Json stage;
     stage.set("analysis", event.analysis == io::Analysis::Sph ? "sph" : "peridynamics")

@@ -9,8 +9,11 @@ namespace mf::app {
 
 /// Builds the model, runs the load schedule (fields written as it goes), and writes the history
 /// and summary to `out` (rank 0; null elsewhere). The result holds the converged state.
+/// Checkpoints go to `dir`/checkpoint (empty: none); `restart` continues from one.
 implicit::ElastoplasticResult elastoplastic_static(const io::ProblemSpec& spec,
                                                    const solvers::PetscSession& session,
-                                                   io::OutputDirectory* out);
+                                                   io::OutputDirectory* out,
+                                                   const std::string& dir = {},
+                                                   const io::Restart* restart = nullptr);
 
 } // namespace mf::app

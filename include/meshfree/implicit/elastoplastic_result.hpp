@@ -6,6 +6,7 @@
 #include "meshfree/implicit/elastic_limit.hpp"
 #include "meshfree/implicit/galerkin_forms.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
+#include "meshfree/io/checkpoint.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
 #include "meshfree/solvers/nonlinear_system.hpp"
 #include <limits>
@@ -31,6 +32,30 @@ struct IncrementRecord {
   // With ProblemSpec::record_increment_parameters: the nodal parameters d of the increment, all
   // 2N of them, on every rank (increment 0: zeros); empty otherwise.
   std::vector<double> parameters;
+
+  /// Every member by name (a checkpoint keeps the increments so far).
+  template <class Visit> void for_each_state(Visit&& visit) {
+    visit("step", step), visit("step_fraction", step_fraction), visit("factors", factors);
+    visit("newton.converged", newton.converged), visit("newton.iterations", newton.iterations);
+    visit("newton.linear_iterations", newton.linear_iterations);
+    visit("newton.reason", newton.reason), visit("newton.failure", newton.failure);
+    visit("newton.residual", newton.residual), visit("newton.scale", newton.scale);
+    visit("cutbacks", cutbacks), visit("max_plastic_strain", max_plastic_strain);
+    visit("plastic_points", plastic_points), visit("equilibrium_error", equilibrium_error);
+    visit("parameters", parameters);
+    io::visit_flat(visit, "monitor_u", monitor_u);
+    long count = static_cast<long>(boundary.size());
+    visit("boundary.count", count);
+    boundary.resize(count);
+    for (std::size_t k = 0; k < boundary.size(); ++k) {
+      const auto at = visit / ("boundary." + std::to_string(k));
+      BoundaryReport& b = boundary[k];
+      std::vector<double> force{b.force.x(), b.force.y()};
+      at("name", b.name), at("constraint", b.constraint), at("force", force);
+      at("violation_max", b.violation_max);
+      b.force = Vec2(force.at(0), force.at(1));
+    }
+  }
 };
 
 /// The last converged state. Gauss-point arrays run over this rank's domain points, in the order
@@ -61,6 +86,7 @@ struct ElastoplasticResult {
   std::string status = "completed"; // or "stopped", with the reason
   std::string stop_reason;
   std::vector<std::pair<std::string, std::vector<std::vector<double>>>> lines; // rank 0 rows
+  io::CheckpointCounts checkpoints; // one after every converged increment, with an output folder
   PhaseTimer timer;
   double residual_seconds = 0.0, jacobian_seconds = 0.0; // inside the "newton" phase
 };

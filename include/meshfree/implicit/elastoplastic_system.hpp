@@ -10,7 +10,9 @@
 #include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/implicit/point_law.hpp"
 #include "meshfree/io/problem_spec.hpp"
+#include "meshfree/io/state_file.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
+#include <type_traits>
 #include <vector>
 
 namespace mf::implicit {
@@ -68,6 +70,23 @@ public:
 
   /// Every node a point of this rank touches: the entries of d that the residual reads.
   std::vector<int> needed_nodes() const;
+
+  /// The committed history and the response kept with it for the next increment (its first
+  /// tangent is the last one's), right after commit(): a checkpoint keeps them. The trial
+  /// history and stress equal the committed ones then, and are taken back from them.
+  template <class Visit> void for_each_state(Visit&& visit) {
+    io::visit_flat(visit, "committed", states_.committed);
+    io::visit_flat(visit, "committed_stress", states_.committed_stress);
+    io::visit_flat(visit, "tangent", states_.tangent);
+    visit("committed_stress_zz", states_.committed_stress_zz);
+    visit("plastic", states_.plastic), visit("factors", factors_);
+    visit("states_d", states_d_), visit("states_valid", states_valid_);
+    if constexpr (std::decay_t<Visit>::loads) {
+      states_.trial = states_.committed;
+      states_.stress = states_.committed_stress;
+      states_.stress_zz = states_.committed_stress_zz;
+    }
+  }
 
 private:
   /// Return mapping at every point from the committed history and the strain of d. Skipped when

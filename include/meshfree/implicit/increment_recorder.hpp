@@ -5,6 +5,7 @@
 #include "meshfree/implicit/elastoplastic_result.hpp"
 #include "meshfree/implicit/elastoplastic_system.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
+#include "meshfree/io/checkpoint.hpp"
 #include "meshfree/io/output.hpp"
 #include "meshfree/io/problem_spec.hpp"
 #include "meshfree/io/results.hpp"
@@ -32,6 +33,11 @@ public:
 
   /// Closes the field series.
   void close();
+
+  /// The field series' state into a checkpoint (the steps so far split off into its parts), and
+  /// back on a restart.
+  void save(io::Checkpoints& checkpoints, const io::Saver& save);
+  void restore(const io::Loader& load);
 
 private:
   struct GaussOutput;

@@ -20,14 +20,32 @@ struct ScheduleOutcome {
   double newton_seconds = 0.0; // in Newton solves
 };
 
+/// Where the schedule is between two increments: what a checkpoint keeps of it.
+struct SchedulePosition {
+  int step = 0;                       // the step under way
+  double tau = 0.0, dtau = 0.0;       // how far through it, and the next increment's size
+  int cuts = 0, easy = 0;             // cut-backs of the increment, easy increments since one
+  int since_output = 0;               // increments since the last field output
+  std::vector<double> start, current; // load factors at the step's start and now (empty: zero)
+  template <class Visit> void for_each_state(Visit&& visit) {
+    visit("step", step), visit("tau", tau), visit("dtau", dtau), visit("cuts", cuts);
+    visit("easy", easy), visit("since_output", since_output), visit("start", start);
+    visit("current", current);
+  }
+};
+
 /// Called with each converged increment (the system committed, `d` converged) and whether the
 /// fields are due; returns the increment as recorded.
 using IncrementDone = std::function<const IncrementRecord&(IncrementRecord rec, bool write_fields)>;
+/// Called after each converged increment with the schedule's position after it.
+using PositionKept = std::function<void(const SchedulePosition& at, bool finished)>;
 
-/// Runs spec.steps from the unloaded state in `d`; `d` ends at the last converged state.
+/// Runs spec.steps from `at` (the unloaded state: a default position) and the state in `d`;
+/// `d` ends at the last converged state.
 ScheduleOutcome run_load_schedule(const io::ProblemSpec& spec, ElastoplasticSystem& problem,
                                   solvers::NonlinearBlockSystem& newton, std::vector<double>& d,
-                                  const IncrementDone& done);
+                                  const IncrementDone& done, SchedulePosition& at,
+                                  const PositionKept& kept = {});
 
 /// "pull 0.002, tension 308": the factors of the conditions that drive the body.
 std::string factors_text(const io::ProblemSpec& spec, const std::vector<double>& f);

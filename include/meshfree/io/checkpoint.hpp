@@ -24,7 +24,7 @@
 
 namespace mf::io {
 
-/// The keys a restart may change: the end time and the output intervals.
+/// The keys a restart may change: the end time, the output intervals and checkpoint_every.
 bool restart_may_change(const std::string& key);
 
 /// The checkpoint a restart starts from (find_restart).

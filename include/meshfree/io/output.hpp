@@ -7,6 +7,7 @@
 #include <memory>
 #include <mpi.h>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace mf::io {
@@ -148,14 +149,18 @@ public:
   /// the series goes on in a new file; close() merges the parts. Collective.
   void split(const std::string& part);
   /// What split() and the steps left: the parts' paths, the step count and the .xmf entries.
+  /// Taken back on a restart, they replace whatever steps the series had written since it was
+  /// opened (a staged run's replayed preload, which the parts hold already).
   template <class Visit> void for_each_state(Visit&& visit) {
     visit("parts", parts_), visit("steps", steps_), visit("xdmf", xml_);
+    if constexpr (std::decay_t<Visit>::loads) start_afresh();
   }
 
 private:
   void open(const std::vector<double>& xyz, const GridCells& cells);
   void create_file();
   void close_file();
+  void start_afresh();
   void merge_parts();
   OutputDirectory* out_;
   PointSlice slice_;

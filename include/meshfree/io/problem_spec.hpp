@@ -162,6 +162,10 @@ struct ProblemSpec {
   std::vector<LineSpec> lines;
   std::vector<GaugeSpec> gauges; // points whose displacement history is recorded
   int fields_every = 1;          // write fields every this many converged increments (and the last)
+  // Checkpoints of elastoplastic_static, at converged increments: every `interval` increments
+  // (output.checkpoint_every; 0: none by count) and after `wall_interval` seconds of wall time
+  // (output.checkpoint_wall_interval).
+  CheckpointPolicy checkpoint;
   std::vector<LoadStep> steps;
   NonlinearSpec nonlinear;
   std::optional<SphSpec> sph; // analysis: sph

@@ -5,7 +5,9 @@
 //   template <class Visit> void for_each_state(Visit&& visit) { visit("name", member); ... }
 // visiting vectors and scalars by name, as ParticleSet::for_each_array does for migration; the
 // writer and the reader below are such visitors (Saver, Loader), so a state is listed once.
+#include <algorithm>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace mf::io {
@@ -67,6 +69,7 @@ private:
 
 /// A visitor that writes each visited value under prefix + name.
 struct Saver {
+  static constexpr bool loads = false;
   StateWriter& out;
   std::string prefix;
   template <class T> void operator()(const std::string& name, const std::vector<T>& v) const {
@@ -87,6 +90,7 @@ struct Saver {
 
 /// A visitor that reads each visited value back from prefix + name.
 struct Loader {
+  static constexpr bool loads = true;
   const StateReader& in;
   std::string prefix;
   template <class T> void operator()(const std::string& name, std::vector<T>& v) const {
@@ -103,5 +107,75 @@ struct Loader {
   void operator()(const std::string& name, std::string& v) const { v = in.text(prefix + name); }
   Loader operator/(const std::string& part) const { return {in, prefix + part + "."}; }
 };
+
+/// A visitor that packs the visited values, names aside, into one byte array: many small
+/// records (a run's increments) become one dataset instead of thousands.
+struct Packer {
+  static constexpr bool loads = false;
+  std::vector<char>& bytes;
+  template <class T> void operator()(const std::string&, const std::vector<T>& v) const {
+    static_assert(std::is_arithmetic_v<T>, "numbers only");
+    const long n = static_cast<long>(v.size());
+    raw(&n, sizeof n);
+    raw(v.data(), v.size() * sizeof(T));
+  }
+  void operator()(const std::string& name, const std::string& s) const {
+    (*this)(name, std::vector<char>(s.begin(), s.end()));
+  }
+  template <class T> void operator()(const std::string&, const T& v) const {
+    static_assert(std::is_arithmetic_v<T>, "numbers only");
+    raw(&v, sizeof v);
+  }
+  Packer operator/(const std::string&) const { return *this; }
+  void raw(const void* p, std::size_t n) const {
+    const char* c = static_cast<const char*>(p);
+    bytes.insert(bytes.end(), c, c + n);
+  }
+};
+
+/// Reads back what a Packer packed, in the same order.
+struct Unpacker {
+  static constexpr bool loads = true;
+  const std::vector<char>& bytes;
+  std::size_t& at;
+  template <class T> void operator()(const std::string& name, std::vector<T>& v) const {
+    long n = 0;
+    raw(name, &n, sizeof n);
+    if (n < 0 || static_cast<std::size_t>(n) > (bytes.size() - at) / sizeof(T)) short_of(name);
+    v.resize(static_cast<std::size_t>(n));
+    raw(name, v.data(), v.size() * sizeof(T));
+  }
+  void operator()(const std::string& name, std::string& s) const {
+    std::vector<char> v;
+    (*this)(name, v);
+    s.assign(v.begin(), v.end());
+  }
+  template <class T> void operator()(const std::string& name, T& v) const {
+    raw(name, &v, sizeof v);
+  }
+  Unpacker operator/(const std::string&) const { return *this; }
+  void raw(const std::string& name, void* p, std::size_t n) const {
+    if (n > bytes.size() - at) short_of(name);
+    std::copy(bytes.data() + at, bytes.data() + at + n, static_cast<char*>(p));
+    at += n;
+  }
+  [[noreturn]] static void short_of(const std::string& name);
+};
+
+/// Visits an array of fixed-size records of doubles (Eigen vectors and matrices, structs of them)
+/// as one flat array of doubles, in both directions: the records are copied out, visited, and
+/// copied back (a Loader resizes them to what the file holds).
+template <class T, class Visit>
+void visit_flat(Visit&& visit, const std::string& name, std::vector<T>& records) {
+  // Fixed-size Eigen objects hold their coefficients in place, so the records are doubles one
+  // after another (with the padding a 16-byte alignment may add, copied along unread).
+  static_assert(sizeof(T) % sizeof(double) == 0, "records of doubles only");
+  constexpr std::size_t per = sizeof(T) / sizeof(double);
+  const auto doubles = [&records] { return reinterpret_cast<double*>(records.data()); };
+  std::vector<double> flat(doubles(), doubles() + records.size() * per);
+  visit(name, flat);
+  records.resize(flat.size() / per);
+  std::copy(flat.begin(), flat.end(), doubles());
+}
 
 } // namespace mf::io

@@ -7,6 +7,7 @@
 // history and the field series of the particles cover the whole run.
 #include "meshfree/core/timer.hpp"
 #include "meshfree/implicit/elastoplastic_result.hpp"
+#include "meshfree/io/checkpoint.hpp"
 #include "meshfree/io/problem_spec.hpp"
 #include "meshfree/io/results.hpp"
 #include "meshfree/stages/transfer_report.hpp"
@@ -28,12 +29,20 @@ struct ExplicitStage {
   std::vector<double> plastic_strain;
 };
 
+/// Where the stage's time loop keeps its checkpoints, and the state it restarts from (after the
+/// preload has been run again and replayed): either may be null.
+struct StageCheckpoints {
+  io::Checkpoints* checkpoints = nullptr;
+  const io::StateReader* resume = nullptr;
+};
+
 ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::ElastoplasticResult& pre,
                            const io::ProblemSpec& stage, const io::StageLink& link, int index,
-                           io::OutputDirectory* out);
+                           io::OutputDirectory* out, const StageCheckpoints& checkpoints = {});
 ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
                             const implicit::ElastoplasticResult& pre, const io::ProblemSpec& stage,
-                            const io::StageLink& link, int index, io::OutputDirectory* out);
+                            const io::StageLink& link, int index, io::OutputDirectory* out,
+                            const StageCheckpoints& checkpoints = {});
 
 /// One history of the rows of the replayed preload (stage `from`) and of the run (stage `index`),
 /// with a "stage" column after "time". Of the preload's rows only time and the gauge columns
