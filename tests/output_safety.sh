@@ -51,6 +51,20 @@ check "the next run removes it" [ -z "$(ls -d "$OUT"/.meshfree-staging-* 2>/dev/
 check "a completed run removes an earlier run's failed/" [ ! -e "$OUT/failed" ]
 check "the user's file is kept" grep -qx "measured by hand" "$OUT/line_experiment.csv"
 
+# A staged run killed in its explicit stage keeps the history of both stages up to the kill.
+S="$ROOT/problems/staged_pmma_impact.yaml"
+OMP_NUM_THREADS=1 "$MF" run "$S" --out "$WORK/staged" >/dev/null 2>&1 &
+pid=$!
+staged_rows() { awk -F, 'NR > 1 && $2 == 1' "$WORK"/staged/.meshfree-staging-*/history.csv 2>/dev/null | wc -l; }
+for _ in $(seq 600); do
+  [ "$(staged_rows)" -ge 3 ] && break
+  sleep 0.1
+done
+kill -9 $pid; wait $pid 2>/dev/null
+check "a killed staged run's history holds the preload's rows" \
+  [ "$(awk -F, 'NR > 1 && $2 == 0' "$WORK"/staged/.meshfree-staging-*/history.csv | wc -l)" -ge 2 ]
+check "... and the explicit stage's up to the kill" [ "$(staged_rows)" -ge 3 ]
+
 # A file the previous run wrote and this one does not (a line dropped) goes; the user's stays.
 "$MF" run "$P" --out "$OUT" --set 'output.lines=[{name: y07, from: [0, 0.7], to: [1, 0.7], points: 41}]' >/dev/null
 check "a result the new run does not write again is removed" [ ! -e "$OUT/line_top.csv" ]

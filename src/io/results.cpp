@@ -18,6 +18,7 @@ void History::append_with_gaps(std::vector<double> row) {
   MF_ASSERT(row.size() == columns_.size());
   if (stream_) stream_->append(csv_line(row));
   rows_.push_back(std::move(row));
+  if (also_) also_(rows_.back());
 }
 
 void History::stream_to(OutputDirectory& out, const std::string& file) {
@@ -43,6 +44,7 @@ void History::restore(const std::vector<double>& flat) {
   for (std::size_t k = 0; k < flat.size(); k += n) {
     rows_.emplace_back(flat.begin() + k, flat.begin() + k + n);
     text += csv_line(rows_.back());
+    if (also_) also_(rows_.back());
   }
   if (stream_) stream_->append(text);
 }

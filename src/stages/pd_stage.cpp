@@ -173,6 +173,7 @@ ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::Elast
     if (k < N) run.write_fields();
   }
   const io::History replay = take_rows(result.history);
+  begin_stage_history(st, replay, result.history, s.gauges, link.from, index, out);
   pd::set_displacement(m, u0);
   P.time = 0.0;
   pd::accelerate(m, setup.state, setup.loading, false);
@@ -181,8 +182,7 @@ ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::Elast
                                               checkpoints.checkpoints, checkpoints.resume));
 
   explicit_dynamics::summarise(result, st.counts, st.time_step, st.results);
-  record_stage(st, replay, result.history, s.gauges, link.from, index, result.status,
-               result.stop_reason, result.timer);
+  record_stage(st, result.status, result.stop_reason, result.timer);
   st.displacement = P.u;
   st.position = P.X;
   return st;

@@ -291,14 +291,14 @@ ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
   }
   h = start;
   const io::History replay = take_rows(result.history);
+  begin_stage_history(st, replay, result.history, s.gauges, link.from, index, out);
   result.energy_error = 0.0;
   run.finish(explicit_dynamics::run_time_loop(run,
                                               {s.end_time, s.history_interval, s.fields_interval},
                                               checkpoints.checkpoints, checkpoints.resume));
 
   explicit_dynamics::summarise(result, st.counts, st.time_step, st.results);
-  record_stage(st, replay, result.history, s.gauges, link.from, index, result.status,
-               result.stop_reason, result.timer);
+  record_stage(st, result.status, result.stop_reason, result.timer);
   st.plastic_strain.assign(h.fields.alpha.begin(), h.fields.alpha.begin() + n);
   for (int i = 0; i < n; ++i) {
     materials::Vec6 sigma;

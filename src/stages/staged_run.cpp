@@ -69,13 +69,23 @@ io::History staged_history(const io::History& preload, const io::History& run, i
   return out;
 }
 
-void record_stage(ExplicitStage& st, const io::History& replay, const io::History& run,
-                  const std::vector<io::GaugeSpec>& gauges, int from, int index,
-                  const std::string& status, const std::string& stop_reason,
-                  const PhaseTimer& timer) {
+void begin_stage_history(ExplicitStage& st, const io::History& replay, io::History& run,
+                         const std::vector<io::GaugeSpec>& gauges, int from, int index,
+                         io::OutputDirectory* out) {
   std::vector<std::string> names;
   for (const auto& g : gauges) names.push_back(g.name);
   st.history = staged_history(replay, run, from, index, names);
+  if (out) st.history.stream_to(*out);
+  io::History* staged = &st.history;
+  run.also_to([staged, index](const std::vector<double>& row) {
+    std::vector<double> r = row;
+    r.insert(r.begin() + 1, static_cast<double>(index));
+    staged->append(std::move(r));
+  });
+}
+
+void record_stage(ExplicitStage& st, const std::string& status, const std::string& stop_reason,
+                  const PhaseTimer& timer) {
   st.status = status;
   st.stop_reason = stop_reason;
   st.timer = timer;

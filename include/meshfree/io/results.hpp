@@ -36,6 +36,9 @@ public:
   void stream_to(OutputDirectory& out, const std::string& file = "history.csv");
   /// Writes `file`; a streamed history is finished instead (flushed to disk and closed).
   void write(OutputDirectory& out, const std::string& file = "history.csv") const;
+  /// From now on every row appended (or restored) is also handed to `also`: a staged run's
+  /// history gets each row of its explicit stage as it is recorded.
+  void also_to(std::function<void(const std::vector<double>&)> also) { also_ = std::move(also); }
   /// The rows so far, row after row (a checkpoint keeps them).
   std::vector<double> flat() const;
   /// Rows taken back from flat() in place of any appended so far (streamed, when streaming).
@@ -45,6 +48,7 @@ private:
   std::vector<std::string> columns_;
   std::vector<std::vector<double>> rows_;
   std::shared_ptr<OutputStream> stream_; // while the rows are streamed
+  std::function<void(const std::vector<double>&)> also_;
 };
 
 /// The first keys of summary.json; an empty method is left out.

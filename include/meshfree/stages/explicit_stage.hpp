@@ -51,10 +51,15 @@ ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
 io::History staged_history(const io::History& preload, const io::History& run, int from, int index,
                            const std::vector<std::string>& gauges);
 
-/// The stage's history (staged_history of the replayed preload and the run), status and timer.
-void record_stage(ExplicitStage& st, const io::History& replay, const io::History& run,
-                  const std::vector<io::GaugeSpec>& gauges, int from, int index,
-                  const std::string& status, const std::string& stop_reason,
+/// Starts the stage's history: the replayed preload's rows (staged_history), streamed to
+/// `out`'s history.csv when there is one, to which every row the run's history records from now
+/// on is added as it comes (so a killed staged run keeps its history up to the kill).
+void begin_stage_history(ExplicitStage& st, const io::History& replay, io::History& run,
+                         const std::vector<io::GaugeSpec>& gauges, int from, int index,
+                         io::OutputDirectory* out);
+
+/// The stage's status and timer.
+void record_stage(ExplicitStage& st, const std::string& status, const std::string& stop_reason,
                   const PhaseTimer& timer);
 
 /// Moves the rows recorded so far out of `h` (leaving its columns): the replayed preload's rows
