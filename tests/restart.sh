@@ -63,7 +63,9 @@ kill_after_checkpoint() {
 }
 # restart_case NAME PROBLEM INTERVAL [meshfree arguments...] [:: launcher...]
 restart_case() {
-  local name="$1" problem="$ROOT/problems/$2.yaml" interval="$3"; shift 3
+  local name="$1" problem="$ROOT/problems/$2.yaml" interval="$3"
+  [ -f "$problem" ] || problem="$ROOT/tests/data/$2.yaml"
+  shift 3
   local sets=() launch=()
   while [ $# -gt 0 ] && [ "$1" != "::" ]; do sets+=("$1"); shift; done
   [ $# -gt 0 ] && shift && launch=("$@")
@@ -102,12 +104,18 @@ OMP_NUM_THREADS=2 restart_case staged_pmma staged_pmma_impact 2.5e-5 \
 # every converged increment: the Gauss points' histories, the nodal parameters, the schedule.
 restart_case implicit_cyclic bar_uniaxial_cyclic 1 --set output.checkpoint_every=1
 # Peridynamics spread over two MPI ranks (blast loads, broken bonds across the ranks' border),
-# and the implicit run over two ranks (its PETSc solves distributed).
+# SPH over two ranks, and the implicit run over two ranks (its PETSc solves distributed).
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 # MUMPS's factorisation over several ranks does not repeat itself bit for bit from run to run
 # (two uninterrupted runs differ), so the implicit case solves with GMRES and block Jacobi,
 # which does.
 OMP_NUM_THREADS=1 restart_case pd_slab_2ranks pd_slab_blast 3.0e-4 :: mpirun -n 2
+# SPH over two ranks: a shear layer whose particles migrate between the ranks at every list
+# build; the restart rebuilds each rank's halo and lists of loads from the state it kept.
+OMP_NUM_THREADS=1 restart_case sph_2ranks sph_shear_layer 0.05 --set time.end=1.0 :: mpirun -n 2
+check "sph_2ranks: particles migrated between the ranks" /usr/bin/python3 -c "
+import json, sys
+sys.exit(not json.load(open('$WORK/sph_2ranks-cut/summary.json'))['counts']['migrated_particles'] > 100)"
 OMP_NUM_THREADS=1 restart_case implicit_2ranks bar_uniaxial_cyclic 1 \
   --set output.checkpoint_every=1 -- -ksp_type gmres -pc_type bjacobi -ksp_rtol 1e-12 \
   :: mpirun -n 2

@@ -28,16 +28,7 @@ explicit_dynamics::SphRunResult run_sph(const io::ProblemSpec& spec, io::OutputD
   explicit_dynamics::SphRun run(h, s, out, result);
   // history.csv grows on disk as the run goes: a run that is killed keeps it up to then.
   if (out) result.history.stream_to(*out);
-  io::CheckpointPolicy policy = s.checkpoint;
-  if (!ranks.serial() && policy.any()) {
-    // Particles migrate between ranks: a rank's state is not yet kept.
-    if (s.checkpoint.interval > 0.0)
-      log::warn("output.checkpoint_interval: checkpoints of SPH runs are written on one MPI rank "
-                "only; this run over ",
-                ranks.size, " ranks writes none");
-    policy = {0.0, 0.0};
-  }
-  io::Checkpoints checkpoints(dir, ranks, policy, spec.settings, restart);
+  io::Checkpoints checkpoints(dir, ranks, s.checkpoint, spec.settings, restart);
   const auto resume = restart ? restart->open(ranks.rank) : nullptr;
   run.finish(explicit_dynamics::run_time_loop(
       run, {s.end_time, s.history_interval, s.fields_interval}, &checkpoints, resume.get()));

@@ -1,5 +1,6 @@
 #include "meshfree/explicit/sph_run.hpp"
 #include "meshfree/core/log.hpp"
+#include "meshfree/sph/decomposition.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -226,7 +227,6 @@ std::string SphRun::progress() const {
 }
 
 template <class Visit> void SphRun::for_each_state(const Visit& visit) {
-  MF_REQUIRE(h_.ranks.serial(), "checkpoints of SPH runs are written on one MPI rank");
   h_.for_each_state(visit / "sph");
   visit("e0", e0_), visit("dt", dt_), visit("first_dt", r_.first_dt);
   visit("smallest_dt", r_.smallest_dt), visit("dt_limit", r_.dt_limit);
@@ -243,6 +243,7 @@ void SphRun::save(io::Checkpoints& checkpoints, const io::Saver& save) {
 
 void SphRun::restore(const io::Loader& load) {
   for_each_state(load);
+  sph::resume_distribution(h_);
   std::vector<double> rows;
   load("history", rows);
   r_.history.restore(rows);

@@ -245,6 +245,18 @@ void migrate(Hydro& s) {
   s.groups.built_for = -1;
 }
 
+void resume_distribution(Hydro& s) {
+  if (s.ranks.serial()) return;
+  cut_lists(s);
+  const particles::ParticleSet& P = s.particles;
+  const long n = P.owned_count();
+  MF_REQUIRE(static_cast<std::size_t>(s.remote) == s.remote_owner.size(),
+             "SPH: a checkpoint's remote ghosts and their owners do not match");
+  const std::vector<long> owned_ids(P.id.begin(), P.id.begin() + n);
+  const std::vector<long> ghost_ids(P.id.begin() + n, P.id.begin() + n + s.remote);
+  s.halo = distribution::Halo(s.ranks, owned_ids, ghost_ids, s.remote_owner);
+}
+
 void fetch_remote_ghosts(Hydro& s, double reach) {
   drop_ghosts(s);
   if (s.ranks.serial()) return;
@@ -284,6 +296,7 @@ void fetch_remote_ghosts(Hydro& s, double reach) {
   for (int r = 0; r < R; ++r) ghost_owner.insert(ghost_owner.end(), from[r], r);
   s.remote = static_cast<int>(ghost_ids.size());
   s.halo = distribution::Halo(ranks, owned_ids, ghost_ids, ghost_owner);
+  s.remote_owner = std::move(ghost_owner);
   s.groups.built_for = -1;
 }
 

@@ -10,7 +10,7 @@ namespace mf::app {
 
 /// Runs the problem to its end time spread over `ranks`; fields go to `out` (null: none; the
 /// ranks other than the first have none). Collective. Checkpoints go to `dir`/checkpoint (empty:
-/// none; on one rank only); with `restart` the run goes on from that checkpoint.
+/// none); with `restart` the run goes on from that checkpoint.
 explicit_dynamics::SphRunResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out,
                                         const distribution::Ranks& ranks = {},
                                         const std::string& dir = {},

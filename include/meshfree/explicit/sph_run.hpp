@@ -58,7 +58,7 @@ public:
   void write_fields() { fields_.write(h_.particles.time); }
   std::string progress() const;
   /// The run's whole state into a checkpoint (the field steps so far split off into a part of
-  /// it), and back on a restart. On one MPI rank.
+  /// it), and back on a restart.
   void save(io::Checkpoints& checkpoints, const io::Saver& save);
   void restore(const io::Loader& load);
 

@@ -34,6 +34,11 @@ void distribute(Hydro& s, const distribution::Ranks& ranks);
 /// Collective.
 void migrate(Hydro& s);
 
+/// After a rank's state was read back from a checkpoint (Hydro::for_each_state): cuts its lists
+/// of loads, held forces and transmitting particles for its owned particles again and rebuilds
+/// the halo of its remote ghosts, as they were. Collective; nothing on one rank.
+void resume_distribution(Hydro& s);
+
 /// Drops every ghost and copies in, as remote ghosts, the other ranks' particles that lie within
 /// `reach` of this rank's owned particles' bounding box; builds the halo that refreshes them.
 /// Collective.

@@ -151,6 +151,7 @@ struct Hydro {
   /// owned_count() .. owned_count() + remote - 1, refreshed through `halo`; the mirror images
   /// follow them.
   int remote = 0;
+  std::vector<int> remote_owner; // the rank that owns each remote ghost
   distribution::Halo halo;
   long migrated = 0; // particles that moved to another rank so far
   /// The loads, held forces and transmitting boundaries of the whole body, by global id, from
@@ -162,9 +163,10 @@ struct Hydro {
   } whole;
   MaterialGroups groups;
   bool any_solid() const;
-  /// What changes as a run goes on one rank: particles, fields, the neighbour lists, the mirror
-  /// images, the material groups and the work of the loads (a checkpoint keeps them; the loads
-  /// and boundaries are fixed).
+  /// What changes as a run goes: this rank's particles (owned, remote ghosts and mirror images),
+  /// fields, the neighbour lists, the material groups, the work of the loads and which rank owns
+  /// each remote ghost (a checkpoint keeps them; sph::resume_distribution rebuilds the halo and
+  /// the rank's lists of loads from them).
   template <class Visit> void for_each_state(Visit&& visit) {
     particles.for_each_state(visit / "particles");
     fields.for_each_state(visit / "fields");
@@ -178,6 +180,7 @@ struct Hydro {
     visit("ghost_planes", ghost_planes), visit("groups.start", groups.start);
     visit("groups.owned_end", groups.owned_end), visit("groups.members", groups.members);
     visit("groups.built_for", groups.built_for);
+    visit("remote", remote), visit("remote_owner", remote_owner), visit("migrated", migrated);
   }
 };
 
