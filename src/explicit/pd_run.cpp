@@ -253,19 +253,16 @@ template <class Visit> void PdRun::for_each_state(const Visit& visit) {
   visit("max_damage", r_.max_damage);
   gauges_.for_each_state(visit / "gauges");
   fields_.for_each_state(visit / "fields");
+  r_.history.for_each_state(visit / "history");
 }
 
 void PdRun::save(io::Checkpoints& checkpoints, const io::Saver& save) {
   fields_.split(checkpoints.part("fields", checkpoints.generation()));
   for_each_state(save);
-  save("history", r_.history.flat());
 }
 
 void PdRun::restore(const io::Loader& load) {
   for_each_state(load);
-  std::vector<double> rows;
-  load("history", rows);
-  r_.history.restore(rows);
 }
 
 void PdRun::finish(const LoopReport& loop) {

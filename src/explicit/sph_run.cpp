@@ -233,20 +233,17 @@ template <class Visit> void SphRun::for_each_state(const Visit& visit) {
   visit("peak_pressure", r_.peak_pressure), visit("energy_error", r_.energy_error);
   gauges_.for_each_state(visit / "gauges");
   fields_.for_each_state(visit / "fields");
+  r_.history.for_each_state(visit / "history");
 }
 
 void SphRun::save(io::Checkpoints& checkpoints, const io::Saver& save) {
   fields_.split(checkpoints.part("fields", checkpoints.generation()));
   for_each_state(save);
-  save("history", r_.history.flat());
 }
 
 void SphRun::restore(const io::Loader& load) {
   for_each_state(load);
   sph::resume_distribution(h_);
-  std::vector<double> rows;
-  load("history", rows);
-  r_.history.restore(rows);
 }
 
 void SphRun::finish(const LoopReport& loop) {

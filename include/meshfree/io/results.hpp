@@ -9,6 +9,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace mf::io {
@@ -43,6 +44,12 @@ public:
   std::vector<double> flat() const;
   /// Rows taken back from flat() in place of any appended so far (streamed, when streaming).
   void restore(const std::vector<double>& flat);
+  /// The rows so far as one array "rows" (a checkpoint keeps them; loading restores them).
+  template <class Visit> void for_each_state(Visit&& visit) {
+    std::vector<double> rows = std::decay_t<Visit>::loads ? std::vector<double>() : flat();
+    visit("rows", rows);
+    if constexpr (std::decay_t<Visit>::loads) restore(rows);
+  }
 
 private:
   std::vector<std::string> columns_;
