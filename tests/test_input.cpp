@@ -95,3 +95,42 @@ TEST_CASE("command-line overrides reach nested maps and list items", "[input]") 
   CHECK_THROWS_WITH(io::apply_override(root, "boundary.7.name=x"),
                     Catch::Contains("index 7 is out of range"));
 }
+
+TEST_CASE("a polygon given clockwise runs as given counter-clockwise, its edges named in order",
+          "[input]") {
+  // The same 2 x 1 body listed both ways; edge_names[i] names the edge from vertex i to i + 1.
+  YAML::Node ccw = YAML::Load(kGood), cw = YAML::Load(kGood);
+  ccw["geometry"] = YAML::Load("{polygon: {vertices: [[0, 0], [2, 0], [2, 1], [0, 1]], "
+                               "edge_names: [bottom, right, top, left]}}");
+  cw["geometry"] = YAML::Load("{polygon: {vertices: [[0, 0], [0, 1], [2, 1], [2, 0]], "
+                              "edge_names: [left, top, right, bottom]}}");
+  const io::ProblemSpec a = io::parse_problem(ccw), b = io::parse_problem(cw);
+  for (std::size_t c = 0; c < a.boundary.size(); ++c) {
+    const auto length = [](const io::ProblemSpec& p, std::size_t k) {
+      double l = 0.0;
+      Vec2 mid(0.0, 0.0);
+      for (const auto& curve : io::select_boundary(p.domain, p.boundary[k].on, ""))
+        l += curve.length(), mid += curve.length() * curve.point(0.5);
+      return std::make_pair(l, Vec2(mid / l));
+    };
+    const auto [la, ma] = length(a, c);
+    const auto [lb, mb] = length(b, c);
+    CHECK(la == Approx(1.0)); // the left and right edges
+    CHECK(lb == Approx(la));
+    CHECK((mb - ma).norm() < 1e-12);
+  }
+  CHECK(b.domain.area_estimate() == Approx(2.0));
+}
+
+TEST_CASE("a Voce law that softens is refused unless the file says it means it", "[input]") {
+  YAML::Node root = YAML::Load(kGood);
+  root["analysis"] = "elastoplastic_static";
+  root["materials"][0]["plasticity"] =
+      YAML::Load("{yield_stress: 400, hardening: {type: voce, H: 0, sigma_inf: 300, delta: 10}}");
+  root["steps"] = YAML::Load("[{name: pull, load_factor: 1, increments: 2}]");
+  CHECK_THROWS_WITH(io::parse_problem(root),
+                    Catch::Contains("materials[0].plasticity.hardening.sigma_inf: is below the "
+                                    "yield stress 400: a softening law; give softening: true"));
+  root["materials"][0]["plasticity"]["hardening"]["softening"] = "true";
+  CHECK_NOTHROW(io::parse_problem(root));
+}

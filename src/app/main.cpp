@@ -37,7 +37,7 @@ constexpr const char* kUsage =
     "\n"
     "run    solves the problem and writes fields.h5/.xmf, history.csv, line_*.csv and\n"
     "       summary.json into DIR (default out/<problem name>/)\n"
-    "       --restart DIR goes on from the last checkpoint in DIR/checkpoint (explicit runs)\n"
+    "       --restart DIR goes on from the last checkpoint in DIR/checkpoint\n"
     "check  validates the problem file and prints the discretisation it would use\n"
     "Options after '--' go to PETSc, e.g. -- -ksp_type cg -pc_type gamg -ksp_view\n";
 

@@ -41,6 +41,13 @@ void read_hardening(KeyReader& p, materials::J2Parameters& j) {
     v.H = non_negative(*h, "H");
     v.sigma_inf = h->positive("sigma_inf");
     v.delta = h->positive("delta");
+    // sigma_inf below the initial yield stress makes the saturation term soften the material
+    // (the yield stress falls as it flows): a slip of units or of a digit more often than a
+    // material's law, so it is taken only when the file says it means it.
+    const bool softening = h->choice("softening", {"false", "true"}, "false") == "true";
+    if (v.sigma_inf < j.sigma0 && !softening)
+      h->error("sigma_inf", "is below the yield stress " + detail::concat(j.sigma0) +
+                                ": a softening law; give softening: true if that is meant");
     j.hardening = v;
   } else if (type == "swift") {
     materials::SwiftHardening w;
