@@ -8,6 +8,7 @@
 #include "meshfree/app/peridynamics.hpp"
 #include "meshfree/app/sph_run.hpp"
 #include "meshfree/core/log.hpp"
+#include "meshfree/core/memory.hpp"
 #include "meshfree/explicit/pd_setup.hpp"
 #include "meshfree/explicit/sph_setup.hpp"
 #include "meshfree/geometry/node_generation.hpp"
@@ -106,7 +107,12 @@ int check(const Command& c) {
     const double dt = mf::sph::stable_step(h, &limiting);
     std::cout << "  sph: " << h.particles.size() << " particles in " << spec.sph->dimension
               << "D, first CFL step " << dt << " (particle " << limiting << "), about "
-              << static_cast<long>(std::ceil(spec.sph->end_time / dt)) << " steps or more\n";
+              << static_cast<long>(std::ceil(spec.sph->end_time / dt)) << " steps or more\n"
+              << "  memory: "
+              << mf::describe_bytes(h.particles.size() *
+                                    mf::bytes_per::sph_particle(spec.sph->dimension))
+              << " for the discretisation, besides " << mf::describe_bytes(mf::bytes_per::program)
+              << " for the program\n";
     return 0;
   }
   if (spec.analysis == mf::io::Analysis::Peridynamics) {
@@ -115,7 +121,12 @@ int check(const Command& c) {
     std::cout << "  peridynamics: " << setup.model.particles.size() << " particles, "
               << setup.model.bonds.pairs() << " bonds, horizon " << setup.model.horizon
               << "\n  time step " << setup.dt << " (" << setup.dt_limit << "), "
-              << static_cast<long>(std::ceil(spec.pd->end_time / setup.dt)) << " steps\n";
+              << static_cast<long>(std::ceil(spec.pd->end_time / setup.dt)) << " steps\n"
+              << "  memory: "
+              << mf::describe_bytes(mf::bytes_per::pd_particle * setup.model.particles.size() +
+                                    mf::bytes_per::pd_partner * setup.model.bonds.directed)
+              << " for the discretisation, besides " << mf::describe_bytes(mf::bytes_per::program)
+              << " for the program\n";
     return 0;
   }
   const auto& d = spec.discretisation;
@@ -124,7 +135,11 @@ int check(const Command& c) {
     std::cout << "  method: " << mf::implicit::describe_method(d) << "\n"
               << "  mesh: " << mesh.element_count() << " " << mf::fem::element_name(mesh.type)
               << " elements, " << mesh.node_count() << " nodes (" << 2 * mesh.node_count()
-              << " DOFs)\n";
+              << " DOFs)\n"
+              << "  memory: "
+              << mf::describe_bytes(mf::bytes_per::galerkin_node * mesh.node_count())
+              << " for the discretisation, besides " << mf::describe_bytes(mf::bytes_per::program)
+              << " for the program\n";
   } else {
     const auto nodes = mf::geometry::generate_nodes(spec.domain, d.spacing, d.refinement);
     const auto pts = mf::quadrature::domain_points(
@@ -132,7 +147,12 @@ int check(const Command& c) {
         {d.spacing, d.refinement, d.cell_size / d.spacing, d.dilation.maxCoeff()});
     std::cout << "  method: " << mf::implicit::describe_method(d) << "\n"
               << "  nodes: " << nodes.x.size() << " (" << 2 * nodes.x.size() << " DOFs)\n"
-              << "  integration: " << pts.cell_count << " cells, " << pts.x.size() << " points\n";
+              << "  integration: " << pts.cell_count << " cells, " << pts.x.size() << " points\n"
+              << "  memory: "
+              << mf::describe_bytes(mf::bytes_per::galerkin_node_alone * nodes.x.size() +
+                                    mf::bytes_per::galerkin_point * pts.x.size())
+              << " for the discretisation, besides " << mf::describe_bytes(mf::bytes_per::program)
+              << " for the program\n";
   }
   for (const auto& bc : spec.boundary) {
     double len = 0.0;

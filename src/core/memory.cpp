@@ -37,6 +37,15 @@ std::string rough(double v) {
 }
 } // namespace
 
+std::string describe_bytes(double bytes) {
+  const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB"};
+  int u = 0;
+  while (bytes >= 1024.0 && u < 4) bytes /= 1024.0, ++u;
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(bytes < 10.0 ? 1 : 0) << bytes;
+  return "about " + os.str() + " " + units[u];
+}
+
 void require_memory(const std::string& key, const std::string& what, double count,
                     double bytes_each) {
   const double need = count * bytes_each, have = usable_memory();

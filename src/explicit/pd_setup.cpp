@@ -31,12 +31,12 @@ particles::ParticleSet lattice(const io::ProblemSpec& spec) {
     hi = Vec3d(b.hi.x(), b.hi.y(), 0.0);
   }
   const geometry::Lattice grid = geometry::Lattice::of_spacing(lo, hi, dx, solid ? 3 : 2);
-  // Bytes per particle: its bonds (about 5 bytes each, (4/3) pi m^3 or pi m^2 partners for a
-  // horizon of m spacings, counted twice at the peak) and some 600 bytes of particle arrays.
+  // Bytes per particle: its arrays and its (4/3) pi m^3 or pi m^2 bond partners for a horizon of
+  // m spacings.
   const double m = s.horizon_factor;
   const double partners = solid ? 4.0 / 3.0 * M_PI * m * m * m : M_PI * m * m;
   require_memory("discretisation.spacing", "particles in the body", grid.cells_total(),
-                 600.0 + 10.0 * partners);
+                 bytes_per::pd_particle + bytes_per::pd_partner * partners);
   const double volume = solid ? dx * dx * dx : dx * dx * s.thickness;
   particles::ParticleSet p;
   std::vector<long> in_region(s.regions.size(), 0);

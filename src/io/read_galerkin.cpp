@@ -40,7 +40,7 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
   // Bytes per node at the peak of an elastic run with the direct solver, measured: 21 KB at 4e4
   // nodes on plate_tension (shape functions, matrix, factor), with a margin. Estimates in
   // floating point, so that a tiny spacing cannot overflow a count.
-  constexpr double kBytesPerNode = 30000.0;
+  constexpr double kBytesPerNode = bytes_per::galerkin_node;
   const Vec2 size = bounds.hi - bounds.lo;
   double nodes_total = (size.x() / s.spacing + 1.0) * (size.y() / s.spacing + 1.0);
   require_memory(d.path_of("spacing"), "nodes over the body", nodes_total, kBytesPerNode);

@@ -49,10 +49,8 @@ SphRegion read_region_of_particles(KeyReader& b, int dim, double spacing,
         b.error("spacing", "larger than the box along an axis");
     for (int d = 0; d < dim; ++d) particles *= (g.box->hi[d] - g.box->lo[d]) / block.spacing + 1.0;
   }
-  // Bytes per particle with its neighbour lists and rates, measured at the peak of a run (1.5 KB
-  // on the 2D tunnel, 3.8 KB on the 3D Taylor bar), with a margin.
-  const double bytes = dim == 1 ? 1000.0 : dim == 2 ? 2000.0 : 5000.0;
-  require_memory(b.path_of("spacing"), "particles in this region", particles, bytes);
+  require_memory(b.path_of("spacing"), "particles in this region", particles,
+                 bytes_per::sph_particle(dim));
   const materials::EquationOfState& eos = *mat.eos;
   const auto* explosive = std::get_if<materials::JwlExplosive>(&eos);
   const auto* ideal_gas = std::get_if<materials::IdealGas>(&eos);

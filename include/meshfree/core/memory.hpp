@@ -6,6 +6,33 @@
 
 namespace mf {
 
+/// Bytes a run holds per item at its peak, measured on the problems of problems/ with a margin:
+/// what require_memory checks and `meshfree check` reports.
+namespace bytes_per {
+/// A Galerkin node with its points' shape functions, the matrix and the direct solver's factor
+/// (the bound the input check applies before the points exist: 21 KB measured on plate_tension).
+constexpr double galerkin_node = 30000.0;
+/// Once the points are known: per node (matrix, factor) and per Gauss point (shape functions,
+/// slot map, material state, output), from the peaks of plate_tension (32 MB over 1,681 nodes and
+/// 14,400 points) and the elastoplastic perforated strip (114 MB, 2,546 nodes, 39,059 points).
+constexpr double galerkin_node_alone = 12000.0;
+constexpr double galerkin_point = 2500.0;
+/// What the program holds before any of these (its libraries: MPI, PETSc, HDF5).
+constexpr double program = 45.0 * 1024.0 * 1024.0;
+/// An SPH particle with its neighbour lists and rates (1.5 KB measured on the 2D tunnel, 3.8 KB
+/// on the 3D Taylor bar).
+constexpr double sph_particle(int dim) {
+  return dim == 1 ? 1000.0 : dim == 2 ? 2000.0 : 5000.0;
+}
+/// A peridynamic particle's arrays, and each bond partner it has (about 5 bytes, counted twice
+/// at the peak of building them).
+constexpr double pd_particle = 600.0;
+constexpr double pd_partner = 10.0;
+} // namespace bytes_per
+
+/// "about 1.2 GiB" (or MiB, KiB).
+std::string describe_bytes(double bytes);
+
 /// Bytes of memory this process can count on: the machine's physical memory, or the limit of
 /// its control group (a container, a batch job) when that is lower.
 double usable_memory();
