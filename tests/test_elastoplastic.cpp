@@ -1,8 +1,10 @@
 // Elastoplastic analysis through the whole solver: a homogeneous bar against the closed-form
 // uniaxial response (load, unload, reverse yielding), quadratic convergence of Newton with the
 // consistent tangent, and the load schedule's bookkeeping.
+#include "meshfree/implicit/coupling.hpp"
 #include "meshfree/implicit/elasticity.hpp"
 #include "meshfree/implicit/elastoplastic_solve.hpp"
+#include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
 #include "meshfree/solvers/parallel.hpp"
 #include "test_support.hpp"
@@ -241,4 +243,26 @@ TEST_CASE("the converged state returned by the solver is the closed-form homogen
     CHECK(worst_back < tol);
     CHECK(worst_alpha < tol);
   }
+}
+
+TEST_CASE("a slot map over its memory cap is searched anew and lands every block in the same place",
+          "[elastoplastic]") {
+  const auto spec = load_problem("beam_voce_bending", {"discretisation.spacing=1.0"});
+  PhaseTimer timer;
+  const implicit::GalerkinModel m = implicit::build_galerkin_model(spec, test_session(), timer);
+  const implicit::BlockScatter kept(m.domain_table, m.pattern);
+  const implicit::BlockScatter searched(m.domain_table, m.pattern, 0.5 * kept.full_bytes());
+  REQUIRE(kept.kept());
+  REQUIRE_FALSE(searched.kept());
+  CHECK(searched.bytes() == 0);
+  CHECK(kept.bytes() == static_cast<std::size_t>(kept.full_bytes()));
+  long differ = 0, pairs = 0;
+  for (int r = 0; r < m.domain_table.rows(); ++r) {
+    const int n = m.domain_table.offset[r + 1] - m.domain_table.offset[r];
+    const int* a = kept.slots(r);
+    const int* b = searched.slots(r);
+    for (int k = 0; k < n * n; ++k, ++pairs) differ += a[k] != b[k];
+  }
+  CHECK(pairs > 10000);
+  CHECK(differ == 0);
 }

@@ -1,5 +1,6 @@
 #include "meshfree/implicit/coupling.hpp"
 #include "meshfree/core/error.hpp"
+#include "meshfree/core/memory.hpp"
 #include <algorithm>
 
 namespace mf::implicit {
@@ -114,28 +115,41 @@ void BlockRows::add_matrix_at(const int* slots, int n, const double* block) {
     }
 }
 
-BlockScatter::BlockScatter(const ShapeTable& t, const RowPattern& p) {
+BlockScatter::BlockScatter(const ShapeTable& t, const RowPattern& p, double max_bytes)
+    : table_(t), pattern_(p) {
   offset_.assign(t.rows() + 1, 0);
+  std::size_t widest = 0;
   for (int r = 0; r < t.rows(); ++r) {
     const std::size_t n = t.offset[r + 1] - t.offset[r];
     offset_[r + 1] = offset_[r] + n * n;
+    widest = std::max(widest, n * n);
   }
-  slot_.assign(offset_.back(), -1);
+  if (max_bytes < 0.0) max_bytes = 0.25 * usable_memory();
+  kept_ = max_bytes <= 0.0 ? false : full_bytes() <= max_bytes;
+  if (!kept_) {
+    scratch_.resize(widest);
+    return;
+  }
+  slot_.resize(offset_.back());
+  for (int r = 0; r < t.rows(); ++r) find(r, slot_.data() + offset_[r]);
+}
+
+void BlockScatter::find(int r, int* out) const {
+  const ShapeTable& t = table_;
+  const RowPattern& p = pattern_;
   const int* col = p.column.data();
-  for (int r = 0; r < t.rows(); ++r) {
-    const int n = t.offset[r + 1] - t.offset[r];
-    const int* nodes = t.node.data() + t.offset[r];
-    int* out = slot_.data() + offset_[r];
-    for (int a = 0; a < n; ++a) {
-      const int I = nodes[a];
-      if (I < p.begin || I >= p.end) continue;
-      const int* k = col + p.offset[I - p.begin];
-      const int* k_end = col + p.offset[I - p.begin + 1];
-      for (int b = 0; b < n; ++b) {
-        k = std::lower_bound(k, k_end, nodes[b]);
-        MF_REQUIRE(k < k_end && *k == nodes[b], "BlockScatter: a node pair is not in the pattern");
-        out[a * n + b] = static_cast<int>(k - col);
-      }
+  const int n = t.offset[r + 1] - t.offset[r];
+  const int* nodes = t.node.data() + t.offset[r];
+  std::fill(out, out + static_cast<std::size_t>(n) * n, -1);
+  for (int a = 0; a < n; ++a) {
+    const int I = nodes[a];
+    if (I < p.begin || I >= p.end) continue;
+    const int* k = col + p.offset[I - p.begin];
+    const int* k_end = col + p.offset[I - p.begin + 1];
+    for (int b = 0; b < n; ++b) {
+      k = std::lower_bound(k, k_end, nodes[b]);
+      MF_REQUIRE(k < k_end && *k == nodes[b], "BlockScatter: a node pair is not in the pattern");
+      out[a * n + b] = static_cast<int>(k - col);
     }
   }
 }

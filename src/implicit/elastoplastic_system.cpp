@@ -1,5 +1,7 @@
 #include "meshfree/implicit/elastoplastic_system.hpp"
 #include "meshfree/core/error.hpp"
+#include "meshfree/core/log.hpp"
+#include "meshfree/core/memory.hpp"
 #include "meshfree/core/timer.hpp"
 #include "meshfree/implicit/elasticity.hpp"
 #include <algorithm>
@@ -31,6 +33,10 @@ struct OwnedRowAdder {
 ElastoplasticSystem::ElastoplasticSystem(const io::ProblemSpec& spec, const GalerkinModel& m)
     : spec_(spec), m_(m), laws_(point_laws(spec, domain_rows(m))), states_(m.domain_table.rows()),
       penalty_(m.pattern), tangent_(m.pattern), scatter_(m.domain_table, m.pattern) {
+  if (!scatter_.kept())
+    log::info("the tangent's slot map would take ", describe_bytes(scatter_.full_bytes()),
+              ", more than a quarter of the memory here: each point's slots are searched anew "
+              "at every assembly instead");
   const int rows = m.pattern.rows();
   loads_.assign(spec.boundary.size() + 1, std::vector<double>(2 * rows, 0.0));
   counts_in_scale_.assign(loads_.size(), 0);

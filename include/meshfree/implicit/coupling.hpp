@@ -54,16 +54,32 @@ private:
 /// Assembling a point then costs indexed additions instead of searches in the rows, which is
 /// worth its memory (4 bytes per pair) for a matrix assembled at every Newton iteration
 /// (measured on the perforated strip, 39,059 points of 12 nodes: 67 ms per tangent with
-/// searches, 26 ms of it the element arithmetic).
+/// searches, 26 ms of it the element arithmetic). Where the map would take more than
+/// `max_bytes` (by default a quarter of the memory here: some 0.7 GB per million points of 12
+/// nodes), it is not kept and each point's slots are searched anew when asked for, into a buffer
+/// of the object's own: then slots() is for one thread at a time.
 class BlockScatter {
 public:
-  BlockScatter(const ShapeTable& table, const RowPattern& pattern);
-  const int* slots(int r) const { return slot_.data() + offset_[r]; }
+  BlockScatter(const ShapeTable& table, const RowPattern& pattern, double max_bytes = -1.0);
+  const int* slots(int r) const {
+    if (kept_) return slot_.data() + offset_[r];
+    find(r, scratch_.data());
+    return scratch_.data();
+  }
+  /// Bytes the map holds (0 when it was not kept).
   std::size_t bytes() const { return slot_.size() * sizeof(int); }
+  bool kept() const { return kept_; }
+  /// Bytes the whole map takes.
+  double full_bytes() const { return static_cast<double>(offset_.back()) * sizeof(int); }
 
 private:
+  void find(int r, int* out) const;
+  const ShapeTable& table_;
+  const RowPattern& pattern_;
   std::vector<std::size_t> offset_;
   std::vector<int> slot_;
+  bool kept_ = true;
+  mutable std::vector<int> scratch_; // one point's slots when the map is not kept
 };
 
 } // namespace mf::implicit
