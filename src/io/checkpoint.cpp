@@ -11,6 +11,7 @@
 #include <map>
 #include <omp.h>
 #include <sstream>
+#include <sys/file.h>
 #include <unistd.h>
 
 namespace mf::io {
@@ -20,6 +21,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kMarker = "checkpoint.txt";
+constexpr const char* kLock = ".lock";
 
 std::string state_name(long generation, int rank) {
   return "state-" + std::to_string(generation) + "." + std::to_string(rank) + ".h5";
@@ -40,7 +42,7 @@ bool ours(const std::string& name) {
   const auto ends = [&](const std::string& e) {
     return name.size() > e.size() && name.compare(name.size() - e.size(), e.size(), e) == 0;
   };
-  return name == kMarker || name == std::string(kMarker) + ".new" ||
+  return name == kMarker || name == std::string(kMarker) + ".new" || name == kLock ||
          (name.rfind("state-", 0) == 0 && ends(".h5")) ||
          (name.find(".part-") != std::string::npos && ends(".h5"));
 }
@@ -144,6 +146,10 @@ Checkpoints::Checkpoints(std::string dir, const distribution::Ranks& ranks, Chec
   }
 }
 
+Checkpoints::~Checkpoints() {
+  if (lock_ >= 0) ::close(lock_);
+}
+
 bool Checkpoints::due(double t) {
   if (!policy_.any()) return false;
   if (policy_.interval > 0.0 && t >= next_time_ * (1 - 1e-12)) return true;
@@ -160,13 +166,28 @@ std::string Checkpoints::part(const std::string& stem, int k) const {
 void Checkpoints::write(double t, long step, const std::function<void(StateWriter&)>& save) {
   const auto start = std::chrono::steady_clock::now();
   const fs::path folder(folder_);
-  if (ranks_.rank == 0) {
-    std::error_code ec;
-    fs::create_directories(folder, ec);
-    MF_REQUIRE(!ec, folder_, ": cannot create the checkpoint folder: ", ec.message());
-    // An earlier run's checkpoint is superseded by this run's first one.
-    if (!cleared_) remove_ours(folder, [](const std::string&) { return true; });
+  if (!locked_) {
+    // One run at a time keeps its checkpoints in a folder; the lock goes with its process.
+    double busy = 0.0;
+    if (ranks_.rank == 0) {
+      std::error_code ec;
+      fs::create_directories(folder, ec);
+      MF_REQUIRE(!ec, folder_, ": cannot create the checkpoint folder: ", ec.message());
+      lock_ = ::open((folder / kLock).c_str(), O_CREAT | O_RDWR | O_CLOEXEC | O_NOFOLLOW, 0644);
+      busy = lock_ < 0 || ::flock(lock_, LOCK_EX | LOCK_NB) != 0 ? 1.0 : 0.0;
+    }
+    if (!ranks_.serial()) ranks_.broadcast(&busy, 1, 0);
+    if (busy > 0.0) {
+      if (ranks_.rank == 0)
+        log::warn(folder_, ": another run into this folder keeps its checkpoints there; this run "
+                           "writes none");
+      policy_ = {0.0, 0.0};
+      return;
+    }
+    locked_ = true;
   }
+  if (ranks_.rank == 0 && !cleared_) // an earlier run's checkpoint is superseded by this one
+    remove_ours(folder, [](const std::string& name) { return name != kLock; });
   cleared_ = true;
   ranks_.max(0.0); // the folder is there for every rank
   ++generation_;
@@ -218,6 +239,11 @@ void Checkpoints::write(double t, long step, const std::function<void(StateWrite
 void remove_checkpoints(const std::string& dir) {
   const fs::path folder = fs::path(dir) / "checkpoint";
   if (!fs::is_directory(fs::symlink_status(folder))) return;
+  // Not while another run into DIR holds them.
+  const int lock = ::open((folder / kLock).c_str(), O_RDWR | O_CLOEXEC | O_NOFOLLOW);
+  const bool held = lock >= 0 && ::flock(lock, LOCK_EX | LOCK_NB) != 0;
+  if (lock >= 0) ::close(lock);
+  if (held) return;
   remove_ours(folder, [](const std::string&) { return true; });
   std::error_code ec;
   fs::remove(folder, ec); // only when nothing else is in it

@@ -55,7 +55,7 @@ struct CheckpointCounts {
 };
 
 /// Removes DIR/checkpoint (a run into DIR completed, and its results supersede the checkpoint):
-/// the files meshfree writes there and no others.
+/// the files meshfree writes there and no others; nothing while another run holds the folder.
 void remove_checkpoints(const std::string& dir);
 
 /// The checkpoints a run writes into DIR/checkpoint (every rank holds one; collective calls).
@@ -65,6 +65,9 @@ public:
   /// empty `dir` or a policy without intervals writes none.
   Checkpoints(std::string dir, const distribution::Ranks& ranks, CheckpointPolicy policy,
               ProblemSettings settings, const Restart* restart = nullptr);
+  ~Checkpoints();
+  Checkpoints(const Checkpoints&) = delete;
+  Checkpoints& operator=(const Checkpoints&) = delete;
   /// True when one is due at the end of a step reaching simulated time t (collective on the wall
   /// clock: rank 0's decides).
   bool due(double t);
@@ -72,7 +75,9 @@ public:
   double next_time() const { return next_time_; }
   void set_next_time(double t) { next_time_ = t; }
   const CheckpointPolicy& policy() const { return policy_; }
-  /// Writes one at (t, step): save() fills this rank's file. Collective.
+  /// Writes one at (t, step): save() fills this rank's file. Collective. The first one takes the
+  /// folder's lock (`checkpoint/.lock`, flock): while another run into DIR holds it, this run
+  /// says so and writes none.
   void write(double t, long step, const std::function<void(StateWriter&)>& save);
   /// Where part k of a field series of this name is kept.
   std::string part(const std::string& stem, int k) const;
@@ -89,6 +94,8 @@ private:
   CheckpointPolicy policy_;
   ProblemSettings settings_;
   long generation_ = 0;
+  int lock_ = -1; // the folder's lock file, held while this run writes there
+  bool locked_ = false;
   bool cleared_ = false; // an earlier run's checkpoint was removed (or continued)
   double next_time_ = 0.0;
   std::chrono::steady_clock::time_point last_;
