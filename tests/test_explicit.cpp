@@ -62,7 +62,7 @@ TEST_CASE("a loop restarted from its checkpoint goes on as the run it came from"
     Drift first;
     io::Checkpoints checkpoints(dir, {}, {0.7, 0.0}, {{"time.end", "2.05"}});
     explicit_dynamics::run_time_loop(first, schedule, &checkpoints);
-    CHECK(checkpoints.written() == 2);
+    CHECK(checkpoints.counts().written == 2);
   }
   const io::Restart restart = io::find_restart(dir, {{"time.end", "3.0"}}, 1);
   CHECK(restart.step == 14);

@@ -222,25 +222,8 @@ template <class Visit> void PdRun::for_each_state(const Visit& visit) {
   pd::BondState& b = setup_.state;
   visit("bonds.intact", b.intact), visit("bonds.plastic", b.plastic);
   visit("bonds.s0", b.s0.committed), visit("bonds.s0_trial", b.s0.trial);
-  // Each impactor's motion, the force of its last contact and its energy accounts.
-  std::vector<double> impactors;
-  for (const pd::Impactor& imp : setup_.impactors) {
-    for (const Eigen::Vector3d* v : {&imp.position, &imp.velocity, &imp.contact_force})
-      impactors.insert(impactors.end(), v->data(), v->data() + 3);
-    impactors.insert(impactors.end(), {imp.contact_energy, imp.work, imp.dissipated});
-  }
-  visit("impactors", impactors);
-  MF_REQUIRE(impactors.size() == 12 * setup_.impactors.size(),
-             "checkpoint: ", impactors.size() / 12, " impactors kept for ",
-             setup_.impactors.size());
-  for (std::size_t k = 0; k < setup_.impactors.size(); ++k) {
-    pd::Impactor& imp = setup_.impactors[k];
-    const double* v = &impactors[12 * k];
-    imp.position = Eigen::Vector3d(v[0], v[1], v[2]);
-    imp.velocity = Eigen::Vector3d(v[3], v[4], v[5]);
-    imp.contact_force = Eigen::Vector3d(v[6], v[7], v[8]);
-    imp.contact_energy = v[9], imp.work = v[10], imp.dissipated = v[11];
-  }
+  io::visit_list(visit, "impactors", setup_.impactors,
+                 [](const auto& at, pd::Impactor& imp) { imp.for_each_state(at); });
   if (setup_.short_range) setup_.short_range->for_each_state(visit / "short_range");
   fracture_account_.for_each_state(visit / "fracture_account");
   visit("last.broken", last_.broken), visit("last.strain_energy", last_.strain_energy);

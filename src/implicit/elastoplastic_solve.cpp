@@ -43,22 +43,6 @@ void log_elastic_limit(const io::ProblemSpec& spec, const ElasticLimit& e) {
             n.at.x(), ", ", n.at.y(), ")");
 }
 
-/// The rows of every line sampled so far (rank 0).
-template <class Visit>
-void visit_lines(Visit&& visit, decltype(ElastoplasticResult::lines)& lines) {
-  long count = static_cast<long>(lines.size());
-  visit("lines.count", count);
-  lines.resize(count);
-  for (std::size_t k = 0; k < lines.size(); ++k) {
-    const auto at = visit / ("lines." + std::to_string(k));
-    auto& [name, rows] = lines[k];
-    long n = static_cast<long>(rows.size());
-    at("name", name), at("rows", n);
-    rows.resize(n);
-    for (std::size_t j = 0; j < rows.size(); ++j) at("row." + std::to_string(j), rows[j]);
-  }
-}
-
 } // namespace
 
 ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
@@ -92,12 +76,14 @@ ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
   // What a checkpoint keeps besides the field series: every rank's share of the state, the
   // schedule's position and the increments recorded so far.
   const auto records = [&](const auto& visit) {
-    long count = static_cast<long>(R.increments.size());
-    visit("increments.count", count);
-    R.increments.resize(count);
-    for (std::size_t i = 0; i < R.increments.size(); ++i)
-      R.increments[i].for_each_state(visit / ("increments." + std::to_string(i)));
-    visit_lines(visit, R.lines);
+    io::visit_list(visit, "increments", R.increments,
+                   [](const auto& at, IncrementRecord& rec) { rec.for_each_state(at); });
+    // The rows of every line sampled so far (rank 0).
+    io::visit_list(visit, "lines", R.lines, [](const auto& at, auto& line) {
+      at("name", line.first);
+      io::visit_list(at, "rows", line.second,
+                     [](const auto& row_at, std::vector<double>& row) { row_at("values", row); });
+    });
   };
   const auto state = [&](const auto& visit) {
     visit("d", d);
@@ -132,7 +118,7 @@ ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
   // The checkpoints' clock counts converged increments.
   io::Checkpoints checkpoints(dir, distribution::Ranks::of(session.comm()), spec.checkpoint,
                               spec.settings, restart);
-  const auto keep = [&](const SchedulePosition&, bool finished) {
+  const auto keep = [&](bool finished) {
     const long done = static_cast<long>(R.increments.size()) - 1;
     if (finished || !checkpoints.due(static_cast<double>(done))) return;
     PhaseTimer::Scope scope(R.timer, "checkpoints");

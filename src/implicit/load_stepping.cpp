@@ -43,7 +43,7 @@ ScheduleOutcome run_load_schedule(const io::ProblemSpec& spec, ElastoplasticSyst
   settings.tolerance = spec.nonlinear.tolerance;
   settings.max_iterations = spec.nonlinear.max_iterations;
   int& since_output = at.since_output;
-  for (; at.step < static_cast<int>(spec.steps.size()) && o.status == "completed";) {
+  while (at.step < static_cast<int>(spec.steps.size()) && o.status == "completed") {
     const std::size_t s = static_cast<std::size_t>(at.step);
     const io::LoadStep& step = spec.steps[s];
     const std::vector<double>& start = at.start;
@@ -109,7 +109,7 @@ ScheduleOutcome run_load_schedule(const io::ProblemSpec& spec, ElastoplasticSyst
         easy = 0;
       }
       cuts = 0;
-      if (kept) kept(at, step_end && s + 1 == spec.steps.size());
+      if (kept) kept(step_end && s + 1 == spec.steps.size());
     }
     if (o.status != "completed") break;
     // The next step starts where this one ended.

@@ -39,12 +39,9 @@ void sync_path(const std::string& path, bool folder) {
 
 /// The names meshfree writes into a checkpoint folder (and only those are ever removed).
 bool ours(const std::string& name) {
-  const auto ends = [&](const std::string& e) {
-    return name.size() > e.size() && name.compare(name.size() - e.size(), e.size(), e) == 0;
-  };
   return name == kMarker || name == std::string(kMarker) + ".new" || name == kLock ||
-         (name.rfind("state-", 0) == 0 && ends(".h5")) ||
-         (name.find(".part-") != std::string::npos && ends(".h5"));
+         (name.rfind("state-", 0) == 0 && ends_with(name, ".h5")) ||
+         (name.find(".part-") != std::string::npos && ends_with(name, ".h5"));
 }
 
 void remove_ours(const fs::path& folder, const std::function<bool(const std::string&)>& which) {
@@ -82,11 +79,8 @@ bool restart_may_change(const std::string& path) {
     const std::size_t dot = key.find('.', 7);
     key = dot == std::string::npos ? std::string() : key.substr(dot + 1);
   }
-  const auto ends = [&](const std::string& e) {
-    return key.size() > e.size() && key.compare(key.size() - e.size(), e.size(), e) == 0;
-  };
   return key == "time.end" || key == "output.checkpoint_every" ||
-         (key.rfind("output.", 0) == 0 && ends("_interval") &&
+         (key.rfind("output.", 0) == 0 && ends_with(key, "_interval") &&
           key.find('.', 7) == std::string::npos);
 }
 

@@ -270,28 +270,24 @@ void FieldSeries::close_file() {
          " (closing)");
 }
 
-void FieldSeries::split(const std::string& part) {
+void FieldSeries::renew_file(const std::string& keep_as) {
   MF_REQUIRE(file_ >= 0, stem_, ".h5: the series is closed");
   close_file();
-  if (out_) {
+  if (out_) { // the rank that names the file moves or drops it
     std::error_code ec;
-    std::filesystem::rename(h5_temp_, part, ec);
-    MF_REQUIRE(!ec, part, ": cannot keep the field steps so far: ", ec.message());
+    if (keep_as.empty())
+      std::filesystem::remove(h5_temp_, ec);
+    else
+      std::filesystem::rename(h5_temp_, keep_as, ec);
+    MF_REQUIRE(!ec, keep_as, ": cannot keep the field steps so far: ", ec.message());
   }
   if (slice_.spread()) MPI_Barrier(slice_.comm);
-  parts_ += part + "\n";
   create_file();
 }
 
-void FieldSeries::start_afresh() {
-  MF_REQUIRE(file_ >= 0, stem_, ".h5: the series is closed");
-  close_file();
-  if (out_) {
-    std::error_code ec;
-    std::filesystem::remove(h5_temp_, ec);
-  }
-  if (slice_.spread()) MPI_Barrier(slice_.comm);
-  create_file();
+void FieldSeries::split(const std::string& part) {
+  renew_file(part);
+  parts_ += part + "\n";
 }
 
 namespace {

@@ -53,11 +53,8 @@ void remove_file(const fs::path& path) {
 /// True for the names the code writes into a staging folder: results (.h5, .xmf, .csv,
 /// summary.json) and the manifest.
 bool written_by_us(const std::string& name) {
-  const auto ends = [&](const char* e) {
-    const std::size_t n = std::strlen(e);
-    return name.size() > n && name.compare(name.size() - n, n, e) == 0;
-  };
-  return name == kManifest || ends(".h5") || ends(".xmf") || ends(".csv") || ends(".json");
+  return name == kManifest || ends_with(name, ".h5") || ends_with(name, ".xmf") ||
+         ends_with(name, ".csv") || ends_with(name, ".json");
 }
 
 /// Removes a folder the code wrote (a staging folder, or a kept unfinished run): the files its

@@ -44,17 +44,10 @@ struct IncrementRecord {
     visit("plastic_points", plastic_points), visit("equilibrium_error", equilibrium_error);
     visit("parameters", parameters);
     io::visit_flat(visit, "monitor_u", monitor_u);
-    long count = static_cast<long>(boundary.size());
-    visit("boundary.count", count);
-    boundary.resize(count);
-    for (std::size_t k = 0; k < boundary.size(); ++k) {
-      const auto at = visit / ("boundary." + std::to_string(k));
-      BoundaryReport& b = boundary[k];
-      std::vector<double> force{b.force.x(), b.force.y()};
-      at("name", b.name), at("constraint", b.constraint), at("force", force);
+    io::visit_list(visit, "boundary", boundary, [](const auto& at, BoundaryReport& b) {
+      at("name", b.name), at("constraint", b.constraint), at("force", b.force);
       at("violation_max", b.violation_max);
-      b.force = Vec2(force.at(0), force.at(1));
-    }
+    });
   }
 };
 

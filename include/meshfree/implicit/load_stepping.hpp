@@ -37,11 +37,12 @@ struct SchedulePosition {
 /// Called with each converged increment (the system committed, `d` converged) and whether the
 /// fields are due; returns the increment as recorded.
 using IncrementDone = std::function<const IncrementRecord&(IncrementRecord rec, bool write_fields)>;
-/// Called after each converged increment with the schedule's position after it.
-using PositionKept = std::function<void(const SchedulePosition& at, bool finished)>;
+/// Called after each converged increment, once `at` holds the position after it; `finished` is
+/// true after the schedule's last increment.
+using PositionKept = std::function<void(bool finished)>;
 
 /// Runs spec.steps from `at` (the unloaded state: a default position) and the state in `d`;
-/// `d` ends at the last converged state.
+/// `d` ends at the last converged state and `at` at its position.
 ScheduleOutcome run_load_schedule(const io::ProblemSpec& spec, ElastoplasticSystem& problem,
                                   solvers::NonlinearBlockSystem& newton, std::vector<double>& d,
                                   const IncrementDone& done, SchedulePosition& at,

@@ -1,9 +1,10 @@
 #pragma once
-// Checkpoints of an explicit run (DIR/checkpoint/): the whole state at one instant, from which
-// `meshfree run FILE --restart DIR` goes on as the run would have, bit for bit with the same
-// numbers of ranks and threads. One is written every output.checkpoint_interval of simulated time
-// and every output.checkpoint_wall_interval seconds of wall time (600 by default), at the end of
-// a step.
+// Checkpoints of a run that goes step by step (DIR/checkpoint/): the whole state at one instant,
+// from which `meshfree run FILE --restart DIR` goes on as the run would have, bit for bit with the
+// same numbers of ranks and threads. An explicit run writes one every output.checkpoint_interval
+// of simulated time and every output.checkpoint_wall_interval seconds of wall time (600 by
+// default), at the end of a step; an elastoplastic run counts converged increments instead
+// (output.checkpoint_every).
 //
 // Layout: each rank writes its state into state-<g>.<rank>.h5 (io/state_file.hpp); once every
 // rank has, rank 0 names generation g in checkpoint.txt (a new file renamed over the old one, so
@@ -71,10 +72,6 @@ public:
   /// True when one is due at the end of a step reaching simulated time t (collective on the wall
   /// clock: rank 0's decides).
   bool due(double t);
-  /// The next instant one is due on the simulated clock (a run's loop state keeps it).
-  double next_time() const { return next_time_; }
-  void set_next_time(double t) { next_time_ = t; }
-  const CheckpointPolicy& policy() const { return policy_; }
   /// Writes one at (t, step): save() fills this rank's file. Collective. The first one takes the
   /// folder's lock (`checkpoint/.lock`, flock): while another run into DIR holds it, this run
   /// says so and writes none.
@@ -84,9 +81,6 @@ public:
   CheckpointCounts counts() const { return {written_, seconds_, bytes_, restarted_at_}; }
   /// The checkpoint being written (in write's save()), or the last one.
   long generation() const { return generation_; }
-  int written() const { return written_; }
-  double seconds() const { return seconds_; }
-  double bytes() const { return bytes_; } // over every rank, the last checkpoint
 
 private:
   std::string dir_, folder_;
@@ -100,7 +94,7 @@ private:
   double next_time_ = 0.0;
   std::chrono::steady_clock::time_point last_;
   int written_ = 0;
-  double seconds_ = 0.0, bytes_ = 0.0;
+  double seconds_ = 0.0, bytes_ = 0.0; // writing them; the last one over every rank
   double restarted_at_ = -1.0;
 };
 

@@ -65,6 +65,11 @@ std::string csv_line(const std::vector<double>& values);
 /// The system's reason for an error number (strerror), lower-case, to stand in a sentence:
 /// "no space left on device writing DIR/fields.h5".
 std::string system_reason(int error);
+/// True when `name` is longer than `tail` and ends with it (".h5" of "fields.h5").
+inline bool ends_with(const std::string& name, const std::string& tail) {
+  return name.size() > tail.size() &&
+         name.compare(name.size() - tail.size(), tail.size(), tail) == 0;
+}
 
 /// The output folder DIR of a run. Files are written into a staging folder of this run inside
 /// DIR (`.meshfree-staging-<host>-<pid>`, created fresh and private), each created exclusively
@@ -153,14 +158,15 @@ public:
   /// opened (a staged run's replayed preload, which the parts hold already).
   template <class Visit> void for_each_state(Visit&& visit) {
     visit("parts", parts_), visit("steps", steps_), visit("xdmf", xml_);
-    if constexpr (std::decay_t<Visit>::loads) start_afresh();
+    if constexpr (std::decay_t<Visit>::loads) renew_file({});
   }
 
 private:
   void open(const std::vector<double>& xyz, const GridCells& cells);
   void create_file();
   void close_file();
-  void start_afresh();
+  /// Closes the file, moves it to `keep_as` (drops it when empty) and opens a new one. Collective.
+  void renew_file(const std::string& keep_as);
   void merge_parts();
   OutputDirectory* out_;
   PointSlice slice_;

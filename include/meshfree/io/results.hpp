@@ -40,10 +40,6 @@ public:
   /// From now on every row appended (or restored) is also handed to `also`: a staged run's
   /// history gets each row of its explicit stage as it is recorded.
   void also_to(std::function<void(const std::vector<double>&)> also) { also_ = std::move(also); }
-  /// The rows so far, row after row (a checkpoint keeps them).
-  std::vector<double> flat() const;
-  /// Rows taken back from flat() in place of any appended so far (streamed, when streaming).
-  void restore(const std::vector<double>& flat);
   /// The rows so far as one array "rows" (a checkpoint keeps them; loading restores them).
   template <class Visit> void for_each_state(Visit&& visit) {
     std::vector<double> rows = std::decay_t<Visit>::loads ? std::vector<double>() : flat();
@@ -52,6 +48,10 @@ public:
   }
 
 private:
+  /// The rows so far, row after row.
+  std::vector<double> flat() const;
+  /// Rows taken back from flat() in place of any appended so far (streamed, when streaming).
+  void restore(const std::vector<double>& flat);
   std::vector<std::string> columns_;
   std::vector<std::vector<double>> rows_;
   std::shared_ptr<OutputStream> stream_; // while the rows are streamed

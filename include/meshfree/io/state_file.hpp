@@ -3,8 +3,11 @@
 // file, written exactly as held in memory (the doubles bit for bit), so that a restart reads back
 // the state the run had. The modules that hold state say what it is by a visitor,
 //   template <class Visit> void for_each_state(Visit&& visit) { visit("name", member); ... }
-// visiting vectors and scalars by name, as ParticleSet::for_each_array does for migration; the
-// writer and the reader below are such visitors (Saver, Loader), so a state is listed once.
+// visiting vectors, scalars and fixed-size Eigen vectors by name, as ParticleSet::for_each_array
+// does for migration; the writer and the reader below are such visitors (Saver, Loader), so a
+// state is listed once.
+#include "meshfree/core/error.hpp"
+#include "meshfree/core/types.hpp"
 #include <algorithm>
 #include <string>
 #include <type_traits>
@@ -60,9 +63,9 @@ public:
     return {v.begin(), v.end()};
   }
   const std::string& path() const { return path_; }
+  [[noreturn]] void wrong_size(const std::string& name, std::size_t size) const;
 
 private:
-  [[noreturn]] void wrong_size(const std::string& name, std::size_t size) const;
   std::string path_;
   long file_ = -1; // hid_t
 };
@@ -85,6 +88,10 @@ struct Saver {
   void operator()(const std::string& name, const std::string& v) const {
     out.put_text(prefix + name, v);
   }
+  template <int R, int C, int O, int MR, int MC>
+  void operator()(const std::string& name, const Eigen::Matrix<double, R, C, O, MR, MC>& m) const {
+    out.put(prefix + name, std::vector<double>(m.data(), m.data() + R * C));
+  }
   Saver operator/(const std::string& part) const { return {out, prefix + part + "."}; }
 };
 
@@ -105,6 +112,13 @@ struct Loader {
     v = c != 0;
   }
   void operator()(const std::string& name, std::string& v) const { v = in.text(prefix + name); }
+  template <int R, int C, int O, int MR, int MC>
+  void operator()(const std::string& name, Eigen::Matrix<double, R, C, O, MR, MC>& m) const {
+    std::vector<double> v;
+    in.get(prefix + name, v);
+    if (v.size() != static_cast<std::size_t>(R * C)) in.wrong_size(prefix + name, v.size());
+    std::copy(v.begin(), v.end(), m.data());
+  }
   Loader operator/(const std::string& part) const { return {in, prefix + part + "."}; }
 };
 
@@ -125,6 +139,10 @@ struct Packer {
   template <class T> void operator()(const std::string&, const T& v) const {
     static_assert(std::is_arithmetic_v<T>, "numbers only");
     raw(&v, sizeof v);
+  }
+  template <int R, int C, int O, int MR, int MC>
+  void operator()(const std::string&, const Eigen::Matrix<double, R, C, O, MR, MC>& m) const {
+    raw(m.data(), R * C * sizeof(double));
   }
   Packer operator/(const std::string&) const { return *this; }
   void raw(const void* p, std::size_t n) const {
@@ -153,6 +171,10 @@ struct Unpacker {
   template <class T> void operator()(const std::string& name, T& v) const {
     raw(name, &v, sizeof v);
   }
+  template <int R, int C, int O, int MR, int MC>
+  void operator()(const std::string& name, Eigen::Matrix<double, R, C, O, MR, MC>& m) const {
+    raw(name, m.data(), R * C * sizeof(double));
+  }
   Unpacker operator/(const std::string&) const { return *this; }
   void raw(const std::string& name, void* p, std::size_t n) const {
     if (n > bytes.size() - at) short_of(name);
@@ -161,6 +183,20 @@ struct Unpacker {
   }
   [[noreturn]] static void short_of(const std::string& name);
 };
+
+/// Visits a list of records: its length as `name`.count, then record k under `name`.k through
+/// each(visitor, record). Loading fills an empty list with the records kept; a list the set-up
+/// made (impactors) must have kept as many.
+template <class Visit, class T, class Each>
+void visit_list(Visit&& visit, const std::string& name, std::vector<T>& list, Each&& each) {
+  const long had = static_cast<long>(list.size());
+  long count = had;
+  visit(name + ".count", count);
+  MF_REQUIRE(had == 0 || count == had, "checkpoint: ", count, " ", name, " kept for ", had);
+  list.resize(static_cast<std::size_t>(count));
+  for (std::size_t k = 0; k < list.size(); ++k)
+    each(visit / (name + "." + std::to_string(k)), list[k]);
+}
 
 /// Visits an array of fixed-size records of doubles (Eigen vectors and matrices, structs of them)
 /// as one flat array of doubles, in both directions: the records are copied out, visited, and

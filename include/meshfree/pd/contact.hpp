@@ -43,6 +43,12 @@ struct Impactor {
   double dissipated = 0.0;     // kinetic energy destroyed by kinematic contact, so far
 
   bool free() const { return !fixed && !prescribed; }
+  /// What changes as a run goes: the motion, the last contact force and the energy accounts.
+  template <class Visit> void for_each_state(Visit&& visit) {
+    visit("position", position), visit("velocity", velocity);
+    visit("contact_force", contact_force), visit("contact_energy", contact_energy);
+    visit("work", work), visit("dissipated", dissipated);
+  }
   double kinetic_energy() const { return free() ? 0.5 * mass * velocity.squaredNorm() : 0.0; }
 };
 
