@@ -75,9 +75,8 @@ expect_error "output.gauges[0].at: the point (5, 5) is not in the body" "$Q" --s
 expect_error "discretisation.method: expected one of" "$Q" --set discretisation.method=bem
 expect_error "discretisation.fem.element: expected one of" "$Q" --set discretisation.method=fem --set discretisation.fem.element=q9
 expect_error "discretisation.fem.mesh: cannot open the mesh file" "$Q" --set discretisation.method=fem --set discretisation.fem.mesh=missing.msh
-expect_error "discretisation.fem.mesh: required for a body that is not a plain rectangle" "$ROOT/problems/plate_hole_kirsch.yaml" --set discretisation.method=fem
-expect_error "holds Q8 elements" "$ROOT/problems/perforated_strip.yaml" --set discretisation.method=fem --set discretisation.fem.element=q4
-expect_error "lies outside the body" "$ROOT/problems/perforated_strip.yaml" --set discretisation.method=fem --set 'geometry.holes.0.radius=6' --set 'output.gauges=[]'
+expect_error "holds Q8 elements" "$ROOT/problems/perforated_strip.yaml" --set discretisation.method=fem --set discretisation.fem.mesh=meshes/perforated_strip_q8.msh --set discretisation.fem.element=q4
+expect_error "lies outside the body" "$ROOT/problems/perforated_strip.yaml" --set discretisation.method=fem --set discretisation.fem.mesh=meshes/perforated_strip_q8.msh --set 'geometry.holes.0.radius=6' --set 'output.gauges=[]'
 printf 'name: x\nanalysis: elastic_static\n' > "$WORK/incomplete.yaml"
 expect_error "model: required value is missing" "$WORK/incomplete.yaml"
 B="$ROOT/problems/pd_slab_blast.yaml"

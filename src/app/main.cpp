@@ -132,7 +132,7 @@ int check(const Command& c) {
   const auto& d = spec.discretisation;
   if (d.method == mf::io::Method::Fem) {
     const mf::fem::Mesh mesh = mf::implicit::read_fe_mesh(spec);
-    std::cout << "  method: " << mf::implicit::describe_method(d) << "\n"
+    std::cout << "  method: " << mf::implicit::describe_method(spec) << "\n"
               << "  mesh: " << mesh.element_count() << " " << mf::fem::element_name(mesh.type)
               << " elements, " << mesh.node_count() << " nodes (" << 2 * mesh.node_count()
               << " DOFs)\n"
@@ -145,7 +145,7 @@ int check(const Command& c) {
     const auto pts = mf::quadrature::domain_points(
         spec.domain, d.cell_size, d.order, d.cut_levels,
         {d.spacing, d.refinement, d.cell_size / d.spacing, d.dilation.maxCoeff()});
-    std::cout << "  method: " << mf::implicit::describe_method(d) << "\n"
+    std::cout << "  method: " << mf::implicit::describe_method(spec) << "\n"
               << "  nodes: " << nodes.x.size() << " (" << 2 * nodes.x.size() << " DOFs)\n"
               << "  integration: " << pts.cell_count << " cells, " << pts.x.size() << " points\n"
               << "  memory: "

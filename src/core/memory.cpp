@@ -5,9 +5,16 @@
 #include <iomanip>
 #include <sstream>
 #include <string>
+#include <sys/resource.h>
 #include <unistd.h>
 
 namespace mf {
+
+double peak_resident_bytes() {
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) != 0) return 0.0;
+  return 1024.0 * static_cast<double>(usage.ru_maxrss); // Linux reports kilobytes
+}
 
 double usable_memory() {
   const double pages = static_cast<double>(sysconf(_SC_PHYS_PAGES));

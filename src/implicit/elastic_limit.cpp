@@ -43,7 +43,8 @@ ElasticLimit elastic_limit(const io::ProblemSpec& spec, const GalerkinModel& m,
   const BlockRows rows = assemble_linear_elastic(spec, m, target);
   const RowPattern& p = rows.pattern();
   solvers::BlockLinearSystem system(session.comm(), m.node_count(), m.own, p.offset, p.column,
-                                    rows.values(), rows.rhs(), /*spd=*/true);
+                                    rows.values(), rows.rhs(), /*spd=*/true,
+                                    linear_solver_settings(spec, m));
   system.solve();
   const std::vector<double> d = system.solution_everywhere();
   // First yield where sigma_vm / sigma_y of the point's material peaks, over the points of

@@ -78,8 +78,8 @@ void write_elastic_outputs(const io::ProblemSpec& spec, const ElasticResult& r,
   history.append(std::move(row));
   history.write(out);
 
-  io::Summary summary({spec.name, spec.description, spec.units, "elastic_static",
-                       describe_method(spec.discretisation)});
+  io::Summary summary(
+      {spec.name, spec.description, spec.units, "elastic_static", describe_method(spec)});
   summary.set("mpi_ranks", session.size()).set("openmp_threads", omp_get_max_threads());
   summary.section("counts")
       .set("nodes", r.nodes)
@@ -91,6 +91,9 @@ void write_elastic_outputs(const io::ProblemSpec& spec, const ElasticResult& r,
       .set("matrix_nonzeros", r.matrix_nonzeros)
       .set("steps", 1)
       .set("newton_iterations", 0);
+  summary.section("memory")
+      .set("peak_bytes_largest_rank", r.memory.largest_rank)
+      .set("peak_bytes_all_ranks", r.memory.all_ranks);
   summary.section("solver")
       .set("type", r.solve.solver)
       .set("iterations", r.solve.iterations)

@@ -102,9 +102,9 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
     const BlockRows rows =
         assemble_linear_elastic(spec, m, std::vector<double>(spec.boundary.size() + 1, 1.0));
     const RowPattern& p = rows.pattern();
-    system = std::make_unique<solvers::BlockLinearSystem>(session.comm(), R.nodes, m.own, p.offset,
-                                                          p.column, rows.values(), rows.rhs(),
-                                                          /*spd=*/true);
+    system = std::make_unique<solvers::BlockLinearSystem>(
+        session.comm(), R.nodes, m.own, p.offset, p.column, rows.values(), rows.rhs(),
+        /*spd=*/true, linear_solver_settings(spec, m));
   }
   R.matrix_nonzeros = system->global_nonzeros();
   log::info("matrix: ", R.dofs, " x ", R.dofs, ", ", static_cast<long>(R.matrix_nonzeros),
@@ -135,6 +135,7 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
     for (const auto& u : R.node_u) umax = std::max(umax, u.norm());
     R.violation_relative = umax > 0.0 ? R.violation_max / umax : 0.0;
   });
+  R.memory = solvers::peak_memory(session.comm());
   return R;
 }
 

@@ -63,7 +63,15 @@ void write_elastoplastic_outputs(const io::ProblemSpec& spec, const Elastoplasti
       .set("increments", increments)
       .set("newton_iterations", newton_total)
       .set("cutbacks", cut_total);
-  summary.section("solver").set("type", r.solver).set("tolerance", spec.nonlinear.tolerance);
+  long linear_total = 0;
+  for (const IncrementRecord& rec : r.increments) linear_total += rec.newton.linear_iterations;
+  summary.section("memory")
+      .set("peak_bytes_largest_rank", r.memory.largest_rank)
+      .set("peak_bytes_all_ranks", r.memory.all_ranks);
+  summary.section("solver")
+      .set("type", r.solver)
+      .set("tolerance", spec.nonlinear.tolerance)
+      .set("linear_iterations", linear_total);
   double newton_s = 0.0;
   for (const auto& [name, sec] : r.timer.phases())
     if (name == "newton") newton_s = sec;

@@ -54,7 +54,7 @@ ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
   const auto model =
       std::make_shared<const GalerkinModel>(build_galerkin_model(spec, session, R.timer));
   const GalerkinModel& m = *model;
-  R.method = describe_method(spec.discretisation);
+  R.method = describe_method(spec);
   count_model(m, session, R);
   {
     PhaseTimer::Scope scope(R.timer, "elastic_limit");
@@ -66,7 +66,8 @@ ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
   solvers::NonlinearBlockSystem newton(
       session.comm(), R.nodes, m.own, m.pattern.offset, m.pattern.column, problem.needed_nodes(),
       [&](const std::vector<double>& d, double* r, double& s) { problem.residual(d, r, s); },
-      [&](const std::vector<double>& d, std::vector<double>& b) { problem.jacobian(d, b); });
+      [&](const std::vector<double>& d, std::vector<double>& b) { problem.jacobian(d, b); },
+      linear_solver_settings(spec, m));
   R.solver = newton.description();
   log::info("Newton: ", R.solver, ", tolerance |R| <= ", spec.nonlinear.tolerance, " |F|");
 
@@ -168,6 +169,7 @@ ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
   R.state.stress = st.committed_stress;
   R.state.stress_zz = st.committed_stress_zz;
   R.state.model = model;
+  R.memory = solvers::peak_memory(session.comm());
   return R;
 }
 

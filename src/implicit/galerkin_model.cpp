@@ -1,5 +1,6 @@
 #include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/core/log.hpp"
+#include "meshfree/fem/mesh_generation.hpp"
 #include <algorithm>
 
 namespace mf::implicit {
@@ -69,7 +70,7 @@ GalerkinModel build_meshfree_model(const io::ProblemSpec& spec,
         disc.dilation);
   }
   const int N = m.node_count();
-  log::info("nodes: ", N, " (", 2 * N, " DOFs), ", describe_method(disc));
+  log::info("nodes: ", N, " (", 2 * N, " DOFs), ", describe_method(spec));
 
   // Integration points: background cells over the body (refined with the nodes), Gauss points
   // on the loaded and constrained boundary pieces.
@@ -141,6 +142,29 @@ double distance_to(const geometry::Curve& c, const Vec2& p) {
   return std::min((p - c.point(0.0)).norm(), (p - c.point(1.0)).norm());
 }
 
+/// The length along boundary piece c between two of its points: the chord of a segment, the arc
+/// of a circle (so that a mesh of a hole's arc covers the arc's length, whatever its chords).
+double length_along(const geometry::Curve& c, const Vec2& p, const Vec2& q) {
+  if (c.kind == geometry::Curve::Kind::Segment) return (q - p).norm();
+  const Vec2 a = p - c.center, b = q - c.center;
+  return c.radius * std::abs(std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b)));
+}
+
+/// An axis-aligned rectangle without holes whose refinement boxes (if any) miss it: meshed by a
+/// structured grid of square-ish elements rather than by gmsh.
+bool is_plain_rectangle(const geometry::Domain& domain,
+                        const std::vector<geometry::Refinement>& refinement) {
+  const BoundingBox b = domain.bounds();
+  const double area = b.size().prod();
+  if (domain.vertices().size() != 4 || !domain.holes().empty() ||
+      std::abs(domain.area_estimate() - area) > 1e-12 * area)
+    return false;
+  for (const geometry::Refinement& r : refinement)
+    if ((r.box.hi.array() > b.lo.array()).all() && (r.box.lo.array() < b.hi.array()).all())
+      return false;
+  return true;
+}
+
 } // namespace
 
 fem::Mesh read_fe_mesh(const io::ProblemSpec& spec) {
@@ -150,12 +174,14 @@ fem::Mesh read_fe_mesh(const io::ProblemSpec& spec) {
                                 : e == "q4" ? fem::ElementType::Q4
                                             : fem::ElementType::Q8;
   fem::Mesh mesh;
-  if (disc.fem.mesh.empty()) {
+  if (disc.fem.mesh.empty() && is_plain_rectangle(spec.domain, disc.refinement)) {
     const BoundingBox b = spec.domain.bounds();
     const Vec2 size = b.size();
     const int nx = std::max(1, static_cast<int>(std::lround(size.x() / disc.spacing)));
     const int ny = std::max(1, static_cast<int>(std::lround(size.y() / disc.spacing)));
     mesh = fem::structured_rectangle(b.lo, size, nx, ny, type);
+  } else if (disc.fem.mesh.empty()) {
+    mesh = fem::mesh_domain(spec.domain, disc.spacing, disc.refinement, type);
   } else {
     mesh = fem::read_gmsh(disc.fem.mesh);
     if (mesh.type != type)
@@ -201,7 +227,7 @@ GalerkinModel build_fem_model(const io::ProblemSpec& spec, const solvers::PetscS
   }
   const fem::Mesh& mesh = m.fe->mesh;
   const int N = m.node_count();
-  log::info("nodes: ", N, " (", 2 * N, " DOFs), ", describe_method(disc), ", ",
+  log::info("nodes: ", N, " (", 2 * N, " DOFs), ", describe_method(spec), ", ",
             mesh.element_count(), " elements");
 
   m.conditions.resize(spec.boundary.size());
@@ -232,7 +258,7 @@ GalerkinModel build_fem_model(const io::ProblemSpec& spec, const solvers::PetscS
             on = distance_to(piece, mesh.x[e.nodes[k]]) <= tol;
           if (on) {
             chosen.push_back(e);
-            length += (mesh.x[e.nodes[1]] - mesh.x[e.nodes[0]]).norm();
+            length += length_along(piece, mesh.x[e.nodes[0]], mesh.x[e.nodes[1]]);
             break;
           }
         }
@@ -296,11 +322,30 @@ std::vector<Vec2> domain_rows(const GalerkinModel& m) {
   return x;
 }
 
-std::string describe_method(const io::DiscretisationSpec& d) {
+solvers::LinearSolverSettings linear_solver_settings(const io::ProblemSpec& spec,
+                                                     const GalerkinModel& m) {
+  using Type = io::LinearSolverSpec::Type;
+  const io::LinearSolverSpec& l = spec.linear_solver;
+  solvers::LinearSolverSettings s;
+  s.multigrid = l.type == Type::Multigrid ||
+                (l.type == Type::Auto && 2.0 * m.node_count() >= l.multigrid_above);
+  if (s.multigrid)
+    for (int I = m.own.begin; I < m.own.end; ++I) {
+      s.coordinates.push_back(m.node_positions()[I].x());
+      s.coordinates.push_back(m.node_positions()[I].y());
+    }
+  return s;
+}
+
+std::string describe_method(const io::ProblemSpec& spec) {
+  const io::DiscretisationSpec& d = spec.discretisation;
   if (d.method == io::Method::Fem) {
     std::string e = d.fem.element;
     for (char& c : e) c = static_cast<char>(std::toupper(c));
-    return "FE " + e + (d.fem.mesh.empty() ? " on a structured mesh" : " on " + d.fem.mesh);
+    if (!d.fem.mesh.empty()) return "FE " + e + " on " + d.fem.mesh;
+    return "FE " + e +
+           (is_plain_rectangle(spec.domain, d.refinement) ? " on a structured mesh"
+                                                          : " on a gmsh mesh of the geometry");
   }
   const auto& s = d.shape;
   std::string m = s.approximation == kernels::Approximation::ReproducingKernel    ? "RK"

@@ -269,6 +269,19 @@ NonlinearSpec read_nonlinear(KeyReader& r) {
   return s;
 }
 
+LinearSolverSpec read_linear_solver(KeyReader& r) {
+  LinearSolverSpec s;
+  if (auto l = r.optional_map("linear_solver")) {
+    const std::string type = l->choice("type", {"auto", "direct", "multigrid"}, "auto");
+    s.type = type == "direct"      ? LinearSolverSpec::Type::Direct
+             : type == "multigrid" ? LinearSolverSpec::Type::Multigrid
+                                   : LinearSolverSpec::Type::Auto;
+    s.multigrid_above = l->positive("multigrid_above", s.multigrid_above);
+    l->finish();
+  }
+  return s;
+}
+
 } // namespace
 
 geometry::Domain read_domain(KeyReader& g) {
@@ -468,12 +481,6 @@ void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
     r.error("model", "analysis " + analysis + " takes model.type plane_stress or plane_strain");
   take_material(r, p, analysis);
   p.discretisation = read_discretisation(r, 2, p.domain.bounds(), base_dir);
-  if (p.discretisation.method == Method::Fem && p.discretisation.fem.mesh.empty() &&
-      (p.domain.vertices().size() != 4 || !p.domain.holes().empty() ||
-       std::abs(p.domain.area_estimate() - p.domain.bounds().size().prod()) >
-           1e-12 * p.domain.bounds().size().prod()))
-    fail("discretisation.fem.mesh: required for a body that is not a plain rectangle (a "
-         "structured mesh is generated only for rectangles)");
   p.exact = read_exact(r);
   if (r.has("body_force")) p.body_force = r.vec2("body_force");
   r.allow("body_force");
@@ -510,6 +517,7 @@ void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
     material_error(mat, "plasticity", "analysis elastoplastic_static needs a plasticity law");
   if (!plastic && p.plasticity)
     material_error(mat, "plasticity", "used only by analysis elastoplastic_static");
+  p.linear_solver = read_linear_solver(r);
   if (plastic) {
     p.steps = read_steps(r, p.boundary, p.initial_stress.has_value());
     p.nonlinear = read_nonlinear(r);

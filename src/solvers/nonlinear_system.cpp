@@ -116,7 +116,8 @@ PetscErrorCode converged(SNES, PetscInt it, PetscReal xnorm, PetscReal snorm, Pe
 NonlinearBlockSystem::NonlinearBlockSystem(MPI_Comm comm, int node_count, OwnedRange owned,
                                            std::vector<int> row_offset, std::vector<int> columns,
                                            const std::vector<int>& needed,
-                                           ResidualFunction residual, JacobianFunction jacobian)
+                                           ResidualFunction residual, JacobianFunction jacobian,
+                                           const LinearSolverSettings& linear)
     : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
   s.comm = comm;
@@ -170,7 +171,7 @@ NonlinearBlockSystem::NonlinearBlockSystem(MPI_Comm comm, int node_count, OwnedR
   check(SNESLineSearchSetType(ls, SNESLINESEARCHCP), "SNESLineSearchSetType");
   KSP ksp;
   check(SNESGetKSP(s.snes, &ksp), "SNESGetKSP");
-  detail::set_direct_solver(ksp, /*symmetric=*/true);
+  detail::set_default_solver(ksp, s.J, /*symmetric=*/true, linear);
   check(SNESSetFromOptions(s.snes), "SNESSetFromOptions");
 }
 

@@ -1,4 +1,5 @@
 #include "meshfree/solvers/parallel.hpp"
+#include "meshfree/core/memory.hpp"
 #include <cstdlib>
 
 namespace mf::solvers {
@@ -75,6 +76,11 @@ RankMax max_with_location(MPI_Comm comm, double value, double* payload, int n) {
 void abort_every_rank(MPI_Comm comm, int code) {
   MPI_Abort(comm, code);
   std::abort(); // not reached: MPI_Abort ends the process, but is not declared noreturn
+}
+
+PeakMemory peak_memory(MPI_Comm comm) {
+  const double mine = peak_resident_bytes();
+  return {max_everywhere(comm, mine), sum_everywhere(comm, mine)};
 }
 
 } // namespace mf::solvers

@@ -24,10 +24,11 @@ Mat create_block_matrix(MPI_Comm comm, int node_count, OwnedRange owned,
 void set_block_values(Mat A, OwnedRange owned, const std::vector<int>& row_offset,
                       const std::vector<int>& columns, const std::vector<double>& blocks);
 
-/// The default linear solver: a sparse direct factorisation by MUMPS (Cholesky for symmetric
-/// matrices, LDL^T when they may be indefinite, LU otherwise), set before the command-line
-/// options so that every -ksp_/-pc_ option overrides it.
-void set_direct_solver(KSP ksp, bool symmetric);
+/// The default linear solver of `settings` for the operator A, set before the command-line
+/// options so that every -ksp_/-pc_ option overrides it: MUMPS (Cholesky for symmetric
+/// matrices, LU otherwise), or CG/GMRES with GAMG and A's near-null space set to the rigid-body
+/// modes of settings.coordinates.
+void set_default_solver(KSP ksp, Mat A, bool symmetric, const LinearSolverSettings& settings);
 
 /// Names (without the '-') of the options the code itself puts in PETSc's database as defaults,
 /// which are not the user's and so never reported unused.

@@ -71,15 +71,18 @@ struct BlockLinearSystem::Impl {
   Vec b = nullptr, x = nullptr;
   KSP ksp = nullptr;
   bool spd = false;
+  LinearSolverSettings settings;
 };
 
 BlockLinearSystem::BlockLinearSystem(MPI_Comm comm, int node_count, OwnedRange owned,
                                      const std::vector<int>& row_offset,
                                      const std::vector<int>& columns,
                                      const std::vector<double>& blocks,
-                                     const std::vector<double>& rhs, bool spd)
+                                     const std::vector<double>& rhs, bool spd,
+                                     const LinearSolverSettings& settings)
     : impl_(std::make_unique<Impl>()) {
   impl_->spd = spd;
+  impl_->settings = settings;
   MF_REQUIRE(static_cast<int>(rhs.size()) == 2 * (owned.end - owned.begin),
              "BlockLinearSystem: inconsistent right-hand side");
   impl_->A = detail::create_block_matrix(comm, node_count, owned, row_offset, columns, blocks);
@@ -104,7 +107,7 @@ SolveReport BlockLinearSystem::solve() {
   check(PetscObjectGetComm(reinterpret_cast<PetscObject>(s.A), &comm), "PetscObjectGetComm");
   check(KSPCreate(comm, &s.ksp), "KSPCreate");
   check(KSPSetOperators(s.ksp, s.A, s.A), "KSPSetOperators");
-  detail::set_direct_solver(s.ksp, s.spd);
+  detail::set_default_solver(s.ksp, s.A, s.spd, s.settings);
   PC pc;
   check(KSPGetPC(s.ksp, &pc), "KSPGetPC");
   check(KSPSetFromOptions(s.ksp), "KSPSetFromOptions");

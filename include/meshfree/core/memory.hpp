@@ -37,6 +37,9 @@ std::string describe_bytes(double bytes);
 /// its control group (a container, a batch job) when that is lower.
 double usable_memory();
 
+/// The largest resident set size this process has had so far, in bytes (getrusage).
+double peak_resident_bytes();
+
 /// Stops with "<key>: <what>: about N, about X GiB at B bytes each, more than the Y GiB of
 /// memory here" when count * bytes_each exceeds usable_memory(). `count` is a floating-point
 /// estimate, so that a tiny spacing cannot overflow an integer on the way.

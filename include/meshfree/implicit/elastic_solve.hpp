@@ -6,6 +6,7 @@
 #include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/io/output.hpp"
 #include "meshfree/io/problem_spec.hpp"
+#include "meshfree/solvers/parallel.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
 #include <limits>
 #include <string>
@@ -34,6 +35,7 @@ struct ElasticResult {
   io::GridCells output_cells; // rank 0: the elements of a finite-element model
   solvers::SolveReport solve;
   PhaseTimer timer;
+  solvers::PeakMemory memory; // at the end of the solve
 };
 
 /// Solves the problem. Every rank returns the global numbers; node and line fields are filled

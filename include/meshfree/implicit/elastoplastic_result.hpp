@@ -9,6 +9,7 @@
 #include "meshfree/io/checkpoint.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
 #include "meshfree/solvers/nonlinear_system.hpp"
+#include "meshfree/solvers/parallel.hpp"
 #include <limits>
 #include <memory>
 #include <string>
@@ -81,6 +82,7 @@ struct ElastoplasticResult {
   std::vector<std::pair<std::string, std::vector<std::vector<double>>>> lines; // rank 0 rows
   io::CheckpointCounts checkpoints; // one after every converged increment, with an output folder
   PhaseTimer timer;
+  solvers::PeakMemory memory;                            // at the end of the solve
   double residual_seconds = 0.0, jacobian_seconds = 0.0; // inside the "newton" phase
 };
 

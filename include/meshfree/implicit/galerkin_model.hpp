@@ -83,7 +83,12 @@ ShapeTable shapes_at(const GalerkinModel& m, const std::vector<Vec2>& x, bool gr
 /// The positions of this rank's domain points, in the order of the model's domain table.
 std::vector<Vec2> domain_rows(const GalerkinModel& m);
 
+/// How this model's linear systems are solved: multigrid as spec.linear_solver says (under
+/// auto, from its DOF count up), with this rank's node coordinates for the rigid-body modes.
+solvers::LinearSolverSettings linear_solver_settings(const io::ProblemSpec& spec,
+                                                     const GalerkinModel& m);
+
 /// Short description of the discretisation for logs and the summary.
-std::string describe_method(const io::DiscretisationSpec& d);
+std::string describe_method(const io::ProblemSpec& spec);
 
 } // namespace mf::implicit

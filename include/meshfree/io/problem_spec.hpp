@@ -111,6 +111,14 @@ struct NonlinearSpec {
   int max_cutbacks = 8; // an increment is halved at most this many times in a row
 };
 
+/// The linear solver of the implicit analyses (`linear_solver:`): a direct factorisation below
+/// `multigrid_above` DOFs and algebraic multigrid from there (auto), or one of them always.
+struct LinearSolverSpec {
+  enum class Type { Auto, Direct, Multigrid };
+  Type type = Type::Auto;
+  double multigrid_above = 2e5; // DOFs
+};
+
 struct LineSpec {
   std::string name;
   Vec2 from{0.0, 0.0}, to{0.0, 0.0};
@@ -168,8 +176,9 @@ struct ProblemSpec {
   CheckpointPolicy checkpoint;
   std::vector<LoadStep> steps;
   NonlinearSpec nonlinear;
-  std::optional<SphSpec> sph; // analysis: sph
-  std::optional<PdSpec> pd;   // analysis: peridynamics
+  LinearSolverSpec linear_solver; // implicit analyses
+  std::optional<SphSpec> sph;     // analysis: sph
+  std::optional<PdSpec> pd;       // analysis: peridynamics
   ModelProblem1D model_1d;
   // analysis: staged with more than one stage: each stage as a one-analysis problem (the shared
   // keys copied into it) and how it starts from an earlier one (links[k] for stages[k]).

@@ -2,7 +2,7 @@
 // Newton-Raphson on a distributed system with 2 DOFs per node through PETSc SNES. The caller
 // supplies the residual and the Jacobian as block rows on the exact pattern of the owned nodes
 // (the same rows the elastic solver assembles); SNES does the iteration (newtonls with a line
-// search by default), KSP the linear solves (MUMPS by default); every -snes_/-ksp_/-pc_ option
+// search by default), KSP the linear solves (LinearSolverSettings); every -snes_/-ksp_/-pc_ option
 // on the command line overrides the defaults.
 #include "meshfree/solvers/petsc_session.hpp"
 #include <functional>
@@ -46,7 +46,8 @@ public:
   /// `needed`: the nodes whose values the residual and Jacobian read (besides the owned ones).
   NonlinearBlockSystem(MPI_Comm comm, int node_count, OwnedRange owned, std::vector<int> row_offset,
                        std::vector<int> columns, const std::vector<int>& needed,
-                       ResidualFunction residual, JacobianFunction jacobian);
+                       ResidualFunction residual, JacobianFunction jacobian,
+                       const LinearSolverSettings& linear = {});
   ~NonlinearBlockSystem();
   NonlinearBlockSystem(const NonlinearBlockSystem&) = delete;
   NonlinearBlockSystem& operator=(const NonlinearBlockSystem&) = delete;

@@ -24,6 +24,12 @@ std::vector<double> gather_on_root(MPI_Comm comm, const std::vector<double>& min
 /// `values` of rank `root`, copied to every rank (resized there).
 void broadcast(MPI_Comm comm, std::vector<double>& values, int root);
 
+/// The peak resident memory of the largest rank and of all ranks together, in bytes.
+struct PeakMemory {
+  double largest_rank = 0.0, all_ranks = 0.0;
+};
+PeakMemory peak_memory(MPI_Comm comm);
+
 /// The largest value over every rank, and the rank holding it (the lowest one on a tie).
 struct RankMax {
   double value = 0.0;

@@ -49,6 +49,19 @@ OwnedRange owned_nodes(int n, int rank, int size);
 /// Rank that owns `node` under owned_nodes.
 int owner_of(int node, int n, int size);
 
+/// How the linear systems are solved unless PETSc options given after -- say otherwise.
+/// - direct: a sparse factorisation by MUMPS (Cholesky for symmetric matrices, LU otherwise);
+/// - multigrid: conjugate gradients (GMRES for a matrix that is not symmetric) preconditioned by
+///   PETSc's smoothed-aggregation algebraic multigrid (GAMG; Vanek, Mandel & Brezina 1996), given
+///   the three rigid-body modes of the nodes as its near-null space (without them the coarse
+///   spaces cannot represent rotation and the iterations grow with the size), stopped when the
+///   preconditioned residual falls below `relative_tolerance` of its initial value.
+struct LinearSolverSettings {
+  bool multigrid = false;
+  double relative_tolerance = 1e-12;
+  std::vector<double> coordinates; // multigrid: x and y of each owned node, in order
+};
+
 struct SolveReport {
   int iterations = 0;
   int converged_reason = 0;
@@ -66,13 +79,14 @@ public:
   /// by Cholesky, any other by LU.
   BlockLinearSystem(MPI_Comm comm, int node_count, OwnedRange owned,
                     const std::vector<int>& row_offset, const std::vector<int>& columns,
-                    const std::vector<double>& blocks, const std::vector<double>& rhs, bool spd);
+                    const std::vector<double>& blocks, const std::vector<double>& rhs, bool spd,
+                    const LinearSolverSettings& settings = {});
   ~BlockLinearSystem();
   BlockLinearSystem(const BlockLinearSystem&) = delete;
   BlockLinearSystem& operator=(const BlockLinearSystem&) = delete;
 
-  /// Solves with KSP. The default is a sparse direct solve with MUMPS (Cholesky or LU); every
-  /// KSP/PC option given on the command line overrides it.
+  /// Solves with KSP as the settings say; every KSP/PC option given on the command line
+  /// overrides them.
   SolveReport solve();
   /// The whole solution vector on every rank.
   std::vector<double> solution_everywhere() const;
