@@ -27,6 +27,7 @@ struct NonlinearBlockSystem::Impl {
   double scale = 0.0;         // force scale of the last residual evaluation
   double tolerance = 1e-8;
   int max_iterations = 20;
+  bool multigrid = false; // the default linear solver is multigrid (for the failure's hint)
   NewtonReport report;
 
   /// Copies the owned and needed entries of X into d.
@@ -172,6 +173,7 @@ NonlinearBlockSystem::NonlinearBlockSystem(MPI_Comm comm, int node_count, OwnedR
   KSP ksp;
   check(SNESGetKSP(s.snes, &ksp), "SNESGetKSP");
   detail::set_default_solver(ksp, s.J, /*symmetric=*/true, linear);
+  s.multigrid = linear.multigrid;
   check(SNESSetFromOptions(s.snes), "SNESSetFromOptions");
 }
 
@@ -211,7 +213,9 @@ NewtonReport NonlinearBlockSystem::solve(std::vector<double>& d, const NewtonSet
   s.report.iterations = static_cast<int>(its);
   s.report.linear_iterations = static_cast<int>(lits);
   s.report.reason = SNESConvergedReasons[reason];
-  if (reason == SNES_DIVERGED_LINEAR_SOLVE) {
+  if (reason == SNES_DIVERGED_LINEAR_SOLVE && s.multigrid) {
+    s.report.reason += std::string(" (") + detail::kMultigridHint + ")";
+  } else if (reason == SNES_DIVERGED_LINEAR_SOLVE) {
     KSP ksp;
     PC pc;
     check(SNESGetKSP(s.snes, &ksp), "SNESGetKSP");

@@ -30,6 +30,12 @@ void set_block_values(Mat A, OwnedRange owned, const std::vector<int>& row_offse
 /// modes of settings.coordinates.
 void set_default_solver(KSP ksp, Mat A, bool symmetric, const LinearSolverSettings& settings);
 
+/// What to try when the multigrid solver does not converge.
+inline constexpr const char* kMultigridHint =
+    "multigrid stalls on nodes a sliver apart (a node lattice that does not fit the body leaves "
+    "its last row next to an edge): a spacing that divides the body's sides, or "
+    "linear_solver.type: direct";
+
 /// Names (without the '-') of the options the code itself puts in PETSc's database as defaults,
 /// which are not the user's and so never reported unused.
 std::set<std::string>& options_set_by_code();

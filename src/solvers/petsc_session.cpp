@@ -136,8 +136,10 @@ SolveReport BlockLinearSystem::solve() {
     PCFailedReason pcr = PC_NOERROR;
     PCGetFailedReasonRank(pc, &pcr);
     fail("linear solve failed: KSP stopped with ", r.reason_name, " after ", r.iterations,
-         " iterations (solver ", r.solver, ", preconditioner: ", PCFailedReasons[pcr],
-         "); a factorisation that fails usually means the body is not held against rigid motion");
+         " iterations (solver ", r.solver, ", preconditioner: ", PCFailedReasons[pcr], "); ",
+         s.settings.multigrid ? detail::kMultigridHint
+                              : "a factorisation that fails usually means the body is not held "
+                                "against rigid motion");
   }
   // The reason alone does not say the system was solved: a KSP of type preonly reports
   // CONVERGED_ITS after one application of whatever preconditioner it was given (with
