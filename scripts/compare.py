@@ -45,10 +45,16 @@ PROBLEMS = {
     "plate_asymmetric_plastic": dict(
         control=("factor_pull", "v", "top displacement v [mm]"), driver="pull",
         responses=[("force on the top edge [N]", "reaction_pull_y", "force_top")]),
+    # The strip and Cook's membrane, the two problems whose discretisations the convergence
+    # study chose, are held to 1% (check) rather than the suite's 2%.
     "perforated_strip": dict(
         control=("factor_pull", "v", "end displacement v [mm]"), driver="pull",
-        elastic_limit=True,
+        elastic_limit=True, check=0.01,
         responses=[("force on the end [kgf]", "reaction_pull_y", "force_top")]),
+    "cook_membrane": dict(
+        control=("factor_shear", "v", "end shear displacement v [mm]"), driver="shear", check=0.01,
+        responses=[("force on the end [N]", "reaction_shear_y", "force_right"),
+                   ("u_x at (48, 60) [mm]", "ux_top_right", "ux_48_60")]),
     "beam_voce_bending": dict(
         control=("factor_push", "v", "end deflection v [mm]"), driver="push",
         responses=[("force on the end [N]", "reaction_push_y", "force_right")]),
@@ -232,6 +238,8 @@ def main():
             runs[method] = given or run(p, method, args.out, args.meshfree)
         for (method, label), d in compare(p, runs, args.out).items():
             limit = args.check_first_yield if label == "first yield" else args.check
+            if limit is not None and label != "first yield" and "check" in PROBLEMS[p]:
+                limit = min(limit, PROBLEMS[p]["check"])
             if limit is not None and not d <= limit:
                 failed.append(f"{p} {method} {label}: {d:.3e} > {limit}")
     if failed:

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Regenerate the CalculiX finite-element references for five elastoplastic
+"""Regenerate the CalculiX finite-element references for six elastoplastic
 plane-stress problems (load-displacement curves, elastic limits).
 
 Run from the repository root:
@@ -8,7 +8,7 @@ Run from the repository root:
     /usr/bin/python3 scripts/fe_reference/make_calculix_plastic_reference.py --quick
 
 Full run: all mesh levels and checks, writes reference/calculix_plastic/
-(about 30 min on 2 cores; --quick about 45 s).
+(about 40 min on 2 cores, cook_membrane 10 min of it; --quick under 1 min).
 --quick: remakes only the coarsest level of every problem in a temporary
 folder and compares it with the committed curve_level0.csv files; prints
 "quick check: max relative difference ..." and exits 1 if any value differs
@@ -38,6 +38,10 @@ perforated_strip         quarter of the Zienkiewicz-Valliappan-King strip
 beam_voce_bending        [0,10]x[0,2], E=206900, nu=0.29, Voce + linear
                          hardening (Simo's constants); left clamped, right
                          edge uy = -v, v to 0.5 mm.
+cook_membrane            Cook's membrane, the quadrilateral (0,0), (48,44),
+                         (48,60), (0,44), material of beam_voce_bending;
+                         left edge x = 0 clamped, right edge x = 48 uy = v,
+                         v to 2 mm.
 
 Method (details and results: reference/calculix_plastic/README.md)
 ------
@@ -65,6 +69,9 @@ Method (details and results: reference/calculix_plastic/README.md)
   the integration points; nodal stresses computed here by extrapolating the
   3x3 Gauss-point values of each element with the biquadratic Lagrange
   polynomial through them and averaging over the elements at a node.
+* cook_membrane also prints the yielded area at the last record (from the
+  nodal PEEQ of the .frd) and the first-yield forces, and repeats the
+  orthotropic cross-check on the finest level.
 
 Output (reference/calculix_plastic/<problem>/)
 ------
@@ -453,6 +460,33 @@ def mesh_strip(n):
     return m
 
 
+COOK_CORNERS = ((0.0, 0.0), (48.0, 44.0), (48.0, 60.0), (0.0, 44.0))
+
+
+def mesh_cook(n):
+    """Cook's membrane, the quadrilateral (0,0), (48,44), (48,60), (0,44):
+    one mapped block, the bilinear map x = 48 s, y = 44 s + 44 r - 28 s r
+    (s, r in [0, 1]).  Mesh lines at the parameters k/n (n even, so that the
+    midpoint (24, 52) of the top edge, s = 1/2 on r = 1, is a node), graded
+    with graded_lines (zone 0.1, exponent 3) towards s = 0 (the clamped edge
+    x = 0) and r = 0, 1 (the bottom and top edges): the elements are
+    smallest at the clamped corners (0,0) and (0,44).  All element edges are
+    straight, with the midside nodes at their midpoints."""
+    if n % 2:
+        raise ValueError("mesh_cook: n must be even")
+    (x1, y1), (x2, y2), (x3, y3), (x4, y4) = COOK_CORNERS
+
+    def blk(s, r):
+        return ((1 - s) * (1 - r) * x1 + s * (1 - r) * x2 + s * r * x3 + (1 - s) * r * x4,
+                (1 - s) * (1 - r) * y1 + s * (1 - r) * y2 + s * r * y3 + (1 - s) * r * y4)
+
+    sp = graded_lines(1.0, 1.0 / n, [0.0], 0.1, 3.0, [0.5])
+    rp = graded_lines(1.0, 1.0 / n, [0.0, 1.0], 0.1, 3.0)
+    m = block_mesh([(blk, sp, rp)], "n=%d graded" % n, 48.0 / n)
+    m.grid = (len(sp) - 1, len(rp) - 1)
+    return m
+
+
 # --------------------------------------------------------------------------
 # problem definitions
 # --------------------------------------------------------------------------
@@ -503,6 +537,16 @@ PROBLEMS = [
                    steps=[(0.5, 50)]),
          force=("force_right", "DRIVE"), load_col="v",
          monitors=[("uy_5_1", (5.0, 1.0), 1), ("ux_10_2", (10.0, 2.0), 0)]),
+    dict(name="cook_membrane", units="N, mm, MPa", E=206900.0, nu=0.29, sig_y=450.0,
+         hardening=("voce", 450.0, 715.0, 16.93, 129.24), alpha_max=10.0, min_dim=16.0,
+         mesh=mesh_cook, levels=[6, 12, 24, 48],
+         fixed=[("CLAMP", lambda x, y: _on(x, 0.0), (1, 2))],
+         load=dict(kind="displacement", nodes=lambda x, y: _on(x, 48.0), dof=2, sign=1.0,
+                   steps=[(2.0, 50)]),
+         force=("force_right", "DRIVE"), load_col="v",
+         monitors=[("ux_48_60", (48.0, 60.0), 0), ("ux_48_44", (48.0, 44.0), 0),
+                   ("uy_24_52", (24.0, 52.0), 1)],
+         report_yielded_area=True, ortho_check_finest=True),
 ]
 
 
@@ -513,7 +557,7 @@ def hardening_table(prob):
     if kind == "linear":
         return linear_table(prob["sig_y"], prob["hardening"][1], 10.0)
     _k, s0, sinf, delta, h = prob["hardening"]
-    return voce_table(s0, sinf, delta, h, 2.0)
+    return voce_table(s0, sinf, delta, h, prob.get("alpha_max", 2.0))
 
 
 def hardening_law(prob):
@@ -696,6 +740,43 @@ def parse_frd_peeq(path):
     return best
 
 
+def parse_frd_peeq_nodes(path):
+    """Nodal equivalent plastic strain {node id: value} of the last PE block
+    of the .frd file (the last recorded increment)."""
+    vals, inblock = {}, False
+    with open(path) as f:
+        for line in f:
+            if line.startswith(" -4"):
+                inblock = line.split()[1] == "PE"
+                if inblock:
+                    vals = {}
+            elif inblock and line.startswith(" -1"):
+                vals[int(line[3:13])] = float(line[13:25])
+            elif line.startswith(" -3"):
+                inblock = False
+    return vals
+
+
+def yielded_fraction(mesh, peeq):
+    """Fraction of the body's area where the equivalent plastic strain is
+    positive at the last record: the nodal values (CalculiX's extrapolation
+    into the .frd) are interpolated with the Q8 shape functions to the 3 x 3
+    Gauss points of every element, and the Gauss weights x det J of the
+    points with a positive value are summed."""
+    pe = np.array([peeq.get(k + 1, 0.0) for k in range(mesh.nnodes)])
+    xe = mesh.xy[mesh.elems - 1]
+    pee = pe[mesh.elems - 1]
+    total = plastic = 0.0
+    for (xi, wx) in zip(GP, (5 / 9, 8 / 9, 5 / 9)):
+        for (eta, wy) in zip(GP, (5 / 9, 8 / 9, 5 / 9)):
+            dn = q8_dshape(xi, eta)
+            jac = np.einsum("eak,al->ekl", xe, dn)
+            w = (jac[:, 0, 0] * jac[:, 1, 1] - jac[:, 0, 1] * jac[:, 1, 0]) * wx * wy
+            total += w.sum()
+            plastic += w[pee @ q8_shape(xi, eta) > 0.0].sum()
+    return plastic / total
+
+
 def newton_stats(path):
     """(converged increments, failed attempts (cut back), total Newton
     iterations) from the .sta file."""
@@ -748,6 +829,9 @@ def solve(prob, mesh, workdir, tag, mode="plastic", thickness=None, inc_factor=1
     if mode == "plastic":
         res["newton"] = newton_stats(os.path.join(workdir, job + ".sta"))
         res["peeq_max"] = parse_frd_peeq(os.path.join(workdir, job + ".frd"))
+        if prob.get("report_yielded_area"):
+            res["yielded"] = yielded_fraction(
+                mesh, parse_frd_peeq_nodes(os.path.join(workdir, job + ".frd")))
     if prob.get("line_top"):
         lt = dat[("displacements", "LINETOP")]
         ids = [mesh.find(k / 40.0, 1.0) for k in range(41)]
@@ -929,6 +1013,9 @@ def run_problem(prob, out_root, work, quick):
               "ccx %6.1fs, %d increments (%d cut back), %d iterations, max PEEQ %.4g"
               % (lev, mesh.label, mesh.nelems, mesh.nnodes, mesh.min_edge(), detj,
                  r["wall"], inc, cut, its, r["peeq_max"] or 0.0))
+        if "yielded" in r:
+            print("          yielded area at the last record (interpolated nodal PEEQ > 0 at "
+                  "the Gauss points): %.1f%% of the body" % (100.0 * r["yielded"]))
         results.append(r)
         meshes.append(mesh)
     cols = curve_columns(prob)
@@ -1014,6 +1101,17 @@ def run_problem(prob, out_root, work, quick):
               "%s = %.6e; at nodes %.6e at %s -> %.6e"
               % (lev, mesh.label, lim["ip"], fmt_xy(lim["xy_ip"]), prob["load_col"], fy_ip,
                  lim["node"], fmt_xy(lim["xy_node"]), fy_n))
+    if prob.get("report_yielded_area"):
+        # the unit-load force of the finest level scales the first-yield
+        # factors to forces, for comparison with the plastic curve
+        f1 = re_["curve"][1, 1]
+        flast = finest["curve"][-1, 1]
+        print("    finest level: force at unit load %.7g; first yield at force %.6g (IP) / "
+              "%.6g (node); force at the last record %s = %g: %.7g = %.2f x / %.2f x these"
+              % (f1, f1 * lim_rows[-1][8], f1 * lim_rows[-1][9], prob["load_col"],
+                 finest["curve"][-1, 0], flast, flast / (f1 * lim_rows[-1][8]),
+                 flast / (f1 * lim_rows[-1][9])))
+        summary["unit_force"] = f1
     with open(os.path.join(outdir, "elastic_limit.csv"), "w") as f:
         f.write("level,h,max_vm_ip,x_ip,y_ip,max_vm_node,x_node,y_node,"
                 "first_yield_factor_ip,first_yield_factor_node\n")
@@ -1028,6 +1126,13 @@ def run_problem(prob, out_root, work, quick):
           "orthotropic plane-stress law (t = 1): max relative difference %.2e [%s]"
           % (d[1:].max(), ", ".join("%s %.1e" % (c, v) for c, v in zip(cols[2:], d[1:]))))
     summary["ortho"] = float(d[1:].max())
+    if prob.get("ortho_check_finest"):
+        last = len(meshes) - 1
+        ro = solve(prob, meshes[last], work, "L%d_ortho" % last, mode="ortho", thickness=1.0)
+        _df, _dd, d = rel_diff(ro["curve"], re_["curve"], prob)
+        print("  the same on level %d: max relative difference %.2e [%s]"
+              % (last, d[1:].max(),
+                 ", ".join("%s %.1e" % (c, v) for c, v in zip(cols[2:], d[1:]))))
     # the first record is elastic when it lies below first yield: it must be
     # the unit-load solution scaled
     lam1 = results[0]["curve"][1, 0]
