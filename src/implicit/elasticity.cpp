@@ -15,6 +15,21 @@ void point_stiffness(const ShapeTable& t, int r, const Mat3& wC, double* K) {
     CB = heap.data();
   }
   for (int j = 0; j < n; ++j) CB[j] = wC * strain_matrix(g[j]);
+  if (!t.test_dphi.empty()) {
+    // Corrected test functions (a Petrov-Galerkin form): every block on its own.
+    const Vec2* h = t.test_gradients(r);
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Matrix<double, 3, 2> Bi = strain_matrix(h[i]);
+      for (int j = 0; j < n; ++j) {
+        const Mat2 kij = Bi.transpose() * CB[j];
+        double* ij0 = K + (2 * i) * (2 * n) + 2 * j;
+        double* ij1 = ij0 + 2 * n;
+        ij0[0] = kij(0, 0), ij0[1] = kij(0, 1);
+        ij1[0] = kij(1, 0), ij1[1] = kij(1, 1);
+      }
+    }
+    return;
+  }
   // C is symmetric (elasticity, and the consistent tangent of associative plasticity), so
   // K_JI = K_IJ^T: half the blocks are computed.
   for (int i = 0; i < n; ++i) {
@@ -49,7 +64,7 @@ void add_internal_force(const ShapeTable& t, const std::vector<double>& weight,
   std::vector<double> f;
   for (int r = 0; r < t.rows(); ++r) {
     const int n = t.offset[r + 1] - t.offset[r];
-    const Vec2* g = t.dphi.data() + t.offset[r];
+    const Vec2* g = t.test_gradients(r);
     const Vec3 ws = weight[r] * stress[r];
     f.resize(2 * n);
     for (int i = 0; i < n; ++i) {

@@ -1,6 +1,7 @@
 #include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/core/log.hpp"
 #include "meshfree/fem/mesh_generation.hpp"
+#include "meshfree/implicit/integration_correction.hpp"
 #include <algorithm>
 
 namespace mf::implicit {
@@ -121,6 +122,7 @@ GalerkinModel build_meshfree_model(const io::ProblemSpec& spec,
       for (int r : c.mine.rows) c.weight.push_back(c.points.weight[r] * spec.thickness);
       c.values = condition_values(spec, *c.bc, c.points, c.mine.rows);
     }
+    if (disc.vci) session.collective([&] { correct_test_gradients(spec, m, session); });
   }
   return m;
 }
@@ -329,6 +331,7 @@ solvers::LinearSolverSettings linear_solver_settings(const io::ProblemSpec& spec
   solvers::LinearSolverSettings s;
   s.multigrid = l.type == Type::Multigrid ||
                 (l.type == Type::Auto && 2.0 * m.node_count() >= l.multigrid_above);
+  s.symmetric = !spec.discretisation.vci;
   if (s.multigrid)
     for (int I = m.own.begin; I < m.own.end; ++I) {
       s.coordinates.push_back(m.node_positions()[I].x());
@@ -358,6 +361,7 @@ std::string describe_method(const io::ProblemSpec& spec) {
                                                              : "truncated Gaussian";
   m += s.support == kernels::SupportShape::Circular ? " window, circular supports"
                                                     : " window, rectangular supports";
+  if (d.vci) m += ", VCI";
   return m;
 }
 

@@ -18,8 +18,30 @@ kernels::WindowType window_type(const std::string& s) {
   return kernels::WindowType::Gaussian;
 }
 
+LinearSolverSpec read_linear_solver(KeyReader& r) {
+  LinearSolverSpec s;
+  if (auto l = r.optional_map("linear_solver")) {
+    const std::string type = l->choice("type", {"auto", "direct", "multigrid"}, "auto");
+    s.type = type == "direct"      ? LinearSolverSpec::Type::Direct
+             : type == "multigrid" ? LinearSolverSpec::Type::Multigrid
+                                   : LinearSolverSpec::Type::Auto;
+    s.multigrid_above = l->positive("multigrid_above", s.multigrid_above);
+    l->finish();
+  }
+  return s;
+}
+
+/// Bytes per Galerkin node at a run's peak with the linear solver that `count` nodes get.
+double bytes_per_node(const LinearSolverSpec& solver, double count) {
+  const bool multigrid =
+      solver.type == LinearSolverSpec::Type::Multigrid ||
+      (solver.type == LinearSolverSpec::Type::Auto && 2.0 * count >= solver.multigrid_above);
+  return multigrid ? bytes_per::galerkin_node_multigrid : bytes_per::galerkin_node;
+}
+
 DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox& bounds,
-                                       const std::string& base_dir) {
+                                       const std::string& base_dir,
+                                       const LinearSolverSpec& solver = {}) {
   KeyReader d = r.map("discretisation");
   DiscretisationSpec s;
   s.method =
@@ -37,13 +59,11 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
     f->finish();
   }
   s.spacing = d.positive("spacing");
-  // Bytes per node at the peak of an elastic run with the direct solver, measured: 21 KB at 4e4
-  // nodes on plate_tension (shape functions, matrix, factor), with a margin. Estimates in
-  // floating point, so that a tiny spacing cannot overflow a count.
-  constexpr double kBytesPerNode = bytes_per::galerkin_node;
+  // Node counts estimated in floating point, so that a tiny spacing cannot overflow a count.
   const Vec2 size = bounds.hi - bounds.lo;
   double nodes_total = (size.x() / s.spacing + 1.0) * (size.y() / s.spacing + 1.0);
-  require_memory(d.path_of("spacing"), "nodes over the body", nodes_total, kBytesPerNode);
+  require_memory(d.path_of("spacing"), "nodes over the body", nodes_total,
+                 bytes_per_node(solver, nodes_total));
   for (KeyReader& f : d.map_list("refinement")) {
     geometry::Refinement ref;
     const Box b = read_box(f, "box", 2);
@@ -62,13 +82,13 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
       f.error("box", "lies outside the body: it refines nothing");
     ref.box = BoundingBox{clip_lo, clip_hi};
     const double nodes = (extent.x() / ref.spacing + 1.0) * (extent.y() / ref.spacing + 1.0);
-    require_memory(f.path_of("spacing"), "nodes in the box", nodes, kBytesPerNode);
+    require_memory(f.path_of("spacing"), "nodes in the box", nodes, bytes_per_node(solver, nodes));
     nodes_total += nodes;
     f.finish();
     s.refinement.push_back(ref);
   }
   require_memory(d.path_of("spacing"), "nodes over the body and its refinements", nodes_total,
-                 kBytesPerNode);
+                 bytes_per_node(solver, nodes_total));
   const std::string approx = d.choice("approximation", {"rk", "mls"}, "rk");
   s.shape.approximation = approx == "rk" ? kernels::Approximation::ReproducingKernel
                                          : kernels::Approximation::MovingLeastSquares;
@@ -93,6 +113,7 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
     s.cell_size = q->positive("cell_size", s.spacing);
     s.cut_levels = q->integer("cut_levels", 2, 0, 6);
     s.boundary_order = q->integer("boundary_order", s.order, 2, 10);
+    s.vci = q->choice("correction", {"none", "vci"}, "none") == "vci";
     q->finish();
   } else {
     s.cell_size = s.spacing;
@@ -265,19 +286,6 @@ NonlinearSpec read_nonlinear(KeyReader& r) {
     s.max_iterations = n->integer("max_iterations", s.max_iterations, 1, 200);
     s.max_cutbacks = n->integer("max_cutbacks", s.max_cutbacks, 0, 30);
     n->finish();
-  }
-  return s;
-}
-
-LinearSolverSpec read_linear_solver(KeyReader& r) {
-  LinearSolverSpec s;
-  if (auto l = r.optional_map("linear_solver")) {
-    const std::string type = l->choice("type", {"auto", "direct", "multigrid"}, "auto");
-    s.type = type == "direct"      ? LinearSolverSpec::Type::Direct
-             : type == "multigrid" ? LinearSolverSpec::Type::Multigrid
-                                   : LinearSolverSpec::Type::Auto;
-    s.multigrid_above = l->positive("multigrid_above", s.multigrid_above);
-    l->finish();
   }
   return s;
 }
@@ -480,7 +488,8 @@ void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
   if (p.model_type != ModelType::PlaneStress && p.model_type != ModelType::PlaneStrain)
     r.error("model", "analysis " + analysis + " takes model.type plane_stress or plane_strain");
   take_material(r, p, analysis);
-  p.discretisation = read_discretisation(r, 2, p.domain.bounds(), base_dir);
+  p.linear_solver = read_linear_solver(r);
+  p.discretisation = read_discretisation(r, 2, p.domain.bounds(), base_dir, p.linear_solver);
   p.exact = read_exact(r);
   if (r.has("body_force")) p.body_force = r.vec2("body_force");
   r.allow("body_force");
@@ -517,7 +526,6 @@ void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
     material_error(mat, "plasticity", "analysis elastoplastic_static needs a plasticity law");
   if (!plastic && p.plasticity)
     material_error(mat, "plasticity", "used only by analysis elastoplastic_static");
-  p.linear_solver = read_linear_solver(r);
   if (plastic) {
     p.steps = read_steps(r, p.boundary, p.initial_stress.has_value());
     p.nonlinear = read_nonlinear(r);

@@ -132,8 +132,10 @@ NonlinearBlockSystem::NonlinearBlockSystem(MPI_Comm comm, int node_count, OwnedR
   s.blocks.assign(4 * s.columns.size(), 0.0);
 
   s.J = detail::create_block_matrix(comm, node_count, owned, s.row_offset, s.columns, {});
-  // The consistent tangent of associative plasticity plus the penalty terms is symmetric.
-  check(MatSetOption(s.J, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption(MAT_SYMMETRIC)");
+  // The consistent tangent of associative plasticity plus the penalty terms is symmetric (in a
+  // Galerkin form, not with corrected test functions).
+  if (linear.symmetric)
+    check(MatSetOption(s.J, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption(MAT_SYMMETRIC)");
   check(MatCreateVecs(s.J, &s.x, &s.r), "MatCreateVecs");
 
   // The entries the callbacks read: owned nodes and the needed ones, without repeats.
@@ -172,7 +174,7 @@ NonlinearBlockSystem::NonlinearBlockSystem(MPI_Comm comm, int node_count, OwnedR
   check(SNESLineSearchSetType(ls, SNESLINESEARCHCP), "SNESLineSearchSetType");
   KSP ksp;
   check(SNESGetKSP(s.snes, &ksp), "SNESGetKSP");
-  detail::set_default_solver(ksp, s.J, /*symmetric=*/true, linear);
+  detail::set_default_solver(ksp, s.J, linear.symmetric, linear);
   s.multigrid = linear.multigrid;
   check(SNESSetFromOptions(s.snes), "SNESSetFromOptions");
 }

@@ -81,12 +81,12 @@ BlockLinearSystem::BlockLinearSystem(MPI_Comm comm, int node_count, OwnedRange o
                                      const std::vector<double>& rhs, bool spd,
                                      const LinearSolverSettings& settings)
     : impl_(std::make_unique<Impl>()) {
-  impl_->spd = spd;
+  impl_->spd = spd && settings.symmetric;
   impl_->settings = settings;
   MF_REQUIRE(static_cast<int>(rhs.size()) == 2 * (owned.end - owned.begin),
              "BlockLinearSystem: inconsistent right-hand side");
   impl_->A = detail::create_block_matrix(comm, node_count, owned, row_offset, columns, blocks);
-  if (spd) check(MatSetOption(impl_->A, MAT_SPD, PETSC_TRUE), "MatSetOption(MAT_SPD)");
+  if (impl_->spd) check(MatSetOption(impl_->A, MAT_SPD, PETSC_TRUE), "MatSetOption(MAT_SPD)");
   check(MatCreateVecs(impl_->A, &impl_->x, &impl_->b), "MatCreateVecs");
   PetscScalar* bv;
   check(VecGetArray(impl_->b, &bv), "VecGetArray");

@@ -25,16 +25,17 @@ inline Eigen::Matrix<double, 3, 2> strain_matrix(const Vec2& g) {
   return B;
 }
 
-/// The 2n x 2n block (row-major) of one point r of the table with n nodes: K_IJ = B_I^T wC B_J,
+/// The 2n x 2n block (row-major) of one point r of the table with n nodes: K_IJ = B~_I^T wC B_J,
 /// with wC the constitutive (or algorithmic tangent) matrix times the point's weight, which must
-/// be symmetric. `K` has room for 4 n^2 values.
+/// be symmetric, and B~ the test functions' strain matrix (B itself unless the table holds
+/// corrected test gradients). `K` has room for 4 n^2 values.
 void point_stiffness(const ShapeTable& t, int r, const Mat3& wC, double* K);
 
 /// K_IJ = sum_r weight[r] B_I^T C B_J: the elastic stiffness, one C for every point.
 void add_stiffness(const ShapeTable& table, const std::vector<double>& weight, const Mat3& C,
                    const MatrixAdder& add);
 
-/// Internal force f_I = sum_r weight[r] B_I^T sigma[r].
+/// Internal force f_I = sum_r weight[r] B~_I^T sigma[r] (B~ as in point_stiffness).
 void add_internal_force(const ShapeTable& table, const std::vector<double>& weight,
                         const std::vector<Vec3>& stress, const VectorAdder& add);
 

@@ -23,7 +23,14 @@ struct ShapeTable {
   std::vector<int> node;
   std::vector<double> phi;
   std::vector<Vec2> dphi;
+  /// The test functions' gradients where they differ from the trial ones (the variationally
+  /// consistent correction, implicit/integration_correction); empty otherwise.
+  std::vector<Vec2> test_dphi;
   int rows() const { return static_cast<int>(offset.size()) - 1; }
+  /// Test-function gradients of row r's nodes.
+  const Vec2* test_gradients(int r) const {
+    return (test_dphi.empty() ? dphi.data() : test_dphi.data()) + offset[r];
+  }
 };
 
 class MeshfreeSpace {

@@ -56,6 +56,7 @@ struct DiscretisationSpec {
   double cell_size = 0.0;  // background cell size (default: spacing)
   int cut_levels = 2;      // subdivisions of cells cut by the boundary
   int boundary_order = 3;  // Gauss points per boundary part
+  bool vci = false;        // meshfree: variationally consistent test-function gradients
 };
 
 struct BoundaryCondition {

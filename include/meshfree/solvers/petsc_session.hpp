@@ -58,6 +58,7 @@ int owner_of(int node, int n, int size);
 ///   preconditioned residual falls below `relative_tolerance` of its initial value.
 struct LinearSolverSettings {
   bool multigrid = false;
+  bool symmetric = true; // false for a Petrov-Galerkin form: LU, or GMRES with multigrid
   double relative_tolerance = 1e-12;
   std::vector<double> coordinates; // multigrid: x and y of each owned node, in order
 };
