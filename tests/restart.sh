@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Checkpoint and restart: runs killed with SIGKILL after their second checkpoint and restarted with --restart give every CSV and XDMF file byte for byte, every dataset of every
-# HDF5 file and every number of summary.json (times and rates aside) equal to the run that was
+# HDF5 file and every number of summary.json (times, rates and memory aside) equal to the run that was
 # never stopped; a restart that changed the problem, or that has no checkpoint, is refused.
 set -u
 MF="$1"; ROOT="$2"
@@ -17,9 +17,9 @@ import h5py, numpy as np
 a_dir, b_dir = sys.argv[1:3]
 names = sorted(os.path.basename(f) for f in glob.glob(a_dir + "/*"))
 assert names == sorted(os.path.basename(f) for f in glob.glob(b_dir + "/*")), "other files"
-def timing(key):  # a time or a rate of this machine, not a result
+def timing(key):  # a time, a rate or the memory of this machine, not a result
     return (key.endswith(("_per_second", "seconds")) or
-            key in ("share_of_run", "time_s", "checkpoints"))
+            key in ("share_of_run", "time_s", "checkpoints", "memory"))
 def same(x, y, where):
     if isinstance(x, dict):
         for k in x:

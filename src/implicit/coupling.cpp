@@ -118,18 +118,13 @@ void BlockRows::add_matrix_at(const int* slots, int n, const double* block) {
 BlockScatter::BlockScatter(const ShapeTable& t, const RowPattern& p, double max_bytes)
     : table_(t), pattern_(p) {
   offset_.assign(t.rows() + 1, 0);
-  std::size_t widest = 0;
   for (int r = 0; r < t.rows(); ++r) {
     const std::size_t n = t.offset[r + 1] - t.offset[r];
     offset_[r + 1] = offset_[r] + n * n;
-    widest = std::max(widest, n * n);
   }
   if (max_bytes < 0.0) max_bytes = 0.25 * usable_memory();
   kept_ = max_bytes <= 0.0 ? false : full_bytes() <= max_bytes;
-  if (!kept_) {
-    scratch_.resize(widest);
-    return;
-  }
+  if (!kept_) return;
   slot_.resize(offset_.back());
   for (int r = 0; r < t.rows(); ++r) find(r, slot_.data() + offset_[r]);
 }

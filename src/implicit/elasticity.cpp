@@ -48,14 +48,12 @@ void point_stiffness(const ShapeTable& t, int r, const Mat3& wC, double* K) {
   }
 }
 
-void add_stiffness(const ShapeTable& t, const std::vector<double>& weight, const Mat3& C,
-                   const MatrixAdder& add) {
-  std::vector<double> K;
-  for (int r = 0; r < t.rows(); ++r) {
-    const int n = t.offset[r + 1] - t.offset[r];
-    K.resize(4 * n * n);
-    point_stiffness(t, r, weight[r] * C, K.data());
-    add(t.node.data() + t.offset[r], n, K.data());
+void point_internal_force(const ShapeTable& t, int r, const Vec3& ws, double* f) {
+  const int n = t.offset[r + 1] - t.offset[r];
+  const Vec2* g = t.test_gradients(r);
+  for (int i = 0; i < n; ++i) {
+    f[2 * i] = g[i].x() * ws(0) + g[i].y() * ws(2);
+    f[2 * i + 1] = g[i].y() * ws(1) + g[i].x() * ws(2);
   }
 }
 
@@ -64,13 +62,8 @@ void add_internal_force(const ShapeTable& t, const std::vector<double>& weight,
   std::vector<double> f;
   for (int r = 0; r < t.rows(); ++r) {
     const int n = t.offset[r + 1] - t.offset[r];
-    const Vec2* g = t.test_gradients(r);
-    const Vec3 ws = weight[r] * stress[r];
     f.resize(2 * n);
-    for (int i = 0; i < n; ++i) {
-      f[2 * i] = g[i].x() * ws(0) + g[i].y() * ws(2);
-      f[2 * i + 1] = g[i].y() * ws(1) + g[i].x() * ws(2);
-    }
+    point_internal_force(t, r, weight[r] * stress[r], f.data());
     add(t.node.data() + t.offset[r], n, f.data());
   }
 }

@@ -33,6 +33,8 @@ struct OwnedRowAdder {
 ElastoplasticSystem::ElastoplasticSystem(const io::ProblemSpec& spec, const GalerkinModel& m)
     : spec_(spec), m_(m), laws_(point_laws(spec, domain_rows(m))), states_(m.domain_table.rows()),
       penalty_(m.pattern), tangent_(m.pattern), scatter_(m.domain_table, m.pattern) {
+  MF_REQUIRE(m.domain_groups.rows() == m.domain_table.rows(),
+             "ElastoplasticSystem: the model's points are not grouped for assembly");
   if (!scatter_.kept())
     log::info("the tangent's slot map would take ", describe_bytes(scatter_.full_bytes()),
               ", more than a quarter of the memory here: each point's slots are searched anew "
@@ -72,8 +74,16 @@ void ElastoplasticSystem::residual(const std::vector<double>& d, double* r, doub
   update_materials(d);
   const int rows = m_.pattern.rows();
   std::fill(r, r + 2 * rows, 0.0);
-  add_internal_force(m_.domain_table, m_.domain_weight, states_.stress,
-                     OwnedRowAdder{m_.pattern.begin, m_.pattern.end, r});
+  // Point by point, in the groups that let threads add at once (no shared node in a group).
+  const ShapeTable& t = m_.domain_table;
+  const OwnedRowAdder into{m_.pattern.begin, m_.pattern.end, r};
+  std::vector<std::vector<double>> f(PointGroups::threads());
+  m_.domain_groups.for_each([&](int k, int thread) {
+    const int n = t.offset[k + 1] - t.offset[k];
+    f[thread].resize(2 * n);
+    point_internal_force(t, k, m_.domain_weight[k] * states_.stress[k], f[thread].data());
+    into(t.node.data() + t.offset[k], n, f[thread].data());
+  });
   double internal = 0.0, external = 0.0;
   for (int i = 0; i < 2 * rows; ++i) internal += r[i] * r[i];
   penalty_.multiply_add(d, r);
@@ -95,12 +105,15 @@ void ElastoplasticSystem::jacobian(const std::vector<double>& d, std::vector<dou
   update_materials(d);
   tangent_.set_values(penalty_.values());
   const ShapeTable& t = m_.domain_table;
-  for (int k = 0; k < t.rows(); ++k) {
+  const int threads = PointGroups::threads();
+  std::vector<std::vector<double>> block(threads);
+  std::vector<std::vector<int>> slots(threads);
+  m_.domain_groups.for_each([&](int k, int thread) {
     const int n = t.offset[k + 1] - t.offset[k];
-    block_.resize(4 * n * n);
-    point_stiffness(t, k, m_.domain_weight[k] * states_.tangent[k], block_.data());
-    tangent_.add_matrix_at(scatter_.slots(k), n, block_.data());
-  }
+    block[thread].resize(4 * n * n);
+    point_stiffness(t, k, m_.domain_weight[k] * states_.tangent[k], block[thread].data());
+    tangent_.add_matrix_at(scatter_.slots(k, slots[thread]), n, block[thread].data());
+  });
   blocks = tangent_.values();
   jacobian_seconds_ += seconds_since(t0);
 }

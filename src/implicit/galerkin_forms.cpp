@@ -18,21 +18,19 @@ BlockRows assemble_linear_elastic(const io::ProblemSpec& spec, const GalerkinMod
   };
   const bool regions = !spec.material_regions.empty() || has_gravity(spec);
   const PointLaws laws = regions ? point_laws(spec, domain_rows(m)) : PointLaws{};
-  if (!regions || laws.one_material) {
-    const Mat3 C = regions ? laws.elastic[laws.material.empty() ? 0 : laws.material.front()]
-                           : materials::elastic_matrix(spec.material, spec.model);
-    add_stiffness(m.domain_table, m.domain_weight, C, add_matrix);
-  } else {
-    // Each point with the elastic matrix of its material.
-    const ShapeTable& t = m.domain_table;
-    std::vector<double> K;
-    for (int r = 0; r < t.rows(); ++r) {
-      const int n = t.offset[r + 1] - t.offset[r];
-      K.resize(4 * n * n);
-      point_stiffness(t, r, m.domain_weight[r] * laws.elastic[laws.material[r]], K.data());
-      add_matrix(t.node.data() + t.offset[r], n, K.data());
-    }
-  }
+  // Each point with the elastic matrix of its material, in the groups that let threads add at
+  // once (no shared node in a group).
+  const Mat3 C = regions ? Mat3::Zero() : materials::elastic_matrix(spec.material, spec.model);
+  const ShapeTable& t = m.domain_table;
+  MF_REQUIRE(m.domain_groups.rows() == t.rows(), "assemble_linear_elastic: points not grouped");
+  std::vector<std::vector<double>> K(PointGroups::threads());
+  m.domain_groups.for_each([&](int r, int thread) {
+    const int n = t.offset[r + 1] - t.offset[r];
+    K[thread].resize(4 * n * n);
+    const Mat3& Cr = regions ? laws.elastic[laws.material.empty() ? 0 : laws.material[r]] : C;
+    point_stiffness(t, r, m.domain_weight[r] * Cr, K[thread].data());
+    add_matrix(t.node.data() + t.offset[r], n, K[thread].data());
+  });
   if (has_body_force(spec) && factors.back() != 0.0) {
     std::vector<Vec2> b =
         regions ? laws.body_force : std::vector<Vec2>(m.domain_weight.size(), spec.body_force);

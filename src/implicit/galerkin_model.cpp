@@ -313,8 +313,12 @@ GalerkinModel build_fem_model(const io::ProblemSpec& spec, const solvers::PetscS
 
 GalerkinModel build_galerkin_model(const io::ProblemSpec& spec,
                                    const solvers::PetscSession& session, PhaseTimer& timer) {
-  return spec.discretisation.method == io::Method::Fem ? build_fem_model(spec, session, timer)
-                                                       : build_meshfree_model(spec, session, timer);
+  GalerkinModel m = spec.discretisation.method == io::Method::Fem
+                        ? build_fem_model(spec, session, timer)
+                        : build_meshfree_model(spec, session, timer);
+  PhaseTimer::Scope scope(timer, "shape_functions");
+  m.domain_groups = PointGroups(m.domain_table, domain_rows(m), m.node_positions());
+  return m;
 }
 
 std::vector<Vec2> domain_rows(const GalerkinModel& m) {

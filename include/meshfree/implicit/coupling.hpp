@@ -57,14 +57,17 @@ private:
 /// searches, 26 ms of it the element arithmetic). Where the map would take more than
 /// `max_bytes` (by default a quarter of the memory here: some 0.7 GB per million points of 12
 /// nodes), it is not kept and each point's slots are searched anew when asked for, into a buffer
-/// of the object's own: then slots() is for one thread at a time.
+/// given by the caller (one per thread).
 class BlockScatter {
 public:
   BlockScatter(const ShapeTable& table, const RowPattern& pattern, double max_bytes = -1.0);
-  const int* slots(int r) const {
+  /// Point r's n * n slots: in the map, or searched into `buffer`.
+  const int* slots(int r, std::vector<int>& buffer) const {
     if (kept_) return slot_.data() + offset_[r];
-    find(r, scratch_.data());
-    return scratch_.data();
+    const int n = table_.offset[r + 1] - table_.offset[r];
+    buffer.resize(static_cast<std::size_t>(n) * n);
+    find(r, buffer.data());
+    return buffer.data();
   }
   /// Bytes the map holds (0 when it was not kept).
   std::size_t bytes() const { return slot_.size() * sizeof(int); }
@@ -79,7 +82,6 @@ private:
   std::vector<std::size_t> offset_;
   std::vector<int> slot_;
   bool kept_ = true;
-  mutable std::vector<int> scratch_; // one point's slots when the map is not kept
 };
 
 } // namespace mf::implicit

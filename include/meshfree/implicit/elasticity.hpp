@@ -31,9 +31,9 @@ inline Eigen::Matrix<double, 3, 2> strain_matrix(const Vec2& g) {
 /// corrected test gradients). `K` has room for 4 n^2 values.
 void point_stiffness(const ShapeTable& t, int r, const Mat3& wC, double* K);
 
-/// K_IJ = sum_r weight[r] B_I^T C B_J: the elastic stiffness, one C for every point.
-void add_stiffness(const ShapeTable& table, const std::vector<double>& weight, const Mat3& C,
-                   const MatrixAdder& add);
+/// The 2n internal-force values of point r of the table: w B~_I^T sigma (B~ as in
+/// point_stiffness), with ws = w sigma.
+void point_internal_force(const ShapeTable& t, int r, const Vec3& ws, double* f);
 
 /// Internal force f_I = sum_r weight[r] B~_I^T sigma[r] (B~ as in point_stiffness).
 void add_internal_force(const ShapeTable& table, const std::vector<double>& weight,

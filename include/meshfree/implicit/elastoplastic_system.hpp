@@ -97,10 +97,9 @@ private:
   const GalerkinModel& m_;
   PointLaws laws_;
   PointStates states_;
-  BlockRows penalty_;         // K_pen: constant
-  BlockRows tangent_;         // work space for the Jacobian
-  BlockScatter scatter_;      // where each point's blocks go in tangent_
-  std::vector<double> block_; // one point's block
+  BlockRows penalty_;    // K_pen: constant
+  BlockRows tangent_;    // work space for the Jacobian
+  BlockScatter scatter_; // where each point's blocks go in tangent_
   std::vector<std::vector<double>> loads_;
   std::vector<char> counts_in_scale_; // tractions and body force, not penalty right-hand sides
   std::vector<double> factors_;

@@ -9,6 +9,7 @@
 #include "meshfree/fem/mesh.hpp"
 #include "meshfree/implicit/coupling.hpp"
 #include "meshfree/implicit/meshfree_space.hpp"
+#include "meshfree/implicit/point_groups.hpp"
 #include "meshfree/io/output.hpp"
 #include "meshfree/io/problem_spec.hpp"
 #include "meshfree/quadrature/integration_points.hpp"
@@ -56,7 +57,8 @@ struct GalerkinModel {
   ShapeTable domain_table;           // rows: domain_mine.rows, with gradients
   std::vector<double> domain_weight; // area weight times thickness, per table row
   std::vector<ConditionPoints> conditions;
-  RowPattern pattern; // block rows of the owned nodes
+  RowPattern pattern;        // block rows of the owned nodes
+  PointGroups domain_groups; // the domain table's rows in groups for threaded assembly
 
   int node_count() const { return fe ? fe->mesh.node_count() : space->node_count(); }
   const std::vector<Vec2>& node_positions() const { return fe ? fe->mesh.x : space->nodes().x; }
