@@ -1,99 +1,69 @@
 #include "meshfree/fem/mesh_generation.hpp"
 #include "meshfree/core/error.hpp"
-#include <gmsh.h>
+#include "meshfree/fem/gmsh_mesher.hpp"
+#include <dlfcn.h>
+#include <filesystem>
+#include <omp.h>
 #include <unordered_map>
 
 namespace mf::fem {
 
 namespace {
 
-/// gmsh's API is one global model: initialised here and finalised on every way out.
-struct GmshSession {
-  GmshSession() {
-    gmsh::initialize(0, nullptr, false); // no user configuration files: the mesh is reproducible
-    gmsh::option::setNumber("General.Terminal", 0);
-    gmsh::option::setNumber("General.NumThreads", 1);
-    gmsh::model::add("body");
-  }
-  ~GmshSession() { gmsh::finalize(); }
-  GmshSession(const GmshSession&) = delete;
-  GmshSession& operator=(const GmshSession&) = delete;
-};
-
-/// The body as one OpenCASCADE surface: the polygon, cut by the holes (a hole may cross the
-/// outline, as the quarter models' holes at a corner do).
-void build_surface(const geometry::Domain& domain) {
-  namespace occ = gmsh::model::occ;
-  const std::vector<Vec2>& v = domain.vertices();
-  std::vector<int> points, lines;
-  for (const Vec2& p : v) points.push_back(occ::addPoint(p.x(), p.y(), 0.0));
-  for (std::size_t i = 0; i < v.size(); ++i)
-    lines.push_back(occ::addLine(points[i], points[(i + 1) % v.size()]));
-  const int surface = occ::addPlaneSurface({occ::addCurveLoop(lines)});
-  if (!domain.holes().empty()) {
-    gmsh::vectorpair holes, out;
-    std::vector<gmsh::vectorpair> map;
-    for (const geometry::Circle& c : domain.holes())
-      holes.push_back({2, occ::addDisk(c.center.x(), c.center.y(), 0.0, c.radius, c.radius)});
-    occ::cut({{2, surface}}, holes, out, map);
-  }
-  occ::synchronize();
-}
-
-/// The element size: `size`, and each refinement box's spacing inside it, the smallest winning.
-void set_sizes(double size, const std::vector<geometry::Refinement>& refinement) {
-  namespace field = gmsh::model::mesh::field;
-  gmsh::option::setNumber("Mesh.MeshSizeMax", size);
-  gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
-  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
-  gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
-  if (refinement.empty()) return;
-  std::vector<double> boxes;
-  for (const geometry::Refinement& r : refinement) {
-    const int f = field::add("Box");
-    field::setNumber(f, "VIn", r.spacing);
-    field::setNumber(f, "VOut", size);
-    field::setNumber(f, "XMin", r.box.lo.x());
-    field::setNumber(f, "XMax", r.box.hi.x());
-    field::setNumber(f, "YMin", r.box.lo.y());
-    field::setNumber(f, "YMax", r.box.hi.y());
-    field::setNumber(f, "Thickness", size);
-    boxes.push_back(f);
-  }
-  const int smallest = field::add("Min");
-  field::setNumbers(smallest, "FieldsList", boxes);
-  field::setAsBackgroundMesh(smallest);
-}
-
 int gmsh_type_of(ElementType type) {
   return type == ElementType::T3 ? 2 : type == ElementType::Q4 ? 3 : 16;
 }
 
-/// The 2-D elements of the generated mesh as a Mesh, nodes numbered in gmsh's order, those no
-/// element uses dropped.
-Mesh collect(ElementType type) {
-  std::vector<int> types;
-  std::vector<std::vector<std::size_t>> element_tags, element_nodes;
-  gmsh::model::mesh::getElements(types, element_tags, element_nodes, 2);
+/// The mesher library: next to the program, else in the build folder it was built in. Loaded
+/// once and kept.
+gmsh_mesher::Function mesher() {
+  static gmsh_mesher::Function function = nullptr;
+  if (function) return function;
+  std::string tried;
+  std::vector<std::filesystem::path> folders;
+  std::error_code ec;
+  const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) folders.push_back(self.parent_path());
+  if (folders.empty() || folders.front() != std::filesystem::path(MESHFREE_PLUGIN_DIR))
+    folders.emplace_back(MESHFREE_PLUGIN_DIR);
+  for (const auto& folder : folders) {
+    const std::string path = (folder / gmsh_mesher::kLibrary).string();
+    void* library = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!library) {
+      const char* why = dlerror();
+      tried += "; " + (why ? std::string(why) : path);
+      continue;
+    }
+    function = reinterpret_cast<gmsh_mesher::Function>(dlsym(library, gmsh_mesher::kEntry));
+    if (function) return function;
+    tried += "; " + path + " has no " + gmsh_mesher::kEntry;
+  }
+  fail("discretisation.fem: meshing the geometry needs gmsh's mesher, ", gmsh_mesher::kLibrary,
+       ", which cannot be loaded", tried,
+       " (scripts/setup.sh installs gmsh and builds it; or give discretisation.fem.mesh)");
+}
+
+/// The 2-D elements gmsh made, as a Mesh: nodes numbered in the order the elements first name
+/// them (so nodes no element uses are dropped).
+Mesh collect(const gmsh_mesher::Result& r, ElementType type) {
+  if (r.element_types.empty()) fail("discretisation.fem: gmsh made no element of the body");
+  for (std::size_t k = 0; k < r.element_types.size(); ++k)
+    if (r.element_types[k] != gmsh_type_of(type))
+      fail("discretisation.fem.element: gmsh left ", r.element_counts[k], " elements of gmsh type ",
+           r.element_types[k], " in a ", element_name(type),
+           " mesh of the body; give element t3, or a mesh file");
+  std::unordered_map<std::size_t, std::size_t> position;
+  for (std::size_t i = 0; i < r.node_tags.size(); ++i) position[r.node_tags[i]] = i;
   Mesh mesh;
   mesh.type = type;
-  for (std::size_t k = 0; k < types.size(); ++k) {
-    if (types[k] != gmsh_type_of(type))
-      fail("discretisation.fem.element: gmsh left ", element_tags[k].size(),
-           " elements of gmsh type ", types[k], " in a ", element_name(type),
-           " mesh of the body; give element t3, or a mesh file");
-  }
-  if (types.empty()) fail("discretisation.fem: gmsh made no element of the body");
-  std::vector<std::size_t> node_tags;
-  std::vector<double> xyz, parametric;
-  gmsh::model::mesh::getNodes(node_tags, xyz, parametric);
-  std::unordered_map<std::size_t, Vec2> position;
-  for (std::size_t i = 0; i < node_tags.size(); ++i)
-    position[node_tags[i]] = Vec2(xyz[3 * i], xyz[3 * i + 1]);
   std::unordered_map<std::size_t, int> index;
-  for (std::size_t tag : element_nodes[0]) {
+  for (std::size_t tag : r.connectivity) {
     auto [it, added] = index.emplace(tag, mesh.node_count());
-    if (added) mesh.x.push_back(position.at(tag));
+    if (added) {
+      const auto p = position.find(tag);
+      MF_REQUIRE(p != position.end(), "gmsh named a node it did not list: ", tag);
+      mesh.x.emplace_back(r.xyz[3 * p->second], r.xyz[3 * p->second + 1]);
+    }
     mesh.connectivity.push_back(it->second);
   }
   return mesh;
@@ -104,30 +74,24 @@ Mesh collect(ElementType type) {
 Mesh mesh_domain(const geometry::Domain& domain, double size,
                  const std::vector<geometry::Refinement>& refinement, ElementType type) {
   MF_REQUIRE(size > 0.0, "mesh size must be positive");
-  GmshSession session;
-  Mesh mesh;
-  try {
-    build_surface(domain);
-    set_sizes(size, refinement);
-    gmsh::option::setNumber("Mesh.Algorithm", 6); // Frontal-Delaunay
-    if (type != ElementType::T3) {
-      gmsh::option::setNumber("Mesh.RecombineAll", 1);
-      gmsh::option::setNumber("Mesh.RecombinationAlgorithm", 3); // Blossom, full-quad
-    }
-    gmsh::model::mesh::generate(2);
-    if (type == ElementType::Q8) {
-      gmsh::option::setNumber("Mesh.SecondOrderIncomplete", 1); // serendipity: no centre node
-      gmsh::model::mesh::setOrder(2);
-    }
-    mesh = collect(type);
-  } catch (const Error&) {
-    throw;
-  } catch (...) {
-    std::string reason;
-    gmsh::logger::getLastError(reason);
-    fail("discretisation.fem: gmsh could not mesh the body: ",
-         reason.empty() ? std::string("no reason given") : reason);
-  }
+  gmsh_mesher::Request q;
+  for (const Vec2& p : domain.vertices()) q.polygon.insert(q.polygon.end(), {p.x(), p.y()});
+  for (const geometry::Circle& c : domain.holes())
+    q.holes.insert(q.holes.end(), {c.center.x(), c.center.y(), c.radius});
+  for (const geometry::Refinement& r : refinement)
+    q.boxes.insert(q.boxes.end(),
+                   {r.box.lo.x(), r.box.lo.y(), r.box.hi.x(), r.box.hi.y(), r.spacing});
+  q.size = size;
+  q.element_type = gmsh_type_of(type);
+  const gmsh_mesher::Function mesh_with_gmsh = mesher();
+  // gmsh's thread option sets OpenMP's thread count for the whole process: the caller's is
+  // restored.
+  const int threads = omp_get_max_threads();
+  gmsh_mesher::Result r;
+  mesh_with_gmsh(q, r);
+  omp_set_num_threads(threads);
+  if (!r.error.empty()) fail("discretisation.fem: gmsh could not mesh the body: ", r.error);
+  Mesh mesh = collect(r, type);
   check_mesh(mesh, "the gmsh mesh of the body");
   orient_counter_clockwise(mesh, "the gmsh mesh of the body");
   return mesh;

@@ -1,0 +1,109 @@
+// libmeshfree_gmsh.so: meshes a plane body with gmsh's C++ API (Geuzaine & Remacle 2009; gmsh
+// reference manual, "Gmsh application programming interface") for fem/mesh_generation, which
+// loads it when a mesh is to be made (see include/meshfree/fem/gmsh_mesher.hpp for why).
+#include "meshfree/fem/gmsh_mesher.hpp"
+#include <gmsh.h>
+
+namespace {
+
+using mf::fem::gmsh_mesher::Request;
+using mf::fem::gmsh_mesher::Result;
+
+/// gmsh's API is one global model: initialised here and finalised on every way out.
+struct Session {
+  Session() {
+    gmsh::initialize(0, nullptr, false); // no user configuration files: the mesh is reproducible
+    gmsh::option::setNumber("General.Terminal", 0);
+    gmsh::option::setNumber("General.NumThreads", 1);
+    gmsh::model::add("body");
+  }
+  ~Session() { gmsh::finalize(); }
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+};
+
+/// The body as one OpenCASCADE surface: the polygon, cut by the holes (a hole may cross the
+/// outline, as the quarter models' holes at a corner do).
+void build_surface(const Request& q) {
+  namespace occ = gmsh::model::occ;
+  const std::size_t n = q.polygon.size() / 2;
+  std::vector<int> points, lines;
+  for (std::size_t i = 0; i < n; ++i)
+    points.push_back(occ::addPoint(q.polygon[2 * i], q.polygon[2 * i + 1], 0.0));
+  for (std::size_t i = 0; i < n; ++i) lines.push_back(occ::addLine(points[i], points[(i + 1) % n]));
+  const int surface = occ::addPlaneSurface({occ::addCurveLoop(lines)});
+  if (!q.holes.empty()) {
+    gmsh::vectorpair holes, out;
+    std::vector<gmsh::vectorpair> map;
+    for (std::size_t h = 0; h + 2 < q.holes.size(); h += 3)
+      holes.push_back(
+          {2, occ::addDisk(q.holes[h], q.holes[h + 1], 0.0, q.holes[h + 2], q.holes[h + 2])});
+    occ::cut({{2, surface}}, holes, out, map);
+  }
+  occ::synchronize();
+}
+
+/// The element size: `size`, and each refinement box's size inside it (growing back to `size`
+/// over one `size` outside), the smallest winning.
+void set_sizes(const Request& q) {
+  namespace field = gmsh::model::mesh::field;
+  gmsh::option::setNumber("Mesh.MeshSizeMax", q.size);
+  gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
+  if (q.boxes.empty()) return;
+  std::vector<double> boxes;
+  for (std::size_t b = 0; b + 4 < q.boxes.size(); b += 5) {
+    const int f = field::add("Box");
+    field::setNumber(f, "XMin", q.boxes[b]);
+    field::setNumber(f, "YMin", q.boxes[b + 1]);
+    field::setNumber(f, "XMax", q.boxes[b + 2]);
+    field::setNumber(f, "YMax", q.boxes[b + 3]);
+    field::setNumber(f, "VIn", q.boxes[b + 4]);
+    field::setNumber(f, "VOut", q.size);
+    field::setNumber(f, "Thickness", q.size);
+    boxes.push_back(f);
+  }
+  const int smallest = field::add("Min");
+  field::setNumbers(smallest, "FieldsList", boxes);
+  field::setAsBackgroundMesh(smallest);
+}
+
+void mesh(const Request& q, Result& r) {
+  build_surface(q);
+  set_sizes(q);
+  // Frontal-Delaunay (6): gmsh 4.8's quadrilateral algorithm (8) crashes with a size field.
+  gmsh::option::setNumber("Mesh.Algorithm", 6);
+  if (q.element_type != 2) {
+    gmsh::option::setNumber("Mesh.RecombineAll", 1);
+    gmsh::option::setNumber("Mesh.RecombinationAlgorithm", 3); // Blossom, full-quad
+  }
+  gmsh::model::mesh::generate(2);
+  if (q.element_type == 16) {
+    gmsh::option::setNumber("Mesh.SecondOrderIncomplete", 1); // serendipity: no centre node
+    gmsh::model::mesh::setOrder(2);
+  }
+  std::vector<std::vector<std::size_t>> tags, nodes;
+  gmsh::model::mesh::getElements(r.element_types, tags, nodes, 2);
+  for (const auto& t : tags) r.element_counts.push_back(t.size());
+  if (!nodes.empty()) r.connectivity = nodes[0];
+  std::vector<double> parametric;
+  gmsh::model::mesh::getNodes(r.node_tags, r.xyz, parametric);
+}
+
+} // namespace
+
+extern "C" void meshfree_gmsh_mesh(const Request& q, Result& r) {
+  r = Result{};
+  try {
+    Session session;
+    try {
+      mesh(q, r);
+    } catch (...) {
+      gmsh::logger::getLastError(r.error);
+      if (r.error.empty()) r.error = "no reason given";
+    }
+  } catch (...) {
+    r.error = "gmsh could not start";
+  }
+}
