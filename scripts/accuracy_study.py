@@ -1,0 +1,194 @@
+#!/usr/bin/python3
+"""Accuracy for the cost: how many DOFs and how much wall time meshfree (RK Galerkin on 3 x 3
+Gauss points per cell, and with the variationally consistent correction on 2 x 2), the in-code Q8
+elements (on gmsh meshes of the geometry) and CalculiX (CPS8, the reference recipe's meshes) need to come within 1% and 0.1% of the converged CalculiX
+load-displacement curve, on the perforated strip and Cook's membrane.
+
+Each problem's own discretisation is scaled by a factor (the spacing and every refinement box's
+spacing together) over a sequence of factors; CalculiX runs the coarser levels of
+scripts/fe_reference/make_calculix_plastic_reference.py (its finest level is the reference, so
+it is not timed). The runs of the three codes alternate, level by level, so that they see the
+same machine. Every run has one thread (OMP_NUM_THREADS=1, OPENBLAS_NUM_THREADS=1), as the
+CalculiX runs have.
+
+The error of a run is the largest difference of its force curve from the reference over the
+recorded increments, divided by the reference's largest force (scripts/compare.py's measure).
+The DOFs and the time at which a method first reaches a target error are interpolated
+log-linearly between the two runs that bracket it. CalculiX's DOFs are the 2D mesh's (2 per
+node); it solves the expanded one-element-thick slab of C3D20 bricks, which its time includes.
+
+    scripts/accuracy_study.py [--out out/accuracy_study] [--problems perforated_strip cook_membrane]
+"""
+import argparse
+import csv
+import importlib.util
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "scripts"))
+import compare  # noqa: E402  (the response definitions and the interpolation)
+
+# Factors on the problem file's spacings, coarse to fine, and the CalculiX levels besides the
+# finest (reference/calculix_plastic/README.md).
+STUDY = {
+    "perforated_strip": dict(factors=[2.0, 1.41, 1.0, 0.71, 0.5], calculix_levels=[8, 16]),
+    "cook_membrane": dict(factors=[4.0, 2.83, 2.0, 1.41, 1.0, 0.71], calculix_levels=[6, 12, 24]),
+}
+TARGETS = (1e-2, 1e-3)
+ENV = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
+
+
+def load_recipe():
+    path = ROOT / "scripts" / "fe_reference" / "make_calculix_plastic_reference.py"
+    spec = importlib.util.spec_from_file_location("calculix_recipe", path)
+    module = importlib.util.module_from_spec(spec)
+    sys.path.insert(0, str(path.parent))
+    spec.loader.exec_module(module)
+    return module
+
+
+def force_error(problem, xs, ys):
+    """Largest |ours - reference| / max |reference| over the reference's records."""
+    c = compare.PROBLEMS[problem]
+    ref = compare.read_csv(str(ROOT / "reference" / "calculix_plastic" / problem / "curve.csv"))
+    rc = c["control"][1]
+    rcol = c["responses"][0][2]
+    rx = [float(r[rc]) for r in ref]
+    ry = [float(r[rcol]) for r in ref]
+    scale = max(abs(y) for y in ry)
+    return max(abs(compare.interpolate(xs, ys, x) - y) / scale for x, y in zip(rx, ry))
+
+
+def problem_spacings(problem):
+    import yaml
+    with open(ROOT / "problems" / f"{problem}.yaml") as f:
+        doc = yaml.safe_load(f)
+    d = doc["discretisation"]
+    return d["spacing"], [(r["box"], r["spacing"]) for r in d.get("refinement", [])]
+
+
+# The in-code variants: meshfree on the problem's 3 x 3 Gauss points per cell, meshfree with the
+# variationally consistent correction on 2 x 2 points, and Q8.
+VARIANTS = {
+    "meshfree": ["discretisation.method=meshfree"],
+    "meshfree_vci": ["discretisation.method=meshfree", "discretisation.quadrature.order=2",
+                     "discretisation.quadrature.correction=vci"],
+    "fem": ["discretisation.method=fem"],
+}
+
+
+def run_meshfree(binary, problem, method, factor, out):
+    spacing, boxes = problem_spacings(problem)
+    folder = out / f"{problem}_{method}_{factor}"
+    refinement = "[" + ", ".join(f"{{box: {b}, spacing: {s * factor!r}}}" for b, s in boxes) + "]"
+    cmd = [str(binary), "run", str(ROOT / "problems" / f"{problem}.yaml"), "--out", str(folder),
+           "--set", f"discretisation.spacing={spacing * factor!r}",
+           "--set", f"discretisation.refinement={refinement}"]
+    for s in VARIANTS[method]:
+        cmd += ["--set", s]
+    start = time.perf_counter()
+    p = subprocess.run(cmd, capture_output=True, text=True, env=ENV)
+    wall = time.perf_counter() - start
+    if p.returncode != 0:
+        sys.stdout.write(p.stdout[-2000:] + p.stderr[-2000:])
+        raise SystemExit(f"{' '.join(cmd)} exited {p.returncode}")
+    s = json.loads((folder / "summary.json").read_text())
+    c = compare.PROBLEMS[problem]
+    hist = compare.read_csv(str(folder / "history.csv"))
+    xs = [float(h[c["control"][0]]) for h in hist]
+    ys = [float(h[c["responses"][0][1]]) for h in hist]
+    return dict(problem=problem, method=method, level=factor, dofs=s["counts"]["dofs"],
+                wall_s=wall, error=force_error(problem, xs, ys))
+
+
+def run_calculix(recipe, problem, level, work):
+    prob = next(p for p in recipe.PROBLEMS if p["name"] == problem)
+    mesh = prob["mesh"](level)
+    start = time.perf_counter()
+    res = recipe.solve(prob, mesh, str(work), f"study{level}")
+    wall = time.perf_counter() - start
+    curve = res["curve"]
+    return dict(problem=problem, method="calculix", level=level, dofs=2 * mesh.nnodes,
+                wall_s=wall, error=force_error(problem, list(curve[:, 0]), list(curve[:, 1])))
+
+
+def reach(runs, target):
+    """DOFs and wall time where the error first falls to `target` (log-linear between the runs
+    that bracket it); None when no run reaches it, the coarsest run's when it already does."""
+    runs = sorted(runs, key=lambda r: r["dofs"])
+    if runs and runs[0]["error"] <= target:
+        return runs[0]["dofs"], runs[0]["wall_s"], "at or below"
+    for a, b in zip(runs, runs[1:]):
+        if a["error"] > target >= b["error"]:
+            t = math.log(a["error"] / target) / math.log(a["error"] / b["error"])
+            dofs = math.exp(math.log(a["dofs"]) + t * math.log(b["dofs"] / a["dofs"]))
+            wall = math.exp(math.log(a["wall_s"]) + t * math.log(b["wall_s"] / a["wall_s"]))
+            return dofs, wall, "about"
+    return None
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--meshfree", default=str(ROOT / "build" / "meshfree"))
+    ap.add_argument("--out", default=str(ROOT / "out" / "accuracy_study"))
+    ap.add_argument("--problems", nargs="+", default=list(STUDY), choices=list(STUDY))
+    args = ap.parse_args()
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    recipe = load_recipe()
+    rows = []
+    with tempfile.TemporaryDirectory() as work:
+        for problem in args.problems:
+            study = STUDY[problem]
+            levels = max(len(study["factors"]), len(study["calculix_levels"]))
+            for k in range(levels):
+                if k < len(study["factors"]):
+                    for method in VARIANTS:
+                        rows.append(run_meshfree(args.meshfree, problem, method,
+                                                 study["factors"][k], out))
+                        print(rows[-1], flush=True)
+                if k < len(study["calculix_levels"]):
+                    rows.append(run_calculix(recipe, problem, study["calculix_levels"][k], work))
+                    print(rows[-1], flush=True)
+    with open(out / "runs.csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        w.writeheader()
+        w.writerows(rows)
+
+    summary = []
+    print("\nDOFs and wall time (1 thread) to reach the error, and the time over CalculiX's:")
+    for problem in args.problems:
+        for target in TARGETS:
+            got = {m: reach([r for r in rows if r["problem"] == problem and r["method"] == m], target)
+                   for m in list(VARIANTS) + ["calculix"]}
+            ccx = got["calculix"]
+            for method, g in got.items():
+                entry = dict(problem=problem, target=target, method=method)
+                if g is None:
+                    entry.update(dofs="", wall_s="", ratio_to_calculix="", note="not reached")
+                else:
+                    ratio = g[1] / ccx[1] if ccx else float("nan")
+                    entry.update(dofs=round(g[0]), wall_s=round(g[1], 3),
+                                 ratio_to_calculix=round(ratio, 3) if ccx else "", note=g[2])
+                summary.append(entry)
+                print(f"  {problem:16s} {target:6.0e} {method:9s}: "
+                      + ("not reached over the runs" if g is None else
+                         f"{g[2]} {g[0]:.0f} DOFs, {g[1]:.2f} s"
+                         + (f", x{g[1] / ccx[1]:.2f} CalculiX's time" if ccx else "")))
+    with open(out / "reach.csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(summary[0].keys()))
+        w.writeheader()
+        w.writerows(summary)
+    print(f"\n{out / 'runs.csv'}, {out / 'reach.csv'}")
+
+
+if __name__ == "__main__":
+    main()
