@@ -335,7 +335,7 @@ solvers::LinearSolverSettings linear_solver_settings(const io::ProblemSpec& spec
   solvers::LinearSolverSettings s;
   s.multigrid = l.type == Type::Multigrid ||
                 (l.type == Type::Auto && 2.0 * m.node_count() >= l.multigrid_above);
-  s.symmetric = !spec.discretisation.vci;
+  s.symmetric = m.domain_table.test_dphi.empty(); // corrected test functions: Petrov-Galerkin
   if (s.multigrid)
     for (int I = m.own.begin; I < m.own.end; ++I) {
       s.coordinates.push_back(m.node_positions()[I].x());
