@@ -116,9 +116,9 @@ def exponents(rows, fit_from):
         if len(fit) < 2:
             continue
         e = dict(case=case, solver=solver, layout=layout, dofs_from=fit[0]["dofs"], dofs_to=fit[-1]["dofs"])
-        for phase in ("setup_s", "assembly_s", "solve_s", "total_s", "peak_bytes_all_ranks"):
-            e[phase.replace("_s", "").replace("peak_bytes_all_ranks", "memory")] = \
-                slope([(r["dofs"], r[phase]) for r in fit])
+        for name, column in (("setup", "setup_s"), ("assembly", "assembly_s"), ("solve", "solve_s"),
+                             ("total", "total_s"), ("memory", "peak_bytes_all_ranks")):
+            e[name] = slope([(r["dofs"], r[column]) for r in fit])
         e["iterations_growth"] = fit[-1]["iterations_per_solve"] / max(fit[0]["iterations_per_solve"], 1e-9)
         out.append(e)
     return out

@@ -61,17 +61,14 @@ GmshType gmsh_type(long t) {
   return table[t];
 }
 
-/// The element types this code has: gmsh 2 = T3, 3 = Q4, 16 = Q8 (same local node order).
+/// The element types this code has (gmsh_element_type).
 bool supported(long t, ElementType& type) {
-  if (t == 2)
-    type = ElementType::T3;
-  else if (t == 3)
-    type = ElementType::Q4;
-  else if (t == 16)
-    type = ElementType::Q8;
-  else
-    return false;
-  return true;
+  for (ElementType e : {ElementType::T3, ElementType::Q4, ElementType::Q8})
+    if (t == gmsh_element_type(e)) {
+      type = e;
+      return true;
+    }
+  return false;
 }
 
 /// Whitespace-separated tokens with line numbers for the messages.

@@ -24,6 +24,10 @@ int corners_per_element(ElementType type) {
   return type == ElementType::T3 ? 3 : 4;
 }
 
+int gmsh_element_type(ElementType type) {
+  return type == ElementType::T3 ? 2 : type == ElementType::Q4 ? 3 : 16;
+}
+
 const char* element_name(ElementType type) {
   switch (type) {
   case ElementType::T3:

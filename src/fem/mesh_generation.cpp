@@ -10,10 +10,6 @@ namespace mf::fem {
 
 namespace {
 
-int gmsh_type_of(ElementType type) {
-  return type == ElementType::T3 ? 2 : type == ElementType::Q4 ? 3 : 16;
-}
-
 /// The mesher library: next to the program, else in the build folder it was built in. Loaded
 /// once and kept.
 gmsh_mesher::Function mesher() {
@@ -48,7 +44,7 @@ gmsh_mesher::Function mesher() {
 Mesh collect(const gmsh_mesher::Result& r, ElementType type) {
   if (r.element_types.empty()) fail("discretisation.fem: gmsh made no element of the body");
   for (std::size_t k = 0; k < r.element_types.size(); ++k)
-    if (r.element_types[k] != gmsh_type_of(type))
+    if (r.element_types[k] != gmsh_element_type(type))
       fail("discretisation.fem.element: gmsh left ", r.element_counts[k], " elements of gmsh type ",
            r.element_types[k], " in a ", element_name(type),
            " mesh of the body; give element t3, or a mesh file");
@@ -82,7 +78,7 @@ Mesh mesh_domain(const geometry::Domain& domain, double size,
     q.boxes.insert(q.boxes.end(),
                    {r.box.lo.x(), r.box.lo.y(), r.box.hi.x(), r.box.hi.y(), r.spacing});
   q.size = size;
-  q.element_type = gmsh_type_of(type);
+  q.element_type = gmsh_element_type(type);
   const gmsh_mesher::Function mesh_with_gmsh = mesher();
   // gmsh's thread option sets OpenMP's thread count for the whole process: the caller's is
   // restored.

@@ -1,6 +1,19 @@
 #include "meshfree/implicit/elasticity.hpp"
+#include "meshfree/core/error.hpp"
 
 namespace mf::implicit {
+
+namespace {
+
+/// Writes the 2x2 block k into row-major K (2n x 2n) at block (i, j).
+void put_block(double* K, int n, int i, int j, const Mat2& k) {
+  double* row0 = K + (2 * i) * (2 * n) + 2 * j;
+  double* row1 = row0 + 2 * n;
+  row0[0] = k(0, 0), row0[1] = k(0, 1);
+  row1[0] = k(1, 0), row1[1] = k(1, 1);
+}
+
+} // namespace
 
 void point_stiffness(const ShapeTable& t, int r, const Mat3& wC, double* K) {
   const int n = t.offset[r + 1] - t.offset[r];
@@ -15,35 +28,18 @@ void point_stiffness(const ShapeTable& t, int r, const Mat3& wC, double* K) {
     CB = heap.data();
   }
   for (int j = 0; j < n; ++j) CB[j] = wC * strain_matrix(g[j]);
-  if (!t.test_dphi.empty()) {
-    // Corrected test functions (a Petrov-Galerkin form): every block on its own.
-    const Vec2* h = t.test_gradients(r);
-    for (int i = 0; i < n; ++i) {
-      const Eigen::Matrix<double, 3, 2> Bi = strain_matrix(h[i]);
-      for (int j = 0; j < n; ++j) {
-        const Mat2 kij = Bi.transpose() * CB[j];
-        double* ij0 = K + (2 * i) * (2 * n) + 2 * j;
-        double* ij1 = ij0 + 2 * n;
-        ij0[0] = kij(0, 0), ij0[1] = kij(0, 1);
-        ij1[0] = kij(1, 0), ij1[1] = kij(1, 1);
-      }
-    }
-    return;
-  }
-  // C is symmetric (elasticity, and the consistent tangent of associative plasticity), so
-  // K_JI = K_IJ^T: half the blocks are computed.
+  // C is symmetric (elasticity, and the consistent tangent of associative plasticity), so with
+  // the same test and trial functions K_JI = K_IJ^T and half the blocks are computed; corrected
+  // test functions (a Petrov-Galerkin form) need every block.
+  const bool symmetric = t.test_dphi.empty();
+  const Vec2* h = t.test_gradients(r);
   for (int i = 0; i < n; ++i) {
-    const Eigen::Matrix<double, 3, 2> Bi = strain_matrix(g[i]);
-    for (int j = i; j < n; ++j) {
+    const Eigen::Matrix<double, 3, 2> Bi = strain_matrix(h[i]);
+    for (int j = symmetric ? i : 0; j < n; ++j) {
       const Mat2 kij = Bi.transpose() * CB[j];
-      double* ij0 = K + (2 * i) * (2 * n) + 2 * j;
-      double* ij1 = ij0 + 2 * n;
-      double* ji0 = K + (2 * j) * (2 * n) + 2 * i;
-      double* ji1 = ji0 + 2 * n;
-      ij0[0] = kij(0, 0), ij0[1] = kij(0, 1);
-      ij1[0] = kij(1, 0), ij1[1] = kij(1, 1);
-      ji0[0] = kij(0, 0), ji0[1] = kij(1, 0);
-      ji1[0] = kij(0, 1), ji1[1] = kij(1, 1);
+      put_block(K, n, i, j, kij);
+      // On the diagonal too: the transpose written last, as the results have always had it.
+      if (symmetric) put_block(K, n, j, i, kij.transpose());
     }
   }
 }
@@ -57,15 +53,17 @@ void point_internal_force(const ShapeTable& t, int r, const Vec3& ws, double* f)
   }
 }
 
-void add_internal_force(const ShapeTable& t, const std::vector<double>& weight,
-                        const std::vector<Vec3>& stress, const VectorAdder& add) {
-  std::vector<double> f;
-  for (int r = 0; r < t.rows(); ++r) {
+void add_internal_force(const ShapeTable& t, const PointGroups& groups,
+                        const std::vector<double>& weight, const std::vector<Vec3>& stress,
+                        const VectorAdder& add) {
+  MF_REQUIRE(groups.rows() == t.rows(), "add_internal_force: points not grouped");
+  std::vector<std::vector<double>> f(PointGroups::threads());
+  groups.for_each([&](int r, int thread) {
     const int n = t.offset[r + 1] - t.offset[r];
-    f.resize(2 * n);
-    point_internal_force(t, r, weight[r] * stress[r], f.data());
-    add(t.node.data() + t.offset[r], n, f.data());
-  }
+    f[thread].resize(2 * n);
+    point_internal_force(t, r, weight[r] * stress[r], f[thread].data());
+    add(t.node.data() + t.offset[r], n, f[thread].data());
+  });
 }
 
 void add_penalty(const ShapeTable& t, const std::vector<double>& weight, const Vec2& mask,

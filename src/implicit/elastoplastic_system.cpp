@@ -74,16 +74,8 @@ void ElastoplasticSystem::residual(const std::vector<double>& d, double* r, doub
   update_materials(d);
   const int rows = m_.pattern.rows();
   std::fill(r, r + 2 * rows, 0.0);
-  // Point by point, in the groups that let threads add at once (no shared node in a group).
-  const ShapeTable& t = m_.domain_table;
-  const OwnedRowAdder into{m_.pattern.begin, m_.pattern.end, r};
-  std::vector<std::vector<double>> f(PointGroups::threads());
-  m_.domain_groups.for_each([&](int k, int thread) {
-    const int n = t.offset[k + 1] - t.offset[k];
-    f[thread].resize(2 * n);
-    point_internal_force(t, k, m_.domain_weight[k] * states_.stress[k], f[thread].data());
-    into(t.node.data() + t.offset[k], n, f[thread].data());
-  });
+  add_internal_force(m_.domain_table, m_.domain_groups, m_.domain_weight, states_.stress,
+                     OwnedRowAdder{m_.pattern.begin, m_.pattern.end, r});
   double internal = 0.0, external = 0.0;
   for (int i = 0; i < 2 * rows; ++i) internal += r[i] * r[i];
   penalty_.multiply_add(d, r);
@@ -126,7 +118,7 @@ double ElastoplasticSystem::initial_stress_imbalance_squared() const {
     change[k] = laws_.initial_stress.empty()
                     ? states_.stress[k]
                     : Vec3(states_.stress[k] - laws_.initial_stress[k].head<3>());
-  add_internal_force(m_.domain_table, m_.domain_weight, change,
+  add_internal_force(m_.domain_table, m_.domain_groups, m_.domain_weight, change,
                      OwnedRowAdder{m_.pattern.begin, m_.pattern.end, f.data()});
   double sum = 0.0;
   for (double v : f) sum += v * v;

@@ -330,11 +330,8 @@ std::vector<Vec2> domain_rows(const GalerkinModel& m) {
 
 solvers::LinearSolverSettings linear_solver_settings(const io::ProblemSpec& spec,
                                                      const GalerkinModel& m) {
-  using Type = io::LinearSolverSpec::Type;
-  const io::LinearSolverSpec& l = spec.linear_solver;
   solvers::LinearSolverSettings s;
-  s.multigrid = l.type == Type::Multigrid ||
-                (l.type == Type::Auto && 2.0 * m.node_count() >= l.multigrid_above);
+  s.multigrid = spec.linear_solver.multigrid_for(2.0 * m.node_count());
   s.symmetric = m.domain_table.test_dphi.empty(); // corrected test functions: Petrov-Galerkin
   if (s.multigrid)
     for (int I = m.own.begin; I < m.own.end; ++I) {

@@ -33,10 +33,8 @@ LinearSolverSpec read_linear_solver(KeyReader& r) {
 
 /// Bytes per Galerkin node at a run's peak with the linear solver that `count` nodes get.
 double bytes_per_node(const LinearSolverSpec& solver, double count) {
-  const bool multigrid =
-      solver.type == LinearSolverSpec::Type::Multigrid ||
-      (solver.type == LinearSolverSpec::Type::Auto && 2.0 * count >= solver.multigrid_above);
-  return multigrid ? bytes_per::galerkin_node_multigrid : bytes_per::galerkin_node;
+  return solver.multigrid_for(2.0 * count) ? bytes_per::galerkin_node_multigrid
+                                           : bytes_per::galerkin_node;
 }
 
 DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox& bounds,

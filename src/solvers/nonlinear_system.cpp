@@ -174,7 +174,7 @@ NonlinearBlockSystem::NonlinearBlockSystem(MPI_Comm comm, int node_count, OwnedR
   check(SNESLineSearchSetType(ls, SNESLINESEARCHCP), "SNESLineSearchSetType");
   KSP ksp;
   check(SNESGetKSP(s.snes, &ksp), "SNESGetKSP");
-  detail::set_default_solver(ksp, s.J, linear.symmetric, linear);
+  detail::set_default_solver(ksp, s.J, linear);
   s.multigrid = linear.multigrid;
   check(SNESSetFromOptions(s.snes), "SNESSetFromOptions");
 }

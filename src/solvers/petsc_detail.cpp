@@ -136,9 +136,9 @@ void set_rigid_body_modes(Mat A, const std::vector<double>& coordinates) {
   check(VecDestroy(&x), "VecDestroy");
 }
 
-void set_multigrid_solver(KSP ksp, Mat A, bool symmetric, const LinearSolverSettings& settings) {
+void set_multigrid_solver(KSP ksp, Mat A, const LinearSolverSettings& settings) {
   set_rigid_body_modes(A, settings.coordinates);
-  check(KSPSetType(ksp, symmetric ? KSPCG : KSPGMRES), "KSPSetType");
+  check(KSPSetType(ksp, settings.symmetric ? KSPCG : KSPGMRES), "KSPSetType");
   // Convergence on the preconditioned residual: the multigrid's inverse turns the residual's
   // forces into displacements, in which the penalty rows (alpha ~ 1e6 E / h) no longer
   // outweigh the rest. On the true residual, 1e-10 of |b| left the reactions of a displacement-
@@ -153,11 +153,11 @@ void set_multigrid_solver(KSP ksp, Mat A, bool symmetric, const LinearSolverSett
 
 } // namespace
 
-void set_default_solver(KSP ksp, Mat A, bool symmetric, const LinearSolverSettings& settings) {
+void set_default_solver(KSP ksp, Mat A, const LinearSolverSettings& settings) {
   if (settings.multigrid)
-    set_multigrid_solver(ksp, A, symmetric, settings);
+    set_multigrid_solver(ksp, A, settings);
   else
-    set_direct_solver(ksp, symmetric);
+    set_direct_solver(ksp, settings.symmetric);
 }
 
 std::set<std::string>& options_set_by_code() {

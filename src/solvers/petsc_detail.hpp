@@ -26,9 +26,9 @@ void set_block_values(Mat A, OwnedRange owned, const std::vector<int>& row_offse
 
 /// The default linear solver of `settings` for the operator A, set before the command-line
 /// options so that every -ksp_/-pc_ option overrides it: MUMPS (Cholesky for symmetric
-/// matrices, LU otherwise), or CG/GMRES with GAMG and A's near-null space set to the rigid-body
-/// modes of settings.coordinates.
-void set_default_solver(KSP ksp, Mat A, bool symmetric, const LinearSolverSettings& settings);
+/// matrices, settings.symmetric, LU otherwise), or CG/GMRES with GAMG and A's near-null space set
+/// to the rigid-body modes of settings.coordinates.
+void set_default_solver(KSP ksp, Mat A, const LinearSolverSettings& settings);
 
 /// What to try when the multigrid solver does not converge.
 inline constexpr const char* kMultigridHint =

@@ -70,7 +70,6 @@ struct BlockLinearSystem::Impl {
   Mat A = nullptr;
   Vec b = nullptr, x = nullptr;
   KSP ksp = nullptr;
-  bool spd = false;
   LinearSolverSettings settings;
 };
 
@@ -81,12 +80,13 @@ BlockLinearSystem::BlockLinearSystem(MPI_Comm comm, int node_count, OwnedRange o
                                      const std::vector<double>& rhs, bool spd,
                                      const LinearSolverSettings& settings)
     : impl_(std::make_unique<Impl>()) {
-  impl_->spd = spd && settings.symmetric;
   impl_->settings = settings;
+  impl_->settings.symmetric = spd && settings.symmetric;
   MF_REQUIRE(static_cast<int>(rhs.size()) == 2 * (owned.end - owned.begin),
              "BlockLinearSystem: inconsistent right-hand side");
   impl_->A = detail::create_block_matrix(comm, node_count, owned, row_offset, columns, blocks);
-  if (impl_->spd) check(MatSetOption(impl_->A, MAT_SPD, PETSC_TRUE), "MatSetOption(MAT_SPD)");
+  if (impl_->settings.symmetric)
+    check(MatSetOption(impl_->A, MAT_SPD, PETSC_TRUE), "MatSetOption(MAT_SPD)");
   check(MatCreateVecs(impl_->A, &impl_->x, &impl_->b), "MatCreateVecs");
   PetscScalar* bv;
   check(VecGetArray(impl_->b, &bv), "VecGetArray");
@@ -107,7 +107,7 @@ SolveReport BlockLinearSystem::solve() {
   check(PetscObjectGetComm(reinterpret_cast<PetscObject>(s.A), &comm), "PetscObjectGetComm");
   check(KSPCreate(comm, &s.ksp), "KSPCreate");
   check(KSPSetOperators(s.ksp, s.A, s.A), "KSPSetOperators");
-  detail::set_default_solver(s.ksp, s.A, s.spd, s.settings);
+  detail::set_default_solver(s.ksp, s.A, s.settings);
   PC pc;
   check(KSPGetPC(s.ksp, &pc), "KSPGetPC");
   check(KSPSetFromOptions(s.ksp), "KSPSetFromOptions");

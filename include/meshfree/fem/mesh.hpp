@@ -14,6 +14,8 @@ int nodes_per_element(ElementType type);
 /// Corner nodes (3 or 4) = edges per element.
 int corners_per_element(ElementType type);
 const char* element_name(ElementType type); // "T3", "Q4", "Q8"
+/// gmsh's number of the element type: 2 (T3), 3 (Q4), 16 (Q8), the same local node order.
+int gmsh_element_type(ElementType type);
 
 /// Local node order: corners counter-clockwise, then mid-side nodes (Q8: local 4 on edge 0-1,
 /// 5 on 1-2, 6 on 2-3, 7 on 3-0), the gmsh convention. Local edge k runs from corner k to

@@ -8,6 +8,7 @@
 // callbacks so that the same loops serve any matrix back end.
 #include "meshfree/core/types.hpp"
 #include "meshfree/implicit/meshfree_space.hpp"
+#include "meshfree/implicit/point_groups.hpp"
 #include <functional>
 #include <vector>
 
@@ -35,9 +36,11 @@ void point_stiffness(const ShapeTable& t, int r, const Mat3& wC, double* K);
 /// point_stiffness), with ws = w sigma.
 void point_internal_force(const ShapeTable& t, int r, const Vec3& ws, double* f);
 
-/// Internal force f_I = sum_r weight[r] B~_I^T sigma[r] (B~ as in point_stiffness).
-void add_internal_force(const ShapeTable& table, const std::vector<double>& weight,
-                        const std::vector<Vec3>& stress, const VectorAdder& add);
+/// Internal force f_I = sum_r weight[r] B~_I^T sigma[r] (B~ as in point_stiffness), the points
+/// taken in `groups` (threads at once; `add` must take rows of different nodes concurrently).
+void add_internal_force(const ShapeTable& table, const PointGroups& groups,
+                        const std::vector<double>& weight, const std::vector<Vec3>& stress,
+                        const VectorAdder& add);
 
 /// Penalty stiffness alpha * phi_I phi_J on the components selected by `mask` (1 or 0 each),
 /// and the matching right-hand side alpha * phi_I * ubar[r].

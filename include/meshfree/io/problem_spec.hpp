@@ -118,6 +118,10 @@ struct LinearSolverSpec {
   enum class Type { Auto, Direct, Multigrid };
   Type type = Type::Auto;
   double multigrid_above = 2e5; // DOFs
+  /// Whether a system of `dofs` unknowns is solved by multigrid.
+  bool multigrid_for(double dofs) const {
+    return type == Type::Multigrid || (type == Type::Auto && dofs >= multigrid_above);
+  }
 };
 
 struct LineSpec {
