@@ -24,6 +24,8 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <limits>
+#include <malloc.h>
 #include <omp.h>
 #include <optional>
 #include <unistd.h>
@@ -319,8 +321,20 @@ void wait_passively(char** argv) {
   execv("/proc/self/exe", argv);
 }
 
+/// Freed memory stays with the process instead of going back to the system. glibc serves large
+/// blocks by mmap and unmaps them on free, so every large vector (a matrix copy, a shape table)
+/// is paged in afresh, and the first touch of a page is what costs on virtual machines: on the
+/// 2-core development VM it drops from 2 GB/s to 0.4 GB/s once a process has touched about
+/// 6 GB. The elastic plate's assembly at 10^6 DOFs took 7.6 s with glibc's default and 5.3 s
+/// with this (4 * 10^5 DOFs: 2.0 s either way); the peak memory is the same.
+void keep_freed_memory() {
+  mallopt(M_MMAP_MAX, 0);
+  mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());
+}
+
 int main(int argc, char** argv) {
   wait_passively(argv);
+  keep_freed_memory();
   Command c;
   try {
     c = parse(argc, argv);
