@@ -146,7 +146,7 @@ int check(const Command& c) {
     const auto nodes = mf::geometry::generate_nodes(spec.domain, d.spacing, d.refinement);
     const auto pts = mf::quadrature::domain_points(
         spec.domain, d.cell_size, d.order, d.cut_levels,
-        {d.spacing, d.refinement, d.cell_size / d.spacing, d.dilation.maxCoeff()});
+        {d.spacing, d.refinement, d.cell_size / d.spacing, d.dilation.maxCoeff()}, d.cut_arcs);
     std::cout << "  method: " << mf::implicit::describe_method(spec) << "\n"
               << "  nodes: " << nodes.x.size() << " (" << 2 * nodes.x.size() << " DOFs)\n"
               << "  integration: " << pts.cell_count << " cells, " << pts.x.size() << " points\n"

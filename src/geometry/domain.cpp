@@ -121,9 +121,13 @@ double Domain::distance_to_outline(const Vec2& p) const {
   return d;
 }
 
+bool Domain::within_outline(const Vec2& p, double tol) const {
+  return inside_polygon(p) || distance_to_outline(p) <= tol * scale_;
+}
+
 bool Domain::contains(const Vec2& p, double tol) const {
   const double abs_tol = tol * scale_;
-  if (!inside_polygon(p) && distance_to_outline(p) > abs_tol) return false;
+  if (!within_outline(p, tol)) return false;
   for (const auto& h : holes_)
     if ((p - h.center).norm() < h.radius - abs_tol) return false;
   return true;

@@ -80,8 +80,8 @@ GalerkinModel build_meshfree_model(const io::ProblemSpec& spec,
     PhaseTimer::Scope scope(timer, "quadrature");
     const quadrature::CellSizing sizing{disc.spacing, disc.refinement,
                                         disc.cell_size / disc.spacing, disc.dilation.maxCoeff()};
-    m.domain =
-        quadrature::domain_points(spec.domain, disc.cell_size, disc.order, disc.cut_levels, sizing);
+    m.domain = quadrature::domain_points(spec.domain, disc.cell_size, disc.order, disc.cut_levels,
+                                         sizing, disc.cut_arcs);
     for (std::size_t b = 0; b < spec.boundary.size(); ++b) {
       const io::BoundaryCondition& bc = spec.boundary[b];
       m.conditions[b].bc = &bc;

@@ -110,6 +110,7 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
     s.order = q->integer("order", 3, 2, 10);
     s.cell_size = q->positive("cell_size", s.spacing);
     s.cut_levels = q->integer("cut_levels", 2, 0, 6);
+    s.cut_arcs = q->choice("cut_cells", {"subdivide", "arcs"}, "subdivide") == "arcs";
     s.boundary_order = q->integer("boundary_order", s.order, 2, 10);
     s.vci = q->choice("correction", {"none", "vci"}, "none") == "vci";
     q->finish();

@@ -1,6 +1,7 @@
 #include "meshfree/quadrature/integration_points.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/core/gauss_legendre.hpp"
+#include "meshfree/quadrature/arc_cut_cells.hpp"
 #include <cmath>
 
 namespace mf::quadrature {
@@ -17,15 +18,37 @@ template <class F> void for_each_quarter(const BoundingBox& box, F&& f) {
     }
 }
 
-/// Adds the Gauss points of `box` that lie in the body; splits cells the boundary cuts.
+/// The one hole that cuts `box` when nothing else of the boundary does (the box lies in the
+/// polygon and meets no other hole), or null.
+const geometry::Circle* only_cutting_hole(const geometry::Domain& domain, const BoundingBox& box) {
+  const double tol = 1e-9 * box.size().maxCoeff();
+  const geometry::Circle* found = nullptr;
+  for (const auto& h : domain.holes()) {
+    const Vec2 nearest = h.center.cwiseMax(box.lo).cwiseMin(box.hi);
+    if ((nearest - h.center).norm() >= h.radius - tol) continue;
+    if (found) return nullptr;
+    found = &h;
+  }
+  if (!found) return nullptr;
+  for (const Vec2& p : {box.lo, Vec2(box.hi.x(), box.lo.y()), box.hi, Vec2(box.lo.x(), box.hi.y())})
+    if (!domain.within_outline(p, 1e-9)) return nullptr;
+  const auto& v = domain.vertices();
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (segment_crosses_interior(box, v[i], v[(i + 1) % v.size()], tol)) return nullptr;
+  return found;
+}
+
+/// Adds the Gauss points of `box` that lie in the body; splits cells the boundary cuts, or
+/// with `arcs` integrates a cell cut by one hole on its exact region.
 void integrate_cell(const geometry::Domain& domain, const BoundingBox& box, const GaussRule& g,
-                    int levels_left, int cell_id, const CellSizing& sizing, DomainPoints& out) {
+                    int levels_left, int cell_id, const CellSizing& sizing, bool arcs,
+                    DomainPoints& out) {
   const Vec2 half = 0.5 * box.size();
   const Vec2 mid = box.lo + half;
   if (sizing.spacing > 0.0 && box.size().maxCoeff() > sizing.size_at(box) * (1.0 + 1e-9)) {
     // refined nodes need refined integration
     for_each_quarter(box, [&](const BoundingBox& q) {
-      integrate_cell(domain, q, g, levels_left, cell_id, sizing, out);
+      integrate_cell(domain, q, g, levels_left, cell_id, sizing, arcs, out);
     });
     return;
   }
@@ -44,9 +67,16 @@ void integrate_cell(const geometry::Domain& domain, const BoundingBox& box, cons
     const double far = ((h.center - mid).cwiseAbs() + half).norm(); // farthest corner
     if ((nearest - h.center).norm() < h.radius && far > h.radius) cut = true;
   }
+  if (cut && arcs) {
+    if (const geometry::Circle* hole = only_cutting_hole(domain, box)) {
+      cell_minus_disc(box, hole->center, hole->radius, g, out.x, out.weight);
+      out.cell.resize(out.x.size(), cell_id);
+      return;
+    }
+  }
   if (cut && levels_left > 0) {
     for_each_quarter(box, [&](const BoundingBox& q) {
-      integrate_cell(domain, q, g, levels_left - 1, cell_id, sizing, out);
+      integrate_cell(domain, q, g, levels_left - 1, cell_id, sizing, arcs, out);
     });
     return;
   }
@@ -76,7 +106,7 @@ double CellSizing::size_at(const BoundingBox& box) const {
 }
 
 DomainPoints domain_points(const geometry::Domain& domain, double cell_size, int order,
-                           int cut_levels, const CellSizing& sizing) {
+                           int cut_levels, const CellSizing& sizing, bool arcs) {
   MF_REQUIRE(cell_size > 0.0, "integration cell size must be positive, got ", cell_size);
   MF_REQUIRE(cut_levels >= 0 && cut_levels <= 6, "cut-cell levels must be in [0, 6], got ",
              cut_levels);
@@ -91,7 +121,7 @@ DomainPoints domain_points(const geometry::Domain& domain, double cell_size, int
     for (int i = 0; i < nx; ++i) {
       BoundingBox box{bb.lo + Vec2(i * h.x(), j * h.y()), Vec2::Zero()};
       box.hi = box.lo + h;
-      integrate_cell(domain, box, g, cut_levels, j * nx + i, sizing, out);
+      integrate_cell(domain, box, g, cut_levels, j * nx + i, sizing, arcs, out);
     }
   return out;
 }

@@ -57,6 +57,8 @@ public:
   /// parts of hole circles that lie inside the polygon.
   std::vector<Curve> boundary() const;
 
+  /// True for points inside the polygon or within `tol` (relative) of its outline; holes ignored.
+  bool within_outline(const Vec2& p, double tol = 1e-12) const;
   /// Distance from p to the polygon outline (not the holes).
   double distance_to_outline(const Vec2& p) const;
 

@@ -55,6 +55,7 @@ struct DiscretisationSpec {
   int order = 3;           // Gauss points per direction in a background cell
   double cell_size = 0.0;  // background cell size (default: spacing)
   int cut_levels = 2;      // subdivisions of cells cut by the boundary
+  bool cut_arcs = false;   // cells cut by one hole: exact region (quadrature::cell_minus_disc)
   int boundary_order = 3;  // Gauss points per boundary part
   bool vci = false;        // meshfree: variationally consistent test-function gradients
 };

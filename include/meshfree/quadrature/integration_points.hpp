@@ -38,8 +38,10 @@ struct CellSizing {
 /// box, `order` x `order` Gauss points per cell. A cell that overlaps a refinement box is split
 /// into four until it is no larger than `sizing` asks; a cell cut by the boundary is split into
 /// four `cut_levels` more times, and at the finest level only the points inside the body are kept.
+/// With `arcs`, a cell that only a circular hole cuts is integrated on its exact region instead
+/// (cell_minus_disc); cells the polygon or two holes cut are still split.
 DomainPoints domain_points(const geometry::Domain& domain, double cell_size, int order,
-                           int cut_levels, const CellSizing& sizing = {});
+                           int cut_levels, const CellSizing& sizing = {}, bool arcs = false);
 
 /// Gauss points of `order` on each of `pieces` split into parts of length about `part_length`
 /// (shorter where `sizing` asks for it).
