@@ -8,8 +8,11 @@ thread.
 
 For every run it records the DOFs, the wall time of each phase (summary.json's time_s: the
 model's set-up, assembly and solve of the elastic plate; for the strip the Newton loop split into
-residuals with return mapping, Jacobian assembly, and linear solves), the linear iterations, and
-the peak resident memory (largest rank, all ranks). It writes runs.csv, the growth exponents
+residuals with return mapping, Jacobian assembly, and linear solves), the kernel CPU seconds
+(kernel_time_s: paging in memory, for the most part; of the assembly alone for the plate), the
+linear iterations, the peak resident memory (largest rank, all ranks), and the machine's rate of
+writing fresh
+memory at 1 to 12 GiB (first_touch.csv). It writes runs.csv, the growth exponents
 (slope of log time against log DOFs over the sizes from --fit-from DOFs up) in exponents.csv,
 and a PNG of time and memory against DOFs. Times are wall times of one run each; the machine is
 shared with nothing else only if you make it so.
@@ -75,12 +78,16 @@ def run_case(binary, case, dofs, solver, layout, out):
                setup_s=sum(t.get(k, 0.0) for k in SETUP), total_s=t["total"],
                peak_bytes_largest_rank=s["memory"]["peak_bytes_largest_rank"],
                peak_bytes_all_ranks=s["memory"]["peak_bytes_all_ranks"])
+    kernel = s.get("kernel_time_s", {})
+    row["kernel_s"] = sum(kernel.values())
     if c["analysis"] == "elastic":
-        row.update(assembly_s=t["assembly"], solve_s=t["solve"],
+        row.update(assembly_s=t["assembly"], assembly_kernel_s=kernel.get("assembly", 0.0),
+                   solve_s=t["solve"],
                    linear_iterations=s["solver"]["iterations"], newton_iterations=0)
     else:
         parts = t["newton_parts"]
         row.update(assembly_s=parts["residual_and_return_mapping"] + parts["jacobian_assembly"],
+                   assembly_kernel_s=float("nan"),
                    solve_s=parts["linear_solves_and_other"],
                    linear_iterations=s["solver"]["linear_iterations"],
                    newton_iterations=s["counts"]["newton_iterations"])
@@ -90,7 +97,8 @@ def run_case(binary, case, dofs, solver, layout, out):
     row["iterations_per_solve"] = row["linear_iterations"] / solves
     print(f"  {row['dofs']} DOFs: set-up {row['setup_s']:.2f} s, assembly {row['assembly_s']:.2f} s, "
           f"solve {row['solve_s']:.2f} s ({row['iterations_per_solve']:.1f} iterations per solve), "
-          f"total {row['total_s']:.2f} s, peak {row['peak_bytes_all_ranks'] / 2**20:.0f} MiB "
+          f"total {row['total_s']:.2f} s (kernel CPU {row['kernel_s']:.2f} s), "
+          f"peak {row['peak_bytes_all_ranks'] / 2**20:.0f} MiB "
           f"({row['bytes_per_dof']:.0f} bytes per DOF)", flush=True)
     return row
 
@@ -163,6 +171,37 @@ def write_csv(path, rows):
             w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
 
 
+PROBE = """
+import sys, time, numpy as np
+n = int(float(sys.argv[1]) * 2**30) // 8
+blocks, start = [], time.perf_counter()
+for _ in range(n // 2**24):  # 128 MiB blocks, as an application's vectors come
+    blocks.append(np.ones(2**24))
+first = time.perf_counter() - start
+start = time.perf_counter()
+for b in blocks:
+    b.fill(2.0)
+print(first, time.perf_counter() - start)
+"""
+
+
+def first_touch_rates(sizes_gib):
+    """GB/s of writing fresh memory (page faults and zeroing included) and of writing it again,
+    in one new process per size: on virtual machines the first touch can be several times slower
+    and slower still beyond some total, which the large runs' times then carry."""
+    rows = []
+    for gib in sizes_gib:
+        p = subprocess.run([sys.executable, "-c", PROBE, str(gib)], capture_output=True, text=True)
+        if p.returncode != 0:
+            continue
+        first, again = (float(v) for v in p.stdout.split())
+        gb = gib * 2**30 / 1e9
+        rows.append(dict(gib=gib, first_touch_gb_per_s=gb / first, rewrite_gb_per_s=gb / again))
+        print(f"  {gib:g} GiB: first touch {gb / first:.2f} GB/s, again {gb / again:.2f} GB/s",
+              flush=True)
+    return rows
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -195,6 +234,9 @@ def main():
                     if row:
                         rows.append(row)
     write_csv(out / "runs.csv", rows)
+    if not args.quick:
+        print("\nthis machine's memory (what the largest runs' assembly and set-up pay per byte):")
+        write_csv(out / "first_touch.csv", first_touch_rates([1, 4, 8, 12]))
     fits = exponents(rows, 0 if args.quick else args.fit_from)
     write_csv(out / "exponents.csv", fits)
     print("\ngrowth exponents (time ~ DOFs^e) and iterations per solve, largest over smallest size:")

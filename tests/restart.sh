@@ -19,7 +19,7 @@ names = sorted(os.path.basename(f) for f in glob.glob(a_dir + "/*"))
 assert names == sorted(os.path.basename(f) for f in glob.glob(b_dir + "/*")), "other files"
 def timing(key):  # a time, a rate or the memory of this machine, not a result
     return (key.endswith(("_per_second", "seconds")) or
-            key in ("share_of_run", "time_s", "checkpoints", "memory"))
+            key in ("share_of_run", "time_s", "kernel_time_s", "checkpoints", "memory"))
 def same(x, y, where):
     if isinstance(x, dict):
         for k in x:

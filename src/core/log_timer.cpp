@@ -1,5 +1,6 @@
 #include "meshfree/core/log.hpp"
 #include "meshfree/core/timer.hpp"
+#include <sys/resource.h>
 
 namespace mf {
 
@@ -13,13 +14,21 @@ bool& log::verbose() {
   return v;
 }
 
-void PhaseTimer::add(const std::string& name, double seconds) {
-  for (auto& [n, t] : phases_)
-    if (n == name) {
-      t += seconds;
+double kernel_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_stime.tv_sec) + 1e-6 * static_cast<double>(u.ru_stime.tv_usec);
+}
+
+void PhaseTimer::add(const std::string& name, double seconds, double kernel) {
+  for (std::size_t k = 0; k < phases_.size(); ++k)
+    if (phases_[k].first == name) {
+      phases_[k].second += seconds;
+      kernel_[k].second += kernel;
       return;
     }
   phases_.emplace_back(name, seconds);
+  kernel_.emplace_back(name, kernel);
 }
 
 double PhaseTimer::total() const {

@@ -82,6 +82,12 @@ std::string Summary::str(const PhaseTimer& timer) const {
     if (key == "time_s") extra_times = json.get();
   if (extra_times) times.merge(*extra_times);
   times.set("total", timer.total());
+  Json kernel; // this rank's, like the times
+  for (const auto& [name, seconds] : timer.kernel_phases()) kernel.set(name, seconds);
+  const auto set_times = [&](Json& j) {
+    j.set("time_s", times);
+    if (!timer.kernel_phases().empty()) j.set("kernel_time_s", kernel);
+  };
 
   Json j;
   j.set("problem", header_.problem).set("description", header_.description);
@@ -94,10 +100,10 @@ std::string Summary::str(const PhaseTimer& timer) const {
   bool timed = false;
   for (const auto& [key, json] : sections_) {
     if (key == "time_s") continue;
-    if (key == "results") j.set("time_s", times), timed = true;
+    if (key == "results") set_times(j), timed = true;
     j.set(key, *json);
   }
-  if (!timed) j.set("time_s", times);
+  if (!timed) set_times(j);
   return j.str() + "\n";
 }
 
