@@ -81,8 +81,9 @@ TEST_CASE("VCI: Kirsch plate on 2 x 2 Gauss points converges at the linear basis
 
 /// Linear basis: the energy-norm error must fall at least as h^0.9 and the L2 error as h^1.8
 /// (the theory gives h^1 and h^2), and the finest level be below 1% in energy.
-void check_linear_basis_rates(const std::string& problem, const std::vector<double>& spacings) {
-  const Study s = study(problem, spacings);
+void check_linear_basis_rates(const std::string& problem, const std::vector<double>& spacings,
+                              const std::vector<std::string>& extra = {}) {
+  const Study s = study(problem, spacings, extra);
   const double re = convergence_rate(s.h, s.energy), rl = convergence_rate(s.h, s.l2);
   std::cout << problem << " rates: energy " << re << ", L2 " << rl << "\n";
   CHECK(re >= 0.9);
@@ -98,6 +99,12 @@ TEST_CASE("Timoshenko beam: energy error falls at least as h^0.9, L2 as h^1.8",
 TEST_CASE("Kirsch plate with a hole: energy error falls at least as h^0.9, L2 as h^1.8",
           "[elasticity][convergence]") {
   check_linear_basis_rates("plate_hole_kirsch", {0.5, 0.25, 0.125, 0.0625});
+}
+
+TEST_CASE("Kirsch plate with exact cut cells at the hole: the same rates, the same accuracy",
+          "[elasticity][convergence][quadrature]") {
+  check_linear_basis_rates("plate_hole_kirsch", {0.5, 0.25, 0.125, 0.0625},
+                           {"discretisation.quadrature.cut_cells=arcs"});
 }
 
 TEST_CASE("quadratic basis: Timoshenko energy error converges faster than with the linear basis",
