@@ -44,7 +44,7 @@ void correct_test_gradients(const io::ProblemSpec& spec, GalerkinModel& m,
   }
   // xi of the owned nodes, then of every node (the points near a partition boundary hold
   // nodes of other ranks).
-  // A node without points is reported after the exchange, which every rank must reach.
+  // A node without points is reported after the exchanges, which every rank must reach.
   std::vector<double> xi(2 * static_cast<std::size_t>(N), 0.0);
   int bare = -1;
   for (int I = m.own.begin; I < m.own.end; ++I) {
@@ -57,6 +57,8 @@ void correct_test_gradients(const io::ProblemSpec& spec, GalerkinModel& m,
     xi[2 * I + 1] = (s[4] - s[1]) / s[2];
   }
   solvers::sum_everywhere(session.comm(), xi.data(), static_cast<int>(xi.size()));
+  // Every rank stops, naming the highest such node of any rank.
+  bare = static_cast<int>(solvers::max_everywhere(session.comm(), static_cast<double>(bare)));
   MF_REQUIRE(bare < 0, "VCI: node ", bare, " has no integration point in its support");
   t.test_dphi.resize(t.dphi.size());
   for (std::size_t j = 0; j < t.dphi.size(); ++j) {

@@ -75,6 +75,17 @@ void set_block_values(Mat A, OwnedRange owned, const std::vector<int>& row_offse
 
 namespace {
 
+/// Sets PETSc option -name to `value` unless the user gave it, and marks it as the code's (not
+/// reported among the unused options).
+void default_option(const std::string& name, const char* value) {
+  const std::string key = "-" + name;
+  PetscBool set = PETSC_FALSE;
+  check(PetscOptionsHasName(nullptr, nullptr, key.c_str(), &set), "PetscOptionsHasName");
+  if (set) return;
+  check(PetscOptionsSetValue(nullptr, key.c_str(), value), "PetscOptionsSetValue");
+  options_set_by_code().insert(name);
+}
+
 void set_direct_solver(KSP ksp, bool symmetric) {
   // Penalty terms (alpha ~ 1e12) make the matrices too ill-conditioned for unpreconditioned
   // Krylov methods, so a direct solve is the safe default; Cholesky on symmetric systems takes
@@ -87,12 +98,7 @@ void set_direct_solver(KSP ksp, bool symmetric) {
   // MUMPS sizes its work space from an estimate plus ICNTL(14) percent (PETSc's default 20);
   // distributed Cholesky of penalty-constrained matrices can exceed that (INFOG(1) = -9), so
   // allow 100 percent unless the user chose a value.
-  PetscBool set = PETSC_FALSE;
-  check(PetscOptionsHasName(nullptr, nullptr, "-mat_mumps_icntl_14", &set), "PetscOptionsHasName");
-  if (!set) {
-    check(PetscOptionsSetValue(nullptr, "-mat_mumps_icntl_14", "100"), "PetscOptionsSetValue");
-    options_set_by_code().insert("mat_mumps_icntl_14");
-  }
+  default_option("mat_mumps_icntl_14", "100");
 }
 
 /// Translations and the in-plane rotation of the nodes (MatNullSpaceCreateRigidBody) as A's
@@ -146,14 +152,7 @@ void set_multigrid_solver(KSP ksp, Mat A, const LinearSolverSettings& settings) 
   // indefinite preconditioner after 8 cut-backs; with the wider bound all 46 Newton iterations
   // converge (85 CG iterations per solve, results equal to MUMPS's to 2e-7), at 27-28 instead
   // of 26 iterations on the plate.
-  PetscBool set = PETSC_FALSE;
-  check(PetscOptionsHasName(nullptr, nullptr, "-mg_levels_ksp_chebyshev_esteig", &set),
-        "PetscOptionsHasName");
-  if (!set) {
-    check(PetscOptionsSetValue(nullptr, "-mg_levels_ksp_chebyshev_esteig", "0,0.05,0,1.5"),
-          "PetscOptionsSetValue");
-    options_set_by_code().insert("mg_levels_ksp_chebyshev_esteig");
-  }
+  default_option("mg_levels_ksp_chebyshev_esteig", "0,0.05,0,1.5");
 }
 
 } // namespace
