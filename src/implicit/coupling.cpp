@@ -5,6 +5,22 @@
 
 namespace mf::implicit {
 
+namespace {
+
+/// The first element of the sorted range [k, end) not below x, by galloping from k: the nodes of
+/// a point lie close together among the columns of a row (about 4 columns apart where a row has
+/// 45 and the point 12 nodes), so this takes 1 to 3 comparisons where a binary search over the
+/// rest of the row takes 5 or 6; a coarse node next to a refined region, whose row holds
+/// thousands of columns, still costs a logarithm of the distance.
+inline const int* gallop(const int* k, const int* end, int x) {
+  if (k == end || *k >= x) return k;
+  std::ptrdiff_t hi = 1; // k[hi / 2] < x throughout
+  while (hi < end - k && k[hi] < x) hi *= 2;
+  return std::lower_bound(k + hi / 2 + 1, k + std::min<std::ptrdiff_t>(hi, end - k), x);
+}
+
+} // namespace
+
 RowPattern coupling_pattern(const std::vector<const Csr*>& lists, int node_count, int begin,
                             int end) {
   const int owned = end - begin;
@@ -47,23 +63,23 @@ RowPattern coupling_pattern(const std::vector<const Csr*>& lists, int node_count
   return p;
 }
 
-BlockRows::BlockRows(RowPattern pattern)
-    : pattern_(std::move(pattern)), values_(4 * pattern_.column.size(), 0.0),
-      rhs_(2 * static_cast<std::size_t>(pattern_.rows()), 0.0) {}
+BlockRows::BlockRows(const RowPattern& pattern)
+    : pattern_(&pattern), values_(4 * pattern.column.size(), 0.0),
+      rhs_(2 * static_cast<std::size_t>(pattern.rows()), 0.0) {}
 
 void BlockRows::add_matrix(const int* nodes, int n, const double* block) {
+  const RowPattern& p = *pattern_;
   const int stride = 2 * n;
   for (int a = 0; a < n; ++a) {
     const int I = nodes[a];
-    if (I < pattern_.begin || I >= pattern_.end) continue;
-    const int row = I - pattern_.begin;
+    if (I < p.begin || I >= p.end) continue;
+    const int row = I - p.begin;
     // Both the row's columns and `nodes` are sorted: each search starts where the last ended.
-    // Binary, because a coarse node next to a refined region couples to thousands of nodes.
-    const int* col = pattern_.column.data();
-    const int* k_end = col + pattern_.offset[row + 1];
-    const int* k = col + pattern_.offset[row];
+    const int* col = p.column.data();
+    const int* k_end = col + p.offset[row + 1];
+    const int* k = col + p.offset[row];
     for (int b = 0; b < n; ++b) {
-      k = std::lower_bound(k, k_end, nodes[b]);
+      k = gallop(k, k_end, nodes[b]);
       MF_ASSERT(k < k_end && *k == nodes[b]);
       double* v = values_.data() + 4 * static_cast<std::size_t>(k - col);
       const double* src = block + (2 * a) * stride + 2 * b;
@@ -87,11 +103,12 @@ void BlockRows::set_values(const std::vector<double>& values) {
 }
 
 void BlockRows::multiply_add(const std::vector<double>& d, double* r) const {
-  for (int i = 0; i < pattern_.rows(); ++i) {
+  const RowPattern& p = *pattern_;
+  for (int i = 0; i < p.rows(); ++i) {
     double sx = 0.0, sy = 0.0;
-    for (int k = pattern_.offset[i]; k < pattern_.offset[i + 1]; ++k) {
+    for (int k = p.offset[i]; k < p.offset[i + 1]; ++k) {
       const double* b = values_.data() + 4 * static_cast<std::size_t>(k);
-      const double dx = d[2 * pattern_.column[k]], dy = d[2 * pattern_.column[k] + 1];
+      const double dx = d[2 * p.column[k]], dy = d[2 * p.column[k] + 1];
       sx += b[0] * dx + b[1] * dy;
       sy += b[2] * dx + b[3] * dy;
     }
@@ -142,7 +159,7 @@ void BlockScatter::find(int r, int* out) const {
     const int* k = col + p.offset[I - p.begin];
     const int* k_end = col + p.offset[I - p.begin + 1];
     for (int b = 0; b < n; ++b) {
-      k = std::lower_bound(k, k_end, nodes[b]);
+      k = gallop(k, k_end, nodes[b]);
       MF_REQUIRE(k < k_end && *k == nodes[b], "BlockScatter: a node pair is not in the pattern");
       out[a * n + b] = static_cast<int>(k - col);
     }
@@ -150,11 +167,12 @@ void BlockScatter::find(int r, int* out) const {
 }
 
 void BlockRows::add_vector(const int* nodes, int n, const double* values) {
+  const RowPattern& p = *pattern_;
   for (int a = 0; a < n; ++a) {
     const int I = nodes[a];
-    if (I < pattern_.begin || I >= pattern_.end) continue;
-    rhs_[2 * (I - pattern_.begin)] += values[2 * a];
-    rhs_[2 * (I - pattern_.begin) + 1] += values[2 * a + 1];
+    if (I < p.begin || I >= p.end) continue;
+    rhs_[2 * (I - p.begin)] += values[2 * a];
+    rhs_[2 * (I - p.begin) + 1] += values[2 * a + 1];
   }
 }
 
