@@ -64,8 +64,40 @@ RowPattern coupling_pattern(const std::vector<const Csr*>& lists, int node_count
 }
 
 BlockRows::BlockRows(const RowPattern& pattern)
-    : pattern_(&pattern), values_(4 * pattern.column.size(), 0.0),
-      rhs_(2 * static_cast<std::size_t>(pattern.rows()), 0.0) {}
+    : pattern_(&pattern), rhs_(2 * static_cast<std::size_t>(pattern.rows()), 0.0) {
+  set_layout();
+  own_.assign(diagonal_values_ + off_values_, 0.0);
+  diagonal_ = own_.data();
+  off_ = own_.data() + diagonal_values_;
+}
+
+BlockRows::BlockRows(const RowPattern& pattern, solvers::BlockValueArrays values)
+    : pattern_(&pattern), rhs_(2 * static_cast<std::size_t>(pattern.rows()), 0.0) {
+  set_layout();
+  MF_REQUIRE(values.diagonal && (values.off_diagonal || off_values_ == 0),
+             "BlockRows: the matrix has no storage for its off-diagonal blocks");
+  diagonal_ = values.diagonal;
+  off_ = values.off_diagonal;
+}
+
+void BlockRows::set_layout() {
+  const RowPattern& p = *pattern_;
+  layout_.resize(p.rows());
+  for (int i = 0; i < p.rows(); ++i) {
+    const int* first = p.column.data() + p.offset[i];
+    const int* last = p.column.data() + p.offset[i + 1];
+    const int* own_begin = std::lower_bound(first, last, p.begin);
+    const int* own_end = std::lower_bound(own_begin, last, p.end);
+    RowLayout& L = layout_[i];
+    L.diagonal_begin = static_cast<int>(own_begin - p.column.data());
+    L.diagonal_end = static_cast<int>(own_end - p.column.data());
+    L.diagonal_start = diagonal_values_;
+    L.off_start = off_values_;
+    // Two scalar rows of two values per block.
+    diagonal_values_ += 4 * static_cast<std::size_t>(own_end - own_begin);
+    off_values_ += 4 * static_cast<std::size_t>((last - first) - (own_end - own_begin));
+  }
+}
 
 void BlockRows::add_matrix(const int* nodes, int n, const double* block) {
   const RowPattern& p = *pattern_;
@@ -81,25 +113,39 @@ void BlockRows::add_matrix(const int* nodes, int n, const double* block) {
     for (int b = 0; b < n; ++b) {
       k = gallop(k, k_end, nodes[b]);
       MF_ASSERT(k < k_end && *k == nodes[b]);
-      double* v = values_.data() + 4 * static_cast<std::size_t>(k - col);
+      int s;
+      double* v = block_at(row, static_cast<int>(k - col), s);
       const double* src = block + (2 * a) * stride + 2 * b;
       v[0] += src[0];
       v[1] += src[1];
-      v[2] += src[stride];
-      v[3] += src[stride + 1];
+      v[s] += src[stride];
+      v[s + 1] += src[stride + 1];
     }
   }
 }
 
-void BlockRows::clear() {
-  std::fill(values_.begin(), values_.end(), 0.0);
-  std::fill(rhs_.begin(), rhs_.end(), 0.0);
+void BlockRows::add_matrix_at(const int* nodes, const int* slots, int n, const double* block) {
+  const int stride = 2 * n;
+  for (int a = 0; a < n; ++a) {
+    const int row = nodes[a] - pattern_->begin;
+    for (int b = 0; b < n; ++b) {
+      const int k = slots[a * n + b];
+      if (k < 0) continue;
+      int s;
+      double* v = block_at(row, k, s);
+      const double* src = block + (2 * a) * stride + 2 * b;
+      v[0] += src[0];
+      v[1] += src[1];
+      v[s] += src[stride];
+      v[s + 1] += src[stride + 1];
+    }
+  }
 }
 
-void BlockRows::set_values(const std::vector<double>& values) {
-  MF_REQUIRE(values.size() == values_.size(), "BlockRows::set_values: pattern mismatch");
-  values_ = values;
-  std::fill(rhs_.begin(), rhs_.end(), 0.0);
+void BlockRows::copy_values(const BlockRows& other) {
+  MF_REQUIRE(other.pattern_ == pattern_, "BlockRows::copy_values: another pattern");
+  std::copy(other.diagonal_, other.diagonal_ + diagonal_values_, diagonal_);
+  if (off_values_ > 0) std::copy(other.off_, other.off_ + off_values_, off_);
 }
 
 void BlockRows::multiply_add(const std::vector<double>& d, double* r) const {
@@ -107,29 +153,15 @@ void BlockRows::multiply_add(const std::vector<double>& d, double* r) const {
   for (int i = 0; i < p.rows(); ++i) {
     double sx = 0.0, sy = 0.0;
     for (int k = p.offset[i]; k < p.offset[i + 1]; ++k) {
-      const double* b = values_.data() + 4 * static_cast<std::size_t>(k);
+      int s;
+      const double* b = block_at(i, k, s);
       const double dx = d[2 * p.column[k]], dy = d[2 * p.column[k] + 1];
       sx += b[0] * dx + b[1] * dy;
-      sy += b[2] * dx + b[3] * dy;
+      sy += b[s] * dx + b[s + 1] * dy;
     }
     r[2 * i] += sx;
     r[2 * i + 1] += sy;
   }
-}
-
-void BlockRows::add_matrix_at(const int* slots, int n, const double* block) {
-  const int stride = 2 * n;
-  for (int a = 0; a < n; ++a)
-    for (int b = 0; b < n; ++b) {
-      const int k = slots[a * n + b];
-      if (k < 0) continue;
-      double* v = values_.data() + 4 * static_cast<std::size_t>(k);
-      const double* src = block + (2 * a) * stride + 2 * b;
-      v[0] += src[0];
-      v[1] += src[1];
-      v[2] += src[stride];
-      v[3] += src[stride + 1];
-    }
 }
 
 BlockScatter::BlockScatter(const ShapeTable& t, const RowPattern& p, double max_bytes)

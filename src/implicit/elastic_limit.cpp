@@ -40,13 +40,9 @@ ElasticLimit elastic_limit(const io::ProblemSpec& spec, const GalerkinModel& m,
   lim.skipped = elastic_limit_skipped(spec);
   if (!lim.skipped.empty()) return lim;
   const std::vector<double>& target = spec.steps.front().target;
-  const BlockRows rows = assemble_linear_elastic(spec, m, target);
-  const RowPattern& p = rows.pattern();
-  solvers::BlockLinearSystem system(session.comm(), m.node_count(), m.own, p.offset, p.column,
-                                    rows.values(), rows.rhs(), /*spd=*/true,
-                                    linear_solver_settings(spec, m));
-  system.solve();
-  const std::vector<double> d = system.solution_everywhere();
+  const auto system = linear_elastic_system(spec, m, target, session);
+  system->solve();
+  const std::vector<double> d = system->solution_everywhere();
   // First yield where sigma_vm / sigma_y of the point's material peaks, over the points of
   // plastic materials; sigma_ref is the yield stress of the analysis' material (or of the first
   // plastic one), so that one material gives the von Mises peak itself.

@@ -99,12 +99,8 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
   std::unique_ptr<solvers::BlockLinearSystem> system;
   {
     PhaseTimer::Scope scope(R.timer, "assembly");
-    const BlockRows rows =
-        assemble_linear_elastic(spec, m, std::vector<double>(spec.boundary.size() + 1, 1.0));
-    const RowPattern& p = rows.pattern();
-    system = std::make_unique<solvers::BlockLinearSystem>(
-        session.comm(), R.nodes, m.own, p.offset, p.column, rows.values(), rows.rhs(),
-        /*spd=*/true, linear_solver_settings(spec, m));
+    system =
+        linear_elastic_system(spec, m, std::vector<double>(spec.boundary.size() + 1, 1.0), session);
   }
   R.matrix_nonzeros = system->global_nonzeros();
   log::info("matrix: ", R.dofs, " x ", R.dofs, ", ", static_cast<long>(R.matrix_nonzeros),

@@ -66,7 +66,9 @@ ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
   solvers::NonlinearBlockSystem newton(
       session.comm(), R.nodes, m.own, m.pattern.offset, m.pattern.column, problem.needed_nodes(),
       [&](const std::vector<double>& d, double* r, double& s) { problem.residual(d, r, s); },
-      [&](const std::vector<double>& d, std::vector<double>& b) { problem.jacobian(d, b); },
+      [&](const std::vector<double>& d, solvers::BlockValueArrays values) {
+        problem.jacobian(d, values);
+      },
       linear_solver_settings(spec, m));
   R.solver = newton.description();
   log::info("Newton: ", R.solver, ", tolerance |R| <= ", spec.nonlinear.tolerance, " |F|");

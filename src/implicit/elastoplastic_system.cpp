@@ -32,7 +32,7 @@ struct OwnedRowAdder {
 
 ElastoplasticSystem::ElastoplasticSystem(const io::ProblemSpec& spec, const GalerkinModel& m)
     : spec_(spec), m_(m), laws_(point_laws(spec, domain_rows(m))), states_(m.domain_table.rows()),
-      penalty_(m.pattern), tangent_(m.pattern), scatter_(m.domain_table, m.pattern) {
+      penalty_(m.pattern), scatter_(m.domain_table, m.pattern) {
   MF_REQUIRE(m.domain_groups.rows() == m.domain_table.rows(),
              "ElastoplasticSystem: the model's points are not grouped for assembly");
   if (!scatter_.kept())
@@ -92,10 +92,11 @@ void ElastoplasticSystem::residual(const std::vector<double>& d, double* r, doub
   residual_seconds_ += seconds_since(t0);
 }
 
-void ElastoplasticSystem::jacobian(const std::vector<double>& d, std::vector<double>& blocks) {
+void ElastoplasticSystem::jacobian(const std::vector<double>& d, solvers::BlockValueArrays values) {
   const auto t0 = Clock::now();
   update_materials(d);
-  tangent_.set_values(penalty_.values());
+  BlockRows tangent(m_.pattern, values);
+  tangent.copy_values(penalty_);
   const ShapeTable& t = m_.domain_table;
   const int threads = PointGroups::threads();
   std::vector<std::vector<double>> block(threads);
@@ -104,9 +105,9 @@ void ElastoplasticSystem::jacobian(const std::vector<double>& d, std::vector<dou
     const int n = t.offset[k + 1] - t.offset[k];
     block[thread].resize(4 * n * n);
     point_stiffness(t, k, m_.domain_weight[k] * states_.tangent[k], block[thread].data());
-    tangent_.add_matrix_at(scatter_.slots(k, slots[thread]), n, block[thread].data());
+    tangent.add_matrix_at(t.node.data() + t.offset[k], scatter_.slots(k, slots[thread]), n,
+                          block[thread].data());
   });
-  blocks = tangent_.values();
   jacobian_seconds_ += seconds_since(t0);
 }
 

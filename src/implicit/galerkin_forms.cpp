@@ -6,10 +6,11 @@
 
 namespace mf::implicit {
 
-BlockRows assemble_linear_elastic(const io::ProblemSpec& spec, const GalerkinModel& m,
-                                  const std::vector<double>& factors) {
+namespace {
+
+void assemble_linear_elastic(const io::ProblemSpec& spec, const GalerkinModel& m,
+                             const std::vector<double>& factors, BlockRows& rows) {
   MF_REQUIRE(factors.size() == spec.boundary.size() + 1, "assemble_linear_elastic: factors");
-  BlockRows rows(m.pattern);
   const auto add_matrix = [&](const int* nodes, int n, const double* v) {
     rows.add_matrix(nodes, n, v);
   };
@@ -46,7 +47,22 @@ BlockRows assemble_linear_elastic(const io::ProblemSpec& spec, const GalerkinMod
     else
       add_load(c.table, c.weight, values, add_vector);
   }
-  return rows;
+}
+
+} // namespace
+
+std::unique_ptr<solvers::BlockLinearSystem>
+linear_elastic_system(const io::ProblemSpec& spec, const GalerkinModel& m,
+                      const std::vector<double>& factors, const solvers::PetscSession& session) {
+  const RowPattern& p = m.pattern;
+  return std::make_unique<solvers::BlockLinearSystem>(
+      session.comm(), m.node_count(), m.own, p.offset, p.column,
+      [&](solvers::BlockValueArrays values, std::vector<double>& rhs) {
+        BlockRows rows(p, values);
+        assemble_linear_elastic(spec, m, factors, rows);
+        rhs = rows.rhs();
+      },
+      /*spd=*/true, linear_solver_settings(spec, m));
 }
 
 BoundaryReport boundary_report(const ConditionPoints& c, const std::vector<double>& d,

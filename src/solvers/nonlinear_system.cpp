@@ -11,7 +11,6 @@ struct NonlinearBlockSystem::Impl {
   MPI_Comm comm;
   int node_count = 0;
   OwnedRange owned;
-  std::vector<int> row_offset, columns;
   ResidualFunction residual;
   JacobianFunction jacobian;
 
@@ -22,9 +21,8 @@ struct NonlinearBlockSystem::Impl {
   VecScatter pull = nullptr;         // x -> ghost
   std::vector<PetscInt> ghost_index; // global DOF of each ghost entry
 
-  std::vector<double> d;      // full-length iterate seen by the callbacks
-  std::vector<double> blocks; // Jacobian values in pattern order
-  double scale = 0.0;         // force scale of the last residual evaluation
+  std::vector<double> d; // full-length iterate seen by the callbacks
+  double scale = 0.0;    // force scale of the last residual evaluation
   double tolerance = 1e-8;
   int max_iterations = 20;
   bool multigrid = false; // the default linear solver is multigrid (for the failure's hint)
@@ -76,15 +74,11 @@ PetscErrorCode form_jacobian(SNES snes, Vec X, Mat, Mat P, void* ctx) {
   s.pull_values(X);
   std::string failure;
   try {
-    s.jacobian(s.d, s.blocks);
+    detail::write_block_values(P, [&](BlockValueArrays values) { s.jacobian(s.d, values); });
   } catch (const std::exception& e) {
     failure = e.what();
   }
-  if (s.any_failed(failure)) {
-    PetscCall(SNESSetJacobianDomainError(snes));
-    return 0;
-  }
-  detail::set_block_values(P, s.owned, s.row_offset, s.columns, s.blocks);
+  if (s.any_failed(failure)) PetscCall(SNESSetJacobianDomainError(snes));
   return 0;
 }
 
@@ -115,7 +109,8 @@ PetscErrorCode converged(SNES, PetscInt it, PetscReal xnorm, PetscReal snorm, Pe
 } // namespace
 
 NonlinearBlockSystem::NonlinearBlockSystem(MPI_Comm comm, int node_count, OwnedRange owned,
-                                           std::vector<int> row_offset, std::vector<int> columns,
+                                           const std::vector<int>& row_offset,
+                                           const std::vector<int>& columns,
                                            const std::vector<int>& needed,
                                            ResidualFunction residual, JacobianFunction jacobian,
                                            const LinearSolverSettings& linear)
@@ -124,14 +119,11 @@ NonlinearBlockSystem::NonlinearBlockSystem(MPI_Comm comm, int node_count, OwnedR
   s.comm = comm;
   s.node_count = node_count;
   s.owned = owned;
-  s.row_offset = std::move(row_offset);
-  s.columns = std::move(columns);
   s.residual = std::move(residual);
   s.jacobian = std::move(jacobian);
   s.d.assign(2 * static_cast<std::size_t>(node_count), 0.0);
-  s.blocks.assign(4 * s.columns.size(), 0.0);
 
-  s.J = detail::create_block_matrix(comm, node_count, owned, s.row_offset, s.columns, {});
+  s.J = detail::create_block_matrix(comm, node_count, owned, row_offset, columns);
   // The consistent tangent of associative plasticity plus the penalty terms is symmetric (in a
   // Galerkin form, not with corrected test functions).
   if (linear.symmetric)

@@ -1,36 +1,47 @@
 #include "petsc_detail.hpp"
 #include <algorithm>
+#include <exception>
 #include <string>
 
 namespace mf::solvers::detail {
 
 namespace {
 
-/// Writes the owned block rows into A row by row (zeros where `blocks` is null), then assembles
-/// it. Row by row, a scalar row at a time from the 2x2 blocks: a scalar copy of the whole matrix
-/// would be one more matrix's worth of memory to page in (2.7 GB at 2.5 * 10^6 DOFs).
-void write_block_rows(Mat A, OwnedRange owned, const std::vector<int>& row_offset,
-                      const std::vector<int>& columns, const double* blocks) {
-  const int rows = owned.end - owned.begin;
+/// The diagonal (owned columns) and off-diagonal parts of A: A itself and none on one rank.
+struct LocalParts {
+  Mat diagonal = nullptr, off_diagonal = nullptr;
+  const PetscInt* off_columns = nullptr; // global column of each off-diagonal local column
+};
+
+LocalParts local_parts(Mat A) {
+  PetscBool mpi = PETSC_FALSE;
+  check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(A), MATMPIAIJ, &mpi),
+        "PetscObjectTypeCompare");
+  LocalParts p;
+  if (!mpi) {
+    p.diagonal = A;
+    return p;
+  }
+  check(MatMPIAIJGetSeqAIJ(A, &p.diagonal, &p.off_diagonal, &p.off_columns), "MatMPIAIJGetSeqAIJ");
+  return p;
+}
+
+/// Inserts zeros on the pattern, a scalar row at a time, and assembles A.
+void insert_pattern(Mat A, OwnedRange owned, const std::vector<int>& row_offset,
+                    const std::vector<int>& columns) {
   std::vector<PetscInt> cols;
-  std::vector<PetscScalar> vals;
-  for (int i = 0; i < rows; ++i) {
+  std::vector<PetscScalar> zeros;
+  for (int i = 0; i < owned.end - owned.begin; ++i) {
     const int n = row_offset[i + 1] - row_offset[i];
     cols.resize(2 * n);
-    vals.assign(2 * n, 0.0);
+    zeros.assign(2 * n, 0.0);
     for (int q = 0; q < n; ++q) {
       cols[2 * q] = 2 * static_cast<PetscInt>(columns[row_offset[i] + q]);
       cols[2 * q + 1] = cols[2 * q] + 1;
     }
     for (int comp = 0; comp < 2; ++comp) {
-      if (blocks)
-        for (int q = 0; q < n; ++q) {
-          const double* b = blocks + 4 * static_cast<std::size_t>(row_offset[i] + q);
-          vals[2 * q] = b[2 * comp];
-          vals[2 * q + 1] = b[2 * comp + 1];
-        }
       const PetscInt row = 2 * static_cast<PetscInt>(owned.begin + i) + comp;
-      check(MatSetValues(A, 1, &row, 2 * n, cols.data(), vals.data(), INSERT_VALUES),
+      check(MatSetValues(A, 1, &row, 2 * n, cols.data(), zeros.data(), INSERT_VALUES),
             "MatSetValues");
     }
   }
@@ -38,20 +49,59 @@ void write_block_rows(Mat A, OwnedRange owned, const std::vector<int>& row_offse
   check(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
 }
 
+/// Requires A's storage to hold the pattern in BlockValueArrays' order: in each scalar row the
+/// owned block columns in one part and the others in the other, both in column order. PETSc's
+/// AIJ matrices keep it so (sorted columns; the off-diagonal part numbered in the order of its
+/// global columns); the check, one pass over the column indices, guards the values written in
+/// place against a PETSc that stored them otherwise.
+void require_storage_order(Mat A, OwnedRange owned, const std::vector<int>& row_offset,
+                           const std::vector<int>& columns) {
+  const LocalParts p = local_parts(A);
+  PetscInt nd = 0, no = 0;
+  const PetscInt *id = nullptr, *jd = nullptr, *io = nullptr, *jo = nullptr;
+  PetscBool done = PETSC_FALSE;
+  check(MatGetRowIJ(p.diagonal, 0, PETSC_FALSE, PETSC_FALSE, &nd, &id, &jd, &done), "MatGetRowIJ");
+  bool ok = done && nd == 2 * (owned.end - owned.begin);
+  if (p.off_diagonal) {
+    check(MatGetRowIJ(p.off_diagonal, 0, PETSC_FALSE, PETSC_FALSE, &no, &io, &jo, &done),
+          "MatGetRowIJ");
+    ok = ok && done && no == nd;
+  }
+  for (int i = 0; ok && i < owned.end - owned.begin; ++i)
+    for (int comp = 0; ok && comp < 2; ++comp) {
+      const int r = 2 * i + comp;
+      PetscInt kd = id[r], ko = io ? io[r] : 0;
+      for (int k = row_offset[i]; ok && k < row_offset[i + 1]; ++k)
+        for (int c = 0; ok && c < 2; ++c) {
+          const PetscInt column = 2 * static_cast<PetscInt>(columns[k]) + c;
+          if (owned.owns(columns[k]))
+            ok = kd < id[r + 1] && jd[kd++] == column - 2 * static_cast<PetscInt>(owned.begin);
+          else
+            ok = io && ko < io[r + 1] && p.off_columns[jo[ko++]] == column;
+        }
+      ok = ok && kd == id[r + 1] && (!io || ko == io[r + 1]);
+    }
+  check(MatRestoreRowIJ(p.diagonal, 0, PETSC_FALSE, PETSC_FALSE, &nd, &id, &jd, &done),
+        "MatRestoreRowIJ");
+  if (p.off_diagonal)
+    check(MatRestoreRowIJ(p.off_diagonal, 0, PETSC_FALSE, PETSC_FALSE, &no, &io, &jo, &done),
+          "MatRestoreRowIJ");
+  MF_REQUIRE(ok, "block matrix: PETSc does not store the pattern in the order the values are "
+                 "written in (owned columns, then the others, each in column order)");
+}
+
 } // namespace
 
 Mat create_block_matrix(MPI_Comm comm, int node_count, OwnedRange owned,
-                        const std::vector<int>& row_offset, const std::vector<int>& columns,
-                        const std::vector<double>& blocks) {
+                        const std::vector<int>& row_offset, const std::vector<int>& columns) {
   const int rows = owned.end - owned.begin;
-  MF_REQUIRE(static_cast<int>(row_offset.size()) == rows + 1 &&
-                 (blocks.empty() || blocks.size() == 4 * columns.size()),
+  MF_REQUIRE(static_cast<int>(row_offset.size()) == rows + 1,
              "block matrix: inconsistent block rows");
   // Exact preallocation in blocks: those in the owned columns (the diagonal part) and the rest.
   std::vector<PetscInt> diagonal(rows, 0), off_diagonal(rows, 0);
   for (int i = 0; i < rows; ++i)
     for (int k = row_offset[i]; k < row_offset[i + 1]; ++k)
-      ++(columns[k] >= owned.begin && columns[k] < owned.end ? diagonal : off_diagonal)[i];
+      ++(owned.owns(columns[k]) ? diagonal : off_diagonal)[i];
   const PetscInt local = 2 * static_cast<PetscInt>(rows),
                  global = 2 * static_cast<PetscInt>(node_count);
   Mat A;
@@ -61,16 +111,32 @@ Mat create_block_matrix(MPI_Comm comm, int node_count, OwnedRange owned,
   check(MatSetType(A, MATAIJ), "MatSetType");
   check(MatXAIJSetPreallocation(A, 2, diagonal.data(), off_diagonal.data(), nullptr, nullptr),
         "MatXAIJSetPreallocation");
-  write_block_rows(A, owned, row_offset, columns, blocks.empty() ? nullptr : blocks.data());
+  insert_pattern(A, owned, row_offset, columns);
   // Later value updates must stay on this pattern.
   check(MatSetOption(A, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE), "MatSetOption");
+  require_storage_order(A, owned, row_offset, columns);
   return A;
 }
 
-void set_block_values(Mat A, OwnedRange owned, const std::vector<int>& row_offset,
-                      const std::vector<int>& columns, const std::vector<double>& blocks) {
-  MF_REQUIRE(blocks.size() == 4 * columns.size(), "block matrix: inconsistent values");
-  write_block_rows(A, owned, row_offset, columns, blocks.data());
+void write_block_values(Mat A, const std::function<void(BlockValueArrays)>& write) {
+  check(MatZeroEntries(A), "MatZeroEntries");
+  const LocalParts p = local_parts(A);
+  PetscScalar *d = nullptr, *o = nullptr;
+  check(MatSeqAIJGetArray(p.diagonal, &d), "MatSeqAIJGetArray");
+  if (p.off_diagonal) check(MatSeqAIJGetArray(p.off_diagonal, &o), "MatSeqAIJGetArray");
+  std::exception_ptr error;
+  try {
+    write({d, o});
+  } catch (...) {
+    error = std::current_exception();
+  }
+  check(MatSeqAIJRestoreArray(p.diagonal, &d), "MatSeqAIJRestoreArray");
+  if (p.off_diagonal) check(MatSeqAIJRestoreArray(p.off_diagonal, &o), "MatSeqAIJRestoreArray");
+  // Assembling A (nothing is stashed) marks it as changed, and drops what PETSc keeps of the old
+  // values (the inverted diagonals of its smoothers).
+  check(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  if (error) std::rethrow_exception(error);
 }
 
 namespace {

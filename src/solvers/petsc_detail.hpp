@@ -2,6 +2,7 @@
 // Pieces shared by the PETSc wrappers of this module; included by src/solvers/*.cpp only.
 #include "meshfree/core/error.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
+#include <functional>
 #include <petscksp.h>
 #include <set>
 #include <string>
@@ -13,16 +14,15 @@ inline void check(PetscErrorCode ierr, const char* what) {
   if (ierr) fail("PETSc error ", static_cast<int>(ierr), " in ", what);
 }
 
-/// A distributed AIJ matrix (block size 2) with the exact pattern of the owned block rows:
-/// block row I gives scalar rows 2I and 2I+1, block column J columns 2J and 2J+1. `blocks` holds
-/// one row-major 2x2 block per (row, column) pair, or is empty for zeros.
+/// A distributed AIJ matrix (block size 2) of zeros with the exact pattern of the owned block
+/// rows: block row I gives scalar rows 2I and 2I+1, block column J columns 2J and 2J+1. Its
+/// storage is checked to be in the order BlockValueArrays describes.
 Mat create_block_matrix(MPI_Comm comm, int node_count, OwnedRange owned,
-                        const std::vector<int>& row_offset, const std::vector<int>& columns,
-                        const std::vector<double>& blocks);
+                        const std::vector<int>& row_offset, const std::vector<int>& columns);
 
-/// Overwrites the values of a matrix made by create_block_matrix (same pattern), then assembles it.
-void set_block_values(Mat A, OwnedRange owned, const std::vector<int>& row_offset,
-                      const std::vector<int>& columns, const std::vector<double>& blocks);
+/// Zeroes the values of a matrix made by create_block_matrix and lets `write` set them in place;
+/// the arrays go back to the matrix, marked as changed, whether or not `write` throws.
+void write_block_values(Mat A, const std::function<void(BlockValueArrays)>& write);
 
 /// The default linear solver of `settings` for the operator A, set before the command-line
 /// options so that every -ksp_/-pc_ option overrides it: MUMPS (Cholesky for symmetric

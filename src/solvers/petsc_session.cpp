@@ -75,16 +75,16 @@ struct BlockLinearSystem::Impl {
 
 BlockLinearSystem::BlockLinearSystem(MPI_Comm comm, int node_count, OwnedRange owned,
                                      const std::vector<int>& row_offset,
-                                     const std::vector<int>& columns,
-                                     const std::vector<double>& blocks,
-                                     const std::vector<double>& rhs, bool spd,
-                                     const LinearSolverSettings& settings)
+                                     const std::vector<int>& columns, const BlockFill& fill,
+                                     bool spd, const LinearSolverSettings& settings)
     : impl_(std::make_unique<Impl>()) {
   impl_->settings = settings;
   impl_->settings.symmetric = spd && settings.symmetric;
-  MF_REQUIRE(static_cast<int>(rhs.size()) == 2 * (owned.end - owned.begin),
+  impl_->A = detail::create_block_matrix(comm, node_count, owned, row_offset, columns);
+  std::vector<double> rhs(2 * static_cast<std::size_t>(owned.end - owned.begin), 0.0);
+  detail::write_block_values(impl_->A, [&](BlockValueArrays values) { fill(values, rhs); });
+  MF_REQUIRE(rhs.size() == 2 * static_cast<std::size_t>(owned.end - owned.begin),
              "BlockLinearSystem: inconsistent right-hand side");
-  impl_->A = detail::create_block_matrix(comm, node_count, owned, row_offset, columns, blocks);
   if (impl_->settings.symmetric)
     check(MatSetOption(impl_->A, MAT_SPD, PETSC_TRUE), "MatSetOption(MAT_SPD)");
   check(MatCreateVecs(impl_->A, &impl_->x, &impl_->b), "MatCreateVecs");

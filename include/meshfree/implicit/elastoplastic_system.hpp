@@ -59,7 +59,7 @@ public:
   /// tractions and body force; not the penalty right-hand sides).
   void residual(const std::vector<double>& d, double* r, double& scale_squared);
   /// dR/dd as 2x2 blocks in the order of the model's block-row pattern.
-  void jacobian(const std::vector<double>& d, std::vector<double>& blocks);
+  void jacobian(const std::vector<double>& d, solvers::BlockValueArrays values);
 
   /// This rank's share of |f_int(sigma) - f_int(sigma0)|^2 over its owned rows, sigma the stress
   /// of the last update and sigma0 the initial stress: after the equilibrium iteration of an
@@ -98,8 +98,7 @@ private:
   PointLaws laws_;
   PointStates states_;
   BlockRows penalty_;    // K_pen: constant
-  BlockRows tangent_;    // work space for the Jacobian
-  BlockScatter scatter_; // where each point's blocks go in tangent_
+  BlockScatter scatter_; // where each point's blocks go among the Jacobian's
   std::vector<std::vector<double>> loads_;
   std::vector<char> counts_in_scale_; // tractions and body force, not penalty right-hand sides
   std::vector<double> factors_;

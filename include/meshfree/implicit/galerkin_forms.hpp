@@ -5,6 +5,7 @@
 #include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/io/problem_spec.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -19,9 +20,11 @@ struct BoundaryReport {
 };
 
 /// K d = f for linear elasticity: the stiffness, penalty terms, tractions and body force of this
-/// rank's rows, with each condition's value (and the body force, the last entry) times its factor.
-BlockRows assemble_linear_elastic(const io::ProblemSpec& spec, const GalerkinModel& m,
-                                  const std::vector<double>& factors);
+/// rank's rows, with each condition's value (and the body force, the last entry) times its factor,
+/// assembled in place into the matrix of a linear system solved as the problem says.
+std::unique_ptr<solvers::BlockLinearSystem>
+linear_elastic_system(const io::ProblemSpec& spec, const GalerkinModel& m,
+                      const std::vector<double>& factors, const solvers::PetscSession& session);
 
 /// Reaction (the penalty force on the body) and largest gap of a displacement condition whose
 /// prescribed value is scaled by `factor`, or the applied force of a traction condition, summed

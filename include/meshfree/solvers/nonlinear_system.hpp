@@ -36,18 +36,17 @@ struct NewtonReport {
 /// residual (a failed return mapping, a NaN): SNES then stops and the message is reported.
 using ResidualFunction =
     std::function<void(const std::vector<double>& d, double* residual, double& scale_squared)>;
-/// Jacobian dR/dd as 2x2 blocks in the order of the block-row pattern.
-using JacobianFunction =
-    std::function<void(const std::vector<double>& d, std::vector<double>& blocks)>;
+/// Jacobian dR/dd, written in place into the matrix's values (BlockValueArrays, zero on entry).
+using JacobianFunction = std::function<void(const std::vector<double>& d, BlockValueArrays values)>;
 
 class NonlinearBlockSystem {
 public:
   /// `row_offset`/`columns`: for each owned node, the sorted global nodes it couples to.
   /// `needed`: the nodes whose values the residual and Jacobian read (besides the owned ones).
-  NonlinearBlockSystem(MPI_Comm comm, int node_count, OwnedRange owned, std::vector<int> row_offset,
-                       std::vector<int> columns, const std::vector<int>& needed,
-                       ResidualFunction residual, JacobianFunction jacobian,
-                       const LinearSolverSettings& linear = {});
+  NonlinearBlockSystem(MPI_Comm comm, int node_count, OwnedRange owned,
+                       const std::vector<int>& row_offset, const std::vector<int>& columns,
+                       const std::vector<int>& needed, ResidualFunction residual,
+                       JacobianFunction jacobian, const LinearSolverSettings& linear = {});
   ~NonlinearBlockSystem();
   NonlinearBlockSystem(const NonlinearBlockSystem&) = delete;
   NonlinearBlockSystem& operator=(const NonlinearBlockSystem&) = delete;

@@ -71,17 +71,31 @@ struct SolveReport {
   std::string solver; // KSP and PC type, and the factorisation package where one is used
 };
 
-/// A distributed sparse system with 2 DOFs per node, built in one step from the owned block
-/// rows: row_offset/columns give, for each owned node, the sorted global nodes it couples to;
-/// blocks holds one row-major 2x2 block per (row, column) pair; rhs two values per owned node.
+/// The values of a matrix with 2 DOFs per node in the matrix's own storage (PETSc's AIJ arrays),
+/// on the pattern it was made with. For each owned node I in order, scalar rows 2I and 2I+1 each
+/// hold two values per block column J (columns 2J, 2J+1) in column order: those of the owned
+/// nodes in `diagonal`, the others in `off_diagonal` (null on one rank). Writing them in place
+/// spares a separate array of blocks and its copy into the matrix: one matrix's worth of memory
+/// less to page in.
+struct BlockValueArrays {
+  double* diagonal = nullptr;
+  double* off_diagonal = nullptr;
+};
+
+/// Fills the values of a matrix in place (zero on entry) and the right-hand side (two values per
+/// owned node, sized and zero on entry).
+using BlockFill = std::function<void(BlockValueArrays values, std::vector<double>& rhs)>;
+
+/// A distributed sparse system with 2 DOFs per node on the pattern of the owned block rows:
+/// row_offset/columns give, for each owned node, the sorted global nodes it couples to.
 class BlockLinearSystem {
 public:
+  /// Makes the matrix on the pattern and lets `fill` write its values and the right-hand side.
   /// A symmetric positive definite system (elasticity held against rigid motion) is factorised
   /// by Cholesky, any other by LU.
   BlockLinearSystem(MPI_Comm comm, int node_count, OwnedRange owned,
                     const std::vector<int>& row_offset, const std::vector<int>& columns,
-                    const std::vector<double>& blocks, const std::vector<double>& rhs, bool spd,
-                    const LinearSolverSettings& settings = {});
+                    const BlockFill& fill, bool spd, const LinearSolverSettings& settings = {});
   ~BlockLinearSystem();
   BlockLinearSystem(const BlockLinearSystem&) = delete;
   BlockLinearSystem& operator=(const BlockLinearSystem&) = delete;
