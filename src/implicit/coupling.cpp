@@ -74,8 +74,9 @@ BlockRows::BlockRows(const RowPattern& pattern)
 BlockRows::BlockRows(const RowPattern& pattern, solvers::BlockValueArrays values)
     : pattern_(&pattern), rhs_(2 * static_cast<std::size_t>(pattern.rows()), 0.0) {
   set_layout();
-  MF_REQUIRE(values.diagonal && (values.off_diagonal || off_values_ == 0),
-             "BlockRows: the matrix has no storage for its off-diagonal blocks");
+  MF_REQUIRE((values.diagonal || diagonal_values_ == 0) &&
+                 (values.off_diagonal || off_values_ == 0),
+             "BlockRows: the matrix has no storage for some of its blocks");
   diagonal_ = values.diagonal;
   off_ = values.off_diagonal;
 }
