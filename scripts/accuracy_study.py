@@ -41,7 +41,10 @@ import compare  # noqa: E402  (the response definitions and the interpolation)
 STUDY = {
     "perforated_strip": dict(factors=[4.0, 2.83, 2.0, 1.41, 1.0, 0.71, 0.5],
                              calculix_levels=[8, 16]),
-    "cook_membrane": dict(factors=[4.0, 2.83, 2.0, 1.41, 1.0, 0.71], calculix_levels=[6, 12, 24]),
+    # Cook's membrane goes two levels further: its meshfree force curve, at 0.15% off at 0.71, reaches
+    # 0.1% only there (the clamped corner's singularity slows every method).
+    "cook_membrane": dict(factors=[4.0, 2.83, 2.0, 1.41, 1.0, 0.71, 0.5, 0.35],
+                          calculix_levels=[6, 12, 24]),
 }
 TARGETS = (1e-2, 1e-3)
 ENV = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
