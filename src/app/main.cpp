@@ -322,11 +322,11 @@ void wait_passively(char** argv) {
 }
 
 /// Freed memory stays with the process instead of going back to the system. glibc serves large
-/// blocks by mmap and unmaps them on free, so every large vector (a matrix copy, a shape table)
-/// is paged in afresh, and the first touch of a page is what costs on virtual machines: on the
-/// 2-core development VM it drops from 2 GB/s to 0.4 GB/s once a process has touched about
-/// 6 GB. The elastic plate's assembly at 10^6 DOFs took 7.6 s with glibc's default and 5.3 s
-/// with this (4 * 10^5 DOFs: 2.0 s either way); the peak memory is the same.
+/// blocks by mmap and unmaps them on free, so every large vector (a shape table, a solver's work
+/// space) is paged in afresh, and the first touch of a page is what costs on virtual machines:
+/// on a 2-core one, 0.45-0.66 GB/s for memory the host has taken back, 1.3-2.6 GB/s for memory
+/// just freed. The elastic plate's assembly at 10^6 DOFs took 7.6 s with glibc's default and
+/// 5.3 s with this (4 * 10^5 DOFs: 2.0 s either way); the peak memory is the same.
 void keep_freed_memory() {
   mallopt(M_MMAP_MAX, 0);
   mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());

@@ -133,21 +133,9 @@ void cell_minus_disc(const BoundingBox& box, const Vec2& center, double radius,
 }
 
 bool segment_crosses_interior(const BoundingBox& box, const Vec2& a, const Vec2& b, double tol) {
-  // Liang-Barsky clipping of a + u (b - a), u in [0, 1], to the shrunk box.
-  double u0 = 0.0, u1 = 1.0;
-  const Vec2 d = b - a;
-  for (int k = 0; k < 2; ++k) {
-    const double lo = box.lo[k] + tol, hi = box.hi[k] - tol;
-    if (std::abs(d[k]) < 1e-300) {
-      if (a[k] <= lo || a[k] >= hi) return false;
-      continue;
-    }
-    double t0 = (lo - a[k]) / d[k], t1 = (hi - a[k]) / d[k];
-    if (t0 > t1) std::swap(t0, t1);
-    u0 = std::max(u0, t0);
-    u1 = std::min(u1, t1);
-  }
-  return u1 > u0;
+  const BoundingBox inner{box.lo + Vec2::Constant(tol), box.hi - Vec2::Constant(tol)};
+  const RayHit h = ray_through_box(inner, a, b - a); // a + t (b - a) inside for t in the hit
+  return std::min(h.leave, 1.0) > std::max(h.enter, 0.0);
 }
 
 } // namespace mf::quadrature

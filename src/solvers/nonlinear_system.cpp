@@ -74,6 +74,7 @@ PetscErrorCode form_jacobian(SNES snes, Vec X, Mat, Mat P, void* ctx) {
   s.pull_values(X);
   std::string failure;
   try {
+    check(MatZeroEntries(P), "MatZeroEntries"); // the callback adds to zeros
     detail::write_block_values(P, [&](BlockValueArrays values) { s.jacobian(s.d, values); });
   } catch (const std::exception& e) {
     failure = e.what();

@@ -119,7 +119,6 @@ Mat create_block_matrix(MPI_Comm comm, int node_count, OwnedRange owned,
 }
 
 void write_block_values(Mat A, const std::function<void(BlockValueArrays)>& write) {
-  check(MatZeroEntries(A), "MatZeroEntries");
   const LocalParts p = local_parts(A);
   PetscScalar *d = nullptr, *o = nullptr;
   check(MatSeqAIJGetArray(p.diagonal, &d), "MatSeqAIJGetArray");

@@ -20,8 +20,8 @@ inline void check(PetscErrorCode ierr, const char* what) {
 Mat create_block_matrix(MPI_Comm comm, int node_count, OwnedRange owned,
                         const std::vector<int>& row_offset, const std::vector<int>& columns);
 
-/// Zeroes the values of a matrix made by create_block_matrix and lets `write` set them in place;
-/// the arrays go back to the matrix, marked as changed, whether or not `write` throws.
+/// Lets `write` change the values of a matrix made by create_block_matrix in place (zero when it
+/// is new); the arrays go back to the matrix, marked as changed, whether or not `write` throws.
 void write_block_values(Mat A, const std::function<void(BlockValueArrays)>& write);
 
 /// The default linear solver of `settings` for the operator A, set before the command-line
