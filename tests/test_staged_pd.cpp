@@ -226,7 +226,7 @@ TEST_CASE("explicit dynamic relaxation from zero reaches the staged preload and 
   const implicit::ElastoplasticResult pre =
       implicit::solve_elastoplastic_static(preload, test_session(), nullptr);
   for (const stages::HeldCondition& c :
-       stages::held_conditions(preload, pre, s.spec.links[1], X, m.spacing)) {
+       stages::held_conditions(preload, pre, s.spec.links[1], X, {m.spacing, m.horizon})) {
     REQUIRE(c.kind == stages::HeldCondition::Kind::Force);
     pd::BodyLoad l;
     l.name = c.name;

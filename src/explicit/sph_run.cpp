@@ -99,10 +99,30 @@ SphRun::SphRun(sph::Hydro& h, const io::SphSpec& spec, io::OutputDirectory* out,
     mises.resize(h_.particles.owned_count());
     for (int i = 0; i < h_.particles.owned_count(); ++i) mises[i] = von_mises(i);
   });
+  stress_fields();
   field("plastic_strain", 1, owned_values(h_, F.alpha, 1));
   field("damage", 1, owned_values(h_, F.damage, 1));
   field("failed", 1, owned_values(h_, F.failed, 1));
   field("material", 1, owned_values(h_, P.material, 1));
+}
+
+void SphRun::stress_fields() {
+  // The Cauchy stress sigma = S - p I (tension positive), named as the implicit analyses name
+  // theirs; sigma_zz of plane strain too. Voigt order of S: xx yy zz yz xz xy.
+  struct Component {
+    const char* name;
+    int k;
+  };
+  std::vector<Component> components{{"stress_xx", 0}, {"stress_yy", 1}, {"stress_zz", 2},
+                                    {"stress_xy", 5}};
+  if (h_.dim == 3) components.insert(components.end(), {{"stress_yz", 3}, {"stress_xz", 4}});
+  for (const Component& c : components)
+    field(c.name, 1, [this, k = c.k](std::vector<double>& out) {
+      const sph::ParticleFields& F = h_.fields;
+      out.resize(h_.particles.owned_count());
+      for (int i = 0; i < h_.particles.owned_count(); ++i)
+        out[i] = F.S[6 * static_cast<std::size_t>(i) + k] - (k < 3 ? F.p[i] : 0.0);
+    });
 }
 
 void SphRun::field(std::string name, int per, io::FieldOutput::Fill owned) {

@@ -35,6 +35,25 @@ Curve Curve::piece(double t0, double t1) const {
   return c;
 }
 
+double Curve::distance_to(const Vec2& p) const {
+  if (kind == Kind::Segment) {
+    const Vec2 d = b - a;
+    const double t = std::clamp((p - a).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+    return (p - point(t)).norm();
+  }
+  // The arc sweeps theta1 - theta0 (either sign) from theta0: p's angle, measured from theta0 in
+  // the sweep's sense and wrapped into [0, 2 pi), lies on the arc when it is within the sweep.
+  const double two_pi = 2.0 * std::acos(-1.0);
+  const double sweep = theta1 - theta0;
+  const Vec2 r = p - center;
+  const double phi = std::atan2(r.y(), r.x());
+  const double from = std::fmod(std::fmod((sweep >= 0.0 ? phi - theta0 : theta0 - phi), two_pi) +
+                                    two_pi,
+                                two_pi);
+  if (from <= std::abs(sweep)) return std::abs(r.norm() - radius);
+  return std::min((p - point(0.0)).norm(), (p - point(1.0)).norm());
+}
+
 Domain Domain::rectangle(const Vec2& origin, const Vec2& size) {
   MF_REQUIRE(size.x() > 0.0 && size.y() > 0.0, "rectangle size must be positive");
   return polygon(

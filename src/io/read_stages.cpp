@@ -85,6 +85,7 @@ std::string joined(const std::vector<std::string>& v) {
 /// The materials a Galerkin stage uses: its own and those of its material regions.
 std::vector<int> materials_used(const ProblemSpec& p) {
   std::vector<int> used{p.material_index};
+  for (const MaterialRegion& r : p.material_regions) used.push_back(r.material);
   std::sort(used.begin(), used.end());
   used.erase(std::unique(used.begin(), used.end()), used.end());
   return used;
@@ -214,6 +215,10 @@ void parse_stages(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
                         "explicit analysis (sph or peridynamics)");
       check_conditions(link_reader, link, from);
       check_transfer(from, stage);
+      if (stage.analysis == Analysis::Peridynamics && link.settle_time > 0.0)
+        link_reader.error("settle", "a peridynamic stage starts from its own static equilibrium "
+                                    "under the held conditions (transfer.relax_tolerance); "
+                                    "settle is for SPH stages");
     }
     p.stages.push_back(std::move(stage));
     p.links.push_back(std::move(link));

@@ -10,6 +10,7 @@ void ParticleFields::add(double density, double energy, double smoothing, bool i
   h_ref.push_back(smoothing);
   light_time.push_back(-1.0);
   fixed.push_back(is_fixed ? 1 : 0);
+  held_axes.push_back(0);
   for (int k = 0; k < 6; ++k) {
     S.push_back(0.0);
     back_stress.push_back(0.0);

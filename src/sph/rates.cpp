@@ -124,6 +124,11 @@ void compute_rates(const Hydro& s, Rates& r) {
       boundary_force(b, k, &P.v[3 * static_cast<std::size_t>(i)], f);
       for (int d = 0; d < 3; ++d) r.dv[3 * i + d] += f[d] / P.mass[i];
     }
+  // Held components take whatever force it needs to keep them at rest: the roller's reaction.
+  for (int i = 0; i < n; ++i)
+    if (F.held_axes[i])
+      for (int d = 0; d < 3; ++d)
+        if (F.held_axes[i] & (1 << d)) r.dv[3 * i + d] = 0.0;
 }
 
 void external_forces(const Hydro& s, std::vector<int>& who, std::vector<double>& force) {

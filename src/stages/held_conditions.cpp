@@ -1,5 +1,6 @@
 #include "meshfree/stages/held_conditions.hpp"
 #include "meshfree/core/error.hpp"
+#include "meshfree/geometry/domain.hpp"
 #include "meshfree/stages/preload_sampling.hpp"
 #include <algorithm>
 #include <cmath>
@@ -8,16 +9,18 @@ namespace mf::stages {
 
 namespace {
 
-/// Every image of a point of the part across the mirror planes (the point itself first), with
-/// the reflections that made it.
-std::vector<std::pair<Vec3, Mirrored>> images(const Vec2& p,
+/// Every image of a particle across the mirror planes (itself first), with the reflections that
+/// made it: the preload's part sees the particle at one of them.
+std::vector<std::pair<Vec2, Mirrored>> images(const Vec3& x,
                                               const std::vector<io::MirrorPlane>& mirror) {
-  std::vector<std::pair<Vec3, Mirrored>> out{{Vec3(p.x(), p.y(), 0.0), Mirrored{p, {}}}};
+  std::vector<std::pair<Vec2, Mirrored>> out{{x.head<2>(), Mirrored{x.head<2>(), {}}}};
   for (const io::MirrorPlane& m : mirror) {
+    if (m.axis > 1) continue;
     const std::size_t n = out.size();
     for (std::size_t k = 0; k < n; ++k) {
       auto [y, how] = out[k];
       y[m.axis] = 2.0 * m.at - y[m.axis];
+      how.x = y;
       how.flip[m.axis] = !how.flip[m.axis];
       out.emplace_back(y, how);
     }
@@ -25,40 +28,84 @@ std::vector<std::pair<Vec3, Mirrored>> images(const Vec2& p,
   return out;
 }
 
-bool on_mirror_plane(const std::vector<Vec2>& pts, const std::vector<io::MirrorPlane>& mirror,
-                     double tol) {
-  for (const io::MirrorPlane& m : mirror) {
-    bool all = !pts.empty() && m.axis < 2;
-    for (const Vec2& p : pts) all = all && std::abs(p[m.axis] - m.at) <= tol;
-    if (all) return true;
+/// The ends of the straight pieces (an arc gives none: it lies on no plane or axis line).
+std::vector<Vec2> segment_ends(const std::vector<geometry::Curve>& pieces, bool& all_straight) {
+  std::vector<Vec2> ends;
+  all_straight = true;
+  for (const geometry::Curve& c : pieces) {
+    if (c.kind != geometry::Curve::Kind::Segment) all_straight = false;
+    ends.push_back(c.a), ends.push_back(c.b);
   }
+  return ends;
+}
+
+/// Whether every point lies on the line x_axis = at.
+bool on_line(const std::vector<Vec2>& pts, int axis, double at, double tol) {
+  bool all = !pts.empty();
+  for (const Vec2& p : pts) all = all && std::abs(p[axis] - at) <= tol;
+  return all;
+}
+
+bool on_mirror_plane(const std::vector<Vec2>& ends, bool straight,
+                     const std::vector<io::MirrorPlane>& mirror, double tol) {
+  for (const io::MirrorPlane& m : mirror)
+    if (straight && m.axis < 2 && on_line(ends, m.axis, m.at, tol)) return true;
   return false;
 }
 
-/// The particles within `layer` of any image of the points, each with the index of the point
-/// (and image) nearest to it.
+/// The particles within `depth` of the condition's pieces (of any of their images), with the
+/// image that is nearest and its distance.
 struct Layer {
-  std::vector<int> particles, point;
+  std::vector<int> particles;
+  std::vector<double> distance;
   std::vector<Mirrored> how;
 };
 
-Layer layer_of(const std::vector<Vec3>& x, const std::vector<Vec2>& pts,
-               const std::vector<io::MirrorPlane>& mirror, double layer) {
-  std::vector<double> d2(x.size(), layer * layer);
-  std::vector<int> point(x.size(), -1);
-  std::vector<Mirrored> how(x.size());
-  for (std::size_t k = 0; k < pts.size(); ++k)
-    for (const auto& [y, m] : images(pts[k], mirror))
-      for (std::size_t i = 0; i < x.size(); ++i) {
-        const double e = (x[i] - y).squaredNorm();
-        if (e <= d2[i]) d2[i] = e, point[i] = static_cast<int>(k), how[i] = m;
-      }
+Layer layer_of(const std::vector<Vec3>& x, const std::vector<geometry::Curve>& pieces,
+               const std::vector<io::MirrorPlane>& mirror, double depth) {
   Layer l;
-  for (std::size_t i = 0; i < x.size(); ++i)
-    if (point[i] >= 0)
-      l.particles.push_back(static_cast<int>(i)), l.point.push_back(point[i]),
-          l.how.push_back(how[i]);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    double best = depth;
+    Mirrored how;
+    bool found = false;
+    for (const auto& [y, m] : images(x[i], mirror))
+      for (const geometry::Curve& c : pieces) {
+        const double d = c.distance_to(y);
+        if (d < best) best = d, how = m, found = true;
+      }
+    if (!found) continue;
+    l.particles.push_back(static_cast<int>(i));
+    l.distance.push_back(best);
+    l.how.push_back(how);
+  }
   return l;
+}
+
+/// The boundary point of the condition nearest to p: where a particle takes its traction.
+int nearest_point(const implicit::ConditionPoints& c, const Vec2& p) {
+  int best = -1;
+  double d2 = 0.0;
+  for (std::size_t k = 0; k < c.mine.rows.size(); ++k) {
+    const double e = (c.points.x[c.mine.rows[k]] - p).squaredNorm();
+    if (best < 0 || e < d2) best = static_cast<int>(k), d2 = e;
+  }
+  return best;
+}
+
+/// A traction or pressure as constant forces on the surface layer.
+void hold_force(HeldCondition& h, const implicit::ConditionPoints& c, const Layer& l, double f,
+                std::size_t mirrors) {
+  h.kind = HeldCondition::Kind::Force;
+  h.particles = l.particles;
+  double length = 0.0;
+  for (double w : c.weight) length += w;
+  const double copies = static_cast<double>(1u << mirrors);
+  const double share = copies * length / static_cast<double>(l.particles.size());
+  for (std::size_t j = 0; j < l.particles.size(); ++j) {
+    const int k = nearest_point(c, l.how[j].x);
+    const Vec2 t = k >= 0 ? Vec2(f * c.values[k]) : Vec2::Zero();
+    h.force.push_back(mirrored(Vec3(share * t.x(), share * t.y(), 0.0), l.how[j]));
+  }
 }
 
 } // namespace
@@ -66,7 +113,7 @@ Layer layer_of(const std::vector<Vec3>& x, const std::vector<Vec2>& pts,
 std::vector<HeldCondition> held_conditions(const io::ProblemSpec& preload,
                                            const implicit::ElastoplasticResult& r,
                                            const io::StageLink& link, const std::vector<Vec3>& x,
-                                           double layer) {
+                                           const HoldLayers& layers) {
   const implicit::GalerkinModel& model = *r.state.model;
   const std::vector<double>& factor = r.state.factors;
   std::vector<HeldCondition> out;
@@ -86,37 +133,36 @@ std::vector<HeldCondition> held_conditions(const io::ProblemSpec& preload,
     MF_REQUIRE(c != model.conditions.end(), link.key_path, ".hold: no condition '", name, "'");
     const io::BoundaryCondition& bc = *c->bc;
     const double f = factor[static_cast<std::size_t>(&bc - preload.boundary.data())];
-    std::vector<Vec2> pts;
-    for (int row : c->mine.rows) pts.push_back(c->points.x[row]);
-    double scale = 0.0, length = 0.0;
-    for (const Vec2& p : pts) scale = std::max(scale, p.cwiseAbs().maxCoeff());
-    for (double w : c->weight) length += w;
-    const double tol = 1e-9 * std::max(scale, 1.0);
+    const std::vector<geometry::Curve> pieces =
+        io::select_boundary(preload.domain, bc.on, bc.key_path);
+    bool straight = true;
+    const std::vector<Vec2> ends = segment_ends(pieces, straight);
+    double scale = 1.0;
+    for (const Vec2& p : ends) scale = std::max(scale, p.cwiseAbs().maxCoeff());
+    const double tol = 1e-9 * scale;
     const bool both = bc.mask.x() > 0.0 && bc.mask.y() > 0.0;
     // A roller on a mirror plane is the mirror's own symmetry.
-    if (!bc.loads && !both && on_mirror_plane(pts, link.mirror, tol)) continue;
-    const Layer l = layer_of(x, pts, link.mirror, layer);
-    MF_REQUIRE(!l.particles.empty(), link.key_path, ".hold: no particle lies within ", layer,
+    if (!bc.loads && !both && on_mirror_plane(ends, straight, link.mirror, tol)) continue;
+    const double depth = bc.loads ? layers.surface : layers.held;
+    const Layer l = layer_of(x, pieces, link.mirror, depth);
+    MF_REQUIRE(!l.particles.empty(), link.key_path, ".hold: no particle lies within ", depth,
                " of the boundary of condition '", name, "'");
-    h.particles = l.particles;
     if (bc.loads) {
-      h.kind = HeldCondition::Kind::Force;
-      const double copies = static_cast<double>(1u << link.mirror.size());
-      const double share = copies * length / static_cast<double>(l.particles.size());
-      for (std::size_t j = 0; j < l.particles.size(); ++j) {
-        const Vec2 t = f * c->values[l.point[j]];
-        h.force.push_back(mirrored(Vec3(share * t.x(), share * t.y(), 0.0), l.how[j]));
-      }
-    } else if (both) {
+      hold_force(h, *c, l, f, link.mirror.size());
+      out.push_back(h);
+      continue;
+    }
+    h.particles = l.particles;
+    for (std::size_t j = 0; j < l.particles.size(); ++j)
+      if (l.distance[j] < layers.surface) h.surface.push_back(l.particles[j]);
+    if (both) {
       h.kind = HeldCondition::Kind::Clamp;
     } else {
       h.kind = HeldCondition::Kind::Roller;
       h.component = bc.mask.x() > 0.0 ? 0 : 1;
       h.value = f * bc.value[h.component];
-      h.on_axis_line = true;
-      h.line = pts.front()[h.component];
-      for (const Vec2& p : pts)
-        h.on_axis_line = h.on_axis_line && std::abs(p[h.component] - h.line) <= tol;
+      h.line = ends.empty() ? 0.0 : ends.front()[h.component];
+      h.on_axis_line = straight && on_line(ends, h.component, h.line, tol);
     }
     out.push_back(h);
   }

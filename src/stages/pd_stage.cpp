@@ -116,13 +116,17 @@ ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::Elast
     std::vector<Vec3> X(n);
     for (int i = 0; i < n; ++i) X[i] = P.reference(i);
     pa = sample_preload(preload, pre, X, link.mirror, link.key_path);
-    t.held = hold(held_conditions(preload, pre, link, X, m.spacing), preload, pa, setup);
+    // A held force acts on the surface layer; a held displacement holds the particles within
+    // a horizon of its boundary, so that every free particle keeps its whole bond family.
+    t.held = hold(held_conditions(preload, pre, link, X, {m.spacing, m.horizon}), preload, pa,
+                  setup);
     pd::set_displacement(m, flat(pa.final_u()));
     t.particles = n;
     for (int i = 0; i < n; ++i) {
       t.plastic_particles += pa.plastic[i];
       t.max_u = std::max(t.max_u, pa.final_u()[i].norm());
     }
+    t.stored_energy = stored_energy(preload, pa, P.volume);
     t.out_of_balance = pd::residual_ratio(m, setup.state, setup.loading);
     t.seconds = seconds_since(t0);
   }

@@ -53,6 +53,45 @@ struct Holding {
   std::vector<int> held_boundaries;           // transmitting boundaries holding their stress
 };
 
+/// A held force acts on the surface layer, one (smallest) particle spacing deep; a held
+/// displacement holds the particles within the kernel's reach (r < h_i + h_j) of its boundary.
+HoldLayers hold_layers(const io::SphSpec& s, const sph::Hydro& h) {
+  HoldLayers l;
+  l.surface = s.regions.front().spacing;
+  for (const auto& r : s.regions) l.surface = std::min(l.surface, r.spacing);
+  for (int i = 0; i < h.particles.owned_count(); ++i) l.held = std::max(l.held, 2.0 * h.fields.h[i]);
+  return l;
+}
+
+/// A held displacement on the SPH body, and how it is held: a transmitting boundary of the stage
+/// on the same particles keeps its dashpots with the static force of the preload's stress; a
+/// roller at zero on a straight edge along an axis is a symmetry plane (mirror particles give
+/// every particle its whole neighbourhood); otherwise the condition's layer, the kernel's reach
+/// deep, keeps the preload's displacement: fixed particles for a clamp, the held component for a
+/// roller.
+std::string hold_displacement(const HeldCondition& c, sph::Hydro& h,
+                              std::vector<int>& held_boundaries) {
+  const int b = transmitting_of(h, c.surface);
+  if (b >= 0) {
+    held_boundaries.push_back(b);
+    return detail::concat(c.name, ": transmitting boundary '", h.transmitting[b].name,
+                          "' with the static force of the preload's stress");
+  }
+  if (c.kind == HeldCondition::Kind::Clamp) {
+    for (int i : c.particles) h.fields.fixed[i] = 1;
+    return detail::concat(c.name, ": ", c.particles.size(),
+                          " fixed particles (the kernel's reach deep) at the preload's "
+                          "displacement");
+  }
+  if (c.on_axis_line && c.value == 0.0) {
+    h.symmetry.push_back({c.component, c.line});
+    return detail::concat(c.name, ": symmetry plane ", "xyz"[c.component], " = ", c.line);
+  }
+  for (int i : c.particles) h.fields.held_axes[i] |= static_cast<char>(1 << c.component);
+  return detail::concat(c.name, ": ", "xyz"[c.component], " component of ", c.particles.size(),
+                        " particles (the kernel's reach deep) held at the preload's displacement");
+}
+
 /// The held conditions on the SPH body: forces, fixed particles, symmetry planes, dashpots with
 /// their static force, gravity.
 Holding hold(const std::vector<HeldCondition>& held, const io::ProblemSpec& preload,
@@ -85,28 +124,9 @@ Holding hold(const std::vector<HeldCondition>& held, const io::ProblemSpec& prel
       break;
     }
     case HeldCondition::Kind::Clamp:
-    case HeldCondition::Kind::Roller: {
-      const int b = transmitting_of(h, c.particles);
-      if (b >= 0) {
-        out.held_boundaries.push_back(b);
-        out.how.push_back(detail::concat(c.name, ": transmitting boundary '",
-                                         h.transmitting[b].name,
-                                         "' with the static force of the preload's stress"));
-      } else if (c.kind == HeldCondition::Kind::Clamp) {
-        for (int i : c.particles) h.fields.fixed[i] = 1;
-        out.how.push_back(detail::concat(c.name, ": ", c.particles.size(),
-                                         " fixed particles at the preload's displacement"));
-      } else {
-        MF_REQUIRE(c.on_axis_line && c.value == 0.0, link.key_path, ".hold: '", c.name,
-                   "' holds one displacement component; SPH holds it only as a symmetry plane "
-                   "(a zero displacement normal to a straight edge along an axis) or as a "
-                   "transmitting boundary of the stage on the same edge");
-        h.symmetry.push_back({c.component, c.line});
-        out.how.push_back(
-            detail::concat(c.name, ": symmetry plane ", "xyz"[c.component], " = ", c.line));
-      }
+    case HeldCondition::Kind::Roller:
+      out.how.push_back(hold_displacement(c, h, out.held_boundaries));
       break;
-    }
     }
   }
   return out;
@@ -198,9 +218,8 @@ ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
     std::vector<Vec3> X(n);
     for (int i = 0; i < n; ++i) X[i] = h.particles.reference(i);
     pa = sample_preload(preload, pre, X, link.mirror, link.key_path);
-    double spacing = s.regions.front().spacing;
-    for (const auto& r : s.regions) spacing = std::min(spacing, r.spacing);
-    const Holding held = hold(held_conditions(preload, pre, link, X, spacing), preload, link, h);
+    const Holding held = hold(held_conditions(preload, pre, link, X, hold_layers(s, h)), preload,
+                              link, h);
     t.held = held.how;
     const sph::InitialStateReport rep =
         put_increment(h, pa, pa.increments() - 1, link.return_to_surface);
@@ -232,18 +251,11 @@ ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
     t.returned = rep.returned;
     t.worst_yield_ratio = rep.worst_ratio;
     t.density_mismatch = rep.density_mismatch;
-    std::vector<double> volume(n), E(n), nu(n);
     for (int i = 0; i < n; ++i) {
       t.plastic_particles += pa.plastic[i];
       t.max_u = std::max(t.max_u, pa.final_u()[i].norm());
-      const implicit::PointLaw law = implicit::point_law(preload, pa.image[i].x);
-      // The small-strain energy is an integral over the reference body (the preload's), so
-      // the reference volume, not the preloaded one m / rho.
-      volume[i] = h.particles.volume[i];
-      E[i] = law.params.E;
-      nu[i] = law.params.nu;
     }
-    t.stored_energy = elastic_energy(pa.final_stress(), volume, E, nu);
+    t.stored_energy = stored_energy(preload, pa, h.particles.volume);
     t.seconds = seconds_since(t0);
   }
   if (link.settle_time > 0.0) {

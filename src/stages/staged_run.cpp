@@ -2,6 +2,7 @@
 #include "meshfree/core/log.hpp"
 #include "meshfree/implicit/elastoplastic_output.hpp"
 #include "meshfree/implicit/elastoplastic_solve.hpp"
+#include "meshfree/implicit/point_law.hpp"
 #include "meshfree/stages/explicit_stage.hpp"
 #include <cmath>
 #include <limits>
@@ -91,17 +92,19 @@ void record_stage(ExplicitStage& st, const std::string& status, const std::strin
   st.timer = timer;
 }
 
-double elastic_energy(const std::vector<materials::Vec6>& sigma, const std::vector<double>& volume,
-                      const std::vector<double>& E, const std::vector<double>& nu) {
+double stored_energy(const io::ProblemSpec& preload, const PreloadAtParticles& pa,
+                     const std::vector<double>& volume) {
   // sigma : C^-1 sigma = [(s11^2 + s22^2 + s33^2) - 2 nu (s11 s22 + s22 s33 + s33 s11)
   //                       + 2 (1 + nu) (s23^2 + s13^2 + s12^2)] / E  (isotropic compliance).
   double w = 0.0;
-  for (std::size_t i = 0; i < sigma.size(); ++i) {
-    const materials::Vec6& s = sigma[i];
+  for (std::size_t i = 0; i < pa.image.size(); ++i) {
+    const implicit::PointLaw law = implicit::point_law(preload, pa.image[i].x);
+    const double nu = law.params.nu;
+    const materials::Vec6& s = pa.final_stress()[i];
     const double normal = s[0] * s[0] + s[1] * s[1] + s[2] * s[2] -
-                          2.0 * nu[i] * (s[0] * s[1] + s[1] * s[2] + s[2] * s[0]);
-    const double shear = 2.0 * (1.0 + nu[i]) * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
-    w += 0.5 * volume[i] * (normal + shear) / E[i];
+                          2.0 * nu * (s[0] * s[1] + s[1] * s[2] + s[2] * s[0]);
+    const double shear = 2.0 * (1.0 + nu) * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
+    w += 0.5 * volume[i] * (normal + shear) / law.params.E;
   }
   return w;
 }

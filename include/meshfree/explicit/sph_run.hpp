@@ -69,6 +69,8 @@ private:
   template <class Visit> void for_each_state(const Visit& visit);
   double max_pressure() const;
   double von_mises(int i) const;
+  /// The stress tensor's components as fields of their own.
+  void stress_fields();
   /// Registers a field whose owned values `owned` fills (`per` a particle, in local order);
   /// it is written in global-id order.
   void field(std::string name, int per, io::FieldOutput::Fill owned);

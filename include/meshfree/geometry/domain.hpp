@@ -33,6 +33,8 @@ struct Curve {
   Vec2 outward_normal(double t) const;
   /// The piece between parameters t0 < t1, reparametrised to [0, 1].
   Curve piece(double t0, double t1) const;
+  /// The distance from p to the nearest point of the curve (its ends included).
+  double distance_to(const Vec2& p) const;
 };
 
 class Domain {

@@ -15,6 +15,9 @@ struct ParticleFields {
   /// Fixed (wall) particles: they do not move, but their density and energy evolve, so that they
   /// push back on approaching particles (dynamic boundary particles, Crespo et al. 2007).
   std::vector<char> fixed;
+  /// The velocity components a free particle keeps at zero (bit d: axis d), as a roller holds
+  /// them: the other components move.
+  std::vector<char> held_axes;
   std::vector<double> p, c;        // from the equation of state, per step
   std::vector<double> S;           // deviatoric stress
   std::vector<double> back_stress; // J2 kinematic hardening, like S
@@ -34,14 +37,15 @@ struct ParticleFields {
   /// Every array by name (a checkpoint keeps them).
   template <class Visit> void for_each_state(Visit&& visit) {
     visit("rho", rho), visit("e", e), visit("h", h), visit("h_ref", h_ref);
-    visit("light_time", light_time), visit("fixed", fixed), visit("p", p), visit("c", c);
+    visit("light_time", light_time), visit("fixed", fixed), visit("held_axes", held_axes);
+    visit("p", p), visit("c", c);
     visit("S", S), visit("back_stress", back_stress), visit("alpha", alpha);
     visit("rho_max", rho_max), visit("damage", damage), visit("strain_rate", strain_rate);
     visit("failed", failed);
   }
   template <class Visit> void for_each_array(Visit&& visit) {
     visit(rho, 1), visit(e, 1), visit(h, 1), visit(h_ref, 1), visit(light_time, 1);
-    visit(fixed, 1), visit(p, 1), visit(c, 1), visit(S, 6), visit(back_stress, 6);
+    visit(fixed, 1), visit(held_axes, 1), visit(p, 1), visit(c, 1), visit(S, 6), visit(back_stress, 6);
     visit(alpha, 1), visit(rho_max, 1), visit(damage, 1), visit(strain_rate, 1);
     visit(failed, 1);
   }

@@ -10,6 +10,7 @@
 #include "meshfree/io/checkpoint.hpp"
 #include "meshfree/io/problem_spec.hpp"
 #include "meshfree/io/results.hpp"
+#include "meshfree/stages/preload_sampling.hpp"
 #include "meshfree/stages/transfer_report.hpp"
 #include <string>
 #include <vector>
@@ -66,9 +67,11 @@ void record_stage(ExplicitStage& st, const std::string& status, const std::strin
 /// are kept apart from the run's, whose summaries they must not enter.
 io::History take_rows(io::History& h);
 
-/// Elastic strain energy of stresses sigma (3D Voigt) of volumes V with each its E and nu:
-/// sum V sigma : C^-1 sigma / 2.
-double elastic_energy(const std::vector<materials::Vec6>& sigma, const std::vector<double>& volume,
-                      const std::vector<double>& E, const std::vector<double>& nu);
+/// The elastic strain energy of the preload's final stress at the particles, each of reference
+/// volume V with the elasticity of the preload's material there: sum V sigma : C^-1 sigma / 2.
+/// The small-strain energy is an integral over the reference body, so the reference volume, not
+/// the preloaded one m / rho.
+double stored_energy(const io::ProblemSpec& preload, const PreloadAtParticles& pa,
+                     const std::vector<double>& volume);
 
 } // namespace mf::stages
