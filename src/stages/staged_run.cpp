@@ -27,7 +27,8 @@ io::Json TransferReport::json() const {
         .set("relaxation_seconds_from_zero", relax_seconds_from_zero)
         .set("pd_vs_galerkin_displacement", pd_vs_galerkin);
   } else {
-    j.set("particles_over_yield_surface", over_surface)
+    j.set("balanced_residual", balanced_residual)
+        .set("particles_over_yield_surface", over_surface)
         .set("particles_returned_to_yield_surface", returned)
         .set("worst_yield_ratio", worst_yield_ratio)
         .set("density_mismatch", density_mismatch)

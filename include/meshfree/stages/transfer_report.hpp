@@ -19,8 +19,10 @@ struct TransferReport {
   int over_surface = 0, returned = 0;
   double worst_yield_ratio = 0.0, density_mismatch = 0.0;
   // The initial out-of-balance: max_i |m_i a_i| / max_i |f_i| over the free particles, f the
-  // held surface and body forces.
+  // held surface and body forces, with the transfer's balancing forces on (SPH), and before
+  // them: the residual of the SPH sums of the transferred state that those forces take.
   double out_of_balance = 0.0;
+  double balanced_residual = 0.0;
   double settle_time = 0.0, settle_drift = 0.0; // max |u - u^h| / max |u^h| after settling
   // Peridynamics: adaptive dynamic relaxation from u^h (and from zero), and how far the
   // peridynamic equilibrium lies from the Galerkin displacement, |u_PD - u^h| / |u^h|.
