@@ -119,6 +119,13 @@ printf 'name: x\nanalysis: staged\nmodel: {type: plane_stress}\nmaterials: [{nam
 expect_error "materials[0].plasticity: a J2 preload (plastic strain, back stress) cannot start a bond-based peridynamic stage" "$WORK/staged_pd.yaml"
 expect_error "materials[0].nu: bond-based peridynamics in plane stress has Poisson's ratio 0.3333333333" "$WORK/staged_pd.yaml" --set 'materials.0.plasticity=null'
 expect_error "stages[1].hold" "$WORK/staged_pd.yaml" --set 'stages.1.hold=[]' --set 'materials.0.plasticity=null' --set 'materials.0.nu=0.3333333333333333'
+ELASTIC_PD=(--set 'materials.0.plasticity=null' --set 'materials.0.nu=0.3333333333333333')
+expect_error "stages[1].settle: a peridynamic stage starts from its own static equilibrium" "$WORK/staged_pd.yaml" "${ELASTIC_PD[@]}" --set 'stages.1.settle={time: 1.0e-6, damping: 1.0}'
+# A material region's law reaches the peridynamic stage as the body's own does.
+TWO='materials=[{name: m, E: 1.0e9, nu: 0.3333333333333333, density: 1000, bond: {law: pmb, critical_stretch: 0.01}}, {name: soft, E: 1.0e8, nu: 0.3333333333333333, density: 1000, plasticity: {yield_stress: 1.0e5, hardening: perfect}}]'
+REGION=(--set "$TWO" --set 'stages.0.material=m' --set 'stages.1.material=m' --set 'stages.0.material_regions=[{material: soft, box: [[0, 0], [0.5, 0.5]]}]')
+expect_error "materials[1].plasticity: a J2 preload (plastic strain, back stress) cannot start a bond-based peridynamic stage" "$WORK/staged_pd.yaml" "${REGION[@]}"
+expect_error "materials[1].nu: bond-based peridynamics in plane stress has Poisson's ratio" "$WORK/staged_pd.yaml" "${REGION[@]}" --set 'materials.1.plasticity=null' --set 'materials.1.nu=0.25'
 # Slips a reader of YAML lets through, values that overflow, and keys or values that would break
 # the message's line.
 sed 's/{name: steel, E: 2.0e5, nu: 0.1}/{name: steel, E: 2.0e5, nu: 0.1, E: -1}/' "$P" > "$WORK/duplicate.yaml"

@@ -184,7 +184,7 @@ TEST_CASE("a peridynamic stage after a Galerkin preload starts quiet at the Gale
                                relative(gauge_u(h, row, m.name), gauge_u(h, preload_end, m.name)));
   }
   std::cout << "staged pd quiet start: " << t.particles << " particles, residual ratio at u^h "
-            << t.out_of_balance << ", ADR " << t.relax_iterations << " iterations from u^h ("
+            << t.residual_at_uh << ", ADR " << t.relax_iterations << " iterations from u^h ("
             << t.relax_seconds << " s), " << t.relax_iterations_from_zero << " from zero ("
             << t.relax_seconds_from_zero << " s), |u_PD - u^h| / |u^h| " << t.pd_vs_galerkin
             << "; over " << last_step << " steps (" << rows

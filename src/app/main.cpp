@@ -84,24 +84,13 @@ Command parse(int argc, char** argv) {
   return c;
 }
 
-int check(const Command& c) {
-  const mf::io::ProblemSpec spec = mf::io::read_problem(c.problem, c.overrides);
-  std::cout << "problem " << spec.name << ": valid\n";
-  if (spec.analysis == mf::io::Analysis::Staged) {
-    for (std::size_t k = 0; k < spec.stages.size(); ++k) {
-      const mf::io::StageLink& l = spec.links[k];
-      std::cout << "  stage " << spec.stages[k].stage;
-      if (l.from >= 0)
-        std::cout << " from " << spec.stages[l.from].stage << " (" << l.hold.size()
-                  << " condition(s) held, " << l.release.size() << " released)";
-      std::cout << "\n";
-    }
-    return 0;
-  }
+/// What a run of `spec` (one analysis) would build: its counts, time step and memory. Throws
+/// what the run's set-up would throw.
+void describe(const mf::io::ProblemSpec& spec) {
   if (spec.analysis == mf::io::Analysis::ModelProblem1D) {
     std::cout << "  1D model problem on [0, " << spec.model_1d.length << "], spacing "
               << spec.discretisation.spacing << "\n";
-    return 0;
+    return;
   }
   if (spec.analysis == mf::io::Analysis::Sph) {
     const mf::sph::Hydro h = mf::explicit_dynamics::build_sph(*spec.sph);
@@ -115,7 +104,7 @@ int check(const Command& c) {
                                     mf::bytes_per::sph_particle(spec.sph->dimension))
               << " for the discretisation, besides " << mf::describe_bytes(mf::bytes_per::program)
               << " for the program\n";
-    return 0;
+    return;
   }
   if (spec.analysis == mf::io::Analysis::Peridynamics) {
     mf::PhaseTimer timer;
@@ -129,7 +118,7 @@ int check(const Command& c) {
                                     mf::bytes_per::pd_partner * setup.model.bonds.directed)
               << " for the discretisation, besides " << mf::describe_bytes(mf::bytes_per::program)
               << " for the program\n";
-    return 0;
+    return;
   }
   const auto& d = spec.discretisation;
   if (d.method == mf::io::Method::Fem) {
@@ -165,6 +154,26 @@ int check(const Command& c) {
   }
   for (const auto& step : spec.steps)
     std::cout << "  step " << step.name << ": " << step.increments << " increments\n";
+}
+
+/// Reads the problem and builds what its run builds before the first step or solve, stage by
+/// stage; says "valid" only when all of it passed.
+int check(const Command& c) {
+  const mf::io::ProblemSpec spec = mf::io::read_problem(c.problem, c.overrides);
+  if (spec.analysis != mf::io::Analysis::Staged) {
+    describe(spec);
+  } else {
+    for (std::size_t k = 0; k < spec.stages.size(); ++k) {
+      const mf::io::StageLink& l = spec.links[k];
+      std::cout << "stage " << spec.stages[k].stage;
+      if (l.from >= 0)
+        std::cout << " from " << spec.stages[l.from].stage << " (" << l.hold.size()
+                  << " condition(s) held, " << l.release.size() << " released)";
+      std::cout << ":\n";
+      describe(spec.stages[k]);
+    }
+  }
+  std::cout << "problem " << spec.name << ": valid\n";
   return 0;
 }
 

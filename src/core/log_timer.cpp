@@ -1,5 +1,7 @@
 #include "meshfree/core/log.hpp"
 #include "meshfree/core/timer.hpp"
+#include <cmath>
+#include <cstdio>
 #include <sys/resource.h>
 
 namespace mf {
@@ -12,6 +14,25 @@ int& log::rank() {
 bool& log::verbose() {
   static bool v = true;
   return v;
+}
+
+std::string log::duration(double seconds) {
+  double v = seconds;
+  const char* unit = "s";
+  if (seconds >= 3600.0)
+    v = seconds / 3600.0, unit = "h";
+  else if (seconds >= 120.0)
+    v = seconds / 60.0, unit = "min";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g %s", v, unit);
+  return text;
+}
+
+std::string log::eta(double elapsed_seconds, double fraction_done) {
+  std::string s = "elapsed " + duration(elapsed_seconds);
+  if (fraction_done > 0.0 && fraction_done < 1.0 && std::isfinite(elapsed_seconds))
+    s += ", about " + duration(elapsed_seconds * (1.0 - fraction_done) / fraction_done) + " left";
+  return s;
 }
 
 double kernel_seconds() {

@@ -4,6 +4,7 @@
 #include "meshfree/implicit/point_law.hpp"
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 namespace mf::implicit {
 
@@ -17,6 +18,20 @@ bool drives(const io::BoundaryCondition& bc) {
   if (bc.value_from_exact || bc.traction_from_exact) return true;
   if (bc.constrains) return !bc.value.cwiseProduct(bc.mask).isZero();
   return bc.pressure_load ? bc.pressure != 0.0 : !bc.traction.isZero();
+}
+
+/// The nominal increments of the whole schedule, and how many of them are done when step `s`
+/// has come `tau` of its way (a cut increment counts by its share).
+double increments_total(const io::ProblemSpec& spec) {
+  double n = 0.0;
+  for (const io::LoadStep& step : spec.steps) n += step.increments;
+  return n;
+}
+
+double increments_done(const io::ProblemSpec& spec, std::size_t s, double tau) {
+  double n = 0.0;
+  for (std::size_t k = 0; k < s; ++k) n += spec.steps[k].increments;
+  return n + tau * spec.steps[s].increments;
 }
 
 } // namespace
@@ -43,6 +58,10 @@ ScheduleOutcome run_load_schedule(const io::ProblemSpec& spec, ElastoplasticSyst
   settings.tolerance = spec.nonlinear.tolerance;
   settings.max_iterations = spec.nonlinear.max_iterations;
   int& since_output = at.since_output;
+  const auto began = Clock::now();
+  const double total = increments_total(spec);
+  const double done_at_start =
+      at.step < static_cast<int>(spec.steps.size()) ? increments_done(spec, at.step, at.tau) : total;
   while (at.step < static_cast<int>(spec.steps.size()) && o.status == "completed") {
     const std::size_t s = static_cast<std::size_t>(at.step);
     const io::LoadStep& step = spec.steps[s];
@@ -99,10 +118,15 @@ ScheduleOutcome run_load_schedule(const io::ProblemSpec& spec, ElastoplasticSyst
           ++since_output >= spec.fields_every || (step_end && s + 1 == spec.steps.size());
       if (write_fields) since_output = 0;
       const IncrementRecord& recorded = done(std::move(rec), write_fields);
-      log::info("  step '", step.name, "' at ", tau, " (", factors_text(spec, f),
-                "): ", rep.iterations, " Newton iterations, |R|/|F| ",
+      const double done_now = increments_done(spec, s, tau);
+      log::info("  increment ", std::lround(done_now), " of ", std::lround(total), ", step '",
+                step.name, "' at ", tau, " (", factors_text(spec, f), "): ", rep.iterations,
+                " Newton iterations, |R|/|F| ",
                 rep.residual.back() / std::max(rep.scale.back(), 1e-300), ", plastic points ",
-                recorded.plastic_points, ", max plastic strain ", recorded.max_plastic_strain);
+                recorded.plastic_points, ", max plastic strain ", recorded.max_plastic_strain,
+                "; ",
+                log::eta(seconds_since(began),
+                         (done_now - done_at_start) / std::max(total - done_at_start, 1e-300)));
       // A cut increment grows back, doubling after every two easy ones, up to the nominal size.
       if (dtau < nominal && rep.iterations <= 6 && ++easy >= 2) {
         dtau = std::min(nominal, 2.0 * dtau);

@@ -127,7 +127,7 @@ ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::Elast
       t.max_u = std::max(t.max_u, pa.final_u()[i].norm());
     }
     t.stored_energy = stored_energy(preload, pa, P.volume);
-    t.out_of_balance = pd::residual_ratio(m, setup.state, setup.loading);
+    t.residual_at_uh = pd::residual_ratio(m, setup.state, setup.loading);
     t.seconds = seconds_since(t0);
   }
   {
@@ -155,12 +155,13 @@ ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::Elast
                "held conditions");
     t.relax_iterations = r.iterations;
     t.relax_residual = r.residual_ratio;
+    t.out_of_balance = r.residual_ratio;
     t.relax_seconds = r.seconds;
     double norm_uh = 0.0;
     t.pd_vs_galerkin = norm_of_difference(P.u, pa.final_u(), norm_uh) / std::max(norm_uh, 1e-300);
   }
   log::info("transfer: ", n, " particles from stage ", preload.stage, ", residual ratio at u^h ",
-            t.out_of_balance, "; relaxed in ", t.relax_iterations,
+            t.residual_at_uh, "; relaxed in ", t.relax_iterations,
             " iterations (from zero: ", t.relax_iterations_from_zero,
             "), |u_PD - u^h| / |u^h| = ", t.pd_vs_galerkin);
 

@@ -246,8 +246,19 @@ ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
     std::vector<sph::SurfaceLoad> event_loads;
     std::swap(event_loads, h.loads);
     h.damping = link.settle_damping;
-    while (h.particles.time < link.settle_time)
+    const auto began = std::chrono::steady_clock::now();
+    double next_report = 0.1, last_report = 0.0;
+    while (h.particles.time < link.settle_time) {
       sph::advance(h, std::min(sph::stable_step(h), link.settle_time - h.particles.time));
+      // Every tenth of the settle, or every 10 s of wall time, and at its end.
+      const double done = h.particles.time / link.settle_time, wall = seconds_since(began);
+      if (done >= next_report || wall >= last_report + 10.0 || done >= 1.0) {
+        log::info("  settle: t = ", h.particles.time, " (", std::lround(100.0 * done),
+                  "%), step ", h.particles.step, ", ", log::eta(wall, done));
+        while (next_report <= done) next_report += 0.1;
+        last_report = wall;
+      }
+    }
     std::swap(event_loads, h.loads);
     double drift = 0.0;
     for (int i = 0; i < n; ++i)

@@ -20,7 +20,8 @@ io::Json TransferReport::json() const {
   j.set("held", h);
   j.set("initial_out_of_balance", out_of_balance);
   if (peridynamic) {
-    j.set("relaxation_iterations", relax_iterations)
+    j.set("residual_at_galerkin_displacement", residual_at_uh)
+        .set("relaxation_iterations", relax_iterations)
         .set("relaxation_iterations_from_zero", relax_iterations_from_zero)
         .set("relaxation_residual_ratio", relax_residual)
         .set("relaxation_seconds", relax_seconds)

@@ -38,19 +38,16 @@ std::vector<double> out_of_balance(Hydro& h);
 std::vector<int> within_reach(Hydro& h, const std::vector<int>& layer);
 
 /// Constant forces -m_i a_i on the given particles, from out_of_balance at the current state:
-/// added to h.forces, they hold those particles exactly at rest in the current state. Used on
-/// the band of a held face (within_reach of its layer) after its traction_force, it makes up the
-/// difference between the traction t A on the outer layer and the way SPH spreads a stress's
-/// surface force over the band; its resultant is that difference (small), its particle forces
-/// are of the order of t A.
+/// added to h.forces, they hold those particles exactly at rest in the current state. A staged
+/// run balances every particle but those near a released condition with it: the outer layer of
+/// a held face carries its traction t A while SPH spreads a stress's surface force over the
+/// kernel's reach, and stepped surfaces and gradients leave residuals of their own.
 ///
 /// With take_resultant, the resultant of the out-of-balance forces of all the other owned
 /// particles is spread over the given ones too, in proportion to their mass, so that no net
-/// force is left on the body. A body resting on transmitting boundaries has no stiffness against
-/// rigid motion (a dashpot has none): whatever net force the discretisation leaves (a free
-/// surface whose outer layer carries the stress at its centre, O(h) off) would drive it at the
-/// constant speed F / (rho c A). Taken on the supporting band, the body keeps only
-/// self-equilibrated residuals, which a settle phase with damping brings to rest.
+/// force is left on the body: a body resting on transmitting boundaries has no stiffness against
+/// rigid motion (a dashpot has none), and whatever net force the discretisation leaves would
+/// drive it at the constant speed F / (rho c A).
 SurfaceForce balancing_force(Hydro& h, const std::string& name, const std::vector<int>& particles,
                              bool take_resultant = false);
 
