@@ -138,6 +138,7 @@ StageLink read_link(KeyReader& s, const std::vector<ProblemSpec>& earlier, int k
   if (auto t = s.optional_map("transfer")) {
     l.return_to_surface =
         t->choice("outside_yield_surface", {"report", "return"}, "report") == "return";
+    l.implicit_equilibrium = t->choice("equilibrium", {"newton", "adr"}, "newton") == "newton";
     l.relax_tolerance = t->positive("relax_tolerance", l.relax_tolerance);
     l.relax_max_iterations =
         t->integer("relax_max_iterations", l.relax_max_iterations, 1, 100000000);

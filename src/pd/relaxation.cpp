@@ -1,10 +1,12 @@
 #include "meshfree/pd/relaxation.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/pd/forces.hpp"
+#include "meshfree/solvers/petsc_session.hpp"
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 namespace mf::pd {
 
@@ -138,6 +140,98 @@ std::vector<double> fictitious_density(const Model& m, const BondState& s) {
     for (int d = 0; d < 3; ++d) lambda[3 * i + d] += 0.5 * stiffness * std::abs(e[d]) * row;
   });
   return lambda;
+}
+
+/// The linearised bond stiffness of a plane body's x and y components (Model::plane), as block
+/// rows: row i holds i and its bond partners in increasing order, each entry a 2x2 block
+/// (row-major, 4 values); rows and columns of held components are the identity's.
+struct PlaneStiffness {
+  std::vector<int> offset{0};
+  std::vector<int> column;
+  std::vector<double> block;
+};
+
+/// The slot of column j in row i.
+long slot(const PlaneStiffness& K, int i, int j) {
+  const auto first = K.column.begin() + K.offset[i], last = K.column.begin() + K.offset[i + 1];
+  return static_cast<long>(std::lower_bound(first, last, j) - K.column.begin());
+}
+
+PlaneStiffness plane_stiffness(const Model& m, const BondState& s, const Statics& st) {
+  const particles::ParticleSet& q = m.particles;
+  const int n = q.size();
+  std::vector<std::vector<int>> rows(n);
+  for (int i = 0; i < n; ++i) rows[i].push_back(i);
+  for_each_directed_bond(m, [&](int i, int j, long k, double, const BondClass&) {
+    if (s.intact[k]) rows[i].push_back(j);
+  });
+  PlaneStiffness K;
+  for (auto& r : rows) {
+    std::sort(r.begin(), r.end());
+    r.erase(std::unique(r.begin(), r.end()), r.end());
+    K.column.insert(K.column.end(), r.begin(), r.end());
+    K.offset.push_back(static_cast<int>(K.column.size()));
+  }
+  K.block.assign(4 * K.column.size(), 0.0);
+  // Directed bond i -> j: the force on i is V_i c w_ij (s e), whose derivative at u = 0 is
+  // A = V_i c w_ij / |xi| e e^T with respect to u_j and -A with respect to u_i. The matrix of the
+  // Newton step is minus that Jacobian; V_i w_ij = V_j w_ji makes it symmetric.
+  for_each_directed_bond(m, [&](int i, int j, long k, double w, const BondClass& c) {
+    if (!s.intact[k]) return;
+    const double L = c.length;
+    const double e[2] = {(q.X[3 * j] - q.X[3 * i]) / L, (q.X[3 * j + 1] - q.X[3 * i + 1]) / L};
+    const double a = q.volume[i] * m.laws[c.law].c * w / L;
+    double* ii = &K.block[4 * slot(K, i, i)];
+    double* ij = &K.block[4 * slot(K, i, j)];
+    for (int r = 0; r < 2; ++r)
+      for (int col = 0; col < 2; ++col) {
+        ii[2 * r + col] += a * e[r] * e[col];
+        ij[2 * r + col] -= a * e[r] * e[col];
+      }
+  });
+  for (int i = 0; i < n; ++i)
+    for (int t = K.offset[i]; t < K.offset[i + 1]; ++t) {
+      const int j = K.column[t];
+      double* b = &K.block[4 * static_cast<std::size_t>(t)];
+      for (int r = 0; r < 2; ++r)
+        for (int col = 0; col < 2; ++col) {
+          const bool held = st.held[3 * i + r] || st.held[3 * j + col];
+          if (held)
+            b[2 * r + col] = i == j && r == col ? 1.0 : 0.0;
+          else if (i == j && r == col)
+            b[2 * r + col] *= 1.0 + 1e-8;
+        }
+    }
+  return K;
+}
+
+/// The stiffness as a PETSc matrix (one rank: every block column is owned), factorised on its
+/// first solve.
+std::unique_ptr<solvers::BlockLinearSystem> stiffness_system(const Model& m,
+                                                             const PlaneStiffness& K) {
+  const int n = m.particles.size();
+  solvers::LinearSolverSettings linear;
+  linear.multigrid = 2.0 * n >= 2e5;
+  if (linear.multigrid)
+    for (int i = 0; i < n; ++i)
+      linear.coordinates.insert(linear.coordinates.end(),
+                                {m.particles.X[3 * i], m.particles.X[3 * i + 1]});
+  // Scalar row 2i holds the upper rows of row i's blocks in column order, row 2i + 1 the lower
+  // rows (solvers::BlockValueArrays).
+  const auto fill = [&K, n](solvers::BlockValueArrays values, std::vector<double>&) {
+    for (int i = 0; i < n; ++i) {
+      const long first = K.offset[i], count = K.offset[i + 1] - first;
+      double* upper = values.diagonal + 4 * first;
+      double* lower = upper + 2 * count;
+      for (long t = 0; t < count; ++t) {
+        const double* b = &K.block[4 * (first + t)];
+        upper[2 * t] = b[0], upper[2 * t + 1] = b[1];
+        lower[2 * t] = b[2], lower[2 * t + 1] = b[3];
+      }
+    }
+  };
+  return std::make_unique<solvers::BlockLinearSystem>(MPI_COMM_SELF, n, solvers::OwnedRange{0, n},
+                                                      K.offset, K.column, fill, true, linear);
 }
 
 } // namespace
@@ -284,6 +378,49 @@ double residual_ratio(Model& m, BondState& s, const Loading& loading) {
   const Statics st = statics(m, loading);
   std::vector<double> y, f;
   return net_force(m, s, st, 1.0, y, f).ratio();
+}
+
+} // namespace mf::pd
+
+namespace mf::pd {
+
+RelaxReport solve_statics(Model& m, BondState& s, const Loading& loading,
+                          const RelaxSettings& settings) {
+  MF_REQUIRE(m.plane(), "peridynamics: the implicit equilibrium solves plane bodies");
+  MF_REQUIRE(m.particles.owned_count() == m.particles.size(),
+             "peridynamics: the implicit equilibrium runs on one rank");
+  const Clock::time_point start = Clock::now();
+  NoBreaking guard(m, s, true);
+  particles::ParticleSet& q = m.particles;
+  const int n = q.size();
+  const Statics st = statics(m, loading);
+  for (std::size_t k = 0; k < q.u.size(); ++k)
+    if (st.held[k]) q.u[k] = st.target[k];
+  const std::unique_ptr<solvers::BlockLinearSystem> K =
+      stiffness_system(m, plane_stiffness(m, s, st));
+  std::vector<double> y, f, rhs(2 * static_cast<std::size_t>(n));
+  RelaxReport r;
+  r.residual_ratio = net_force(m, s, st, 1.0, y, f).ratio();
+  const int most = std::min(settings.max_iterations, 50);
+  while (!(r.residual_ratio <= settings.tolerance) && std::isfinite(r.residual_ratio) &&
+         r.iterations < most) {
+    for (int i = 0; i < n; ++i)
+      for (int d = 0; d < 2; ++d) rhs[2 * i + d] = f[3 * i + d] * q.volume[i];
+    const solvers::SolveReport solved = K->solve(rhs);
+    r.linear_iterations += solved.iterations;
+    r.solver = solved.solver;
+    const std::vector<double> du = K->solution();
+    for (int i = 0; i < n; ++i)
+      for (int d = 0; d < 2; ++d)
+        if (!st.held[3 * i + d]) q.u[3 * i + d] += du[2 * i + d];
+    ++r.iterations;
+    r.residual_ratio = net_force(m, s, st, 1.0, y, f).ratio();
+  }
+  r.converged = r.residual_ratio <= settings.tolerance;
+  std::fill(q.v.begin(), q.v.end(), 0.0);
+  std::fill(q.a.begin(), q.a.end(), 0.0);
+  r.seconds = seconds_since(start);
+  return r;
 }
 
 } // namespace mf::pd

@@ -101,16 +101,44 @@ BlockLinearSystem::~BlockLinearSystem() {
   if (impl_->x) VecDestroy(&impl_->x);
 }
 
+SolveReport BlockLinearSystem::solve(const std::vector<double>& rhs) {
+  Impl& s = *impl_;
+  PetscInt local = 0;
+  check(VecGetLocalSize(s.b, &local), "VecGetLocalSize");
+  MF_REQUIRE(rhs.size() == static_cast<std::size_t>(local),
+             "BlockLinearSystem: a right-hand side of ", rhs.size(), " values for ", local,
+             " owned rows");
+  PetscScalar* bv;
+  check(VecGetArray(s.b, &bv), "VecGetArray");
+  std::copy(rhs.begin(), rhs.end(), bv);
+  check(VecRestoreArray(s.b, &bv), "VecRestoreArray");
+  return solve();
+}
+
+std::vector<double> BlockLinearSystem::solution() const {
+  const PetscScalar* xv;
+  PetscInt local = 0;
+  check(VecGetLocalSize(impl_->x, &local), "VecGetLocalSize");
+  check(VecGetArrayRead(impl_->x, &xv), "VecGetArrayRead");
+  std::vector<double> out(xv, xv + local);
+  check(VecRestoreArrayRead(impl_->x, &xv), "VecRestoreArrayRead");
+  return out;
+}
+
 SolveReport BlockLinearSystem::solve() {
   Impl& s = *impl_;
-  MPI_Comm comm;
-  check(PetscObjectGetComm(reinterpret_cast<PetscObject>(s.A), &comm), "PetscObjectGetComm");
-  check(KSPCreate(comm, &s.ksp), "KSPCreate");
-  check(KSPSetOperators(s.ksp, s.A, s.A), "KSPSetOperators");
-  detail::set_default_solver(s.ksp, s.A, s.settings);
+  // The solver is set up once: a later solve with another right-hand side reuses its
+  // factorisation or multigrid hierarchy.
+  if (!s.ksp) {
+    MPI_Comm comm;
+    check(PetscObjectGetComm(reinterpret_cast<PetscObject>(s.A), &comm), "PetscObjectGetComm");
+    check(KSPCreate(comm, &s.ksp), "KSPCreate");
+    check(KSPSetOperators(s.ksp, s.A, s.A), "KSPSetOperators");
+    detail::set_default_solver(s.ksp, s.A, s.settings);
+    check(KSPSetFromOptions(s.ksp), "KSPSetFromOptions");
+  }
   PC pc;
   check(KSPGetPC(s.ksp, &pc), "KSPGetPC");
-  check(KSPSetFromOptions(s.ksp), "KSPSetFromOptions");
   check(KSPSolve(s.ksp, s.b, s.x), "KSPSolve");
 
   SolveReport r;

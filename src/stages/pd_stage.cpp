@@ -135,21 +135,29 @@ ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::Elast
     pd::RelaxSettings rs;
     rs.tolerance = link.relax_tolerance;
     rs.max_iterations = link.relax_max_iterations;
+    // Newton on the linearised bond stiffness, or adaptive dynamic relaxation.
+    const auto equilibrium = [&link, &rs](pd::Model& body, pd::BondState& state,
+                                          const pd::Loading& loading) {
+      return link.implicit_equilibrium ? pd::solve_statics(body, state, loading, rs)
+                                       : pd::relax(body, state, loading, rs);
+    };
     if (link.relax_from_zero) {
       pd::Model zero = m;
       pd::BondState state = setup.state;
       pd::set_displacement(zero, std::vector<double>(3 * n, 0.0));
-      const pd::RelaxReport z = pd::relax(zero, state, setup.loading, rs);
+      const pd::RelaxReport z = equilibrium(zero, state, setup.loading);
       t.relax_iterations_from_zero = z.converged ? z.iterations : -1;
       t.relax_seconds_from_zero = z.seconds;
     }
-    const pd::RelaxReport r = pd::relax(m, setup.state, setup.loading, rs);
+    const pd::RelaxReport r = equilibrium(m, setup.state, setup.loading);
+    t.relax_method = link.implicit_equilibrium ? "newton (" + r.solver + ")" : "adr";
+    t.relax_linear_iterations = r.linear_iterations;
     MF_REQUIRE(r.converged, link.key_path,
                ": the peridynamic body found no static equilibrium "
                "under the held loads within ",
                r.iterations,
-               " relaxation iterations (residual "
-               "ratio ",
+               link.implicit_equilibrium ? " Newton iterations (residual ratio "
+                                         : " relaxation iterations (residual ratio ",
                r.residual_ratio,
                "); raise transfer.relax_max_iterations or check the "
                "held conditions");
@@ -161,7 +169,7 @@ ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::Elast
     t.pd_vs_galerkin = norm_of_difference(P.u, pa.final_u(), norm_uh) / std::max(norm_uh, 1e-300);
   }
   log::info("transfer: ", n, " particles from stage ", preload.stage, ", residual ratio at u^h ",
-            t.residual_at_uh, "; relaxed in ", t.relax_iterations,
+            t.residual_at_uh, "; equilibrium by ", t.relax_method, " in ", t.relax_iterations,
             " iterations (from zero: ", t.relax_iterations_from_zero,
             "), |u_PD - u^h| / |u^h| = ", t.pd_vs_galerkin);
 

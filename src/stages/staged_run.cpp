@@ -21,7 +21,9 @@ io::Json TransferReport::json() const {
   j.set("initial_out_of_balance", out_of_balance);
   if (peridynamic) {
     j.set("residual_at_galerkin_displacement", residual_at_uh)
+        .set("equilibrium", relax_method)
         .set("relaxation_iterations", relax_iterations)
+        .set("relaxation_linear_iterations", relax_linear_iterations)
         .set("relaxation_iterations_from_zero", relax_iterations_from_zero)
         .set("relaxation_residual_ratio", relax_residual)
         .set("relaxation_seconds", relax_seconds)

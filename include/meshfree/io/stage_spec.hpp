@@ -24,8 +24,10 @@ struct StageLink {
   // radial return of particles found outside their yield surface.
   double settle_time = 0.0, settle_damping = 0.0;
   bool return_to_surface = false;
-  // Peridynamics: adaptive dynamic relaxation to the body's own equilibrium, and whether to
-  // relax from u = 0 as well, to count the iterations the preload saves.
+  // Peridynamics: the body's own equilibrium from u^h, by Newton's method on the linearised bond
+  // stiffness (pd::solve_statics) or by adaptive dynamic relaxation (pd::relax), and whether to
+  // reach it from u = 0 as well, to count the iterations the preload saves.
+  bool implicit_equilibrium = true;
   double relax_tolerance = 1e-6;
   int relax_max_iterations = 200000;
   bool relax_from_zero = true;

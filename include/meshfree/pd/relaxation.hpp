@@ -13,6 +13,7 @@
 // followed; the explicit relaxation multiplies them by its own ramp). Components under a velocity
 // constraint stay where they are.
 #include "meshfree/pd/dynamics.hpp"
+#include <string>
 #include <vector>
 
 namespace mf::pd {
@@ -31,6 +32,8 @@ struct RelaxReport {
   bool converged = false;
   double residual_ratio = 0.0; // |residual| / |external| at the end
   double seconds = 0.0;
+  int linear_iterations = 0; // solve_statics: the linear solver's, over all Newton iterations
+  std::string solver;        // solve_statics: the linear solver
 };
 
 /// Brings the body from its current u to static equilibrium under the loading (body loads at
@@ -38,6 +41,19 @@ struct RelaxReport {
 /// unless allowed, by adaptive dynamic relaxation; leaves v = 0, a = 0 and the clock as it was.
 /// Micro-plastic bonds yield along the relaxation's fictitious path.
 RelaxReport relax(Model& m, BondState& s, const Loading& loading, const RelaxSettings& settings);
+
+/// Brings a plane body from its current u to static equilibrium under the loading by Newton's
+/// method with the linearised bond stiffness at the reference directions, K_ij = -V_i c w_ij /
+/// |xi| e e^T and K_ii = -sum_j K_ij over the intact bonds (the tangent of the bond force at
+/// u = 0; Peridigm's QuasiStatic solver is Newton on the same equations), factorised once
+/// (MUMPS; multigrid from 2e5 unknowns) and reused at every iteration: a modified Newton whose
+/// residual falls by about the strain per iteration. Held components keep their targets (their
+/// rows and columns are the identity). A diagonal shift of 1e-8 of each free diagonal entry
+/// makes the matrix of a body held by forces alone (rigid modes free) positive definite; the
+/// residual, evaluated by the bond-force loop, decides convergence as in relax. Every particle
+/// must be owned (one rank); bonds do not break. Leaves v = 0, a = 0 and the clock as it was.
+RelaxReport solve_statics(Model& m, BondState& s, const Loading& loading,
+                          const RelaxSettings& settings);
 
 struct ExplicitRelaxSettings {
   double dt = 0.0;        // time step (the physical density is used): at most stable_time_step

@@ -103,6 +103,11 @@ public:
   /// Solves with KSP as the settings say; every KSP/PC option given on the command line
   /// overrides them.
   SolveReport solve();
+  /// Solves again for another right-hand side (two values per owned node), reusing the
+  /// factorisation or the multigrid hierarchy of the first solve.
+  SolveReport solve(const std::vector<double>& rhs);
+  /// The owned entries of the solution (two per owned node).
+  std::vector<double> solution() const;
   /// The whole solution vector on every rank.
   std::vector<double> solution_everywhere() const;
   /// Number of stored matrix entries over all ranks.

@@ -28,6 +28,8 @@ struct TransferReport {
   // zero) to the body's own equilibrium, where its run starts (out_of_balance: the relaxation's
   // residual ratio), and how far that lies from the Galerkin displacement, |u_PD - u^h| / |u^h|.
   double residual_at_uh = 0.0;
+  std::string relax_method; // "newton (its linear solver)" or "adr"
+  int relax_linear_iterations = 0;
   int relax_iterations = 0, relax_iterations_from_zero = -1;
   double relax_residual = 0.0, relax_seconds = 0.0, relax_seconds_from_zero = 0.0;
   double pd_vs_galerkin = 0.0;
