@@ -118,8 +118,8 @@ TEST_CASE("node lattice fits the body at any spacing: no row a sliver from an ed
     const auto cloud = geometry::generate_nodes(strip, h, {{{{3, 0}, {7, 3}}, 0.25}});
     int slivers = 0;
     for (std::size_t i = 0; i < cloud.x.size(); ++i) {
-      const double d = std::min(strip.distance_to_outline(cloud.x[i]),
-                                std::abs(cloud.x[i].norm() - 5.0));
+      const double d =
+          std::min(strip.distance_to_outline(cloud.x[i]), std::abs(cloud.x[i].norm() - 5.0));
       slivers += d > 1e-9 && d < 0.3 * cloud.spacing[i];
     }
     CHECK(slivers == 0);

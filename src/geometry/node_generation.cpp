@@ -56,7 +56,8 @@ int boundary_intervals(const Curve& c, double h, const Vec2* step) {
   if (step && c.kind == Curve::Kind::Segment) {
     const Vec2 d = c.b - c.a;
     for (int axis = 0; axis < 2; ++axis)
-      if (d[1 - axis] == 0.0) return static_cast<int>(std::round(std::abs(d[axis]) / (*step)[axis]));
+      if (d[1 - axis] == 0.0)
+        return static_cast<int>(std::round(std::abs(d[axis]) / (*step)[axis]));
   }
   return static_cast<int>(std::ceil(c.length() / h - 1e-9));
 }
@@ -73,8 +74,8 @@ void add_lattice(const Vec2& anchor, const Vec2& step, const BoundingBox& box, d
   const long j1 = static_cast<long>(std::floor((box.hi.y() - anchor.y() + eps) / step.y()));
   for (long j = j0; j <= j1; ++j)
     for (long i = i0; i <= i1; ++i) {
-      const Vec2 p = anchor + Vec2(static_cast<double>(i) * step.x(),
-                                   static_cast<double>(j) * step.y());
+      const Vec2 p =
+          anchor + Vec2(static_cast<double>(i) * step.x(), static_cast<double>(j) * step.y());
       if (keep(p)) {
         out.push_back(p);
         out_h.push_back(h);

@@ -137,9 +137,9 @@ SolveReport BlockLinearSystem::solve() {
     PCGetFailedReasonRank(pc, &pcr);
     const std::string stalled = detail::stagnation_note(s.ksp);
     fail("linear solve failed: ",
-         stalled.empty() ? "KSP stopped with " + r.reason_name : "stopped: " + stalled,
-         " after ", r.iterations, " iterations (solver ", r.solver, ", preconditioner: ",
-         PCFailedReasons[pcr], "); ",
+         stalled.empty() ? "KSP stopped with " + r.reason_name : "stopped: " + stalled, " after ",
+         r.iterations, " iterations (solver ", r.solver, ", preconditioner: ", PCFailedReasons[pcr],
+         "); ",
          s.settings.multigrid ? detail::kMultigridHint
                               : "a factorisation that fails usually means the body is not held "
                                 "against rigid motion");
