@@ -32,12 +32,11 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 
-# The spacing for about `dofs` DOFs, a whole fraction of the body's sides: a lattice that does
-# not fit leaves a last row of nodes a sliver from the edge, whose nearly coincident supports
-# spoil the matrix for multigrid (measured: plate at h = 1/370.4, CG + GAMG stalls at 1e-7; at
-# 1/370 and 1/400 it converges in 44 iterations), though not for a direct factorisation. The
-# unit plate holds (1/h + 1)^2 nodes; the strip's quarter (10 x 18 minus a quarter disc of
-# radius 5) about 160 / h^2.
+# The spacing for about `dofs` DOFs, a whole fraction of the body's sides, as in the earlier
+# measurements (the node lattice fits the body at any spacing since geometry::generate_nodes
+# takes round(L / h) intervals a side; before, a spacing that did not divide the sides left a
+# row a sliver from the edge, on which CG + GAMG stalled). The unit plate holds (1/h + 1)^2
+# nodes; the strip's quarter (10 x 18 minus a quarter disc of radius 5) about 160 / h^2.
 CASES = {
     "plate": dict(problem="plate_tension.yaml", analysis="elastic",
                   spacing=lambda dofs: 1.0 / round(math.sqrt(dofs / 2.0) - 1.0),

@@ -82,6 +82,59 @@ TEST_CASE("node generation: lattice, boundary nodes, no near-duplicates, local r
   CHECK(fine > 150); // the refined 2 x 2 box minus the hole holds about 16 x 16 - 50 fine nodes
 }
 
+namespace {
+/// The smallest distance between two nodes of `cloud`, over the finer of their two spacings.
+double smallest_relative_gap(const geometry::NodeCloud& cloud, double largest_spacing) {
+  double gap = 1e300;
+  const neighbors::PointGrid grid(cloud.x, largest_spacing);
+  for (std::size_t i = 0; i < cloud.x.size(); ++i)
+    grid.for_each_within(cloud.x[i], largest_spacing, [&](int j) {
+      if (j != static_cast<int>(i))
+        gap = std::min(gap, (cloud.x[i] - cloud.x[j]).norm() /
+                                std::min(cloud.spacing[i], cloud.spacing[j]));
+    });
+  return gap;
+}
+} // namespace
+
+TEST_CASE("node lattice fits the body at any spacing: no row a sliver from an edge, a hole or a "
+          "finer box; a spacing that divides the body keeps its exact lattice",
+          "[geometry]") {
+  // 1/0.0123 = 81.3: the old lattice's last row lay 0.3 h from the edge, kept wherever it was
+  // over 0.45 h from the edge's own nodes (smallest gap 0.45 h); the fitted one has 81 intervals.
+  const auto square = geometry::Domain::rectangle({0, 0}, {1, 1});
+  for (double h : {0.0123, 0.0031623}) {
+    const auto cloud = geometry::generate_nodes(square, h, {});
+    const long n = std::lround(1.0 / h);
+    CHECK(cloud.x.size() == static_cast<std::size_t>((n + 1) * (n + 1)));
+    CHECK(smallest_relative_gap(cloud, h) > 0.98);
+  }
+  // The perforated strip's geometry and refinement box, at its spacing and at base spacings
+  // dividing neither side: every node lies on the boundary or at least 0.3 of its spacing from
+  // it (the old lattice kept nodes 0.06 h from the hole between two of its nodes).
+  geometry::Domain strip = geometry::Domain::rectangle({0, 0}, {10, 18});
+  strip.add_hole({{0, 0}, 5.0, "hole"});
+  for (double h : {0.5, 0.37, 0.43, 0.55, 0.7}) {
+    const auto cloud = geometry::generate_nodes(strip, h, {{{{3, 0}, {7, 3}}, 0.25}});
+    int slivers = 0;
+    for (std::size_t i = 0; i < cloud.x.size(); ++i) {
+      const double d =
+          std::min(strip.distance_to_outline(cloud.x[i]), std::abs(cloud.x[i].norm() - 5.0));
+      slivers += d > 1e-9 && d < 0.3 * cloud.spacing[i];
+    }
+    CHECK(slivers == 0);
+    CHECK(smallest_relative_gap(cloud, h) > 0.45);
+  }
+  // Spacing 0.1 divides 2 x 1: the lattice i * 0.1, j * 0.1, as before.
+  const auto plate = geometry::generate_nodes(geometry::Domain::rectangle({0, 0}, {2, 1}), 0.1, {});
+  int off_lattice = 0;
+  for (const Vec2& x : plate.x) {
+    const double i = std::round(x.x() / 0.1), j = std::round(x.y() / 0.1);
+    off_lattice += std::abs(x.x() - i * 0.1) > 1e-12 || std::abs(x.y() - j * 0.1) > 1e-12;
+  }
+  CHECK(off_lattice == 0);
+}
+
 TEST_CASE("cell-list neighbour search finds exactly the points a brute-force search finds",
           "[neighbors]") {
   std::vector<Vec2> pts;

@@ -32,23 +32,87 @@ std::vector<Curve> split_at_refinements(const Curve& c,
 
 namespace {
 
-/// Appends lattice points of spacing h anchored at `anchor`, restricted to `box`, that `keep`.
+/// Lattice nodes nearer than this fraction of their spacing to the boundary are dropped: a row
+/// a sliver from an edge (a spacing that does not divide the body, a row grazing a hole between
+/// two boundary nodes) makes nearly dependent shape functions, on which multigrid stalls.
+constexpr double kBoundaryGap = 0.3;
+
+/// Steps of a lattice that fits the interval [0, L] in each direction: round(L / h) intervals,
+/// so that the first and last rows land on the box's edges. Where h divides L (to 1e-9) the
+/// step is h itself, so that such lattices keep their exact coordinates.
+Vec2 fitted_steps(const Vec2& size, double h) {
+  Vec2 step;
+  for (int d = 0; d < 2; ++d) {
+    const double n = std::max(1.0, std::round(size[d] / h));
+    step[d] = std::abs(size[d] / h - n) <= 1e-9 * n ? h : size[d] / n;
+  }
+  return step;
+}
+
+/// Intervals of boundary piece c at spacing h: with the steps of a fitted lattice (`step`, null
+/// for none), round(L / step) along a segment parallel to an axis (the lattice's count over that
+/// length); ceil(L / h) otherwise.
+int boundary_intervals(const Curve& c, double h, const Vec2* step) {
+  if (step && c.kind == Curve::Kind::Segment) {
+    const Vec2 d = c.b - c.a;
+    for (int axis = 0; axis < 2; ++axis)
+      if (d[1 - axis] == 0.0)
+        return static_cast<int>(std::round(std::abs(d[axis]) / (*step)[axis]));
+  }
+  return static_cast<int>(std::ceil(c.length() / h - 1e-9));
+}
+
+/// Appends the points of the lattice anchor + (i step.x, j step.y) inside `box` that `keep`;
+/// each gets the nominal spacing h.
 template <class Keep>
-void add_lattice(const Vec2& anchor, double h, const BoundingBox& box, Keep&& keep,
-                 std::vector<Vec2>& out, std::vector<double>& out_h) {
+void add_lattice(const Vec2& anchor, const Vec2& step, const BoundingBox& box, double h,
+                 Keep&& keep, std::vector<Vec2>& out, std::vector<double>& out_h) {
   const double eps = 1e-9 * h;
-  const long i0 = static_cast<long>(std::ceil((box.lo.x() - anchor.x() - eps) / h));
-  const long i1 = static_cast<long>(std::floor((box.hi.x() - anchor.x() + eps) / h));
-  const long j0 = static_cast<long>(std::ceil((box.lo.y() - anchor.y() - eps) / h));
-  const long j1 = static_cast<long>(std::floor((box.hi.y() - anchor.y() + eps) / h));
+  const long i0 = static_cast<long>(std::ceil((box.lo.x() - anchor.x() - eps) / step.x()));
+  const long i1 = static_cast<long>(std::floor((box.hi.x() - anchor.x() + eps) / step.x()));
+  const long j0 = static_cast<long>(std::ceil((box.lo.y() - anchor.y() - eps) / step.y()));
+  const long j1 = static_cast<long>(std::floor((box.hi.y() - anchor.y() + eps) / step.y()));
   for (long j = j0; j <= j1; ++j)
     for (long i = i0; i <= i1; ++i) {
-      const Vec2 p = anchor + Vec2(static_cast<double>(i) * h, static_cast<double>(j) * h);
+      const Vec2 p =
+          anchor + Vec2(static_cast<double>(i) * step.x(), static_cast<double>(j) * step.y());
       if (keep(p)) {
         out.push_back(p);
         out_h.push_back(h);
       }
     }
+}
+
+/// True if p is a point of the lattice anchor + h Z^2 (to 1e-9 of h).
+bool on_lattice(const Vec2& p, const Vec2& anchor, double h) {
+  for (int d = 0; d < 2; ++d) {
+    const double k = (p[d] - anchor[d]) / h;
+    if (std::abs(k - std::round(k)) > 1e-9) return false;
+  }
+  return true;
+}
+
+/// Distance from a point of the body to its boundary: the outline or a hole's circle.
+double distance_to_boundary(const Domain& domain, const Vec2& p) {
+  double d = domain.distance_to_outline(p);
+  for (const Circle& c : domain.holes())
+    d = std::min(d, std::abs((p - c.center).norm() - c.radius));
+  return d;
+}
+
+/// True where a lattice of spacing h gives way to a finer refinement box: inside the box, or
+/// outside it by less than half the box's spacing (such a row would lie a sliver from the box's
+/// outer row), unless p is also a node of the box's lattice (anchored at `anchor`) on its
+/// border, where the merge keeps one of the two.
+bool yields_to_finer_box(const Vec2& p, double h, const Vec2& anchor,
+                         const std::vector<Refinement>& refinements) {
+  for (const auto& r : refinements) {
+    if (r.spacing >= h || !r.box.contains(p, 0.5 * r.spacing)) continue;
+    const double tol = 1e-9 * h;
+    const bool on_border = r.box.contains(p, tol) && !r.box.contains(p, -tol);
+    if (!(on_border && on_lattice(p, anchor, r.spacing))) return true;
+  }
+  return false;
 }
 
 } // namespace
@@ -61,36 +125,45 @@ NodeCloud generate_nodes(const Domain& domain, double spacing,
   MF_REQUIRE(estimate < 5e7, "node spacing ", spacing, " would create about ", estimate,
              " nodes; that is more than this code is meant to handle in one run");
 
-  // 1. Boundary nodes: each piece divided evenly at about the local spacing.
+  // 1. Boundary nodes: each piece divided evenly at about the local spacing. An axis-parallel
+  // segment at the base spacing takes as many intervals as the base lattice over its length, so
+  // that a side of the bounding box holds the lattice's rows; other pieces ceil(L / h).
+  const Vec2 base_step = fitted_steps(bb.size(), spacing);
   std::vector<Vec2> bnd;
   std::vector<double> bnd_h;
   for (const Curve& whole : domain.boundary())
     for (const Curve& c : split_at_refinements(whole, refinements)) {
       const double h = local_spacing(c.point(0.5), spacing, refinements);
-      const int n = std::max(1, static_cast<int>(std::ceil(c.length() / h - 1e-9)));
+      const int n = std::max(1, boundary_intervals(c, h, h == spacing ? &base_step : nullptr));
       for (int k = 0; k <= n; ++k) {
         bnd.push_back(c.point(static_cast<double>(k) / n));
         bnd_h.push_back(h);
       }
     }
 
-  // 2. Interior lattice: base spacing outside refinement boxes, fine spacing inside them.
+  // 2. Interior lattices: the base spacing fitted to the bounding box, so that its first and
+  // last rows land on the edges; each refinement box the lattice of its spacing from the same
+  // corner. Nodes a sliver from the boundary or from a finer box are left out.
   std::vector<Vec2> lat;
   std::vector<double> lat_h;
-  auto in_any_box = [&](const Vec2& p) {
-    for (const auto& r : refinements)
-      if (r.box.contains(p, -1e-9 * spacing)) return true;
-    return false;
+  auto clear_of_boundary = [&](const Vec2& p, double h) {
+    return domain.contains(p) && distance_to_boundary(domain, p) >= kBoundaryGap * h;
   };
   add_lattice(
-      bb.lo, spacing, bb, [&](const Vec2& p) { return domain.contains(p) && !in_any_box(p); }, lat,
-      lat_h);
+      bb.lo, base_step, bb, spacing,
+      [&](const Vec2& p) {
+        return clear_of_boundary(p, spacing) &&
+               !yields_to_finer_box(p, spacing, bb.lo, refinements);
+      },
+      lat, lat_h);
   for (const auto& r : refinements) {
     MF_REQUIRE(r.spacing > 0.0, "refinement spacing must be positive, got ", r.spacing);
     add_lattice(
-        bb.lo, r.spacing, r.box,
+        bb.lo, Vec2(r.spacing, r.spacing), r.box, r.spacing,
         [&](const Vec2& p) {
-          return domain.contains(p) && local_spacing(p, spacing, refinements) == r.spacing;
+          return clear_of_boundary(p, r.spacing) &&
+                 local_spacing(p, spacing, refinements) == r.spacing &&
+                 !yields_to_finer_box(p, r.spacing, bb.lo, refinements);
         },
         lat, lat_h);
   }

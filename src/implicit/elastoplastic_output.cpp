@@ -64,14 +64,19 @@ void write_elastoplastic_outputs(const io::ProblemSpec& spec, const Elastoplasti
       .set("newton_iterations", newton_total)
       .set("cutbacks", cut_total);
   long linear_total = 0;
-  for (const IncrementRecord& rec : r.increments) linear_total += rec.newton.linear_iterations;
+  int linear_max = 0;
+  for (const IncrementRecord& rec : r.increments) {
+    linear_total += rec.newton.linear_iterations;
+    linear_max = std::max(linear_max, rec.newton.linear_iterations_max);
+  }
   summary.section("memory")
       .set("peak_bytes_largest_rank", r.memory.largest_rank)
       .set("peak_bytes_all_ranks", r.memory.all_ranks);
   summary.section("solver")
       .set("type", r.solver)
       .set("tolerance", spec.nonlinear.tolerance)
-      .set("linear_iterations", linear_total);
+      .set("linear_iterations", linear_total)
+      .set("linear_iterations_max_per_solve", linear_max);
   double newton_s = 0.0;
   for (const auto& [name, sec] : r.timer.phases())
     if (name == "newton") newton_s = sec;

@@ -197,7 +197,11 @@ NewtonReport NonlinearBlockSystem::solve(std::vector<double>& d, const NewtonSet
   std::copy(d.begin() + 2 * s.owned.begin, d.begin() + 2 * s.owned.end, xv);
   check(VecRestoreArray(s.x, &xv), "VecRestoreArray");
 
+  KSP ksp;
+  check(SNESGetKSP(s.snes, &ksp), "SNESGetKSP");
+  detail::take_longest_solve(ksp);
   check(SNESSolve(s.snes, nullptr, s.x), "SNESSolve");
+  s.report.linear_iterations_max = detail::take_longest_solve(ksp);
 
   SNESConvergedReason reason;
   check(SNESGetConvergedReason(s.snes, &reason), "SNESGetConvergedReason");
@@ -208,12 +212,13 @@ NewtonReport NonlinearBlockSystem::solve(std::vector<double>& d, const NewtonSet
   s.report.iterations = static_cast<int>(its);
   s.report.linear_iterations = static_cast<int>(lits);
   s.report.reason = SNESConvergedReasons[reason];
+  const std::string stalled =
+      reason == SNES_DIVERGED_LINEAR_SOLVE ? detail::stagnation_note(ksp) : "";
+  if (!stalled.empty()) s.report.reason += " (linear solve stopped: " + stalled + ")";
   if (reason == SNES_DIVERGED_LINEAR_SOLVE && s.multigrid) {
     s.report.reason += std::string(" (") + detail::kMultigridHint + ")";
   } else if (reason == SNES_DIVERGED_LINEAR_SOLVE) {
-    KSP ksp;
     PC pc;
-    check(SNESGetKSP(s.snes, &ksp), "SNESGetKSP");
     check(KSPGetPC(ksp, &pc), "KSPGetPC");
     PCFailedReason pcr = PC_NOERROR;
     PCGetFailedReasonRank(pc, &pcr);

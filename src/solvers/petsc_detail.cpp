@@ -1,5 +1,7 @@
 #include "petsc_detail.hpp"
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <exception>
 #include <string>
 
@@ -189,6 +191,101 @@ void set_rigid_body_modes(Mat A, const std::vector<double>& coordinates) {
   check(VecDestroy(&x), "VecDestroy");
 }
 
+/// A long iterative solve reports its progress on stderr (rank 0) at most this many seconds
+/// apart, so that a solve of minutes is never silent.
+constexpr double kReportSeconds = 10.0;
+
+/// Stagnation: the residual norm the KSP tests has not fallen below kStagnationFactor times
+/// the smallest value it had kStagnationWindow iterations earlier. A solve that gains less than
+/// a factor 2 in 200 iterations needs over 8,000 to gain the 1e12 of its default tolerance, far
+/// past its limit of 2,000, so stopping it early loses nothing.
+constexpr int kStagnationWindow = 200;
+constexpr double kStagnationFactor = 0.5;
+
+using Clock = std::chrono::steady_clock;
+using ConvergenceTest = PetscErrorCode (*)(KSP, PetscInt, PetscReal, KSPConvergedReason*, void*);
+
+/// What the progress monitor needs between iterations.
+struct Progress {
+  Clock::time_point start, last;
+  PetscReal initial = 0.0;
+  int rank = 0;
+};
+
+PetscErrorCode report_progress(KSP, PetscInt it, PetscReal rnorm, void* ctx) {
+  auto& p = *static_cast<Progress*>(ctx);
+  const Clock::time_point now = Clock::now();
+  if (it == 0) {
+    p.start = p.last = now;
+    p.initial = rnorm;
+    return 0;
+  }
+  if (std::chrono::duration<double>(now - p.last).count() < kReportSeconds) return 0;
+  p.last = now;
+  if (p.rank == 0)
+    std::fprintf(stderr, "linear solve: iteration %d, residual %.3e of its initial value, %.0f s\n",
+                 static_cast<int>(it), p.initial > 0.0 ? rnorm / p.initial : rnorm,
+                 std::chrono::duration<double>(now - p.start).count());
+  return 0;
+}
+
+PetscErrorCode destroy_progress(void** ctx) {
+  delete static_cast<Progress*>(*ctx);
+  *ctx = nullptr;
+  return 0;
+}
+
+/// PETSc's default convergence test, and the smallest residual so far at each iteration.
+struct StagnationTest {
+  void* default_context = nullptr;
+  std::vector<PetscReal> best;
+  bool stagnated = false;
+  int longest = 0; // the most iterations of a solve since take_longest_solve
+};
+
+PetscErrorCode stagnation_test(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason* reason,
+                               void* ctx) {
+  auto& t = *static_cast<StagnationTest*>(ctx);
+  const PetscErrorCode ierr = KSPConvergedDefault(ksp, it, rnorm, reason, t.default_context);
+  if (ierr) return ierr;
+  if (it == 0) {
+    t.best.clear();
+    t.stagnated = false;
+  }
+  // best[k]: the smallest residual up to iteration k (a KSP may test an iteration twice).
+  const auto k = static_cast<std::size_t>(it);
+  t.best.resize(k + 1, t.best.empty() ? rnorm : t.best.back());
+  t.best[k] = std::min(t.best[k], rnorm);
+  t.longest = std::max(t.longest, static_cast<int>(it));
+  if (*reason == KSP_CONVERGED_ITERATING && k >= kStagnationWindow &&
+      !(t.best[k] < kStagnationFactor * t.best[k - kStagnationWindow])) {
+    t.stagnated = true;
+    *reason = KSP_DIVERGED_ITS;
+  }
+  return 0;
+}
+
+PetscErrorCode destroy_stagnation_test(void* ctx) {
+  auto* t = static_cast<StagnationTest*>(ctx);
+  const PetscErrorCode ierr = KSPConvergedDefaultDestroy(t->default_context);
+  delete t;
+  return ierr;
+}
+
+/// Installs the progress report and the stagnation test on ksp (the test wraps PETSc's default,
+/// so every -ksp_ tolerance still applies; -ksp_convergence_test replaces it).
+void watch_iterations(KSP ksp) {
+  MPI_Comm comm;
+  check(PetscObjectGetComm(reinterpret_cast<PetscObject>(ksp), &comm), "PetscObjectGetComm");
+  auto* p = new Progress;
+  MPI_Comm_rank(comm, &p->rank);
+  check(KSPMonitorSet(ksp, report_progress, p, destroy_progress), "KSPMonitorSet");
+  auto* t = new StagnationTest;
+  check(KSPConvergedDefaultCreate(&t->default_context), "KSPConvergedDefaultCreate");
+  check(KSPSetConvergenceTest(ksp, stagnation_test, t, destroy_stagnation_test),
+        "KSPSetConvergenceTest");
+}
+
 void set_multigrid_solver(KSP ksp, Mat A, const LinearSolverSettings& settings) {
   set_rigid_body_modes(A, settings.coordinates);
   check(KSPSetType(ksp, settings.symmetric ? KSPCG : KSPGMRES), "KSPSetType");
@@ -223,10 +320,39 @@ void set_multigrid_solver(KSP ksp, Mat A, const LinearSolverSettings& settings) 
 } // namespace
 
 void set_default_solver(KSP ksp, Mat A, const LinearSolverSettings& settings) {
+  watch_iterations(ksp);
   if (settings.multigrid)
     set_multigrid_solver(ksp, A, settings);
   else
     set_direct_solver(ksp, settings.symmetric);
+}
+
+std::string stagnation_note(KSP ksp) {
+  ConvergenceTest test = nullptr;
+  void* ctx = nullptr;
+  PetscErrorCode (*destroy)(void*) = nullptr;
+  check(KSPGetConvergenceTest(ksp, &test, &ctx, &destroy), "KSPGetConvergenceTest");
+  if (test != stagnation_test || !static_cast<StagnationTest*>(ctx)->stagnated) return "";
+  const auto& best = static_cast<StagnationTest*>(ctx)->best;
+  char note[200];
+  std::snprintf(note, sizeof note,
+                "the residual stagnated (it fell by less than a factor %g over the last %d "
+                "iterations; the smallest was %.3e of its initial value)",
+                1.0 / kStagnationFactor, kStagnationWindow,
+                best.front() > 0.0 ? best.back() / best.front() : best.back());
+  return note;
+}
+
+int take_longest_solve(KSP ksp) {
+  ConvergenceTest test = nullptr;
+  void* ctx = nullptr;
+  PetscErrorCode (*destroy)(void*) = nullptr;
+  check(KSPGetConvergenceTest(ksp, &test, &ctx, &destroy), "KSPGetConvergenceTest");
+  if (test != stagnation_test) return -1;
+  auto& t = *static_cast<StagnationTest*>(ctx);
+  const int most = t.longest;
+  t.longest = 0;
+  return most;
 }
 
 std::set<std::string>& options_set_by_code() {

@@ -27,14 +27,21 @@ void write_block_values(Mat A, const std::function<void(BlockValueArrays)>& writ
 /// The default linear solver of `settings` for the operator A, set before the command-line
 /// options so that every -ksp_/-pc_ option overrides it: MUMPS (Cholesky for symmetric
 /// matrices, settings.symmetric, LU otherwise), or CG/GMRES with GAMG and A's near-null space set
-/// to the rigid-body modes of settings.coordinates.
+/// to the rigid-body modes of settings.coordinates. An iterative solve reports its progress on
+/// stderr every 10 s and stops early when its residual stagnates.
 void set_default_solver(KSP ksp, Mat A, const LinearSolverSettings& settings);
 
 /// What to try when the multigrid solver does not converge.
 inline constexpr const char* kMultigridHint =
-    "multigrid stalls on nodes a sliver apart (a node lattice that does not fit the body leaves "
-    "its last row next to an edge): a spacing that divides the body's sides, or "
-    "linear_solver.type: direct";
+    "try linear_solver.type: direct (MUMPS), or GAMG options after -- (-pc_gamg_threshold)";
+
+/// Why the last solve of a KSP set up by set_default_solver stopped early: its residual
+/// stagnated (see kStagnationWindow in petsc_detail.cpp); "" when it did not.
+std::string stagnation_note(KSP ksp);
+
+/// The most iterations one solve of a KSP set up by set_default_solver took since the last call
+/// (-1 when -ksp_convergence_test replaced the code's test).
+int take_longest_solve(KSP ksp);
 
 /// Names (without the '-') of the options the code itself puts in PETSc's database as defaults,
 /// which are not the user's and so never reported unused.

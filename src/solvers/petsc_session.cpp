@@ -163,8 +163,11 @@ SolveReport BlockLinearSystem::solve() {
   if (reason <= 0) {
     PCFailedReason pcr = PC_NOERROR;
     PCGetFailedReasonRank(pc, &pcr);
-    fail("linear solve failed: KSP stopped with ", r.reason_name, " after ", r.iterations,
-         " iterations (solver ", r.solver, ", preconditioner: ", PCFailedReasons[pcr], "); ",
+    const std::string stalled = detail::stagnation_note(s.ksp);
+    fail("linear solve failed: ",
+         stalled.empty() ? "KSP stopped with " + r.reason_name : "stopped: " + stalled, " after ",
+         r.iterations, " iterations (solver ", r.solver, ", preconditioner: ", PCFailedReasons[pcr],
+         "); ",
          s.settings.multigrid ? detail::kMultigridHint
                               : "a factorisation that fails usually means the body is not held "
                                 "against rigid motion");

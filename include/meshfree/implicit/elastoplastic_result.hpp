@@ -39,6 +39,7 @@ struct IncrementRecord {
     visit("step", step), visit("step_fraction", step_fraction), visit("factors", factors);
     visit("newton.converged", newton.converged), visit("newton.iterations", newton.iterations);
     visit("newton.linear_iterations", newton.linear_iterations);
+    visit("newton.linear_iterations_max", newton.linear_iterations_max);
     visit("newton.reason", newton.reason), visit("newton.failure", newton.failure);
     visit("newton.residual", newton.residual), visit("newton.scale", newton.scale);
     visit("cutbacks", cutbacks), visit("max_plastic_strain", max_plastic_strain);
