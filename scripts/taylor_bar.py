@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Final length and footprint radius of the Taylor bar (problems/sph_taylor_bar.yaml) from a
 run's fields.h5, against the benchmark's converged finite-element values.
 

@@ -42,7 +42,7 @@ def main():
     with h5py.File(out / "fields.h5", "r") as f:
         for key in sorted(k for k in f.keys() if k.startswith("step_")):
             step = int(key.split("_")[1]) * 10  # fields every 1e-6 s = 10 steps
-            if step not in ref:  # the frame of the end, written again
+            if step not in ref:  # a frame between the reference's rows
                 continue
             n_ours = int((np.array(f[key]["damage"]) > 0).sum())
             n_lammps = int(ref[step]["damaged_particles"])

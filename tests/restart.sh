@@ -47,6 +47,8 @@ for name in names:
 print("  %d files, %d datasets equal" % (len(names), datasets))
 EOF
 }
+# frames_whole DIR: every .xmf of DIR has one grid per time, none empty, each matching fields.h5.
+frames_whole() { /usr/bin/python3 "$ROOT/tests/xdmf_frames.py" --check "$1" >/dev/null; }
 generation() { sed -n 's/^generation //p' "$1/checkpoint/checkpoint.txt" 2>/dev/null || echo 0; }
 # kill_after_checkpoint OUT command...: starts a run, kills it with SIGKILL once its second
 # checkpoint is in place.
@@ -91,6 +93,7 @@ s = json.load(open('$cut/summary.json'))['checkpoints']
 sys.exit(not s['restarted_at_time'] >= $kept * $interval * (1 - 1e-9))"
   check "$name: the restarted run equals the uninterrupted one, bit for bit" \
     same_results "$whole" "$cut"
+  check "$name: the restarted run's frames have distinct times and whole grids" frames_whole "$cut"
 }
 
 # Peridynamics with a free penalty impactor (contact forces, fracture), one rank, two threads.
@@ -147,6 +150,7 @@ check "... to the new end" /usr/bin/python3 -c "
 import csv, sys
 rows = list(csv.reader(open('$CUT/history.csv')))
 sys.exit(not abs(float(rows[-1][0]) - 1.2e-4) < 1e-12)"
+check "... with distinct times and whole grids" frames_whole "$CUT"
 
 # Two runs into one folder at once: the first keeps its checkpoints there, the second (which
 # finds the folder's lock held) says so and writes none, and the first's stay as they were.

@@ -101,6 +101,16 @@ TEST_CASE("the explicit time loop records on its schedule and at the end", "[exp
   CHECK(m.written.back() == Approx(1.05));
 }
 
+TEST_CASE("an end time on the field interval gives one field step there", "[explicit]") {
+  // Two steps with one time leave ParaView's XDMF readers an empty last frame.
+  Drift m;
+  REQUIRE(explicit_dynamics::run_time_loop(m, {1.0, 0.25, 0.5}).completed());
+  REQUIRE(m.written.size() == 3); // 0, 0.5 and the end
+  CHECK(m.written[1] == Approx(0.5));
+  CHECK(m.written[2] == Approx(1.0));
+  CHECK(m.time() == m.written[2]);
+}
+
 TEST_CASE("the explicit time loop stops where the state stops being finite", "[explicit]") {
   Drift m;
   m.breaks_at = 0.45;

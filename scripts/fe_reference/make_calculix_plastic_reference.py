@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Regenerate the CalculiX finite-element references for six elastoplastic
 plane-stress problems (load-displacement curves, elastic limits).
 

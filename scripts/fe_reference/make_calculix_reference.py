@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Regenerate the CalculiX finite-element reference solutions for two
 linear-elastic plane-stress plates.
 

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Beam-theory dynamic response of the paper-000 verification cantilever.
 
 Run from the repository root (about 1 min; needs numpy and scipy):

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Haar (db1) approximations of a sampled load history, levels 1-5, as in paper 000.
 
 Run from the repository root (about 2 s; needs numpy, matplotlib for the figure;

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """LAMMPS reference of the shipped peridynamic disk-impact example.
 
 Runs LAMMPS's own example examples/peri/in.peri.pmb (Debian package lammps-examples:

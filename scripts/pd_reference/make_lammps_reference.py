@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Regenerate the LAMMPS reference for the PMB bond-based peridynamic model.
 
 Run from anywhere, without arguments (``--out DIR`` writes into DIR instead of

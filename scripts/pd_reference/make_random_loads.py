@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Two band-limited random load histories that stand in for the earthquake records of paper 000.
 
 Run from the repository root (about 3 s; needs numpy, matplotlib for the figure):

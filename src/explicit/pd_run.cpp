@@ -110,6 +110,12 @@ PdRun::PdRun(PdSetup& setup, const io::PdSpec& spec, io::OutputDirectory* out, P
   fields_.vector("velocity", p.v);
   fields_.scalar("damage", phi_);
   fields_.scalar("material", p.material);
+  // Each frame shows the deformed body, as LS-DYNA's d3plot does: the particles at X + u.
+  fields_.positions([this](std::vector<double>& x) {
+    const particles::ParticleSet& q = setup_.model.particles;
+    x.resize(3 * static_cast<std::size_t>(q.owned_count()));
+    for (std::size_t k = 0; k < x.size(); ++k) x[k] = q.X[k] + q.u[k];
+  });
 }
 
 void PdRun::advance(double dt, bool history_due) {

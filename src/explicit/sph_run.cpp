@@ -104,6 +104,13 @@ SphRun::SphRun(sph::Hydro& h, const io::SphSpec& spec, io::OutputDirectory* out,
   field("damage", 1, owned_values(h_, F.damage, 1));
   field("failed", 1, owned_values(h_, F.failed, 1));
   field("material", 1, owned_values(h_, P.material, 1));
+  // Each frame shows the deformed body, as LS-DYNA's d3plot does: the particles at X + u.
+  fields_.positions([this](std::vector<double>& out) {
+    const particles::ParticleSet& q = h_.particles;
+    std::vector<double> x(3 * static_cast<std::size_t>(q.owned_count()));
+    for (std::size_t k = 0; k < x.size(); ++k) x[k] = q.X[k] + q.u[k];
+    out = in_id_order(h_, r_.particles, x, 3);
+  });
 }
 
 void SphRun::stress_fields() {

@@ -180,9 +180,8 @@ void FieldSeries::open(const std::vector<double>& xyz, const GridCells& cells) {
       << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5
       << ":/geometry/cells</DataItem></Topology>\n";
   }
-  g << "    <Geometry GeometryType=\"XYZ\">" << data_item(h5, "/geometry/coordinates", total, 3)
-    << "</Geometry>\n";
-  grid_ = g.str();
+  topology_ = g.str();
+  reference_ = data_item(h5, "/geometry/coordinates", total, 3);
 }
 
 void FieldSeries::create_file() {
@@ -204,6 +203,15 @@ FieldSeries::~FieldSeries() {
 }
 
 namespace {
+std::string attribute(const std::string& name, const char* type, const std::string& item) {
+  return "    <Attribute Name=\"" + name + "\" AttributeType=\"" + type + "\" Center=\"Node\">" +
+         item + "</Attribute>\n";
+}
+
+std::string geometry(const std::string& item) {
+  return "    <Geometry GeometryType=\"XYZ\">" + item + "</Geometry>\n";
+}
+
 /// Stops the run at a field value that is not a number, naming the field, the point and the time.
 void require_finite(const std::string& stem, const std::string& field, const double* v,
                     std::size_t count, int per_point, double time) {
@@ -221,36 +229,36 @@ void FieldSeries::add_step(const FieldStep& step) {
     require_finite(stem_, name, v.empty() ? nullptr : v[0].data(), 2 * v.size(), 2, step.time);
   for (const auto& [name, v] : step.vectors3)
     require_finite(stem_, name, v.data(), v.size(), 3, step.time);
+  require_finite(stem_, "position", step.positions.data(), step.positions.size(), 3, step.time);
   const std::string& h5 = h5_;
   const std::size_t n = points_;
   const PointSlice* slice = slice_.spread() ? &slice_ : nullptr;
   const std::size_t total = slice ? slice->total : n;
   std::ostringstream group;
   group << "/step_" << std::setw(6) << std::setfill('0') << steps_;
+  // A dataset of this step, 1 or 3 values per point, as an XDMF data item.
+  const auto put = [&](const std::string& name, const std::vector<double>& v, int per) {
+    MF_ASSERT(v.size() == per * n);
+    write_dataset(file_, group.str() + "/" + name, v, n, per, slice);
+    return data_item(h5, group.str() + "/" + name, total, per);
+  };
   std::ostringstream x;
   x << "   <Grid Name=\"step_" << steps_ << "\" GridType=\"Uniform\">\n"
     << "    <Time Value=\"" << std::setprecision(12) << step.time << "\"/>\n"
-    << grid_;
-  for (const auto& [name, v] : step.scalars) {
-    MF_ASSERT(v.size() == n);
-    write_dataset(file_, group.str() + "/" + name, v, n, 1, slice);
-    x << "    <Attribute Name=\"" << name << "\" AttributeType=\"Scalar\" Center=\"Node\">"
-      << data_item(h5, group.str() + "/" + name, total, 1) << "</Attribute>\n";
+    << topology_;
+  if (step.positions.empty()) {
+    x << geometry(reference_);
+  } else {
+    x << geometry(put("coordinates", step.positions, 3));
+    x << attribute("reference_position", "Vector", reference_);
   }
+  for (const auto& [name, v] : step.scalars) x << attribute(name, "Scalar", put(name, v, 1));
   for (const auto& [name, v] : step.vectors) {
-    MF_ASSERT(v.size() == n);
-    std::vector<double> d(3 * n, 0.0);
-    for (std::size_t i = 0; i < n; ++i) d[3 * i] = v[i].x(), d[3 * i + 1] = v[i].y();
-    write_dataset(file_, group.str() + "/" + name, d, n, 3, slice);
-    x << "    <Attribute Name=\"" << name << "\" AttributeType=\"Vector\" Center=\"Node\">"
-      << data_item(h5, group.str() + "/" + name, total, 3) << "</Attribute>\n";
+    std::vector<double> d(3 * v.size(), 0.0);
+    for (std::size_t i = 0; i < v.size(); ++i) d[3 * i] = v[i].x(), d[3 * i + 1] = v[i].y();
+    x << attribute(name, "Vector", put(name, d, 3));
   }
-  for (const auto& [name, v] : step.vectors3) {
-    MF_ASSERT(v.size() == 3 * n);
-    write_dataset(file_, group.str() + "/" + name, v, n, 3, slice);
-    x << "    <Attribute Name=\"" << name << "\" AttributeType=\"Vector\" Center=\"Node\">"
-      << data_item(h5, group.str() + "/" + name, total, 3) << "</Attribute>\n";
-  }
+  for (const auto& [name, v] : step.vectors3) x << attribute(name, "Vector", put(name, v, 3));
   x << "   </Grid>\n";
   xml_ += x.str();
   ++steps_;

@@ -152,6 +152,10 @@ void FieldOutput::write(double t) {
   if (!series_) return;
   FieldStep step;
   step.time = t;
+  if (positions_) {
+    positions_(step.positions);
+    MF_ASSERT(step.positions.size() == 3 * points_);
+  }
   for (const auto& [name, fill] : scalars_) {
     step.scalars.emplace_back(name, std::vector<double>());
     fill(step.scalars.back().second);

@@ -1,8 +1,9 @@
 #pragma once
 // The time loop of every explicit analysis (peridynamics, SPH): steps to the end time, a history
-// row every history_interval, fields every fields_interval and at the end, a progress line every
-// tenth of the run with an estimate of the time left, and a stop naming the step, time, particle
-// and position when the state stops being finite. The model is a template argument, so its
+// row every history_interval, fields every fields_interval and at the end (one field step per
+// instant: where two share a time, ParaView's XDMF readers show an empty frame), a progress line
+// every tenth of the run with an estimate of the time left, and a stop naming the step, time,
+// particle and position when the state stops being finite. The model is a template argument, so its
 // functions are called directly (once per step each; the particle loops stay inside them):
 //   double time() const; long step() const;
 //   bool time_step(double remaining, double& dt, std::string& why)  // false: no step (why)
@@ -40,11 +41,13 @@ struct Schedule {
 /// What a loop has still to do, between two steps (a checkpoint keeps it).
 struct LoopState {
   double recorded = 0.0; // the instant of the last history row
+  double written = 0.0;  // the instant of the last field step
   double next_history = 0.0, next_fields = 0.0;
   double history_interval = 0.0, fields_interval = 0.0; // as scheduled when it was kept
   long steps = 0;
   template <class Visit> void for_each_state(Visit&& visit) {
-    visit("recorded", recorded), visit("next_history", next_history);
+    visit("recorded", recorded), visit("written", written);
+    visit("next_history", next_history);
     visit("next_fields", next_fields), visit("history_interval", history_interval);
     visit("fields_interval", fields_interval), visit("steps", steps);
   }
@@ -92,7 +95,7 @@ LoopReport run_time_loop(Model& model, const Schedule& s, io::Checkpoints* check
     model.track();
     model.record();
     model.write_fields();
-    state.recorded = model.time();
+    state.recorded = state.written = model.time();
     state.next_history = state.history_interval = s.history_interval;
     state.next_fields = state.fields_interval = s.fields_interval;
   }
@@ -141,6 +144,7 @@ LoopReport run_time_loop(Model& model, const Schedule& s, io::Checkpoints* check
     }
     if (s.fields_interval > 0.0 && model.time() >= next_fields * (1 - 1e-12)) {
       model.write_fields();
+      state.written = model.time();
       while (next_fields <= model.time() * (1 + 1e-12)) next_fields += s.fields_interval;
     }
     if (model.time() >= next_progress) {
@@ -164,7 +168,7 @@ LoopReport run_time_loop(Model& model, const Schedule& s, io::Checkpoints* check
   r.seconds = seconds_since(start);
   if (r.completed()) {
     if (recorded < model.time()) model.record();
-    model.write_fields();
+    if (state.written < model.time()) model.write_fields();
   }
   return r;
 }

@@ -13,9 +13,12 @@
 namespace mf::io {
 
 /// Point fields of one output step: scalars (one value per point) and 2D vectors (written as
-/// 3-component vectors with z = 0 so that ParaView can warp by them).
+/// 3-component vectors with z = 0 so that ParaView can warp by them). With `positions` the step's
+/// geometry is those points (the deformed configuration: x, y, z of each point in turn) and the
+/// series' own points, the reference configuration, are the vector field reference_position.
 struct FieldStep {
   double time = 0.0;
+  std::vector<double> positions; // empty: the step's geometry is the series' points
   std::vector<std::pair<std::string, std::vector<double>>> scalars;
   std::vector<std::pair<std::string, std::vector<Vec2>>> vectors;
   std::vector<std::pair<std::string, std::vector<double>>> vectors3; // 3 values per point
@@ -177,7 +180,8 @@ private:
   long file_ = -1;      // hid_t
   std::size_t points_ = 0;
   int steps_ = 0;
-  std::string grid_; // the XDMF topology and geometry of every step
+  std::string topology_;  // the XDMF topology of every step
+  std::string reference_; // the XDMF data item of the series' points
   std::string xml_;
 };
 

@@ -110,6 +110,10 @@ public:
   void vector(std::string name, Fill fill);
   /// A plane vector per point (written with z = 0).
   void vector2(std::string name, Fill2 fill);
+  /// The points' current positions (x, y, z of each in turn): each step's geometry is then the
+  /// deformed configuration, and the points the series was made with are the vector field
+  /// reference_position (FieldStep::positions).
+  void positions(Fill fill) { positions_ = std::move(fill); }
   /// The first points() values (three per point for a vector) of an array that lives as long
   /// as this series (it may grow: it is read at each write); its elements convert to double.
   template <class T> void scalar(std::string name, const std::vector<T>& a) {
@@ -140,6 +144,7 @@ private:
   std::size_t points_ = 0;
   std::vector<std::pair<std::string, Fill>> scalars_, vectors_;
   std::vector<std::pair<std::string, Fill2>> vectors2_;
+  Fill positions_;
 };
 
 } // namespace mf::io
