@@ -69,8 +69,14 @@ def main():
         elif isinstance(tree, (int, float)) and not isinstance(tree, bool):
             yield prefix.rstrip("."), float(tree)
 
-    ra = dict(numbers(json.loads(open(f"{args.a}/summary.json").read())["results"]))
-    rb = dict(numbers(json.loads(open(f"{args.b}/summary.json").read())["results"]))
+    def results(run):  # a staged run's results are its stages'
+        summary = json.loads(open(f"{run}/summary.json").read())
+        if "results" in summary:
+            return dict(numbers(summary["results"]))
+        return {f"{name}.{k}": v for name, stage in summary.get("stages", {}).items()
+                for k, v in numbers(stage.get("results", {}))}
+
+    ra, rb = results(args.a), results(args.b)
     # Iteration counts, rates measured in wall time, memory use, round-off quantities, and where a maximum lies (symmetric problems
     # have ties that round-off decides).
     solver_keys = ("newton_iterations", "equilibrium_error", ".at.", "per_second", "bond_bytes")
@@ -118,8 +124,12 @@ def main():
     solver = {"newton_iterations", "cutbacks", "residual_relative", "equilibrium_error",
               "solver_iterations"}
     def kind(col):  # forces and displacements are measured against the largest of their kind
+        # A gauge's motion against the largest of every gauge: a gauge the wave has not reached
+        # yet moves by round-off, which its own largest value would magnify without bound.
         return ("force" if col.startswith(("reaction_", "load_")) else
-                "displacement" if col.startswith(("ux_", "uy_")) else vector(col))
+                "displacement" if col.startswith(("ux_", "uy_")) else
+                "gauge displacement" if col.endswith(("_ux", "_uy", "_uz")) else
+                "gauge velocity" if col.endswith(("_vx", "_vy", "_vz")) else vector(col))
 
     columns = [c for c in (ha[0].keys() if ha else []) if c not in solver]
     kinds = {}

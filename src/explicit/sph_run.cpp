@@ -234,7 +234,8 @@ void SphRun::record() {
   // The balance: total energy against its start plus the work of the loads.
   const double err =
       std::abs(E.total() - e0_ - work) /
-      std::max({std::abs(e0_), std::abs(work), E.kinetic, std::abs(E.internal), 1e-300});
+      std::max({std::abs(e0_), std::abs(work), E.kinetic, std::abs(E.internal), energy_scale_,
+                1e-300});
   r_.energy_error = std::max(r_.energy_error, err);
   std::vector<double> row{h_.particles.time,
                           static_cast<double>(h_.particles.step),

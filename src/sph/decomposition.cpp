@@ -212,8 +212,9 @@ void distribute(Hydro& s, const distribution::Ranks& ranks) {
   s.ranks = ranks;
   s.particles_total = s.particles.owned_count();
   if (ranks.serial()) return;
-  MF_REQUIRE(s.particles.ghosts().size() == 0 && s.remote == 0,
-             "SPH: a body is split over ranks before it has ghosts");
+  // A body whose state was set whole (a staged run's transfer) may have its mirror images and
+  // lists already: they are made again from each rank's slab at its first build.
+  drop_ghosts(s);
   const std::vector<int> owner = slab_owners(s, true);
   std::vector<int> mine;
   for (int i = 0; i < static_cast<int>(owner.size()); ++i)

@@ -1,4 +1,5 @@
 #include "meshfree/stages/preload_sampling.hpp"
+#include <type_traits>
 #include "meshfree/core/error.hpp"
 #include "meshfree/implicit/elasticity.hpp"
 #include "meshfree/implicit/elastoplastic_system.hpp"
@@ -24,6 +25,26 @@ std::vector<double> flat(const std::vector<Vec3>& u) {
   std::vector<double> out(3 * u.size());
   for (std::size_t i = 0; i < u.size(); ++i)
     for (int d = 0; d < 3; ++d) out[3 * i + d] = u[i][d];
+  return out;
+}
+
+PreloadAtParticles select_particles(const PreloadAtParticles& pa, const std::vector<long>& ids) {
+  const auto pick = [&ids](const auto& all) {
+    std::decay_t<decltype(all)> out;
+    out.reserve(ids.size());
+    for (long i : ids) out.push_back(all[static_cast<std::size_t>(i)]);
+    return out;
+  };
+  PreloadAtParticles out;
+  out.pseudo_time = pa.pseudo_time;
+  for (std::size_t k = 0; k < pa.u.size(); ++k) {
+    out.u.push_back(pick(pa.u[k]));
+    out.stress.push_back(pick(pa.stress[k]));
+    out.alpha.push_back(pick(pa.alpha[k]));
+  }
+  out.history = pick(pa.history);
+  out.plastic = pick(pa.plastic);
+  out.image = pick(pa.image);
   return out;
 }
 

@@ -5,6 +5,7 @@
 #include "meshfree/explicit/sph_setup.hpp"
 #include "meshfree/explicit/time_loop.hpp"
 #include "meshfree/implicit/point_law.hpp"
+#include "meshfree/sph/decomposition.hpp"
 #include "meshfree/sph/held_loads.hpp"
 #include "meshfree/sph/initial_state.hpp"
 #include "meshfree/sph/step.hpp"
@@ -281,7 +282,17 @@ ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
             " balanced, out-of-balance ", t.out_of_balance,
             link.settle_time > 0.0 ? detail::concat(", settle drift ", t.settle_drift) : "");
 
+  // Over several ranks, each keeps its slab of the body with its share of the held forces and
+  // balance (sph::distribute), and the preload at its own particles.
+  if (!checkpoints.ranks.serial()) {
+    PhaseTimer::Scope scope(result.timer, "split over ranks");
+    sph::distribute(h, checkpoints.ranks);
+    pa = select_particles(pa, std::vector<long>(h.particles.id.begin(),
+                                                h.particles.id.begin() + h.particles.owned_count()));
+    log::info("sph: spread over ", checkpoints.ranks.size, " MPI ranks");
+  }
   explicit_dynamics::SphRun run(h, s, out, result);
+  run.set_energy_scale(t.stored_energy);
   // The preload replayed on the particles, then the transferred state back for t = 0.
   const sph::Hydro start = h;
   // The last increment is recorded (at t = 0, as the preload's end) but not written as a field

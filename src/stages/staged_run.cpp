@@ -116,8 +116,10 @@ double stored_energy(const io::ProblemSpec& preload, const PreloadAtParticles& p
 StagedOutcome run_staged(const io::ProblemSpec& spec, const solvers::PetscSession& session,
                          io::OutputDirectory* out, const std::string& dir,
                          const io::Restart* restart) {
-  MF_REQUIRE(session.size() == 1, "a staged run runs on one MPI rank (its explicit stage is "
-                                  "parallel over OpenMP threads: set OMP_NUM_THREADS)");
+  MF_REQUIRE(session.size() == 1 || spec.stages[1].analysis == io::Analysis::Sph,
+             spec.links[1].key_path,
+             ": a staged run with a peridynamic stage runs on one MPI rank (its explicit stage "
+             "is parallel over OpenMP threads: set OMP_NUM_THREADS)");
   StagedOutcome outcome;
   io::ProblemSpec preload = spec.stages[0];
   preload.record_increment_parameters = true; // each particle is carried through them
@@ -150,10 +152,10 @@ StagedOutcome run_staged(const io::ProblemSpec& spec, const solvers::PetscSessio
     log::info("stage ", event.stage, " from ", preload.stage);
     const io::CheckpointPolicy& policy =
         event.analysis == io::Analysis::Sph ? event.sph->checkpoint : event.pd->checkpoint;
-    io::Checkpoints checkpoints(dir, distribution::Ranks::of(session.comm()), policy, spec.settings,
-                                restart);
-    const auto resume = restart ? restart->open(0) : nullptr;
-    const StageCheckpoints kept{&checkpoints, resume.get()};
+    const distribution::Ranks ranks = distribution::Ranks::of(session.comm());
+    io::Checkpoints checkpoints(dir, ranks, policy, spec.settings, restart);
+    const auto resume = restart ? restart->open(ranks.rank) : nullptr;
+    const StageCheckpoints kept{&checkpoints, resume.get(), ranks};
     ExplicitStage st = event.analysis == io::Analysis::Sph
                            ? run_sph_stage(preload, pre, event, link, 1, out, kept)
                            : run_pd_stage(preload, pre, event, link, 1, out, kept);

@@ -23,7 +23,7 @@
 
 namespace mf::sph {
 
-/// Splits a body built whole on every rank (global id = index, no ghost yet) over `ranks`:
+/// Splits a body built whole on every rank (global id = index; its ghosts are dropped) over `ranks`:
 /// each rank keeps its slab's particles and cuts its own lists of loads, held forces and
 /// transmitting particles out of the whole body's, which it keeps in s.whole. On one rank it
 /// only records `ranks`. Collective.

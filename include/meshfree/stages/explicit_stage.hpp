@@ -6,6 +6,7 @@
 // preload's increments are replayed on the particles first, at pseudo-times -1..0, so that the
 // history and the field series of the particles cover the whole run.
 #include "meshfree/core/timer.hpp"
+#include "meshfree/distribution/ranks.hpp"
 #include "meshfree/implicit/elastoplastic_result.hpp"
 #include "meshfree/io/checkpoint.hpp"
 #include "meshfree/io/problem_spec.hpp"
@@ -32,9 +33,13 @@ struct ExplicitStage {
 
 /// Where the stage's time loop keeps its checkpoints, and the state it restarts from (after the
 /// preload has been run again and replayed): either may be null.
+/// Where the explicit stage keeps its checkpoints, the state it resumes from, and the ranks it
+/// is spread over (SPH: the transfer is made on the whole body on every rank, then the body is
+/// split as a standalone SPH run's is).
 struct StageCheckpoints {
   io::Checkpoints* checkpoints = nullptr;
   const io::StateReader* resume = nullptr;
+  distribution::Ranks ranks;
 };
 
 ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::ElastoplasticResult& pre,

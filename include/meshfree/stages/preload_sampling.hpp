@@ -52,6 +52,10 @@ Mirrored mirror_into(const Vec3& x, const std::vector<io::MirrorPlane>& mirror, 
 std::vector<double> flat(const std::vector<Vec3>& v);
 
 /// A vector and a stress of the part, seen from the mirrored image.
+/// The preload at the particles of the given global ids (indices into pa's particles), in that
+/// order: a rank's owned particles after the body was split over ranks.
+PreloadAtParticles select_particles(const PreloadAtParticles& pa, const std::vector<long>& ids);
+
 Vec3 mirrored(const Vec3& v, const Mirrored& m);
 Vec6 mirrored(const Vec6& s, const Mirrored& m);
 
