@@ -28,7 +28,14 @@ Vec2 traction(const Vec3& s, const Vec2& n) {
   return {s(0) * n.x() + s(2) * n.y(), s(2) * n.x() + s(1) * n.y()};
 }
 
-/// Prescribed displacement or traction at the given rows of a condition's points.
+void require_covered(const Csr& support, const std::vector<Vec2>& x) {
+  for (int r = 0; r < support.rows(); ++r)
+    MF_REQUIRE(support.size(r) > 0, "integration point (", x[r].x(), ", ", x[r].y(),
+               ") is covered by no node: raise discretisation.dilation");
+}
+
+} // namespace
+
 std::vector<Vec2> condition_values(const io::ProblemSpec& spec, const io::BoundaryCondition& bc,
                                    const quadrature::BoundaryPoints& pts,
                                    const std::vector<int>& rows) {
@@ -50,13 +57,6 @@ std::vector<Vec2> condition_values(const io::ProblemSpec& spec, const io::Bounda
   return out;
 }
 
-void require_covered(const Csr& support, const std::vector<Vec2>& x) {
-  for (int r = 0; r < support.rows(); ++r)
-    MF_REQUIRE(support.size(r) > 0, "integration point (", x[r].x(), ", ", x[r].y(),
-               ") is covered by no node: raise discretisation.dilation");
-}
-
-} // namespace
 
 namespace {
 

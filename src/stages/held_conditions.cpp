@@ -81,29 +81,37 @@ Layer layer_of(const std::vector<Vec3>& x, const std::vector<geometry::Curve>& p
   return l;
 }
 
-/// The boundary point of the condition nearest to p: where a particle takes its traction.
-int nearest_point(const implicit::ConditionPoints& c, const Vec2& p) {
+/// The boundary point of the condition nearest to p: where a particle takes its traction. All
+/// of the condition's points, not only this rank's: every rank holds the whole body's layer.
+int nearest_point(const quadrature::BoundaryPoints& pts, const Vec2& p) {
   int best = -1;
   double d2 = 0.0;
-  for (std::size_t k = 0; k < c.mine.rows.size(); ++k) {
-    const double e = (c.points.x[c.mine.rows[k]] - p).squaredNorm();
+  for (std::size_t k = 0; k < pts.x.size(); ++k) {
+    const double e = (pts.x[k] - p).squaredNorm();
     if (best < 0 || e < d2) best = static_cast<int>(k), d2 = e;
   }
   return best;
 }
 
-/// A traction or pressure as constant forces on the surface layer.
-void hold_force(HeldCondition& h, const implicit::ConditionPoints& c, const Layer& l, double f,
-                std::size_t mirrors) {
+/// A traction or pressure as constant forces on the surface layer: the condition's length
+/// (times the thickness) shared equally by the layer's particles, each with the preload's final
+/// traction at its nearest boundary point.
+void hold_force(HeldCondition& h, const io::ProblemSpec& preload,
+                const implicit::ConditionPoints& c, const Layer& l, double f, std::size_t mirrors) {
   h.kind = HeldCondition::Kind::Force;
   h.particles = l.particles;
+  std::vector<int> every(c.points.x.size());
   double length = 0.0;
-  for (double w : c.weight) length += w;
+  for (std::size_t k = 0; k < every.size(); ++k) {
+    every[k] = static_cast<int>(k);
+    length += c.points.weight[k] * preload.thickness;
+  }
+  const std::vector<Vec2> traction = implicit::condition_values(preload, *c.bc, c.points, every);
   const double copies = static_cast<double>(1u << mirrors);
   const double share = copies * length / static_cast<double>(l.particles.size());
   for (std::size_t j = 0; j < l.particles.size(); ++j) {
-    const int k = nearest_point(c, l.how[j].x);
-    const Vec2 t = k >= 0 ? Vec2(f * c.values[k]) : Vec2::Zero();
+    const int k = nearest_point(c.points, l.how[j].x);
+    const Vec2 t = k >= 0 ? Vec2(f * traction[k]) : Vec2::Zero();
     h.force.push_back(mirrored(Vec3(share * t.x(), share * t.y(), 0.0), l.how[j]));
   }
 }
@@ -148,7 +156,7 @@ std::vector<HeldCondition> held_conditions(const io::ProblemSpec& preload,
     MF_REQUIRE(!l.particles.empty(), link.key_path, ".hold: no particle lies within ", depth,
                " of the boundary of condition '", name, "'");
     if (bc.loads) {
-      hold_force(h, *c, l, f, link.mirror.size());
+      hold_force(h, preload, *c, l, f, link.mirror.size());
       out.push_back(h);
       continue;
     }

@@ -9,6 +9,7 @@
 #include "meshfree/stages/explicit_stage.hpp"
 #include "meshfree/stages/held_conditions.hpp"
 #include "meshfree/stages/preload_sampling.hpp"
+#include <cstddef>
 #include <chrono>
 #include <cmath>
 
@@ -82,6 +83,56 @@ std::vector<std::string> hold(const std::vector<HeldCondition>& held,
   return how;
 }
 
+/// Where the held conditions begin among the loads and constraints of a set-up (the stage's own
+/// come first).
+struct HeldFrom {
+  std::size_t loads = 0, constraints = 0;
+};
+
+/// The owned members of the whole body's list `particles`, as this rank's local indices (owned
+/// ids are contiguous from local.first_id), with their positions k in the list.
+template <class F>
+void owned_members(const std::vector<int>& particles, const explicit_dynamics::PdSetup& local,
+                   F&& keep) {
+  const long owned = local.model.particles.owned_count();
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    const long i = particles[k] - local.first_id;
+    if (i >= 0 && i < owned) keep(static_cast<int>(i), k);
+  }
+}
+
+/// Gives this rank's part of the body (`local`) the whole body's displacement and the owned
+/// members of its held loads and constraints.
+void carry_over(const explicit_dynamics::PdSetup& whole, const HeldFrom& from,
+                explicit_dynamics::PdSetup& local) {
+  const particles::ParticleSet& W = whole.model.particles;
+  particles::ParticleSet& L = local.model.particles;
+  std::vector<double> u(3 * static_cast<std::size_t>(L.size()));
+  for (int i = 0; i < L.size(); ++i)
+    for (int d = 0; d < 3; ++d) u[3 * i + d] = W.u[3 * L.id[i] + d];
+  pd::set_displacement(local.model, u);
+  for (std::size_t b = from.loads; b < whole.loading.loads.size(); ++b) {
+    const pd::BodyLoad& l = whole.loading.loads[b];
+    pd::BodyLoad mine = l;
+    mine.particles.clear(), mine.densities.clear();
+    owned_members(l.particles, local, [&](int i, std::size_t k) {
+      mine.particles.push_back(i);
+      mine.densities.push_back(l.densities[k]);
+    });
+    local.loading.loads.push_back(mine);
+  }
+  for (std::size_t c = from.constraints; c < whole.loading.constraints.size(); ++c) {
+    const pd::Constraint& h = whole.loading.constraints[c];
+    pd::Constraint mine = h;
+    mine.particles.clear(), mine.held.clear();
+    owned_members(h.particles, local, [&](int i, std::size_t k) {
+      mine.particles.push_back(i);
+      mine.held.push_back(h.held[k]);
+    });
+    local.loading.constraints.push_back(mine);
+  }
+}
+
 double norm_of_difference(const std::vector<double>& a, const std::vector<Vec3>& b,
                           double& norm_b) {
   double d = 0.0, n = 0.0;
@@ -110,6 +161,7 @@ ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::Elast
   TransferReport& t = st.transfer;
   t.peridynamic = true;
   PreloadAtParticles pa;
+  HeldFrom held_from;
   {
     PhaseTimer::Scope scope(result.timer, "transfer");
     const auto t0 = std::chrono::steady_clock::now();
@@ -118,6 +170,7 @@ ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::Elast
     pa = sample_preload(preload, pre, X, link.mirror, link.key_path);
     // A held force acts on the surface layer; a held displacement holds the particles within
     // a horizon of its boundary, so that every free particle keeps its whole bond family.
+    held_from = {setup.loading.loads.size(), setup.loading.constraints.size()};
     t.held = hold(held_conditions(preload, pre, link, X, {m.spacing, m.horizon}), preload, pa,
                   setup);
     pd::set_displacement(m, flat(pa.final_u()));
@@ -173,6 +226,15 @@ ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::Elast
             " iterations (from zero: ", t.relax_iterations_from_zero,
             "), |u_PD - u^h| / |u^h| = ", t.pd_vs_galerkin);
 
+  // Over several ranks: the body's blocks with their ghosts take the relaxed state and the held
+  // conditions of the whole body, made on every rank.
+  if (!checkpoints.ranks.serial()) {
+    explicit_dynamics::PdSetup local =
+        explicit_dynamics::build_pd_setup(stage, result.timer, checkpoints.ranks);
+    carry_over(setup, held_from, local);
+    pa = select_particles(pa, local.model.particles.id);
+    setup = std::move(local);
+  }
   explicit_dynamics::PdRun run(setup, s, out, result);
   // The preload replayed on the particles, then the relaxed state back for t = 0.
   const std::vector<double> u0 = P.u;

@@ -116,10 +116,6 @@ double stored_energy(const io::ProblemSpec& preload, const PreloadAtParticles& p
 StagedOutcome run_staged(const io::ProblemSpec& spec, const solvers::PetscSession& session,
                          io::OutputDirectory* out, const std::string& dir,
                          const io::Restart* restart) {
-  MF_REQUIRE(session.size() == 1 || spec.stages[1].analysis == io::Analysis::Sph,
-             spec.links[1].key_path,
-             ": a staged run with a peridynamic stage runs on one MPI rank (its explicit stage "
-             "is parallel over OpenMP threads: set OMP_NUM_THREADS)");
   StagedOutcome outcome;
   io::ProblemSpec preload = spec.stages[0];
   preload.record_increment_parameters = true; // each particle is carried through them

@@ -93,4 +93,10 @@ solvers::LinearSolverSettings linear_solver_settings(const io::ProblemSpec& spec
 /// Short description of the discretisation for logs and the summary.
 std::string describe_method(const io::ProblemSpec& spec);
 
+/// Prescribed displacement or traction (force per area) at the given rows of a condition's
+/// points: its value, the exact solution's, or -p n for a pressure.
+std::vector<Vec2> condition_values(const io::ProblemSpec& spec, const io::BoundaryCondition& bc,
+                                   const quadrature::BoundaryPoints& pts,
+                                   const std::vector<int>& rows);
+
 } // namespace mf::implicit
