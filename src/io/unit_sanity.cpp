@@ -83,7 +83,11 @@ double wave_modulus(const MaterialSpec& m) {
 void check_material(Report& r, const MaterialSpec& m) {
   const UnitSystem& u = r.units();
   r.check(m.key_path + ".E", m.E, u.stress(), kModulus, "Young's moduli");
-  r.check(m.key_path + ".shear_modulus", m.shear_modulus, u.stress(), kModulus, "shear moduli");
+  // A shear modulus derived from E and nu is not a second cause of E's warning.
+  const bool derived = m.E > 0.0 && std::abs(m.shear_modulus - m.E / (2.0 * (1.0 + m.nu))) <=
+                                        1e-12 * m.shear_modulus;
+  if (!derived)
+    r.check(m.key_path + ".shear_modulus", m.shear_modulus, u.stress(), kModulus, "shear moduli");
   r.check(m.key_path + ".bulk_modulus", m.bulk_modulus, u.stress(), kModulus, "bulk moduli");
   r.check(m.key_path + ".density", m.density, u.density(), kDensity, "densities");
   const double modulus = m.E > 0.0 ? m.E : m.shear_modulus * 2.0 * (1.0 + m.nu);

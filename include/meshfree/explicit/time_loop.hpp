@@ -29,6 +29,7 @@
 #include "meshfree/io/checkpoint.hpp"
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace mf::explicit_dynamics {
@@ -105,7 +106,9 @@ private:
   template <class Model> void report(const Model& model, const std::string& model_part) {
     const double t = model.time();
     const double done = t_end_ > t_begin_ ? (t - t_begin_) / (t_end_ - t_begin_) : 1.0;
-    log::info("  t = ", t, " (", static_cast<int>(std::floor(100.0 * t / t_end_ + 1e-6)),
+    char time[32]; // 4 significant digits tell the tenths apart
+    std::snprintf(time, sizeof time, "%.4g", t);
+    log::info("  t = ", time, " (", static_cast<int>(std::floor(100.0 * t / t_end_ + 1e-6)),
               "%), step ", model.step(), model_part, ", ", log::eta(seconds(start_), done));
     last_ = Clock::now();
   }
