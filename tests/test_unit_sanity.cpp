@@ -15,15 +15,18 @@ namespace {
 std::vector<std::string> warnings_of(const std::string& units, const std::string& material,
                                      const std::string& traction = "[1, 0]") {
   const bool plastic = material.find("plasticity") != std::string::npos;
-  const std::string text = "name: t\nunits: " + units + "\nanalysis: " +
-                           (plastic ? "elastoplastic_static" : "elastic_static") +
-                           "\nmodel: {type: plane_stress}\n"
-                           "materials:\n  - {name: m, nu: 0.3, " + material +
-                           "}\ngeometry:\n  rectangle: {size: [2, 1]}\n"
-                           "discretisation: {spacing: 0.25}\nboundary:\n"
-                           "  - {name: clamp, edges: left, displacement: {x: 0, y: 0}}\n"
-                           "  - {name: pull, edges: right, traction: " + traction + "}\n" +
-                           (plastic ? "steps:\n  - {name: pull, load_factor: 1, increments: 1}\n" : "");
+  const std::string text =
+      "name: t\nunits: " + units +
+      "\nanalysis: " + (plastic ? "elastoplastic_static" : "elastic_static") +
+      "\nmodel: {type: plane_stress}\n"
+      "materials:\n  - {name: m, nu: 0.3, " +
+      material +
+      "}\ngeometry:\n  rectangle: {size: [2, 1]}\n"
+      "discretisation: {spacing: 0.25}\nboundary:\n"
+      "  - {name: clamp, edges: left, displacement: {x: 0, y: 0}}\n"
+      "  - {name: pull, edges: right, traction: " +
+      traction + "}\n" +
+      (plastic ? "steps:\n  - {name: pull, load_factor: 1, increments: 1}\n" : "");
   return io::unit_sanity_warnings(io::parse_problem(YAML::Load(text)));
 }
 
@@ -35,12 +38,14 @@ bool any_names(const std::vector<std::string>& lines, const std::string& key) {
 
 /// An SPH bar of aluminium in SI with the given spacing and end time.
 std::vector<std::string> sph_warnings(const std::string& units, const std::string& end) {
-  const std::string text = "name: t\nunits: " + units +
-                           "\nanalysis: sph\nmodel: {type: uniaxial_strain}\n"
-                           "materials:\n  - {name: al, shear_modulus: 26.0e9,\n"
-                           "     eos: {type: linear_polynomial, rho0: 2700, c: [0, 70.0e9, 0, 0, 0, 0, 0]}}\n"
-                           "regions:\n  - {material: al, box: [[0], [0.1]], spacing: 0.001, density: 2700, energy: 0}\n"
-                           "time: {end: " + end + "}\n";
+  const std::string text =
+      "name: t\nunits: " + units +
+      "\nanalysis: sph\nmodel: {type: uniaxial_strain}\n"
+      "materials:\n  - {name: al, shear_modulus: 26.0e9,\n"
+      "     eos: {type: linear_polynomial, rho0: 2700, c: [0, 70.0e9, 0, 0, 0, 0, 0]}}\n"
+      "regions:\n  - {material: al, box: [[0], [0.1]], spacing: 0.001, density: 2700, energy: 0}\n"
+      "time: {end: " +
+      end + "}\n";
   return io::unit_sanity_warnings(io::parse_problem(YAML::Load(text)));
 }
 
@@ -71,12 +76,14 @@ TEST_CASE("plausible values in each unit system give no warning", "[unit_sanity]
     const char *units, *material, *traction;
   };
   const Case cases[] = {
-      {"N, mm, tonne, s", "E: 2.1e5, density: 7.85e-9, plasticity: {yield_stress: 355}", "[100, 0]"},
+      {"N, mm, tonne, s", "E: 2.1e5, density: 7.85e-9, plasticity: {yield_stress: 355}",
+       "[100, 0]"},
       {"N, mm, MPa", "E: 2.1e5", "[100, 0]"},
-      {"N, m, kg, s", "E: 2.1e11, density: 7850, plasticity: {yield_stress: 355.0e6}", "[1.0e8, 0]"},
+      {"N, m, kg, s", "E: 2.1e11, density: 7850, plasticity: {yield_stress: 355.0e6}",
+       "[1.0e8, 0]"},
       {"kgf, mm, kgf/mm^2", "E: 7000, plasticity: {yield_stress: 24.3}", "[10, 0]"},
-      {"N, m, kg, s", "E: 1.0e6, density: 1100", "[1.0e3, 0]"}, // rubber
-      {"consistent", "E: 2.1e11, density: 7.85e-9", "[1.0e20, 0]"},  // nothing to check
+      {"N, m, kg, s", "E: 1.0e6, density: 1100", "[1.0e3, 0]"},     // rubber
+      {"consistent", "E: 2.1e11, density: 7.85e-9", "[1.0e20, 0]"}, // nothing to check
   };
   for (const Case& c : cases) {
     INFO(c.units << " / " << c.material << " / " << c.traction);

@@ -12,7 +12,7 @@ void summarise(const SphRunResult& r, io::Json& counts, io::Json& time_step, io:
         .set("migrated_particles", r.migrated);
   time_step.set("first", r.first_dt).set("smallest", r.smallest_dt).set("limited_by", r.dt_limit);
   // peak_pressure is the signed largest pressure of any particle (compression positive); a
-  // gauge's values are magnitudes (|p|, |u|, ...), named as peridynamics names them.
+  // gauge's values are magnitudes (|p|, speed), under the key peridynamics uses.
   io::Json gauges;
   for (const auto& [name, value] : r.gauge_maxima) gauges.set(name, value);
   results.set("peak_pressure", r.peak_pressure)

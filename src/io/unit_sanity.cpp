@@ -1,6 +1,6 @@
 // Unit-sanity warnings: each value is converted to SI with the declared unit system and compared
 // with the range real solids and loads span. The ranges are wide (a slip of units moves a value
-// by 10^3 to 10^9, a factor of g by about 10), so a warning means a likely slip, not an error.
+// by 10^3 to 10^12, a factor of g by about 10), so a warning means a likely slip, not an error.
 #include "meshfree/io/unit_sanity.hpp"
 #include "meshfree/core/log.hpp"
 #include <algorithm>
@@ -14,7 +14,7 @@ namespace mf::io {
 namespace {
 
 // Plausible SI ranges (README "Units"). Moduli: soft foams and rubbers (about 1e5 Pa) up to
-// diamond (1.05e12 Pa, Kaye & Laby); densities: gases at ambient pressure (air 1.2 kg/m^3) up to
+// diamond (about 1.1e12 Pa); densities: gases at ambient pressure (air 1.2 kg/m^3) up to
 // osmium (22,590 kg/m^3); yield stresses: soil cohesion (kPa) up to the strongest steels
 // (about 5 GPa); elastic wave speeds sqrt(M / rho): soft rubber (tens of m/s) up to diamond
 // (18 km/s).
@@ -25,13 +25,13 @@ struct Range {
 constexpr Range kModulus{1e4, 1e13, "Pa"};
 constexpr Range kDensity{0.05, 3e4, "kg/m^3"};
 constexpr Range kYield{1e3, 1e10, "Pa"};
-constexpr Range kLoad{0.0, 1e11, "Pa"};         // a traction or pressure (blasts reach GPa)
-constexpr Range kGravity{0.1, 1e3, "m/s^2"};    // the Moon to a geotechnical centrifuge
+constexpr Range kLoad{0.0, 1e11, "Pa"};      // a traction or pressure (blasts reach GPa)
+constexpr Range kGravity{0.1, 1e3, "m/s^2"}; // the Moon to a geotechnical centrifuge
 constexpr Range kWaveSpeed{10.0, 3e4, "m/s"};
-constexpr Range kStep{1e-11, 1e-1, "s"};        // spacing / wave speed of an explicit run
-constexpr double kMaxYieldStrain = 0.1;         // sigma_y / E of metals, polymers, rock: < 0.05
-constexpr double kMaxLoadStrain = 1.0;          // load / E: a strain beyond 100%
-constexpr double kMaxSteps = 1e9;               // end time / step
+constexpr Range kStep{1e-11, 1e-1, "s"}; // spacing / wave speed of an explicit run
+constexpr double kMaxYieldStrain = 0.1;  // sigma_y / E of metals, polymers, rock: < 0.05
+constexpr double kMaxLoadStrain = 1.0;   // load / E: a strain beyond 100%
+constexpr double kMaxSteps = 1e9;        // end time / step
 
 std::string lower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -50,8 +50,7 @@ class Report {
 public:
   explicit Report(const UnitSystem& u, const std::string& units) : u_(u), units_(units) {}
 
-  void check(const std::string& key, double value, double to_si, const Range& r,
-             const char* what) {
+  void check(const std::string& key, double value, double to_si, const Range& r, const char* what) {
     const double si = std::abs(value) * to_si;
     if (value == 0.0 || (si >= r.lo && si <= r.hi)) return;
     add(key + " = " + num(value) + " is " + num(si) + " " + r.unit + " in the declared units ('" +
@@ -125,11 +124,13 @@ void check_load(Report& r, const std::string& key, double load, double E) {
 void check_loads(Report& r, const ProblemSpec& p) {
   const double E = stiffest(p);
   for (const auto& b : p.boundary) {
-    if (b.loads && !b.traction_from_exact) check_load(r, b.key_path + ".traction", b.traction.norm(), E);
+    if (b.loads && !b.traction_from_exact)
+      check_load(r, b.key_path + ".traction", b.traction.norm(), E);
     if (b.pressure_load) check_load(r, b.key_path + ".pressure", b.pressure, E);
   }
   if (p.sph)
-    for (const auto& t : p.sph->tractions) check_load(r, t.key_path + ".traction", t.traction.norm(), E);
+    for (const auto& t : p.sph->tractions)
+      check_load(r, t.key_path + ".traction", t.traction.norm(), E);
   if (p.pd)
     for (const auto& c : p.pd->conditions)
       if (c.kind == PdCondition::Kind::Traction)
@@ -188,8 +189,8 @@ void check_problem(Report& r, const ProblemSpec& p) {
 std::optional<UnitSystem> parse_units(const std::string& units) {
   static const std::map<std::string, double> forces{
       {"n", 1.0}, {"kn", 1e3}, {"mn", 1e6}, {"kgf", 9.80665}, {"lbf", 4.4482216152605}};
-  static const std::map<std::string, double> lengths{
-      {"m", 1.0}, {"mm", 1e-3}, {"cm", 1e-2}, {"um", 1e-6}, {"km", 1e3}, {"in", 0.0254}};
+  static const std::map<std::string, double> lengths{{"m", 1.0},   {"mm", 1e-3}, {"cm", 1e-2},
+                                                     {"um", 1e-6}, {"km", 1e3},  {"in", 0.0254}};
   static const std::map<std::string, double> times{
       {"s", 1.0}, {"ms", 1e-3}, {"us", 1e-6}, {"ns", 1e-9}};
   static const std::map<std::string, double> masses{
@@ -212,8 +213,10 @@ std::optional<UnitSystem> parse_units(const std::string& units) {
   if (!force || !length) return std::nullopt;
   UnitSystem u;
   u.force = *force, u.length = *length;
-  if (time) u.time = *time;
-  else if (mass) u.time = std::sqrt(*mass * *length / *force);
+  if (time)
+    u.time = *time;
+  else if (mass)
+    u.time = std::sqrt(*mass * *length / *force);
   u.mass = mass ? *mass : u.force * u.time * u.time / u.length;
   return u;
 }
