@@ -36,5 +36,18 @@ done < <(grep -oE '(elapsed|about) [0-9.e+-]+' <<<"$lines" | awk '{print $2}')
 [ -z "$long" ] && ok "durations to 3 significant digits" || bad "long durations: $long"
 grep -qE 'elapsed [0-9.e+-]+ (s|min|h)$' <<<"$last" && ok "durations carry a unit" || bad "no unit in: $last"
 
+# summary.json of the SPH run: phase names are keys without spaces; the gauges' maxima are
+# magnitudes under the key peridynamics uses, beside the signed peak pressure.
+S="$WORK/bar/summary.json"
+/usr/bin/python3 - "$S" <<'PY' && ok "summary.json keys" || bad "summary.json keys"
+import json, sys
+s = json.load(open(sys.argv[1]))
+assert "split_over_ranks" in s["time_s"], s["time_s"]
+assert not [k for k in s["time_s"] if " " in k], s["time_s"]
+r = s["results"]
+assert "gauge_maxima" not in r and "gauge_max_abs_every_step" in r, r
+assert all(v >= 0 for v in r["gauge_max_abs_every_step"].values()), r
+PY
+
 [ $fails -eq 0 ] || { echo "$fails failure(s)"; exit 1; }
 echo "all usability checks passed"
