@@ -3,9 +3,9 @@
 // row every history_interval, fields every fields_interval and at the end (one field step per
 // instant: where two share a time, ParaView's XDMF readers show an empty frame), a progress line
 // every tenth of the run and at least every 10 s with an estimate of the time left (and a 100%
-// line at the end), and a stop naming the step, time,
-// particle and position when the state stops being finite. The model is a template argument, so its
-// functions are called directly (once per step each; the particle loops stay inside them):
+// line at the end), and a stop naming the step, time, particle and position when the state stops
+// being finite. The model is a template argument, so its functions are called directly (once per
+// step each; the particle loops stay inside them):
 //   double time() const; long step() const;
 //   bool time_step(double remaining, double& dt, std::string& why)  // false: no step (why)
 //   void advance(double dt, bool history_due)  // may throw mf::Error: the run stops with it
