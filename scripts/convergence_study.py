@@ -25,6 +25,45 @@ STUDIES = {
 }
 
 
+def run_study(meshfree, out, problem, spacings):
+    """Runs the problem at each spacing; returns (h, l2, energy, rate_l2, rate_energy, rows) with
+    one csv row per run."""
+    h, l2, en, rows = [], [], [], []
+    for s in spacings:
+        run_dir = Path(out) / f"{problem}_h{s:g}"
+        subprocess.run([meshfree, "run", str(ROOT / "problems" / f"{problem}.yaml"),
+                        "--out", str(run_dir), "--set", f"discretisation.spacing={s}"],
+                       check=True, stdout=subprocess.DEVNULL)
+        summary = json.loads((run_dir / "summary.json").read_text())
+        res, counts = summary["results"], summary["counts"]
+        h.append(s)
+        l2.append(res["error_l2_relative"])
+        en.append(res["error_energy_relative"])
+        rows.append([problem, s, counts["nodes"], res["error_l2_relative"], res["error_energy_relative"],
+                     summary["time_s"]["total"]])
+    rate_l2 = np.polyfit(np.log(h), np.log(l2), 1)[0]
+    rate_en = np.polyfit(np.log(h), np.log(en), 1)[0]
+    return h, l2, en, rate_l2, rate_en, rows
+
+
+def plot(fig_rows, path):
+    """One log-log panel per study: {problem: (h, l2, energy, rate_l2, rate_energy)}."""
+    fig, axes = plt.subplots(1, len(fig_rows), figsize=(11, 4.5), squeeze=False)
+    for ax, (problem, (h, l2, en, rl, re)) in zip(axes[0], fig_rows.items()):
+        ax.loglog(h, l2, "o-", label=f"L2 displacement (rate {rl:.2f})")
+        ax.loglog(h, en, "s-", label=f"energy norm (rate {re:.2f})")
+        for p, style in ((1, "k:"), (2, "k--")):
+            ax.loglog(h, en[0] * (np.array(h) / h[0]) ** p, style, lw=0.8, label=f"h^{p}")
+        ax.set_xlabel("node spacing h")
+        ax.set_ylabel("relative error")
+        ax.set_title(problem)
+        ax.legend(fontsize=8)
+        ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--meshfree", default=str(ROOT / "build" / "meshfree"))
@@ -40,21 +79,8 @@ def main():
     for problem, spacings in STUDIES.items():
         if args.quick:
             spacings = spacings[:4]
-        h, l2, en = [], [], []
-        for s in spacings:
-            run_dir = out / f"{problem}_h{s:g}"
-            subprocess.run([args.meshfree, "run", str(ROOT / "problems" / f"{problem}.yaml"),
-                            "--out", str(run_dir), "--set", f"discretisation.spacing={s}"],
-                           check=True, stdout=subprocess.DEVNULL)
-            summary = json.loads((run_dir / "summary.json").read_text())
-            res, counts = summary["results"], summary["counts"]
-            h.append(s)
-            l2.append(res["error_l2_relative"])
-            en.append(res["error_energy_relative"])
-            rows.append([problem, s, counts["nodes"], res["error_l2_relative"], res["error_energy_relative"],
-                         summary["time_s"]["total"]])
-        rate_l2 = np.polyfit(np.log(h), np.log(l2), 1)[0]
-        rate_en = np.polyfit(np.log(h), np.log(en), 1)[0]
+        h, l2, en, rate_l2, rate_en, study_rows = run_study(args.meshfree, out, problem, spacings)
+        rows += study_rows
         print(f"{problem}: rate L2 {rate_l2:.2f}, energy {rate_en:.2f} "
               f"(finest h = {h[-1]:g}: L2 {l2[-1]:.2e}, energy {en[-1]:.2e})")
         fig_rows[problem] = (h, l2, en, rate_l2, rate_en)
@@ -66,19 +92,7 @@ def main():
         w = csv.writer(f)
         w.writerow(["problem", "spacing", "nodes", "error_l2_relative", "error_energy_relative", "wall_time_s"])
         w.writerows(rows)
-    fig, axes = plt.subplots(1, len(fig_rows), figsize=(11, 4.5))
-    for ax, (problem, (h, l2, en, rl, re)) in zip(axes, fig_rows.items()):
-        ax.loglog(h, l2, "o-", label=f"L2 displacement (rate {rl:.2f})")
-        ax.loglog(h, en, "s-", label=f"energy norm (rate {re:.2f})")
-        for p, style in ((1, "k:"), (2, "k--")):
-            ax.loglog(h, en[0] * (np.array(h) / h[0]) ** p, style, lw=0.8, label=f"h^{p}")
-        ax.set_xlabel("node spacing h")
-        ax.set_ylabel("relative error")
-        ax.set_title(problem)
-        ax.legend(fontsize=8)
-        ax.grid(True, which="both", alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(out / "convergence.png", dpi=110)
+    plot(fig_rows, out / "convergence.png")
     print(f"wrote {out / 'convergence.csv'} and {out / 'convergence.png'}")
     if failures:
         raise SystemExit("; ".join(failures))

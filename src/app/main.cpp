@@ -15,6 +15,7 @@
 #include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/io/checkpoint.hpp"
 #include "meshfree/io/problem_spec.hpp"
+#include "meshfree/io/unit_sanity.hpp"
 #include "meshfree/quadrature/integration_points.hpp"
 #include "meshfree/solvers/parallel.hpp"
 #include "meshfree/sph/step.hpp"
@@ -160,6 +161,7 @@ void describe(const mf::io::ProblemSpec& spec) {
 /// stage; says "valid" only when all of it passed.
 int check(const Command& c) {
   const mf::io::ProblemSpec spec = mf::io::read_problem(c.problem, c.overrides);
+  mf::io::warn_unit_sanity(spec);
   if (spec.analysis != mf::io::Analysis::Staged) {
     describe(spec);
   } else {
@@ -193,6 +195,7 @@ int run(Command& c) {
   std::optional<mf::io::Restart> restart;
   try {
     spec = mf::io::read_problem(c.problem, c.overrides);
+    mf::io::warn_unit_sanity(spec);
     // A finite-element mesh is input too: read and checked before anything is written.
     if (spec.discretisation.method == mf::io::Method::Fem) mf::implicit::read_fe_mesh(spec);
     if (!c.restart_dir.empty()) {

@@ -20,7 +20,7 @@ explicit_dynamics::SphRunResult run_sph(const io::ProblemSpec& spec, io::OutputD
   log::info("sph: ", h.particles.size(), " particles in ", s.dimension, "D, ", s.materials.size(),
             " material(s)", s.detonation_point ? ", detonation lit" : "");
   {
-    PhaseTimer::Scope scope(result.timer, "split over ranks");
+    PhaseTimer::Scope scope(result.timer, "split_over_ranks");
     sph::distribute(h, ranks);
   }
   if (!ranks.serial())

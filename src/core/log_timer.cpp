@@ -52,6 +52,11 @@ void PhaseTimer::add(const std::string& name, double seconds, double kernel) {
   kernel_.emplace_back(name, kernel);
 }
 
+void PhaseTimer::add_all(const PhaseTimer& other, const std::string& prefix) {
+  for (std::size_t k = 0; k < other.phases_.size(); ++k)
+    add(prefix + other.phases_[k].first, other.phases_[k].second, other.kernel_[k].second);
+}
+
 double PhaseTimer::total() const {
   double s = 0.0;
   for (const auto& p : phases_) s += p.second;

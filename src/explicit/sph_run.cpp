@@ -3,6 +3,7 @@
 #include "meshfree/sph/decomposition.hpp"
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace mf::explicit_dynamics {
@@ -251,7 +252,9 @@ void SphRun::record() {
 }
 
 std::string SphRun::progress() const {
-  return detail::concat("dt ", dt_, ", max pressure ", max_pressure());
+  char text[64];
+  std::snprintf(text, sizeof text, "dt %.4g, max pressure %.4g", dt_, max_pressure());
+  return text;
 }
 
 template <class Visit> void SphRun::for_each_state(const Visit& visit) {

@@ -129,7 +129,7 @@ StagedOutcome run_staged(const io::ProblemSpec& spec, const solvers::PetscSessio
   implicit::ElastoplasticResult pre = implicit::solve_elastoplastic_static(preload, session, out);
   if (out) implicit::write_elastoplastic_outputs(preload, pre, session, *out);
   if (out) out->set_prefix("");
-  for (const auto& [phase, s] : pre.timer.phases()) timer.add(preload.stage + "." + phase, s);
+  timer.add_all(pre.timer, preload.stage + ".");
   const implicit::IncrementRecord& last = pre.increments.back();
   summary.section("stages").set(preload.stage,
                                 io::Json()
@@ -156,7 +156,7 @@ StagedOutcome run_staged(const io::ProblemSpec& spec, const solvers::PetscSessio
                            ? run_sph_stage(preload, pre, event, link, 1, out, kept)
                            : run_pd_stage(preload, pre, event, link, 1, out, kept);
     summary.section("checkpoints") = checkpoints.counts().describe(st.timer.total());
-    for (const auto& [phase, s] : st.timer.phases()) timer.add(event.stage + "." + phase, s);
+    timer.add_all(st.timer, event.stage + ".");
     io::Json stage;
     stage.set("analysis", event.analysis == io::Analysis::Sph ? "sph" : "peridynamics")
         .set("status", st.status)

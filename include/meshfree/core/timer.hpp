@@ -19,6 +19,8 @@ class PhaseTimer {
 public:
   /// Adds `seconds` of wall-clock time, `kernel` of them CPU seconds in the kernel, to `name`.
   void add(const std::string& name, double seconds, double kernel = 0.0);
+  /// Adds every phase of `other`, wall and kernel seconds, as `prefix` + its name.
+  void add_all(const PhaseTimer& other, const std::string& prefix);
   const std::vector<std::pair<std::string, double>>& phases() const { return phases_; }
   /// Kernel CPU seconds per phase: for the most part paging in fresh memory, which costs several
   /// times more on some virtual machines and so explains time that grows faster than the work.

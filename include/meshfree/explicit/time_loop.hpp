@@ -2,9 +2,10 @@
 // The time loop of every explicit analysis (peridynamics, SPH): steps to the end time, a history
 // row every history_interval, fields every fields_interval and at the end (one field step per
 // instant: where two share a time, ParaView's XDMF readers show an empty frame), a progress line
-// every tenth of the run with an estimate of the time left, and a stop naming the step, time,
-// particle and position when the state stops being finite. The model is a template argument, so its
-// functions are called directly (once per step each; the particle loops stay inside them):
+// every tenth of the run and at least every 10 s with an estimate of the time left (and a 100%
+// line at the end), and a stop naming the step, time, particle and position when the state stops
+// being finite. The model is a template argument, so its functions are called directly (once per
+// step each; the particle loops stay inside them):
 //   double time() const; long step() const;
 //   bool time_step(double remaining, double& dt, std::string& why)  // false: no step (why)
 //   void advance(double dt, bool history_due)  // may throw mf::Error: the run stops with it
@@ -28,6 +29,7 @@
 #include "meshfree/io/checkpoint.hpp"
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace mf::explicit_dynamics {
@@ -75,6 +77,46 @@ struct LoopReport {
   bool completed() const { return status == "completed"; }
 };
 
+/// The loop's progress lines: at every tenth of the simulated time, at least every 10 s of wall
+/// time between them, and at the end of a completed run (the 100% line). The model's part of the
+/// line may be collective over MPI ranks (a maximum), so it is printed only on the tenths, which
+/// every rank reaches at the same step; the wall-time lines are rank 0's own.
+class Progress {
+public:
+  using Clock = std::chrono::steady_clock;
+  Progress(double t_begin, double t_end)
+      : t_begin_(t_begin), t_end_(t_end), start_(Clock::now()), last_(start_) {
+    while (tenth_ <= 10 && reached(t_begin, tenth_)) ++tenth_;
+  }
+  template <class Model> void update(const Model& model) {
+    const double t = model.time();
+    if (reached(t, tenth_)) {
+      while (tenth_ <= 10 && reached(t, tenth_)) ++tenth_;
+      report(model, ", " + model.progress());
+    } else if (log::rank() == 0 && seconds(last_) >= 10.0) {
+      report(model, "");
+    }
+  }
+
+private:
+  static double seconds(Clock::time_point since) {
+    return std::chrono::duration<double>(Clock::now() - since).count();
+  }
+  bool reached(double t, int tenth) const { return t >= 0.1 * tenth * t_end_ * (1.0 - 1e-12); }
+  template <class Model> void report(const Model& model, const std::string& model_part) {
+    const double t = model.time();
+    const double done = t_end_ > t_begin_ ? (t - t_begin_) / (t_end_ - t_begin_) : 1.0;
+    char time[32]; // 4 significant digits tell the tenths apart
+    std::snprintf(time, sizeof time, "%.4g", t);
+    log::info("  t = ", time, " (", static_cast<int>(std::floor(100.0 * t / t_end_ + 1e-6)),
+              "%), step ", model.step(), model_part, ", ", log::eta(seconds(start_), done));
+    last_ = Clock::now();
+  }
+  double t_begin_, t_end_;
+  int tenth_ = 1; // the next tenth of the end time to report
+  Clock::time_point start_, last_;
+};
+
 template <class Model>
 LoopReport run_time_loop(Model& model, const Schedule& s, io::Checkpoints* checkpoints = nullptr,
                          const io::StateReader* resume = nullptr) {
@@ -102,10 +144,8 @@ LoopReport run_time_loop(Model& model, const Schedule& s, io::Checkpoints* check
   double& recorded = state.recorded;
   double& next_history = state.next_history;
   double& next_fields = state.next_fields;
-  double next_progress = 0.1 * s.end_time;
-  while (next_progress <= model.time()) next_progress += 0.1 * s.end_time;
   r.steps = state.steps;
-  const double t_begin = model.time();
+  Progress progress(model.time(), s.end_time);
   const auto start = Clock::now();
   while (model.time() < s.end_time * (1.0 - 1e-12)) {
     double dt = 0.0;
@@ -147,14 +187,7 @@ LoopReport run_time_loop(Model& model, const Schedule& s, io::Checkpoints* check
       state.written = model.time();
       while (next_fields <= model.time() * (1 + 1e-12)) next_fields += s.fields_interval;
     }
-    if (model.time() >= next_progress) {
-      const double elapsed = seconds_since(start);
-      const double left = elapsed * (s.end_time - model.time()) / (model.time() - t_begin);
-      log::info("  t = ", model.time(), " (",
-                static_cast<int>(std::lround(100 * model.time() / s.end_time)), "%), step ",
-                model.step(), ", ", model.progress(), ", ", elapsed, " s, about ", left, " s left");
-      next_progress += 0.1 * s.end_time;
-    }
+    progress.update(model);
     if (checkpoints && model.time() < s.end_time * (1.0 - 1e-12) &&
         checkpoints->due(model.time())) {
       state.steps = r.steps;

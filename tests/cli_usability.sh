@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# What a user sees on the terminal: unit-sanity warnings (on stderr, the run going on) for a
+# modulus in the wrong units and none for the shipped file; an explicit run's progress lines at
+# every tenth with 3-digit durations, ending at 100%.
+set -u
+MF="$1"; ROOT="$2"
+WORK="$(mktemp -d)"; trap 'rm -rf "$WORK"' EXIT
+fails=0
+ok() { echo "ok: $1"; }
+bad() { echo "FAIL: $1"; fails=$((fails+1)); }
+
+P="$ROOT/problems/plate_tension.yaml"
+"$MF" check "$P" >/dev/null 2>"$WORK/err" || bad "check of plate_tension exits non-zero"
+if grep -q "warning" "$WORK/err"; then bad "plate_tension warns: $(cat "$WORK/err")"; else ok "plate_tension: no warning"; fi
+
+# E in Pa in an N-mm-MPa model: a warning naming the key, the value and the expected range.
+"$MF" check "$P" --set materials.0.E=2.0e11 >/dev/null 2>"$WORK/err" || bad "a warning stopped check"
+want="[meshfree] warning: materials[0].E = 2e+11 is 2e+17 Pa in the declared units ('N, mm, MPa'): Young's moduli usually lie within 1e+04..1e+13 Pa; check the value's units"
+if grep -qxF -- "$want" "$WORK/err"; then ok "E in Pa in an N-mm model warns"; else bad "expected '$want', got '$(cat "$WORK/err")'"; fi
+[ "$(grep -c "warning" "$WORK/err")" -eq 1 ] && ok "one warning per cause" || bad "warnings: $(cat "$WORK/err")"
+
+# Progress of an explicit run: ten lines (10%..100%), the last at 100%, durations to 3
+# significant digits ("elapsed 8.42 s, about 1.2 min left").
+B="$ROOT/problems/sph_bar_impact.yaml"
+"$MF" run "$B" --out "$WORK/bar" --set time.end=2.0e-6 >"$WORK/log" 2>&1 || bad "sph_bar_impact run failed: $(tail -3 "$WORK/log")"
+lines="$(grep -E '^\[meshfree\]   t = ' "$WORK/log")"
+tenths="$(grep -cE '\((10|20|30|40|50|60|70|80|90|100)%\)' <<<"$lines")"
+[ "$tenths" -eq 10 ] && ok "a progress line at every tenth" || bad "progress lines at tenths: $tenths in: $lines"
+last="$(tail -1 <<<"$lines")"
+grep -q '(100%)' <<<"$last" && ok "the last progress line is at 100%" || bad "last progress line: $last"
+long=""
+while read -r n; do # significant digits of the mantissa, leading zeros and the point dropped
+  digits="$(tr -d '.' <<<"${n%%e*}" | sed 's/^0*//')"
+  [ "${#digits}" -le 3 ] || long+="$n "
+done < <(grep -oE '(elapsed|about) [0-9.e+-]+' <<<"$lines" | awk '{print $2}')
+[ -z "$long" ] && ok "durations to 3 significant digits" || bad "long durations: $long"
+grep -qE 'elapsed [0-9.e+-]+ (s|min|h)$' <<<"$last" && ok "durations carry a unit" || bad "no unit in: $last"
+
+# summary.json of the SPH run: phase names are keys without spaces; the gauges' maxima are
+# magnitudes under the key peridynamics uses, beside the signed peak pressure.
+S="$WORK/bar/summary.json"
+/usr/bin/python3 - "$S" <<'PY' && ok "summary.json keys" || bad "summary.json keys"
+import json, sys
+s = json.load(open(sys.argv[1]))
+assert "split_over_ranks" in s["time_s"], s["time_s"]
+assert not [k for k in s["time_s"] if " " in k], s["time_s"]
+r = s["results"]
+assert "gauge_maxima" not in r and "gauge_max_abs_every_step" in r, r
+assert all(v >= 0 for v in r["gauge_max_abs_every_step"].values()), r
+PY
+
+[ $fails -eq 0 ] || { echo "$fails failure(s)"; exit 1; }
+echo "all usability checks passed"
