@@ -216,6 +216,7 @@ void PdRun::write_fields() {
 }
 
 template <class Visit> void PdRun::for_each_state(const Visit& visit) {
+  io::visit_count(visit, "particles", setup_.particles_total);
   particles::ParticleSet& p = setup_.model.particles;
   visit("particles.u", p.u), visit("particles.v", p.v), visit("particles.a", p.a);
   visit("particles.time", p.time), visit("particles.step", p.step);
@@ -224,8 +225,9 @@ template <class Visit> void PdRun::for_each_state(const Visit& visit) {
   visit("bonds.s0", b.s0.committed), visit("bonds.s0_trial", b.s0.trial);
   io::visit_list(visit, "impactors", setup_.impactors,
                  [](const auto& at, pd::Impactor& imp) { imp.for_each_state(at); });
-  if (setup_.short_range) setup_.short_range->for_each_state(visit / "short_range");
-  fracture_account_.for_each_state(visit / "fracture_account");
+  // The contact pairs and the bonds broken in the last step vary in number as the run goes.
+  if (setup_.short_range) setup_.short_range->for_each_state((visit / "short_range").resizing());
+  fracture_account_.for_each_state((visit / "fracture_account").resizing());
   visit("last.broken", last_.broken), visit("last.strain_energy", last_.strain_energy);
   visit("last.external_work", last_.external_work);
   visit("last.contact_energy", last_.contact_energy);

@@ -38,12 +38,21 @@ struct Restart {
   long step = 0;
   /// This rank's state file.
   std::unique_ptr<StateReader> open(int rank) const;
+  /// Reads every rank's file through and checks each array against its checksum.
+  void verify() const;
 };
 
+/// The instant a state read back from `file` holds must be the one its header gave.
+void check_resumed(const StateReader& file, double time, long step);
+
 /// The last checkpoint in DIR/checkpoint, checked against the problem as given now (`settings`,
-/// on `ranks` MPI ranks): a key that changed other than those a restart may change, a different
-/// number of ranks, or no checkpoint at all is an input error naming it.
-Restart find_restart(const std::string& dir, const ProblemSettings& settings, int ranks);
+/// on `ranks` MPI ranks, ending at `end_time`): another layout, a different number of ranks, a
+/// key that changed other than those a restart may change (the problem's identity), a time that
+/// is not finite or not inside the run, or no checkpoint at all is an input error naming it
+/// (CheckpointRefused, or Error for a missing one). DIR/checkpoint and its files are read only
+/// as what they are, never through a link.
+Restart find_restart(const std::string& dir, const ProblemSettings& settings, int ranks,
+                     double end_time);
 
 /// What a run's checkpoints cost (summary.json's "checkpoints").
 struct CheckpointCounts {
