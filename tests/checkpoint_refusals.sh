@@ -118,10 +118,12 @@ H="$(copy header "$OWN")"
 h5edit "$H/checkpoint/state-$G.0.h5" "put(f, 'meta.time', [5.0e-5])"
 refused "a checkpoint whose header has another time than its state" "$H" "a damaged checkpoint"
 
-# The run's own checkpoint still restarts, to completion.
-"$MF" run "$D" --restart "$OWN" "${EVERY[@]}" >/dev/null 2>&1; rc=$?
-check "the run's own checkpoint restarts and completes" [ $rc -eq 0 ]
-check "... with its results" grep -q '"status": "completed"' "$OWN/summary.json"
+# The run's own checkpoint still restarts, to completion, from a folder moved elsewhere (its field
+# parts are found in the folder read).
+mv "$OWN" "$WORK/moved"
+"$MF" run "$D" --restart "$WORK/moved" "${EVERY[@]}" >/dev/null 2>&1; rc=$?
+check "the run's own checkpoint, moved to another folder, restarts and completes" [ $rc -eq 0 ]
+check "... with its results" grep -q '"status": "completed"' "$WORK/moved/summary.json"
 
 # A live run holds its folder: a restart into it and a plain run into it are refused, and write
 # nothing there.

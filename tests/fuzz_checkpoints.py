@@ -32,6 +32,7 @@ import h5py
 import numpy as np
 
 SETS = ["--set", "output.checkpoint_interval=1.0e-5"]
+ONE_THREAD = dict(os.environ, OMP_NUM_THREADS="1")
 
 
 def fnv(data):
@@ -55,7 +56,7 @@ def generation(folder):
 def make_checkpoint(meshfree, problem, folder, extra):
     """A run killed once its second checkpoint is in place."""
     p = subprocess.Popen([meshfree, "run", problem, "--out", str(folder)] + SETS + extra,
-                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=ONE_THREAD)
     for _ in range(30000):
         if generation(folder) >= 2 or p.poll() is not None:
             break
@@ -136,8 +137,11 @@ def mutate(folder, foreign, rng):
             values = values.copy()
             if values.size:
                 k = rng.randrange(values.size)
-                values[k] = rng.choice([-1, 0, 2**31 - 1, -(2**31)]) if values.dtype.kind in "iu" \
-                    else values[k] * 1.5
+                if values.dtype.kind in "iu":
+                    info = np.iinfo(values.dtype)
+                    values[k] = rng.choice([-1, 0, info.max, info.min])
+                else:
+                    values[k] = values[k] * 1.5
             what = "a value changed"
         forge(f, name, values.astype(d.dtype))
         return "'%s' %s, checksum forged" % (name, what)
@@ -159,15 +163,14 @@ def listing(folder):
 def restart(meshfree, problem, folder, end):
     args = [meshfree, "run", problem, "--restart", str(folder)] + SETS + ["--set", "time.end=%r" % end]
     try:
-        p = subprocess.run(args, capture_output=True, text=True, timeout=60,
-                           env=dict(os.environ, OMP_NUM_THREADS="1"))
-        return p.returncode, p.stderr
+        p = subprocess.run(args, capture_output=True, timeout=60, env=ONE_THREAD)
+        return p.returncode, p.stderr.decode(errors="replace")
     except subprocess.TimeoutExpired as e:
         return "timeout", (e.stderr or b"").decode(errors="replace") if isinstance(e.stderr, bytes) else str(e.stderr)
 
 
 def judge(rc, err, before, after, folder):
-    lines = [l for l in err.split("\n") if l.strip() and not l.startswith("warning")]
+    lines = [l for l in err.split("\n") if l.strip() and not l.startswith("[meshfree] warning")]
     if rc == 2:
         if len(lines) != 1 or not lines[0].startswith("meshfree: --restart "):
             return "refused without one '--restart' line: %r" % err[-400:]

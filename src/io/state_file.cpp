@@ -215,6 +215,11 @@ void Unpacker::short_of(const std::string& name) {
   refuse_checkpoint("checkpoint: the packed records end before '" + name + "' (a damaged file?)");
 }
 
+std::string Loader::folder() const {
+  const std::size_t slash = in.path().find_last_of('/');
+  return slash == std::string::npos ? "." : in.path().substr(0, slash);
+}
+
 void StateReader::wrong_size(const std::string& name, std::size_t size) const {
   refuse_checkpoint(path_ + ": '" + name + "' holds " + std::to_string(size) +
                     " values where one was expected");

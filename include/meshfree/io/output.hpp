@@ -166,12 +166,18 @@ public:
   /// What split() and the steps left: the parts' paths, the step count and the .xmf entries.
   /// Taken back on a restart, they replace whatever steps the series had written since it was
   /// opened (a staged run's replayed preload, which the parts hold already).
+  /// The parts are found again by name in the folder of the checkpoint read back (the folder may
+  /// have moved), and must be files of it.
   template <class Visit> void for_each_state(Visit&& visit) {
     visit("parts", parts_), visit("steps", steps_), visit("xdmf", xml_);
-    if constexpr (std::decay_t<Visit>::loads) renew_file({});
+    if constexpr (std::decay_t<Visit>::loads) {
+      parts_ = parts_in(parts_, visit.folder());
+      renew_file({});
+    }
   }
 
 private:
+  static std::string parts_in(const std::string& parts, const std::string& folder);
   void open(const std::vector<double>& xyz, const GridCells& cells);
   void create_file();
   void close_file();

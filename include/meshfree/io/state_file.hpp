@@ -150,6 +150,8 @@ struct Loader {
   /// For arrays whose length changes as a run goes (neighbour lists, the bonds broken in the
   /// last step): read back at the length kept.
   Loader resizing() const { return {in, prefix, true}; }
+  /// The checkpoint folder the state is read from.
+  std::string folder() const;
 };
 
 /// A visitor that packs the visited values, names aside, into one byte array: many small
