@@ -12,6 +12,13 @@
 // written up to a checkpoint are closed into <stem>.part-<k>.h5 beside them (io/output.hpp,
 // FieldSeries::split), so that a killed run's fields survive whole; the run that completes
 // merges them into DIR/fields.h5 and removes the folder.
+//
+// A checkpoint knows its run: every rank's file carries the layout (meta.format), the problem's
+// identity (a hash of the settings a restart may not change), the ranks, the time and the step;
+// the state carries the counts of particles, nodes or points, and every array its checksum
+// (io/state_file.hpp). A restart checks all of them before it writes anything, and refuses what
+// differs (CheckpointRefused, exit 2). Nothing under DIR/checkpoint is read or written through a
+// link.
 #include "meshfree/distribution/ranks.hpp"
 #include "meshfree/io/output.hpp"
 #include "meshfree/io/region_spec.hpp"
