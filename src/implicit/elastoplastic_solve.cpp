@@ -107,12 +107,17 @@ ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
     }
   };
   if (restart) {
-    const auto file = restart->open(session.rank());
-    const io::Loader load{*file, ""};
-    state(load);
-    recorder.restore(load / "recorder");
-    const long done = static_cast<long>(R.increments.size()) - 1;
-    io::check_resumed(*file, static_cast<double>(done), done);
+    try {
+      const auto file = restart->open(session.rank());
+      const io::Loader load{*file, ""};
+      state(load);
+      recorder.restore(load / "recorder");
+      const long done = static_cast<long>(R.increments.size()) - 1;
+      io::check_resumed(*file, static_cast<double>(done), done);
+    } catch (const io::CheckpointRefused& e) {
+      io::refused_on_this_rank(e);
+      throw;
+    }
     log::info("restarted after increment ", R.increments.size() - 1, " (step '",
               spec.steps[std::min<std::size_t>(at.step, spec.steps.size() - 1)].name, "' at ",
               at.tau, ")");

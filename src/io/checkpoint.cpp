@@ -9,6 +9,8 @@
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
+#include <iostream>
+#include <mpi.h>
 #include <map>
 #include <omp.h>
 #include <sstream>
@@ -172,6 +174,16 @@ void check_resumed(const StateReader& file, double time, long step) {
                       std::to_string(step) + "), its header at t = " + detail::concat(kept_time) +
                       " (step " + std::to_string(kept_step) + "): a damaged checkpoint (" +
                       file.path() + ")");
+}
+
+void refused_on_this_rank(const CheckpointRefused& refusal) {
+  int size = 1, rank = 0, started = 0;
+  MPI_Initialized(&started);
+  if (started) MPI_Comm_size(MPI_COMM_WORLD, &size);
+  if (size == 1) return;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  std::cerr << "meshfree: --restart: " << refusal.what() << " (rank " << rank << ")" << std::endl;
+  MPI_Abort(MPI_COMM_WORLD, 2);
 }
 
 Restart find_restart(const std::string& dir, const ProblemSettings& settings, int ranks,

@@ -93,13 +93,18 @@ LoopReport run_time_loop(Model& model, const Schedule& s, io::Checkpoints* check
   };
   LoopState state;
   if (resume) {
-    const io::Loader load{*resume, ""};
-    state.for_each_state(load / "loop");
-    model.restore(load);
-    io::check_resumed(*resume, model.time(), model.step());
-    if (!state.plausible(model.time()))
-      io::refuse_checkpoint("the checkpoint's schedule of outputs is not that of a run at t = " +
-                            detail::concat(model.time()) + " (a damaged checkpoint)");
+    try {
+      const io::Loader load{*resume, ""};
+      state.for_each_state(load / "loop");
+      model.restore(load);
+      io::check_resumed(*resume, model.time(), model.step());
+      if (!state.plausible(model.time()))
+        io::refuse_checkpoint("the checkpoint's schedule of outputs is not that of a run at t = " +
+                              detail::concat(model.time()) + " (a damaged checkpoint)");
+    } catch (const io::CheckpointRefused& e) {
+      io::refused_on_this_rank(e);
+      throw;
+    }
     state.reschedule(s, model.time());
     log::info("restarted at t = ", model.time(), " (step ", model.step(), ")");
   } else {

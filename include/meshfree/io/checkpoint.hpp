@@ -52,6 +52,11 @@ struct Restart {
 /// The instant a state read back from `file` holds must be the one its header gave.
 void check_resumed(const StateReader& file, double time, long step);
 
+/// A refusal found while this rank read its state back: over several MPI ranks the others may
+/// have found none and wait for this one in a collective call, so every rank stops here (exit
+/// 2, the line said by this rank). On one rank it returns, and the refusal goes on up.
+void refused_on_this_rank(const CheckpointRefused& refusal);
+
 /// The last checkpoint in DIR/checkpoint, checked against the problem as given now (`settings`,
 /// on `ranks` MPI ranks, ending at `end_time`): another layout, a different number of ranks, a
 /// key that changed other than those a restart may change (the problem's identity), a time that
