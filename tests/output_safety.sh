@@ -23,7 +23,8 @@ good_result() { # the first run's files, unchanged
 "$MF" run "$P" --out "$OUT" >/dev/null || { echo "FAIL: the first run"; exit 1; }
 echo "measured by hand" > "$OUT/line_experiment.csv"
 GOOD="$(digest)"
-check "a completed run lists its files in the manifest" grep -qx "history.csv" "$OUT/.meshfree-manifest"
+check "a completed run lists its files in the manifest, with size and inode" \
+  grep -qxE "history.csv	[0-9]+	$(stat -c %i "$OUT/history.csv")" "$OUT/.meshfree-manifest"
 
 # A run that fails late (a linear solve that did not solve the system).
 msg="$("$MF" run "$P" --out "$OUT" -- -pc_type none 2>&1 >/dev/null)"; rc=$?
@@ -94,5 +95,50 @@ msg="$("$MF" run "$P" --out "$WORK/file" 2>&1 >/dev/null)"; rc=$?
 check "an output folder that is a file: exit 2" [ $rc -eq 2 ]
 check "an output folder that is a file: one line naming it" grep -qF -- "--out $WORK/file: not a directory" <<<"$msg"
 check "an output folder that is a file is not touched" grep -qx "not a folder" "$WORK/file"
+
+# No link in the output folder is followed. A manifest planted as a link to a list naming a
+# user's file: nothing is removed through it, and the run's own manifest replaces the link.
+"$MF" run "$P" --out "$OUT" >/dev/null
+echo "precious" > "$OUT/precious.txt"
+printf 'precious.txt\n' > "$WORK/list"
+rm -f "$OUT/.meshfree-manifest"; ln -s "$WORK/list" "$OUT/.meshfree-manifest"
+"$MF" run "$P" --out "$OUT" >/dev/null; rc=$?
+check "a planted manifest link: the run completes" [ $rc -eq 0 ]
+check "... the user's file the list names is kept" grep -qx precious "$OUT/precious.txt"
+check "... the list is not written" [ "$(cat "$WORK/list")" = "precious.txt" ]
+check "... and the link is replaced by the run's manifest" \
+  [ -f "$OUT/.meshfree-manifest" -a ! -L "$OUT/.meshfree-manifest" ]
+# A manifest entry whose name is now another file than the one its run wrote (another inode).
+printf 'precious.txt\t%s\t1\n' "$(stat -c %s "$OUT/precious.txt")" >>"$OUT/.meshfree-manifest"
+"$MF" run "$P" --out "$OUT" >/dev/null
+check "a manifest entry that is not the file its run wrote is not removed" \
+  grep -qx precious "$OUT/precious.txt"
+# failed/ planted as a link to a folder whose manifest lists its files exactly: a completed run
+# removes an earlier run's failed/, but not through a link.
+mkdir -p "$WORK/elsewhere"; echo "victim" > "$WORK/elsewhere/victim.csv"
+printf 'victim.csv\t%s\t%s\n' $(stat -c '%s %i' "$WORK/elsewhere/victim.csv") \
+  >"$WORK/elsewhere/.meshfree-manifest"
+rm -rf "$OUT/failed"; ln -s "$WORK/elsewhere" "$OUT/failed"
+"$MF" run "$P" --out "$OUT" >/dev/null
+check "a failed/ link: the folder it points to keeps its files" \
+  grep -qx victim "$WORK/elsewhere/victim.csv"
+check "... and the link stays a link" [ -L "$OUT/failed" ]
+# checkpoint/ planted as a link to a folder holding files under a checkpoint's names: a run
+# writes no checkpoint through it and removes nothing there; a restart through it is refused.
+D="$ROOT/problems/pd_disk_impact.yaml"
+C="$WORK/linked"; mkdir -p "$C" "$WORK/target"
+echo "generation 1" > "$WORK/target/checkpoint.txt"; echo "mine" > "$WORK/target/state-1.0.h5"
+ln -s "$WORK/target" "$C/checkpoint"
+target() { (cd "$WORK/target" && find . | sort && find . -type f | sort | xargs md5sum); }
+T0="$(target)"
+msg="$("$MF" run "$D" --out "$C" --set output.checkpoint_interval=1.0e-5 --set time.end=3.0e-5 2>&1)"; rc=$?
+check "a checkpoint/ link: the run completes" [ $rc -eq 0 ]
+check "... saying it writes no checkpoints" grep -qF "meshfree follows no link" <<<"$msg"
+check "... nothing written into or removed from the link's target" [ "$(target)" = "$T0" ]
+msg="$("$MF" run "$D" --restart "$C" 2>&1 >/dev/null)"; rc=$?
+check "a restart through a checkpoint/ link: exit 2" [ $rc -eq 2 ]
+check "... one line saying it is a link" \
+  [ "$(wc -l <<<"$msg")" -eq 1 -a -n "$(grep -F "$C/checkpoint is a link" <<<"$msg")" ]
+check "... and the link's target untouched" [ "$(target)" = "$T0" ]
 
 [ $fails -eq 0 ] && echo "results kept safe in every case" || exit 1

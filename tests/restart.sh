@@ -152,20 +152,7 @@ rows = list(csv.reader(open('$CUT/history.csv')))
 sys.exit(not abs(float(rows[-1][0]) - 1.2e-4) < 1e-12)"
 check "... with distinct times and whole grids" frames_whole "$CUT"
 
-# Two runs into one folder at once: the first keeps its checkpoints there, the second (which
-# finds the folder's lock held) says so and writes none, and the first's stay as they were.
-TWO="$WORK/two"
-"$MF" run "$D" --out "$TWO" --set output.checkpoint_interval=1.0e-5 >/dev/null 2>&1 &
-first=$!
-for _ in $(seq 3000); do [ "$(generation "$TWO")" -ge 1 ] && break; sleep 0.01; done
-kill -STOP $first
-held="$(generation "$TWO")"
-msg="$("$MF" run "$D" --out "$TWO" --set output.checkpoint_interval=1.0e-5 \
-  --set time.end=3.0e-5 2>&1)"; rc=$?
-kill -CONT $first; kill -9 $first; wait $first 2>/dev/null
-check "a second run into a folder whose checkpoints another run holds completes" [ $rc -eq 0 ]
-check "... saying it writes none" grep -qF "another run into this folder keeps its checkpoints" <<<"$msg"
-check "... and the first run's checkpoint is left as it was" [ "$(generation "$TWO")" = "$held" ]
+# Two runs into one folder at once, and hostile checkpoints: tests/checkpoint_refusals.sh.
 
 echo "$fails failure(s)"
 [ $fails -eq 0 ]

@@ -64,7 +64,7 @@ TEST_CASE("a loop restarted from its checkpoint goes on as the run it came from"
     explicit_dynamics::run_time_loop(first, schedule, &checkpoints);
     CHECK(checkpoints.counts().written == 2);
   }
-  const io::Restart restart = io::find_restart(dir, {{"time.end", "3.0"}}, 1);
+  const io::Restart restart = io::find_restart(dir, {{"time.end", "3.0"}}, 1, 3.0);
   CHECK(restart.step == 14);
   CHECK(restart.time == Approx(1.4));
   Drift resumed;
@@ -77,10 +77,18 @@ TEST_CASE("a loop restarted from its checkpoint goes on as the run it came from"
   CHECK(resumed.written == whole.written);
   CHECK(resumed.x == whole.x);
   // A key other than the end time and the output intervals may not change.
-  CHECK_THROWS_WITH(io::find_restart(dir, {{"time.end", "2.05"}, {"materials.0.E", "1"}}, 1),
+  CHECK_THROWS_WITH(io::find_restart(dir, {{"time.end", "2.05"}, {"materials.0.E", "1"}}, 1, 2.05),
                     Catch::Contains("materials.0.E changed since the checkpoint"));
-  CHECK_THROWS_WITH(io::find_restart(dir, {{"time.end", "2.05"}}, 2),
+  CHECK_THROWS_WITH(io::find_restart(dir, {{"time.end", "2.05"}}, 2, 2.05),
                     Catch::Contains("restart it on as many"));
+  // A checkpoint after the run's end is not this run's.
+  CHECK_THROWS_AS(io::find_restart(dir, {{"time.end", "1.0"}}, 1, 1.0), io::CheckpointRefused);
+  // Every array passes its checksum, and one the run built comes back at its length only.
+  CHECK_NOTHROW(restart.verify());
+  const io::Loader load{*state, ""};
+  std::vector<double> two(2);
+  CHECK_THROWS_WITH(load("recorded", two),
+                    Catch::Contains("checkpoint holds 6 values of 'recorded', this run has 2"));
   io::remove_checkpoints(dir);
   CHECK_FALSE(std::filesystem::exists(dir + "/checkpoint"));
   std::filesystem::remove_all(dir);

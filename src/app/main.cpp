@@ -186,6 +186,22 @@ void log_phases(const mf::PhaseTimer& timer) {
   mf::log::info("wall time per phase:", phases);
 }
 
+/// The last instant a restarted run may hold: its (explicit stage's) end time, or no bound for an
+/// implicit run, whose checkpoints count increments.
+double restart_end(const mf::io::ProblemSpec& spec) {
+  const mf::io::ProblemSpec& s =
+      spec.analysis == mf::io::Analysis::Staged ? spec.stages.at(1) : spec;
+  if (s.pd) return s.pd->end_time;
+  if (s.sph) return s.sph->end_time;
+  return std::numeric_limits<double>::infinity();
+}
+
+/// A refused restart's one line, naming the folder.
+std::string refusal(const std::string& dir, const std::exception& e) {
+  const std::string what = e.what();
+  return what.rfind("--restart ", 0) == 0 ? what : "--restart " + dir + ": " + what;
+}
+
 int run(Command& c) {
   int pargc = static_cast<int>(c.petsc_argv.size());
   c.petsc_argv.push_back(nullptr);
@@ -206,11 +222,6 @@ int run(Command& c) {
                  "--restart ", c.restart_dir,
                  ": only runs that go step by step write checkpoints (peridynamics, sph, "
                  "elastoplastic_static and staged runs)");
-      restart = mf::io::find_restart(c.restart_dir, spec.settings, session.size());
-      if (restart->threads != omp_get_max_threads())
-        mf::log::warn("the checkpoint was written with ", restart->threads,
-                      " OpenMP thread(s) and this run has ", omp_get_max_threads(),
-                      ": the sums may differ in the last digits from the run it continues");
     }
   } catch (const std::exception& e) {
     if (session.rank() == 0) std::cerr << "meshfree: " << e.what() << std::endl;
@@ -219,17 +230,36 @@ int run(Command& c) {
   const std::string dir = !c.restart_dir.empty() ? c.restart_dir
                           : c.out_dir.empty()    ? "out/" + spec.name
                                                  : c.out_dir;
-  const mf::io::Restart* from = restart ? &*restart : nullptr;
-  // The output folder is input too: one that cannot be written is refused before the run.
+  // The output folder is input too: one that cannot be written, or that a live run holds, is
+  // refused before the run (its lock is held from here to the end).
   std::unique_ptr<mf::io::OutputDirectory> out;
   double unusable = 0.0;
   if (session.rank() == 0) try {
-      out = std::make_unique<mf::io::OutputDirectory>(dir);
+      out = std::make_unique<mf::io::OutputDirectory>(dir, c.restart_dir.empty() ? "--out"
+                                                                                 : "--restart");
     } catch (const std::exception& e) {
       std::cerr << "meshfree: " << e.what() << std::endl;
       unusable = 1.0;
     }
   if (mf::distribution::Ranks::of(session.comm()).max(unusable) > 0.0) return 2;
+  if (!c.restart_dir.empty()) {
+    // The checkpoint must be this problem's, whole and undamaged (rank 0 reads every rank's file
+    // through), before anything is written.
+    double refused = 0.0;
+    try {
+      restart = mf::io::find_restart(dir, spec.settings, session.size(), restart_end(spec));
+      if (session.rank() == 0) restart->verify();
+      if (restart->threads != omp_get_max_threads() && session.rank() == 0)
+        mf::log::warn("the checkpoint was written with ", restart->threads,
+                      " OpenMP thread(s) and this run has ", omp_get_max_threads(),
+                      ": the sums may differ in the last digits from the run it continues");
+    } catch (const std::exception& e) {
+      if (session.rank() == 0) std::cerr << "meshfree: " << refusal(dir, e) << std::endl;
+      refused = 1.0;
+    }
+    if (mf::distribution::Ranks::of(session.comm()).max(refused) > 0.0) return 2;
+  }
+  const mf::io::Restart* from = restart ? &*restart : nullptr;
   int exit_code = 0;
   const bool explicit_run =
       spec.analysis == mf::io::Analysis::Peridynamics || spec.analysis == mf::io::Analysis::Sph;
@@ -290,6 +320,14 @@ int run(Command& c) {
     // A CollectiveError reached every rank: each returns normally. Any other error may have
     // reached this rank only, and the others would wait for it forever: abort them.
     const bool everywhere = dynamic_cast<const mf::solvers::CollectiveError*>(&e) != nullptr;
+    if (from && dynamic_cast<const mf::io::CheckpointRefused*>(&e)) {
+      // Found while the state was read back: refused as input, and what this run wrote so far
+      // (its staging folder) goes.
+      std::cerr << "meshfree: " << refusal(dir, e) << std::endl;
+      if (out) out->discard();
+      if (session.size() > 1) mf::solvers::abort_every_rank(session.comm(), 2);
+      return 2;
+    }
     if (explicit_run && session.size() == 1 && dynamic_cast<const mf::Error*>(&e) && out &&
         !out->opened()) {
       std::cerr << "meshfree: " << e.what() << std::endl; // refused in set-up: nothing written

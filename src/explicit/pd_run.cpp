@@ -222,6 +222,7 @@ void PdRun::write_fields() {
 }
 
 template <class Visit> void PdRun::for_each_state(const Visit& visit) {
+  io::visit_count(visit, "particles", setup_.particles_total);
   particles::ParticleSet& p = setup_.model.particles;
   visit("particles.u", p.u), visit("particles.v", p.v), visit("particles.a", p.a);
   visit("particles.time", p.time), visit("particles.step", p.step);
@@ -231,7 +232,8 @@ template <class Visit> void PdRun::for_each_state(const Visit& visit) {
   io::visit_list(visit, "impactors", setup_.impactors,
                  [](const auto& at, pd::Impactor& imp) { imp.for_each_state(at); });
   if (setup_.short_range) setup_.short_range->for_each_state(visit / "short_range");
-  fracture_account_.for_each_state(visit / "fracture_account");
+  // The bonds broken in the last step vary in number as the run goes.
+  fracture_account_.for_each_state((visit / "fracture_account").resizing());
   visit("last.broken", last_.broken), visit("last.strain_energy", last_.strain_energy);
   visit("last.external_work", last_.external_work);
   visit("last.contact_energy", last_.contact_energy);
@@ -251,7 +253,22 @@ void PdRun::save(io::Checkpoints& checkpoints, const io::Saver& save) {
 }
 
 void PdRun::restore(const io::Loader& load) {
+  // Plastic stretches are kept by a run with plastic bonds only: the set-up says which.
+  const std::size_t plastic = setup_.state.plastic.size();
   for_each_state(load);
+  if (setup_.state.plastic.size() != plastic)
+    io::refuse_checkpoint("the checkpoint holds " +
+                          std::to_string(setup_.state.plastic.size()) +
+                          " plastic stretches, this run has " + std::to_string(plastic));
+  // Lists of particles, read back at the length kept, must name particles of this run.
+  const int n = setup_.model.particles.size();
+  const bool pairs = !setup_.short_range || setup_.short_range->consistent();
+  const bool gauges = std::all_of(gauges_.particles().begin(), gauges_.particles().end(),
+                                  [n](int i) { return i >= -1 && i < n; });
+  if (!pairs || !gauges || !fracture_account_.consistent(setup_.model.particles.owned_count()))
+    io::refuse_checkpoint(std::string("the checkpoint's ") +
+                          (!pairs ? "contact pairs" : !gauges ? "gauges" : "broken bonds") +
+                          " name particles this run does not have (a damaged checkpoint)");
 }
 
 void PdRun::finish(const LoopReport& loop) {

@@ -258,6 +258,7 @@ std::string SphRun::progress() const {
 }
 
 template <class Visit> void SphRun::for_each_state(const Visit& visit) {
+  io::visit_count(visit, "particles", r_.particles);
   h_.for_each_state(visit / "sph");
   visit("e0", e0_), visit("dt", dt_), visit("first_dt", r_.first_dt);
   visit("smallest_dt", r_.smallest_dt), visit("dt_limit", r_.dt_limit);
@@ -273,7 +274,11 @@ void SphRun::save(io::Checkpoints& checkpoints, const io::Saver& save) {
 }
 
 void SphRun::restore(const io::Loader& load) {
-  for_each_state(load);
+  // A rank's particles and neighbour lists are those it held at the checkpoint, not at set-up
+  // (particles move between ranks, lists change): the particle count checks the discretisation.
+  io::Loader moved = load;
+  moved.resizes = true;
+  for_each_state(moved);
   sph::resume_distribution(h_);
 }
 

@@ -89,6 +89,8 @@ ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
     });
   };
   const auto state = [&](const auto& visit) {
+    io::visit_count(visit, "nodes", static_cast<long>(R.nodes));
+    io::visit_count(visit, "integration points", static_cast<long>(R.domain_points));
     visit("d", d);
     problem.for_each_state(visit / "system");
     at.for_each_state(visit / "schedule");
@@ -105,10 +107,17 @@ ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
     }
   };
   if (restart) {
-    const auto file = restart->open(session.rank());
-    const io::Loader load{*file, ""};
-    state(load);
-    recorder.restore(load / "recorder");
+    try {
+      const auto file = restart->open(session.rank());
+      const io::Loader load{*file, ""};
+      state(load);
+      recorder.restore(load / "recorder");
+      const long done = static_cast<long>(R.increments.size()) - 1;
+      io::check_resumed(*file, static_cast<double>(done), done);
+    } catch (const io::CheckpointRefused& e) {
+      io::refused_on_this_rank(e);
+      throw;
+    }
     log::info("restarted after increment ", R.increments.size() - 1, " (step '",
               spec.steps[std::min<std::size_t>(at.step, spec.steps.size() - 1)].name, "' at ",
               at.tau, ")");

@@ -5,13 +5,17 @@
 #include "meshfree/io/key_reader.hpp"
 #include "meshfree/io/output.hpp"
 #include <cerrno>
+#include <cmath>
+#include <cstring>
 #include <fcntl.h>
 #include <filesystem>
-#include <fstream>
+#include <iostream>
+#include <mpi.h>
 #include <map>
 #include <omp.h>
 #include <sstream>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace mf::io {
@@ -22,6 +26,8 @@ namespace {
 
 constexpr const char* kMarker = "checkpoint.txt";
 constexpr const char* kLock = ".lock";
+// The layout of a checkpoint's files: a checkpoint of another layout is refused, not misread.
+constexpr long kFormat = 2;
 
 std::string state_name(long generation, int rank) {
   return "state-" + std::to_string(generation) + "." + std::to_string(rank) + ".h5";
@@ -70,6 +76,32 @@ std::map<std::string, std::string> settings_map(const std::string& text) {
   return m;
 }
 
+/// The problem's identity: a hash of every setting a restart may not change (its physics and
+/// discretisation).
+long identity(const ProblemSettings& settings);
+
+/// True when `path` is a folder itself, not a link to one.
+bool real_folder(const fs::path& path) {
+  struct stat st {};
+  return ::lstat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+/// The generation checkpoint.txt names, or 0: read from a regular file only (never through a
+/// link, never blocking on a FIFO).
+long marked_generation(const fs::path& folder) {
+  const int fd = ::open((folder / kMarker).c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return 0;
+  struct stat st {};
+  char text[64] = {};
+  const bool ok = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) &&
+                  ::read(fd, text, sizeof text - 1) > 0;
+  ::close(fd);
+  std::istringstream in(ok ? text : "");
+  std::string word;
+  long generation = 0;
+  return in >> word >> generation && word == "generation" && generation > 0 ? generation : 0;
+}
+
 } // namespace
 
 bool restart_may_change(const std::string& path) {
@@ -84,32 +116,19 @@ bool restart_may_change(const std::string& path) {
           key.find('.', 7) == std::string::npos);
 }
 
-std::unique_ptr<StateReader> Restart::open(int rank) const {
-  return std::make_unique<StateReader>((fs::path(folder) / state_name(generation, rank)).string());
+namespace {
+
+long identity(const ProblemSettings& settings) {
+  std::string text;
+  for (const auto& [key, value] : settings)
+    if (!restart_may_change(key)) text += key + "\t" + value + "\n";
+  return static_cast<long>(checksum(text.data(), text.size()));
 }
 
-Restart find_restart(const std::string& dir, const ProblemSettings& settings, int ranks) {
-  Restart r;
-  r.folder = (fs::path(dir) / "checkpoint").string();
-  std::ifstream marker(fs::path(r.folder) / kMarker);
-  std::string word;
-  MF_REQUIRE(marker >> word >> r.generation && word == "generation" && r.generation > 0,
-             "--restart ", dir, ": no checkpoint in ", r.folder,
-             " (a run writes one every output.checkpoint_interval of simulated time and every "
-             "output.checkpoint_wall_interval of wall time)");
-  const std::unique_ptr<StateReader> state = r.open(0);
-  long count = 0, threads = 0, step = 0;
-  state->get("meta.ranks", count);
-  state->get("meta.threads", threads);
-  state->get("meta.time", r.time);
-  state->get("meta.step", step);
-  r.ranks = static_cast<int>(count);
-  r.threads = static_cast<int>(threads);
-  r.step = step;
-  MF_REQUIRE(r.ranks == ranks, "--restart ", dir, ": the checkpoint was written by ", r.ranks,
-             " MPI rank(s); restart it on as many (", ranks, " given)");
-  // The problem must be the one that was run, but for what a restart may change.
-  const auto before = settings_map(state->text("meta.settings"));
+/// The first key that differs between the checkpoint's settings and this run's, but for those a
+/// restart may change: an input error naming it.
+void compare_settings(const std::string& dir, const std::map<std::string, std::string>& before,
+                      const ProblemSettings& settings) {
   const std::map<std::string, std::string> now(settings.begin(), settings.end());
   for (const auto* side : {&before, &now})
     for (const auto& [key, value] : *side) {
@@ -117,11 +136,91 @@ Restart find_restart(const std::string& dir, const ProblemSettings& settings, in
       const std::string was = b == before.end() ? "(not given)" : one_line(b->second, 40);
       const std::string is = n == now.end() ? "(not given)" : one_line(n->second, 40);
       if (was != is && !restart_may_change(key))
-        fail("--restart ", dir, ": ", one_line(key), " changed since the checkpoint (", was,
-             " then, ", is,
-             " now); a restart may change only time.end and the output "
-             "intervals");
+        refuse_checkpoint("--restart " + dir + ": " + one_line(key) +
+                          " changed since the checkpoint (" + was + " then, " + is +
+                          " now); a restart may change only time.end and the output intervals");
     }
+}
+
+/// The instant and step a checkpoint holds: finite, inside the run (0 <= t <= end), and
+/// consistent with each other (a step taken for every instant after the start).
+void check_instant(const std::string& dir, const Restart& r, double end_time) {
+  const std::string where = "--restart " + dir + ": the checkpoint's ";
+  if (!std::isfinite(r.time) || r.time < 0.0 || r.time > end_time * (1 + 1e-12))
+    refuse_checkpoint(where + "time " + detail::concat(r.time) + " is not inside this run (0 to " +
+                      detail::concat(end_time) + ")");
+  if (r.step < 0 || (r.step == 0) != (r.time == 0.0))
+    refuse_checkpoint(where + "step " + std::to_string(r.step) + " does not go with its time " +
+                      detail::concat(r.time));
+}
+
+} // namespace
+
+std::unique_ptr<StateReader> Restart::open(int rank) const {
+  return std::make_unique<StateReader>((fs::path(folder) / state_name(generation, rank)).string());
+}
+
+void Restart::verify() const {
+  for (int rank = 0; rank < ranks; ++rank) open(rank)->verify();
+}
+
+void check_resumed(const StateReader& file, double time, long step) {
+  double kept_time = 0.0;
+  long kept_step = 0;
+  file.get("meta.time", kept_time);
+  file.get("meta.step", kept_step);
+  if (time != kept_time || step != kept_step)
+    refuse_checkpoint("the checkpoint's state is at t = " + detail::concat(time) + " (step " +
+                      std::to_string(step) + "), its header at t = " + detail::concat(kept_time) +
+                      " (step " + std::to_string(kept_step) + "): a damaged checkpoint (" +
+                      file.path() + ")");
+}
+
+void refused_on_this_rank(const CheckpointRefused& refusal) {
+  int size = 1, rank = 0, started = 0;
+  MPI_Initialized(&started);
+  if (started) MPI_Comm_size(MPI_COMM_WORLD, &size);
+  if (size == 1) return;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  std::cerr << "meshfree: --restart: " << refusal.what() << " (rank " << rank << ")" << std::endl;
+  MPI_Abort(MPI_COMM_WORLD, 2);
+}
+
+Restart find_restart(const std::string& dir, const ProblemSettings& settings, int ranks,
+                     double end_time) {
+  Restart r;
+  r.folder = (fs::path(dir) / "checkpoint").string();
+  if (fs::is_symlink(fs::symlink_status(r.folder)))
+    refuse_checkpoint("--restart " + dir + ": " + r.folder +
+                      " is a link; meshfree reads checkpoints only from a folder of its own");
+  r.generation = real_folder(r.folder) ? marked_generation(r.folder) : 0;
+  MF_REQUIRE(r.generation > 0, "--restart ", dir, ": no checkpoint in ", r.folder,
+             " (a run writes one every output.checkpoint_interval of simulated time and every "
+             "output.checkpoint_wall_interval of wall time)");
+  const std::unique_ptr<StateReader> state = r.open(0);
+  long format = 0, count = 0, threads = 0, kept_identity = 0;
+  state->get("meta.format", format);
+  if (format != kFormat)
+    refuse_checkpoint("--restart " + dir + ": the checkpoint has layout " +
+                      std::to_string(format) + ", this meshfree reads layout " +
+                      std::to_string(kFormat));
+  state->get("meta.ranks", count);
+  state->get("meta.threads", threads);
+  state->get("meta.time", r.time);
+  state->get("meta.step", r.step);
+  state->get("meta.identity", kept_identity);
+  r.ranks = static_cast<int>(count);
+  r.threads = static_cast<int>(threads);
+  if (r.ranks != ranks)
+    refuse_checkpoint("--restart " + dir + ": the checkpoint was written by " +
+                      std::to_string(count) + " MPI rank(s); restart it on as many (" +
+                      std::to_string(ranks) + " given)");
+  // The problem must be the one that was run, but for what a restart may change.
+  compare_settings(dir, settings_map(state->text("meta.settings")), settings);
+  if (kept_identity != identity(settings))
+    refuse_checkpoint("--restart " + dir + ": the checkpoint is of another problem (its identity "
+                      "hash differs from this run's)");
+  check_instant(dir, r, end_time);
   return r;
 }
 
@@ -165,14 +264,24 @@ void Checkpoints::write(double t, long step, const std::function<void(StateWrite
     double busy = 0.0;
     if (ranks_.rank == 0) {
       std::error_code ec;
-      fs::create_directories(folder, ec);
-      MF_REQUIRE(!ec, folder_, ": cannot create the checkpoint folder: ", ec.message());
-      lock_ = ::open((folder / kLock).c_str(), O_CREAT | O_RDWR | O_CLOEXEC | O_NOFOLLOW, 0644);
-      busy = lock_ < 0 || ::flock(lock_, LOCK_EX | LOCK_NB) != 0 ? 1.0 : 0.0;
+      fs::create_directories(dir_, ec);
+      MF_REQUIRE(!ec, dir_, ": cannot create the output folder: ", ec.message());
+      // mkdir, not create_directories: a link at the name is never followed.
+      if (::mkdir(folder_.c_str(), 0755) != 0 && errno != EEXIST)
+        fail(folder_, ": cannot create the checkpoint folder: ", system_reason(errno));
+      if (!real_folder(folder)) {
+        busy = 2.0;
+      } else {
+        lock_ = ::open((folder / kLock).c_str(), O_CREAT | O_RDWR | O_CLOEXEC | O_NOFOLLOW, 0644);
+        busy = lock_ < 0 || ::flock(lock_, LOCK_EX | LOCK_NB) != 0 ? 1.0 : 0.0;
+      }
     }
     if (!ranks_.serial()) ranks_.broadcast(&busy, 1, 0);
     if (busy > 0.0) {
-      if (ranks_.rank == 0)
+      if (ranks_.rank == 0 && busy > 1.0)
+        log::warn(folder_, ": not a folder (a link?); meshfree follows no link, and this run "
+                           "writes no checkpoints");
+      else if (ranks_.rank == 0)
         log::warn(folder_, ": another run into this folder keeps its checkpoints there; this run "
                            "writes none");
       policy_ = {0.0, 0.0};
@@ -191,13 +300,14 @@ void Checkpoints::write(double t, long step, const std::function<void(StateWrite
   double bytes = 0.0;
   {
     StateWriter out(mine);
-    if (ranks_.rank == 0) {
-      out.put("meta.ranks", static_cast<long>(ranks_.size));
-      out.put("meta.threads", static_cast<long>(omp_get_max_threads()));
-      out.put("meta.time", t);
-      out.put("meta.step", step);
-      out.put_text("meta.settings", settings_text(settings_));
-    }
+    // Every rank's file says whose state it holds (a restart checks each against its run).
+    out.put("meta.format", kFormat);
+    out.put("meta.identity", identity(settings_));
+    out.put("meta.ranks", static_cast<long>(ranks_.size));
+    out.put("meta.threads", static_cast<long>(omp_get_max_threads()));
+    out.put("meta.time", t);
+    out.put("meta.step", step);
+    if (ranks_.rank == 0) out.put_text("meta.settings", settings_text(settings_));
     save(out);
     out.close();
     bytes = static_cast<double>(out.bytes());
@@ -232,7 +342,7 @@ void Checkpoints::write(double t, long step, const std::function<void(StateWrite
 
 void remove_checkpoints(const std::string& dir) {
   const fs::path folder = fs::path(dir) / "checkpoint";
-  if (!fs::is_directory(fs::symlink_status(folder))) return;
+  if (!real_folder(folder)) return; // nothing of ours, and a link is not followed
   // Not while another run into DIR holds them.
   const int lock = ::open((folder / kLock).c_str(), O_RDWR | O_CLOEXEC | O_NOFOLLOW);
   const bool held = lock >= 0 && ::flock(lock, LOCK_EX | LOCK_NB) != 0;

@@ -1,6 +1,9 @@
 #include "meshfree/io/output.hpp"
 #include "meshfree/core/error.hpp"
+#include "meshfree/io/key_reader.hpp"
+#include "meshfree/io/state_file.hpp"
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -10,6 +13,7 @@
 #include <hdf5.h>
 #include <iomanip>
 #include <sstream>
+#include <sys/stat.h>
 
 namespace mf::io {
 
@@ -291,6 +295,25 @@ void FieldSeries::renew_file(const std::string& keep_as) {
   }
   if (slice_.spread()) MPI_Barrier(slice_.comm);
   create_file();
+}
+
+std::string FieldSeries::parts_in(const std::string& parts, const std::string& folder) {
+  std::istringstream in(parts);
+  std::string found;
+  for (std::string line; std::getline(in, line);) {
+    const std::string name = std::filesystem::path(line).filename().string();
+    const std::size_t at = name.rfind(".part-");
+    const std::string k = at == std::string::npos ? "" : name.substr(at + 6);
+    const bool named = at != std::string::npos && at > 0 && ends_with(k, ".h5") &&
+                       std::all_of(k.begin(), k.end() - 3, [](char c) { return std::isdigit(c); });
+    const std::string path = (std::filesystem::path(folder) / name).string();
+    struct stat st {};
+    if (!named || ::lstat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
+      refuse_checkpoint("the checkpoint's field steps name " + one_line(line, 80) +
+                        ", not a file of " + folder);
+    found += path + "\n";
+  }
+  return found;
 }
 
 void FieldSeries::split(const std::string& part) {

@@ -9,6 +9,8 @@
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -21,6 +23,12 @@ namespace {
 constexpr const char* kStagingPrefix = ".meshfree-staging-";
 constexpr const char* kManifest = ".meshfree-manifest";
 
+/// True when `path` is a folder itself, not a link to one.
+bool real_folder(const fs::path& path) {
+  struct stat st {};
+  return ::lstat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode);
+}
+
 std::string host_name() {
   char name[256] = {};
   if (gethostname(name, sizeof name - 1) != 0) return "host";
@@ -29,16 +37,57 @@ std::string host_name() {
   return s;
 }
 
-/// The names a folder's manifest lists: plain file names only (none without a manifest).
-std::vector<std::string> read_manifest(const fs::path& folder) {
-  std::vector<std::string> names;
-  std::ifstream in(folder / kManifest);
+/// A file a run wrote, as its folder's manifest records it.
+struct Entry {
+  std::string name;
+  std::uintmax_t size = 0, inode = 0;
+};
+
+/// The whole of a small regular file (a manifest), read without following a link or blocking on
+/// a FIFO; empty when there is none.
+std::string read_own_file(const fs::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return {};
+  struct stat st {};
+  std::string text;
+  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size < (1 << 24)) {
+    text.resize(static_cast<std::size_t>(st.st_size));
+    const ssize_t n = ::read(fd, text.data(), text.size());
+    text.resize(n > 0 ? static_cast<std::size_t>(n) : 0);
+  }
+  ::close(fd);
+  return text;
+}
+
+/// The files a folder's manifest lists: plain file names with the size and inode each had when
+/// its run wrote it (none without a manifest; an entry without them names no file of ours).
+std::vector<Entry> read_manifest(const fs::path& folder) {
+  std::vector<Entry> entries;
+  std::istringstream in(read_own_file(folder / kManifest));
   std::string line;
-  while (std::getline(in, line))
-    if (!line.empty() && line[0] != '#' && line.find('/') == std::string::npos && line != "." &&
-        line != "..")
-      names.push_back(line);
-  return names;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    Entry e;
+    if (!std::getline(fields, e.name, '\t') || !(fields >> e.size >> e.inode)) continue;
+    if (e.name.find('/') == std::string::npos && e.name != "." && e.name != "..")
+      entries.push_back(e);
+  }
+  return entries;
+}
+
+/// Removes a file a manifest lists, only if it is still the regular file its run wrote (same
+/// size and inode): a link planted at the name, or a user's file put there since, stays.
+void remove_entry(const fs::path& folder, const Entry& e) {
+  const fs::path path = folder / e.name;
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode) ||
+      static_cast<std::uintmax_t>(st.st_size) != e.size ||
+      static_cast<std::uintmax_t>(st.st_ino) != e.inode)
+    return;
+  std::error_code ec;
+  if (!fs::remove(path, ec) && ec)
+    fail(path.string(), ": cannot remove the previous result: ", ec.message());
 }
 
 /// Removes path if it is a file or a link (the link, never its target); anything else stays.
@@ -63,7 +112,7 @@ bool written_by_us(const std::string& name) {
 bool remove_our_folder(const fs::path& folder) {
   std::error_code ec;
   if (fs::exists(fs::symlink_status(folder / kManifest))) {
-    for (const auto& name : read_manifest(folder)) remove_file(folder / name);
+    for (const auto& e : read_manifest(folder)) remove_entry(folder, e);
     remove_file(folder / kManifest);
   } else {
     for (const auto& entry : fs::directory_iterator(folder, ec))
@@ -172,13 +221,15 @@ void write_new_file(const std::string& path, const std::string& text, const std:
 }
 } // namespace
 
-OutputDirectory::OutputDirectory(std::string dir) : dir_(std::move(dir)) {
+OutputDirectory::OutputDirectory(std::string dir, std::string option)
+    : dir_(std::move(dir)), option_(std::move(option)) {
   std::error_code ec;
   const fs::file_status st = fs::status(dir_, ec);
   if (fs::exists(st)) {
     MF_REQUIRE(fs::is_directory(st), "--out ", dir_, ": not a directory");
     MF_REQUIRE(::access(dir_.c_str(), W_OK | X_OK) == 0, "--out ", dir_,
                ": not a directory this user can write into (", system_reason(errno), ")");
+    lock();
     return;
   }
   // It will be created in its nearest existing ancestor, which must be a writable directory.
@@ -190,11 +241,41 @@ OutputDirectory::OutputDirectory(std::string dir) : dir_(std::move(dir)) {
              " (not a directory this user can write into)");
 }
 
+void OutputDirectory::lock() {
+  if (lock_ >= 0) return;
+  // The folder itself is locked (flock on its descriptor): nothing is written to hold the lock,
+  // and it goes with the process however that ends.
+  lock_ = ::open(dir_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (lock_ < 0) return;
+  if (::flock(lock_, LOCK_EX | LOCK_NB) == 0) return;
+  const int error = errno;
+  ::close(lock_);
+  lock_ = -1;
+  // A file system without locks (some network ones) leaves the folder unguarded.
+  if (error == EWOULDBLOCK)
+    fail(option_, " ", dir_, ": in use by a run of meshfree that is still going; wait for it to "
+         "end or choose another folder");
+}
+
+OutputDirectory::~OutputDirectory() {
+  if (lock_ >= 0) ::close(lock_);
+}
+
+void OutputDirectory::discard() {
+  finished_ = true;
+  if (!opened()) return;
+  // The staging folder is this run's own (created fresh, private): all of it goes.
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(staging_, ec)) remove_file(entry.path());
+  fs::remove(staging_, ec);
+}
+
 void OutputDirectory::open() {
   if (opened()) return;
   std::error_code ec;
   fs::create_directories(dir_, ec);
   MF_REQUIRE(!ec, "--out ", dir_, ": cannot create the output directory: ", ec.message());
+  lock();
   remove_stale_staging(dir_);
   // This run's own folder inside DIR, created fresh (mkdir fails on anything already there) and
   // private to the user, so nothing can be planted in it; results move out of it only when the
@@ -207,7 +288,6 @@ void OutputDirectory::open() {
   staging_ = staging;
 }
 
-OutputDirectory::~OutputDirectory() = default;
 
 std::string OutputDirectory::shown(const std::string& file) const {
   return (fs::path(dir_) / name_of(file)).string();
@@ -232,9 +312,14 @@ std::unique_ptr<OutputStream> OutputDirectory::open_stream(const std::string& fi
 }
 
 void OutputDirectory::write_manifest(const std::string& folder) const {
-  std::string text = "# meshfree: the files its last run wrote here; the next run into this "
-                     "folder replaces or removes these and no others\n";
-  for (const auto& f : pending_) text += f + "\n";
+  std::string text = "# meshfree: the files its last run wrote here (name, size, inode); the "
+                     "next run into this folder replaces or removes these and no others\n";
+  for (const auto& f : pending_) {
+    // The file as it is in the staging folder: a rename keeps its inode and size.
+    struct stat st {};
+    if (::lstat((fs::path(staging_) / f).c_str(), &st) == 0 && S_ISREG(st.st_mode))
+      text += f + "\t" + std::to_string(st.st_size) + "\t" + std::to_string(st.st_ino) + "\n";
+  }
   write_new_file((fs::path(folder) / kManifest).string(), text,
                  (fs::path(folder) / kManifest).string());
 }
@@ -244,14 +329,14 @@ void OutputDirectory::commit() {
   open();
   const fs::path dir(dir_), staging(staging_);
   write_manifest(staging_);
-  const std::vector<std::string> previous = read_manifest(dir);
+  const std::vector<Entry> previous = read_manifest(dir);
   // The previous result stops being one first (a folder without summary.json holds no finished
   // run), then the files it had that this run does not write again go; nothing that no manifest
-  // lists is touched.
-  if (std::find(previous.begin(), previous.end(), "summary.json") != previous.end())
-    remove_file(dir / "summary.json");
-  for (const auto& f : previous)
-    if (std::find(pending_.begin(), pending_.end(), f) == pending_.end()) remove_file(dir / f);
+  // lists is touched, nor a listed name that is no longer the file that run wrote.
+  for (const auto& e : previous)
+    if (e.name == "summary.json") remove_entry(dir, e);
+  for (const auto& e : previous)
+    if (std::find(pending_.begin(), pending_.end(), e.name) == pending_.end()) remove_entry(dir, e);
   // Then this run's files, the manifest and summary.json last. A rename replaces a link at the
   // name, never its target.
   std::vector<std::string> order;
@@ -270,7 +355,8 @@ void OutputDirectory::commit() {
   fs::remove(staging, ec);
   // An earlier run's kept files describe a result this one supersedes.
   for (const char* kept : {"failed", "stopped"})
-    if (fs::exists(fs::symlink_status(dir / kept / kManifest))) remove_our_folder(dir / kept);
+    if (real_folder(dir / kept) && fs::exists(fs::symlink_status(dir / kept / kManifest)))
+      remove_our_folder(dir / kept);
   finished_ = true;
 }
 
@@ -297,8 +383,8 @@ std::string OutputDirectory::keep_unfinished(const std::string& status) {
   std::error_code ec;
   if (fs::exists(fs::symlink_status(target, ec))) {
     // An earlier run's kept files go; anything else at that name stays, and so do these.
-    const bool ours = fs::is_directory(fs::symlink_status(target)) &&
-                      fs::exists(fs::symlink_status(target / kManifest));
+    const bool ours =
+        real_folder(target) && fs::exists(fs::symlink_status(target / kManifest));
     if (!ours || !remove_our_folder(target)) return staging_;
   }
   fs::rename(staging_, target, ec);

@@ -1,4 +1,5 @@
 #include "meshfree/io/results.hpp"
+#include "meshfree/io/state_file.hpp"
 #include "meshfree/core/error.hpp"
 #include <algorithm>
 #include <cmath>
@@ -37,8 +38,9 @@ std::vector<double> History::flat() const {
 
 void History::restore(const std::vector<double>& flat) {
   const std::size_t n = columns_.size();
-  MF_REQUIRE(n > 0 && flat.size() % n == 0, "history: ", flat.size(),
-             " values kept do not make rows of ", n, " columns");
+  if (n == 0 || flat.size() % n != 0)
+    refuse_checkpoint("the checkpoint's history holds " + std::to_string(flat.size()) +
+                      " values, not rows of " + std::to_string(n) + " columns");
   MF_REQUIRE(rows_.empty(), "history: rows restored after some were appended");
   std::string text;
   for (std::size_t k = 0; k < flat.size(); k += n) {

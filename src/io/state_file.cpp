@@ -2,7 +2,10 @@
 #include "meshfree/core/error.hpp"
 #include "meshfree/io/output.hpp"
 #include <cerrno>
+#include <cstring>
+#include <fcntl.h>
 #include <hdf5.h>
+#include <sys/stat.h>
 
 namespace mf::io {
 
@@ -32,7 +35,49 @@ hid_t serial_access() {
   return access;
 }
 
+constexpr const char* kChecksum = "fnv1a64";
+
+/// The checksum of a dataset, stored as an attribute of it.
+bool put_checksum(hid_t set, std::uint64_t sum) {
+  const hid_t space = H5Screate(H5S_SCALAR);
+  const hid_t attr =
+      H5Acreate2(set, kChecksum, H5T_NATIVE_UINT64, space, H5P_DEFAULT, H5P_DEFAULT);
+  const bool ok = attr >= 0 && H5Awrite(attr, H5T_NATIVE_UINT64, &sum) >= 0;
+  if (attr >= 0) H5Aclose(attr);
+  H5Sclose(space);
+  return ok;
+}
+
+/// The checksum a dataset was written with; false when it has none or it cannot be read.
+bool get_checksum(hid_t set, std::uint64_t& sum) {
+  if (H5Aexists(set, kChecksum) <= 0) return false;
+  const hid_t attr = H5Aopen(set, kChecksum, H5P_DEFAULT);
+  const bool ok = attr >= 0 && H5Aread(attr, H5T_NATIVE_UINT64, &sum) >= 0;
+  if (attr >= 0) H5Aclose(attr);
+  return ok;
+}
+
 } // namespace
+
+std::uint64_t checksum(const void* data, std::size_t bytes) {
+  // FNV-1a taken a 64-bit word at a time (then the tail byte by byte): one multiply per 8 bytes
+  // keeps it well above disk speed, and any change of a bit changes the sum.
+  constexpr std::uint64_t prime = 0x100000001b3ULL;
+  std::uint64_t h = 0xcbf29ce484222325ULL ^ bytes;
+  const auto* p = static_cast<const unsigned char*>(data);
+  std::size_t i = 0;
+  for (; i + 8 <= bytes; i += 8) {
+    std::uint64_t word;
+    std::memcpy(&word, p + i, 8);
+    h = (h ^ word) * prime;
+  }
+  for (; i < bytes; ++i) h = (h ^ p[i]) * prime;
+  return h;
+}
+
+void refuse_checkpoint(const std::string& what) {
+  throw CheckpointRefused(what);
+}
 
 StateWriter::StateWriter(const std::string& path) : path_(path) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
@@ -55,8 +100,10 @@ template <class T> void StateWriter::put(const std::string& name, const std::vec
   errno = 0;
   const hid_t set =
       H5Dcreate2(file_, name.c_str(), native<T>(), space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  bool ok = set >= 0 && (values.empty() || H5Dwrite(set, native<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT,
-                                                    values.data()) >= 0);
+  bool ok = set >= 0 &&
+            (values.empty() ||
+             H5Dwrite(set, native<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) >= 0) &&
+            put_checksum(set, checksum(values.data(), values.size() * sizeof(T)));
   const int error = errno;
   if (set >= 0) ok = H5Dclose(set) >= 0 && ok;
   H5Sclose(space);
@@ -79,10 +126,15 @@ void StateWriter::close() {
 
 StateReader::StateReader(const std::string& path) : path_(path) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  // A checkpoint's files are regular files of the run's own folder: a link or anything else at
+  // the name is refused, never followed (and a FIFO would block the open).
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
+    refuse_checkpoint(path + ": not a regular file (a link, or missing)");
   const hid_t access = serial_access();
   file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, access);
   H5Pclose(access);
-  MF_REQUIRE(file_ >= 0, path, ": not a readable checkpoint file");
+  if (file_ < 0) refuse_checkpoint(path + ": not a readable checkpoint file (truncated or damaged)");
 }
 
 StateReader::~StateReader() {
@@ -94,8 +146,9 @@ bool StateReader::has(const std::string& name) const {
 }
 
 template <class T> void StateReader::get(const std::string& name, std::vector<T>& values) const {
-  MF_REQUIRE(has(name), path_, ": the checkpoint has no '", name,
-             "' (written by another version of meshfree?)");
+  if (!has(name))
+    refuse_checkpoint(path_ + ": the checkpoint has no '" + name +
+                      "' (written by another version of meshfree?)");
   const hid_t set = H5Dopen2(file_, name.c_str(), H5P_DEFAULT);
   const hid_t space = set >= 0 ? H5Dget_space(set) : -1;
   const hid_t type = set >= 0 ? H5Dget_type(set) : -1;
@@ -106,19 +159,75 @@ template <class T> void StateReader::get(const std::string& name, std::vector<T>
     values.resize(static_cast<std::size_t>(size));
     ok = size == 0 || H5Dread(set, native<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) >= 0;
   }
+  std::uint64_t sum = 0;
+  const bool summed = ok && get_checksum(set, sum);
   if (type >= 0) H5Tclose(type);
   if (space >= 0) H5Sclose(space);
   if (set >= 0) H5Dclose(set);
-  MF_REQUIRE(ok, path_, ": cannot read '", name, "'",
-             same_type ? std::string() : std::string(" (another type than expected)"));
+  if (!ok)
+    refuse_checkpoint(path_ + ": cannot read '" + name + "'" +
+                      (same_type ? " (a damaged file?)" : " (another type than expected)"));
+  if (!summed || sum != checksum(values.data(), values.size() * sizeof(T)))
+    refuse_checkpoint(path_ + ": '" + name + "' does not match its checksum (a damaged file)");
+}
+
+namespace {
+struct VerifyVisit {
+  hid_t file;
+  std::string bad; // the first dataset that fails its checksum
+};
+
+herr_t verify_one(hid_t, const char* name, const H5L_info_t*, void* data) {
+  auto& v = *static_cast<VerifyVisit*>(data);
+  const hid_t set = H5Dopen2(v.file, name, H5P_DEFAULT);
+  const hid_t space = set >= 0 ? H5Dget_space(set) : -1;
+  const hid_t stored = set >= 0 ? H5Dget_type(set) : -1;
+  const hid_t type = stored >= 0 ? H5Tget_native_type(stored, H5T_DIR_ASCEND) : -1;
+  const hssize_t n = space >= 0 ? H5Sget_simple_extent_npoints(space) : -1;
+  const std::size_t width = type >= 0 ? H5Tget_size(type) : 0;
+  std::uint64_t sum = 0;
+  bool ok = n >= 0 && width > 0 && get_checksum(set, sum);
+  if (ok) {
+    std::vector<unsigned char> bytes(static_cast<std::size_t>(n) * width);
+    ok = n == 0 || H5Dread(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()) >= 0;
+    ok = ok && sum == checksum(bytes.data(), bytes.size());
+  }
+  for (const hid_t t : {type, stored})
+    if (t >= 0) H5Tclose(t);
+  if (space >= 0) H5Sclose(space);
+  if (set >= 0) H5Dclose(set);
+  if (ok) return 0;
+  v.bad = name;
+  return 1; // stops the iteration
+}
+} // namespace
+
+void StateReader::verify() const {
+  VerifyVisit v{file_, {}};
+  hsize_t at = 0;
+  const herr_t r = H5Literate(file_, H5_INDEX_NAME, H5_ITER_NATIVE, &at, verify_one, &v);
+  if (!v.bad.empty())
+    refuse_checkpoint(path_ + ": '" + v.bad + "' does not match its checksum (a damaged file)");
+  if (r < 0) refuse_checkpoint(path_ + ": cannot list its arrays (a damaged file)");
 }
 
 void Unpacker::short_of(const std::string& name) {
-  fail("checkpoint: the packed records end before '", name, "' (a damaged file?)");
+  refuse_checkpoint("checkpoint: the packed records end before '" + name + "' (a damaged file?)");
+}
+
+std::string Loader::folder() const {
+  const std::size_t slash = in.path().find_last_of('/');
+  return slash == std::string::npos ? "." : in.path().substr(0, slash);
 }
 
 void StateReader::wrong_size(const std::string& name, std::size_t size) const {
-  fail(path_, ": '", name, "' holds ", size, " values where one was expected");
+  refuse_checkpoint(path_ + ": '" + name + "' holds " + std::to_string(size) +
+                    " values where one was expected");
+}
+
+void StateReader::other_length(const std::string& name, std::size_t size, std::size_t built) const {
+  refuse_checkpoint("checkpoint holds " + std::to_string(size) + " values of '" + name +
+                    "', this run has " + std::to_string(built) + " (" + path_ + ")");
 }
 
 template void StateWriter::put(const std::string&, const std::vector<double>&);

@@ -6,6 +6,7 @@
 #include "meshfree/core/error.hpp"
 #include "meshfree/core/types.hpp"
 #include "meshfree/distribution/ranks.hpp"
+#include "meshfree/io/state_file.hpp"
 #include <functional>
 #include <string>
 #include <utility>
@@ -52,12 +53,15 @@ public:
   std::vector<std::pair<std::string, double>> maxima() const;
 
   /// The particles followed and the maxima so far (a checkpoint keeps them).
+  /// A checkpoint of other gauges is refused.
   template <class Visit> void for_each_state(Visit&& visit) {
+    const std::size_t ids = id_.size();
     std::vector<double> most;
     for (const auto& m : maxima_) most.push_back(m.second);
     visit("particle", particle_), visit("id", id_), visit("maxima", most);
-    MF_REQUIRE(most.size() == maxima_.size(), "gauges: ", most.size(), " maxima kept for ",
-               maxima_.size());
+    if (particle_.size() != names_.size() || id_.size() != ids || most.size() != maxima_.size())
+      io::refuse_checkpoint("the checkpoint holds " + std::to_string(particle_.size()) +
+                            " gauges, this run has " + std::to_string(names_.size()));
     for (std::size_t k = 0; k < most.size(); ++k) maxima_[k].second = most[k];
   }
 

@@ -53,6 +53,16 @@ struct LoopState {
     visit("next_fields", next_fields), visit("history_interval", history_interval);
     visit("fields_interval", fields_interval), visit("steps", steps);
   }
+  /// What a checkpoint held: finite instants at most a million intervals behind t, or the loops
+  /// that catch them up would not end.
+  bool plausible(double t) const {
+    const auto near = [t](double next, double interval) {
+      return std::isfinite(next) && next >= 0.0 &&
+             (interval <= 0.0 || (std::isfinite(interval) && t - next < 1e6 * interval));
+    };
+    return std::isfinite(recorded) && recorded <= t && steps >= 0 &&
+           near(next_history, history_interval) && near(next_fields, fields_interval);
+  }
   /// After a restart whose schedule changed an interval: the next instant is the first multiple
   /// of the new interval after t.
   void reschedule(const Schedule& s, double t) {
@@ -128,9 +138,18 @@ LoopReport run_time_loop(Model& model, const Schedule& s, io::Checkpoints* check
   };
   LoopState state;
   if (resume) {
-    const io::Loader load{*resume, ""};
-    state.for_each_state(load / "loop");
-    model.restore(load);
+    try {
+      const io::Loader load{*resume, ""};
+      state.for_each_state(load / "loop");
+      model.restore(load);
+      io::check_resumed(*resume, model.time(), model.step());
+      if (!state.plausible(model.time()))
+        io::refuse_checkpoint("the checkpoint's schedule of outputs is not that of a run at t = " +
+                              detail::concat(model.time()) + " (a damaged checkpoint)");
+    } catch (const io::CheckpointRefused& e) {
+      io::refused_on_this_rank(e);
+      throw;
+    }
     state.reschedule(s, model.time());
     log::info("restarted at t = ", model.time(), " (step ", model.step(), ")");
   } else {

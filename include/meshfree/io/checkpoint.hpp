@@ -12,6 +12,13 @@
 // written up to a checkpoint are closed into <stem>.part-<k>.h5 beside them (io/output.hpp,
 // FieldSeries::split), so that a killed run's fields survive whole; the run that completes
 // merges them into DIR/fields.h5 and removes the folder.
+//
+// A checkpoint knows its run: every rank's file carries the layout (meta.format), the problem's
+// identity (a hash of the settings a restart may not change), the ranks, the time and the step;
+// the state carries the counts of particles, nodes or points, and every array its checksum
+// (io/state_file.hpp). A restart checks all of them before it writes anything, and refuses what
+// differs (CheckpointRefused, exit 2). Nothing under DIR/checkpoint is read or written through a
+// link.
 #include "meshfree/distribution/ranks.hpp"
 #include "meshfree/io/output.hpp"
 #include "meshfree/io/region_spec.hpp"
@@ -38,12 +45,26 @@ struct Restart {
   long step = 0;
   /// This rank's state file.
   std::unique_ptr<StateReader> open(int rank) const;
+  /// Reads every rank's file through and checks each array against its checksum.
+  void verify() const;
 };
 
+/// The instant a state read back from `file` holds must be the one its header gave.
+void check_resumed(const StateReader& file, double time, long step);
+
+/// A refusal found while this rank read its state back: over several MPI ranks the others may
+/// have found none and wait for this one in a collective call, so every rank stops here (exit
+/// 2, the line said by this rank). On one rank it returns, and the refusal goes on up.
+void refused_on_this_rank(const CheckpointRefused& refusal);
+
 /// The last checkpoint in DIR/checkpoint, checked against the problem as given now (`settings`,
-/// on `ranks` MPI ranks): a key that changed other than those a restart may change, a different
-/// number of ranks, or no checkpoint at all is an input error naming it.
-Restart find_restart(const std::string& dir, const ProblemSettings& settings, int ranks);
+/// on `ranks` MPI ranks, ending at `end_time`): another layout, a different number of ranks, a
+/// key that changed other than those a restart may change (the problem's identity), a time that
+/// is not finite or not inside the run, or no checkpoint at all is an input error naming it
+/// (CheckpointRefused, or Error for a missing one). DIR/checkpoint and its files are read only
+/// as what they are, never through a link.
+Restart find_restart(const std::string& dir, const ProblemSettings& settings, int ranks,
+                     double end_time);
 
 /// What a run's checkpoints cost (summary.json's "checkpoints").
 struct CheckpointCounts {

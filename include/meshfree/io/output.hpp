@@ -82,12 +82,16 @@ inline bool ends_with(const std::string& name, const std::string& tail) {
 /// or replaces those files and no others. A run that
 /// failed or stopped keeps its files under DIR/failed or DIR/stopped instead (keep_unfinished).
 /// Staging folders of earlier runs that were killed are removed on start, with a line saying so.
+/// DIR is locked (flock on the folder) for the object's whole life: a second run into DIR while
+/// one goes is refused. No link inside DIR is followed: manifests are read only as regular
+/// files, and a listed file is removed only while it is the regular file (name, size, inode) its
+/// run wrote.
 class OutputDirectory {
 public:
-  /// DIR must be, or be creatable as, a directory this user can write into. Nothing is created
-  /// until the first file is written (or open()), so a run that stops in its set-up leaves
-  /// nothing behind.
-  explicit OutputDirectory(std::string dir);
+  /// DIR must be, or be creatable as, a directory this user can write into, and not locked by a
+  /// live run (refusals name `option`, --out or --restart). Nothing is created until the first
+  /// file is written (or open()), so a run that stops in its set-up leaves nothing behind.
+  explicit OutputDirectory(std::string dir, std::string option = "--out");
   ~OutputDirectory();
   OutputDirectory(const OutputDirectory&) = delete;
   OutputDirectory& operator=(const OutputDirectory&) = delete;
@@ -121,8 +125,12 @@ public:
   /// files there, and nothing else), or stay in the staging folder when that name is taken.
   /// Returns where they are.
   std::string keep_unfinished(const std::string& status);
+  /// The run was refused after it began writing (a checkpoint found not to be its own): its
+  /// staging folder goes, and DIR is left as it was.
+  void discard();
 
 private:
+  void lock();
   friend class FieldSeries;
   std::string temp_path(const std::string& file);
   void write_manifest(const std::string& folder) const;
@@ -131,6 +139,8 @@ private:
   std::string prefix_;
   std::vector<std::string> pending_; // final file names
   bool finished_ = false;            // committed or kept
+  std::string option_;               // the option that named DIR
+  int lock_ = -1;                    // DIR, locked while this run goes
 };
 
 /// Fields written step by step as a run goes (long runs do not keep every step in memory):
@@ -159,12 +169,18 @@ public:
   /// What split() and the steps left: the parts' paths, the step count and the .xmf entries.
   /// Taken back on a restart, they replace whatever steps the series had written since it was
   /// opened (a staged run's replayed preload, which the parts hold already).
+  /// The parts are found again by name in the folder of the checkpoint read back (the folder may
+  /// have moved), and must be files of it.
   template <class Visit> void for_each_state(Visit&& visit) {
     visit("parts", parts_), visit("steps", steps_), visit("xdmf", xml_);
-    if constexpr (std::decay_t<Visit>::loads) renew_file({});
+    if constexpr (std::decay_t<Visit>::loads) {
+      parts_ = parts_in(parts_, visit.folder());
+      renew_file({});
+    }
   }
 
 private:
+  static std::string parts_in(const std::string& parts, const std::string& folder);
   void open(const std::vector<double>& xyz, const GridCells& cells);
   void create_file();
   void close_file();

@@ -6,14 +6,30 @@
 // visiting vectors, scalars and fixed-size Eigen vectors by name, as ParticleSet::for_each_array
 // does for migration; the writer and the reader below are such visitors (Saver, Loader), so a
 // state is listed once.
+//
+// Every dataset carries a 64-bit checksum of its values (attribute "fnv1a64"), verified when it is
+// read: a flipped bit that leaves the file readable is refused like a truncated file, and so is an
+// array whose length differs from the one the run built (CheckpointRefused, exit 2).
 #include "meshfree/core/error.hpp"
 #include "meshfree/core/types.hpp"
 #include <algorithm>
+#include <cstdint>
 #include <string>
 #include <type_traits>
 #include <vector>
 
 namespace mf::io {
+
+/// A checkpoint that is not this run's, or is damaged: refused as input (exit 2, nothing written)
+/// with one line naming what differs.
+class CheckpointRefused : public Error {
+public:
+  explicit CheckpointRefused(const std::string& what) : Error(what) {}
+};
+[[noreturn]] void refuse_checkpoint(const std::string& what);
+
+/// FNV-1a over 64-bit words (the tail byte by byte), seeded with the length.
+std::uint64_t checksum(const void* data, std::size_t bytes);
 
 /// A new HDF5 file of named arrays. Created exclusively; every call is checked and a failure
 /// names the file and the reason ("no space left on device writing …").
@@ -63,7 +79,11 @@ public:
     return {v.begin(), v.end()};
   }
   const std::string& path() const { return path_; }
+  /// Reads every dataset of the file and checks it against its checksum.
+  void verify() const;
   [[noreturn]] void wrong_size(const std::string& name, std::size_t size) const;
+  [[noreturn]] void other_length(const std::string& name, std::size_t size,
+                                 std::size_t built) const;
 
 private:
   std::string path_;
@@ -93,15 +113,22 @@ struct Saver {
     out.put(prefix + name, std::vector<double>(m.data(), m.data() + R * C));
   }
   Saver operator/(const std::string& part) const { return {out, prefix + part + "."}; }
+  /// See Loader::resizing.
+  Saver resizing() const { return *this; }
 };
 
-/// A visitor that reads each visited value back from prefix + name.
+/// A visitor that reads each visited value back from prefix + name. An array the run built
+/// before the restart (not empty) must come back with the same length, unless `resizes` (the
+/// arrays of particles that move between MPI ranks).
 struct Loader {
   static constexpr bool loads = true;
   const StateReader& in;
   std::string prefix;
+  bool resizes = false;
   template <class T> void operator()(const std::string& name, std::vector<T>& v) const {
+    const std::size_t built = v.size();
     in.get(prefix + name, v);
+    if (built > 0 && v.size() != built && !resizes) in.other_length(prefix + name, v.size(), built);
   }
   template <class T> void operator()(const std::string& name, T& v) const {
     in.get(prefix + name, v);
@@ -119,7 +146,12 @@ struct Loader {
     if (v.size() != static_cast<std::size_t>(R * C)) in.wrong_size(prefix + name, v.size());
     std::copy(v.begin(), v.end(), m.data());
   }
-  Loader operator/(const std::string& part) const { return {in, prefix + part + "."}; }
+  Loader operator/(const std::string& part) const { return {in, prefix + part + ".", resizes}; }
+  /// For arrays whose length changes as a run goes (neighbour lists, the bonds broken in the
+  /// last step): read back at the length kept.
+  Loader resizing() const { return {in, prefix, true}; }
+  /// The checkpoint folder the state is read from.
+  std::string folder() const;
 };
 
 /// A visitor that packs the visited values, names aside, into one byte array: many small
@@ -184,6 +216,16 @@ struct Unpacker {
   [[noreturn]] static void short_of(const std::string& name);
 };
 
+/// Visits the number of `what` (particles, nodes) the run has over every rank: a checkpoint that
+/// holds another number is refused, naming both.
+template <class Visit> void visit_count(Visit&& visit, const std::string& what, long count) {
+  long kept = count;
+  visit("count." + what, kept);
+  if (kept != count)
+    refuse_checkpoint("checkpoint holds " + std::to_string(kept) + " " + what + ", this run has " +
+                      std::to_string(count));
+}
+
 /// Visits a list of records: its length as `name`.count, then record k under `name`.k through
 /// each(visitor, record). Loading fills an empty list with the records kept; a list the set-up
 /// made (impactors) must have kept as many.
@@ -192,7 +234,9 @@ void visit_list(Visit&& visit, const std::string& name, std::vector<T>& list, Ea
   const long had = static_cast<long>(list.size());
   long count = had;
   visit(name + ".count", count);
-  MF_REQUIRE(had == 0 || count == had, "checkpoint: ", count, " ", name, " kept for ", had);
+  if (count < 0 || (had != 0 && count != had))
+    refuse_checkpoint("checkpoint holds " + std::to_string(count) + " " + name + ", this run has " +
+                      std::to_string(had));
   list.resize(static_cast<std::size_t>(count));
   for (std::size_t k = 0; k < list.size(); ++k)
     each(visit / (name + "." + std::to_string(k)), list[k]);

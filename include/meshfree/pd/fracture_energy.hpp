@@ -26,6 +26,13 @@ public:
   template <class Visit> void for_each_state(Visit&& visit) {
     visit("particle", particle_), visit("force", force_);
   }
+  /// Three forces per particle, each one of the `owned` particles.
+  bool consistent(int owned) const {
+    if (force_.size() != 3 * particle_.size()) return false;
+    for (const int i : particle_)
+      if (i < 0 || i >= owned) return false;
+    return true;
+  }
 
 private:
   std::vector<int> particle_; // particles with a bond broken in the last evaluation

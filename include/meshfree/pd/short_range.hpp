@@ -28,9 +28,14 @@ public:
   long rebuilds() const { return rebuilds_; }
 
   /// The pair list and where the particles were when it was built (a checkpoint keeps them).
+  /// The partners vary in number as the run goes; the rows are the particles.
   template <class Visit> void for_each_state(Visit&& visit) {
-    visit("offset", pairs_.offset), visit("partner", pairs_.partner);
+    visit("offset", pairs_.offset), visit.resizing()("partner", pairs_.partner);
     visit("y_built", y_built_), visit("rebuilds", rebuilds_);
+  }
+  /// The list names only the particles it was built for.
+  bool consistent() const {
+    return pairs_.consistent() && y_built_.size() == 3 * static_cast<std::size_t>(pairs_.rows());
   }
 
 private:
