@@ -82,17 +82,22 @@ std::vector<Held> table(Law law) {
   g << (law == Law::Elastic ? 0.5 : 2.5) * kYield;
   return {
       {"grip", "      - {name: grip, edges: left, displacement: {x: 0, y: 0}}\n" + rollers_y +
-                   "      - {name: pull, edges: right, traction: [" + g.str() + ", 0]}\n"},
+                   "      - {name: pull, edges: right, traction: [" + g.str() + ", 0]}\n",
+       ""},
       {"clamps on two edges",
        "      - {name: grip, edges: left, displacement: {x: 0, y: 0}}\n"
        "      - {name: pull, edges: right, displacement: {x: " +
-           d.str() + ", y: 0}}\n" + rollers_y},
+           d.str() + ", y: 0}}\n" + rollers_y,
+       ""},
       {"roller with a value",
-       rollers_x0_y0 + "      - {name: pull, edges: right, displacement: {x: " + d.str() + "}}\n"},
-      {"traction", rollers_x0_y0 + "      - {name: pull, edges: right, traction: [" + t.str() +
-                       ", 0]}\n"},
-      {"pressure", rollers_x0_y0 + "      - {name: pull, edges: right, pressure: " +
-                       std::to_string(-std::stod(p.str())) + "}\n"},
+       rollers_x0_y0 + "      - {name: pull, edges: right, displacement: {x: " + d.str() + "}}\n",
+       ""},
+      {"traction",
+       rollers_x0_y0 + "      - {name: pull, edges: right, traction: [" + t.str() + ", 0]}\n", ""},
+      {"pressure",
+       rollers_x0_y0 + "      - {name: pull, edges: right, pressure: " +
+           std::to_string(-std::stod(p.str())) + "}\n",
+       ""},
       // A column under its weight between rollers: sigma_yy = -rho g (H - y), sigma_xx =
       // sigma_zz = nu / (1 - nu) sigma_yy (13.5 MPa at the base with g = 1e5).
       {"gravity",
