@@ -67,11 +67,13 @@ int boundary_intervals(const Curve& c, double h, const Vec2* step) {
 template <class Keep>
 void add_lattice(const Vec2& anchor, const Vec2& step, const BoundingBox& box, double h,
                  Keep&& keep, std::vector<Vec2>& out, std::vector<double>& out_h) {
-  const double eps = 1e-9 * h;
-  const long i0 = static_cast<long>(std::ceil((box.lo.x() - anchor.x() - eps) / step.x()));
-  const long i1 = static_cast<long>(std::floor((box.hi.x() - anchor.x() + eps) / step.x()));
-  const long j0 = static_cast<long>(std::ceil((box.lo.y() - anchor.y() - eps) / step.y()));
-  const long j1 = static_cast<long>(std::floor((box.hi.y() - anchor.y() + eps) / step.y()));
+  // Rows within a billionth of a step of the box's edges belong to it (the step, not h: a
+  // spacing larger than the body is fitted to one interval).
+  const double ex = 1e-9 * step.x(), ey = 1e-9 * step.y();
+  const long i0 = static_cast<long>(std::ceil((box.lo.x() - anchor.x() - ex) / step.x()));
+  const long i1 = static_cast<long>(std::floor((box.hi.x() - anchor.x() + ex) / step.x()));
+  const long j0 = static_cast<long>(std::ceil((box.lo.y() - anchor.y() - ey) / step.y()));
+  const long j1 = static_cast<long>(std::floor((box.hi.y() - anchor.y() + ey) / step.y()));
   for (long j = j0; j <= j1; ++j)
     for (long i = i0; i <= i1; ++i) {
       const Vec2 p =
