@@ -2,10 +2,13 @@
 // problem): body, discretisation, boundary conditions, load schedule and output. Every key is
 // checked; errors name the key path.
 #include "meshfree/core/memory.hpp"
+#include "meshfree/core/input_file.hpp"
+#include "meshfree/core/run_bounds.hpp"
 #include "meshfree/io/analysis_read.hpp"
 #include "meshfree/io/spec_read.hpp"
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 
 namespace mf::io {
@@ -49,8 +52,13 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
     if (f->has("mesh")) {
       const std::string mesh = f->text("mesh");
       s.fem.mesh = !mesh.empty() && mesh.front() == '/' ? mesh : base_dir + mesh;
+      if (std::filesystem::exists(s.fem.mesh)) try {
+          require_regular_file(s.fem.mesh, "mesh file");
+        } catch (const Error& e) {
+          f->error("mesh", e.what());
+        }
       std::ifstream probe(s.fem.mesh);
-      if (!probe.good()) f->error("mesh", "cannot open the mesh file '" + s.fem.mesh + "'");
+      if (!probe.good()) f->error("mesh", "cannot open the mesh file '" + one_line(s.fem.mesh) + "'");
     }
     f->allow("mesh");
     s.fem.order = f->integer("order", 0, 1, 10);
@@ -59,6 +67,12 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
   s.spacing = d.positive("spacing");
   // Node counts estimated in floating point, so that a tiny spacing cannot overflow a count.
   const Vec2 size = bounds.hi - bounds.lo;
+  // A spacing beyond the body leaves a lattice of its corners, whose supports (dilation times the
+  // spacing) dwarf it: the shape functions fail in the run (at 1e6 on a unit plate), so the
+  // input is refused here, where `check` sees it too.
+  if (s.spacing > size.maxCoeff())
+    d.error("spacing", detail::concat("expected at most the body's size (", size.x(), " x ",
+                                      size.y(), "), got ", s.spacing));
   double nodes_total = (size.x() / s.spacing + 1.0) * (size.y() / s.spacing + 1.0);
   require_memory(d.path_of("spacing"), "nodes over the body", nodes_total,
                  bytes_per_node(solver, nodes_total));
@@ -181,9 +195,13 @@ BoundaryCondition read_condition(KeyReader& bc, double stiffness_scale) {
     c.loads = c.pressure_load = true;
     c.pressure = bc.number("pressure");
   }
-  if (c.constrains == c.loads)
-    bc.error("name", "a boundary condition needs exactly one of 'displacement' or 'traction'");
+  bc.allow("displacement");
+  bc.allow("pressure");
+  // A misspelt key ('tracton') is named before the condition is found to lack its kind.
   bc.finish();
+  if (c.constrains == c.loads)
+    bc.error("name", "a boundary condition needs exactly one of 'displacement', 'traction' or "
+                     "'pressure'");
   return c;
 }
 
@@ -221,7 +239,7 @@ std::optional<verification::ExactSolution> read_exact(KeyReader& r) {
 /// initial stress; `load_factor` then moves the conditions only (the body force stays on unless
 /// `factors` names it).
 std::vector<LoadStep> read_steps(KeyReader& r, const std::vector<BoundaryCondition>& boundary,
-                                 bool geostatic) {
+                                 bool geostatic, double dofs) {
   std::vector<LoadStep> steps;
   const std::size_t n = boundary.size() + 1; // the body force is the last factor
   std::vector<double> current(n, 0.0);
@@ -237,6 +255,7 @@ std::vector<LoadStep> read_steps(KeyReader& r, const std::vector<BoundaryConditi
   if (list.empty() && !geostatic)
     r.error("steps", "an elastoplastic analysis needs a load schedule: a list of "
                      "{name, load_factor, increments}");
+  double total = 0.0; // increments of the whole schedule
   for (KeyReader& k : list) {
     LoadStep s;
     s.name = k.text("name");
@@ -244,6 +263,13 @@ std::vector<LoadStep> read_steps(KeyReader& r, const std::vector<BoundaryConditi
     for (const auto& other : steps)
       if (other.name == s.name) k.error("name", "another step is named '" + s.name + "'");
     s.increments = k.integer("increments", 1, 1, 1000000);
+    // Each increment is a Newton solve over every degree of freedom: the schedule so far is
+    // bounded by the time a run may take here, and the step that passes the bound is named.
+    total += s.increments;
+    require_run_time(k.path_of("increments"),
+                     detail::concat(total, " increments of about ", dofs,
+                                    " degrees of freedom: DOF-increments"),
+                     total * dofs, work_per_second::galerkin_dof_increments);
     std::vector<char> named(n, 0);
     s.target = current;
     if (auto f = k.optional_map("factors")) {
@@ -360,7 +386,7 @@ std::vector<geometry::Curve> select_boundary(const geometry::Domain& domain, con
       std::string names;
       for (const auto& c : all)
         if (names.find(c.name) == std::string::npos) names += (names.empty() ? "" : ", ") + c.name;
-      fail(key_path, ".edges: no boundary piece is named '", name, "' (the body's pieces: ", names,
+      fail(key_path, ".edges: no boundary piece is named '", one_line(name), "' (the body's pieces: ", names,
            ")");
     }
   }
@@ -526,7 +552,10 @@ void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
   if (!plastic && p.plasticity)
     material_error(mat, "plasticity", "used only by analysis elastoplastic_static");
   if (plastic) {
-    p.steps = read_steps(r, p.boundary, p.initial_stress.has_value());
+    const Vec2 size = p.domain.bounds().size();
+    const double h = p.discretisation.spacing;
+    const double dofs = 2.0 * (size.x() / h + 1.0) * (size.y() / h + 1.0);
+    p.steps = read_steps(r, p.boundary, p.initial_stress.has_value(), dofs);
     p.nonlinear = read_nonlinear(r);
   } else {
     for (const char* key : {"steps", "nonlinear"})
