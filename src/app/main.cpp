@@ -170,10 +170,11 @@ void describe(const mf::io::ProblemSpec& spec) {
     std::cout << "  step " << step.name << ": " << step.increments << " increments\n";
 }
 
-/// An elastoplastic schedule writes a field frame and a Gauss-point frame per increment, about
-/// 600 bytes per node together (plate_plastic_thesis: 18 MB of fields and 79 MB of Gauss points
-/// over 101 increments of 1,681 nodes): the schedule must fit on the disk of `folder`. The step
-/// whose increments pass the bound is named.
+/// An elastoplastic schedule's increments, each a Newton solve over every degree of freedom that
+/// writes a field frame and a Gauss-point frame, about 600 bytes per node together
+/// (plate_plastic_thesis: 18 MB of fields and 79 MB of Gauss points over 101 increments of 1,681
+/// nodes): bounded by the time a run may take here and by the disk of `folder`. The step whose
+/// increments pass a bound is named.
 void require_increment_output(const mf::io::ProblemSpec& spec, const std::string& folder) {
   if (spec.analysis != mf::io::Analysis::ElastoplasticStatic) return;
   const mf::Vec2 size = spec.domain.bounds().size();
@@ -183,9 +184,11 @@ void require_increment_output(const mf::io::ProblemSpec& spec, const std::string
   double frames = 1.0;
   for (std::size_t k = 0; k < spec.steps.size(); ++k) {
     frames += spec.steps[k].increments;
-    if (k >= listed)
-      mf::require_disk("steps[" + std::to_string(k - listed) + "].increments",
-                       "field frames of the schedule so far", frames, 600.0 * nodes, folder);
+    if (k < listed) continue;
+    const std::string key = "steps[" + std::to_string(k - listed) + "].increments";
+    mf::require_run_time(key, "DOF-increments of the schedule so far", frames * 2.0 * nodes,
+                         mf::work_per_second::galerkin_dof_increments);
+    mf::require_disk(key, "field frames of the schedule so far", frames, 600.0 * nodes, folder);
   }
 }
 

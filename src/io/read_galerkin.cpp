@@ -3,7 +3,6 @@
 // checked; errors name the key path.
 #include "meshfree/core/memory.hpp"
 #include "meshfree/core/input_file.hpp"
-#include "meshfree/core/run_bounds.hpp"
 #include "meshfree/io/analysis_read.hpp"
 #include "meshfree/io/spec_read.hpp"
 #include <algorithm>
@@ -239,7 +238,7 @@ std::optional<verification::ExactSolution> read_exact(KeyReader& r) {
 /// initial stress; `load_factor` then moves the conditions only (the body force stays on unless
 /// `factors` names it).
 std::vector<LoadStep> read_steps(KeyReader& r, const std::vector<BoundaryCondition>& boundary,
-                                 bool geostatic, double dofs) {
+                                 bool geostatic) {
   std::vector<LoadStep> steps;
   const std::size_t n = boundary.size() + 1; // the body force is the last factor
   std::vector<double> current(n, 0.0);
@@ -255,7 +254,6 @@ std::vector<LoadStep> read_steps(KeyReader& r, const std::vector<BoundaryConditi
   if (list.empty() && !geostatic)
     r.error("steps", "an elastoplastic analysis needs a load schedule: a list of "
                      "{name, load_factor, increments}");
-  double total = 0.0; // increments of the whole schedule
   for (KeyReader& k : list) {
     LoadStep s;
     s.name = k.text("name");
@@ -263,13 +261,6 @@ std::vector<LoadStep> read_steps(KeyReader& r, const std::vector<BoundaryConditi
     for (const auto& other : steps)
       if (other.name == s.name) k.error("name", "another step is named '" + s.name + "'");
     s.increments = k.integer("increments", 1, 1, 1000000);
-    // Each increment is a Newton solve over every degree of freedom: the schedule so far is
-    // bounded by the time a run may take here, and the step that passes the bound is named.
-    total += s.increments;
-    require_run_time(k.path_of("increments"),
-                     detail::concat(total, " increments of about ", dofs,
-                                    " degrees of freedom: DOF-increments"),
-                     total * dofs, work_per_second::galerkin_dof_increments);
     std::vector<char> named(n, 0);
     s.target = current;
     if (auto f = k.optional_map("factors")) {
@@ -386,7 +377,8 @@ std::vector<geometry::Curve> select_boundary(const geometry::Domain& domain, con
       std::string names;
       for (const auto& c : all)
         if (names.find(c.name) == std::string::npos) names += (names.empty() ? "" : ", ") + c.name;
-      fail(key_path, ".edges: no boundary piece is named '", one_line(name), "' (the body's pieces: ", names,
+      fail(key_path, ".edges: no boundary piece is named '", one_line(name),
+           "' (the body's pieces: ", names,
            ")");
     }
   }
@@ -552,10 +544,7 @@ void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
   if (!plastic && p.plasticity)
     material_error(mat, "plasticity", "used only by analysis elastoplastic_static");
   if (plastic) {
-    const Vec2 size = p.domain.bounds().size();
-    const double h = p.discretisation.spacing;
-    const double dofs = 2.0 * (size.x() / h + 1.0) * (size.y() / h + 1.0);
-    p.steps = read_steps(r, p.boundary, p.initial_stress.has_value(), dofs);
+    p.steps = read_steps(r, p.boundary, p.initial_stress.has_value());
     p.nonlinear = read_nonlinear(r);
   } else {
     for (const char* key : {"steps", "nonlinear"})
