@@ -134,7 +134,7 @@ expect_error "--set boundary.99999999999999999999.name: index 999999999999999999
 expect_error "geometry.rectangle.origin: lies too far from 0 for a body of this size" "$P" --set 'geometry.rectangle.origin=[1e30, 0]'
 expect_error "name: a name of at most 64 characters, got 200" "$P" --set "name=$(printf 'x%.0s' {1..200})"
 printf 'name: "a\0b"\n' > "$WORK/nul.yaml"; grep -v '^name:' "$P" >> "$WORK/nul.yaml"
-expect_error "name: expected a name of letters, digits, '_' or '-', got 'a?b'" "$WORK/nul.yaml"
+expect_error "name: expected a name of letters, digits, '_' or '-', got 'a\\x00b'" "$WORK/nul.yaml"
 expect_error "discretisation.refinement[0].box: lies outside the body" "$P" --set 'discretisation.refinement=[{box: [[5, 5], [6, 6]], spacing: 0.02}]'
 # A refinement box reaching far outside the body is clipped to it (node generation walked it whole).
 if timeout 20 "$MF" check "$P" --set 'discretisation.refinement=[{box: [[-1e9, -1e9], [1e9, 1e9]], spacing: 0.02}]' >/dev/null 2>&1; then

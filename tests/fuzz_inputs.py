@@ -7,7 +7,13 @@ The mutants are drawn from every problems/*.yaml with a fixed seed (so a failure
 its number): a number replaced by an extreme or wrong value, a line deleted, doubled or moved,
 a key renamed, stray characters inserted, the file cut short. A failing mutant is written to
 OUT/mutant_<n>.yaml with its output.
-Usage: fuzz_inputs.py MESHFREE SOURCE_DIR [--count N] [--seed S] [--out DIR]
+
+With --run, the mutants of the explicit problems (peridynamics, SPH) are run instead, with a
+short end time (--set time.end=END): each completes (exit 0), is refused as input (exit 2, one
+clean line, nothing written), or fails (exit 1, one line "meshfree: run failed..." on stderr
+besides the log's "[meshfree] ..." lines, and a failed/summary.json of status "failed"), within
+60 seconds.
+Usage: fuzz_inputs.py MESHFREE SOURCE_DIR [--count N] [--seed S] [--out DIR] [--run [--end T]]
 """
 import argparse
 import os
@@ -74,6 +80,39 @@ def check(meshfree, path, workdir):
     return None, p.stdout, p.stderr
 
 
+def clean_line(stderr, prefix):
+    """The one line of stderr that is not the log's, if it starts with `prefix` and is short."""
+    lines = [l for l in stderr.decode(errors="replace").strip().split("\n")
+             if l and not l.startswith("[meshfree]")]
+    return len(lines) == 1 and lines[0].startswith(prefix) and len(lines[0]) <= 2000
+
+
+def run_mutant(meshfree, path, workdir, end):
+    out = Path(tempfile.mkdtemp(dir=workdir)) / "out"
+    try:
+        p = subprocess.run([meshfree, "run", str(path), "--out", str(out), "--set",
+                            "time.end=%g" % end], capture_output=True, timeout=60,
+                           cwd=workdir, env=dict(os.environ, OMP_NUM_THREADS="1"))
+    except subprocess.TimeoutExpired:
+        return "timeout", b"", b""
+    if p.returncode == 0:
+        return None, p.stdout, p.stderr
+    if p.returncode == 2:
+        if not clean_line(p.stderr, "meshfree: "):
+            return "exit 2 without one clean line on stderr", p.stdout, p.stderr
+        if out.exists() and any(out.iterdir()):
+            return "exit 2 with files written", p.stdout, p.stderr
+        return None, p.stdout, p.stderr
+    if p.returncode != 1:
+        return "exit %d" % p.returncode, p.stdout, p.stderr
+    summary = out / "failed" / "summary.json"
+    if not clean_line(p.stderr, "meshfree: run failed"):
+        return "exit 1 without one line 'meshfree: run failed'", p.stdout, p.stderr
+    if not summary.exists() or '"status": "failed"' not in summary.read_text(errors="replace"):
+        return "exit 1 without failed/summary.json of status failed", p.stdout, p.stderr
+    return None, p.stdout, p.stderr
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("meshfree")
@@ -81,10 +120,14 @@ def main():
     ap.add_argument("--count", type=int, default=2000)
     ap.add_argument("--seed", type=int, default=20261124)
     ap.add_argument("--out", default=None)
+    ap.add_argument("--run", action="store_true")
+    ap.add_argument("--end", type=float, default=1e-5)
     a = ap.parse_args()
     a.meshfree = os.path.abspath(a.meshfree)
     source = Path(a.source).resolve()
     bases = sorted((source / "problems").glob("*.yaml"))
+    if a.run:
+        bases = [b for b in bases if b.name.startswith(("pd_", "sph_"))]
     rng = random.Random(a.seed)
     work = Path(tempfile.mkdtemp())
     out = Path(a.out) if a.out else work / "failures"
@@ -103,6 +146,8 @@ def main():
         n, base, path, text = job
         path.write_text(text, errors="replace")
         try:
+            if a.run:
+                return n, base, text, run_mutant(a.meshfree, path, work, a.end)
             return n, base, text, check(a.meshfree, path, work)
         finally:
             path.unlink()

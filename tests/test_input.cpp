@@ -96,6 +96,22 @@ TEST_CASE("command-line overrides reach nested maps and list items", "[input]") 
                     Catch::Contains("index 7 is out of range"));
 }
 
+TEST_CASE("override paths in either style, a.1.b or a[1].b; empty keys refused", "[input]") {
+  YAML::Node root = YAML::Load(kGood);
+  io::apply_override(root, "boundary[1].traction=[3, 0]");
+  CHECK(io::parse_problem(root).boundary[1].traction == Vec2(3, 0));
+  for (const char* bad : {".name=x", "a..b=1", "boundary[]=1", "boundary[1]x=1", "name.=x"})
+    CHECK_THROWS_WITH(io::apply_override(root, bad),
+                      Catch::Contains("an empty key") || Catch::Contains("expected"));
+}
+
+TEST_CASE("quoted text is one line: control characters escaped, cut at the limit", "[input]") {
+  CHECK(io::one_line(std::string("a\nb\tc\0d", 7)) == "a\\nb\\tc\\x00d");
+  const std::string cut = io::one_line(std::string(1000, 'x'));
+  CHECK(cut.size() == 80);
+  CHECK(cut.substr(77) == "...");
+}
+
 TEST_CASE("a polygon given clockwise runs as given counter-clockwise, its edges named in order",
           "[input]") {
   // The same 2 x 1 body listed both ways; edge_names[i] names the edge from vertex i to i + 1.

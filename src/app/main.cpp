@@ -9,11 +9,14 @@
 #include "meshfree/app/sph_run.hpp"
 #include "meshfree/core/log.hpp"
 #include "meshfree/core/memory.hpp"
+#include "meshfree/core/run_bounds.hpp"
 #include "meshfree/explicit/pd_setup.hpp"
+#include "meshfree/explicit/run_counts.hpp"
 #include "meshfree/explicit/sph_setup.hpp"
 #include "meshfree/geometry/node_generation.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/io/checkpoint.hpp"
+#include "meshfree/io/key_reader.hpp"
 #include "meshfree/io/problem_spec.hpp"
 #include "meshfree/io/unit_sanity.hpp"
 #include "meshfree/quadrature/integration_points.hpp"
@@ -21,6 +24,7 @@
 #include "meshfree/sph/step.hpp"
 #include "meshfree/stages/staged_run.hpp"
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -44,6 +48,12 @@ constexpr const char* kUsage =
     "       --restart DIR goes on from the last checkpoint in DIR/checkpoint\n"
     "check  validates the problem file and prints the discretisation it would use\n"
     "Options after '--' go to PETSc, e.g. -- -ksp_type cg -pc_type gamg -ksp_view\n";
+
+/// An error as the user reads it: always one line (control characters shown escaped), and never
+/// a whole file's worth however long a value it quotes.
+std::string said(const std::exception& e) {
+  return mf::io::one_line(e.what(), 2000);
+}
 
 struct Command {
   std::string verb, problem, out_dir, restart_dir;
@@ -97,6 +107,8 @@ void describe(const mf::io::ProblemSpec& spec) {
     const mf::sph::Hydro h = mf::explicit_dynamics::build_sph(*spec.sph);
     int limiting = -1;
     const double dt = mf::sph::stable_step(h, &limiting);
+    mf::explicit_dynamics::require_finite_run(
+        mf::explicit_dynamics::planned_run(*spec.sph, h.particles.size(), dt), "out/" + spec.name);
     std::cout << "  sph: " << h.particles.size() << " particles in " << spec.sph->dimension
               << "D, first CFL step " << dt << " (particle " << limiting << "), about "
               << static_cast<long>(std::ceil(spec.sph->end_time / dt)) << " steps or more\n"
@@ -110,6 +122,8 @@ void describe(const mf::io::ProblemSpec& spec) {
   if (spec.analysis == mf::io::Analysis::Peridynamics) {
     mf::PhaseTimer timer;
     const mf::explicit_dynamics::PdSetup setup = mf::explicit_dynamics::build_pd_setup(spec, timer);
+    mf::explicit_dynamics::require_finite_run(mf::explicit_dynamics::planned_run(*spec.pd, setup),
+                                              "out/" + spec.name);
     std::cout << "  peridynamics: " << setup.model.particles.size() << " particles, "
               << setup.model.bonds.pairs() << " bonds, horizon " << setup.model.horizon
               << "\n  time step " << setup.dt << " (" << setup.dt_limit << "), "
@@ -157,6 +171,28 @@ void describe(const mf::io::ProblemSpec& spec) {
     std::cout << "  step " << step.name << ": " << step.increments << " increments\n";
 }
 
+/// An elastoplastic schedule's increments, each a Newton solve over every degree of freedom that
+/// writes a field frame and a Gauss-point frame, about 600 bytes per node together
+/// (plate_plastic_thesis: 18 MB of fields and 79 MB of Gauss points over 101 increments of 1,681
+/// nodes): bounded by the time a run may take here and by the disk of `folder`. The step whose
+/// increments pass a bound is named.
+void require_increment_output(const mf::io::ProblemSpec& spec, const std::string& folder) {
+  if (spec.analysis != mf::io::Analysis::ElastoplasticStatic) return;
+  const mf::Vec2 size = spec.domain.bounds().size();
+  const double h = spec.discretisation.spacing;
+  const double nodes = (size.x() / h + 1.0) * (size.y() / h + 1.0);
+  const std::size_t listed = spec.initial_stress ? 1 : 0; // "geostatic" is not in the file
+  double frames = 1.0;
+  for (std::size_t k = 0; k < spec.steps.size(); ++k) {
+    frames += spec.steps[k].increments;
+    if (k < listed) continue;
+    const std::string key = "steps[" + std::to_string(k - listed) + "].increments";
+    mf::require_run_time(key, "DOF-increments of the schedule so far", frames * 2.0 * nodes,
+                         mf::work_per_second::galerkin_dof_increments);
+    mf::require_disk(key, "field frames of the schedule so far", frames, 600.0 * nodes, folder);
+  }
+}
+
 /// Reads the problem and builds what its run builds before the first step or solve, stage by
 /// stage; says "valid" only when all of it passed.
 int check(const Command& c) {
@@ -164,6 +200,7 @@ int check(const Command& c) {
   mf::io::warn_unit_sanity(spec);
   if (spec.analysis != mf::io::Analysis::Staged) {
     describe(spec);
+    require_increment_output(spec, "out/" + spec.name);
   } else {
     for (std::size_t k = 0; k < spec.stages.size(); ++k) {
       const mf::io::StageLink& l = spec.links[k];
@@ -202,11 +239,33 @@ std::string refusal(const std::string& dir, const std::exception& e) {
   return what.rfind("--restart ", 0) == 0 ? what : "--restart " + dir + ": " + what;
 }
 
+/// A run that failed on its way (the reason is in its summary.json too): one line on stderr,
+/// exit status 1.
+int report_failure(const mf::solvers::PetscSession& session, const std::string& reason) {
+  if (session.rank() == 0)
+    std::cerr << "meshfree: run failed: " << mf::io::one_line(reason, 2000) << std::endl;
+  return 1;
+}
+
+int run_in(Command& c, mf::solvers::PetscSession& session);
+
 int run(Command& c) {
   int pargc = static_cast<int>(c.petsc_argv.size());
   c.petsc_argv.push_back(nullptr);
   char** pargv = c.petsc_argv.data();
   mf::solvers::PetscSession session(&pargc, &pargv);
+  const int code = run_in(c, session);
+  // After a failed HDF5 write (recorded by now, with its summary) the library's shutdown in
+  // MPI_Finalize would crash on the file it cannot close: one process ends without it.
+  if (mf::io::hdf5_write_failed() && session.size() == 1) {
+    std::cout.flush();
+    std::cerr.flush();
+    std::_Exit(code);
+  }
+  return code;
+}
+
+int run_in(Command& c, mf::solvers::PetscSession& session) {
   mf::io::ProblemSpec spec;
   std::optional<mf::io::Restart> restart;
   try {
@@ -224,7 +283,7 @@ int run(Command& c) {
                  "elastoplastic_static and staged runs)");
     }
   } catch (const std::exception& e) {
-    if (session.rank() == 0) std::cerr << "meshfree: " << e.what() << std::endl;
+    if (session.rank() == 0) std::cerr << "meshfree: " << said(e) << std::endl;
     return 2;
   }
   const std::string dir = !c.restart_dir.empty() ? c.restart_dir
@@ -234,11 +293,17 @@ int run(Command& c) {
   // refused before the run (its lock is held from here to the end).
   std::unique_ptr<mf::io::OutputDirectory> out;
   double unusable = 0.0;
+  const bool explicit_run =
+      spec.analysis == mf::io::Analysis::Peridynamics || spec.analysis == mf::io::Analysis::Sph;
   if (session.rank() == 0) try {
+      require_increment_output(spec, dir);
       out = std::make_unique<mf::io::OutputDirectory>(dir, c.restart_dir.empty() ? "--out"
                                                                                  : "--restart");
+      // An implicit run's folder is created now (an explicit run's at its first file, after its
+      // set-up): a folder that cannot be made is refused as input, exit 2, as for every analysis.
+      if (!explicit_run) out->open();
     } catch (const std::exception& e) {
-      std::cerr << "meshfree: " << e.what() << std::endl;
+      std::cerr << "meshfree: " << said(e) << std::endl;
       unusable = 1.0;
     }
   if (mf::distribution::Ranks::of(session.comm()).max(unusable) > 0.0) return 2;
@@ -261,14 +326,11 @@ int run(Command& c) {
   }
   const mf::io::Restart* from = restart ? &*restart : nullptr;
   int exit_code = 0;
-  const bool explicit_run =
-      spec.analysis == mf::io::Analysis::Peridynamics || spec.analysis == mf::io::Analysis::Sph;
   try {
     // An explicit run's set-up is input checking too (the particles of every block and region,
     // the bonds, the time step): its folder is created when the first file is written, and an
     // error before that is refused as input, with nothing written. Implicit runs keep what they
     // wrote up to a failure of their solve.
-    if (out && !explicit_run) out->open();
     mf::log::info("problem ", spec.name, ": ", spec.description);
     if (spec.analysis == mf::io::Analysis::ModelProblem1D) {
       if (session.rank() == 0) mf::app::model_problem_1d(spec, *out);
@@ -280,7 +342,7 @@ int run(Command& c) {
         if (out) mf::app::write_pd_outputs(spec, r, *out);
       }
       log_phases(r.timer);
-      if (r.status == "failed") exit_code = 1;
+      if (r.status == "failed") exit_code = report_failure(session, r.stop_reason);
     } else if (spec.analysis == mf::io::Analysis::Sph) {
       mf::explicit_dynamics::SphRunResult r =
           mf::app::run_sph(spec, out.get(), mf::distribution::Ranks::of(session.comm()), dir, from);
@@ -289,9 +351,10 @@ int run(Command& c) {
         if (out) mf::app::write_sph_outputs(spec, r, *out);
       }
       log_phases(r.timer);
-      if (r.status == "failed") exit_code = 1;
+      if (r.status == "failed") exit_code = report_failure(session, r.stop_reason);
     } else if (spec.analysis == mf::io::Analysis::Staged) {
-      exit_code = mf::stages::run_staged(spec, session, out.get(), dir, from).exit_code;
+      const auto r = mf::stages::run_staged(spec, session, out.get(), dir, from);
+      exit_code = r.exit_code == 1 ? report_failure(session, r.stop_reason) : r.exit_code;
     } else if (spec.analysis == mf::io::Analysis::ElastoplasticStatic) {
       const auto r = mf::app::elastoplastic_static(spec, session, out.get(), dir, from);
       log_phases(r.timer);
@@ -330,13 +393,13 @@ int run(Command& c) {
     }
     if (explicit_run && session.size() == 1 && dynamic_cast<const mf::Error*>(&e) && out &&
         !out->opened()) {
-      std::cerr << "meshfree: " << e.what() << std::endl; // refused in set-up: nothing written
+      std::cerr << "meshfree: " << said(e) << std::endl; // refused in set-up: nothing written
       return 2;
     }
     if (session.rank() == 0 || !everywhere)
       std::cerr << "meshfree: run failed"
                 << (everywhere ? "" : " on rank " + std::to_string(session.rank())) << ": "
-                << e.what() << std::endl;
+                << said(e) << std::endl;
     if (out) {
       // What the run wrote up to the failure is kept for diagnosis under DIR/failed, with a
       // summary that says why; a good result in DIR stays as it was.
@@ -349,7 +412,7 @@ int run(Command& c) {
         mf::log::info("the files written up to the failure are in ",
                       std::filesystem::absolute(kept).string());
       } catch (const std::exception& again) {
-        std::cerr << "meshfree: cannot record the failure: " << again.what() << std::endl;
+        std::cerr << "meshfree: cannot record the failure: " << said(again) << std::endl;
       }
     }
     if (session.size() > 1 && !everywhere) mf::solvers::abort_every_rank(session.comm(), 1);
@@ -385,19 +448,22 @@ void keep_freed_memory() {
 int main(int argc, char** argv) {
   wait_passively(argv);
   keep_freed_memory();
+  // A write past a file-size limit (ulimit -f) fails with EFBIG and is reported as a failed
+  // write, with its summary, instead of killing the run with nothing said.
+  std::signal(SIGXFSZ, SIG_IGN);
   Command c;
   try {
     c = parse(argc, argv);
   } catch (const mf::Error& e) {
     const bool help = std::strcmp(e.what(), "help") == 0;
     (help ? std::cout : std::cerr)
-        << (help ? "" : std::string("meshfree: ") + e.what() + "\n") << kUsage;
+        << (help ? "" : std::string("meshfree: ") + said(e) + "\n") << kUsage;
     return help ? 0 : 2;
   }
   try {
     return c.verb == "check" ? check(c) : run(c);
   } catch (const std::exception& e) {
-    std::cerr << "meshfree: " << e.what() << std::endl;
+    std::cerr << "meshfree: " << said(e) << std::endl;
     return 2;
   }
 }

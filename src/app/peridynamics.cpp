@@ -1,4 +1,5 @@
 #include "meshfree/app/peridynamics.hpp"
+#include "meshfree/explicit/run_counts.hpp"
 #include "meshfree/explicit/run_summaries.hpp"
 #include "meshfree/explicit/time_loop.hpp"
 #include <omp.h>
@@ -13,6 +14,7 @@ explicit_dynamics::PdRunResult run_peridynamics(const io::ProblemSpec& spec,
   const io::PdSpec& s = *spec.pd;
   explicit_dynamics::PdRunResult result;
   explicit_dynamics::PdSetup setup = explicit_dynamics::build_pd_setup(spec, result.timer, ranks);
+  explicit_dynamics::require_finite_run(explicit_dynamics::planned_run(s, setup), dir);
   explicit_dynamics::log_pd_setup(spec, setup);
   result.mpi_ranks = ranks.size;
   explicit_dynamics::PdRun run(setup, s, out, result);

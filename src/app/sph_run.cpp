@@ -1,9 +1,11 @@
 #include "meshfree/app/sph_run.hpp"
 #include "meshfree/core/log.hpp"
+#include "meshfree/explicit/run_counts.hpp"
 #include "meshfree/explicit/run_summaries.hpp"
 #include "meshfree/explicit/sph_setup.hpp"
 #include "meshfree/explicit/time_loop.hpp"
 #include "meshfree/sph/decomposition.hpp"
+#include "meshfree/sph/step.hpp"
 
 namespace mf::app {
 
@@ -17,6 +19,8 @@ explicit_dynamics::SphRunResult run_sph(const io::ProblemSpec& spec, io::OutputD
     PhaseTimer::Scope scope(result.timer, "particles");
     h = explicit_dynamics::build_sph(s);
   }
+  explicit_dynamics::require_finite_run(
+      explicit_dynamics::planned_run(s, h.particles.size(), sph::stable_step(h)), dir);
   log::info("sph: ", h.particles.size(), " particles in ", s.dimension, "D, ", s.materials.size(),
             " material(s)", s.detonation_point ? ", detonation lit" : "");
   {

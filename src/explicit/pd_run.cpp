@@ -148,7 +148,27 @@ Vec3 PdRun::position(int id) const {
   return x;
 }
 
+std::string PdRun::overflowing_load() const {
+  const pd::Model& m = setup_.model;
+  const double dt = setup_.dt, t = time();
+  for (const pd::BodyLoad& l : setup_.loading.loads) {
+    const double f = setup_.loading.factor(l.function, t);
+    for (std::size_t k = 0; k < l.particles.size(); ++k)
+      for (int d = 0; d < 3; ++d) {
+        const double b = l.density_of(k, d) * f;
+        const double move = std::abs(b) / m.particles.density[l.particles[k]] * dt * dt;
+        if (!std::isfinite(b) || !(move < 1e6 * m.spacing))
+          return detail::concat("the load '", l.name, "' is ", b,
+                                " per unit volume at t = ", t, ", which moves a particle ", move,
+                                " in one step of ", dt, ": is its value (or its function's) meant?");
+      }
+  }
+  return "";
+}
+
 std::string PdRun::advice() const {
+  const std::string load = overflowing_load();
+  if (!load.empty()) return load;
   return detail::concat("the time step ", setup_.dt, " (", setup_.dt_limit,
                         ") is probably too large");
 }

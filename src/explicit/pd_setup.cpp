@@ -270,18 +270,22 @@ PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer,
   out.dt_limit = detail::concat("stable step ", stable, " (Silling & Askari 2005) times safety ",
                                 s.safety, ", set by the particle at (", where.x(), ", ", where.y(),
                                 ", ", where.z(), ")");
-  for (const auto& f : s.functions)
+  for (std::size_t k = 0; k < s.functions.size(); ++k) {
+    const auto& f = s.functions[k];
     if (f.f.kind == loads::TimeFunction::Kind::Table && f.f.sample_step < out.dt) {
       out.dt = f.f.sample_step;
       out.dt_limit = "one step per sample of the load table '" + f.name + "' (" +
                      detail::concat(f.f.sample_step) + ")";
+      out.dt_key = detail::concat("functions[", k, "].duration");
     }
+  }
   if (s.dt > 0.0) {
     MF_REQUIRE(s.dt <= stable, "time.dt: ", s.dt, " exceeds the stable time step ", stable,
                " (Silling & Askari 2005); velocity Verlet would diverge");
     if (s.dt < out.dt) {
       out.dt = s.dt;
       out.dt_limit = "time.dt";
+      out.dt_key = "time.dt";
     }
   }
   return out;

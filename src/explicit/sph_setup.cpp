@@ -83,8 +83,10 @@ sph::Hydro build_sph(const io::SphSpec& s) {
   // shrinks with the dimension. Measured: 0.5 against 0.3 is 4-6% faster on the 1D problems
   // (Sod, TNT slab), 0.3 is 4-9% faster on the 2D and 3D ones (tunnel, plate blast, Taylor bar).
   h.settings.skin = h.dim == 1 ? 0.5 : 0.3;
-  for (const io::SphRegion& b : s.regions) {
+  for (std::size_t k = 0; k < s.regions.size(); ++k) {
+    const io::SphRegion& b = s.regions[k];
     const int mat = b.material;
+    const int before = h.particles.size();
     const io::Region& g = b.region;
     const auto add = [&](const Vec3& x, double volume) {
       if (g.circle) {
@@ -109,6 +111,10 @@ sph::Hydro build_sph(const io::SphSpec& s) {
       const double volume = grid.cell_volume(s.dimension);
       grid.for_each([&](const Vec3& x) { add(x, volume); });
     }
+    // A region whose circle or holes leave none of its lattice would make a body without
+    // particles, or a material without any: refused as input, like an empty peridynamic region.
+    MF_REQUIRE(h.particles.size() > before, "regions[", k,
+               "]: holds no particle (its circle or holes leave none of its lattice points)");
   }
   for (const io::SphBlastLoad& l : s.loads) {
     // Each particle of the layer carries its face area V / spacing and the Friedlander history

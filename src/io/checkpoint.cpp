@@ -1,6 +1,7 @@
 #include "meshfree/io/checkpoint.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/core/log.hpp"
+#include "meshfree/core/run_bounds.hpp"
 #include "meshfree/core/timer.hpp"
 #include "meshfree/io/key_reader.hpp"
 #include "meshfree/io/output.hpp"
@@ -234,8 +235,7 @@ Checkpoints::Checkpoints(std::string dir, const distribution::Ranks& ranks, Chec
     restarted_at_ = restart->time;
     generation_ = restart->generation;
     cleared_ = true; // its parts are this run's too
-    if (policy_.interval > 0.0)
-      while (next_time_ <= restart->time * (1 + 1e-12)) next_time_ += policy_.interval;
+    if (policy_.interval > 0.0) next_time_ = next_multiple_after(restart->time, policy_.interval);
   }
 }
 
@@ -333,8 +333,7 @@ void Checkpoints::write(double t, long step, const std::function<void(StateWrite
     });
   }
   ranks_.max(0.0);
-  if (policy_.interval > 0.0)
-    while (next_time_ <= t * (1 + 1e-12)) next_time_ += policy_.interval;
+  if (policy_.interval > 0.0) next_time_ = next_multiple_after(t, policy_.interval);
   last_ = std::chrono::steady_clock::now();
   ++written_;
   seconds_ += seconds_since(start);

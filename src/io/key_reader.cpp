@@ -1,5 +1,7 @@
 #include "meshfree/io/key_reader.hpp"
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <set>
 #include <sstream>
 
@@ -8,11 +10,20 @@ namespace mf::io {
 std::string one_line(const std::string& text, std::size_t limit) {
   std::string out;
   for (const char c : text) {
-    if (out.size() == limit) {
-      out.replace(limit - 3, 3, "...");
-      break;
+    std::string shown(1, c);
+    if (c == '\n') shown = "\\n";
+    else if (c == '\r') shown = "\\r";
+    else if (c == '\t') shown = "\\t";
+    else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", static_cast<unsigned char>(c));
+      shown = hex;
     }
-    out += static_cast<unsigned char>(c) < 0x20 || c == 0x7f ? '?' : c;
+    if (out.size() + shown.size() > limit) {
+      out.resize(std::min(out.size(), limit - 3));
+      return out + "...";
+    }
+    out += shown;
   }
   return out;
 }
@@ -123,7 +134,7 @@ std::string KeyReader::choice(const std::string& key, const std::vector<std::str
     if (c == v) return v;
   std::string list;
   for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;
-  error(key, "expected one of [" + list + "], got '" + v + "'");
+  error(key, "expected one of [" + list + "], got '" + one_line(v) + "'");
 }
 
 Vec2 KeyReader::vec2(const std::string& key) {
@@ -208,6 +219,37 @@ std::vector<KeyReader> KeyReader::map_list(const std::string& key) {
   return out;
 }
 
+namespace {
+/// Levenshtein distance: the edits (insert, delete, replace a character) from a to b.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+/// The known key a misspelt one is nearest to, within two edits and a third of its length
+/// ("" when none is that near, or the key is too long to be a slip).
+std::string nearest(const std::string& key, const std::set<std::string>& known) {
+  if (key.size() > 64) return "";
+  std::string best;
+  std::size_t best_distance = std::min<std::size_t>(2, std::max<std::size_t>(1, key.size() / 3));
+  for (const std::string& k : known) {
+    const std::size_t d = edit_distance(key, k);
+    if (d <= best_distance && (best.empty() || d < best_distance)) best = k, best_distance = d;
+  }
+  return best;
+}
+} // namespace
+
 void KeyReader::finish() const {
   std::set<std::string> seen;
   for (const auto& kv : node_) {
@@ -220,7 +262,9 @@ void KeyReader::finish() const {
     if (!used_.count(key)) {
       std::string known;
       for (const auto& u : used_) known += (known.empty() ? "" : ", ") + u;
-      fail(path_of(key), ": unknown key (known here: ", known, ")");
+      const std::string near = nearest(key, used_);
+      fail(path_of(key), ": unknown key (known here: ", known, ")",
+           near.empty() ? "" : "; did you mean '" + near + "'?");
     }
   }
 }
@@ -229,29 +273,64 @@ namespace {
 /// A list index from an override path, or an error naming the path.
 std::size_t list_index(const std::string& part, std::size_t size, const std::string& path) {
   if (part.empty() || part.find_first_not_of("0123456789") != std::string::npos)
-    fail("--set ", path, ": '", part, "' indexes a list and must be a number");
+    fail("--set ", one_line(path), ": '", one_line(part), "' indexes a list and must be a number");
   const std::size_t idx = part.size() > 9 ? size : std::stoul(part);
   if (idx >= size)
-    fail("--set ", path, ": index ", part.substr(0, 20), " is out of range (the list has ", size,
+    fail("--set ", one_line(path), ": index ", part.substr(0, 20), " is out of range (the list has ", size,
          " items)");
   return idx;
 }
 } // namespace
 
+namespace {
+/// The keys and list indices of an override path, "a.1.b" or "a[1].b" (the style messages print
+/// keys in); an empty key (".name", "a..b", "a[]") is refused with the path.
+std::vector<std::string> override_path(const std::string& path) {
+  std::vector<std::string> parts;
+  std::string part;
+  const auto end_part = [&](bool after_bracket) {
+    if (part.empty() && !after_bracket)
+      fail("--set ", one_line(path), ": an empty key in the path (expected key.path=value)");
+    if (!part.empty()) parts.push_back(part);
+    part.clear();
+  };
+  bool after_bracket = false; // "a[1].b": the '.' after ']' ends no key of its own
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const char c = path[i];
+    if (c == '.') {
+      end_part(after_bracket);
+      after_bracket = false;
+    } else if (c == '[') {
+      end_part(false);
+      const std::size_t close = path.find(']', i);
+      if (close == std::string::npos || close == i + 1)
+        fail("--set ", one_line(path), ": expected a list index in brackets, as in boundary[1].x");
+      parts.push_back(path.substr(i + 1, close - i - 1));
+      i = close;
+      after_bracket = true;
+    } else {
+      if (after_bracket)
+        fail("--set ", one_line(path), ": expected '.' or '[' after ']'");
+      part += c;
+    }
+  }
+  if (!after_bracket) end_part(false);
+  return parts;
+}
+} // namespace
+
 void apply_override(YAML::Node& root, const std::string& assignment) {
   const auto eq = assignment.find('=');
-  MF_REQUIRE(eq != std::string::npos && eq > 0, "--set expects key.path=value, got '", assignment,
+  MF_REQUIRE(eq != std::string::npos && eq > 0, "--set expects key.path=value, got '", one_line(assignment),
              "'");
   const std::string path = assignment.substr(0, eq);
   YAML::Node value;
   try {
     value = YAML::Load(assignment.substr(eq + 1));
   } catch (const YAML::Exception& e) {
-    fail("--set ", path, ": cannot parse the value: ", e.what());
+    fail("--set ", one_line(path), ": cannot parse the value: ", e.what());
   }
-  std::vector<std::string> parts;
-  std::stringstream ss(path);
-  for (std::string p; std::getline(ss, p, '.');) parts.push_back(p);
+  const std::vector<std::string> parts = override_path(path);
   // Walk with fresh handles (yaml-cpp node assignment rebinds, so keep a chain of copies).
   std::vector<YAML::Node> chain{root};
   for (std::size_t i = 0; i < parts.size(); ++i) {
@@ -274,7 +353,7 @@ void apply_override(YAML::Node& root, const std::string& assignment) {
     } else {
       std::string prefix;
       for (std::size_t k = 0; k < i; ++k) prefix += (k ? "." : "") + parts[k];
-      fail("--set ", path, ": '", prefix, "' holds a single value, not a map or a list");
+      fail("--set ", one_line(path), ": '", one_line(prefix), "' holds a single value, not a map or a list");
     }
   }
 }

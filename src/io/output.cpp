@@ -13,7 +13,9 @@
 #include <hdf5.h>
 #include <iomanip>
 #include <sstream>
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 
 namespace mf::io {
 
@@ -44,15 +46,38 @@ void OutputDirectory::write_csv(const std::string& file, const std::vector<std::
 }
 
 namespace {
+bool write_failed = false;
+} // namespace
+
+bool hdf5_write_failed() {
+  return write_failed;
+}
+
+namespace {
 
 /// Stops with what failed in an HDF5 file: the system's reason when the call left one (no space,
 /// file too large), and the file's path.
 [[noreturn]] void hdf5_failure(hid_t file, const std::string& what, int error) {
   char name[4096] = {};
   if (file < 0 || H5Fget_name(file, name, sizeof name - 1) < 0) std::strcpy(name, "an HDF5 file");
+  write_failed = true;
   fail(error ? system_reason(error) : std::string("HDF5 failed"), " writing ", name, " (", what,
        ")");
 }
+
+/// An HDF5 object closed on every way out of a scope, a failed write's included: an object left
+/// open keeps its file open after the file is closed, and HDF5 then writes it again while MPI
+/// finalises, after the failure was recorded (a crash at exit under a file-size limit).
+struct Closing {
+  hid_t id;
+  herr_t (*close)(hid_t);
+  Closing(hid_t i, herr_t (*c)(hid_t)) : id(i), close(c) {}
+  Closing(const Closing&) = delete;
+  Closing& operator=(const Closing&) = delete;
+  ~Closing() {
+    if (id >= 0) close(id);
+  }
+};
 
 /// A rows x cols dataset (1-D when cols is 1), creating the groups on its path. With a slice,
 /// `rows` are this rank's rows offset .. offset + rows of slice.total, written collectively.
@@ -61,34 +86,33 @@ void write_dataset(hid_t file, const std::string& name, const std::vector<T>& da
                    hsize_t cols, hid_t type, const PointSlice* slice = nullptr) {
   hsize_t dims[2] = {slice ? slice->total : rows, cols};
   const int rank = cols > 1 ? 2 : 1;
-  const hid_t space = H5Screate_simple(rank, dims, nullptr);
-  const hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
-  H5Pset_create_intermediate_group(lcpl, 1);
+  const Closing space(H5Screate_simple(rank, dims, nullptr), H5Sclose);
+  const Closing lcpl(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
+  H5Pset_create_intermediate_group(lcpl.id, 1);
   errno = 0;
-  const hid_t set = H5Dcreate2(file, name.c_str(), type, space, lcpl, H5P_DEFAULT, H5P_DEFAULT);
-  if (set < 0) hdf5_failure(file, "creating dataset " + name, errno);
+  Closing set(H5Dcreate2(file, name.c_str(), type, space.id, lcpl.id, H5P_DEFAULT, H5P_DEFAULT),
+              H5Dclose);
+  if (set.id < 0) hdf5_failure(file, "creating dataset " + name, errno);
   herr_t status;
   if (!slice) {
-    status = H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data());
+    status = H5Dwrite(set.id, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data());
   } else {
     const hsize_t start[2] = {slice->offset, 0}, count[2] = {rows, cols};
-    const hid_t memory = H5Screate_simple(rank, count, nullptr);
+    const Closing memory(H5Screate_simple(rank, count, nullptr), H5Sclose);
     if (rows == 0) {
-      H5Sselect_none(space);
-      H5Sselect_none(memory);
+      H5Sselect_none(space.id);
+      H5Sselect_none(memory.id);
     } else {
-      H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, count, nullptr);
+      H5Sselect_hyperslab(space.id, H5S_SELECT_SET, start, nullptr, count, nullptr);
     }
-    const hid_t transfer = H5Pcreate(H5P_DATASET_XFER);
-    H5Pset_dxpl_mpio(transfer, H5FD_MPIO_COLLECTIVE);
-    status = H5Dwrite(set, type, memory, space, transfer, data.data());
-    H5Pclose(transfer);
-    H5Sclose(memory);
+    const Closing transfer(H5Pcreate(H5P_DATASET_XFER), H5Pclose);
+    H5Pset_dxpl_mpio(transfer.id, H5FD_MPIO_COLLECTIVE);
+    status = H5Dwrite(set.id, type, memory.id, space.id, transfer.id, data.data());
   }
   if (status < 0) hdf5_failure(file, "dataset " + name, errno);
-  if (H5Dclose(set) < 0) hdf5_failure(file, "dataset " + name, errno);
-  H5Pclose(lcpl);
-  H5Sclose(space);
+  const hid_t written = set.id;
+  set.id = -1; // closed here, where its failure is reported
+  if (H5Dclose(written) < 0) hdf5_failure(file, "dataset " + name, errno);
 }
 
 void write_dataset(hid_t file, const std::string& name, const std::vector<double>& data,
@@ -192,6 +216,9 @@ void FieldSeries::create_file() {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); // our messages say what failed, not HDF5's stack
   const hid_t access = H5Pcreate(H5P_FILE_ACCESS);
   if (slice_.spread()) H5Pset_fapl_mpio(access, slice_.comm, MPI_INFO_NULL);
+  // Closing the file closes whatever of it is still open, so that nothing of a file whose write
+  // failed is left for HDF5 to flush again when the library shuts down.
+  H5Pset_fclose_degree(access, H5F_CLOSE_STRONG);
   // Exclusive: the staging folder is this run's own, so a file already there is an error.
   errno = 0;
   const hid_t file = H5Fcreate(h5_temp_.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, access);
@@ -203,7 +230,7 @@ void FieldSeries::create_file() {
 }
 
 FieldSeries::~FieldSeries() {
-  if (file_ >= 0) H5Fclose(file_);
+  if (file_ >= 0 && !broken_) H5Fclose(file_);
 }
 
 namespace {
@@ -214,6 +241,25 @@ std::string attribute(const std::string& name, const char* type, const std::stri
 
 std::string geometry(const std::string& item) {
   return "    <Geometry GeometryType=\"XYZ\">" + item + "</Geometry>\n";
+}
+
+/// A step of `bytes` must fit under the file-size limit (ulimit -f) and in the free space of the
+/// disk before HDF5 writes it: HDF5 1.10 cannot close a file whose write failed, so the two
+/// usual failures are found here, while the file is still whole (it is kept, closed, in failed/).
+/// The margin holds HDF5's metadata and what closing the file writes.
+void require_room(hid_t file, const std::string& path, double bytes) {
+  const double need = 1.05 * bytes + 1024.0 * 1024.0;
+  hsize_t size = 0;
+  H5Fget_filesize(file, &size);
+  rlimit limit{};
+  if (getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY &&
+      static_cast<double>(size) + need > static_cast<double>(limit.rlim_cur))
+    fail(system_reason(EFBIG), " writing ", path, " (the next step, about ", need,
+         " bytes, would pass the file-size limit of ", limit.rlim_cur, " bytes)");
+  struct statvfs disk {};
+  if (statvfs(path.c_str(), &disk) == 0 &&
+      need > static_cast<double>(disk.f_bavail) * static_cast<double>(disk.f_frsize))
+    fail(system_reason(ENOSPC), " writing ", path, " (the next step, about ", need, " bytes)");
 }
 
 /// Stops the run at a field value that is not a number, naming the field, the point and the time.
@@ -234,6 +280,12 @@ void FieldSeries::add_step(const FieldStep& step) {
   for (const auto& [name, v] : step.vectors3)
     require_finite(stem_, name, v.data(), v.size(), 3, step.time);
   require_finite(stem_, "position", step.positions.data(), step.positions.size(), 3, step.time);
+  {
+    std::size_t per_point = step.scalars.size() + 3 * step.vectors.size() + 3 * step.vectors3.size();
+    if (!step.positions.empty()) per_point += 3;
+    const double total = static_cast<double>(slice_.spread() ? slice_.total : points_);
+    require_room(file_, h5_temp_, 8.0 * total * static_cast<double>(per_point));
+  }
   const std::string& h5 = h5_;
   const std::size_t n = points_;
   const PointSlice* slice = slice_.spread() ? &slice_ : nullptr;
@@ -243,7 +295,12 @@ void FieldSeries::add_step(const FieldStep& step) {
   // A dataset of this step, 1 or 3 values per point, as an XDMF data item.
   const auto put = [&](const std::string& name, const std::vector<double>& v, int per) {
     MF_ASSERT(v.size() == per * n);
-    write_dataset(file_, group.str() + "/" + name, v, n, per, slice);
+    try {
+      write_dataset(file_, group.str() + "/" + name, v, n, per, slice);
+    } catch (const Error&) {
+      broken_ = true;
+      throw;
+    }
     return data_item(h5, group.str() + "/" + name, total, per);
   };
   std::ostringstream x;
@@ -271,7 +328,10 @@ void FieldSeries::add_step(const FieldStep& step) {
 void FieldSeries::close_file() {
   // The data reach the disk here at the latest, so this is where a full disk shows.
   errno = 0;
-  if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) hdf5_failure(file_, "flushing", errno);
+  if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) {
+    broken_ = true;
+    hdf5_failure(file_, "flushing", errno);
+  }
   char name[4096] = {};
   H5Fget_name(file_, name, sizeof name - 1);
   errno = 0;
@@ -358,7 +418,9 @@ void FieldSeries::merge_parts() {
   std::filesystem::rename(h5_temp_, last, ec);
   MF_REQUIRE(!ec, h5_temp_, ": cannot merge the field steps: ", ec.message());
   errno = 0;
-  const hid_t merged = H5Fcreate(h5_temp_.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT);
+  const Closing access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+  H5Pset_fclose_degree(access.id, H5F_CLOSE_STRONG); // as create_file's
+  const hid_t merged = H5Fcreate(h5_temp_.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, access.id);
   if (merged < 0) hdf5_failure(merged, "creating " + h5_temp_, errno);
   std::istringstream parts(parts_);
   for (std::string part; std::getline(parts, part);) copy_steps(merged, part);

@@ -2,10 +2,12 @@
 // problem): body, discretisation, boundary conditions, load schedule and output. Every key is
 // checked; errors name the key path.
 #include "meshfree/core/memory.hpp"
+#include "meshfree/core/input_file.hpp"
 #include "meshfree/io/analysis_read.hpp"
 #include "meshfree/io/spec_read.hpp"
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 
 namespace mf::io {
@@ -49,8 +51,13 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
     if (f->has("mesh")) {
       const std::string mesh = f->text("mesh");
       s.fem.mesh = !mesh.empty() && mesh.front() == '/' ? mesh : base_dir + mesh;
+      if (std::filesystem::exists(s.fem.mesh)) try {
+          require_regular_file(s.fem.mesh, "mesh file");
+        } catch (const Error& e) {
+          f->error("mesh", e.what());
+        }
       std::ifstream probe(s.fem.mesh);
-      if (!probe.good()) f->error("mesh", "cannot open the mesh file '" + s.fem.mesh + "'");
+      if (!probe.good()) f->error("mesh", "cannot open the mesh file '" + one_line(s.fem.mesh) + "'");
     }
     f->allow("mesh");
     s.fem.order = f->integer("order", 0, 1, 10);
@@ -59,6 +66,12 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
   s.spacing = d.positive("spacing");
   // Node counts estimated in floating point, so that a tiny spacing cannot overflow a count.
   const Vec2 size = bounds.hi - bounds.lo;
+  // A spacing beyond the body leaves a lattice of its corners, whose supports (dilation times the
+  // spacing) dwarf it: the shape functions fail in the run (at 1e6 on a unit plate), so the
+  // input is refused here, where `check` sees it too.
+  if (s.spacing > size.maxCoeff())
+    d.error("spacing", detail::concat("expected at most the body's size (", size.x(), " x ",
+                                      size.y(), "), got ", s.spacing));
   double nodes_total = (size.x() / s.spacing + 1.0) * (size.y() / s.spacing + 1.0);
   require_memory(d.path_of("spacing"), "nodes over the body", nodes_total,
                  bytes_per_node(solver, nodes_total));
@@ -181,9 +194,13 @@ BoundaryCondition read_condition(KeyReader& bc, double stiffness_scale) {
     c.loads = c.pressure_load = true;
     c.pressure = bc.number("pressure");
   }
-  if (c.constrains == c.loads)
-    bc.error("name", "a boundary condition needs exactly one of 'displacement' or 'traction'");
+  bc.allow("displacement");
+  bc.allow("pressure");
+  // A misspelt key ('tracton') is named before the condition is found to lack its kind.
   bc.finish();
+  if (c.constrains == c.loads)
+    bc.error("name", "a boundary condition needs exactly one of 'displacement', 'traction' or "
+                     "'pressure'");
   return c;
 }
 
@@ -360,7 +377,8 @@ std::vector<geometry::Curve> select_boundary(const geometry::Domain& domain, con
       std::string names;
       for (const auto& c : all)
         if (names.find(c.name) == std::string::npos) names += (names.empty() ? "" : ", ") + c.name;
-      fail(key_path, ".edges: no boundary piece is named '", name, "' (the body's pieces: ", names,
+      fail(key_path, ".edges: no boundary piece is named '", one_line(name),
+           "' (the body's pieces: ", names,
            ")");
     }
   }

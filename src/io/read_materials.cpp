@@ -314,7 +314,7 @@ int find_material(KeyReader& r, const std::string& key, const std::vector<Materi
     if (list[k].name == name) return static_cast<int>(k);
   std::string names;
   for (const auto& m : list) names += (names.empty() ? "" : ", ") + m.name;
-  r.error(key, "no material is named '" + name + "' (materials: " + names + ")");
+  r.error(key, "no material is named '" + one_line(name) + "' (materials: " + names + ")");
 }
 
 void material_error(const MaterialSpec& m, const std::string& part, const std::string& message) {

@@ -17,7 +17,7 @@ int find_function(KeyReader& r, const std::string& key, const PdSpec& s) {
   const std::string name = r.text(key);
   for (std::size_t k = 0; k < s.functions.size(); ++k)
     if (s.functions[k].name == name) return static_cast<int>(k);
-  r.error(key, "no function is named '" + name + "'");
+  r.error(key, "no function is named '" + one_line(name) + "'");
 }
 
 PdFunction read_function(KeyReader& f, const std::string& base_dir, const PdSpec& s) {

@@ -2,6 +2,7 @@
 // model, materials and geometry; then the reader of the analysis for the rest. A file may list
 // `stages:` instead of one analysis.
 #include "meshfree/io/analysis_read.hpp"
+#include "meshfree/core/input_file.hpp"
 #include "meshfree/io/spec_read.hpp"
 #include <fstream>
 
@@ -129,6 +130,7 @@ ProblemSpec parse_problem(YAML::Node root, const std::string& base_dir, const st
 }
 
 ProblemSpec read_problem(const std::string& path, const std::vector<std::string>& overrides) {
+  require_regular_file(path, "problem file");
   std::ifstream in(path);
   MF_REQUIRE(in.good(), path, ": cannot open the problem file");
   YAML::Node root;

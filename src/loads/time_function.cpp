@@ -1,4 +1,5 @@
 #include "meshfree/loads/time_function.hpp"
+#include "meshfree/core/input_file.hpp"
 #include "meshfree/core/error.hpp"
 #include <cmath>
 #include <fstream>
@@ -44,6 +45,7 @@ std::vector<double> haar_approximation(const std::vector<double>& samples, int l
 }
 
 std::vector<double> read_samples(const std::string& path) {
+  require_regular_file(path, "load table");
   std::ifstream in(path);
   MF_REQUIRE(in.good(), path, ": cannot open the load table");
   std::string line;

@@ -10,8 +10,17 @@
 
 namespace mf::solvers::detail {
 
+/// What PETSc said of its last error, on one line (its error handler keeps it instead of
+/// printing its traceback): "" when nothing was said.
+std::string last_petsc_error();
+
+/// Stops with "PETSc error N in WHAT: <PETSc's own message>": one line, which names the option
+/// when an option was bad (-ksp_type bogus: "Unable to find requested KSP type bogus").
 inline void check(PetscErrorCode ierr, const char* what) {
-  if (ierr) fail("PETSc error ", static_cast<int>(ierr), " in ", what);
+  if (!ierr) return;
+  const std::string said = last_petsc_error();
+  fail("PETSc error ", static_cast<int>(ierr), " in ", what, said.empty() ? "" : ": " + said,
+       " (check the PETSc options given after --)");
 }
 
 /// A distributed AIJ matrix (block size 2) of zeros with the exact pattern of the owned block

@@ -1,5 +1,6 @@
 // The peridynamic stage of a staged run (stages/explicit_stage.hpp).
 #include "meshfree/core/log.hpp"
+#include "meshfree/explicit/run_counts.hpp"
 #include "meshfree/explicit/pd_run.hpp"
 #include "meshfree/explicit/pd_setup.hpp"
 #include "meshfree/explicit/run_summaries.hpp"
@@ -154,6 +155,9 @@ ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::Elast
   ExplicitStage st;
   explicit_dynamics::PdRunResult result;
   explicit_dynamics::PdSetup setup = explicit_dynamics::build_pd_setup(stage, result.timer);
+  // `check` refuses an endless stage before anything runs; here it stops before the stage does.
+  explicit_dynamics::require_finite_run(explicit_dynamics::planned_run(s, setup),
+                                        out ? out->dir() : ".");
   explicit_dynamics::log_pd_setup(stage, setup);
   pd::Model& m = setup.model;
   particles::ParticleSet& P = m.particles;

@@ -1,5 +1,6 @@
 // The SPH stage of a staged run (stages/explicit_stage.hpp).
 #include "meshfree/core/log.hpp"
+#include "meshfree/explicit/run_counts.hpp"
 #include "meshfree/explicit/run_summaries.hpp"
 #include "meshfree/explicit/sph_run.hpp"
 #include "meshfree/explicit/sph_setup.hpp"
@@ -202,6 +203,10 @@ ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
     PhaseTimer::Scope scope(result.timer, "particles");
     h = explicit_dynamics::build_sph(s);
   }
+  // `check` refuses an endless stage before anything runs; here it stops before the stage does.
+  explicit_dynamics::require_finite_run(
+      explicit_dynamics::planned_run(s, h.particles.size(), sph::stable_step(h)),
+      out ? out->dir() : ".");
   const int n = h.particles.owned_count();
   TransferReport& t = st.transfer;
   PreloadAtParticles pa;

@@ -61,6 +61,9 @@ public:
   /// The reference position of particle `id`. Collective.
   Vec3 position(int id) const;
   std::string advice() const;
+  /// A load that alone moves a particle more than 10^6 spacings in one step, or is not finite:
+  /// then the load, not the time step, made the motion non-finite ("" when none).
+  std::string overflowing_load() const;
   void record();
   void write_fields();
   std::string progress() const { return detail::concat("broken bonds ", broken_ / 2); }

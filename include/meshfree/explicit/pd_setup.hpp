@@ -20,6 +20,7 @@ struct PdSetup {
   std::optional<pd::ShortRangeContact> short_range; // discretisation.short_range_contact
   double dt = 0.0;
   std::string dt_limit;     // what set the time step
+  std::string dt_key;       // the key that set it, when not the stability bound (time.dt, ...)
   long particles_total = 0; // over every rank
   long first_id = 0;        // of this rank's first owned particle (owned ids are contiguous)
 };

@@ -24,6 +24,7 @@
 // resume from goes on from there as the run it came from would have.
 #include "meshfree/core/error.hpp"
 #include "meshfree/core/log.hpp"
+#include "meshfree/core/run_bounds.hpp"
 #include "meshfree/core/timer.hpp"
 #include "meshfree/core/types.hpp"
 #include "meshfree/io/checkpoint.hpp"
@@ -66,13 +67,10 @@ struct LoopState {
   /// After a restart whose schedule changed an interval: the next instant is the first multiple
   /// of the new interval after t.
   void reschedule(const Schedule& s, double t) {
-    const auto after = [t](double interval) {
-      return interval * (std::floor(t / interval * (1 + 1e-12)) + 1.0);
-    };
     if (s.history_interval != history_interval && s.history_interval > 0.0)
-      next_history = after(s.history_interval);
+      next_history = next_multiple_after(t, s.history_interval);
     if (s.fields_interval != fields_interval && s.fields_interval > 0.0)
-      next_fields = after(s.fields_interval);
+      next_fields = next_multiple_after(t, s.fields_interval);
     history_interval = s.history_interval;
     fields_interval = s.fields_interval;
   }
@@ -198,13 +196,14 @@ LoopReport run_time_loop(Model& model, const Schedule& s, io::Checkpoints* check
       }
       model.record();
       recorded = model.time();
-      while (s.history_interval > 0.0 && next_history <= model.time() * (1 + 1e-12))
-        next_history += s.history_interval;
+      if (s.history_interval > 0.0 && next_history <= model.time() * (1 + 1e-12))
+        next_history = next_multiple_after(model.time(), s.history_interval);
     }
     if (s.fields_interval > 0.0 && model.time() >= next_fields * (1 - 1e-12)) {
       model.write_fields();
       state.written = model.time();
-      while (next_fields <= model.time() * (1 + 1e-12)) next_fields += s.fields_interval;
+      if (next_fields <= model.time() * (1 + 1e-12))
+        next_fields = next_multiple_after(model.time(), s.fields_interval);
     }
     progress.update(model);
     if (checkpoints && model.time() < s.end_time * (1.0 - 1e-12) &&

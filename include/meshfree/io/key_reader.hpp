@@ -13,7 +13,7 @@
 namespace mf::io {
 
 /// Text as messages quote it: on one line (line breaks and other control characters, a NUL
-/// among them, become '?') and at most `limit` characters, cut with "...".
+/// among them, shown escaped: \n, \t, \x00) and at most `limit` characters, cut with "...".
 std::string one_line(const std::string& text, std::size_t limit = 80);
 
 class KeyReader {

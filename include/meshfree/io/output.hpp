@@ -68,6 +68,11 @@ std::string csv_line(const std::vector<double>& values);
 /// The system's reason for an error number (strerror), lower-case, to stand in a sentence:
 /// "no space left on device writing DIR/fields.h5".
 std::string system_reason(int error);
+
+/// Whether a write into an HDF5 file failed in this process. HDF5 1.10 cannot close a file whose
+/// write failed: closing it, or the library's shutdown in MPI_Finalize, crashes (exit 139 after
+/// the failure was recorded). A process where this is true ends without that shutdown.
+bool hdf5_write_failed();
 /// True when `name` is longer than `tail` and ends with it (".h5" of "fields.h5").
 inline bool ends_with(const std::string& name, const std::string& tail) {
   return name.size() > tail.size() &&
@@ -194,6 +199,9 @@ private:
   std::string h5_temp_; // where it is written
   std::string parts_;   // paths of the parts split off, one per line
   long file_ = -1;      // hid_t
+  // A write into the file failed all the same (an I/O error the room check cannot foresee):
+  // HDF5 1.10 cannot close such a file, so it is not closed again here (hdf5_write_failed()).
+  bool broken_ = false;
   std::size_t points_ = 0;
   int steps_ = 0;
   std::string topology_;  // the XDMF topology of every step

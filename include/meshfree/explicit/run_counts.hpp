@@ -1,0 +1,35 @@
+#pragma once
+// What an explicit run will do, counted before it starts (steps, field frames, history rows,
+// checkpoints) and bounded by the machine: `meshfree check` and `run` refuse the same runs, with
+// the key that asked for them, before anything is written.
+#include "meshfree/explicit/pd_setup.hpp"
+#include "meshfree/io/sph_spec.hpp"
+#include <string>
+
+namespace mf::explicit_dynamics {
+
+struct PlannedRun {
+  double end_time = 0.0;
+  double dt = 0.0;            // the first time step
+  std::string dt_key;         // the key whose value set it, when not the stability bound
+  double history_interval = 0.0, fields_interval = 0.0, checkpoint_interval = 0.0;
+  double particles = 0.0;
+  double particle_steps_per_second = 0.0; // per core (core/run_bounds.hpp)
+  double bytes_per_particle_frame = 0.0;  // the fields one frame writes per particle
+  double bytes_per_particle_state = 0.0;  // what a checkpoint writes per particle
+  double history_columns = 0.0;
+};
+
+/// Refuses a run whose steps would take longer than max_run_seconds on the cores here, or whose
+/// frames or history rows would not fit on the disk of `folder`, or whose checkpoints would take
+/// that long to write. An output interval below the time step is clamped with a warning: the loop
+/// writes at most once per step, and an SPH step changes as the run goes, so an interval below
+/// the first step says "every step" rather than something impossible.
+void require_finite_run(const PlannedRun& r, const std::string& folder);
+
+/// The run a peridynamic set-up and its spec make.
+PlannedRun planned_run(const io::PdSpec& s, const PdSetup& setup);
+/// The run an SPH spec makes with `particles` particles and a first step dt.
+PlannedRun planned_run(const io::SphSpec& s, double particles, double dt);
+
+} // namespace mf::explicit_dynamics

@@ -1,0 +1,98 @@
+#include "meshfree/explicit/run_counts.hpp"
+#include "meshfree/core/error.hpp"
+#include "meshfree/core/log.hpp"
+#include "meshfree/core/memory.hpp"
+#include "meshfree/core/run_bounds.hpp"
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace mf::explicit_dynamics {
+
+namespace {
+/// A disk's sustained write rate, as the bound on checkpoint writing counts it.
+constexpr double disk_bytes_per_second = 1.0e8;
+
+/// Events at `interval` up to the end time, at most one per step.
+double events(double interval, const PlannedRun& r, double steps) {
+  return interval > 0.0 ? std::min(r.end_time / interval, steps) : steps;
+}
+
+/// Says which output intervals lie below the time step (after every refusal: a refused run
+/// says one line).
+void warn_clamped(const PlannedRun& r) {
+  const std::pair<const char*, double> intervals[] = {
+      {"output.history_interval", r.history_interval},
+      {"output.fields_interval", r.fields_interval},
+      {"output.checkpoint_interval", r.checkpoint_interval}};
+  for (const auto& [key, interval] : intervals)
+    if (interval > 0.0 && interval < r.dt)
+      log::warn(key, ": ", interval, " s is below the time step ", r.dt,
+                " s: written at every step instead");
+}
+} // namespace
+
+void require_finite_run(const PlannedRun& r, const std::string& folder) {
+  const double steps = std::ceil(r.end_time / r.dt);
+  require_run_time(r.dt_key.empty() ? "time.end" : r.dt_key,
+                   detail::concat(r.end_time, " s in time steps of ", r.dt, " s, ", r.particles,
+                                  " particles: particle-steps"),
+                   steps * std::max(1.0, r.particles), r.particle_steps_per_second);
+  const double frames =
+      2.0 + (r.fields_interval > 0.0 ? events(r.fields_interval, r, steps) : 0.0);
+  require_disk("output.fields_interval", "field frames", frames,
+               r.particles * r.bytes_per_particle_frame, folder);
+  const double rows = 1.0 + events(r.history_interval, r, steps);
+  // A row is its columns written as text, about 24 characters each.
+  require_disk("output.history_interval", "history rows", rows, 24.0 * r.history_columns, folder);
+  if (r.checkpoint_interval > 0.0) {
+    const double n = events(r.checkpoint_interval, r, steps);
+    const double seconds = n * r.particles * r.bytes_per_particle_state / disk_bytes_per_second;
+    if (!(seconds <= max_run_seconds))
+      fail("output.checkpoint_interval: ", r.checkpoint_interval, " s: about ", n,
+           " checkpoints, about ", seconds / 86400.0, " days of writing at ",
+           disk_bytes_per_second, " bytes per second, more than the ",
+           max_run_seconds / 86400.0, " days a run may take");
+  }
+  warn_clamped(r);
+}
+
+namespace {
+/// A history row's columns: time, step, energies and the like, and a few per gauge.
+double history_columns(std::size_t gauges) {
+  return 32.0 + 8.0 * static_cast<double>(gauges);
+}
+} // namespace
+
+PlannedRun planned_run(const io::PdSpec& s, const PdSetup& setup) {
+  PlannedRun r;
+  r.end_time = s.end_time;
+  r.dt = setup.dt;
+  r.dt_key = setup.dt_key;
+  r.history_interval = s.history_interval;
+  r.fields_interval = s.fields_interval;
+  r.checkpoint_interval = s.checkpoint.interval;
+  r.particles = static_cast<double>(setup.particles_total);
+  r.particle_steps_per_second = work_per_second::pd_particle_steps;
+  r.bytes_per_particle_frame = 8.0 * 11.0; // displacement, velocity, position, damage, material
+  r.bytes_per_particle_state = bytes_per::pd_particle;
+  r.history_columns = history_columns(s.gauges.size());
+  return r;
+}
+
+PlannedRun planned_run(const io::SphSpec& s, double particles, double dt) {
+  PlannedRun r;
+  r.end_time = s.end_time;
+  r.dt = dt;
+  r.history_interval = s.history_interval;
+  r.fields_interval = s.fields_interval;
+  r.checkpoint_interval = s.checkpoint.interval;
+  r.particles = particles;
+  r.particle_steps_per_second = work_per_second::sph_particle_steps;
+  r.bytes_per_particle_frame = 8.0 * 24.0; // 24 values: motion, state, stress, position
+  r.bytes_per_particle_state = bytes_per::sph_particle(s.dimension);
+  r.history_columns = history_columns(s.gauges.size());
+  return r;
+}
+
+} // namespace mf::explicit_dynamics
