@@ -15,20 +15,7 @@ check() { # check "what" condition...
   local what="$1"; shift
   if "$@"; then echo "ok: $what"; else echo "FAIL: $what"; fails=$((fails+1)); fi
 }
-generation() { sed -n 's/^generation //p' "$1/checkpoint/checkpoint.txt" 2>/dev/null || echo 0; }
-# kill_after_checkpoint OUT command...: starts a run, kills it with SIGKILL once its second
-# checkpoint is in place.
-kill_after_checkpoint() {
-  local out="$1"; shift
-  "$@" >/dev/null 2>&1 &
-  local pid=$!
-  for _ in $(seq 3000); do
-    [ "$(generation "$out")" -ge 2 ] && break
-    kill -0 $pid 2>/dev/null || break
-    sleep 0.01
-  done
-  kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
-}
+source "$(dirname "${BASH_SOURCE[0]}")/checkpoint_support.sh"
 listing() { (cd "$1" && find . | sort && find . -type f | sort | xargs md5sum); }
 # h5edit FILE python-statements: edits a state file with h5py; fnv(bytes) is meshfree's checksum
 # of an array (FNV-1a over 64-bit words, seeded with the length).

@@ -49,20 +49,7 @@ EOF
 }
 # frames_whole DIR: every .xmf of DIR has one grid per time, none empty, each matching fields.h5.
 frames_whole() { /usr/bin/python3 "$ROOT/tests/xdmf_frames.py" --check "$1" >/dev/null; }
-generation() { sed -n 's/^generation //p' "$1/checkpoint/checkpoint.txt" 2>/dev/null || echo 0; }
-# kill_after_checkpoint OUT command...: starts a run, kills it with SIGKILL once its second
-# checkpoint is in place.
-kill_after_checkpoint() {
-  local out="$1"; shift
-  "$@" >"$WORK/killed.log" 2>&1 &
-  local pid=$!
-  for _ in $(seq 3000); do
-    [ "$(generation "$out")" -ge 2 ] && break
-    kill -0 $pid 2>/dev/null || break
-    sleep 0.01
-  done
-  pkill -9 -P $pid 2>/dev/null; kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
-}
+source "$(dirname "${BASH_SOURCE[0]}")/checkpoint_support.sh"
 # restart_case NAME PROBLEM INTERVAL [meshfree arguments...] [:: launcher...]
 restart_case() {
   local name="$1" problem="$ROOT/problems/$2.yaml" interval="$3"

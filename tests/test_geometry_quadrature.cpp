@@ -269,3 +269,36 @@ TEST_CASE("exact cut cells give the area of a plate with a hole with fewer point
   // splitting cut cells 4 times is 7.1e-4 off.
   CHECK(a == Approx(20.0 - M_PI * 0.36).epsilon(1e-7));
 }
+
+TEST_CASE("the distance from a point to a boundary piece: segments and arcs of either sense",
+          "[geometry]") {
+  geometry::Curve seg;
+  seg.a = Vec2(0.0, 0.0), seg.b = Vec2(2.0, 0.0);
+  CHECK(seg.distance_to(Vec2(1.0, 0.5)) == Approx(0.5));
+  CHECK(seg.distance_to(Vec2(3.0, 0.0)) == Approx(1.0)); // beyond an end: to the end
+  CHECK(seg.distance_to(Vec2(-3.0, 4.0)) == Approx(5.0));
+  // A quarter circle of radius 2 about (1, 1) from 0 to 90 degrees, swept either way.
+  for (const bool reversed : {false, true}) {
+    geometry::Curve arc;
+    arc.kind = geometry::Curve::Kind::Arc;
+    arc.center = Vec2(1.0, 1.0), arc.radius = 2.0;
+    const double half_pi = 0.5 * std::acos(-1.0);
+    arc.theta0 = reversed ? half_pi : 0.0;
+    arc.theta1 = reversed ? 0.0 : half_pi;
+    INFO("reversed " << reversed);
+    // Within the sweep: | |p - c| - r |, inside and outside the circle.
+    CHECK(arc.distance_to(Vec2(1.0 + 0.5 * std::sqrt(2.0), 1.0 + 0.5 * std::sqrt(2.0))) ==
+          Approx(1.0));
+    CHECK(arc.distance_to(Vec2(1.0 + 3.0 * std::sqrt(0.5), 1.0 + 3.0 * std::sqrt(0.5))) ==
+          Approx(1.0));
+    // Outside the sweep: to the nearer end, (3, 1) or (1, 3); not to the rest of the circle.
+    CHECK(arc.distance_to(Vec2(1.0, -1.0)) == Approx(std::hypot(2.0, 2.0)));
+    CHECK(arc.distance_to(Vec2(-1.0, 1.0)) == Approx(std::hypot(2.0, 2.0)));
+    CHECK(arc.distance_to(Vec2(3.0, 0.0)) == Approx(1.0));
+    // An arc whose angles lie beyond 2 pi: the same piece.
+    geometry::Curve turned = arc;
+    turned.theta0 += 4.0 * half_pi, turned.theta1 += 4.0 * half_pi;
+    CHECK(turned.distance_to(Vec2(1.0, -1.0)) == Approx(std::hypot(2.0, 2.0)));
+    CHECK(turned.distance_to(Vec2(2.0, 2.0)) == Approx(2.0 - std::sqrt(2.0)));
+  }
+}

@@ -90,15 +90,20 @@ struct HeldFrom {
   std::size_t loads = 0, constraints = 0;
 };
 
-/// The owned members of the whole body's list `particles`, as this rank's local indices (owned
-/// ids are contiguous from local.first_id), with their positions k in the list.
-template <class F>
-void owned_members(const std::vector<int>& particles, const explicit_dynamics::PdSetup& local,
-                   F&& keep) {
+/// The owned members of a held load's or constraint's particle list of the whole body, as this
+/// rank's local indices (owned ids are contiguous from local.first_id), and their per-particle
+/// values.
+template <class T>
+void keep_owned(const std::vector<int>& particles, const std::vector<T>& values,
+                const explicit_dynamics::PdSetup& local, std::vector<int>& mine,
+                std::vector<T>& mine_values) {
   const long owned = local.model.particles.owned_count();
+  mine.clear(), mine_values.clear();
   for (std::size_t k = 0; k < particles.size(); ++k) {
     const long i = particles[k] - local.first_id;
-    if (i >= 0 && i < owned) keep(static_cast<int>(i), k);
+    if (i < 0 || i >= owned) continue;
+    mine.push_back(static_cast<int>(i));
+    mine_values.push_back(values[k]);
   }
 }
 
@@ -113,23 +118,15 @@ void carry_over(const explicit_dynamics::PdSetup& whole, const HeldFrom& from,
     for (int d = 0; d < 3; ++d) u[3 * i + d] = W.u[3 * L.id[i] + d];
   pd::set_displacement(local.model, u);
   for (std::size_t b = from.loads; b < whole.loading.loads.size(); ++b) {
-    const pd::BodyLoad& l = whole.loading.loads[b];
-    pd::BodyLoad mine = l;
-    mine.particles.clear(), mine.densities.clear();
-    owned_members(l.particles, local, [&](int i, std::size_t k) {
-      mine.particles.push_back(i);
-      mine.densities.push_back(l.densities[k]);
-    });
+    pd::BodyLoad mine = whole.loading.loads[b];
+    keep_owned(whole.loading.loads[b].particles, whole.loading.loads[b].densities, local,
+               mine.particles, mine.densities);
     local.loading.loads.push_back(mine);
   }
   for (std::size_t c = from.constraints; c < whole.loading.constraints.size(); ++c) {
-    const pd::Constraint& h = whole.loading.constraints[c];
-    pd::Constraint mine = h;
-    mine.particles.clear(), mine.held.clear();
-    owned_members(h.particles, local, [&](int i, std::size_t k) {
-      mine.particles.push_back(i);
-      mine.held.push_back(h.held[k]);
-    });
+    pd::Constraint mine = whole.loading.constraints[c];
+    keep_owned(whole.loading.constraints[c].particles, whole.loading.constraints[c].held, local,
+               mine.particles, mine.held);
     local.loading.constraints.push_back(mine);
   }
 }

@@ -172,13 +172,11 @@ double worst_out_of_balance(sph::Hydro& h) {
 std::vector<int> balanced_particles(const io::ProblemSpec& preload,
                                     const implicit::ElastoplasticResult& pre,
                                     const io::StageLink& link, const std::vector<Vec3>& X,
-                                    const sph::Hydro& h) {
+                                    const sph::Hydro& h, double reach) {
   const int n = h.particles.owned_count();
   std::vector<char> released(n, 0);
   io::StageLink off = link;
   off.hold = link.release;
-  double reach = 0.0;
-  for (int i = 0; i < n; ++i) reach = std::max(reach, 2.0 * h.fields.h[i]);
   for (const HeldCondition& c : held_conditions(preload, pre, off, X, {reach, reach})) {
     if (c.kind == HeldCondition::Kind::Body) return {};
     for (int i : c.particles) released[i] = 1;
@@ -216,8 +214,8 @@ ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
     std::vector<Vec3> X(n);
     for (int i = 0; i < n; ++i) X[i] = h.particles.reference(i);
     pa = sample_preload(preload, pre, X, link.mirror, link.key_path);
-    const Holding held = hold(held_conditions(preload, pre, link, X, hold_layers(s, h)), preload,
-                              link, h);
+    const HoldLayers layers = hold_layers(s, h);
+    const Holding held = hold(held_conditions(preload, pre, link, X, layers), preload, link, h);
     t.held = held.how;
     const sph::InitialStateReport rep =
         put_increment(h, pa, pa.increments() - 1, link.return_to_surface);
@@ -229,8 +227,8 @@ ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
     for (int b : held.held_boundaries) sph::hold_stress(h.transmitting[b], sigma);
     const double scale = std::max(largest_force(h, pa.final_stress()), 1e-300);
     t.balanced_residual = worst_out_of_balance(h) / scale;
-    h.forces.push_back(sph::balancing_force(h, "transfer_balance",
-                                            balanced_particles(preload, pre, link, X, h)));
+    h.forces.push_back(sph::balancing_force(
+        h, "transfer_balance", balanced_particles(preload, pre, link, X, h, layers.held)));
     t.out_of_balance = worst_out_of_balance(h) / scale;
     t.particles = n;
     t.over_surface = rep.over_surface;
