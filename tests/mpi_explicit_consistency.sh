@@ -96,19 +96,21 @@ run_staged_both staged-tunnel staged_tunnel_blast --set stages.1.time.end=2.0e-3
 /usr/bin/python3 "$ROOT/scripts/compare_runs.py" "$WORK/staged-tunnel-1" "$WORK/staged-tunnel-2" --rtol 1e-12
 run_staged_both staged-tunnel-fast staged_tunnel_blast --set stages.1.time.end=2.0e-3
 /usr/bin/python3 "$ROOT/scripts/compare_runs.py" "$WORK/staged-tunnel-fast-1" "$WORK/staged-tunnel-fast-2" --rtol 1e-8
-# What a staged run whose explicit stage starts at rest can be held to on 2 ranks: the preload's
-# solve over 2 ranks (MUMPS over both) differs from one rank's by round-off, which the quiet
-# parts of the stage (velocities of a body at rest, gauges before the wave, accelerations from
-# the equilibrium's leftover residual) turn into noise that no two runs share. The transfer's
-# numbers agree to 1e-8 (those that are themselves round-off, as the density mismatch of
-# 1.7e-14, in absolute terms; the residuals left by a balance or an equilibrium are only held
-# to 1e-3), and the given fields to the given fraction of their largest value.
-same_transfer_and_fields() { # run dir 1, run dir 2, tolerance, field names...
+# Staged runs whose preload is elastoplastic (the strip) or feeds a peridynamic equilibrium (the
+# PMMA beam): the preload's solve over 2 ranks (MUMPS over both, Newton accepted at the penalty
+# terms' round-off floor, near 1e-9 of the force scale) differs from one rank's, so the
+# transferred states agree to some 1e-11 of their largest values, not to 1e-12. What the
+# distributed explicit stage must add to that is nothing: the transfer's numbers agree to 1e-8
+# (those that are themselves round-off, as the density mismatch of 1.4e-14, in absolute terms;
+# the residuals left by a balance or an equilibrium only to 1e-3), the transferred fields (t = 0)
+# to 1e-10, and at the stage's end every field is within twice the transfer's largest
+# difference (or 1e-12).
+same_transfer_and_stage() { # run dir 1, run dir 2, field names...
   /usr/bin/python3 - "$@" <<'PY'
-import json, sys
+import json, re, sys
 import h5py
 import numpy as np
-one, two, tol, names = sys.argv[1], sys.argv[2], float(sys.argv[3]), sys.argv[4:]
+one, two, names = sys.argv[1], sys.argv[2], sys.argv[3:]
 t1, t2 = (json.load(open(f"{d}/summary.json"))["transfer"] for d in (one, two))
 for key, value in t1.items():
     # Times, and the residuals an equilibrium leaves (round-off of the forces it balances).
@@ -120,23 +122,33 @@ for key, value in t1.items():
     else:
         assert value == t2[key], (key, value, t2[key])
 assert t2["initial_out_of_balance"] <= 1e-3
+times = [float(t) for t in re.findall(r'<Time Value="([^"]*)"', open(f"{one}/fields.xmf").read())]
 with h5py.File(f"{one}/fields.h5") as a, h5py.File(f"{two}/fields.h5") as b:
-    step = sorted(k for k in a if k.startswith("step_"))[-1]
-    for name in names:
-        x, y = a[step][name][...], b[step][name][...]
-        worst = np.abs(x - y).max() / max(np.abs(x).max(), 1e-300)
-        print(f"{one.split('/')[-1]}: 2 ranks against 1, {name} within {worst:.1e} of its largest")
-        assert worst <= tol, (name, worst)
+    steps = sorted(k for k in a if k.startswith("step_"))
+    assert len(steps) == len(times) and times[-1] > 0, (len(steps), times)
+    def differences(step):
+        return {n: np.abs(a[step][n][...] - b[step][n][...]).max() /
+                   max(np.abs(a[step][n][...]).max(), 1e-300) for n in names}
+    start, end = differences(steps[times.index(0.0)]), differences(steps[-1])
+    transfer = max(start.values())
+    for n in names:
+        print(f"{one.split('/')[-1]}: 2 ranks against 1, {n} within {start[n]:.1e} at t = 0 "
+              f"and {end[n]:.1e} at t = {times[-1]:g} of its largest")
+        assert start[n] <= 1e-10, (n, start[n])
+        assert end[n] <= max(2 * transfer, 1e-12), (n, end[n], transfer)
 PY
 }
-# The strip before its blast arrives, held at rest in its plastic state.
+# The strip with its preload at twice the spacing, and the charge brought to 0.1 m of the free
+# edge so that the blast wave is inside the strip before the (shortened) stage ends.
 run_staged_both staged-strip staged_strip_blast --set stages.1.time.end=2.0e-5 \
-  --set stages.0.steps.0.increments=4 --set stages.1.discretisation.deterministic=true
-same_transfer_and_fields "$WORK/staged-strip-1" "$WORK/staged-strip-2" 1e-9 stress_xx stress_yy \
-  stress_xy stress_zz displacement
+  --set stages.0.discretisation.spacing=0.01 --set stages.0.discretisation.refinement.0.spacing=0.005 \
+  --set stages.0.steps.0.increments=4 --set stages.1.boundary.0.blast.charge_at=[0.2,0.0] \
+  --set stages.1.discretisation.deterministic=true
+same_transfer_and_stage "$WORK/staged-strip-1" "$WORK/staged-strip-2" stress_xx stress_yy \
+  stress_xy stress_zz displacement velocity
 # The PMMA beam: the peridynamic equilibrium made on the whole body on every rank, then the
 # stage split into blocks; the striker's impact.
 run_staged_both staged-pmma staged_pmma_impact --set stages.1.time.end=1.5e-5 \
   --set stages.1.discretisation.deterministic=true
-same_transfer_and_fields "$WORK/staged-pmma-1" "$WORK/staged-pmma-2" 1e-9 displacement velocity
+same_transfer_and_stage "$WORK/staged-pmma-1" "$WORK/staged-pmma-2" displacement velocity
 echo "ok: staged runs over 2 ranks"
