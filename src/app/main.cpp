@@ -1,4 +1,4 @@
-// meshfree command line (DESIGN.md, "the run contract"):
+// meshfree command line (docs/architecture.md, "The run contract"):
 //   meshfree run PROBLEM.yaml [--out DIR | --restart DIR] [--set key.path=value ...]
 //                [-- PETSc options]
 //   meshfree check PROBLEM.yaml [--set key.path=value ...]
