@@ -33,7 +33,7 @@ struct Settings {
                                      // unreacted equation of state
   /// Sum every particle's pairs in its row's order (increasing global id), so that the rates do
   /// not depend on the number of threads or ranks; else (the default) each pair is evaluated once
-  /// and its terms go to both ends (Newton's third law), 1.3x faster on the tunnel blast.
+  /// and its terms go to both ends (Newton's third law), the faster (README.md, SPH).
   bool deterministic = false;
   /// Artificial stress against the tensile instability of solids (Monaghan 2000; Gray,
   /// Monaghan & Swift 2001): each particle's tensile principal stresses give
