@@ -37,7 +37,7 @@ PROBLEMS = {
         control=("factor_tension", "q", "edge load q [N/mm]"), driver="tension",
         responses=[("u_y at (0.5, 1) [mm]", "uy_top_centre", "uy_05_1"),
                    ("u_x at (1, 1) [mm]", "ux_top_right", "ux_1_1")],
-        # The thesis' Fig. 4-26: u_x along the top edge at q = 308 and 308.25 (increments 4, 5).
+        # [Faraji 2007] Fig. 4-26: u_x along the top edge at q = 308 and 308.25 (increments 4, 5).
         lines=[("top", 4, "line_top_308.csv"), ("top", 5, "line_top_30825.csv")]),
     "plate_plastic_limit": dict(
         control=("factor_pull", "v", "top displacement v [mm]"), driver="pull",

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Plots the function-approximation comparison of the thesis' section 4-1 (its Figs. 4-1 to 4-7):
+"""Plots the function-approximation comparison of [Faraji 2007] section 4-1 (its Figs. 4-1 to 4-7):
 plain SPH kernel sums against RK shape functions (linear and quadratic basis) for linear,
 quadratic and cos(x) data in 1D and z = 2x + y, z = 2x^2 + y^2 in 2D, on 11 (11 x 11) nodes
 with a cubic B-spline window. Reads the CSV files written by `approximation_study DIR` and

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The buried-tunnel study of the SPH thesis (sources/digest-004): a concrete lining in dry sand
+"""The buried-tunnel study of [Altafi 2018] (sources/digest-004): a concrete lining in dry sand
 under a TNT surface burst, depths 10, 15, 20 m x charges 500, 1000, 5000 kg.
 
 Each case is problems/sph_tunnel_blast.yaml with its depth and charge (the crown's extrados at
@@ -7,11 +7,11 @@ the depth, 6 m of sand below the invert) and a run time that grows with the dept
 runs the cases, then writes to --out:
   - results.csv: per case and gauge, arrival time, peak pressure, peak downward velocity, final
     vertical displacement, peak von Mises stress, particles, steps and wall time;
-  - table.md: the arrival times next to the thesis' table (scaled x1000, as its model appears to
+  - table.md: the arrival times next to [Altafi 2018]'s table (scaled x1000, as its model appears to
     be a 1:1000 replica; digest section 6.3), and the peaks;
   - gauges_<depth>m_<mass>kg.png: pressure, vertical velocity, vertical displacement and von
     Mises stress at the crown and the floor;
-  - max_von_mises_vs_depth.png and arrival_vs_depth.png (the thesis' Figs 5-78/79 and 5-49/50).
+  - max_von_mises_vs_depth.png and arrival_vs_depth.png ([Altafi 2018] Figs 5-78/79 and 5-49/50).
 
 Usage: scripts/tunnel_study.py [--meshfree build/meshfree] [--out out/tunnel_study]
        [--spacing 0.25] [--cases 10:500,20:5000] [--end-scale 1.0]
@@ -31,7 +31,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 TEMPLATE = os.path.join(ROOT, "problems", "sph_tunnel_blast.yaml")
 DEPTHS = [10.0, 15.0, 20.0]
 MASSES = [500.0, 1000.0, 5000.0]
-# The thesis' first-arrival table (ms in its model units), digest section 6.1: depth ->
+# The first-arrival table of [Altafi 2018] (ms in its model units), digest section 6.1: depth ->
 # (crown 500, 1000, 5000, floor 500, 1000, 5000). Scaled x1000 it reads in real ms.
 THESIS_ARRIVAL = {10.0: (0.007, 0.006, 0.004, 0.010, 0.009, 0.008),
                   15.0: (0.008, 0.007, 0.006, 0.011, 0.009, 0.009),

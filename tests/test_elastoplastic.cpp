@@ -130,7 +130,7 @@ TEST_CASE("Newton with the consistent tangent converges quadratically in plastic
 
 TEST_CASE("a load beyond the limit load stops the run with the reason and keeps what converged",
           "[elastoplastic]") {
-  // The thesis plate collapses at q = sigma_y * width = 310 N/mm; ask for 320.
+  // The plate of [Faraji 2007] collapses at q = sigma_y * width = 310 N/mm; ask for 320.
   const auto spec =
       load_problem("plate_plastic_thesis", {"discretisation.spacing=0.1", "steps.1.load_factor=320",
                                             "steps.1.increments=4", "nonlinear.max_cutbacks=4"});

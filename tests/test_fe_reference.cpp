@@ -1,4 +1,4 @@
-// The thesis' two elastic plates against the external CalculiX reference kept in
+// The two elastic plates of [Faraji 2007] against the external CalculiX reference kept in
 // reference/calculix/ (see its README for how it was made): sampled displacements agree
 // within 1% of the largest displacement component on each line.
 #include "meshfree/implicit/elastic_solve.hpp"

@@ -1,4 +1,4 @@
-// meshfree command line (DESIGN.md, "the run contract"):
+// meshfree command line (docs/architecture.md, "The run contract"):
 //   meshfree run PROBLEM.yaml [--out DIR | --restart DIR] [--set key.path=value ...]
 //                [-- PETSc options]
 //   meshfree check PROBLEM.yaml [--set key.path=value ...]
@@ -172,10 +172,9 @@ void describe(const mf::io::ProblemSpec& spec) {
 }
 
 /// An elastoplastic schedule's increments, each a Newton solve over every degree of freedom that
-/// writes a field frame and a Gauss-point frame, about 600 bytes per node together
-/// (plate_plastic_thesis: 18 MB of fields and 79 MB of Gauss points over 101 increments of 1,681
-/// nodes): bounded by the time a run may take here and by the disk of `folder`. The step whose
-/// increments pass a bound is named.
+/// writes a field frame and a Gauss-point frame, about 600 bytes per node together (measured on
+/// plate_plastic_thesis, README.md "Running"): bounded by the time a run may take here and by
+/// the disk of `folder`. The step whose increments pass a bound is named.
 void require_increment_output(const mf::io::ProblemSpec& spec, const std::string& folder) {
   if (spec.analysis != mf::io::Analysis::ElastoplasticStatic) return;
   const mf::Vec2 size = spec.domain.bounds().size();
@@ -436,10 +435,9 @@ void wait_passively(char** argv) {
 
 /// Freed memory stays with the process instead of going back to the system. glibc serves large
 /// blocks by mmap and unmaps them on free, so every large vector (a shape table, a solver's work
-/// space) is paged in afresh, and the first touch of a page is what costs on virtual machines:
-/// on a 2-core one, 0.45-0.66 GB/s for memory the host has taken back, 1.3-2.6 GB/s for memory
-/// just freed. The elastic plate's assembly at 10^6 DOFs took 7.6 s with glibc's default and
-/// 5.3 s with this (4 * 10^5 DOFs: 2.0 s either way); the peak memory is the same.
+/// space) is paged in afresh, and the first touch of a page is what costs on virtual machines,
+/// more for memory the host has taken back than for memory just freed; keeping it makes large
+/// assemblies faster at the same peak memory (measured in README.md, "Running").
 void keep_freed_memory() {
   mallopt(M_MMAP_MAX, 0);
   mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());

@@ -80,8 +80,7 @@ sph::Hydro build_sph(const io::SphSpec& s) {
   h.dim = s.dimension;
   // The list holds (1 + skin)^dim times the interacting pairs, every one of them examined at
   // every rate evaluation, while the number of rebuilds goes as 1 / skin: the best margin
-  // shrinks with the dimension. Measured: 0.5 against 0.3 is 4-6% faster on the 1D problems
-  // (Sod, TNT slab), 0.3 is 4-9% faster on the 2D and 3D ones (tunnel, plate blast, Taylor bar).
+  // shrinks with the dimension (measured in README.md, SPH).
   h.settings.skin = h.dim == 1 ? 0.5 : 0.3;
   for (std::size_t k = 0; k < s.regions.size(); ++k) {
     const io::SphRegion& b = s.regions[k];

@@ -136,7 +136,7 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
 }
 
 /// `stiffness_scale` = E / h: the penalty is alpha = penalty_scale * E / h unless an absolute
-/// `penalty` is given (the thesis uses alpha = 1e12 with E = 2e5 MPa).
+/// `penalty` is given ([Faraji 2007] uses alpha = 1e12 with E = 2e5 MPa).
 BoundaryCondition read_condition(KeyReader& bc, double stiffness_scale) {
   BoundaryCondition c;
   c.key_path = bc.path();

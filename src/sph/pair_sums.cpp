@@ -222,7 +222,7 @@ void artificial_stress(const Hydro& s, const Rates& r, const RowParticle& o, Liv
   }
 }
 
-/// The terms of pairs [0, count) that both ends share (the thesis' eqs. 3-41, 3-48 and 3-64):
+/// The terms of pairs [0, count) that both ends share ([Altafi 2018] eqs. 3-41, 3-48 and 3-64):
 /// the momentum term f = q gv - T gv (dv_i = -m_j f, dv_j = +m_i f), v_ij . gv (drho_i = m_j v.gv)
 /// and w = q v_ij . gv - v_ij . T gv (de_i = m_j w / 2). Each is symmetric in i and j or changes
 /// sign with x_ij, so one evaluation serves both ends. Components beyond Dim are zero: the

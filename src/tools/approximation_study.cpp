@@ -1,5 +1,5 @@
 // Function approximation by plain SPH kernel sums and by reproducing-kernel (RK) shape functions,
-// the comparison of the thesis' section 4-1 (its Figs. 4-1 to 4-7): linear, quadratic and cos(x)
+// the comparison of [Faraji 2007] section 4-1 (its Figs. 4-1 to 4-7): linear, quadratic and cos(x)
 // in 1D; z = 2x + y and z = 2x^2 + y^2 in 2D. Writes one CSV per case into the given directory;
 // scripts/plot_approximation.py turns them into PNG plots.
 //   approximation_study OUTDIR

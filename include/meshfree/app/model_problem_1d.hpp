@@ -1,5 +1,5 @@
 #pragma once
-// The thesis' 1D model problem (section 4-2) by RK Galerkin, on one rank.
+// The 1D model problem of [Faraji 2007] (section 4-2) by RK Galerkin, on one rank.
 #include "meshfree/implicit/model_problem_1d.hpp"
 #include "meshfree/io/output.hpp"
 #include "meshfree/io/problem_spec.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// Fixed-size Eigen types used across the code, and the Voigt conventions of DESIGN.md:
+// Fixed-size Eigen types used across the code, and the Voigt conventions of docs/architecture.md:
 // 2D Voigt order [xx, yy, xy] with engineering shear strain gamma_xy = 2 eps_xy.
 #include <Eigen/Core>
 #include <Eigen/Dense>

@@ -83,12 +83,11 @@ private:
 /// Where each (owned row, column) node pair of every point of a shape table lands among the
 /// blocks of a row pattern: n * n slots per point (row-major, -1 for rows another rank owns).
 /// Assembling a point then costs indexed additions instead of searches in the rows, which is
-/// worth its memory (4 bytes per pair) for a matrix assembled at every Newton iteration
-/// (measured on the perforated strip, 39,059 points of 12 nodes: 67 ms per tangent with
-/// searches, 26 ms of it the element arithmetic). Where the map would take more than
-/// `max_bytes` (by default a quarter of the memory here: some 0.7 GB per million points of 12
-/// nodes), it is not kept and each point's slots are searched anew when asked for, into a buffer
-/// given by the caller (one per thread).
+/// worth its memory (4 bytes per pair) for a matrix assembled at every Newton iteration: the
+/// searches cost more than the element arithmetic (measured in README.md, "Running"). Where
+/// the map would take more than `max_bytes` (by default a quarter of the memory here: some
+/// 0.7 GB per million points of 12 nodes), it is not kept and each point's slots are searched
+/// anew when asked for, into a buffer given by the caller (one per thread).
 class BlockScatter {
 public:
   BlockScatter(const ShapeTable& table, const RowPattern& pattern, double max_bytes = -1.0);

@@ -1,5 +1,5 @@
 #pragma once
-// Galerkin weak form of plane elasticity with penalty essential conditions (the thesis'
+// Galerkin weak form of plane elasticity with penalty essential conditions ([Faraji 2007]
 // eq. 2-49; Belytschko, Lu & Gu 1994 eq. 26 with the penalty in place of multipliers):
 //   K_IJ = int_Omega B_I^T C B_J t dOmega + int_Gamma_u phi_I alpha S phi_J t dGamma,
 //   f_I  = int_Gamma_t phi_I tbar t dGamma + int_Gamma_u phi_I alpha S ubar t dGamma
@@ -19,7 +19,7 @@ using MatrixAdder = std::function<void(const int* nodes, int n, const double* bl
 /// Adds a 2n vector on the 2 DOFs of each of n nodes.
 using VectorAdder = std::function<void(const int* nodes, int n, const double* values)>;
 
-/// Strain-displacement matrix B_I of one node (the thesis' eq. 2-47), Voigt [xx, yy, 2xy].
+/// Strain-displacement matrix B_I of one node ([Faraji 2007] eq. 2-47), Voigt [xx, yy, 2xy].
 inline Eigen::Matrix<double, 3, 2> strain_matrix(const Vec2& g) {
   Eigen::Matrix<double, 3, 2> B;
   B << g.x(), 0.0, 0.0, g.y(), g.y(), g.x();

@@ -5,7 +5,7 @@
 //   history_n),
 // with f_c the traction, body-force or penalty right-hand side of condition c at factor 1, and
 // their consistent tangent. The history at the Gauss points is committed only after an increment
-// has converged (the thesis' incremental strategy B, section 3-1-2).
+// has converged ([Faraji 2007] incremental strategy B, section 3-1-2).
 #include "meshfree/implicit/coupling.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/implicit/point_law.hpp"

@@ -1,7 +1,7 @@
 #pragma once
-// The thesis' 1D model problem (section 4-2): y'' + f = 0 on [0, L], y(0) = y(L) = 0, solved by
-// RK Galerkin from the potential Pi = 1/2 int y'^2 dx - int f y dx (the thesis' eq. 4-2), with
-// background Gauss cells and penalty end conditions.
+// The 1D model problem of [Faraji 2007] (section 4-2): y'' + f = 0 on [0, L], y(0) = y(L) = 0,
+// solved by RK Galerkin from the potential Pi = 1/2 int y'^2 dx - int f y dx ([Faraji 2007]
+// eq. 4-2), with background Gauss cells and penalty end conditions.
 #include "meshfree/core/timer.hpp"
 #include "meshfree/io/problem_spec.hpp"
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// Run outputs (DESIGN.md, "the run contract"): fields.h5 + fields.xmf (ParaView reads the .xmf),
+// Run outputs (docs/architecture.md, "The run contract"): fields.h5 + fields.xmf (for ParaView),
 // history.csv, line_<name>.csv and summary.json, written into a staging folder and put in place
 // only when the run has completed, so a failed or killed run never replaces a good result.
 #include "meshfree/core/types.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// What every analysis writes about its run (DESIGN.md, "the run contract"): summary.json (a
+// What every analysis writes (docs/architecture.md, "The run contract"): summary.json (a
 // header naming the problem and the analysis, the status and why a run stopped, named sections
 // such as counts and results, and the wall time of each phase), history.csv (named columns, one
 // row per recorded instant), and field series whose fields are registered once by name and kind

@@ -1,13 +1,13 @@
 #pragma once
 // Meshfree shape functions and their analytic first derivatives at one point.
 //
-//  - Reproducing kernel (RK, Liu, Jun & Zhang 1995; the thesis' eqs. 2-32 to 2-45):
+//  - Reproducing kernel (RK, Liu, Jun & Zhang 1995; [Faraji 2007] eqs. 2-32 to 2-45):
 //      phi_I(x) = V_I w_I(x) H(x - x_I)^T b(x),  M(x) b(x) = H(0),
 //      M(x) = sum_I V_I w_I H(x - x_I) H(x - x_I)^T.
-//  - Moving least squares (EFG, Belytschko, Lu & Gu 1994; the thesis' eqs. 2-9 to 2-24):
+//  - Moving least squares (EFG, Belytschko, Lu & Gu 1994; [Faraji 2007] eqs. 2-9 to 2-24):
 //      phi_I(x) = p(x)^T A(x)^{-1} p(x_I) w_I,  A = sum_I w_I p(x_I) p(x_I)^T,
 //      derivatives by the gamma trick  A gamma = p,  A gamma_,i = p_,i - A_,i gamma.
-//  - Plain SPH kernel approximation (the thesis' eq. 2-28): phi_I = V_I W(x - x_I), with W the
+//  - Plain SPH kernel approximation ([Faraji 2007] eq. 2-28): phi_I = V_I W(x - x_I), with W the
 //    window normalised to unit integral; no correction, so no consistency at boundaries.
 #include "meshfree/core/types.hpp"
 #include "meshfree/kernels/window.hpp"

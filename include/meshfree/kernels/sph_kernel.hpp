@@ -1,6 +1,6 @@
 #pragma once
 // Smoothing kernels of SPH with support 2h in 1, 2 or 3 dimensions. The cubic B-spline
-// (Monaghan & Lattanzio 1985; the thesis' eq. 3-19):
+// (Monaghan & Lattanzio 1985; [Altafi 2018] eq. 3-9):
 //   W(q) = a_d (1 - 3/2 q^2 + 3/4 q^3) for 0 <= q < 1, a_d (2 - q)^3 / 4 for 1 <= q < 2, 0 beyond,
 //   q = r / h, a_1 = 2 / (3h), a_2 = 10 / (7 pi h^2), a_3 = 1 / (pi h^3).
 #include <cmath>

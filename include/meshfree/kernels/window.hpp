@@ -1,7 +1,7 @@
 #pragma once
 // Window (weight) functions of the normalised distance z = r/a, compactly supported on z < 1.
 // Cubic B-spline and quartic spline: Liu, Jun & Zhang (1995) and Belytschko, Lu & Gu (1994)
-// eq. (9); truncated Gaussian: the thesis' eq. (2-30), shifted so that it vanishes at z = 1.
+// eq. (9); truncated Gaussian: [Faraji 2007] eq. (2-30), shifted so that it vanishes at z = 1.
 #include <cmath>
 
 namespace mf::kernels {
@@ -10,7 +10,7 @@ enum class WindowType { CubicSpline, QuarticSpline, Gaussian };
 
 struct Window {
   WindowType type = WindowType::CubicSpline;
-  /// c in exp(-(z/c)^2) for the Gaussian. The thesis' kernel exp(-r^2/h^2) truncated at 3h is
+  /// c in exp(-(z/c)^2) for the Gaussian. [Faraji 2007]'s exp(-r^2/h^2) truncated at 3h is
   /// c = 1/3 with support a = 3h.
   double gaussian_shape = 0.4;
 

@@ -11,7 +11,7 @@ struct IsotropicElastic {
   double nu = 0.0; // Poisson's ratio
 };
 
-/// Plane stress: the thesis' eq. (3-6), C = E/(1-nu^2) [1 nu 0; nu 1 0; 0 0 (1-nu)/2].
+/// Plane stress: [Faraji 2007] eq. (3-6), C = E/(1-nu^2) [1 nu 0; nu 1 0; 0 0 (1-nu)/2].
 /// Plane strain: C = E/((1+nu)(1-2nu)) [1-nu nu 0; nu 1-nu 0; 0 0 (1-2nu)/2].
 inline Mat3 elastic_matrix(const IsotropicElastic& m, PlaneModel model) {
   Mat3 C = Mat3::Zero();

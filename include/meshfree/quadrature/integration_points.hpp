@@ -1,6 +1,6 @@
 #pragma once
 // Integration points for meshfree Galerkin: Gauss points on a background grid of cells over the
-// body (Belytschko, Lu & Gu 1994; the thesis' section 2-3), and Gauss points along boundary
+// body (Belytschko, Lu & Gu 1994; [Faraji 2007] section 2-3), and Gauss points along boundary
 // pieces for tractions and penalty constraints.
 #include "meshfree/core/types.hpp"
 #include "meshfree/geometry/domain.hpp"

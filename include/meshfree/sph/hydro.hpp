@@ -1,5 +1,5 @@
 #pragma once
-// Smoothed-particle hydrodynamics of compressible media in 1, 2 or 3 dimensions (the thesis'
+// Smoothed-particle hydrodynamics of compressible media in 1, 2 or 3 dimensions ([Altafi 2018]
 // chapter 3, after Monaghan 1992 and Liu & Liu 2003): continuity-equation density (eq. 3-41),
 // the symmetric momentum and energy equations (eqs. 3-48 and 3-64) with Monaghan's artificial
 // viscosity (alpha = beta = 1, phi = 0.1 h), smoothing lengths that follow the density, a
@@ -33,7 +33,7 @@ struct Settings {
                                      // unreacted equation of state
   /// Sum every particle's pairs in its row's order (increasing global id), so that the rates do
   /// not depend on the number of threads or ranks; else (the default) each pair is evaluated once
-  /// and its terms go to both ends (Newton's third law), 1.3x faster on the tunnel blast.
+  /// and its terms go to both ends (Newton's third law), the faster (README.md, SPH).
   bool deterministic = false;
   /// Artificial stress against the tensile instability of solids (Monaghan 2000; Gray,
   /// Monaghan & Swift 2001): each particle's tensile principal stresses give
@@ -41,10 +41,10 @@ struct Settings {
   /// f = W(r) / W(initial spacing). epsilon = 0 switches it off; Gray et al. use 0.3 and n = 4.
   double artificial_stress = 0.0;
   int artificial_stress_exponent = 4;
-  /// Inter-material penalty force (the thesis' eqs. 3-29 and 3-30, after Liu et al. 2003):
+  /// Inter-material penalty force ([Altafi 2018] eqs. 3-29 and 3-30, after Liu et al. 2003):
   /// particles of different materials closer than r0 = distance x their mean initial spacing
   /// repel with F = pressure a^(dim-1) [(r0/r)^n1 - (r0/r)^n2] along the line of centres,
-  /// a = the mean spacing. The thesis activates it at (h_i + h_j) / (2 r) >= 1; with
+  /// a = the mean spacing. [Altafi 2018] activates it at (h_i + h_j) / (2 r) >= 1; with
   /// h = 1.5 spacing that would push nearest neighbours apart at rest, so r0 is taken from the
   /// spacing instead. pressure = 0 switches it off.
   struct Penalty {
@@ -87,7 +87,7 @@ struct TransmittingBoundary {
   std::vector<double> static_force;                            // 3 per particle, or empty
 };
 
-/// A symmetry plane x_axis = at (Libersky & Petschek 1991, the thesis' type-II virtual particles):
+/// A symmetry plane x_axis = at (Libersky & Petschek 1991; [Altafi 2018] type-II particles):
 /// the particles within reach of the plane are mirrored across it, with the normal velocity and
 /// the shear stresses on the plane reversed, so that the body behaves as half of a symmetric
 /// whole: no normal motion through the plane and no shear on it.

@@ -1,5 +1,5 @@
 #pragma once
-// The pair sums of the SPH rates: continuity, momentum and energy (the thesis' eqs. 3-41, 3-48
+// The pair sums of the SPH rates: continuity, momentum and energy ([Altafi 2018] eqs. 3-41, 3-48
 // and 3-64) with Monaghan's viscosity, the deviatoric stress with the artificial stress, the
 // inter-material penalty, and the velocity gradient with the Jaumann rate of the stress.
 #include "meshfree/sph/hydro.hpp"

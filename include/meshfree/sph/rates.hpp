@@ -1,5 +1,5 @@
 #pragma once
-// Rates of an SPH run: the continuity, momentum and energy equations (the thesis' eqs. 3-41,
+// Rates of an SPH run: the continuity, momentum and energy equations ([Altafi 2018] eqs. 3-41,
 // 3-48 and 3-64) with Monaghan's viscosity, the Jaumann rate of the deviatoric stress, the
 // kernel-gradient correction, the artificial stress, the inter-material penalty, gravity,
 // damping, and the forces of surface loads, constant surface forces and transmitting boundaries.

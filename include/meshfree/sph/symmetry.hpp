@@ -1,5 +1,5 @@
 #pragma once
-// Symmetry planes by mirror particles (Libersky & Petschek 1991, the thesis' type-II virtual
+// Symmetry planes by mirror particles (Libersky & Petschek 1991, [Altafi 2018] type-II virtual
 // particles): the particles within reach of a plane are mirrored across it, with the normal
 // velocity and the shear stresses on the plane reversed.
 #include "meshfree/sph/hydro.hpp"
