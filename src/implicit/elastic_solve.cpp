@@ -123,6 +123,7 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
     R.boundary.push_back(boundary_report(c, R.parameters, 1.0, session));
     R.violation_max = std::max(R.violation_max, R.boundary.back().violation_max);
   }
+  std::tie(R.display_mesh, R.display) = elastic_display(spec, m, R.parameters, session);
   session.collective([&] {
     if (session.rank() != 0) return;
     sample_fields(spec, m, R);
