@@ -4,7 +4,8 @@ stresses and the equivalent plastic strain at their vertices.
 
 - On fields the discretisation reproduces, the vertex values are the exact ones: the linear
   patch test (elastic; meshfree with VCI, whose Galerkin solution is the linear field to
-  round-off, and finite elements T3, Q4, Q8), where u = u0 + G x and the stress is C sym(G)
+  round-off, on the node lattice's grid and on gmsh's triangles around a refinement box, and
+  finite elements T3, Q4, Q8), where u = u0 + G x and the stress is C sym(G)
   everywhere; and the bar in uniaxial stress stretched into the plastic range (elastoplastic),
   whose state is homogeneous (meshfree with VCI: the Gauss points agree to 2e-10 of the stress,
   against 1e-3 without): at every vertex of every frame the stresses and plastic strain
@@ -200,8 +201,11 @@ def paraview_cells(pvpython, outs, work):
 def main():
     meshfree, root = sys.argv[1], sys.argv[2]
     with tempfile.TemporaryDirectory() as work:
-        outs = [patch_test(meshfree, root, work, "meshfree VCI",
-                           ["discretisation.quadrature.correction=vci"])]
+        vci = "discretisation.quadrature.correction=vci"
+        outs = [patch_test(meshfree, root, work, "meshfree VCI", [vci])]
+        # A refinement box: gmsh's triangles, their vertices off the node lattice.
+        outs.append(patch_test(meshfree, root, work, "meshfree VCI refined", [
+            vci, "discretisation.refinement=[{box: [[0.3, 0.3], [0.6, 0.6]], spacing: 0.05}]"]))
         for element in ("t3", "q4", "q8"):
             outs.append(patch_test(meshfree, root, work, "fem " + element,
                                    ["discretisation.method=fem",

@@ -1,6 +1,5 @@
 #include "meshfree/implicit/display_mesh.hpp"
 #include "meshfree/core/log.hpp"
-#include "meshfree/fem/mesh_generation.hpp"
 #include "meshfree/implicit/elasticity.hpp"
 #include "meshfree/implicit/point_law.hpp"
 #include "meshfree/materials/elastic.hpp"
@@ -49,9 +48,12 @@ DisplayMesh display_mesh(const io::ProblemSpec& spec, const GalerkinModel& m) {
     d.cells.connectivity = triangles_of(m.fe->mesh);
     d.table = identity_table(static_cast<int>(d.x.size()));
   } else {
-    const auto& disc = spec.discretisation;
-    fem::Mesh mesh =
-        fem::mesh_domain(spec.domain, disc.spacing, disc.refinement, fem::ElementType::T3);
+    // The mesh a T3 finite-element run of the body would have: a structured grid on a plain
+    // rectangle (instant, where gmsh's frontal mesher takes seconds), gmsh's triangles otherwise.
+    io::ProblemSpec triangles = spec;
+    triangles.discretisation.fem.element = "t3";
+    triangles.discretisation.fem.mesh.clear();
+    fem::Mesh mesh = read_fe_mesh(triangles);
     d.x = std::move(mesh.x);
     d.cells.connectivity = std::move(mesh.connectivity);
     d.table = shapes_at(m, d.x, false);

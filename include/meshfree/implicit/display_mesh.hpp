@@ -2,9 +2,10 @@
 // A triangle mesh of the body on which ParaView shows an implicit solution as filled contours
 // and, through Warp By Vector with `displacement`, as the deformed shape: meshfree nodes and
 // Gauss points are point clouds, which show neither.
-// - Meshfree models: the body meshed by gmsh (fem::mesh_domain, linear triangles) at the node
-//   spacing, refinement boxes included; u^h at a vertex is the RK/MLS approximation with the
-//   nodal parameters, sum_I phi_I(x) d_I.
+// - Meshfree models: the body meshed into linear triangles at the node spacing as a T3
+//   finite-element run would mesh it (read_fe_mesh: a structured grid on a plain rectangle,
+//   gmsh with the refinement boxes otherwise); u^h at a vertex is the RK/MLS approximation with
+//   the nodal parameters, sum_I phi_I(x) d_I.
 // - Finite-element models: their own mesh, each quadrilateral split into triangles (Q8 through
 //   its mid-side nodes); the vertices are the nodes and u^h their nodal values.
 // Stresses and the equivalent plastic strain come from the Gauss points in two steps: the
