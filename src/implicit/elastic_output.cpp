@@ -39,6 +39,9 @@ void write_elastic_outputs(const io::ProblemSpec& spec, const ElasticResult& r,
   fields.scalar("von_mises", vm);
   fields.write(1.0);
   fields.close();
+  DisplaySeries display(&out, r.display_mesh);
+  display.write(1.0, r.display);
+  display.close();
 
   for (const auto& [name, s] : r.lines) {
     std::vector<std::string> header{"s",  "x",         "y",         "ux",

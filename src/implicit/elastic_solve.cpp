@@ -83,7 +83,7 @@ void sample_fields(const io::ProblemSpec& spec, const GalerkinModel& m, ElasticR
 } // namespace
 
 ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
-                                   const solvers::PetscSession& session) {
+                                   const solvers::PetscSession& session, bool display) {
   ElasticResult R;
   const GalerkinModel m = build_galerkin_model(spec, session, R.timer);
   R.nodes = m.node_count();
@@ -123,6 +123,8 @@ ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
     R.boundary.push_back(boundary_report(c, R.parameters, 1.0, session));
     R.violation_max = std::max(R.violation_max, R.boundary.back().violation_max);
   }
+  if (display)
+    std::tie(R.display_mesh, R.display) = elastic_display(spec, m, R.parameters, session);
   session.collective([&] {
     if (session.rank() != 0) return;
     sample_fields(spec, m, R);

@@ -77,7 +77,9 @@ IncrementRecorder::IncrementRecorder(const io::ProblemSpec& spec, const Galerkin
       line_points_.emplace_back(&line, std::move(x));
     }
     fields_ = std::make_unique<io::FieldOutput>(out, "fields", m.node_positions(), output_cells(m));
+    if (out) display_mesh_ = display_mesh(spec, m);
   });
+  display_ = std::make_unique<DisplaySeries>(root ? out : nullptr, display_mesh_);
   if (!fields_) fields_ = std::make_unique<io::FieldOutput>(nullptr, "fields", std::vector<Vec2>{});
   fields_->vector2("displacement", [this](std::vector<Vec2>& v) { v = node_u_; });
   fields_->vector2("nodal_parameters", [this](std::vector<Vec2>& v) { v = node_parameters_; });
@@ -160,6 +162,7 @@ void IncrementRecorder::record(IncrementRecord rec, const std::vector<double>& d
         node_values_[6][I] = avg.plastic[I];
       }
       fields_->write(time);
+      display_->write(time, display_fields(display_mesh_, all, avg));
       const int inc = static_cast<int>(R.increments.size());
       for (std::size_t l = 0; l < line_points_.size(); ++l) {
         const ShapeTable& t = line_tables_[l];
@@ -181,18 +184,22 @@ void IncrementRecorder::record(IncrementRecord rec, const std::vector<double>& d
 void IncrementRecorder::close() {
   fields_->close();
   gauss_->series->close();
+  display_->close();
 }
 
 void IncrementRecorder::save(io::Checkpoints& checkpoints, const io::Saver& save) {
   fields_->split(checkpoints.part("fields", checkpoints.generation()));
   gauss_->series->split(checkpoints.part("gauss_points", checkpoints.generation()));
+  display_->output().split(checkpoints.part("display_mesh", checkpoints.generation()));
   fields_->for_each_state(save / "fields");
   gauss_->series->for_each_state(save / "gauss_points");
+  display_->output().for_each_state(save / "display_mesh");
 }
 
 void IncrementRecorder::restore(const io::Loader& load) {
   fields_->for_each_state(load / "fields");
   gauss_->series->for_each_state(load / "gauss_points");
+  display_->output().for_each_state(load / "display_mesh");
 }
 
 } // namespace mf::implicit

@@ -1,10 +1,14 @@
 #include "meshfree/implicit/nodal_average.hpp"
 #include "meshfree/solvers/parallel.hpp"
+#include <algorithm>
 
 namespace mf::implicit {
 
-NodalAverage nodal_average(const GalerkinModel& m, const PointStates& st,
-                           const solvers::PetscSession& session) {
+namespace {
+
+/// `value(k, v)` writes row k's sxx, syy, sxy, szz, alpha and plastic flag into v.
+template <class Value>
+NodalAverage average(const GalerkinModel& m, const solvers::PetscSession& session, Value value) {
   const int N = m.node_count();
   constexpr int kFields = 7; // sxx, syy, sxy, szz, alpha, plastic flag, weight
   std::vector<double> sum(static_cast<std::size_t>(kFields) * N, 0.0);
@@ -12,9 +16,8 @@ NodalAverage nodal_average(const GalerkinModel& m, const PointStates& st,
   for (int k = 0; k < t.rows(); ++k) {
     if (!m.domain_mine.counted[k]) continue;
     const double w = m.domain.weight[m.domain_mine.rows[k]];
-    const double v[kFields - 1] = {st.stress[k](0),       st.stress[k](1),
-                                   st.stress[k](2),       st.stress_zz[k],
-                                   st.committed[k].alpha, static_cast<double>(st.plastic[k])};
+    double v[kFields - 1];
+    value(k, v);
     for (int q = t.offset[k]; q < t.offset[k + 1]; ++q) {
       const double a = t.phi[q] * t.phi[q] * w;
       double* s = sum.data() + static_cast<std::size_t>(kFields) * t.node[q];
@@ -38,6 +41,27 @@ NodalAverage nodal_average(const GalerkinModel& m, const PointStates& st,
     a.plastic[I] = s[5] * w;
   }
   return a;
+}
+
+} // namespace
+
+NodalAverage nodal_average(const GalerkinModel& m, const PointStates& st,
+                           const solvers::PetscSession& session) {
+  return average(m, session, [&st](int k, double* v) {
+    const double row[] = {st.stress[k](0),       st.stress[k](1),
+                          st.stress[k](2),       st.stress_zz[k],
+                          st.committed[k].alpha, static_cast<double>(st.plastic[k])};
+    std::copy(row, row + 6, v);
+  });
+}
+
+NodalAverage nodal_average(const GalerkinModel& m, const std::vector<Vec3>& stress,
+                           const std::vector<double>& stress_zz,
+                           const solvers::PetscSession& session) {
+  return average(m, session, [&](int k, double* v) {
+    const double row[] = {stress[k](0), stress[k](1), stress[k](2), stress_zz[k], 0.0, 0.0};
+    std::copy(row, row + 6, v);
+  });
 }
 
 } // namespace mf::implicit

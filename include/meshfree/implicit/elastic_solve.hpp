@@ -2,6 +2,7 @@
 // Linear elastic static analysis on a Galerkin model (meshfree RK or MLS, or finite elements):
 // one solve of K d = f, errors against an exact solution, and the fields at nodes and lines.
 #include "meshfree/core/timer.hpp"
+#include "meshfree/implicit/display_mesh.hpp"
 #include "meshfree/implicit/galerkin_forms.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/io/output.hpp"
@@ -33,14 +34,16 @@ struct ElasticResult {
   double error_energy = std::numeric_limits<double>::quiet_NaN(); // relative, vs exact
   double violation_max = 0.0, violation_relative = 0.0;
   io::GridCells output_cells; // rank 0: the elements of a finite-element model
+  DisplayMesh display_mesh;   // rank 0, when asked for
+  DisplayFields display;      // rank 0: u^h and the stresses at display_mesh's vertices
   solvers::SolveReport solve;
   PhaseTimer timer;
   solvers::PeakMemory memory; // at the end of the solve
 };
 
 /// Solves the problem. Every rank returns the global numbers; node and line fields are filled
-/// on rank 0 only.
+/// on rank 0 only, and with `display` the display mesh and its fields (for the results files).
 ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
-                                   const solvers::PetscSession& session);
+                                   const solvers::PetscSession& session, bool display = false);
 
 } // namespace mf::implicit

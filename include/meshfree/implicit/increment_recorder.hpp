@@ -1,7 +1,8 @@
 #pragma once
 // What an elastoplastic analysis keeps of each converged increment: reactions and loads, the
-// plastic zone, equilibrium, u^h at the monitors, and, when due, the nodal and Gauss-point
-// fields and the line samples.
+// plastic zone, equilibrium, u^h at the monitors, and, when due, the nodal, Gauss-point and
+// display-mesh fields and the line samples.
+#include "meshfree/implicit/display_mesh.hpp"
 #include "meshfree/implicit/elastoplastic_result.hpp"
 #include "meshfree/implicit/elastoplastic_system.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
@@ -51,6 +52,8 @@ private:
   std::vector<Vec2> node_u_, node_parameters_;
   std::vector<double> node_values_[7]; // stresses, szz, von Mises, alpha, plastic fraction
   std::unique_ptr<GaussOutput> gauss_;
+  DisplayMesh display_mesh_;               // rank 0, when the fields are written
+  std::unique_ptr<DisplaySeries> display_; // its series (rank 0)
   Vec2 body_load_{0.0, 0.0}; // gravity and body force over the body at factor 1
 };
 

@@ -19,4 +19,10 @@ struct NodalAverage {
 NodalAverage nodal_average(const GalerkinModel& m, const PointStates& st,
                            const solvers::PetscSession& session);
 
+/// The same average of an elastic solution's stresses, given at this rank's domain-table rows
+/// (no plastic strain).
+NodalAverage nodal_average(const GalerkinModel& m, const std::vector<Vec3>& stress,
+                           const std::vector<double>& stress_zz,
+                           const solvers::PetscSession& session);
+
 } // namespace mf::implicit
