@@ -21,8 +21,7 @@ std::string percent(double fraction) {
 PhaseProgress::PhaseProgress(std::string label, double total, bool enabled, Seconds seconds,
                              Print print, bool tenths)
     : label_(std::move(label)), total_(total), enabled_(enabled), tenths_(tenths),
-      seconds_(std::move(seconds)),
-      print_(std::move(print)) {
+      seconds_(std::move(seconds)), print_(std::move(print)) {
   if (!seconds_) {
     const auto start = std::chrono::steady_clock::now();
     seconds_ = [start] {
