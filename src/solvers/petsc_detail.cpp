@@ -197,6 +197,59 @@ void set_direct_solver(KSP ksp, bool symmetric) {
   default_option("mat_mumps_icntl_14", "100");
 }
 
+/// Copies of the translations and the in-plane rotation of the nodes, one entry per owned
+/// coordinate (MatNullSpaceCreateRigidBody).
+std::vector<Vec> rigid_body_modes(MPI_Comm comm, const std::vector<double>& coordinates) {
+  Vec x;
+  check(VecCreateMPI(comm, static_cast<PetscInt>(coordinates.size()), PETSC_DECIDE, &x),
+        "VecCreateMPI");
+  check(VecSetBlockSize(x, 2), "VecSetBlockSize");
+  PetscScalar* v;
+  check(VecGetArray(x, &v), "VecGetArray");
+  std::copy(coordinates.begin(), coordinates.end(), v);
+  check(VecRestoreArray(x, &v), "VecRestoreArray");
+  MatNullSpace rigid;
+  check(MatNullSpaceCreateRigidBody(x, &rigid), "MatNullSpaceCreateRigidBody");
+  PetscBool has_constant = PETSC_FALSE;
+  PetscInt n = 0;
+  const Vec* vectors = nullptr;
+  check(MatNullSpaceGetVecs(rigid, &has_constant, &n, &vectors), "MatNullSpaceGetVecs");
+  std::vector<Vec> modes(static_cast<std::size_t>(n));
+  for (PetscInt k = 0; k < n; ++k) {
+    check(VecDuplicate(vectors[k], &modes[k]), "VecDuplicate");
+    check(VecCopy(vectors[k], modes[k]), "VecCopy");
+  }
+  check(MatNullSpaceDestroy(&rigid), "MatNullSpaceDestroy");
+  check(VecDestroy(&x), "VecDestroy");
+  return modes;
+}
+
+/// Sets the `held` entries of every mode to zero and makes the modes orthonormal again (Gram-
+/// Schmidt, as MatNullSpaceCreate requires); a mode left with nothing (every row held) is
+/// dropped.
+void zero_held_rows(std::vector<Vec>& modes, const std::vector<char>& held) {
+  std::vector<Vec> kept;
+  for (Vec m : modes) {
+    PetscScalar* v;
+    check(VecGetArray(m, &v), "VecGetArray");
+    for (std::size_t i = 0; i < held.size(); ++i)
+      if (held[i]) v[i] = 0.0;
+    check(VecRestoreArray(m, &v), "VecRestoreArray");
+    for (Vec q : kept) {
+      PetscScalar dot = 0.0;
+      check(VecDot(m, q, &dot), "VecDot");
+      check(VecAXPY(m, -dot, q), "VecAXPY");
+    }
+    PetscReal norm = 0.0;
+    check(VecNormalize(m, &norm), "VecNormalize");
+    if (norm > 0.0)
+      kept.push_back(m);
+    else
+      check(VecDestroy(&m), "VecDestroy");
+  }
+  modes = kept;
+}
+
 } // namespace
 
 void set_near_null_space(Mat A, const std::vector<double>& coordinates) {
@@ -206,36 +259,15 @@ void set_near_null_space(Mat A, const std::vector<double>& coordinates) {
   check(MatGetLocalSize(A, &local_rows, nullptr), "MatGetLocalSize");
   MF_REQUIRE(static_cast<PetscInt>(coordinates.size()) == local_rows,
              "multigrid: one coordinate pair per owned node is needed");
-  Vec x;
-  check(VecCreateMPI(comm, local_rows, PETSC_DECIDE, &x), "VecCreateMPI");
-  check(VecSetBlockSize(x, 2), "VecSetBlockSize");
-  PetscScalar* v;
-  check(VecGetArray(x, &v), "VecGetArray");
-  std::copy(coordinates.begin(), coordinates.end(), v);
-  check(VecRestoreArray(x, &v), "VecRestoreArray");
-  MatNullSpace rigid;
-  check(MatNullSpaceCreateRigidBody(x, &rigid), "MatNullSpaceCreateRigidBody");
-  const std::vector<char> held = penalty_held_rows(A);
-  PetscBool has_constant = PETSC_FALSE;
-  PetscInt n = 0;
-  const Vec* rigid_modes = nullptr;
-  check(MatNullSpaceGetVecs(rigid, &has_constant, &n, &rigid_modes), "MatNullSpaceGetVecs");
-  std::vector<Vec> modes(static_cast<std::size_t>(n));
-  for (PetscInt k = 0; k < n; ++k) {
-    check(VecDuplicate(rigid_modes[k], &modes[k]), "VecDuplicate");
-    check(VecCopy(rigid_modes[k], modes[k]), "VecCopy");
-    check(VecGetArray(modes[k], &v), "VecGetArray");
-    for (PetscInt i = 0; i < local_rows; ++i)
-      if (held[i]) v[i] = 0.0;
-    check(VecRestoreArray(modes[k], &v), "VecRestoreArray");
-  }
+  std::vector<Vec> modes = rigid_body_modes(comm, coordinates);
+  zero_held_rows(modes, penalty_held_rows(A));
   MatNullSpace near;
-  check(MatNullSpaceCreate(comm, PETSC_FALSE, n, modes.data(), &near), "MatNullSpaceCreate");
+  check(MatNullSpaceCreate(comm, PETSC_FALSE, static_cast<PetscInt>(modes.size()), modes.data(),
+                           &near),
+        "MatNullSpaceCreate");
   check(MatSetNearNullSpace(A, near), "MatSetNearNullSpace");
   check(MatNullSpaceDestroy(&near), "MatNullSpaceDestroy");
-  check(MatNullSpaceDestroy(&rigid), "MatNullSpaceDestroy");
   for (Vec& m : modes) check(VecDestroy(&m), "VecDestroy");
-  check(VecDestroy(&x), "VecDestroy");
 }
 
 namespace {
