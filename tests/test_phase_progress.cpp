@@ -70,7 +70,7 @@ TEST_CASE("work that jumps over several tenths prints one line", "[progress]") {
   CHECK(r.lines[1] == "assembly: 100%, elapsed 4 s");
 }
 
-TEST_CASE("a disabled phase prints nothing; one without tenths only its 10 s lines", "[progress]") {
+TEST_CASE("a disabled phase prints nothing, one without tenths only its 10 s lines", "[progress]") {
   Recorded off;
   PhaseProgress p = off.make(10, false);
   off.now = 100.0;
