@@ -9,9 +9,11 @@ or a finer box.
   equals the direct solver's (MUMPS) answer to 1e-6.
 - perforated_strip (10 x 18 with a hole and a 0.25 refinement box) at three base spacings that
   divide neither side: every Newton iteration's solve converges, in no more than 1.25 times the
-  most CG iterations of one solve at its own spacing 0.5, which divides it. The strip needs
-  about 85-130 at these sizes whatever the lattice (GAMG on its penalty-held edges, not the
-  lattice), so it is bounded by its own dividing spacing rather than by 40.
+  most CG iterations of one solve at its own spacing 0.5, which divides it, and in at most 100.
+  Its edges are held by penalties of 10^6 E / h on one component each; the multigrid's
+  near-null space leaves out the penalty-held rows (solvers::detail::set_near_null_space), which
+  took the most CG iterations of a solve from 107-127 to 70-91 at these sizes. It is bounded by
+  100 and by its own dividing spacing, not by 40.
 
     multigrid_any_spacing.py MESHFREE ROOT
 """
@@ -27,6 +29,7 @@ PLATE_SPACINGS = [0.0123, 0.0031623]
 STRIP_OWN_SPACING = 0.5
 STRIP_SPACINGS = [0.37, 0.43, 0.55]
 STRIP_RATIO = 1.25
+STRIP_MAX_ITERATIONS = 100
 
 
 def run(problem, spacing, solver, work, extra=()):
@@ -71,7 +74,8 @@ with tempfile.TemporaryDirectory() as work:
     own = run("perforated_strip", STRIP_OWN_SPACING, "multigrid", work)
     if own is None:
         sys.exit(1)
-    limit = STRIP_RATIO * own["solver"]["linear_iterations_max_per_solve"]
+    limit = min(STRIP_RATIO * own["solver"]["linear_iterations_max_per_solve"],
+            STRIP_MAX_ITERATIONS)
     print(f"perforated_strip at {STRIP_OWN_SPACING}: {own['counts']['dofs']} DOFs, at most "
           f"{own['solver']['linear_iterations_max_per_solve']} CG iterations per solve")
     for h in STRIP_SPACINGS:

@@ -1,8 +1,10 @@
 #include "meshfree/implicit/galerkin_forms.hpp"
+#include "meshfree/core/progress.hpp"
 #include "meshfree/implicit/elasticity.hpp"
 #include "meshfree/implicit/point_law.hpp"
 #include "meshfree/solvers/parallel.hpp"
 #include <algorithm>
+#include <atomic>
 
 namespace mf::implicit {
 
@@ -25,13 +27,21 @@ void assemble_linear_elastic(const io::ProblemSpec& spec, const GalerkinModel& m
   const ShapeTable& t = m.domain_table;
   MF_REQUIRE(m.domain_groups.rows() == t.rows(), "assemble_linear_elastic: points not grouped");
   std::vector<std::vector<double>> K(PointGroups::threads());
+  // Progress of large systems: the points done, counted by all threads, reported by thread 0.
+  const bool report = 2.0 * m.node_count() >= log::kProgressUnknowns;
+  log::PhaseProgress progress("assembly", t.rows(), report);
+  std::atomic<long> done{0};
   m.domain_groups.for_each([&](int r, int thread) {
     const int n = t.offset[r + 1] - t.offset[r];
     K[thread].resize(4 * n * n);
     const Mat3& Cr = regions ? laws.elastic[laws.material.empty() ? 0 : laws.material[r]] : C;
     point_stiffness(t, r, m.domain_weight[r] * Cr, K[thread].data());
     add_matrix(t.node.data() + t.offset[r], n, K[thread].data());
+    if (!report) return;
+    const long points = ++done;
+    if (thread == 0) progress.update(static_cast<double>(points));
   });
+  progress.finish();
   if (has_body_force(spec) && factors.back() != 0.0) {
     std::vector<Vec2> b =
         regions ? laws.body_force : std::vector<Vec2>(m.domain_weight.size(), spec.body_force);

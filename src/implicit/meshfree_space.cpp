@@ -1,6 +1,7 @@
 #include "meshfree/implicit/meshfree_space.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/core/parallel_rows.hpp"
+#include "meshfree/core/progress.hpp"
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -72,8 +73,18 @@ ShapeTable MeshfreeSpace::shape_table(const std::vector<Vec2>& points, const std
   if (gradients) t.dphi.resize(t.offset[n]);
   std::atomic<int> failed{-1};
   const auto v = view();
+  // Progress of large systems: the points done, counted by all threads, reported by thread 0;
+  // only for tables of more points than nodes (the body's integration points), not for the few
+  // boundary points nor for samples at the nodes.
+  const bool report = 2.0 * node_count() >= log::kProgressUnknowns && n > node_count();
+  log::PhaseProgress progress("shape functions", n, report);
+  std::atomic<long> done{0};
 #pragma omp parallel for schedule(dynamic, 256)
   for (int k = 0; k < n; ++k) {
+    if (report) {
+      const long points = ++done;
+      if (omp_get_thread_num() == 0) progress.update(static_cast<double>(points));
+    }
     const int p = rows[k];
     const int* nb = support.index.data() + support.offset[p];
     const int count = support.size(p);
@@ -87,6 +98,7 @@ ShapeTable MeshfreeSpace::shape_table(const std::vector<Vec2>& points, const std
       }
     }
   }
+  progress.finish();
   if (failed >= 0) {
     const Vec2& x = points[failed];
     fail("shape functions are undefined at (", x.x(), ", ", x.y(), "): ", support.size(failed),

@@ -26,6 +26,7 @@ struct NonlinearBlockSystem::Impl {
   double tolerance = 1e-8;
   int max_iterations = 20;
   bool multigrid = false; // the default linear solver is multigrid (for the failure's hint)
+  std::vector<double> coordinates; // the owned nodes' positions, for multigrid's near-null space
   NewtonReport report;
 
   /// Copies the owned and needed entries of X into d.
@@ -76,6 +77,7 @@ PetscErrorCode form_jacobian(SNES snes, Vec X, Mat, Mat P, void* ctx) {
   try {
     check(MatZeroEntries(P), "MatZeroEntries"); // the callback adds to zeros
     detail::write_block_values(P, [&](BlockValueArrays values) { s.jacobian(s.d, values); });
+    if (s.multigrid) detail::set_near_null_space(P, s.coordinates);
   } catch (const std::exception& e) {
     failure = e.what();
   }
@@ -169,6 +171,7 @@ NonlinearBlockSystem::NonlinearBlockSystem(MPI_Comm comm, int node_count, OwnedR
   check(SNESGetKSP(s.snes, &ksp), "SNESGetKSP");
   detail::set_default_solver(ksp, s.J, linear);
   s.multigrid = linear.multigrid;
+  s.coordinates = linear.coordinates;
   check(SNESSetFromOptions(s.snes), "SNESSetFromOptions");
 }
 

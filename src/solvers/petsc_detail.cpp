@@ -1,8 +1,10 @@
 #include "petsc_detail.hpp"
+#include "meshfree/core/progress.hpp"
 #include <algorithm>
-#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <exception>
+#include <memory>
 #include <string>
 
 namespace mf::solvers::detail {
@@ -153,6 +155,33 @@ void default_option(const std::string& name, const char* value) {
   options_set_by_code().insert(name);
 }
 
+/// A row is held by a penalty when its diagonal exceeds kHeldRatio times the median diagonal
+/// of the owned rows. In 2D an elastic stiffness diagonal is about E t whatever the spacing, and
+/// a penalty alpha = beta E / h adds about beta E t phi_I^2 to the rows of the nodes that carry
+/// a boundary point, so the held rows stand apart by the penalty factor beta.
+constexpr double kHeldRatio = 1e4;
+
+std::vector<char> penalty_held_rows(Mat A) {
+  Vec d;
+  check(MatCreateVecs(A, &d, nullptr), "MatCreateVecs");
+  check(MatGetDiagonal(A, d), "MatGetDiagonal");
+  PetscInt n = 0;
+  check(VecGetLocalSize(d, &n), "VecGetLocalSize");
+  const PetscScalar* a;
+  check(VecGetArrayRead(d, &a), "VecGetArrayRead");
+  std::vector<double> diagonal(a, a + n);
+  check(VecRestoreArrayRead(d, &a), "VecRestoreArrayRead");
+  check(VecDestroy(&d), "VecDestroy");
+  std::vector<char> held(diagonal.size(), 0);
+  if (diagonal.empty()) return held;
+  std::vector<double> sorted(diagonal);
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  const double median = sorted[sorted.size() / 2];
+  for (std::size_t i = 0; i < diagonal.size(); ++i)
+    held[i] = median > 0.0 && diagonal[i] > kHeldRatio * median;
+  return held;
+}
+
 void set_direct_solver(KSP ksp, bool symmetric) {
   // Penalty terms (alpha ~ 1e12) make the matrices too ill-conditioned for unpreconditioned
   // Krylov methods, so a direct solve is the safe default; Cholesky on symmetric systems takes
@@ -168,32 +197,80 @@ void set_direct_solver(KSP ksp, bool symmetric) {
   default_option("mat_mumps_icntl_14", "100");
 }
 
-/// Translations and the in-plane rotation of the nodes (MatNullSpaceCreateRigidBody) as A's
-/// near-null space, which GAMG builds its coarse spaces from.
-void set_rigid_body_modes(Mat A, const std::vector<double>& coordinates) {
+/// Copies of the translations and the in-plane rotation of the nodes, one entry per owned
+/// coordinate (MatNullSpaceCreateRigidBody).
+std::vector<Vec> rigid_body_modes(MPI_Comm comm, const std::vector<double>& coordinates) {
+  Vec x;
+  check(VecCreateMPI(comm, static_cast<PetscInt>(coordinates.size()), PETSC_DECIDE, &x),
+        "VecCreateMPI");
+  check(VecSetBlockSize(x, 2), "VecSetBlockSize");
+  PetscScalar* v;
+  check(VecGetArray(x, &v), "VecGetArray");
+  std::copy(coordinates.begin(), coordinates.end(), v);
+  check(VecRestoreArray(x, &v), "VecRestoreArray");
+  MatNullSpace rigid;
+  check(MatNullSpaceCreateRigidBody(x, &rigid), "MatNullSpaceCreateRigidBody");
+  PetscBool has_constant = PETSC_FALSE;
+  PetscInt n = 0;
+  const Vec* vectors = nullptr;
+  check(MatNullSpaceGetVecs(rigid, &has_constant, &n, &vectors), "MatNullSpaceGetVecs");
+  std::vector<Vec> modes(static_cast<std::size_t>(n));
+  for (PetscInt k = 0; k < n; ++k) {
+    check(VecDuplicate(vectors[k], &modes[k]), "VecDuplicate");
+    check(VecCopy(vectors[k], modes[k]), "VecCopy");
+  }
+  check(MatNullSpaceDestroy(&rigid), "MatNullSpaceDestroy");
+  check(VecDestroy(&x), "VecDestroy");
+  return modes;
+}
+
+/// Sets the `held` entries of every mode to zero and makes the modes orthonormal again (Gram-
+/// Schmidt, as MatNullSpaceCreate requires); a mode left with nothing (every row held) is
+/// dropped.
+void zero_held_rows(std::vector<Vec>& modes, const std::vector<char>& held) {
+  std::vector<Vec> kept;
+  for (Vec m : modes) {
+    PetscScalar* v;
+    check(VecGetArray(m, &v), "VecGetArray");
+    for (std::size_t i = 0; i < held.size(); ++i)
+      if (held[i]) v[i] = 0.0;
+    check(VecRestoreArray(m, &v), "VecRestoreArray");
+    for (Vec q : kept) {
+      PetscScalar dot = 0.0;
+      check(VecDot(m, q, &dot), "VecDot");
+      check(VecAXPY(m, -dot, q), "VecAXPY");
+    }
+    PetscReal norm = 0.0;
+    check(VecNormalize(m, &norm), "VecNormalize");
+    if (norm > 0.0)
+      kept.push_back(m);
+    else
+      check(VecDestroy(&m), "VecDestroy");
+  }
+  modes = kept;
+}
+
+} // namespace
+
+void set_near_null_space(Mat A, const std::vector<double>& coordinates) {
   MPI_Comm comm;
   check(PetscObjectGetComm(reinterpret_cast<PetscObject>(A), &comm), "PetscObjectGetComm");
   PetscInt local_rows = 0;
   check(MatGetLocalSize(A, &local_rows, nullptr), "MatGetLocalSize");
   MF_REQUIRE(static_cast<PetscInt>(coordinates.size()) == local_rows,
              "multigrid: one coordinate pair per owned node is needed");
-  Vec x;
-  check(VecCreateMPI(comm, local_rows, PETSC_DECIDE, &x), "VecCreateMPI");
-  check(VecSetBlockSize(x, 2), "VecSetBlockSize");
-  PetscScalar* v;
-  check(VecGetArray(x, &v), "VecGetArray");
-  std::copy(coordinates.begin(), coordinates.end(), v);
-  check(VecRestoreArray(x, &v), "VecRestoreArray");
-  MatNullSpace modes;
-  check(MatNullSpaceCreateRigidBody(x, &modes), "MatNullSpaceCreateRigidBody");
-  check(MatSetNearNullSpace(A, modes), "MatSetNearNullSpace");
-  check(MatNullSpaceDestroy(&modes), "MatNullSpaceDestroy");
-  check(VecDestroy(&x), "VecDestroy");
+  std::vector<Vec> modes = rigid_body_modes(comm, coordinates);
+  zero_held_rows(modes, penalty_held_rows(A));
+  MatNullSpace near;
+  check(MatNullSpaceCreate(comm, PETSC_FALSE, static_cast<PetscInt>(modes.size()), modes.data(),
+                           &near),
+        "MatNullSpaceCreate");
+  check(MatSetNearNullSpace(A, near), "MatSetNearNullSpace");
+  check(MatNullSpaceDestroy(&near), "MatNullSpaceDestroy");
+  for (Vec& m : modes) check(VecDestroy(&m), "VecDestroy");
 }
 
-/// A long iterative solve reports its progress on stderr (rank 0) at most this many seconds
-/// apart, so that a solve of minutes is never silent.
-constexpr double kReportSeconds = 10.0;
+namespace {
 
 /// Stagnation: the residual norm the KSP tests has not fallen below kStagnationFactor times
 /// the smallest value it had kStagnationWindow iterations earlier. A solve that gains less than
@@ -202,46 +279,50 @@ constexpr double kReportSeconds = 10.0;
 constexpr int kStagnationWindow = 200;
 constexpr double kStagnationFactor = 0.5;
 
-using Clock = std::chrono::steady_clock;
 using ConvergenceTest = PetscErrorCode (*)(KSP, PetscInt, PetscReal, KSPConvergedReason*, void*);
 
-/// What the progress monitor needs between iterations.
-struct Progress {
-  Clock::time_point start, last;
-  PetscReal initial = 0.0;
-  int rank = 0;
-};
-
-PetscErrorCode report_progress(KSP, PetscInt it, PetscReal rnorm, void* ctx) {
-  auto& p = *static_cast<Progress*>(ctx);
-  const Clock::time_point now = Clock::now();
-  if (it == 0) {
-    p.start = p.last = now;
-    p.initial = rnorm;
-    return 0;
-  }
-  if (std::chrono::duration<double>(now - p.last).count() < kReportSeconds) return 0;
-  p.last = now;
-  if (p.rank == 0)
-    std::fprintf(stderr, "linear solve: iteration %d, residual %.3e of its initial value, %.0f s\n",
-                 static_cast<int>(it), p.initial > 0.0 ? rnorm / p.initial : rnorm,
-                 std::chrono::duration<double>(now - p.start).count());
-  return 0;
-}
-
-PetscErrorCode destroy_progress(void** ctx) {
-  delete static_cast<Progress*>(*ctx);
-  *ctx = nullptr;
-  return 0;
-}
-
-/// PETSc's default convergence test, and the smallest residual so far at each iteration.
+/// PETSc's default convergence test, the smallest residual so far at each iteration, and the
+/// solve's progress lines (rank 0): the share done is the decades of the residual reduced, of
+/// those the relative tolerance asks for.
 struct StagnationTest {
   void* default_context = nullptr;
   std::vector<PetscReal> best;
   bool stagnated = false;
-  int longest = 0; // the most iterations of a solve since take_longest_solve
+  int longest = 0;    // the most iterations of a solve since take_longest_solve
+  bool large = false; // a system of log::kProgressUnknowns or more: every tenth and 100%
+  int rank = 0;
+  std::unique_ptr<log::PhaseProgress> progress;
 };
+
+/// The share of a solve done when its residual has fallen from `initial` to `now` and must
+/// fall by the relative tolerance rtol.
+double solve_fraction(PetscReal initial, PetscReal now, PetscReal rtol) {
+  if (!(initial > 0.0) || !(now > 0.0) || !(rtol > 0.0) || rtol >= 1.0) return 0.0;
+  return std::clamp(std::log(now / initial) / std::log(rtol), 0.0, 1.0);
+}
+
+/// ", iteration 40, residual 1.23e-05 of its initial value" for a progress line.
+std::string iteration_detail(const StagnationTest& t, PetscInt it, PetscReal rnorm) {
+  char text[96];
+  const PetscReal initial = t.best.front();
+  std::snprintf(text, sizeof text, ", iteration %d, residual %.3g of its initial value",
+                static_cast<int>(it), initial > 0.0 ? rnorm / initial : rnorm);
+  return text;
+}
+
+void track_progress(StagnationTest& t, KSP ksp, PetscInt it, PetscReal rnorm,
+                    KSPConvergedReason reason) {
+  if (it == 0)
+    t.progress = std::make_unique<log::PhaseProgress>("linear solve", 1.0, t.rank == 0, nullptr,
+                                                      nullptr, t.large);
+  if (!t.progress) return;
+  PetscReal rtol = 0.0;
+  if (KSPGetTolerances(ksp, &rtol, nullptr, nullptr, nullptr) != 0) return;
+  if (reason > 0)
+    t.progress->finish();
+  else if (reason == KSP_CONVERGED_ITERATING)
+    t.progress->update(solve_fraction(t.best.front(), rnorm, rtol), iteration_detail(t, it, rnorm));
+}
 
 PetscErrorCode stagnation_test(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason* reason,
                                void* ctx) {
@@ -257,6 +338,7 @@ PetscErrorCode stagnation_test(KSP ksp, PetscInt it, PetscReal rnorm, KSPConverg
   t.best.resize(k + 1, t.best.empty() ? rnorm : t.best.back());
   t.best[k] = std::min(t.best[k], rnorm);
   t.longest = std::max(t.longest, static_cast<int>(it));
+  track_progress(t, ksp, it, rnorm, *reason);
   if (*reason == KSP_CONVERGED_ITERATING && k >= kStagnationWindow &&
       !(t.best[k] < kStagnationFactor * t.best[k - kStagnationWindow])) {
     t.stagnated = true;
@@ -272,22 +354,23 @@ PetscErrorCode destroy_stagnation_test(void* ctx) {
   return ierr;
 }
 
-/// Installs the progress report and the stagnation test on ksp (the test wraps PETSc's default,
+/// Installs the stagnation test and the progress lines on ksp (the test wraps PETSc's default,
 /// so every -ksp_ tolerance still applies; -ksp_convergence_test replaces it).
-void watch_iterations(KSP ksp) {
+void watch_iterations(KSP ksp, Mat A) {
   MPI_Comm comm;
   check(PetscObjectGetComm(reinterpret_cast<PetscObject>(ksp), &comm), "PetscObjectGetComm");
-  auto* p = new Progress;
-  MPI_Comm_rank(comm, &p->rank);
-  check(KSPMonitorSet(ksp, report_progress, p, destroy_progress), "KSPMonitorSet");
   auto* t = new StagnationTest;
+  MPI_Comm_rank(comm, &t->rank);
+  PetscInt rows = 0;
+  check(MatGetSize(A, &rows, nullptr), "MatGetSize");
+  t->large = static_cast<double>(rows) >= log::kProgressUnknowns;
   check(KSPConvergedDefaultCreate(&t->default_context), "KSPConvergedDefaultCreate");
   check(KSPSetConvergenceTest(ksp, stagnation_test, t, destroy_stagnation_test),
         "KSPSetConvergenceTest");
 }
 
 void set_multigrid_solver(KSP ksp, Mat A, const LinearSolverSettings& settings) {
-  set_rigid_body_modes(A, settings.coordinates);
+  set_near_null_space(A, settings.coordinates);
   check(KSPSetType(ksp, settings.symmetric ? KSPCG : KSPGMRES), "KSPSetType");
   // Convergence on the preconditioned residual: the multigrid's inverse turns the residual's
   // forces into displacements, in which the penalty rows (alpha ~ 1e6 E / h) no longer
@@ -320,7 +403,7 @@ void set_multigrid_solver(KSP ksp, Mat A, const LinearSolverSettings& settings) 
 } // namespace
 
 void set_default_solver(KSP ksp, Mat A, const LinearSolverSettings& settings) {
-  watch_iterations(ksp);
+  watch_iterations(ksp, A);
   if (settings.multigrid)
     set_multigrid_solver(ksp, A, settings);
   else

@@ -40,6 +40,14 @@ void write_block_values(Mat A, const std::function<void(BlockValueArrays)>& writ
 /// stderr every 10 s and stops early when its residual stagnates.
 void set_default_solver(KSP ksp, Mat A, const LinearSolverSettings& settings);
 
+/// A's near-null space for GAMG, from A's values: the translations and the in-plane rotation of
+/// the nodes (MatNullSpaceCreateRigidBody) with the penalty-held rows set to zero. Those rows'
+/// values are fixed by their penalties, so the modes that are nearly free of energy are zero
+/// there; the full rigid-body modes would make GAMG build coarse functions that move them, at
+/// the cost of the penalty (smoothed aggregation interpolates the near-kernel it is given,
+/// [Vanek, Mandel & Brezina 1996]). Set again whenever A's values change (each Newton tangent).
+void set_near_null_space(Mat A, const std::vector<double>& coordinates);
+
 /// What to try when the multigrid solver does not converge.
 inline constexpr const char* kMultigridHint =
     "try linear_solver.type: direct (MUMPS), or GAMG options after -- (-pc_gamg_threshold)";

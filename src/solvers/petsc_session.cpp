@@ -1,8 +1,10 @@
 #include "meshfree/solvers/petsc_session.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/core/log.hpp"
+#include "meshfree/core/progress.hpp"
 #include "petsc_detail.hpp"
 #include <algorithm>
+#include <chrono>
 #include <petscksp.h>
 #include <string>
 
@@ -152,6 +154,25 @@ std::vector<double> BlockLinearSystem::solution() const {
   return out;
 }
 
+namespace {
+
+/// Sets up ksp's preconditioner (the multigrid hierarchy or the factorisation), with a line
+/// before and after it for systems of log::kProgressUnknowns or more: it has no progress of its
+/// own to report and takes tens of seconds there.
+void set_up_reported(KSP ksp, Mat A) {
+  PetscInt rows = 0;
+  check(MatGetSize(A, &rows, nullptr), "MatGetSize");
+  if (static_cast<double>(rows) < log::kProgressUnknowns) return; // KSPSolve sets it up
+  log::info("linear solve: setting up the preconditioner (", detail::describe(ksp), ")");
+  const auto start = std::chrono::steady_clock::now();
+  check(KSPSetUp(ksp), "KSPSetUp");
+  log::info("linear solve: preconditioner set up, elapsed ",
+            log::duration(
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()));
+}
+
+} // namespace
+
 SolveReport BlockLinearSystem::solve() {
   Impl& s = *impl_;
   // The solver is set up once: a later solve with another right-hand side reuses its
@@ -163,6 +184,7 @@ SolveReport BlockLinearSystem::solve() {
     check(KSPSetOperators(s.ksp, s.A, s.A), "KSPSetOperators");
     detail::set_default_solver(s.ksp, s.A, s.settings);
     check(KSPSetFromOptions(s.ksp), "KSPSetFromOptions");
+    set_up_reported(s.ksp, s.A);
   }
   PC pc;
   check(KSPGetPC(s.ksp, &pc), "KSPGetPC");
