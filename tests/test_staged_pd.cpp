@@ -348,6 +348,18 @@ TEST_CASE("the implicit peridynamic equilibrium of a body held by forces alone r
   }
   std::cout << "pd equilibrium to 1e-8: layouts differ by " << difference / norm << "\n";
   CHECK(difference <= 1e-9 * norm);
+
+  // Explicit dynamic relaxation stopped by the residual: it stops once the loads are on and its
+  // residual ratio meets the tolerance, long before its kinetic energy falls to zero.
+  explicit_dynamics::PdSetup setup = held_body(plate());
+  pd::ExplicitRelaxSettings dr = dynamic_relaxation(setup.model, 0.0);
+  dr.residual_tolerance = 1e-6;
+  const pd::ExplicitRelaxReport r =
+      pd::explicit_relax(setup.model, setup.state, setup.loading, dr);
+  CHECK(r.converged);
+  CHECK(r.residual_ratio <= 1e-6);
+  CHECK(r.time >= dr.ramp_time);
+  CHECK(r.kinetic_ratio > 0.0);
 }
 
 /// Processor seconds of the process since `start` (std::clock): on one thread the wall time of

@@ -83,8 +83,8 @@ struct ExplicitRelaxReport {
 
 /// Explicit dynamic relaxation from the body's current u: velocity Verlet with damping (the
 /// second half kick implicit in the damping term), loads ramped over ramp_time and then held,
-/// until the kinetic energy criterion is met. Leaves v = 0, a = 0 and the clock (time, step) as
-/// it was, as LS-DYNA resets it after dynamic relaxation.
+/// until the kinetic energy criterion (or the residual one) is met. Leaves v = 0, a = 0 and the
+/// clock (time, step) as it was, as LS-DYNA resets it after dynamic relaxation.
 ExplicitRelaxReport explicit_relax(Model& m, BondState& s, const Loading& loading,
                                    const ExplicitRelaxSettings& settings);
 
