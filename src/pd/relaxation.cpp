@@ -1,7 +1,7 @@
 #include "meshfree/pd/relaxation.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/pd/forces.hpp"
-#include "meshfree/solvers/petsc_session.hpp"
+#include "meshfree/solvers/symmetric_block_system.hpp"
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -142,96 +142,119 @@ std::vector<double> fictitious_density(const Model& m, const BondState& s) {
   return lambda;
 }
 
-/// The linearised bond stiffness of a plane body's x and y components (Model::plane), as block
-/// rows: row i holds i and its bond partners in increasing order, each entry a 2x2 block
-/// (row-major, 4 values); rows and columns of held components are the identity's.
-struct PlaneStiffness {
-  std::vector<int> offset{0};
-  std::vector<int> column;
-  std::vector<double> block;
-};
-
-/// The slot of column j in row i.
-long slot(const PlaneStiffness& K, int i, int j) {
-  const auto first = K.column.begin() + K.offset[i], last = K.column.begin() + K.offset[i + 1];
-  return static_cast<long>(std::lower_bound(first, last, j) - K.column.begin());
+/// Appends the block of bond i-j (i < j) to block row i, and its share to both diagonal blocks.
+/// The force on i of the directed bond i -> j is V_i c w_ij (s e), whose derivative at u = 0 is
+/// A = V_i c w_ij / |xi| e e^T with respect to u_j and -A with respect to u_i; the matrix of the
+/// Newton step is minus that Jacobian. V_i w_ij = V_j w_ji makes it symmetric: the mean of the
+/// two ends' values is taken, so that the upper triangle holds the whole of it.
+void add_bond(const Model& m, int i, int j, const BondClass& c, const Statics& st,
+              solvers::UpperBlockRows& K, std::vector<double>& diagonal) {
+  const particles::ParticleSet& q = m.particles;
+  const double L = c.length;
+  const double e[2] = {(q.X[3 * j] - q.X[3 * i]) / L, (q.X[3 * j + 1] - q.X[3 * i + 1]) / L};
+  const double a =
+      0.5 * m.laws[c.law].c * (q.volume[i] * c.weight + q.volume[j] * c.weight_partner) / L;
+  K.column.push_back(j);
+  for (int r = 0; r < 2; ++r)
+    for (int col = 0; col < 2; ++col) {
+      const double k = a * e[r] * e[col];
+      diagonal[4 * i + 2 * r + col] += k;
+      diagonal[4 * j + 2 * r + col] += k;
+      // Rows and columns of held components are the identity's.
+      K.value.push_back(st.held[3 * i + r] || st.held[3 * j + col] ? 0.0 : -k);
+    }
 }
 
-PlaneStiffness plane_stiffness(const Model& m, const BondState& s, const Statics& st) {
-  const particles::ParticleSet& q = m.particles;
-  const int n = q.size();
-  std::vector<std::vector<int>> rows(n);
-  for (int i = 0; i < n; ++i) rows[i].push_back(i);
-  for_each_directed_bond(m, [&](int i, int j, long k, double, const BondClass&) {
-    if (s.intact[k]) rows[i].push_back(j);
-  });
-  PlaneStiffness K;
-  for (auto& r : rows) {
-    std::sort(r.begin(), r.end());
-    r.erase(std::unique(r.begin(), r.end()), r.end());
-    K.column.insert(K.column.end(), r.begin(), r.end());
+/// Sorts the off-diagonal slots of block row i by column (a Full bond layout orders its rows by
+/// the partners' global ids).
+void sort_row(solvers::UpperBlockRows& K, int i) {
+  const int first = K.offset[i] + 1, last = static_cast<int>(K.column.size());
+  if (std::is_sorted(K.column.begin() + first, K.column.end())) return;
+  std::vector<int> order(last - first);
+  for (int t = 0; t < last - first; ++t) order[t] = first + t;
+  std::sort(order.begin(), order.end(), [&K](int a, int b) { return K.column[a] < K.column[b]; });
+  std::vector<int> column;
+  std::vector<double> value;
+  for (int t : order) {
+    column.push_back(K.column[t]);
+    value.insert(value.end(), K.value.begin() + 4 * t, K.value.begin() + 4 * t + 4);
+  }
+  std::copy(column.begin(), column.end(), K.column.begin() + first);
+  std::copy(value.begin(), value.end(), K.value.begin() + 4 * first);
+}
+
+/// The linearised bond stiffness of a plane body's x and y components (Model::plane), the upper
+/// triangle of its 2x2 blocks in one pass over the stored bonds (each pair once from its end of
+/// smaller index). Rows and columns of held components are the identity's; a free diagonal entry
+/// is raised by 1e-8 of itself.
+solvers::UpperBlockRows plane_stiffness(const Model& m, const BondState& s, const Statics& st) {
+  const Bonds& b = m.bonds;
+  const int n = m.particles.size();
+  solvers::UpperBlockRows K;
+  K.offset.reserve(n + 1);
+  const std::size_t pairs = static_cast<std::size_t>(b.pairs());
+  K.column.reserve(n + pairs);
+  K.value.reserve(4 * (n + pairs));
+  std::vector<double> diagonal(4 * static_cast<std::size_t>(n), 0.0);
+  for (int i = 0; i < n; ++i) {
+    K.column.push_back(i);
+    K.value.insert(K.value.end(), 4, 0.0);
+    for (long k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const int j = b.partner[k];
+      if (j > i && s.intact[k]) add_bond(m, i, j, b.classes[b.cls[k]], st, K, diagonal);
+    }
+    sort_row(K, i);
     K.offset.push_back(static_cast<int>(K.column.size()));
   }
-  K.block.assign(4 * K.column.size(), 0.0);
-  // Directed bond i -> j: the force on i is V_i c w_ij (s e), whose derivative at u = 0 is
-  // A = V_i c w_ij / |xi| e e^T with respect to u_j and -A with respect to u_i. The matrix of the
-  // Newton step is minus that Jacobian; V_i w_ij = V_j w_ji makes it symmetric.
-  for_each_directed_bond(m, [&](int i, int j, long k, double w, const BondClass& c) {
-    if (!s.intact[k]) return;
-    const double L = c.length;
-    const double e[2] = {(q.X[3 * j] - q.X[3 * i]) / L, (q.X[3 * j + 1] - q.X[3 * i + 1]) / L};
-    const double a = q.volume[i] * m.laws[c.law].c * w / L;
-    double* ii = &K.block[4 * slot(K, i, i)];
-    double* ij = &K.block[4 * slot(K, i, j)];
+  for (int i = 0; i < n; ++i)
     for (int r = 0; r < 2; ++r)
       for (int col = 0; col < 2; ++col) {
-        ii[2 * r + col] += a * e[r] * e[col];
-        ij[2 * r + col] -= a * e[r] * e[col];
+        const bool held = st.held[3 * i + r] || st.held[3 * i + col];
+        const double k = diagonal[4 * i + 2 * r + col];
+        K.value[4 * static_cast<std::size_t>(K.offset[i]) + 2 * r + col] =
+            held ? (r == col ? 1.0 : 0.0) : (r == col ? k * (1.0 + 1e-8) : k);
       }
-  });
-  for (int i = 0; i < n; ++i)
-    for (int t = K.offset[i]; t < K.offset[i + 1]; ++t) {
-      const int j = K.column[t];
-      double* b = &K.block[4 * static_cast<std::size_t>(t)];
-      for (int r = 0; r < 2; ++r)
-        for (int col = 0; col < 2; ++col) {
-          const bool held = st.held[3 * i + r] || st.held[3 * j + col];
-          if (held)
-            b[2 * r + col] = i == j && r == col ? 1.0 : 0.0;
-          else if (i == j && r == col)
-            b[2 * r + col] *= 1.0 + 1e-8;
-        }
-    }
   return K;
 }
 
-/// The stiffness as a PETSc matrix (one rank: every block column is owned), factorised on its
-/// first solve.
-std::unique_ptr<solvers::BlockLinearSystem> stiffness_system(const Model& m,
-                                                             const PlaneStiffness& K) {
-  const int n = m.particles.size();
-  solvers::LinearSolverSettings linear;
-  linear.multigrid = 2.0 * n >= 2e5;
-  if (linear.multigrid)
-    for (int i = 0; i < n; ++i)
-      linear.coordinates.insert(linear.coordinates.end(),
-                                {m.particles.X[3 * i], m.particles.X[3 * i + 1]});
-  // Scalar row 2i holds the upper rows of row i's blocks in column order, row 2i + 1 the lower
-  // rows (solvers::BlockValueArrays).
-  const auto fill = [&K, n](solvers::BlockValueArrays values, std::vector<double>&) {
-    for (int i = 0; i < n; ++i) {
-      const long first = K.offset[i], count = K.offset[i + 1] - first;
-      double* upper = values.diagonal + 4 * first;
-      double* lower = upper + 2 * count;
-      for (long t = 0; t < count; ++t) {
-        const double* b = &K.block[4 * (first + t)];
-        upper[2 * t] = b[0], upper[2 * t + 1] = b[1];
-        lower[2 * t] = b[2], lower[2 * t + 1] = b[3];
-      }
-    }
-  };
-  return std::make_unique<solvers::BlockLinearSystem>(MPI_COMM_SELF, n, solvers::OwnedRange{0, n},
-                                                      K.offset, K.column, fill, true, linear);
+/// The rigid motions of a plane body that its held components leave free, orthonormal (two
+/// values per particle): the translation along x or y where no particle holds that component,
+/// the rotation about the centroid where none holds any.
+std::vector<std::vector<double>> free_rigid_modes(const Model& m, const Statics& st) {
+  const particles::ParticleSet& q = m.particles;
+  const int n = q.size();
+  bool held[2] = {false, false};
+  for (int i = 0; i < n; ++i)
+    for (int d = 0; d < 2; ++d) held[d] = held[d] || st.held[3 * i + d];
+  std::vector<std::vector<double>> modes;
+  for (int d = 0; d < 2; ++d) {
+    if (held[d]) continue;
+    modes.emplace_back(2 * static_cast<std::size_t>(n), 0.0);
+    for (int i = 0; i < n; ++i) modes.back()[2 * i + d] = 1.0 / std::sqrt(double(n));
+  }
+  if (held[0] || held[1] || n < 2) return modes;
+  double c[2] = {0.0, 0.0};
+  for (int i = 0; i < n; ++i)
+    for (int d = 0; d < 2; ++d) c[d] += q.X[3 * i + d] / n;
+  std::vector<double> rotation(2 * static_cast<std::size_t>(n));
+  double norm = 0.0;
+  for (int i = 0; i < n; ++i) {
+    rotation[2 * i] = -(q.X[3 * i + 1] - c[1]);
+    rotation[2 * i + 1] = q.X[3 * i] - c[0];
+    norm += rotation[2 * i] * rotation[2 * i] + rotation[2 * i + 1] * rotation[2 * i + 1];
+  }
+  for (double& v : rotation) v /= std::sqrt(norm);
+  modes.push_back(rotation);
+  return modes;
+}
+
+/// Removes from v its components along the orthonormal modes.
+void remove_modes(const std::vector<std::vector<double>>& modes, std::vector<double>& v) {
+  for (const std::vector<double>& r : modes) {
+    double dot = 0.0;
+    for (std::size_t k = 0; k < v.size(); ++k) dot += r[k] * v[k];
+    for (std::size_t k = 0; k < v.size(); ++k) v[k] -= dot * r[k];
+  }
 }
 
 } // namespace
@@ -349,8 +372,9 @@ ExplicitRelaxReport explicit_relax(Model& m, BondState& s, const Loading& loadin
     r.peak_kinetic = std::max(r.peak_kinetic, kinetic);
     r.kinetic_ratio = r.peak_kinetic > 0.0 ? kinetic / r.peak_kinetic : 0.0;
     // LS-DYNA's convergence test of dynamic relaxation: kinetic energy over its peak, once the
-    // loads are fully on.
-    if (scale >= 1.0 && kinetic <= settings.ke_ratio * r.peak_kinetic) {
+    // loads are fully on; or the residual ratio, when asked for.
+    if (scale >= 1.0 && (kinetic <= settings.ke_ratio * r.peak_kinetic ||
+                         norms.ratio() <= settings.residual_tolerance)) {
       r.converged = true;
       break;
     }
@@ -396,20 +420,32 @@ RelaxReport solve_statics(Model& m, BondState& s, const Loading& loading,
   const Statics st = statics(m, loading);
   for (std::size_t k = 0; k < q.u.size(); ++k)
     if (st.held[k]) q.u[k] = st.target[k];
-  const std::unique_ptr<solvers::BlockLinearSystem> K =
-      stiffness_system(m, plane_stiffness(m, s, st));
   std::vector<double> y, f, rhs(2 * static_cast<std::size_t>(n));
   RelaxReport r;
   r.residual_ratio = net_force(m, s, st, 1.0, y, f).ratio();
+  std::unique_ptr<solvers::SymmetricBlockSystem> K; // made when a step is needed
+  // A body that its held components leave free to move rigidly has a stiffness singular but for
+  // the diagonal shift: the residual's part along those motions (the bond forces' moment, of
+  // the order of the strain squared) would come back multiplied by the shift's inverse, a rigid
+  // rotation that unbalances the held loads. The steps are kept free of rigid motion.
+  const std::vector<std::vector<double>> rigid = free_rigid_modes(m, st);
   const int most = std::min(settings.max_iterations, 50);
   while (!(r.residual_ratio <= settings.tolerance) && std::isfinite(r.residual_ratio) &&
          r.iterations < most) {
+    if (!K) {
+      const Clock::time_point assembly = Clock::now();
+      K = std::make_unique<solvers::SymmetricBlockSystem>(plane_stiffness(m, s, st), "pd_");
+      r.assembly_seconds = seconds_since(assembly);
+    }
     for (int i = 0; i < n; ++i)
       for (int d = 0; d < 2; ++d) rhs[2 * i + d] = f[3 * i + d] * q.volume[i];
+    remove_modes(rigid, rhs);
     const solvers::SolveReport solved = K->solve(rhs);
     r.linear_iterations += solved.iterations;
     r.solver = solved.solver;
-    const std::vector<double> du = K->solution();
+    r.factorisation_seconds = K->factorisation_seconds();
+    std::vector<double> du = K->solution();
+    remove_modes(rigid, du);
     for (int i = 0; i < n; ++i)
       for (int d = 0; d < 2; ++d)
         if (!st.held[3 * i + d]) q.u[3 * i + d] += du[2 * i + d];

@@ -34,6 +34,8 @@ struct RelaxReport {
   double seconds = 0.0;
   int linear_iterations = 0; // solve_statics: the linear solver's, over all Newton iterations
   std::string solver;        // solve_statics: the linear solver
+  double assembly_seconds = 0.0;      // solve_statics: making the stiffness matrix
+  double factorisation_seconds = 0.0; // solve_statics: its factorisation
 };
 
 /// Brings the body from its current u to static equilibrium under the loading (body loads at
@@ -45,13 +47,17 @@ RelaxReport relax(Model& m, BondState& s, const Loading& loading, const RelaxSet
 /// Brings a plane body from its current u to static equilibrium under the loading by Newton's
 /// method with the linearised bond stiffness at the reference directions, K_ij = -V_i c w_ij /
 /// |xi| e e^T and K_ii = -sum_j K_ij over the intact bonds (the tangent of the bond force at
-/// u = 0; Peridigm's QuasiStatic solver is Newton on the same equations), factorised once
-/// (MUMPS; multigrid from 2e5 unknowns) and reused at every iteration: a modified Newton whose
-/// residual falls by about the strain per iteration. Held components keep their targets (their
-/// rows and columns are the identity). A diagonal shift of 1e-8 of each free diagonal entry
-/// makes the matrix of a body held by forces alone (rigid modes free) positive definite; the
-/// residual, evaluated by the bond-force loop, decides convergence as in relax. Every particle
-/// must be owned (one rank); bonds do not break. Leaves v = 0, a = 0 and the clock as it was.
+/// u = 0; Peridigm's QuasiStatic solver is Newton on the same equations): its upper triangle
+/// assembled in one pass over the bonds, factorised once by a sparse Cholesky
+/// (solvers::SymmetricBlockSystem, MUMPS; PETSc options prefixed pd_ choose another) and reused
+/// at every iteration: a modified Newton whose residual falls by about the strain per iteration.
+/// Held components keep their targets (their rows and columns are the identity). A diagonal
+/// shift of 1e-8 of each free diagonal entry makes the matrix of a body held by forces alone
+/// positive definite, and the rigid motions the held components leave free are taken out of
+/// every right-hand side and step. The residual, evaluated by the bond-force loop, decides
+/// convergence as in relax; nothing is assembled when the body starts in equilibrium. Every
+/// particle must be owned (one rank); bonds do not break. Leaves v = 0, a = 0 and the clock as
+/// it was.
 RelaxReport solve_statics(Model& m, BondState& s, const Loading& loading,
                           const RelaxSettings& settings);
 
@@ -60,13 +66,14 @@ struct ExplicitRelaxSettings {
   double ramp_time = 0.0; // loads and prescribed displacements rise linearly over it, then held
   double damping = 0.0;   // c of the mass-proportional damping a -= c v (1/time)
   double ke_ratio = 1e-3; // stop when, after the ramp, kinetic energy <= ke_ratio * its peak
+  double residual_tolerance = 0.0; // also stop when, after the ramp, the residual ratio <= it
   long max_steps = 10000000;
   bool allow_breaking = false;
 };
 
 struct ExplicitRelaxReport {
   long steps = 0;
-  bool converged = false;      // the kinetic energy criterion was met within max_steps
+  bool converged = false;      // a stopping criterion was met within max_steps
   double time = 0.0;           // physical time simulated
   double peak_kinetic = 0.0;   // the peak of the kinetic energy
   double kinetic_ratio = 0.0;  // kinetic energy / peak at the end
@@ -76,8 +83,8 @@ struct ExplicitRelaxReport {
 
 /// Explicit dynamic relaxation from the body's current u: velocity Verlet with damping (the
 /// second half kick implicit in the damping term), loads ramped over ramp_time and then held,
-/// until the kinetic energy criterion is met. Leaves v = 0, a = 0 and the clock (time, step) as
-/// it was, as LS-DYNA resets it after dynamic relaxation.
+/// until the kinetic energy criterion (or the residual one) is met. Leaves v = 0, a = 0 and the
+/// clock (time, step) as it was, as LS-DYNA resets it after dynamic relaxation.
 ExplicitRelaxReport explicit_relax(Model& m, BondState& s, const Loading& loading,
                                    const ExplicitRelaxSettings& settings);
 
