@@ -181,8 +181,9 @@ def main():
         text = base.read_text()
         for _ in range(rng.choice([1, 1, 1, 2, 3])):
             text = mutate(text, rng)
-        # Beside the original, so that relative paths (meshes, load tables) resolve as there.
-        path = base.parent / (".fuzz_%d_%s" % (n, base.name))
+        # Beside the original, so that relative paths (meshes, load tables) resolve as there; named
+        # by this process too, as another fuzzer may be writing beside it.
+        path = base.parent / (".fuzz_%d_%d_%s" % (os.getpid(), n, base.name))
         jobs.append((n, base, path, text))
     failures, refused, failed_cleanly = [], 0, 0
 
