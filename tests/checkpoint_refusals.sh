@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Checkpoints that are not the run's own are refused: a restart from a foreign checkpoint (another
 # spacing, its header made to match this problem's), a truncated one, one with a flipped bit in
-# its particles' displacements, and one whose time lies after the run's end (its checksum made to
-# match) each exit 2 with one line naming what differs, and leave the folder as it was (no
+# its particles' displacements, one written by another version of meshfree, and one whose time
+# lies after the run's end (its checksum made to match) each exit 2 with one line naming what differs, and leave the folder as it was (no
 # failed/, no staging folder, the checkpoint's files untouched). A run or a restart into a folder
 # that a live run holds is refused the same way, and writes nothing there.
 set -u
@@ -95,6 +95,19 @@ import h5py; f = h5py.File('$S', 'r'); print(f['particles.u'].id.get_offset() + 
 /usr/bin/python3 -c "
 f = open('$S', 'r+b'); f.seek($offset); b = f.read(1); f.seek($offset); f.write(bytes([b[0] ^ 0x10]))"
 refused "a checkpoint with a flipped bit in particles.u" "$B" "'particles.u' does not match its checksum"
+
+# A checkpoint of another version of meshfree (its version rewritten, checksum and all), refused
+# naming both versions: this one is CMakeLists.txt's project version.
+VERSION="$(sed -n 's/^project(meshfree VERSION \([0-9.]*\).*/\1/p' "$ROOT/CMakeLists.txt")"
+check "the program's version is read from CMakeLists.txt" [ -n "$VERSION" ]
+V="$(copy version "$OWN")"
+h5edit "$V/checkpoint/state-$G.0.h5" "put(f, 'meta.version', list(b'0.0.9'))"
+refused "a checkpoint of another version" "$V" \
+  "the checkpoint was written by meshfree 0.0.9, this is meshfree $VERSION"
+# ... and the version this one writes.
+check "... the run's own checkpoint records this version" [ "$(/usr/bin/python3 -c "
+import h5py; f = h5py.File('$OWN/checkpoint/state-$G.0.h5', 'r')
+print(bytes(f['meta.version'][()].astype('u1')).decode())")" = "$VERSION" ]
 
 # A time after the end (1e300), its checksum made to match.
 L="$(copy late "$OWN")"

@@ -38,6 +38,23 @@ refused "time.end: 1e+29 s in time steps of" "$C" --set time.end=1e29
 refused "days a run may take" "$T" --set time.end=1e29
 refused "functions[0].duration: " "$W" --set functions.0.duration=1e-300
 refused "steps[0].increments: " "$Q" --set steps.0.increments=1000000
+# A staged run's explicit stage (SPH, peridynamics) is bounded the same way, by check and by run
+# before its preload runs, and named by its key path.
+S="$ROOT/problems/staged_strip_blast.yaml"
+M="$ROOT/problems/staged_pmma_impact.yaml"
+refused "stages[1].time.end: 1e+29 s in time steps of" "$S" --set 'stages[1].time.end=1e29'
+refused "stages[1].time.end: 1e+29 s in time steps of" "$M" --set 'stages[1].time.end=1e29'
+refused "stages[1].output.fields_interval: field frames: about 5.3e+06" "$S" \
+  --set 'stages[1].time.end=1' --set 'stages[1].output.fields_interval=1e-20'
+refused "stages[1].output.checkpoint_interval: 1e-20 s: about" "$M" \
+  --set 'stages[1].time.end=3' --set 'stages[1].output.fields_interval=1' \
+  --set 'stages[1].output.checkpoint_interval=1e-20'
+for key in history_interval fields_interval checkpoint_interval; do
+  msg="$(timeout 120 "$MF" check "$S" --set "stages[1].output.$key=1e-20" 2>&1 >/dev/null)"; rc=$?
+  if [ $rc -eq 0 ] && grep -qF "warning: stages[1].output.$key: 1e-20 s is below the time step" <<<"$msg"; then
+    echo "ok: stages[1].output.$key=1e-20 is clamped to every step, with a warning naming the stage"
+  else bad "exit $rc, '$msg'" "stages[1].output.$key=1e-20"; fi
+done
 # An output interval below the time step is clamped to every step, with a warning, and the run
 # ends (the catch-up loops once added 1e-20 until it passed t, which never happens).
 for key in history_interval fields_interval checkpoint_interval; do

@@ -12,11 +12,15 @@ bit of a random dataset's values flipped; a random dataset replaced by the forei
 a checksum that matches (a forged file: lengths anywhere, values in the header and the loop's
 schedule); the marker naming another generation. Restarts end
 shortly after the checkpoint (time.end may change on restart), so a mutant that is accepted runs
-a few steps. The seed is fixed unless given, so a failure is reproduced by its number; a failing
-mutant's folder goes to OUT/mutant_<n> with its output.
+a few steps. The seed changes every day (the UTC date, 20261127 on 27 November 2026) unless
+--seed is given; it is printed first, so that a failure is reproduced by --seed and its number; a
+failing mutant's folder goes to OUT/mutant_<n> with its output. An exception in this script while
+a mutant is made or judged is a failure of that mutant. JOBS restarts run at once (default: 4 per
+core: most of a short restart's time is spent starting MPI and reading, not computing).
 Usage: fuzz_checkpoints.py MESHFREE SOURCE_DIR [--count N] [--seed S] [--out DIR] [--jobs J]
 """
 import argparse
+import datetime
 import os
 import random
 import shutil
@@ -25,6 +29,7 @@ import subprocess
 import sys
 import tempfile
 import time
+import traceback
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
@@ -180,6 +185,8 @@ def judge(rc, err, before, after, folder):
     if rc == 0:
         return None if '"status": "completed"' in (folder / "summary.json").read_text() \
             else "exit 0 without a completed summary"
+    if isinstance(rc, int) and rc < 0:
+        return "killed by signal %d: %s" % (-rc, err[-400:])
     return "exit %s: %s" % (rc, err[-400:])
 
 
@@ -188,10 +195,13 @@ def main():
     ap.add_argument("meshfree")
     ap.add_argument("source")
     ap.add_argument("--count", type=int, default=2000)
-    ap.add_argument("--seed", type=int, default=20261127)
+    ap.add_argument("--seed", type=int, default=None)
     ap.add_argument("--out", default=None)
-    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--jobs", type=int, default=4 * (os.cpu_count() or 1))
     a = ap.parse_args()
+    if a.seed is None:  # the seed of the day: the UTC date as YYYYMMDD
+        a.seed = int(datetime.datetime.now(datetime.timezone.utc).strftime("%Y%m%d"))
+    print("seed %d (replay with --seed %d)" % (a.seed, a.seed), flush=True)
     problem = str(Path(a.source) / "problems" / "pd_disk_impact.yaml")
     work = Path(tempfile.mkdtemp(prefix="fuzz_checkpoints_"))
     try:
@@ -205,11 +215,16 @@ def main():
         def one(n):
             rng = random.Random(a.seed * 100003 + n)
             folder = work / ("m%d" % n)
-            shutil.copytree(own / "checkpoint", folder / "checkpoint", symlinks=True)
-            what = mutate(folder, foreign, rng)
-            before = listing(folder)
-            rc, err = restart(a.meshfree, problem, folder, end)
-            failure = judge(rc, err, before, listing(folder), folder)
+            what, rc, err = "(not made)", None, ""
+            try:
+                shutil.copytree(own / "checkpoint", folder / "checkpoint", symlinks=True)
+                what = mutate(folder, foreign, rng)
+                before = listing(folder)
+                rc, err = restart(a.meshfree, problem, folder, end)
+                failure = judge(rc, err, before, listing(folder), folder)
+            except Exception:
+                err = traceback.format_exc()
+                failure = "exception in the fuzzer: " + err.strip().split("\n")[-1]
             if failure and a.out:
                 keep = Path(a.out) / ("mutant_%d" % n)
                 shutil.rmtree(keep, ignore_errors=True)
@@ -227,8 +242,8 @@ def main():
                     print("FAIL mutant %d (%s): %s" % (n, what, failure), flush=True)
                 else:
                     outcomes["refused" if rc == 2 else "restarted"] += 1
-        print("%d mutants: %d refused cleanly, %d restarted to completion, %d failures"
-              % (a.count, outcomes["refused"], outcomes["restarted"], len(failures)))
+        print("seed %d: %d mutants: %d refused cleanly, %d restarted to completion, %d failures"
+              % (a.seed, a.count, outcomes["refused"], outcomes["restarted"], len(failures)))
         return 1 if failures else 0
     finally:
         shutil.rmtree(work, ignore_errors=True)

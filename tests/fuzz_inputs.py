@@ -3,25 +3,36 @@
 cleanly (exit 2 with one line on stderr, "meshfree: ...", of at most 400 characters), within 20
 seconds, never with a crash, a hang or another exit code.
 
-The mutants are drawn from every problems/*.yaml with a fixed seed (so a failure is reproduced by
-its number): a number replaced by an extreme or wrong value, a line deleted, doubled or moved,
+The mutants are drawn from every problems/*.yaml with a seed that changes every day (the UTC date,
+20261127 on 27 November 2026) unless --seed is given; the seed is printed first, so that a failure
+is reproduced by --seed and its number: a number replaced by an extreme or wrong value, a line deleted, doubled or moved,
 a key renamed, stray characters inserted, the file cut short. A failing mutant is written to
 OUT/mutant_<n>.yaml with its output.
 
-With --run, the mutants of the explicit problems (peridynamics, SPH) are run instead, with a
-short end time (--set time.end=END): each completes (exit 0), is refused as input (exit 2, one
-clean line, nothing written), or fails (exit 1, one line "meshfree: run failed..." on stderr
-besides the log's "[meshfree] ..." lines, and a failed/summary.json of status "failed"), within
-60 seconds.
-Usage: fuzz_inputs.py MESHFREE SOURCE_DIR [--count N] [--seed S] [--out DIR] [--run [--end T]]
+With --run, the mutants of the explicit problems (peridynamics, SPH) are checked and then run,
+with a short end time (--set time.end=END, or STEPS of the first time step that check reports,
+if sooner): each completes (exit 0), is refused as input (exit 2,
+one clean line, nothing written; a mutant that `check` said was valid must not be refused so), or
+fails (exit 1, one line "meshfree: run failed..." on stderr besides the log's "[meshfree] ..."
+lines, and a failed/summary.json of status "failed"), within 60 seconds.
+
+Any other outcome is a failure: a signal (a crash), a timeout (a hang), another exit status, a
+message of more than one line, files written on exit 2, or an exception in this script.
+JOBS processes run at once (default: 4 per core: most of a short run's time is spent starting
+MPI and writing, not computing).
+Usage: fuzz_inputs.py MESHFREE SOURCE_DIR [--count N] [--seed S] [--out DIR] [--jobs J]
+                      [--run [--end T] [--steps S]]
 """
 import argparse
+import datetime
 import os
 import random
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
+import traceback
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
@@ -29,6 +40,7 @@ VALUES = ["-1", "0", "1e308", "-1e308", "1e-308", "1e999", ".nan", ".inf", "-.in
           "99999999999999999999", "abc", "[]", "{}", "[1, 2, 3, 4]", "''", "null", "true",
           "0x10", "1e30", "-0", "2147483648", "'\\x00'", "\"a\\tb\""]
 KEYS = ["E", "spacing", "material", "box", "end", "name", "type", "radius", "x", "zz", "points"]
+FIRST_STEP = re.compile(r"(?:first CFL step|time step) ([0-9.]+(?:[eE][-+]?[0-9]+)?)")
 NUMBER = re.compile(r"(?<![\w.])-?\d+(\.\d*)?([eE][-+]?\d+)?(?![\w.])")
 
 
@@ -62,6 +74,15 @@ def mutate(text, rng):
     return "\n".join(lines)
 
 
+def status(rc):
+    return "killed by signal %d" % -rc if rc < 0 else "exit %d" % rc
+
+
+def today_seed():
+    """The seed of the day: the UTC date as YYYYMMDD."""
+    return int(datetime.datetime.now(datetime.timezone.utc).strftime("%Y%m%d"))
+
+
 def check(meshfree, path, workdir):
     try:
         p = subprocess.run([meshfree, "check", str(path)], capture_output=True, timeout=20,
@@ -74,7 +95,7 @@ def check(meshfree, path, workdir):
     if p.returncode == 0:
         return None, p.stdout, p.stderr
     if p.returncode != 2:
-        return "exit %d" % p.returncode, p.stdout, p.stderr
+        return status(p.returncode), p.stdout, p.stderr
     if len(err_lines) != 1 or not err_lines[0].startswith("meshfree: ") or len(err_lines[0]) > 400:
         return "not one clean line on stderr", p.stdout, p.stderr
     return None, p.stdout, p.stderr
@@ -87,8 +108,24 @@ def clean_line(stderr, prefix):
     return len(lines) == 1 and lines[0].startswith(prefix) and len(lines[0]) <= 2000
 
 
-def run_mutant(meshfree, path, workdir, end):
-    out = Path(tempfile.mkdtemp(dir=workdir)) / "out"
+def run_mutant(meshfree, path, workdir, end, steps):
+    why, stdout, stderr = check(meshfree, path, workdir)
+    if why:
+        return "check: " + why, stdout, stderr
+    valid = b": valid" in stdout
+    # A few steps exercise the loop, its output and its failures as well as many: the end time
+    # is cut to `steps` of the first step that check reports.
+    dt = FIRST_STEP.search(stdout.decode(errors="replace"))
+    if dt:
+        end = min(end, steps * float(dt.group(1)))
+    folder = Path(tempfile.mkdtemp(dir=workdir))
+    try:
+        return judge_run(meshfree, path, folder / "out", workdir, end, valid)
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def judge_run(meshfree, path, out, workdir, end, valid):
     try:
         p = subprocess.run([meshfree, "run", str(path), "--out", str(out), "--set",
                             "time.end=%g" % end], capture_output=True, timeout=60,
@@ -102,9 +139,11 @@ def run_mutant(meshfree, path, workdir, end):
             return "exit 2 without one clean line on stderr", p.stdout, p.stderr
         if out.exists() and any(out.iterdir()):
             return "exit 2 with files written", p.stdout, p.stderr
+        if valid:
+            return "'valid' from check, then refused by run", p.stdout, p.stderr
         return None, p.stdout, p.stderr
     if p.returncode != 1:
-        return "exit %d" % p.returncode, p.stdout, p.stderr
+        return status(p.returncode), p.stdout, p.stderr
     summary = out / "failed" / "summary.json"
     if not clean_line(p.stderr, "meshfree: run failed"):
         return "exit 1 without one line 'meshfree: run failed'", p.stdout, p.stderr
@@ -118,16 +157,21 @@ def main():
     ap.add_argument("meshfree")
     ap.add_argument("source")
     ap.add_argument("--count", type=int, default=2000)
-    ap.add_argument("--seed", type=int, default=20261124)
+    ap.add_argument("--seed", type=int, default=None)
     ap.add_argument("--out", default=None)
+    ap.add_argument("--jobs", type=int, default=4 * (os.cpu_count() or 1))
     ap.add_argument("--run", action="store_true")
     ap.add_argument("--end", type=float, default=1e-5)
+    ap.add_argument("--steps", type=float, default=10)
     a = ap.parse_args()
     a.meshfree = os.path.abspath(a.meshfree)
     source = Path(a.source).resolve()
     bases = sorted((source / "problems").glob("*.yaml"))
     if a.run:
         bases = [b for b in bases if b.name.startswith(("pd_", "sph_"))]
+    if a.seed is None:
+        a.seed = today_seed()
+    print("seed %d (replay with --seed %d)" % (a.seed, a.seed), flush=True)
     rng = random.Random(a.seed)
     work = Path(tempfile.mkdtemp())
     out = Path(a.out) if a.out else work / "failures"
@@ -137,22 +181,26 @@ def main():
         text = base.read_text()
         for _ in range(rng.choice([1, 1, 1, 2, 3])):
             text = mutate(text, rng)
-        # Beside the original, so that relative paths (meshes, load tables) resolve as there.
-        path = base.parent / (".fuzz_%d_%s" % (n, base.name))
+        # Beside the original, so that relative paths (meshes, load tables) resolve as there; named
+        # by this process too, as another fuzzer may be writing beside it.
+        path = base.parent / (".fuzz_%d_%d_%s" % (os.getpid(), n, base.name))
         jobs.append((n, base, path, text))
-    failures, refused = [], 0
+    failures, refused, failed_cleanly = [], 0, 0
 
     def run(job):
         n, base, path, text = job
-        path.write_text(text, errors="replace")
         try:
+            path.write_text(text, errors="replace")
             if a.run:
-                return n, base, text, run_mutant(a.meshfree, path, work, a.end)
+                return n, base, text, run_mutant(a.meshfree, path, work, a.end, a.steps)
             return n, base, text, check(a.meshfree, path, work)
+        except Exception:  # the fuzzer's own error is a failure of the case, not of the run
+            return n, base, text, ("exception in the fuzzer", b"",
+                                   traceback.format_exc().encode())
         finally:
-            path.unlink()
+            path.unlink(missing_ok=True)
 
-    with ThreadPoolExecutor(max_workers=max(1, os.cpu_count() or 1)) as pool:
+    with ThreadPoolExecutor(max_workers=max(1, a.jobs)) as pool:
         for n, base, text, (why, stdout, stderr) in pool.map(run, jobs):
             if why:
                 failures.append(n)
@@ -161,11 +209,18 @@ def main():
                 (out / ("mutant_%d.txt" % n)).write_bytes(stdout + b"\n--- stderr ---\n" + stderr)
                 print("FAIL mutant %d of %s: %s: %s" % (n, base.name, why,
                       stderr.decode(errors="replace").strip()[:300]))
+            elif b"meshfree: run failed" in stderr:
+                failed_cleanly += 1
             elif b"meshfree: " in stderr:
                 refused += 1
-    print("%d mutants of %d problem files: %d refused cleanly, %d accepted, %d failures%s" %
-          (a.count, len(bases), refused, a.count - refused - len(failures), len(failures),
-           " (in %s)" % out if failures else ""))
+    if not failures or a.out:
+        shutil.rmtree(work, ignore_errors=True)
+    print("seed %d: %d mutants of %d problem files: %d refused cleanly, %d %s, %s%d failures%s"
+          % (a.seed, a.count, len(bases), refused,
+             a.count - refused - failed_cleanly - len(failures),
+             "completed" if a.run else "accepted",
+             "%d failed cleanly (exit 1), " % failed_cleanly if a.run else "",
+             len(failures), " (in %s)" % out if failures else ""))
     sys.exit(1 if failures else 0)
 
 

@@ -192,6 +192,26 @@ void require_increment_output(const mf::io::ProblemSpec& spec, const std::string
   }
 }
 
+/// The explicit stage of a staged run, bounded as `check` bounds it (its particles and first step
+/// built as its set-up builds them), before the preload runs: a stage that would never end is
+/// refused as input, with its key path (stages[1].time.end), not after the preload's solve.
+void require_finite_stages(const mf::io::ProblemSpec& spec, const std::string& folder) {
+  for (const mf::io::ProblemSpec& stage : spec.stages) {
+    if (stage.sph) {
+      const mf::sph::Hydro h = mf::explicit_dynamics::build_sph(*stage.sph);
+      mf::explicit_dynamics::require_finite_run(
+          mf::explicit_dynamics::planned_run(*stage.sph, h.particles.size(),
+                                             mf::sph::stable_step(h)),
+          folder);
+    } else if (stage.pd) {
+      mf::PhaseTimer timer;
+      const auto setup = mf::explicit_dynamics::build_pd_setup(stage, timer);
+      mf::explicit_dynamics::require_finite_run(
+          mf::explicit_dynamics::planned_run(*stage.pd, setup), folder);
+    }
+  }
+}
+
 /// Reads the problem and builds what its run builds before the first step or solve, stage by
 /// stage; says "valid" only when all of it passed.
 int check(const Command& c) {
@@ -296,6 +316,7 @@ int run_in(Command& c, mf::solvers::PetscSession& session) {
       spec.analysis == mf::io::Analysis::Peridynamics || spec.analysis == mf::io::Analysis::Sph;
   if (session.rank() == 0) try {
       require_increment_output(spec, dir);
+      require_finite_stages(spec, dir);
       out = std::make_unique<mf::io::OutputDirectory>(dir, c.restart_dir.empty() ? "--out"
                                                                                  : "--restart");
       // An implicit run's folder is created now (an explicit run's at its first file, after its

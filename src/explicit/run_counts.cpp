@@ -27,29 +27,30 @@ void warn_clamped(const PlannedRun& r) {
       {"output.checkpoint_interval", r.checkpoint_interval}};
   for (const auto& [key, interval] : intervals)
     if (interval > 0.0 && interval < r.dt)
-      log::warn(key, ": ", interval, " s is below the time step ", r.dt,
+      log::warn(r.key_prefix, key, ": ", interval, " s is below the time step ", r.dt,
                 " s: written at every step instead");
 }
 } // namespace
 
 void require_finite_run(const PlannedRun& r, const std::string& folder) {
   const double steps = std::ceil(r.end_time / r.dt);
-  require_run_time(r.dt_key.empty() ? "time.end" : r.dt_key,
+  const std::string& k = r.key_prefix;
+  require_run_time(k + (r.dt_key.empty() ? "time.end" : r.dt_key),
                    detail::concat(r.end_time, " s in time steps of ", r.dt, " s, ", r.particles,
                                   " particles: particle-steps"),
                    steps * std::max(1.0, r.particles), r.particle_steps_per_second);
   const double frames =
       2.0 + (r.fields_interval > 0.0 ? events(r.fields_interval, r, steps) : 0.0);
-  require_disk("output.fields_interval", "field frames", frames,
+  require_disk(k + "output.fields_interval", "field frames", frames,
                r.particles * r.bytes_per_particle_frame, folder);
   const double rows = 1.0 + events(r.history_interval, r, steps);
   // A row is its columns written as text, about 24 characters each.
-  require_disk("output.history_interval", "history rows", rows, 24.0 * r.history_columns, folder);
+  require_disk(k + "output.history_interval", "history rows", rows, 24.0 * r.history_columns, folder);
   if (r.checkpoint_interval > 0.0) {
     const double n = events(r.checkpoint_interval, r, steps);
     const double seconds = n * r.particles * r.bytes_per_particle_state / disk_bytes_per_second;
     if (!(seconds <= max_run_seconds))
-      fail("output.checkpoint_interval: ", r.checkpoint_interval, " s: about ", n,
+      fail(k, "output.checkpoint_interval: ", r.checkpoint_interval, " s: about ", n,
            " checkpoints, about ", seconds / 86400.0, " days of writing at ",
            disk_bytes_per_second, " bytes per second, more than the ",
            max_run_seconds / 86400.0, " days a run may take");
@@ -77,6 +78,7 @@ PlannedRun planned_run(const io::PdSpec& s, const PdSetup& setup) {
   r.bytes_per_particle_frame = 8.0 * 11.0; // displacement, velocity, position, damage, material
   r.bytes_per_particle_state = bytes_per::pd_particle;
   r.history_columns = history_columns(s.gauges.size());
+  r.key_prefix = s.key_prefix;
   return r;
 }
 
@@ -92,6 +94,7 @@ PlannedRun planned_run(const io::SphSpec& s, double particles, double dt) {
   r.bytes_per_particle_frame = 8.0 * 24.0; // 24 values: motion, state, stress, position
   r.bytes_per_particle_state = bytes_per::sph_particle(s.dimension);
   r.history_columns = history_columns(s.gauges.size());
+  r.key_prefix = s.key_prefix;
   return r;
 }
 

@@ -3,6 +3,7 @@
 #include "meshfree/core/log.hpp"
 #include "meshfree/core/run_bounds.hpp"
 #include "meshfree/core/timer.hpp"
+#include "meshfree/core/version.hpp"
 #include "meshfree/io/key_reader.hpp"
 #include "meshfree/io/output.hpp"
 #include <cerrno>
@@ -28,7 +29,7 @@ namespace {
 constexpr const char* kMarker = "checkpoint.txt";
 constexpr const char* kLock = ".lock";
 // The layout of a checkpoint's files: a checkpoint of another layout is refused, not misread.
-constexpr long kFormat = 2;
+constexpr long kFormat = 3;
 
 std::string state_name(long generation, int rank) {
   return "state-" + std::to_string(generation) + "." + std::to_string(rank) + ".h5";
@@ -205,6 +206,13 @@ Restart find_restart(const std::string& dir, const ProblemSettings& settings, in
     refuse_checkpoint("--restart " + dir + ": the checkpoint has layout " +
                       std::to_string(format) + ", this meshfree reads layout " +
                       std::to_string(kFormat));
+  // Another version of meshfree may compute another state from the same problem (a changed
+  // scheme, another order of sums): its checkpoint is not continued by this one.
+  const std::string version = state->text("meta.version");
+  if (version != program_version())
+    refuse_checkpoint("--restart " + dir + ": the checkpoint was written by meshfree " +
+                      one_line(version, 40) + ", this is meshfree " + program_version() +
+                      "; restart it with the version that wrote it");
   state->get("meta.ranks", count);
   state->get("meta.threads", threads);
   state->get("meta.time", r.time);
@@ -303,6 +311,7 @@ void Checkpoints::write(double t, long step, const std::function<void(StateWrite
     // Every rank's file says whose state it holds (a restart checks each against its run).
     out.put("meta.format", kFormat);
     out.put("meta.identity", identity(settings_));
+    out.put_text("meta.version", program_version());
     out.put("meta.ranks", static_cast<long>(ranks_.size));
     out.put("meta.threads", static_cast<long>(omp_get_max_threads()));
     out.put("meta.time", t);

@@ -208,6 +208,10 @@ void parse_stages(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
     StageLink link = read_link(link_reader, p.stages, static_cast<int>(k));
     link_reader.finish();
     ProblemSpec stage = parse_stage(stage_file(r, s), r, s.path(), name, base_dir);
+    // The bounds on an explicit stage's run (time.end, output intervals) are checked on its set-up,
+    // after reading: they name the stage's keys by its path.
+    if (stage.pd) stage.pd->key_prefix = s.path() + ".";
+    if (stage.sph) stage.sph->key_prefix = s.path() + ".";
     if (link.from >= 0) {
       const ProblemSpec& from = p.stages[link.from];
       if (from.analysis != Analysis::ElastoplasticStatic || !explicit_dynamics(stage.analysis))

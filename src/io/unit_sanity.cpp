@@ -160,12 +160,13 @@ double fastest_wave(Report& r, const ProblemSpec& p) {
 /// The explicit step, spacing / c of the fastest material, and the number of steps to the end.
 void check_step(Report& r, const ProblemSpec& p) {
   double spacing = 0.0, end = 0.0;
+  std::string prefix; // the stage's key path in a staged run
   if (p.sph) {
-    end = p.sph->end_time;
+    end = p.sph->end_time, prefix = p.sph->key_prefix;
     for (const auto& reg : p.sph->regions)
       spacing = spacing > 0.0 ? std::min(spacing, reg.spacing) : reg.spacing;
   } else if (p.pd) {
-    end = p.pd->end_time, spacing = p.pd->spacing;
+    end = p.pd->end_time, spacing = p.pd->spacing, prefix = p.pd->key_prefix;
   }
   const double c = fastest_wave(r, p);
   if (spacing <= 0.0 || c <= 0.0) return;
@@ -173,7 +174,7 @@ void check_step(Report& r, const ProblemSpec& p) {
   r.check("the stable time step, about spacing / wave speed,", dt, r.units().time, kStep,
           "explicit time steps");
   if (end / dt > kMaxSteps)
-    r.add("time.end = " + num(end) + " is about " + num(end / dt) + " steps of " + num(dt) +
+    r.add(prefix + "time.end = " + num(end) + " is about " + num(end / dt) + " steps of " + num(dt) +
           " (spacing / wave speed): check the end time's units");
 }
 

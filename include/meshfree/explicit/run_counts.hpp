@@ -18,6 +18,7 @@ struct PlannedRun {
   double bytes_per_particle_frame = 0.0;  // the fields one frame writes per particle
   double bytes_per_particle_state = 0.0;  // what a checkpoint writes per particle
   double history_columns = 0.0;
+  std::string key_prefix; // the stage's path in a staged run ("stages[1]."), before every key
 };
 
 /// Refuses a run whose steps would take longer than max_run_seconds on the cores here, or whose

@@ -102,6 +102,7 @@ struct PdSpec {
   CheckpointPolicy checkpoint;
   PdCrackTracking crack;
   std::optional<PdRelaxation> relaxation;
+  std::string key_prefix; // "stages[k]." for a stage of a staged run: its keys' path in messages
 };
 
 } // namespace mf::io

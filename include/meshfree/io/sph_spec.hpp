@@ -87,6 +87,7 @@ struct SphSpec {
   std::vector<SphTraction> tractions;
   std::vector<SphSymmetry> symmetry;
   Point gravity{0, 0, 0}; // body acceleration on every free particle
+  std::string key_prefix; // "stages[k]." for a stage of a staged run: its keys' path in messages
 };
 
 } // namespace mf::io
