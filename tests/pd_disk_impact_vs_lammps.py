@@ -80,9 +80,10 @@ def compare(source, out, verbose=True):
 TOLERANCES = {"force_error": 0.05, "peak_error": 0.05, "worst_damage": 0.05, "early_balance": 1e-3}
 
 
-def passes(c):
-    """Whether a comparison made by compare() is within the tolerances over every reference step."""
-    return c["complete"] and all(c[k] <= limit for k, limit in TOLERANCES.items())
+def passes(c, whole_run=True):
+    """Whether a comparison made by compare() is within the tolerances, and (with `whole_run`)
+    over every step of the reference."""
+    return (c["complete"] or not whole_run) and all(c[k] <= v for k, v in TOLERANCES.items())
 
 
 def main():

@@ -4,8 +4,10 @@ numbers and bounds the suite checks, computed by the suite's own code."""
 import html
 import re
 import subprocess
+import tempfile
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
+from pathlib import Path
 
 from verification.page import Section, table
 
@@ -25,15 +27,21 @@ def escaped(name):
 
 
 def run(tests, names):
-    """The named test cases, run in one process; a name that matches nothing is an error."""
-    cmd = [tests, "-r", "xml", "-s", "-d", "yes", "--order", "decl"] + [escaped(n) for n in names]
-    proc = subprocess.run(cmd, capture_output=True, text=True)
-    root = ET.fromstring(proc.stdout[proc.stdout.index("<Catch"):])
-    cases = [read_case(tc) for tc in root.iter("TestCase")]
-    missing = set(names) - {c.name for c in cases}
-    if missing:
-        raise RuntimeError(f"{tests}: no test case named {sorted(missing)}")
-    return cases
+    """The named test cases, each in its own process; a name that matches nothing is an error."""
+    return [run_one(tests, name) for name in names]
+
+
+def run_one(tests, name):
+    # The report goes to a file: what the test prints with printf reaches stdout unescaped.
+    with tempfile.TemporaryDirectory() as tmp:
+        report = Path(tmp) / "case.xml"
+        proc = subprocess.run([tests, "-r", "xml", "-s", "-d", "yes", "-o", str(report),
+                               escaped(name)], capture_output=True, text=True)
+        cases = [read_case(tc) for tc in ET.parse(report).getroot().iter("TestCase")]
+    if [c.name for c in cases] != [name]:
+        raise RuntimeError(f"{tests}: no test case named {name!r} (exit {proc.returncode})")
+    cases[0].printed = "\n".join(t for t in (proc.stdout.strip(), cases[0].printed) if t)
+    return cases[0]
 
 
 def read_case(tc):
