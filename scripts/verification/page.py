@@ -18,6 +18,7 @@ class Section:
     suite asserts nothing (a measurement shown for information)."""
     body: str
     passed: object = None
+    against: str = "the suite's tolerances"
 
 
 def image(path):
@@ -56,16 +57,11 @@ def markdown(text):
     return "".join(out)
 
 
-def verdict(passed):
-    if passed is None:
+def verdict(section):
+    if section.passed is None:
         return '<span class="info">measured (the suite asserts no bound)</span>'
-    return ('<span class="pass">PASSED</span>' if passed
-            else '<span class="fail">FAILED</span>') + " against the suite's tolerances"
-
-
-def within(value, limit, fmt=".2e"):
-    """A table cell pair: the value and 'yes'/'no' for value <= limit."""
-    return f"{value:{fmt}}", f"<= {limit:g}", "yes" if value <= limit else "no"
+    return ('<span class="pass">PASSED</span>' if section.passed
+            else '<span class="fail">FAILED</span>') + f" against {html.escape(section.against)}"
 
 
 def render(sections, mode, seconds):
@@ -73,7 +69,7 @@ def render(sections, mode, seconds):
     summary, parts = [], []
     for k, (title, section, error) in enumerate(sections):
         anchor = f"s{k}"
-        state = verdict(section.passed) if section else '<span class="fail">NOT MADE</span>'
+        state = verdict(section) if section else '<span class="fail">NOT MADE</span>'
         summary.append(f'<tr><td><a href="#{anchor}">{html.escape(title)}</a></td><td>{state}</td></tr>')
         body = section.body if section else f"<pre>{html.escape(error)}</pre>"
         parts.append(f'<h2 id="{anchor}">{html.escape(title)}</h2><p>{state}</p>{body}')

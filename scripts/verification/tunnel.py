@@ -27,4 +27,4 @@ def tunnel_section(ctx):
             + table(["trend", "holds"], [(t, "yes" if ok else "NO") for t, ok in trends])
             + image(folder / "arrival_vs_depth.png") + image(folder / "max_von_mises_vs_depth.png")
             + markdown((folder / "table.md").read_text()))
-    return Section(body, all(ok for _, ok in trends))
+    return Section(body, all(ok for _, ok in trends), "the trends the study reports")
