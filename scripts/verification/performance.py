@@ -11,7 +11,7 @@ from verification.page import Section, image, markdown, table
 
 # Lattices of n^3 particles: 20^3 and 40^3 are rows of reference/lammps/benchmark.csv.
 PD_SIZES, PD_QUICK_SIZES = ["20", "40"], ["10"]
-# Full mode: the implicit study up to 4e5 DOFs (its default, 2.6e6, takes about 20 minutes)
+# Full mode: the implicit study up to 4e5 DOFs (its default, 2.6e6, is the long scaling study)
 # with a 1 GiB memory probe; quick mode is the suite's smoke test on the elastic plate alone.
 IMPLICIT = ["--max-dofs", "4e5", "--first-touch", "1"]
 IMPLICIT_QUICK = ["--quick", "--layouts", "1x2", "--cases", "plate"]
@@ -53,9 +53,10 @@ def pd_section(ctx):
         rows.append((n, r["bonds"], t, f"{float(r['step_seconds']):.3g}", f"{rate:.3g}",
                      f"{float(r['bytes_steady']):.1f}", "-" if lammps is None else f"{lammps:.3g}",
                      "-" if lammps is None else f"{rate / lammps:.2f}"))
-    source = ("LAMMPS run beside it, interleaved" if interleaved else
-              "LAMMPS's rates as measured when reference/lammps was made (lmp is not installed "
-              "here; Debian's <code>lammps</code> package interleaves the runs)")
+    source = ("LAMMPS run beside it, interleaved, so that both see the same load" if interleaved
+              else "LAMMPS's rates as measured when reference/lammps was made, on a quiet machine, "
+                   "while meshfree's are of this machine as it is loaded now; with Debian's "
+                   "<code>lammps</code> installed the runs are interleaved")
     return Section(f"<p>Directed bond evaluations per second of a free PMB lattice, meshfree with k "
                    f"threads against LAMMPS peri/pmb with k MPI ranks ({source}); the ratio is "
                    f"meshfree's rate over LAMMPS's whole-loop rate.</p>"
