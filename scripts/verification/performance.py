@@ -60,7 +60,7 @@ def pd_section(ctx):
     return Section(f"<p>Directed bond evaluations per second of a free PMB lattice, meshfree with k "
                    f"threads against LAMMPS peri/pmb with k MPI ranks ({source}); the ratio is "
                    f"meshfree's rate over LAMMPS's whole-loop rate.</p>"
-                   + table(["particles", "directed bonds", "threads / ranks", "step [s]",
+                   + table(["particles", "directed bonds", "threads / ranks", "all steps [s]",
                             "bond evaluations/s", "bytes per bond", "LAMMPS evaluations/s",
                             "meshfree / LAMMPS"], rows))
 
