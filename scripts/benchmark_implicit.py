@@ -238,7 +238,10 @@ def main():
     ap.add_argument("--direct-max-dofs", type=float, default=3.2e5)
     ap.add_argument("--fit-from", type=float, default=1e5, help="smallest DOFs in the exponents' fit")
     ap.add_argument("--layouts", nargs="+", default=list(LAYOUTS), choices=list(LAYOUTS))
+    ap.add_argument("--cases", nargs="+", default=list(CASES), choices=list(CASES))
     ap.add_argument("--quick", action="store_true", help="2 small sizes of each, for a smoke test")
+    ap.add_argument("--first-touch", type=float, nargs="*", default=[1, 4, 8, 12],
+                    help="GiB written by the memory probe (none: no probe)")
     ap.add_argument("--max-iterations-growth", type=float, default=None,
                     help="exit 1 if the multigrid's iterations per solve grow by more than this "
                          "factor from the smallest to the largest size")
@@ -248,7 +251,7 @@ def main():
 
     sizes = [4e3, 1e4] if args.quick else [1e4, 4e4, 1e5, 2e5, 4e5, 1e6, 2.5e6]
     rows = []
-    for case in CASES:
+    for case in args.cases:
         top = args.max_dofs if case == "plate" else args.strip_max_dofs
         for solver in ("direct", "multigrid"):
             for layout in args.layouts:
@@ -259,9 +262,9 @@ def main():
                     if row:
                         rows.append(row)
     write_csv(out / "runs.csv", rows)
-    if not args.quick:
+    if not args.quick and args.first_touch:
         print("\nthis machine's memory (what the largest runs' assembly and set-up pay per byte):")
-        write_csv(out / "first_touch.csv", first_touch_rates([1, 4, 8, 12]))
+        write_csv(out / "first_touch.csv", first_touch_rates(args.first_touch))
     fits = exponents(rows, 0 if args.quick else args.fit_from)
     write_csv(out / "exponents.csv", fits)
     write_csv(out / "local_exponents.csv", local_exponents(rows))

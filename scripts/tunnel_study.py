@@ -104,6 +104,38 @@ def gauge_numbers(h, g):
             "max_von_mises_kPa": 1e-3 * max(h[g + "_von_mises"])}
 
 
+def trends(results):
+    """The study's trends over the cases in `results` (rows of results.csv): at the crown and the
+    floor, the arrival grows with depth and falls with charge, the peak pressure falls with depth
+    and grows with charge; and the crown is reached before the floor. Returns (statement, holds)
+    for each trend that two or more cases show."""
+    def value(r, key):
+        return abs(float(r[key]))
+
+    by_case = {}
+    for r in results:
+        by_case.setdefault((float(r["depth_m"]), float(r["tnt_kg"])), {})[r["gauge"]] = r
+    out = []
+    for g in ("crown", "floor"):
+        for key, label, with_depth in (("arrival_ms", "arrival", +1),
+                                       ("peak_pressure_kPa", "|peak pressure|", -1)):
+            for over, fixed in ((0, 1), (1, 0)):
+                sign = with_depth if over == 0 else -with_depth
+                series = {}
+                for case, gauges in by_case.items():
+                    series.setdefault(case[fixed], []).append((case[over], value(gauges[g], key)))
+                pairs = [sorted(v) for v in series.values() if len(v) > 1]
+                if not pairs:
+                    continue
+                holds = all(sign * (b[1] - a[1]) > 0 for v in pairs for a, b in zip(v, v[1:]))
+                out.append((f"{g}: {label} {'grows' if sign > 0 else 'falls'} with "
+                            f"{'depth' if over == 0 else 'charge'}", holds))
+    out.append(("the crown is reached before the floor",
+                all(value(c["crown"], "arrival_ms") < value(c["floor"], "arrival_ms")
+                    for c in by_case.values())))
+    return out
+
+
 def plot_case(h, title, path):
     import matplotlib
     matplotlib.use("Agg")

@@ -75,6 +75,17 @@ def compare(source, out, verbose=True):
                 whole_balance=summary["results"]["energy_balance_relative"])
 
 
+# What the suite asserts: forces and damaged-particle counts within 5% of LAMMPS's, the energy
+# balance within 1e-3 before the indenter's centre reaches the target.
+TOLERANCES = {"force_error": 0.05, "peak_error": 0.05, "worst_damage": 0.05, "early_balance": 1e-3}
+
+
+def passes(c, whole_run=True):
+    """Whether a comparison made by compare() is within the tolerances, and (with `whole_run`)
+    over every step of the reference."""
+    return (c["complete"] or not whole_run) and all(c[k] <= v for k, v in TOLERANCES.items())
+
+
 def main():
     meshfree, source = sys.argv[1], Path(sys.argv[2])
     out = Path(sys.argv[3]) if len(sys.argv) > 3 else Path(tempfile.mkdtemp()) / "disk_impact"
@@ -84,10 +95,7 @@ def main():
           "damaged-particle count within %.2e, energy balance %.2e up to step 150 (%.2e over the "
           "whole run)" % (c["ours_peak"], c["peak"], c["force_error"], c["worst_damage"],
                           c["early_balance"], c["whole_balance"]))
-    ok = (c["complete"] and c["force_error"] <= 0.05 and c["peak_error"] <= 0.05
-          and c["worst_damage"] <= 0.05
-          and c["early_balance"] <= 1e-3)
-    sys.exit(0 if ok else 1)
+    sys.exit(0 if passes(c) else 1)
 
 
 if __name__ == "__main__":
