@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # What a user sees on the terminal: unit-sanity warnings (on stderr, the run going on) for a
 # modulus in the wrong units and none for the shipped file; an explicit run's progress lines at
-# every tenth with 3-digit durations, ending at 100%.
+# every tenth with 3-digit durations, ending at 100%; an elastoplastic run's increments k of N.
 set -u
 MF="$1"; ROOT="$2"
 WORK="$(mktemp -d)"; trap 'rm -rf "$WORK"' EXIT
@@ -35,6 +35,24 @@ while read -r n; do # significant digits of the mantissa, leading zeros and the 
 done < <(grep -oE '(elapsed|about) [0-9.e+-]+' <<<"$lines" | awk '{print $2}')
 [ -z "$long" ] && ok "durations to 3 significant digits" || bad "long durations: $long"
 grep -qE 'elapsed [0-9.e+-]+ (s|min|h)$' <<<"$last" && ok "durations carry a unit" || bad "no unit in: $last"
+
+# Progress of an elastoplastic run: a line per increment, "increment k of N" for k = 1..N, the
+# time elapsed and left to 3 significant digits; the last line only the time elapsed.
+E="$ROOT/problems/bar_uniaxial_cyclic.yaml"
+"$MF" run "$E" --out "$WORK/cyclic" >"$WORK/elog" 2>&1 || bad "bar_uniaxial_cyclic run failed: $(tail -3 "$WORK/elog")"
+inc="$(grep -E '^\[meshfree\]   increment [0-9]+ of 40, ' "$WORK/elog")"
+numbers="$(sed -E 's/^\[meshfree\]   increment ([0-9]+) of 40, .*/\1/' <<<"$inc" | tr '\n' ' ')"
+[ "$numbers" = "$(seq -s ' ' 1 40) " ] && ok "increments 1 to 40 of 40" || bad "increment lines: $numbers"
+grep -qE 'elapsed [0-9.e+-]+ (s|min|h), about [0-9.e+-]+ (s|min|h) left$' <<<"$(head -1 <<<"$inc")" \
+  && ok "an increment line gives the time elapsed and left" || bad "first increment line: $(head -1 <<<"$inc")"
+grep -qE '^\[meshfree\]   increment 40 of 40, .*; elapsed [0-9.e+-]+ (s|min|h)$' <<<"$(tail -1 <<<"$inc")" \
+  && ok "the last increment line gives the time elapsed" || bad "last increment line: $(tail -1 <<<"$inc")"
+long=""
+while read -r n; do
+  digits="$(tr -d '.' <<<"${n%%e*}" | sed 's/^0*//')"
+  [ "${#digits}" -le 3 ] || long+="$n "
+done < <(grep -oE '(elapsed|about) [0-9.e+-]+' <<<"$inc" | awk '{print $2}')
+[ -z "$long" ] && ok "increment durations to 3 significant digits" || bad "long durations: $long"
 
 # summary.json of the SPH run: phase names are keys without spaces; the gauges' maxima are
 # magnitudes under the key peridynamics uses, beside the signed peak pressure.

@@ -98,13 +98,14 @@ run_staged_both staged-tunnel-fast staged_tunnel_blast --set stages.1.time.end=2
 /usr/bin/python3 "$ROOT/scripts/compare_runs.py" "$WORK/staged-tunnel-fast-1" "$WORK/staged-tunnel-fast-2" --rtol 1e-8
 # Staged runs whose preload is elastoplastic (the strip) or feeds a peridynamic equilibrium (the
 # PMMA beam): the preload's solve over 2 ranks (MUMPS over both, Newton accepted at the penalty
-# terms' round-off floor, near 1e-9 of the force scale) differs from one rank's, so the
-# transferred states agree to some 1e-11 of their largest values, not to 1e-12. What the
-# distributed explicit stage must add to that is nothing: the transfer's numbers agree to 1e-8
-# (those that are themselves round-off, as the density mismatch of 1.4e-14, in absolute terms;
-# the residuals left by a balance or an equilibrium only to 1e-3), the transferred fields (t = 0)
-# to 1e-10, and at the stage's end every field is within twice the transfer's largest
-# difference (or 1e-12).
+# terms' round-off floor, near 1e-9 of the force scale) differs from one rank's by round-off, so
+# the transferred states are not bit for bit those of one rank. The transfer's numbers agree to
+# 1e-8 (those that are themselves round-off, as the density mismatch of 1.4e-14, in absolute
+# terms; the residuals left by a balance or an equilibrium only to 1e-3), and every field at the
+# transfer (t = 0) and at the stage's end to 1e-10 of its largest value: in the parts the wave
+# has not reached, the sums of large prestressed bond or pair forces that cancel leave round-off
+# velocities that no two runs share once their states differ in the last bits (1e-10 m/s beside
+# the striker's 6-11 m/s). A wrong halo or a lost particle shows as 1e-3 or more.
 same_transfer_and_stage() { # run dir 1, run dir 2, field names...
   /usr/bin/python3 - "$@" <<'PY'
 import json, re, sys
@@ -130,12 +131,10 @@ with h5py.File(f"{one}/fields.h5") as a, h5py.File(f"{two}/fields.h5") as b:
         return {n: np.abs(a[step][n][...] - b[step][n][...]).max() /
                    max(np.abs(a[step][n][...]).max(), 1e-300) for n in names}
     start, end = differences(steps[times.index(0.0)]), differences(steps[-1])
-    transfer = max(start.values())
     for n in names:
         print(f"{one.split('/')[-1]}: 2 ranks against 1, {n} within {start[n]:.1e} at t = 0 "
               f"and {end[n]:.1e} at t = {times[-1]:g} of its largest")
-        assert start[n] <= 1e-10, (n, start[n])
-        assert end[n] <= max(2 * transfer, 1e-12), (n, end[n], transfer)
+        assert start[n] <= 1e-10 and end[n] <= 1e-10, (n, start[n], end[n])
 PY
 }
 # The strip with its preload at twice the spacing, and the charge brought to 0.1 m of the free

@@ -1,6 +1,10 @@
 #include "meshfree/fem/mesh_generation.hpp"
 #include "meshfree/core/error.hpp"
+#include "meshfree/core/log.hpp"
+#include "meshfree/core/progress.hpp"
 #include "meshfree/fem/gmsh_mesher.hpp"
+#include <chrono>
+#include <cmath>
 #include <dlfcn.h>
 #include <filesystem>
 #include <omp.h>
@@ -83,11 +87,21 @@ Mesh mesh_domain(const geometry::Domain& domain, double size,
   // gmsh's thread option sets OpenMP's thread count for the whole process: the caller's is
   // restored.
   const int threads = omp_get_max_threads();
+  // gmsh tells no share done: a large mesh gets a line before and one after, with its time.
+  const double nodes = domain.area_estimate() / (size * size);
+  const bool report = 2.0 * nodes >= log::kProgressUnknowns;
+  if (report) log::info("meshing the body with gmsh: about ", std::lround(nodes), " nodes or more");
+  const auto began = std::chrono::steady_clock::now();
   gmsh_mesher::Result r;
   mesh_with_gmsh(q, r);
   omp_set_num_threads(threads);
   if (!r.error.empty()) fail("discretisation.fem: gmsh could not mesh the body: ", r.error);
   Mesh mesh = collect(r, type);
+  if (report)
+    log::info("meshed the body: ", mesh.node_count(), " nodes, ", mesh.connectivity.size(),
+              " elements in ",
+              log::duration(std::chrono::duration<double>(std::chrono::steady_clock::now() - began)
+                                .count()));
   check_mesh(mesh, "the gmsh mesh of the body");
   orient_counter_clockwise(mesh, "the gmsh mesh of the body");
   return mesh;
