@@ -462,6 +462,19 @@ std::vector<double> gather(Vec x, bool everywhere) {
   return out;
 }
 
+SolveReport solve_report(KSP ksp) {
+  SolveReport r;
+  KSPConvergedReason reason;
+  check(KSPGetConvergedReason(ksp, &reason), "KSPGetConvergedReason");
+  PetscInt its = 0;
+  check(KSPGetIterationNumber(ksp, &its), "KSPGetIterationNumber");
+  r.iterations = static_cast<int>(its);
+  r.converged_reason = static_cast<int>(reason);
+  r.reason_name = KSPConvergedReasons[reason];
+  r.solver = describe(ksp);
+  return r;
+}
+
 std::string describe(KSP ksp) {
   KSPType kt;
   PCType pt;

@@ -71,4 +71,8 @@ std::vector<double> gather(Vec x, bool everywhere);
 /// "preonly/cholesky/mumps": KSP type, PC type and factorisation package.
 std::string describe(KSP ksp);
 
+/// What a finished KSPSolve reports: its iterations, its converged reason and the reason's name,
+/// and the solver (`describe`); the residual is the caller's to measure.
+SolveReport solve_report(KSP ksp);
+
 } // namespace mf::solvers::detail

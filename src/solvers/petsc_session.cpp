@@ -190,15 +190,7 @@ SolveReport BlockLinearSystem::solve() {
   check(KSPGetPC(s.ksp, &pc), "KSPGetPC");
   check(KSPSolve(s.ksp, s.b, s.x), "KSPSolve");
 
-  SolveReport r;
-  KSPConvergedReason reason;
-  check(KSPGetConvergedReason(s.ksp, &reason), "KSPGetConvergedReason");
-  PetscInt its = 0;
-  check(KSPGetIterationNumber(s.ksp, &its), "KSPGetIterationNumber");
-  r.iterations = static_cast<int>(its);
-  r.converged_reason = static_cast<int>(reason);
-  r.reason_name = KSPConvergedReasons[reason];
-  r.solver = detail::describe(s.ksp);
+  SolveReport r = detail::solve_report(s.ksp);
   // True residual |b - A x| / |b|, whatever the KSP reports.
   Vec res;
   check(VecDuplicate(s.b, &res), "VecDuplicate");
@@ -209,7 +201,7 @@ SolveReport BlockLinearSystem::solve() {
   check(VecNorm(s.b, NORM_2, &bn), "VecNorm");
   check(VecDestroy(&res), "VecDestroy");
   r.residual_norm = bn > 0.0 ? rn / bn : rn;
-  if (reason <= 0) {
+  if (r.converged_reason <= 0) {
     PCFailedReason pcr = PC_NOERROR;
     PCGetFailedReasonRank(pc, &pcr);
     const std::string stalled = detail::stagnation_note(s.ksp);

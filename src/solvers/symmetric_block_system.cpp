@@ -118,16 +118,8 @@ SolveReport SymmetricBlockSystem::solve(const std::vector<double>& rhs) {
   std::copy(rhs.begin(), rhs.end(), bv);
   check(VecRestoreArray(s.b, &bv), "VecRestoreArray");
   check(KSPSolve(s.ksp, s.b, s.x), "KSPSolve");
-  SolveReport r;
-  KSPConvergedReason reason;
-  check(KSPGetConvergedReason(s.ksp, &reason), "KSPGetConvergedReason");
-  PetscInt its = 0;
-  check(KSPGetIterationNumber(s.ksp, &its), "KSPGetIterationNumber");
-  r.iterations = static_cast<int>(its);
-  r.converged_reason = static_cast<int>(reason);
-  r.reason_name = KSPConvergedReasons[reason];
-  r.solver = detail::describe(s.ksp);
-  if (reason <= 0) {
+  SolveReport r = detail::solve_report(s.ksp);
+  if (r.converged_reason <= 0) {
     PC pc;
     check(KSPGetPC(s.ksp, &pc), "KSPGetPC");
     PCFailedReason failed = PC_NOERROR;
