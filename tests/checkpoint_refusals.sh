@@ -18,19 +18,13 @@ check() { # check "what" condition...
 source "$(dirname "${BASH_SOURCE[0]}")/checkpoint_support.sh"
 listing() { (cd "$1" && find . | sort && find . -type f | sort | xargs md5sum); }
 # h5edit FILE python-statements: edits a state file with h5py; fnv(bytes) is meshfree's checksum
-# of an array (FNV-1a over 64-bit words, seeded with the length).
+# of an array (tests/fuzz_support.py).
 h5edit() {
-  /usr/bin/python3 - "$@" <<'EOF'
+  /usr/bin/python3 - "$@" "$(dirname "${BASH_SOURCE[0]}")" <<'EOF'
 import sys
 import h5py, numpy as np
-def fnv(data):
-    h, prime, mask = 0xcbf29ce484222325 ^ len(data), 0x100000001b3, (1 << 64) - 1
-    whole = len(data) // 8 * 8
-    for w in np.frombuffer(data[:whole], "<u8"):
-        h = ((h ^ int(w)) * prime) & mask
-    for b in data[whole:]:
-        h = ((h ^ b) * prime) & mask
-    return h
+sys.path.insert(0, sys.argv[3])
+from fuzz_support import fnv
 def put(f, name, values):  # a dataset replaced, with its checksum
     values = np.asarray(values, dtype=f[name].dtype)
     del f[name]

@@ -19,8 +19,6 @@ a mutant is made or judged is a failure of that mutant. JOBS restarts run at onc
 core: most of a short restart's time is spent starting MPI and reading, not computing).
 Usage: fuzz_checkpoints.py MESHFREE SOURCE_DIR [--count N] [--seed S] [--out DIR] [--jobs J]
 """
-import argparse
-import datetime
 import os
 import random
 import shutil
@@ -36,19 +34,11 @@ from pathlib import Path
 import h5py
 import numpy as np
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from fuzz_support import arguments, fnv, parse  # noqa: E402
+
 SETS = ["--set", "output.checkpoint_interval=1.0e-5"]
 ONE_THREAD = dict(os.environ, OMP_NUM_THREADS="1")
-
-
-def fnv(data):
-    """meshfree's checksum of an array: FNV-1a over 64-bit words, seeded with the length."""
-    h, prime, mask = 0xcbf29ce484222325 ^ len(data), 0x100000001b3, (1 << 64) - 1
-    whole = len(data) // 8 * 8
-    for w in np.frombuffer(data[:whole], "<u8"):
-        h = ((h ^ int(w)) * prime) & mask
-    for b in data[whole:]:
-        h = ((h ^ b) * prime) & mask
-    return h
 
 
 def generation(folder):
@@ -191,17 +181,7 @@ def judge(rc, err, before, after, folder):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("meshfree")
-    ap.add_argument("source")
-    ap.add_argument("--count", type=int, default=2000)
-    ap.add_argument("--seed", type=int, default=None)
-    ap.add_argument("--out", default=None)
-    ap.add_argument("--jobs", type=int, default=4 * (os.cpu_count() or 1))
-    a = ap.parse_args()
-    if a.seed is None:  # the seed of the day: the UTC date as YYYYMMDD
-        a.seed = int(datetime.datetime.now(datetime.timezone.utc).strftime("%Y%m%d"))
-    print("seed %d (replay with --seed %d)" % (a.seed, a.seed), flush=True)
+    a = parse(arguments(__doc__))
     problem = str(Path(a.source) / "problems" / "pd_disk_impact.yaml")
     work = Path(tempfile.mkdtemp(prefix="fuzz_checkpoints_"))
     try:

@@ -23,8 +23,6 @@ MPI and writing, not computing).
 Usage: fuzz_inputs.py MESHFREE SOURCE_DIR [--count N] [--seed S] [--out DIR] [--jobs J]
                       [--run [--end T] [--steps S]]
 """
-import argparse
-import datetime
 import os
 import random
 import re
@@ -35,6 +33,9 @@ import tempfile
 import traceback
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from fuzz_support import arguments, parse  # noqa: E402
 
 VALUES = ["-1", "0", "1e308", "-1e308", "1e-308", "1e999", ".nan", ".inf", "-.inf",
           "99999999999999999999", "abc", "[]", "{}", "[1, 2, 3, 4]", "''", "null", "true",
@@ -76,11 +77,6 @@ def mutate(text, rng):
 
 def status(rc):
     return "killed by signal %d" % -rc if rc < 0 else "exit %d" % rc
-
-
-def today_seed():
-    """The seed of the day: the UTC date as YYYYMMDD."""
-    return int(datetime.datetime.now(datetime.timezone.utc).strftime("%Y%m%d"))
 
 
 def check(meshfree, path, workdir):
@@ -153,25 +149,16 @@ def judge_run(meshfree, path, out, workdir, end, valid):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("meshfree")
-    ap.add_argument("source")
-    ap.add_argument("--count", type=int, default=2000)
-    ap.add_argument("--seed", type=int, default=None)
-    ap.add_argument("--out", default=None)
-    ap.add_argument("--jobs", type=int, default=4 * (os.cpu_count() or 1))
+    ap = arguments(__doc__)
     ap.add_argument("--run", action="store_true")
     ap.add_argument("--end", type=float, default=1e-5)
     ap.add_argument("--steps", type=float, default=10)
-    a = ap.parse_args()
+    a = parse(ap)
     a.meshfree = os.path.abspath(a.meshfree)
     source = Path(a.source).resolve()
     bases = sorted((source / "problems").glob("*.yaml"))
     if a.run:
         bases = [b for b in bases if b.name.startswith(("pd_", "sph_"))]
-    if a.seed is None:
-        a.seed = today_seed()
-    print("seed %d (replay with --seed %d)" % (a.seed, a.seed), flush=True)
     rng = random.Random(a.seed)
     work = Path(tempfile.mkdtemp())
     out = Path(a.out) if a.out else work / "failures"
