@@ -95,3 +95,21 @@ TEST_CASE("percentages are floored, so 100% means done", "[progress]") {
   CHECK(mf::log::percent(-0.5) == "0%");
   CHECK(mf::log::percent(0.1) == "10%");
 }
+
+TEST_CASE("units counted from a parallel loop reach the lines through thread 0", "[progress]") {
+  Recorded r;
+  PhaseProgress p = r.make(10000);
+  for (int k = 1; k <= 4095; ++k) p.count_one(k % 2); // two threads' units, none passed on yet
+  CHECK(r.lines.empty());
+  p.count_one(1); // the 4096th unit, counted on thread 1: thread 0 passes counts on
+  CHECK(r.lines.empty());
+  p.count_one(0); // 4097 units: 40%
+  REQUIRE(r.lines.size() == 1);
+  CHECK(r.lines[0].rfind("assembly: 40%", 0) == 0);
+  for (int k = 0; k < 5903; ++k) p.count_one(0); // every unit done: the last lines and 100%
+  p.finish();
+  CHECK(r.lines.back() == "assembly: 100%, elapsed 0 s");
+  PhaseProgress off = r.make(10, false);
+  for (int k = 0; k < 5000; ++k) off.count_one(0);
+  CHECK(r.lines.size() == 3); // 40%, 81%, 100%; nothing from the disabled phase
+}

@@ -41,6 +41,14 @@ void PhaseProgress::update(double done, const std::string& detail) {
   report(fraction, detail);
 }
 
+void PhaseProgress::count_one(int thread) {
+  if (!enabled_) return;
+  const long n = ++counted_;
+  if (thread != 0 || n - passed_on_ < 4096) return;
+  passed_on_ = n;
+  update(static_cast<double>(n));
+}
+
 void PhaseProgress::finish() {
   if (!enabled_ || !tenths_ || finished_) return;
   finished_ = true;

@@ -6,7 +6,6 @@
 #include "meshfree/core/timer.hpp"
 #include "meshfree/implicit/elasticity.hpp"
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <string>
 
@@ -107,16 +106,13 @@ void ElastoplasticSystem::jacobian(const std::vector<double>& d, solvers::BlockV
   // takes longer than 10 s (no tenths, no 100% line, which would double the solve's lines).
   const bool report = 2.0 * m_.node_count() >= log::kProgressUnknowns;
   log::PhaseProgress progress("tangent assembly", t.rows(), report, {}, {}, false);
-  std::atomic<long> done{0};
   m_.domain_groups.for_each([&](int k, int thread) {
     const int n = t.offset[k + 1] - t.offset[k];
     block[thread].resize(4 * n * n);
     point_stiffness(t, k, m_.domain_weight[k] * states_.tangent[k], block[thread].data());
     tangent.add_matrix_at(t.node.data() + t.offset[k], scatter_.slots(k, slots[thread]), n,
                           block[thread].data());
-    if (!report) return;
-    const long points = ++done;
-    if (thread == 0) progress.update(static_cast<double>(points));
+    progress.count_one(thread);
   });
   jacobian_seconds_ += seconds_since(t0);
 }

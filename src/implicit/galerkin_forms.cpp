@@ -4,7 +4,6 @@
 #include "meshfree/implicit/point_law.hpp"
 #include "meshfree/solvers/parallel.hpp"
 #include <algorithm>
-#include <atomic>
 
 namespace mf::implicit {
 
@@ -30,16 +29,13 @@ void assemble_linear_elastic(const io::ProblemSpec& spec, const GalerkinModel& m
   // Progress of large systems: the points done, counted by all threads, reported by thread 0.
   const bool report = 2.0 * m.node_count() >= log::kProgressUnknowns;
   log::PhaseProgress progress("assembly", t.rows(), report);
-  std::atomic<long> done{0};
   m.domain_groups.for_each([&](int r, int thread) {
     const int n = t.offset[r + 1] - t.offset[r];
     K[thread].resize(4 * n * n);
     const Mat3& Cr = regions ? laws.elastic[laws.material.empty() ? 0 : laws.material[r]] : C;
     point_stiffness(t, r, m.domain_weight[r] * Cr, K[thread].data());
     add_matrix(t.node.data() + t.offset[r], n, K[thread].data());
-    if (!report) return;
-    const long points = ++done;
-    if (thread == 0) progress.update(static_cast<double>(points));
+    progress.count_one(thread);
   });
   progress.finish();
   if (has_body_force(spec) && factors.back() != 0.0) {

@@ -78,13 +78,9 @@ ShapeTable MeshfreeSpace::shape_table(const std::vector<Vec2>& points, const std
   // boundary points nor for samples at the nodes.
   const bool report = 2.0 * node_count() >= log::kProgressUnknowns && n > node_count();
   log::PhaseProgress progress("shape functions", n, report);
-  std::atomic<long> done{0};
 #pragma omp parallel for schedule(dynamic, 256)
   for (int k = 0; k < n; ++k) {
-    if (report) {
-      const long points = ++done;
-      if (omp_get_thread_num() == 0) progress.update(static_cast<double>(points));
-    }
+    progress.count_one(omp_get_thread_num());
     const int p = rows[k];
     const int* nb = support.index.data() + support.offset[p];
     const int count = support.size(p);
