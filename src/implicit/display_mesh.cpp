@@ -4,6 +4,7 @@
 #include "meshfree/implicit/point_law.hpp"
 #include "meshfree/materials/elastic.hpp"
 #include <array>
+#include <tuple>
 
 namespace mf::implicit {
 
@@ -97,12 +98,8 @@ std::pair<DisplayMesh, DisplayFields> elastic_display(const io::ProblemSpec& spe
   const PointLaws laws = point_laws(spec, domain_rows(m));
   std::vector<Vec3> stress(t.rows());
   std::vector<double> szz(t.rows());
-  for (int k = 0; k < t.rows(); ++k) {
-    const int mat = laws.material[k];
-    stress[k] = laws.elastic[mat] * strain_at(t, k, d);
-    szz[k] = materials::out_of_plane_stress({laws.params[mat].E, laws.params[mat].nu}, spec.model,
-                                            stress[k]);
-  }
+  for (int k = 0; k < t.rows(); ++k)
+    std::tie(stress[k], szz[k]) = laws.elastic_stress(spec.model, k, strain_at(t, k, d));
   const NodalAverage avg = nodal_average(m, stress, szz, session);
   std::pair<DisplayMesh, DisplayFields> out;
   session.collective([&] {

@@ -57,9 +57,8 @@ ElasticLimit elastic_limit(const io::ProblemSpec& spec, const GalerkinModel& m,
     for (int k = 0; k < t.rows(); ++k) {
       const int mat = laws.material[k];
       if (!laws.plastic[mat] || (counted && !counted[k])) continue;
-      const materials::IsotropicElastic e{laws.params[mat].E, laws.params[mat].nu};
-      const Vec3 s = laws.elastic[mat] * strain_at(t, k, d);
-      const double vm = materials::von_mises(s, materials::out_of_plane_stress(e, spec.model, s));
+      const auto [s, szz] = laws.elastic_stress(spec.model, k, strain_at(t, k, d));
+      const double vm = materials::von_mises(s, szz);
       const double sc = vm * (sigma_ref / laws.params[mat].sigma0);
       if (sc > score) score = sc, vm_best = vm, where = x[k];
     }

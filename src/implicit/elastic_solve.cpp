@@ -7,6 +7,7 @@
 #include "meshfree/solvers/parallel.hpp"
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace mf::implicit {
 
@@ -22,11 +23,8 @@ void evaluate_fields(const GalerkinModel& m, const io::ProblemSpec& spec,
   stress.resize(x.size());
   szz.resize(x.size());
   for (int r = 0; r < t.rows(); ++r) {
-    const int mat = laws.material[r];
     u[r] = displacement_at(t, r, d);
-    stress[r] = laws.elastic[mat] * strain_at(t, r, d);
-    szz[r] = materials::out_of_plane_stress({laws.params[mat].E, laws.params[mat].nu}, spec.model,
-                                            stress[r]);
+    std::tie(stress[r], szz[r]) = laws.elastic_stress(spec.model, r, strain_at(t, r, d));
   }
 }
 

@@ -5,6 +5,13 @@
 
 namespace mf::implicit {
 
+std::pair<Vec3, double> PointLaws::elastic_stress(materials::PlaneModel model, int k,
+                                                  const Vec3& strain) const {
+  const int m = material[k];
+  const Vec3 stress = elastic[m] * strain;
+  return {stress, materials::out_of_plane_stress({params[m].E, params[m].nu}, model, stress)};
+}
+
 namespace {
 
 /// Tolerance of region membership: a point on a region's boundary belongs to it.

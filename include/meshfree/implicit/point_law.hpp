@@ -12,6 +12,7 @@
 #include "meshfree/core/types.hpp"
 #include "meshfree/io/problem_spec.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
+#include <utility>
 #include <vector>
 
 namespace mf::implicit {
@@ -65,6 +66,10 @@ struct PointLaws {
   std::vector<Vec4> initial_stress; // per point (empty without an initial stress)
   bool any_plastic = false;         // some point has a plastic material
   bool one_material = true;         // every point has the same material
+
+  /// The elastic stress of point k at `strain`, and its out-of-plane stress under `model`.
+  std::pair<Vec3, double> elastic_stress(materials::PlaneModel model, int k,
+                                         const Vec3& strain) const;
 
   materials::J2Result2D update(materials::PlaneModel model, int k, const Vec3& strain,
                                const materials::J2State& committed) const {
