@@ -1,6 +1,9 @@
 #include "meshfree/app/elastoplastic_static.hpp"
+#include "meshfree/app/elastic_static.hpp"
+#include "meshfree/core/run_bounds.hpp"
 #include "meshfree/implicit/elastoplastic_output.hpp"
 #include "meshfree/implicit/elastoplastic_solve.hpp"
+#include <limits>
 
 namespace mf::app {
 
@@ -15,6 +18,59 @@ implicit::ElastoplasticResult elastoplastic_static(const io::ProblemSpec& spec,
     if (out) implicit::write_elastoplastic_outputs(spec, r, session, *out);
   }
   return r;
+}
+
+/// Each increment is a Newton solve over every degree of freedom that writes a field frame, a
+/// Gauss-point frame and a display-mesh frame, about 700 bytes per node together (measured on
+/// plate_plastic_thesis, README.md "Running").
+void require_increment_output(const io::ProblemSpec& spec, const std::string& folder) {
+  const Vec2 size = spec.domain.bounds().size();
+  const double h = spec.discretisation.spacing;
+  const double nodes = (size.x() / h + 1.0) * (size.y() / h + 1.0);
+  const std::size_t listed = spec.initial_stress ? 1 : 0; // "geostatic" is not in the file
+  double frames = 1.0;
+  for (std::size_t k = 0; k < spec.steps.size(); ++k) {
+    frames += spec.steps[k].increments;
+    if (k < listed) continue;
+    const std::string key = "steps[" + std::to_string(k - listed) + "].increments";
+    require_run_time(key, "DOF-increments of the schedule so far", frames * 2.0 * nodes,
+                     work_per_second::galerkin_dof_increments);
+    require_disk(key, "field frames of the schedule so far", frames, 700.0 * nodes, folder);
+  }
+}
+
+namespace {
+
+void check(const io::ProblemSpec& spec) {
+  describe_galerkin(spec);
+  require_increment_output(spec, "out/" + spec.name);
+}
+
+void admit(const io::ProblemSpec& spec, const std::string& folder) {
+  admit_galerkin(spec, folder);
+  require_increment_output(spec, folder);
+}
+
+/// Checkpoints count increments: no bound in time.
+double end_time(const io::ProblemSpec&) { return std::numeric_limits<double>::infinity(); }
+
+RunOutcome run(const RunRequest& q) {
+  const auto r = elastoplastic_static(q.spec, q.session, q.out, q.dir, q.restart);
+  log_phases(r.timer);
+  return {r.status == "completed" ? 0 : 3, r.status};
+}
+
+} // namespace
+
+AnalysisEntry elastoplastic_static_entry() {
+  AnalysisEntry e{io::Analysis::ElastoplasticStatic, "elastoplastic_static"};
+  e.checkpoints = true;
+  e.describe = describe_galerkin;
+  e.check = check;
+  e.admit = admit;
+  e.end_time = end_time;
+  e.run = run;
+  return e;
 }
 
 } // namespace mf::app

@@ -1,5 +1,6 @@
 #include "meshfree/app/model_problem_1d.hpp"
 #include "meshfree/implicit/model_problem_1d_output.hpp"
+#include <iostream>
 
 namespace mf::app {
 
@@ -7,6 +8,29 @@ implicit::Model1DResult model_problem_1d(const io::ProblemSpec& spec, io::Output
   const implicit::Model1DResult r = implicit::solve_model_problem_1d(spec);
   implicit::write_model_1d_outputs(spec, r, out);
   return r;
+}
+
+namespace {
+
+void describe(const io::ProblemSpec& spec) {
+  std::cout << "  1D model problem on [0, " << spec.model_1d.length << "], spacing "
+            << spec.discretisation.spacing << "\n";
+}
+
+/// On one rank: the others have nothing to do.
+RunOutcome run(const RunRequest& q) {
+  if (q.session.rank() == 0) model_problem_1d(q.spec, *q.out);
+  return {};
+}
+
+} // namespace
+
+AnalysisEntry model_problem_1d_entry() {
+  AnalysisEntry e{io::Analysis::ModelProblem1D, "model_problem_1d"};
+  e.describe = describe;
+  e.check = describe;
+  e.run = run;
+  return e;
 }
 
 } // namespace mf::app

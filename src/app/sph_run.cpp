@@ -1,11 +1,14 @@
 #include "meshfree/app/sph_run.hpp"
 #include "meshfree/core/log.hpp"
+#include "meshfree/core/memory.hpp"
 #include "meshfree/explicit/run_counts.hpp"
 #include "meshfree/explicit/run_summaries.hpp"
 #include "meshfree/explicit/sph_setup.hpp"
 #include "meshfree/explicit/time_loop.hpp"
 #include "meshfree/sph/decomposition.hpp"
 #include "meshfree/sph/step.hpp"
+#include <cmath>
+#include <iostream>
 
 namespace mf::app {
 
@@ -60,6 +63,55 @@ void write_sph_outputs(const io::ProblemSpec& spec, const explicit_dynamics::Sph
       .set("share_of_run", stepping > 0.0 ? r.neighbour_seconds / stepping : 0.0);
   summary.section("checkpoints") = r.checkpoints.describe(stepping);
   summary.write(out, r.timer);
+}
+
+namespace {
+
+void describe(const io::ProblemSpec& spec) {
+  const sph::Hydro h = explicit_dynamics::build_sph(*spec.sph);
+  int limiting = -1;
+  const double dt = sph::stable_step(h, &limiting);
+  explicit_dynamics::require_finite_run(
+      explicit_dynamics::planned_run(*spec.sph, h.particles.size(), dt), "out/" + spec.name);
+  std::cout << "  sph: " << h.particles.size() << " particles in " << spec.sph->dimension
+            << "D, first CFL step " << dt << " (particle " << limiting << "), about "
+            << static_cast<long>(std::ceil(spec.sph->end_time / dt)) << " steps or more\n"
+            << "  memory: "
+            << describe_bytes(h.particles.size() * bytes_per::sph_particle(spec.sph->dimension))
+            << " for the discretisation, besides " << describe_bytes(bytes_per::program)
+            << " for the program\n";
+}
+
+double end_time(const io::ProblemSpec& spec) { return spec.sph->end_time; }
+
+RunOutcome run(const RunRequest& q) {
+  explicit_dynamics::SphRunResult r =
+      run_sph(q.spec, q.out, distribution::Ranks::of(q.session.comm()), q.dir, q.restart);
+  {
+    PhaseTimer::Scope scope(r.timer, "output");
+    if (q.out) write_sph_outputs(q.spec, r, *q.out);
+  }
+  log_phases(r.timer);
+  return {r.status == "failed" ? 1 : 0, r.stop_reason};
+}
+
+} // namespace
+
+void require_finite_sph_run(const io::ProblemSpec& spec, const std::string& folder) {
+  const sph::Hydro h = explicit_dynamics::build_sph(*spec.sph);
+  explicit_dynamics::require_finite_run(
+      explicit_dynamics::planned_run(*spec.sph, h.particles.size(), sph::stable_step(h)), folder);
+}
+
+AnalysisEntry sph_entry() {
+  AnalysisEntry e{io::Analysis::Sph, "sph"};
+  e.checkpoints = true;
+  e.folder_at_first_file = true;
+  e.describe = describe;
+  e.check = describe;
+  e.end_time = end_time;
+  e.run = run;
+  return e;
 }
 
 } // namespace mf::app

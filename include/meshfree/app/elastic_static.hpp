@@ -1,5 +1,6 @@
 #pragma once
 // Linear elastic static analysis on a Galerkin model (meshfree RK/MLS or finite elements).
+#include "meshfree/app/analysis.hpp"
 #include "meshfree/implicit/elastic_solve.hpp"
 #include "meshfree/io/output.hpp"
 #include "meshfree/io/problem_spec.hpp"
@@ -11,5 +12,15 @@ namespace mf::app {
 implicit::ElasticResult elastic_static(const io::ProblemSpec& spec,
                                        const solvers::PetscSession& session,
                                        io::OutputDirectory* out);
+
+/// What `check` prints of a Galerkin analysis (elastic or elastoplastic): method, nodes or mesh,
+/// integration points, memory, the boundary conditions and the steps.
+void describe_galerkin(const io::ProblemSpec& spec);
+
+/// A finite-element mesh is input too: read and checked before anything is written.
+void admit_galerkin(const io::ProblemSpec& spec, const std::string& folder);
+
+/// The table entry of `analysis: elastic_static`.
+AnalysisEntry elastic_static_entry();
 
 } // namespace mf::app

@@ -1,5 +1,6 @@
 #pragma once
 // Quasi-static elastoplastic analysis (J2, plane stress or plane strain) on a Galerkin model.
+#include "meshfree/app/analysis.hpp"
 #include "meshfree/implicit/elastoplastic_result.hpp"
 #include "meshfree/io/output.hpp"
 #include "meshfree/io/problem_spec.hpp"
@@ -15,5 +16,12 @@ implicit::ElastoplasticResult elastoplastic_static(const io::ProblemSpec& spec,
                                                    io::OutputDirectory* out,
                                                    const std::string& dir = {},
                                                    const io::Restart* restart = nullptr);
+
+/// An elastoplastic schedule's increments bounded by the time a run may take here and by the disk
+/// of `folder`; the step whose increments pass a bound is named.
+void require_increment_output(const io::ProblemSpec& spec, const std::string& folder);
+
+/// The table entry of `analysis: elastoplastic_static`.
+AnalysisEntry elastoplastic_static_entry();
 
 } // namespace mf::app

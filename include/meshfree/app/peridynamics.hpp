@@ -1,6 +1,7 @@
 #pragma once
 // Explicit bond-based peridynamics run from a problem file: the body from the spec, velocity-Verlet
 // steps to the end time, histories and fields.
+#include "meshfree/app/analysis.hpp"
 #include "meshfree/explicit/pd_run.hpp"
 #include "meshfree/io/output.hpp"
 #include "meshfree/io/problem_spec.hpp"
@@ -19,5 +20,12 @@ explicit_dynamics::PdRunResult run_peridynamics(const io::ProblemSpec& spec,
 /// history.csv and summary.json.
 void write_pd_outputs(const io::ProblemSpec& spec, const explicit_dynamics::PdRunResult& r,
                       io::OutputDirectory& out);
+
+/// The run's set-up built to bound it: a run that would never end or not fit on the disk of
+/// `folder` is refused (a stage of a staged run, before its preload).
+void require_finite_pd_run(const io::ProblemSpec& spec, const std::string& folder);
+
+/// The table entry of `analysis: peridynamics`.
+AnalysisEntry peridynamics_entry();
 
 } // namespace mf::app

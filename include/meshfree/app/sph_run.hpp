@@ -1,6 +1,7 @@
 #pragma once
 // An SPH run from a problem file (analysis: sph): particles from the regions, lighting times from
 // the detonation point, CFL-limited steps to the end time, histories, gauges and fields.
+#include "meshfree/app/analysis.hpp"
 #include "meshfree/distribution/ranks.hpp"
 #include "meshfree/explicit/sph_run.hpp"
 #include "meshfree/io/output.hpp"
@@ -19,5 +20,12 @@ explicit_dynamics::SphRunResult run_sph(const io::ProblemSpec& spec, io::OutputD
 /// history.csv and summary.json.
 void write_sph_outputs(const io::ProblemSpec& spec, const explicit_dynamics::SphRunResult& r,
                        io::OutputDirectory& out);
+
+/// The run's particles and first step built to bound it: a run that would never end or not fit on
+/// the disk of `folder` is refused (a stage of a staged run, before its preload).
+void require_finite_sph_run(const io::ProblemSpec& spec, const std::string& folder);
+
+/// The table entry of `analysis: sph`.
+AnalysisEntry sph_entry();
 
 } // namespace mf::app

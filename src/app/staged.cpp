@@ -1,0 +1,60 @@
+#include "meshfree/app/staged.hpp"
+#include "meshfree/app/peridynamics.hpp"
+#include "meshfree/app/sph_run.hpp"
+#include "meshfree/stages/staged_run.hpp"
+#include <iostream>
+#include <limits>
+
+namespace mf::app {
+
+namespace {
+
+/// Each stage as its own analysis describes itself, with where it starts from.
+void check(const io::ProblemSpec& spec) {
+  for (std::size_t k = 0; k < spec.stages.size(); ++k) {
+    const io::StageLink& l = spec.links[k];
+    std::cout << "stage " << spec.stages[k].stage;
+    if (l.from >= 0)
+      std::cout << " from " << spec.stages[l.from].stage << " (" << l.hold.size()
+                << " condition(s) held, " << l.release.size() << " released)";
+    std::cout << ":\n";
+    entry_of(spec.stages[k].analysis).describe(spec.stages[k]);
+  }
+}
+
+/// The explicit stages bounded as `check` bounds them (their particles and first step built as
+/// their set-up builds them), before the preload runs: a stage that would never end is refused
+/// as input, with its key path (stages[1].time.end), not after the preload's solve.
+void admit(const io::ProblemSpec& spec, const std::string& folder) {
+  for (const io::ProblemSpec& stage : spec.stages) {
+    if (stage.sph) require_finite_sph_run(stage, folder);
+    if (stage.pd) require_finite_pd_run(stage, folder);
+  }
+}
+
+/// Checkpoints are the explicit stage's.
+double end_time(const io::ProblemSpec& spec) {
+  const io::ProblemSpec& stage = spec.stages.at(1);
+  const AnalysisEntry& e = entry_of(stage.analysis);
+  return e.end_time ? e.end_time(stage) : std::numeric_limits<double>::infinity();
+}
+
+RunOutcome run(const RunRequest& q) {
+  const auto r = stages::run_staged(q.spec, q.session, q.out, q.dir, q.restart);
+  return {r.exit_code, r.stop_reason};
+}
+
+} // namespace
+
+AnalysisEntry staged_entry() {
+  AnalysisEntry e{io::Analysis::Staged, "staged"};
+  e.checkpoints = true;
+  e.describe = check;
+  e.check = check;
+  e.admit = admit;
+  e.end_time = end_time;
+  e.run = run;
+  return e;
+}
+
+} // namespace mf::app
