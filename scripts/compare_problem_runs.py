@@ -51,6 +51,23 @@ def run(binary, problem: Path, out: Path, fraction, threads, log, sets=()):
     return rc, time.time() - t0
 
 
+def results_folder(run_dir: Path):
+    """Where a run left its results: the folder itself when it completed, else the files it kept
+    under stopped/ or failed/ (the run contract)."""
+    for sub in ("", "stopped", "failed"):
+        if (run_dir / sub / "summary.json").exists():
+            return run_dir / sub
+    return run_dir
+
+
+def exit_status(log_dir: Path, stem: str, rc=None):
+    """The exit status of a run, kept beside its log so that a reused run still has it."""
+    f = log_dir / f"{stem}.rc"
+    if rc is not None:
+        f.write_text(f"{rc}\n")
+    return int(f.read_text()) if f.exists() else None
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -82,10 +99,12 @@ def main():
     for name in names:
         stem = name.removesuffix(".yaml")
         old_dir, new_dir = old_root / stem, out / "new" / stem
-        if not (args.reuse_old and (old_dir / "summary.json").exists()):
+        if not (args.reuse_old and (results_folder(old_dir) / "summary.json").exists()):
             rc, t = run(args.old_meshfree, Path(args.old_problems) / name, old_dir,
                         args.explicit_fraction, args.threads, old_root / f"{stem}.log")
+            exit_status(old_root, stem, rc)
             print(f"old {stem}: exit {rc}, {t:.1f} s", flush=True)
+        old_rc = exit_status(old_root, stem)
         if args.only_old:
             continue
         new_problem = Path(args.new_problems) / name
@@ -96,13 +115,17 @@ def main():
         rc, t = run(args.new_meshfree, new_problem, new_dir, args.explicit_fraction,
                     args.threads, out / "new" / f"{stem}.log", args.new_set)
         cmp = subprocess.run(["/usr/bin/python3", str(ROOT / "scripts" / "compare_runs.py"),
-                              str(old_dir), str(new_dir), "--rtol", str(args.rtol)]
+                              str(results_folder(old_dir)), str(results_folder(new_dir)),
+                              "--rtol", str(args.rtol)]
                              + (["--match-positions"] if args.match_positions else []),
                              capture_output=True, text=True)
         last = (cmp.stdout.strip().splitlines() or [""])[-1]
-        verdict = "ok" if rc == 0 and cmp.returncode == 0 else "FAIL"
+        same_end = rc == old_rc if old_rc is not None else rc == 0
+        verdict = "ok" if same_end and cmp.returncode == 0 else "FAIL"
         failures += verdict == "FAIL"
         detail = last if cmp.returncode == 0 else (cmp.stdout + cmp.stderr).strip().replace("\n", "; ")
+        if rc != 0 or not same_end:
+            detail = f"exit {rc} (old {old_rc}); {detail}"
         rows.append(f"| {stem} | {verdict} | {t:.1f} | {detail} |")
         print(f"{verdict} {stem}: {detail}", flush=True)
     if rows:
