@@ -6,7 +6,7 @@ suite asserts, and whether it passed:
 
 - CalculiX load-displacement curves of perforated_strip and cook_membrane (scripts/compare.py),
 - Timoshenko cantilever and Kirsch plate convergence (scripts/convergence_study.py),
-- LAMMPS: peri/pmb disk impact (tests/pd_disk_impact_vs_lammps.py) and PMB lattice,
+- LAMMPS: peri/pmb disk impact (tests/reference/pd_disk_impact_vs_lammps.py) and PMB lattice,
 - elastic waves against one-dimensional theory, Sod's shock tube, the Chapman-Jouguet detonation
   (the unit tests that assert them, run through build/tests/meshfree_tests),
 - the Taylor bar (scripts/taylor_bar.py), staged quiet starts (the staged problems' transfer and
@@ -35,7 +35,7 @@ matplotlib.use("Agg")
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "scripts"))
-sys.path.insert(0, str(ROOT / "tests"))
+sys.path.insert(0, str(ROOT / "tests" / "reference"))
 from verification import explicit, implicit, performance, staged, tunnel  # noqa: E402
 from verification.page import render  # noqa: E402
 

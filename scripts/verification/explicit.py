@@ -4,7 +4,7 @@ whole-program ones through the scripts and problem files the suite uses."""
 import subprocess
 
 import matplotlib.pyplot as plt
-import pd_disk_impact_vs_lammps as disk  # tests/pd_disk_impact_vs_lammps.py
+import pd_disk_impact_vs_lammps as disk  # tests/reference/pd_disk_impact_vs_lammps.py
 import taylor_bar  # scripts/taylor_bar.py
 
 from verification import suite_cases

@@ -16,9 +16,9 @@ QUIET = ["an elastic strip preloaded by end tractions starts quietly in SPH",
          "every held condition hands a homogeneous state to peridynamics quietly",
          "greenfield sand column: a K0 = 0.5 geostatic preload is held quietly in SPH"]
 PROBLEMS = ["staged_tunnel_blast", "staged_pmma_impact", "staged_strip_blast"]
-# tests/mpi_explicit_consistency.sh holds a staged run's initial out-of-balance to 1e-3.
+# tests/cli/mpi_explicit_consistency.sh holds a staged run's initial out-of-balance to 1e-3.
 OUT_OF_BALANCE = 1e-3
-# As tests/problems_run.sh: the preload in full, the explicit stage over 2% of its end time.
+# As tests/cli/problems_run.sh: the preload in full, the explicit stage over 2% of its end time.
 STAGE_FRACTION = 0.02
 
 

@@ -12,13 +12,13 @@ stresses and the equivalent plastic strain at their vertices.
   are those of the Gauss points, all equal, and u^h is linear in x and y.
 - A finite-element display mesh carries the nodal values themselves; a meshfree one of a body
   with a hole (the perforated strip) covers it, at about the node count.
-- Every .xmf of each run is whole (tests/xdmf_frames.py's checks: one grid per time, times
+- Every .xmf of each run is whole (tests/cli/xdmf_frames.py's checks: one grid per time, times
   increasing, no empty grid, every DataItem's dimensions those of its HDF5 dataset); the display
   mesh is a grid of triangles whose times are those of fields.xmf.
 - With ParaView's Python installed, its three XDMF readers see every point and array of every
   frame, and the display mesh's triangles as cells. Skipped otherwise, with a line saying so.
 
-    tests/xdmf_display_mesh.py MESHFREE ROOT
+    tests/cli/xdmf_display_mesh.py MESHFREE ROOT
 """
 import json
 import os

@@ -3,7 +3,7 @@
 reader, which follows the XDMF3 layout ParaView reads): every step, point, cell and field comes
 back with the values in the HDF5 file.
 
-    tests/xdmf_readable.py MESHFREE PROBLEM.yaml [--set key=value ...]"""
+    tests/cli/xdmf_readable.py MESHFREE PROBLEM.yaml [--set key=value ...]"""
 import subprocess
 import sys
 import tempfile

@@ -1,4 +1,4 @@
-# Shell helpers of the checkpoint tests (tests/restart.sh, tests/checkpoint_refusals.sh), sourced.
+# Shell helpers of the checkpoint tests (tests/cli/restart.sh, tests/cli/checkpoint_refusals.sh), sourced.
 # generation DIR: the generation checkpoint.txt names (0 when there is none yet).
 generation() { sed -n 's/^generation //p' "$1/checkpoint/checkpoint.txt" 2>/dev/null || echo 0; }
 # kill_after_checkpoint OUT command...: starts a run (its output in $WORK/killed.log), kills it

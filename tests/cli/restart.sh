@@ -48,7 +48,7 @@ print("  %d files, %d datasets equal" % (len(names), datasets))
 EOF
 }
 # frames_whole DIR: every .xmf of DIR has one grid per time, none empty, each matching fields.h5.
-frames_whole() { /usr/bin/python3 "$ROOT/tests/xdmf_frames.py" --check "$1" >/dev/null; }
+frames_whole() { /usr/bin/python3 "$ROOT/tests/cli/xdmf_frames.py" --check "$1" >/dev/null; }
 source "$(dirname "${BASH_SOURCE[0]}")/checkpoint_support.sh"
 # restart_case NAME PROBLEM INTERVAL [meshfree arguments...] [:: launcher...]
 restart_case() {
@@ -139,7 +139,7 @@ rows = list(csv.reader(open('$CUT/history.csv')))
 sys.exit(not abs(float(rows[-1][0]) - 1.2e-4) < 1e-12)"
 check "... with distinct times and whole grids" frames_whole "$CUT"
 
-# Two runs into one folder at once, and hostile checkpoints: tests/checkpoint_refusals.sh.
+# Two runs into one folder at once, and hostile checkpoints: tests/cli/checkpoint_refusals.sh.
 
 echo "$fails failure(s)"
 [ $fails -eq 0 ]

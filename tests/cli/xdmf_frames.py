@@ -12,8 +12,8 @@ run also writes its final state), and each .xmf it writes must have:
   in each of ParaView's three XDMF readers, with every point and every array at each time.
   Without it that part is skipped, with a line saying so.
 
-    tests/xdmf_frames.py MESHFREE ROOT [PROBLEM ...]   (problem names; all of them by default)
-    tests/xdmf_frames.py --check DIR                   (the .xmf files of a run's folder, no ParaView)
+    tests/cli/xdmf_frames.py MESHFREE ROOT [PROBLEM ...]   (problem names; all of them by default)
+    tests/cli/xdmf_frames.py --check DIR                   (the .xmf files of a run's folder, no ParaView)
 """
 import glob
 import json

@@ -4,7 +4,7 @@ against the Timoshenko beam's modal solution (reference/beam_theory, deflection 
 the model's last particle column). The tip deflection history over 1 s (0.5 s forced near
 resonance, then free) must stay within 5% of the largest beam deflection at every millisecond.
 
-    tests/pd_cantilever_vs_beam_theory.py MESHFREE ROOT"""
+    tests/reference/pd_cantilever_vs_beam_theory.py MESHFREE ROOT"""
 import csv
 import subprocess
 import sys

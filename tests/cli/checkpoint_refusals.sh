@@ -18,7 +18,7 @@ check() { # check "what" condition...
 source "$(dirname "${BASH_SOURCE[0]}")/checkpoint_support.sh"
 listing() { (cd "$1" && find . | sort && find . -type f | sort | xargs md5sum); }
 # h5edit FILE python-statements: edits a state file with h5py; fnv(bytes) is meshfree's checksum
-# of an array (tests/fuzz_support.py).
+# of an array (tests/cli/fuzz_support.py).
 h5edit() {
   /usr/bin/python3 - "$@" "$(dirname "${BASH_SOURCE[0]}")" <<'EOF'
 import sys
