@@ -117,37 +117,37 @@ bool yields_to_finer_box(const Vec2& p, double h, const Vec2& anchor,
   return false;
 }
 
-} // namespace
+/// Node positions and the spacing each was placed at.
+struct PlacedNodes {
+  std::vector<Vec2> x;
+  std::vector<double> h;
+};
 
-NodeCloud generate_nodes(const Domain& domain, double spacing,
-                         const std::vector<Refinement>& refinements) {
-  MF_REQUIRE(spacing > 0.0, "node spacing must be positive, got ", spacing);
-  const BoundingBox bb = domain.bounds();
-  const double estimate = domain.area_estimate() / (spacing * spacing);
-  MF_REQUIRE(estimate < 5e7, "node spacing ", spacing, " would create about ", estimate,
-             " nodes; that is more than this code is meant to handle in one run");
-
-  // 1. Boundary nodes: each piece divided evenly at about the local spacing. An axis-parallel
-  // segment at the base spacing takes as many intervals as the base lattice over its length, so
-  // that a side of the bounding box holds the lattice's rows; other pieces ceil(L / h).
-  const Vec2 base_step = fitted_steps(bb.size(), spacing);
-  std::vector<Vec2> bnd;
-  std::vector<double> bnd_h;
+/// Boundary nodes: each piece divided evenly at about the local spacing. An axis-parallel
+/// segment at the base spacing takes as many intervals as the base lattice over its length, so
+/// that a side of the bounding box holds the lattice's rows; other pieces ceil(L / h).
+PlacedNodes boundary_nodes(const Domain& domain, double spacing, const Vec2& base_step,
+                           const std::vector<Refinement>& refinements) {
+  PlacedNodes bnd;
   for (const Curve& whole : domain.boundary())
     for (const Curve& c : split_at_refinements(whole, refinements)) {
       const double h = local_spacing(c.point(0.5), spacing, refinements);
       const int n = std::max(1, boundary_intervals(c, h, h == spacing ? &base_step : nullptr));
       for (int k = 0; k <= n; ++k) {
-        bnd.push_back(c.point(static_cast<double>(k) / n));
-        bnd_h.push_back(h);
+        bnd.x.push_back(c.point(static_cast<double>(k) / n));
+        bnd.h.push_back(h);
       }
     }
+  return bnd;
+}
 
-  // 2. Interior lattices: the base spacing fitted to the bounding box, so that its first and
-  // last rows land on the edges; each refinement box the lattice of its spacing from the same
-  // corner. Nodes a sliver from the boundary or from a finer box are left out.
-  std::vector<Vec2> lat;
-  std::vector<double> lat_h;
+/// Interior lattices: the base spacing fitted to the bounding box, so that its first and last
+/// rows land on the edges; each refinement box the lattice of its spacing from the same corner.
+/// Nodes a sliver from the boundary or from a finer box are left out.
+PlacedNodes lattice_nodes(const Domain& domain, double spacing, const Vec2& base_step,
+                          const std::vector<Refinement>& refinements) {
+  const BoundingBox bb = domain.bounds();
+  PlacedNodes lat;
   auto clear_of_boundary = [&](const Vec2& p, double h) {
     return domain.contains(p) && distance_to_boundary(domain, p) >= kBoundaryGap * h;
   };
@@ -157,7 +157,7 @@ NodeCloud generate_nodes(const Domain& domain, double spacing,
         return clear_of_boundary(p, spacing) &&
                !yields_to_finer_box(p, spacing, bb.lo, refinements);
       },
-      lat, lat_h);
+      lat.x, lat.h);
   for (const auto& r : refinements) {
     MF_REQUIRE(r.spacing > 0.0, "refinement spacing must be positive, got ", r.spacing);
     add_lattice(
@@ -167,45 +167,67 @@ NodeCloud generate_nodes(const Domain& domain, double spacing,
                  local_spacing(p, spacing, refinements) == r.spacing &&
                  !yields_to_finer_box(p, r.spacing, bb.lo, refinements);
         },
-        lat, lat_h);
+        lat.x, lat.h);
   }
+  return lat;
+}
 
-  // 3. Merge: boundary nodes first (deduplicated among themselves), then lattice nodes that
-  // are not too close to an accepted node.
-  NodeCloud cloud;
-  std::vector<Vec2> all = bnd;
-  all.insert(all.end(), lat.begin(), lat.end());
-  std::vector<double> all_h = bnd_h;
-  all_h.insert(all_h.end(), lat_h.begin(), lat_h.end());
-  const neighbors::PointGrid grid(all, spacing);
-  std::vector<char> accepted(all.size(), 0);
-  for (std::size_t i = 0; i < all.size(); ++i) {
-    const double min_gap = (i < bnd.size() ? 1e-6 : 0.45) * all_h[i];
+/// Merge: the first `boundary` nodes (deduplicated among themselves), then the others that are
+/// not too close to an accepted node; returns the indices of the accepted ones.
+std::vector<int> accept_nodes(const PlacedNodes& all, std::size_t boundary, double spacing) {
+  const neighbors::PointGrid grid(all.x, spacing);
+  std::vector<char> accepted(all.x.size(), 0);
+  for (std::size_t i = 0; i < all.x.size(); ++i) {
+    const double min_gap = (i < boundary ? 1e-6 : 0.45) * all.h[i];
     bool clash = false;
-    grid.for_each_within(all[i], min_gap, [&](int j) {
+    grid.for_each_within(all.x[i], min_gap, [&](int j) {
       if (accepted[j]) clash = true;
     });
     if (clash) continue;
     accepted[i] = 1;
   }
   std::vector<int> order;
-  for (std::size_t i = 0; i < all.size(); ++i)
+  for (std::size_t i = 0; i < all.x.size(); ++i)
     if (accepted[i]) order.push_back(static_cast<int>(i));
+  return order;
+}
 
-  // 4. Strip ordering: rows of height `spacing`, x increasing within a row.
+/// Strip ordering: rows of height `spacing` from `lo`, x increasing within a row.
+void sort_in_strips(const std::vector<Vec2>& x, const Vec2& lo, double spacing,
+                    std::vector<int>& order) {
   auto key = [&](int i) {
-    const double row = std::floor((all[i].y() - bb.lo.y()) / spacing + 0.5);
-    return std::make_pair(row, all[i].x());
+    const double row = std::floor((x[i].y() - lo.y()) / spacing + 0.5);
+    return std::make_pair(row, x[i].x());
   };
   std::sort(order.begin(), order.end(), [&](int a, int b) {
     const auto ka = key(a), kb = key(b);
     if (ka != kb) return ka < kb;
-    return all[a].y() < all[b].y();
+    return x[a].y() < x[b].y();
   });
+}
+
+} // namespace
+
+NodeCloud generate_nodes(const Domain& domain, double spacing,
+                         const std::vector<Refinement>& refinements) {
+  MF_REQUIRE(spacing > 0.0, "node spacing must be positive, got ", spacing);
+  const BoundingBox bb = domain.bounds();
+  const double estimate = domain.area_estimate() / (spacing * spacing);
+  MF_REQUIRE(estimate < 5e7, "node spacing ", spacing, " would create about ", estimate,
+             " nodes; that is more than this code is meant to handle in one run");
+  const Vec2 base_step = fitted_steps(bb.size(), spacing);
+  PlacedNodes all = boundary_nodes(domain, spacing, base_step, refinements);
+  const std::size_t boundary = all.x.size();
+  const PlacedNodes lat = lattice_nodes(domain, spacing, base_step, refinements);
+  all.x.insert(all.x.end(), lat.x.begin(), lat.x.end());
+  all.h.insert(all.h.end(), lat.h.begin(), lat.h.end());
+  std::vector<int> order = accept_nodes(all, boundary, spacing);
+  sort_in_strips(all.x, bb.lo, spacing, order);
+  NodeCloud cloud;
   for (int i : order) {
-    cloud.x.push_back(all[i]);
-    cloud.spacing.push_back(all_h[i]);
-    cloud.volume.push_back(all_h[i] * all_h[i]);
+    cloud.x.push_back(all.x[i]);
+    cloud.spacing.push_back(all.h[i]);
+    cloud.volume.push_back(all.h[i] * all.h[i]);
   }
   return cloud;
 }

@@ -7,18 +7,29 @@
 
 namespace mf::implicit {
 
-void write_elastic_outputs(const io::ProblemSpec& spec, const ElasticResult& r,
-                           const solvers::PetscSession& session, io::OutputDirectory& out) {
-  if (session.rank() != 0) return;
-  const materials::IsotropicElastic exact_mat =
-      materials::plane_stress_equivalent(spec.material, spec.model);
+namespace {
+
+/// Stress components and von Mises stress at the nodes, one vector each for the field output.
+struct NodeStresses {
   std::vector<double> sxx, syy, sxy, vm;
+};
+
+NodeStresses node_stresses(const ElasticResult& r) {
+  NodeStresses s;
   for (std::size_t i = 0; i < r.node_x.size(); ++i) {
-    sxx.push_back(r.node_stress[i](0));
-    syy.push_back(r.node_stress[i](1));
-    sxy.push_back(r.node_stress[i](2));
-    vm.push_back(materials::von_mises(r.node_stress[i], r.node_szz[i]));
+    s.sxx.push_back(r.node_stress[i](0));
+    s.syy.push_back(r.node_stress[i](1));
+    s.sxy.push_back(r.node_stress[i](2));
+    s.vm.push_back(materials::von_mises(r.node_stress[i], r.node_szz[i]));
   }
+  return s;
+}
+
+/// fields/: the nodal displacements, parameters, exact displacements and stresses, and the
+/// display mesh's series.
+void write_fields(const io::ProblemSpec& spec, const ElasticResult& r,
+                  const materials::IsotropicElastic& exact_mat, const NodeStresses& st,
+                  io::OutputDirectory& out) {
   io::FieldOutput fields(&out, "fields", r.node_x, r.output_cells);
   fields.vector2("displacement", [&](std::vector<Vec2>& v) { v = r.node_u; });
   fields.vector2("nodal_parameters", [&](std::vector<Vec2>& v) {
@@ -32,17 +43,21 @@ void write_elastic_outputs(const io::ProblemSpec& spec, const ElasticResult& r,
       for (const auto& x : r.node_x)
         v.push_back(verification::exact_displacement(*spec.exact, exact_mat, x));
     });
-  fields.scalar("stress_xx", sxx);
-  fields.scalar("stress_yy", syy);
-  fields.scalar("stress_xy", sxy);
+  fields.scalar("stress_xx", st.sxx);
+  fields.scalar("stress_yy", st.syy);
+  fields.scalar("stress_xy", st.sxy);
   fields.scalar("stress_zz", r.node_szz);
-  fields.scalar("von_mises", vm);
+  fields.scalar("von_mises", st.vm);
   fields.write(1.0);
   fields.close();
   DisplaySeries display(&out, r.display_mesh);
   display.write(1.0, r.display);
   display.close();
+}
 
+/// line_<name>.csv: the sampled lines, with the exact solution beside them when there is one.
+void write_lines(const io::ProblemSpec& spec, const ElasticResult& r,
+                 const materials::IsotropicElastic& exact_mat, io::OutputDirectory& out) {
   for (const auto& [name, s] : r.lines) {
     std::vector<std::string> header{"s",  "x",         "y",         "ux",
                                     "uy", "stress_xx", "stress_yy", "stress_xy"};
@@ -62,10 +77,10 @@ void write_elastic_outputs(const io::ProblemSpec& spec, const ElasticResult& r,
     }
     out.write_csv("line_" + name + ".csv", header, rows);
   }
+}
 
-  double umax = 0.0, vmmax = 0.0;
-  for (const auto& u : r.node_u) umax = std::max(umax, u.norm());
-  for (double v : vm) vmmax = std::max(vmmax, v);
+/// history.csv: the single step's boundary forces and maxima.
+void write_history(const ElasticResult& r, double umax, double vmmax, io::OutputDirectory& out) {
   io::History history({"step", "load_factor"});
   std::vector<double> row{1.0, 1.0};
   for (const auto& b : r.boundary) {
@@ -80,10 +95,10 @@ void write_elastic_outputs(const io::ProblemSpec& spec, const ElasticResult& r,
   row.insert(row.end(), {umax, vmmax, static_cast<double>(r.solve.iterations)});
   history.append(std::move(row));
   history.write(out);
+}
 
-  io::Summary summary(
-      {spec.name, spec.description, spec.units, "elastic_static", describe_method(spec)});
-  summary.set("mpi_ranks", session.size()).set("openmp_threads", omp_get_max_threads());
+/// The counts, memory and solver sections of summary.json.
+void describe_run(const ElasticResult& r, io::Summary& summary) {
   summary.section("counts")
       .set("nodes", r.nodes)
       .set("dofs", r.dofs)
@@ -102,6 +117,10 @@ void write_elastic_outputs(const io::ProblemSpec& spec, const ElasticResult& r,
       .set("iterations", r.solve.iterations)
       .set("reason", r.solve.reason_name)
       .set("relative_residual", r.solve.residual_norm);
+}
+
+/// results.boundary: each condition's reaction or applied force.
+io::Json boundary_json(const ElasticResult& r) {
   io::Json bnd;
   for (const auto& b : r.boundary) {
     io::Json j;
@@ -111,15 +130,42 @@ void write_elastic_outputs(const io::ProblemSpec& spec, const ElasticResult& r,
     if (b.constraint) j.set("violation_max", b.violation_max);
     bnd.set(b.name, j);
   }
+  return bnd;
+}
+
+void write_summary(const io::ProblemSpec& spec, const ElasticResult& r,
+                   const solvers::PetscSession& session, double umax, double vmmax,
+                   io::OutputDirectory& out) {
+  io::Summary summary(
+      {spec.name, spec.description, spec.units, "elastic_static", describe_method(spec)});
+  summary.set("mpi_ranks", session.size()).set("openmp_threads", omp_get_max_threads());
+  describe_run(r, summary);
   io::Json& results = summary.section("results");
   results.set("max_displacement", umax)
       .set("max_von_mises", vmmax)
       .set("constraint_violation_max", r.violation_max)
       .set("constraint_violation_relative", r.violation_relative)
-      .set("boundary", bnd);
+      .set("boundary", boundary_json(r));
   if (spec.exact)
     results.set("error_l2_relative", r.error_l2).set("error_energy_relative", r.error_energy);
   summary.write(out, r.timer);
+}
+
+} // namespace
+
+void write_elastic_outputs(const io::ProblemSpec& spec, const ElasticResult& r,
+                           const solvers::PetscSession& session, io::OutputDirectory& out) {
+  if (session.rank() != 0) return;
+  const materials::IsotropicElastic exact_mat =
+      materials::plane_stress_equivalent(spec.material, spec.model);
+  const NodeStresses stresses = node_stresses(r);
+  write_fields(spec, r, exact_mat, stresses, out);
+  write_lines(spec, r, exact_mat, out);
+  double umax = 0.0, vmmax = 0.0;
+  for (const auto& u : r.node_u) umax = std::max(umax, u.norm());
+  for (double v : stresses.vm) vmmax = std::max(vmmax, v);
+  write_history(r, umax, vmmax, out);
+  write_summary(spec, r, session, umax, vmmax, out);
 }
 
 } // namespace mf::implicit

@@ -43,6 +43,107 @@ void log_elastic_limit(const io::ProblemSpec& spec, const ElasticLimit& e) {
             n.at.x(), ", ", n.at.y(), ")");
 }
 
+/// The first yield of the first load step, searched on all ranks and logged.
+void find_elastic_limit(const io::ProblemSpec& spec, const GalerkinModel& m,
+                        const solvers::PetscSession& session, ElastoplasticResult& R) {
+  PhaseTimer::Scope scope(R.timer, "elastic_limit");
+  session.collective([&] { R.elastic_limit = elastic_limit(spec, m, session); });
+  log_elastic_limit(spec, R.elastic_limit);
+}
+
+/// The increments and the rows of every line sampled so far (rank 0), visited one by one.
+auto recorded_rows(ElastoplasticResult& R) {
+  return [&R](const auto& visit) {
+    io::visit_list(visit, "increments", R.increments,
+                   [](const auto& at, IncrementRecord& rec) { rec.for_each_state(at); });
+    io::visit_list(visit, "lines", R.lines, [](const auto& at, auto& line) {
+      at("name", line.first);
+      io::visit_list(at, "rows", line.second,
+                     [](const auto& row_at, std::vector<double>& row) { row_at("values", row); });
+    });
+  };
+}
+
+/// What a checkpoint keeps besides the field series: every rank's share of the state, the
+/// schedule's position and the increments recorded so far (packed into one array).
+auto checkpoint_state(ElastoplasticResult& R, std::vector<double>& d, ElastoplasticSystem& problem,
+                      SchedulePosition& at) {
+  return [&R, &d, &problem, &at](const auto& visit) {
+    io::visit_count(visit, "nodes", static_cast<long>(R.nodes));
+    io::visit_count(visit, "integration points", static_cast<long>(R.domain_points));
+    visit("d", d);
+    problem.for_each_state(visit / "system");
+    at.for_each_state(visit / "schedule");
+    visit("initial_out_of_balance", R.initial_out_of_balance);
+    std::vector<char> packed;
+    if constexpr (std::decay_t<decltype(visit)>::loads) {
+      visit("records", packed);
+      std::size_t read = 0;
+      recorded_rows(R)(io::Unpacker{packed, read});
+    } else {
+      recorded_rows(R)(io::Packer{packed});
+      visit("records", packed);
+    }
+  };
+}
+
+/// Loads the state of a checkpoint on this rank and logs where the schedule resumes.
+template <class State>
+void resume(const io::Restart& restart, const io::ProblemSpec& spec,
+            const solvers::PetscSession& session, const State& state, IncrementRecorder& recorder,
+            const ElastoplasticResult& R, const SchedulePosition& at) {
+  try {
+    const auto file = restart.open(session.rank());
+    const io::Loader load{*file, ""};
+    state(load);
+    recorder.restore(load / "recorder");
+    const long done = static_cast<long>(R.increments.size()) - 1;
+    io::check_resumed(*file, static_cast<double>(done), done);
+  } catch (const io::CheckpointRefused& e) {
+    io::refused_on_this_rank(e);
+    throw;
+  }
+  log::info("restarted after increment ", R.increments.size() - 1, " (step '",
+            spec.steps[std::min<std::size_t>(at.step, spec.steps.size() - 1)].name, "' at ", at.tau,
+            ")");
+}
+
+/// Increment 0: the unloaded state.
+void record_unloaded_state(const io::ProblemSpec& spec, const std::vector<double>& d,
+                           const ElastoplasticSystem& problem,
+                           const solvers::NonlinearBlockSystem& newton, IncrementRecorder& recorder,
+                           ElastoplasticResult& R) {
+  IncrementRecord zero;
+  zero.factors.assign(spec.boundary.size() + 1, 0.0);
+  zero.newton.converged = true;
+  recorder.record(zero, d, problem.states(), newton, false, R);
+}
+
+void log_initial_stress(const ElastoplasticResult& R) {
+  // The first increment is the equilibrium iteration at the full body force. The system
+  // still holds its converged stress unless later increments followed.
+  const solvers::NewtonReport& n = R.increments[1].newton;
+  log::info("initial stress: equilibrium iteration in ", n.iterations,
+            " Newton iterations, |R(0)|/|F| = ", n.residual.front() / n.scale.front(),
+            " (support reactions included), out-of-balance of the initial stress ",
+            R.initial_out_of_balance);
+}
+
+/// The converged state, for whatever comes next.
+void keep_converged_state(const std::shared_ptr<const GalerkinModel>& model,
+                          const ElastoplasticSystem& problem,
+                          const solvers::NonlinearBlockSystem& newton, const std::vector<double>& d,
+                          const solvers::PetscSession& session, ElastoplasticResult& R) {
+  const PointStates& st = problem.states();
+  R.state.parameters = newton.gather_on_root(d);
+  solvers::broadcast(session.comm(), R.state.parameters, 0);
+  R.state.factors = R.increments.back().factors;
+  R.state.history = st.committed;
+  R.state.stress = st.committed_stress;
+  R.state.stress_zz = st.committed_stress_zz;
+  R.state.model = model;
+}
+
 } // namespace
 
 ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
@@ -56,11 +157,7 @@ ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
   const GalerkinModel& m = *model;
   R.method = describe_method(spec);
   count_model(m, session, R);
-  {
-    PhaseTimer::Scope scope(R.timer, "elastic_limit");
-    session.collective([&] { R.elastic_limit = elastic_limit(spec, m, session); });
-    log_elastic_limit(spec, R.elastic_limit);
-  }
+  find_elastic_limit(spec, m, session, R);
 
   ElastoplasticSystem problem(spec, m);
   solvers::NonlinearBlockSystem newton(
@@ -76,57 +173,11 @@ ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
   IncrementRecorder recorder(spec, m, session, session.rank() == 0 ? out : nullptr);
   std::vector<double> d(2 * static_cast<std::size_t>(R.nodes), 0.0);
   SchedulePosition at;
-  // What a checkpoint keeps besides the field series: every rank's share of the state, the
-  // schedule's position and the increments recorded so far.
-  const auto records = [&](const auto& visit) {
-    io::visit_list(visit, "increments", R.increments,
-                   [](const auto& at, IncrementRecord& rec) { rec.for_each_state(at); });
-    // The rows of every line sampled so far (rank 0).
-    io::visit_list(visit, "lines", R.lines, [](const auto& at, auto& line) {
-      at("name", line.first);
-      io::visit_list(at, "rows", line.second,
-                     [](const auto& row_at, std::vector<double>& row) { row_at("values", row); });
-    });
-  };
-  const auto state = [&](const auto& visit) {
-    io::visit_count(visit, "nodes", static_cast<long>(R.nodes));
-    io::visit_count(visit, "integration points", static_cast<long>(R.domain_points));
-    visit("d", d);
-    problem.for_each_state(visit / "system");
-    at.for_each_state(visit / "schedule");
-    visit("initial_out_of_balance", R.initial_out_of_balance);
-    // The increments and line rows so far, packed into one array.
-    std::vector<char> packed;
-    if constexpr (std::decay_t<decltype(visit)>::loads) {
-      visit("records", packed);
-      std::size_t read = 0;
-      records(io::Unpacker{packed, read});
-    } else {
-      records(io::Packer{packed});
-      visit("records", packed);
-    }
-  };
-  if (restart) {
-    try {
-      const auto file = restart->open(session.rank());
-      const io::Loader load{*file, ""};
-      state(load);
-      recorder.restore(load / "recorder");
-      const long done = static_cast<long>(R.increments.size()) - 1;
-      io::check_resumed(*file, static_cast<double>(done), done);
-    } catch (const io::CheckpointRefused& e) {
-      io::refused_on_this_rank(e);
-      throw;
-    }
-    log::info("restarted after increment ", R.increments.size() - 1, " (step '",
-              spec.steps[std::min<std::size_t>(at.step, spec.steps.size() - 1)].name, "' at ",
-              at.tau, ")");
-  } else {
-    IncrementRecord zero;
-    zero.factors.assign(spec.boundary.size() + 1, 0.0);
-    zero.newton.converged = true;
-    recorder.record(zero, d, problem.states(), newton, false, R);
-  }
+  const auto state = checkpoint_state(R, d, problem, at);
+  if (restart)
+    resume(*restart, spec, session, state, recorder, R, at);
+  else
+    record_unloaded_state(spec, d, problem, newton, recorder, R);
   // The checkpoints' clock counts converged increments.
   io::Checkpoints checkpoints(dir, distribution::Ranks::of(session.comm()), spec.checkpoint,
                               spec.settings, restart);
@@ -155,31 +206,14 @@ ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
       },
       at, keep);
   R.checkpoints = checkpoints.counts();
-  if (spec.initial_stress && R.increments.size() > 1) {
-    // The first increment is the equilibrium iteration at the full body force. The system
-    // still holds its converged stress unless later increments followed.
-    const solvers::NewtonReport& n = R.increments[1].newton;
-    log::info("initial stress: equilibrium iteration in ", n.iterations,
-              " Newton iterations, |R(0)|/|F| = ", n.residual.front() / n.scale.front(),
-              " (support reactions included), out-of-balance of the initial stress ",
-              R.initial_out_of_balance);
-  }
+  if (spec.initial_stress && R.increments.size() > 1) log_initial_stress(R);
   R.status = o.status;
   R.stop_reason = o.stop_reason;
   R.timer.add("newton", o.newton_seconds);
   R.residual_seconds = problem.residual_seconds();
   R.jacobian_seconds = problem.jacobian_seconds();
   recorder.close();
-
-  // The converged state, for whatever comes next.
-  const PointStates& st = problem.states();
-  R.state.parameters = newton.gather_on_root(d);
-  solvers::broadcast(session.comm(), R.state.parameters, 0);
-  R.state.factors = R.increments.back().factors;
-  R.state.history = st.committed;
-  R.state.stress = st.committed_stress;
-  R.state.stress_zz = st.committed_stress_zz;
-  R.state.model = model;
+  keep_converged_state(model, problem, newton, d, session, R);
   R.memory = solvers::peak_memory(session.comm());
   return R;
 }

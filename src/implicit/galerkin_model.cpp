@@ -57,7 +57,6 @@ std::vector<Vec2> condition_values(const io::ProblemSpec& spec, const io::Bounda
   return out;
 }
 
-
 namespace {
 
 GalerkinModel build_meshfree_model(const io::ProblemSpec& spec,
@@ -217,9 +216,93 @@ ShapeTable table_rows(const std::vector<int>& offset, const std::vector<int>& no
   return t;
 }
 
+/// The mesh edges on a condition's boundary pieces (all of an edge's nodes lie on one piece);
+/// their length must match the pieces'.
+std::vector<fem::BoundaryEdge>
+edges_of_condition(const io::ProblemSpec& spec, const io::BoundaryCondition& bc,
+                   const fem::Mesh& mesh, const std::vector<fem::BoundaryEdge>& edges, double tol) {
+  const auto pieces = io::select_boundary(spec.domain, bc.on, bc.key_path);
+  std::vector<fem::BoundaryEdge> chosen;
+  double length = 0.0, wanted = 0.0;
+  for (const auto& piece : pieces) wanted += piece.length();
+  for (const fem::BoundaryEdge& e : edges)
+    for (const auto& piece : pieces) {
+      bool on = true;
+      for (int k = 0; k < e.count && on; ++k) on = distance_to(piece, mesh.x[e.nodes[k]]) <= tol;
+      if (on) {
+        chosen.push_back(e);
+        length += length_along(piece, mesh.x[e.nodes[0]], mesh.x[e.nodes[1]]);
+        break;
+      }
+    }
+  if (std::abs(length - wanted) > 1e-3 * wanted)
+    fail(bc.key_path, ".on: the mesh edges on the selected boundary are ", length,
+         " long, the boundary pieces ", wanted,
+         ": the mesh does not follow the geometry there (or a box cuts an element edge)");
+  return chosen;
+}
+
+/// Gauss points of the elements and of each condition's boundary edges, with their shapes.
+void place_fem_points(const io::ProblemSpec& spec, const solvers::PetscSession& session,
+                      GalerkinModel& m, fem::PointShapes& domain,
+                      std::vector<fem::EdgePoints>& edge_sets) {
+  const io::DiscretisationSpec& disc = spec.discretisation;
+  const fem::Mesh& mesh = m.fe->mesh;
+  const int order = disc.fem.order > 0 ? disc.fem.order : fem::default_order(mesh.type);
+  session.collective([&] { domain = fem::domain_points(mesh, order); });
+  m.domain.x = domain.x;
+  m.domain.weight = domain.weight;
+  m.domain.cell = domain.element;
+  m.domain.cell_count = mesh.element_count();
+  const std::vector<fem::BoundaryEdge> edges = fem::boundary_edges(mesh);
+  const double tol = 1e-6 * fem::characteristic_size(mesh);
+  const int edge_order = disc.fem.order > 0 ? disc.fem.order : fem::default_edge_order(mesh.type);
+  for (std::size_t b = 0; b < spec.boundary.size(); ++b) {
+    const io::BoundaryCondition& bc = spec.boundary[b];
+    const std::vector<fem::BoundaryEdge> chosen = edges_of_condition(spec, bc, mesh, edges, tol);
+    const fem::EdgePoints& ep = edge_sets[b] = fem::edge_points(mesh, chosen, edge_order);
+    ConditionPoints& c = m.conditions[b];
+    c.bc = &bc;
+    c.points.x = ep.x;
+    c.points.weight = ep.weight;
+    c.points.normal = ep.normal;
+    c.support.offset = ep.offset;
+    c.support.index = ep.node;
+  }
+}
+
+/// The points of this rank and the sparsity pattern of the nodes they couple.
+void couple_fem_nodes(const fem::PointShapes& domain, const solvers::PetscSession& session,
+                      GalerkinModel& m) {
+  const int N = m.node_count();
+  m.domain_support.offset = domain.offset;
+  m.domain_support.index = domain.node;
+  std::vector<const Csr*> coupling{&m.domain_support};
+  for (auto& c : m.conditions) {
+    if (c.bc->constrains) coupling.push_back(&c.support);
+    c.mine = rank_points(c.support, m.own, N, session);
+  }
+  m.domain_mine = rank_points(m.domain_support, m.own, N, session);
+  m.pattern = coupling_pattern(coupling, N, m.own.begin, m.own.end);
+}
+
+/// The shape tables, weights and prescribed values of this rank's points.
+void fem_shape_tables(const io::ProblemSpec& spec, const fem::PointShapes& domain,
+                      const std::vector<fem::EdgePoints>& edge_sets, GalerkinModel& m) {
+  m.domain_table =
+      table_rows(domain.offset, domain.node, domain.phi, &domain.dphi, m.domain_mine.rows);
+  for (int r : m.domain_mine.rows) m.domain_weight.push_back(m.domain.weight[r] * spec.thickness);
+  for (std::size_t b = 0; b < m.conditions.size(); ++b) {
+    ConditionPoints& c = m.conditions[b];
+    const fem::EdgePoints& ep = edge_sets[b];
+    c.table = table_rows(ep.offset, ep.node, ep.phi, nullptr, c.mine.rows);
+    for (int r : c.mine.rows) c.weight.push_back(c.points.weight[r] * spec.thickness);
+    c.values = condition_values(spec, *c.bc, c.points, c.mine.rows);
+  }
+}
+
 GalerkinModel build_fem_model(const io::ProblemSpec& spec, const solvers::PetscSession& session,
                               PhaseTimer& timer) {
-  const io::DiscretisationSpec& disc = spec.discretisation;
   GalerkinModel m;
   {
     PhaseTimer::Scope scope(timer, "nodes");
@@ -227,84 +310,24 @@ GalerkinModel build_fem_model(const io::ProblemSpec& spec, const solvers::PetscS
     session.collective([&] { m.fe->mesh = read_fe_mesh(spec); });
     m.fe->locator = std::make_unique<fem::PointLocator>(m.fe->mesh);
   }
-  const fem::Mesh& mesh = m.fe->mesh;
   const int N = m.node_count();
   log::info("nodes: ", N, " (", 2 * N, " DOFs), ", describe_method(spec), ", ",
-            mesh.element_count(), " elements");
-
+            m.fe->mesh.element_count(), " elements");
   m.conditions.resize(spec.boundary.size());
   fem::PointShapes domain;
   std::vector<fem::EdgePoints> edge_sets(spec.boundary.size());
-  const int order = disc.fem.order > 0 ? disc.fem.order : fem::default_order(mesh.type);
   {
     PhaseTimer::Scope scope(timer, "quadrature");
-    session.collective([&] { domain = fem::domain_points(mesh, order); });
-    m.domain.x = domain.x;
-    m.domain.weight = domain.weight;
-    m.domain.cell = domain.element;
-    m.domain.cell_count = mesh.element_count();
-    // The mesh edges on each condition's boundary pieces: all of an edge's nodes lie on one piece.
-    const std::vector<fem::BoundaryEdge> edges = fem::boundary_edges(mesh);
-    const double tol = 1e-6 * fem::characteristic_size(mesh);
-    const int edge_order = disc.fem.order > 0 ? disc.fem.order : fem::default_edge_order(mesh.type);
-    for (std::size_t b = 0; b < spec.boundary.size(); ++b) {
-      const io::BoundaryCondition& bc = spec.boundary[b];
-      const auto pieces = io::select_boundary(spec.domain, bc.on, bc.key_path);
-      std::vector<fem::BoundaryEdge> chosen;
-      double length = 0.0, wanted = 0.0;
-      for (const auto& piece : pieces) wanted += piece.length();
-      for (const fem::BoundaryEdge& e : edges)
-        for (const auto& piece : pieces) {
-          bool on = true;
-          for (int k = 0; k < e.count && on; ++k)
-            on = distance_to(piece, mesh.x[e.nodes[k]]) <= tol;
-          if (on) {
-            chosen.push_back(e);
-            length += length_along(piece, mesh.x[e.nodes[0]], mesh.x[e.nodes[1]]);
-            break;
-          }
-        }
-      if (std::abs(length - wanted) > 1e-3 * wanted)
-        fail(bc.key_path, ".on: the mesh edges on the selected boundary are ", length,
-             " long, the boundary pieces ", wanted,
-             ": the mesh does not follow the geometry there (or a box cuts an element edge)");
-      const fem::EdgePoints& ep = edge_sets[b] = fem::edge_points(mesh, chosen, edge_order);
-      ConditionPoints& c = m.conditions[b];
-      c.bc = &bc;
-      c.points.x = ep.x;
-      c.points.weight = ep.weight;
-      c.points.normal = ep.normal;
-      c.support.offset = ep.offset;
-      c.support.index = ep.node;
-    }
+    place_fem_points(spec, session, m, domain, edge_sets);
   }
-
   m.own = solvers::owned_nodes(N, session.rank(), session.size());
   {
     PhaseTimer::Scope scope(timer, "neighbours");
-    m.domain_support.offset = domain.offset;
-    m.domain_support.index = domain.node;
-    std::vector<const Csr*> coupling{&m.domain_support};
-    for (auto& c : m.conditions) {
-      if (c.bc->constrains) coupling.push_back(&c.support);
-      c.mine = rank_points(c.support, m.own, N, session);
-    }
-    m.domain_mine = rank_points(m.domain_support, m.own, N, session);
-    m.pattern = coupling_pattern(coupling, N, m.own.begin, m.own.end);
+    couple_fem_nodes(domain, session, m);
   }
-
   {
     PhaseTimer::Scope scope(timer, "shape_functions");
-    m.domain_table =
-        table_rows(domain.offset, domain.node, domain.phi, &domain.dphi, m.domain_mine.rows);
-    for (int r : m.domain_mine.rows) m.domain_weight.push_back(m.domain.weight[r] * spec.thickness);
-    for (std::size_t b = 0; b < m.conditions.size(); ++b) {
-      ConditionPoints& c = m.conditions[b];
-      const fem::EdgePoints& ep = edge_sets[b];
-      c.table = table_rows(ep.offset, ep.node, ep.phi, nullptr, c.mine.rows);
-      for (int r : c.mine.rows) c.weight.push_back(c.points.weight[r] * spec.thickness);
-      c.values = condition_values(spec, *c.bc, c.points, c.mine.rows);
-    }
+    fem_shape_tables(spec, domain, edge_sets, m);
   }
   return m;
 }

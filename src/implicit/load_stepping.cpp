@@ -45,104 +45,142 @@ std::string factors_text(const io::ProblemSpec& spec, const std::vector<double>&
   return s.empty() ? "no load" : s;
 }
 
+namespace {
+
+/// What the increments of a schedule share: the system, Newton, the state and the position,
+/// the clock and the increment counts of the progress lines, and the outcome so far.
+struct ScheduleRun {
+  const io::ProblemSpec& spec;
+  ElastoplasticSystem& problem;
+  solvers::NonlinearBlockSystem& newton;
+  std::vector<double>& d;
+  const IncrementDone& done;
+  SchedulePosition& at;
+  const PositionKept& kept;
+  solvers::NewtonSettings settings;
+  Clock::time_point began;
+  double total = 0.0, done_at_start = 0.0;
+  ScheduleOutcome o;
+};
+
+/// Halves the increment towards `to` after Newton failed there; after the last allowed
+/// cut-back, stops the schedule instead and returns false.
+bool cut_back(ScheduleRun& run, const io::LoadStep& step, double to,
+              const solvers::NewtonReport& rep) {
+  SchedulePosition& at = run.at;
+  const std::string why = rep.reason + (rep.failure.empty() ? "" : ": " + rep.failure);
+  if (at.cuts >= run.spec.nonlinear.max_cutbacks) {
+    run.o.status = "stopped";
+    run.o.stop_reason = detail::concat(
+        "step '", step.name, "': the increment to ", to, " of the step did not converge (", why,
+        ") after ", at.cuts, " cut-backs; the last converged state has factors ",
+        factors_text(run.spec, at.current),
+        ". Under load control this is how a limit load shows: the body cannot carry more; "
+        "prescribe a displacement to follow it further.");
+    log::warn(run.o.stop_reason);
+    return false;
+  }
+  ++at.cuts;
+  at.easy = 0;
+  at.dtau *= 0.5;
+  log::info("  step '", step.name, "': no convergence towards ", to, " (", why,
+            "); cutting the increment to ", at.dtau * step.increments, " of nominal");
+  return true;
+}
+
+/// Records the converged increment of step `s` that reached `at.tau` with factors `f`, logs
+/// the progress line, and grows a cut increment back.
+void record_increment(ScheduleRun& run, std::size_t s, const std::vector<double>& f,
+                      const solvers::NewtonReport& rep, bool last, double nominal) {
+  const io::ProblemSpec& spec = run.spec;
+  SchedulePosition& at = run.at;
+  const io::LoadStep& step = spec.steps[s];
+  IncrementRecord rec;
+  rec.step = static_cast<int>(s);
+  rec.step_fraction = at.tau;
+  rec.factors = f;
+  rec.newton = rep;
+  rec.cutbacks = at.cuts;
+  const bool step_end = last;
+  const bool write_fields =
+      ++at.since_output >= spec.fields_every || (step_end && s + 1 == spec.steps.size());
+  if (write_fields) at.since_output = 0;
+  const IncrementRecord& recorded = run.done(std::move(rec), write_fields);
+  const double done_now = increments_done(spec, s, at.tau);
+  log::info(
+      "  increment ", std::lround(done_now), " of ", std::lround(run.total), ", step '", step.name,
+      "' at ", at.tau, " (", factors_text(spec, f), "): ", rep.iterations,
+      " Newton iterations, |R|/|F| ", rep.residual.back() / std::max(rep.scale.back(), 1e-300),
+      ", plastic points ", recorded.plastic_points, ", max plastic strain ",
+      recorded.max_plastic_strain, "; ",
+      log::eta(seconds_since(run.began),
+               (done_now - run.done_at_start) / std::max(run.total - run.done_at_start, 1e-300)));
+  // A cut increment grows back, doubling after every two easy ones, up to the nominal size.
+  if (at.dtau < nominal && rep.iterations <= 6 && ++at.easy >= 2) {
+    at.dtau = std::min(nominal, 2.0 * at.dtau);
+    at.easy = 0;
+  }
+  at.cuts = 0;
+  if (run.kept) run.kept(step_end && s + 1 == spec.steps.size());
+}
+
+/// The increments of step at.step from at.tau to its end, or until the schedule stops.
+void run_step(ScheduleRun& run) {
+  SchedulePosition& at = run.at;
+  const std::size_t nf = run.spec.boundary.size() + 1;
+  const std::size_t s = static_cast<std::size_t>(at.step);
+  const io::LoadStep& step = run.spec.steps[s];
+  const double nominal = 1.0 / step.increments;
+  if (at.dtau <= 0.0) at.dtau = nominal;
+  while (at.tau < 1.0 - 1e-12) {
+    at.dtau = std::min(at.dtau, 1.0 - at.tau);
+    const bool last = at.tau + at.dtau >= 1.0 - 1e-12;
+    const double to = last ? 1.0 : at.tau + at.dtau;
+    std::vector<double> f(nf);
+    for (std::size_t c = 0; c < nf; ++c) f[c] = at.start[c] + to * (step.target[c] - at.start[c]);
+    run.problem.set_factors(f);
+    std::vector<double> trial = run.d;
+    const auto t0 = Clock::now();
+    solvers::NewtonReport rep = run.newton.solve(trial, run.settings);
+    run.o.newton_seconds += seconds_since(t0);
+    if (!rep.converged) {
+      if (!cut_back(run, step, to, rep)) break;
+      continue;
+    }
+    run.d = std::move(trial);
+    run.problem.commit();
+    at.tau = to;
+    at.current = f;
+    record_increment(run, s, f, rep, last, nominal);
+  }
+}
+
+} // namespace
+
 ScheduleOutcome run_load_schedule(const io::ProblemSpec& spec, ElastoplasticSystem& problem,
                                   solvers::NonlinearBlockSystem& newton, std::vector<double>& d,
                                   const IncrementDone& done, SchedulePosition& at,
                                   const PositionKept& kept) {
-  ScheduleOutcome o;
+  ScheduleRun run{spec, problem, newton, d, done, at, kept, {}, Clock::now(), 0.0, 0.0, {}};
   const std::size_t nf = spec.boundary.size() + 1;
   if (at.current.empty()) at.current.assign(nf, 0.0);
   if (at.start.empty()) at.start = at.current;
-  std::vector<double>& current = at.current;
-  solvers::NewtonSettings settings;
-  settings.tolerance = spec.nonlinear.tolerance;
-  settings.max_iterations = spec.nonlinear.max_iterations;
-  int& since_output = at.since_output;
-  const auto began = Clock::now();
-  const double total = increments_total(spec);
-  const double done_at_start =
-      at.step < static_cast<int>(spec.steps.size()) ? increments_done(spec, at.step, at.tau) : total;
-  while (at.step < static_cast<int>(spec.steps.size()) && o.status == "completed") {
-    const std::size_t s = static_cast<std::size_t>(at.step);
-    const io::LoadStep& step = spec.steps[s];
-    const std::vector<double>& start = at.start;
-    const double nominal = 1.0 / step.increments;
-    double& tau = at.tau;
-    double& dtau = at.dtau;
-    if (dtau <= 0.0) dtau = nominal;
-    int& cuts = at.cuts;
-    int& easy = at.easy;
-    while (tau < 1.0 - 1e-12) {
-      dtau = std::min(dtau, 1.0 - tau);
-      const bool last = tau + dtau >= 1.0 - 1e-12;
-      const double to = last ? 1.0 : tau + dtau;
-      std::vector<double> f(nf);
-      for (std::size_t c = 0; c < nf; ++c) f[c] = start[c] + to * (step.target[c] - start[c]);
-      problem.set_factors(f);
-      std::vector<double> trial = d;
-      const auto t0 = Clock::now();
-      solvers::NewtonReport rep = newton.solve(trial, settings);
-      o.newton_seconds += seconds_since(t0);
-      if (!rep.converged) {
-        const std::string why = rep.reason + (rep.failure.empty() ? "" : ": " + rep.failure);
-        if (cuts >= spec.nonlinear.max_cutbacks) {
-          o.status = "stopped";
-          o.stop_reason = detail::concat(
-              "step '", step.name, "': the increment to ", to, " of the step did not converge (",
-              why, ") after ", cuts, " cut-backs; the last converged state has factors ",
-              factors_text(spec, current),
-              ". Under load control this is how a limit load shows: the body cannot carry more; "
-              "prescribe a displacement to follow it further.");
-          log::warn(o.stop_reason);
-          break;
-        }
-        ++cuts;
-        easy = 0;
-        dtau *= 0.5;
-        log::info("  step '", step.name, "': no convergence towards ", to, " (", why,
-                  "); cutting the increment to ", dtau * step.increments, " of nominal");
-        continue;
-      }
-      d = std::move(trial);
-      problem.commit();
-      tau = to;
-      current = f;
-      IncrementRecord rec;
-      rec.step = static_cast<int>(s);
-      rec.step_fraction = tau;
-      rec.factors = f;
-      rec.newton = rep;
-      rec.cutbacks = cuts;
-      const bool step_end = last;
-      const bool write_fields =
-          ++since_output >= spec.fields_every || (step_end && s + 1 == spec.steps.size());
-      if (write_fields) since_output = 0;
-      const IncrementRecord& recorded = done(std::move(rec), write_fields);
-      const double done_now = increments_done(spec, s, tau);
-      log::info("  increment ", std::lround(done_now), " of ", std::lround(total), ", step '",
-                step.name, "' at ", tau, " (", factors_text(spec, f), "): ", rep.iterations,
-                " Newton iterations, |R|/|F| ",
-                rep.residual.back() / std::max(rep.scale.back(), 1e-300), ", plastic points ",
-                recorded.plastic_points, ", max plastic strain ", recorded.max_plastic_strain,
-                "; ",
-                log::eta(seconds_since(began),
-                         (done_now - done_at_start) / std::max(total - done_at_start, 1e-300)));
-      // A cut increment grows back, doubling after every two easy ones, up to the nominal size.
-      if (dtau < nominal && rep.iterations <= 6 && ++easy >= 2) {
-        dtau = std::min(nominal, 2.0 * dtau);
-        easy = 0;
-      }
-      cuts = 0;
-      if (kept) kept(step_end && s + 1 == spec.steps.size());
-    }
-    if (o.status != "completed") break;
+  run.settings.tolerance = spec.nonlinear.tolerance;
+  run.settings.max_iterations = spec.nonlinear.max_iterations;
+  run.total = increments_total(spec);
+  run.done_at_start = at.step < static_cast<int>(spec.steps.size())
+                          ? increments_done(spec, at.step, at.tau)
+                          : run.total;
+  while (at.step < static_cast<int>(spec.steps.size()) && run.o.status == "completed") {
+    run_step(run);
+    if (run.o.status != "completed") break;
     // The next step starts where this one ended.
     ++at.step;
     at.tau = at.dtau = 0.0;
     at.cuts = at.easy = 0;
     at.start = at.current;
   }
-  return o;
+  return run.o;
 }
 
 } // namespace mf::implicit

@@ -23,74 +23,79 @@ double model_1d_source(const io::ModelProblem1D& p, double x) { // f = -y''
   return p.sine_amplitude * k * k * std::sin(k * x) + p.linear * x;
 }
 
-Model1DResult solve_model_problem_1d(const io::ProblemSpec& spec) {
-  Model1DResult R;
-  const io::ModelProblem1D& P = spec.model_1d;
-  const io::DiscretisationSpec& disc = spec.discretisation;
-  const double L = P.length;
-  const int n = static_cast<int>(std::round(L / disc.spacing)) + 1;
-  MF_REQUIRE(n >= 3 && n <= 4000, "discretisation.spacing: gives ", n, " nodes on [0, ", L,
-             "]; the 1D model problem takes 3 to 4000");
-  const double h = L / (n - 1);
+namespace {
+
+/// n equally spaced nodes on [0, (n - 1) h].
+geometry::NodeCloud line_nodes(int n, double h) {
   geometry::NodeCloud cloud;
   for (int i = 0; i < n; ++i) {
     cloud.x.emplace_back(i * h, 0.0);
     cloud.spacing.push_back(h);
     cloud.volume.push_back(h);
   }
-  const MeshfreeSpace space(cloud, disc.shape, disc.dilation);
-  R.nodes = n;
+  return cloud;
+}
 
-  // Gauss points on background cells of [0, L].
-  std::vector<Vec2> gx;
-  std::vector<double> gw;
+/// Gauss points and weights on the background cells of [0, L].
+struct LinePoints {
+  std::vector<Vec2> x;
+  std::vector<double> w;
+};
+
+LinePoints gauss_points(const io::DiscretisationSpec& disc, double L) {
+  LinePoints p;
   const GaussRule& g = gauss_legendre(disc.order);
   const int cells = std::max(1, static_cast<int>(std::ceil(L / disc.cell_size - 1e-9)));
   for (int c = 0; c < cells; ++c)
     for (std::size_t q = 0; q < g.points.size(); ++q) {
-      gx.emplace_back((c + 0.5 * (g.points[q] + 1.0)) * L / cells, 0.0);
-      gw.push_back(0.5 * g.weights[q] * L / cells);
+      p.x.emplace_back((c + 0.5 * (g.points[q] + 1.0)) * L / cells, 0.0);
+      p.w.push_back(0.5 * g.weights[q] * L / cells);
     }
-  R.points = static_cast<int>(gx.size());
-  std::vector<int> all(gx.size());
-  for (std::size_t i = 0; i < gx.size(); ++i) all[i] = static_cast<int>(i);
-  const ShapeTable t = space.shape_table(gx, all, space.support_lists(gx), true);
+  return p;
+}
 
-  // K_IJ = int phi_I' phi_J' dx + alpha (phi_I phi_J)|_{0, L};  F_I = int phi_I f dx.
-  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
-  Eigen::VectorXd F = Eigen::VectorXd::Zero(n);
-  {
-    PhaseTimer::Scope scope(R.timer, "assembly");
-    for (int r = 0; r < t.rows(); ++r) {
-      const double f = model_1d_source(P, gx[r].x());
-      MF_REQUIRE(std::isfinite(f),
-                 "problem_1d: the source f = -y'' is not finite at x = ", gx[r].x(),
-                 " (sine_amplitude ", P.sine_amplitude, ", sine_waves ", P.sine_waves, ", linear ",
-                 P.linear, ")");
-      for (int a = t.offset[r]; a < t.offset[r + 1]; ++a) {
-        F(t.node[a]) += gw[r] * t.phi[a] * f;
-        for (int b = t.offset[r]; b < t.offset[r + 1]; ++b)
-          K(t.node[a], t.node[b]) += gw[r] * t.dphi[a].x() * t.dphi[b].x();
-      }
+/// Shape functions and their derivatives at points `x`, one row each.
+ShapeTable shape_rows(const MeshfreeSpace& space, const std::vector<Vec2>& x, bool gradients) {
+  std::vector<int> rows(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) rows[i] = static_cast<int>(i);
+  return space.shape_table(x, rows, space.support_lists(x), gradients);
+}
+
+/// K_IJ = int phi_I' phi_J' dx + alpha (phi_I phi_J)|_{0, L};  F_I = int phi_I f dx.
+void assemble(const io::ModelProblem1D& P, const MeshfreeSpace& space, const ShapeTable& t,
+              const LinePoints& g, Eigen::MatrixXd& K, Eigen::VectorXd& F) {
+  for (int r = 0; r < t.rows(); ++r) {
+    const double f = model_1d_source(P, g.x[r].x());
+    MF_REQUIRE(std::isfinite(f),
+               "problem_1d: the source f = -y'' is not finite at x = ", g.x[r].x(),
+               " (sine_amplitude ", P.sine_amplitude, ", sine_waves ", P.sine_waves, ", linear ",
+               P.linear, ")");
+    for (int a = t.offset[r]; a < t.offset[r + 1]; ++a) {
+      F(t.node[a]) += g.w[r] * t.phi[a] * f;
+      for (int b = t.offset[r]; b < t.offset[r + 1]; ++b)
+        K(t.node[a], t.node[b]) += g.w[r] * t.dphi[a].x() * t.dphi[b].x();
     }
-    const std::vector<Vec2> ends{{0.0, 0.0}, {L, 0.0}};
-    std::vector<int> both{0, 1};
-    const ShapeTable e = space.shape_table(ends, both, space.support_lists(ends), false);
-    for (int r = 0; r < e.rows(); ++r)
-      for (int a = e.offset[r]; a < e.offset[r + 1]; ++a)
-        for (int b = e.offset[r]; b < e.offset[r + 1]; ++b)
-          K(e.node[a], e.node[b]) += P.penalty * e.phi[a] * e.phi[b];
   }
-  Eigen::VectorXd d;
-  {
-    PhaseTimer::Scope scope(R.timer, "solve");
-    d = K.partialPivLu().solve(F);
-    MF_REQUIRE(d.allFinite() && (K * d - F).norm() <= 1e-8 * F.norm(),
-               "the 1D model problem's linear solve failed: relative residual ",
-               (K * d - F).norm() / F.norm());
-  }
+  const std::vector<Vec2> ends{{0.0, 0.0}, {P.length, 0.0}};
+  std::vector<int> both{0, 1};
+  const ShapeTable e = space.shape_table(ends, both, space.support_lists(ends), false);
+  for (int r = 0; r < e.rows(); ++r)
+    for (int a = e.offset[r]; a < e.offset[r + 1]; ++a)
+      for (int b = e.offset[r]; b < e.offset[r + 1]; ++b)
+        K(e.node[a], e.node[b]) += P.penalty * e.phi[a] * e.phi[b];
+}
 
-  PhaseTimer::Scope scope(R.timer, "postprocess");
+Eigen::VectorXd solve(const Eigen::MatrixXd& K, const Eigen::VectorXd& F) {
+  Eigen::VectorXd d = K.partialPivLu().solve(F);
+  MF_REQUIRE(d.allFinite() && (K * d - F).norm() <= 1e-8 * F.norm(),
+             "the 1D model problem's linear solve failed: relative residual ",
+             (K * d - F).norm() / F.norm());
+  return d;
+}
+
+/// Relative L2 and H1 errors by the Gauss points.
+void measure_errors(const io::ModelProblem1D& P, const ShapeTable& t, const LinePoints& g,
+                    const Eigen::VectorXd& d, Model1DResult& R) {
   double s[4] = {0, 0, 0, 0};
   for (int r = 0; r < t.rows(); ++r) {
     double y = 0.0, dy = 0.0;
@@ -98,11 +103,11 @@ Model1DResult solve_model_problem_1d(const io::ProblemSpec& spec) {
       y += t.phi[a] * d(t.node[a]);
       dy += t.dphi[a].x() * d(t.node[a]);
     }
-    const double ye = model_1d_exact(P, gx[r].x()), dye = model_1d_exact_slope(P, gx[r].x());
-    s[0] += gw[r] * (y - ye) * (y - ye);
-    s[1] += gw[r] * ye * ye;
-    s[2] += gw[r] * (dy - dye) * (dy - dye);
-    s[3] += gw[r] * dye * dye;
+    const double ye = model_1d_exact(P, g.x[r].x()), dye = model_1d_exact_slope(P, g.x[r].x());
+    s[0] += g.w[r] * (y - ye) * (y - ye);
+    s[1] += g.w[r] * ye * ye;
+    s[2] += g.w[r] * (dy - dye) * (dy - dye);
+    s[3] += g.w[r] * dye * dye;
   }
   for (const double sum : s)
     MF_REQUIRE(std::isfinite(sum),
@@ -111,15 +116,16 @@ Model1DResult solve_model_problem_1d(const io::ProblemSpec& spec) {
                P.sine_amplitude, ", linear ", P.linear, ")");
   R.error_l2 = std::sqrt(s[0] / s[1]);
   R.error_h1 = std::sqrt(s[2] / s[3]);
+}
 
+/// The solution and the exact one at 10 samples per node interval, and the relative max error.
+void sample_solution(const io::ModelProblem1D& P, const MeshfreeSpace& space, int n,
+                     const Eigen::VectorXd& d, Model1DResult& R) {
+  const double L = P.length;
   const int samples = 10 * (n - 1) + 1;
   std::vector<Vec2> sx;
-  std::vector<int> rows;
-  for (int k = 0; k < samples; ++k) {
-    sx.emplace_back(L * k / (samples - 1), 0.0);
-    rows.push_back(k);
-  }
-  const ShapeTable st = space.shape_table(sx, rows, space.support_lists(sx), true);
+  for (int k = 0; k < samples; ++k) sx.emplace_back(L * k / (samples - 1), 0.0);
+  const ShapeTable st = shape_rows(space, sx, true);
   double ymax = 0.0, emax = 0.0;
   for (int r = 0; r < st.rows(); ++r) {
     double y = 0.0, dy = 0.0;
@@ -136,6 +142,37 @@ Model1DResult solve_model_problem_1d(const io::ProblemSpec& spec) {
     emax = std::max(emax, std::abs(y - R.y_exact.back()));
   }
   R.error_max = emax / ymax;
+}
+
+} // namespace
+
+Model1DResult solve_model_problem_1d(const io::ProblemSpec& spec) {
+  Model1DResult R;
+  const io::ModelProblem1D& P = spec.model_1d;
+  const io::DiscretisationSpec& disc = spec.discretisation;
+  const double L = P.length;
+  const int n = static_cast<int>(std::round(L / disc.spacing)) + 1;
+  MF_REQUIRE(n >= 3 && n <= 4000, "discretisation.spacing: gives ", n, " nodes on [0, ", L,
+             "]; the 1D model problem takes 3 to 4000");
+  const MeshfreeSpace space(line_nodes(n, L / (n - 1)), disc.shape, disc.dilation);
+  R.nodes = n;
+  const LinePoints g = gauss_points(disc, L);
+  R.points = static_cast<int>(g.x.size());
+  const ShapeTable t = shape_rows(space, g.x, true);
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
+  Eigen::VectorXd F = Eigen::VectorXd::Zero(n);
+  {
+    PhaseTimer::Scope scope(R.timer, "assembly");
+    assemble(P, space, t, g, K, F);
+  }
+  Eigen::VectorXd d;
+  {
+    PhaseTimer::Scope scope(R.timer, "solve");
+    d = solve(K, F);
+  }
+  PhaseTimer::Scope scope(R.timer, "postprocess");
+  measure_errors(P, t, g, d, R);
+  sample_solution(P, space, n, d, R);
   log::info("1D model problem: ", n, " nodes, relative errors L2 ", R.error_l2, ", H1 ", R.error_h1,
             ", max ", R.error_max);
   return R;

@@ -12,8 +12,8 @@
 #include <fcntl.h>
 #include <filesystem>
 #include <iostream>
-#include <mpi.h>
 #include <map>
+#include <mpi.h>
 #include <omp.h>
 #include <sstream>
 #include <sys/file.h>
@@ -95,8 +95,8 @@ long marked_generation(const fs::path& folder) {
   if (fd < 0) return 0;
   struct stat st {};
   char text[64] = {};
-  const bool ok = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) &&
-                  ::read(fd, text, sizeof text - 1) > 0;
+  const bool ok =
+      ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && ::read(fd, text, sizeof text - 1) > 0;
   ::close(fd);
   std::istringstream in(ok ? text : "");
   std::string word;
@@ -203,9 +203,8 @@ Restart find_restart(const std::string& dir, const ProblemSettings& settings, in
   long format = 0, count = 0, threads = 0, kept_identity = 0;
   state->get("meta.format", format);
   if (format != kFormat)
-    refuse_checkpoint("--restart " + dir + ": the checkpoint has layout " +
-                      std::to_string(format) + ", this meshfree reads layout " +
-                      std::to_string(kFormat));
+    refuse_checkpoint("--restart " + dir + ": the checkpoint has layout " + std::to_string(format) +
+                      ", this meshfree reads layout " + std::to_string(kFormat));
   // Another version of meshfree may compute another state from the same problem (a changed
   // scheme, another order of sums): its checkpoint is not continued by this one.
   const std::string version = state->text("meta.version");
@@ -227,7 +226,8 @@ Restart find_restart(const std::string& dir, const ProblemSettings& settings, in
   // The problem must be the one that was run, but for what a restart may change.
   compare_settings(dir, settings_map(state->text("meta.settings")), settings);
   if (kept_identity != identity(settings))
-    refuse_checkpoint("--restart " + dir + ": the checkpoint is of another problem (its identity "
+    refuse_checkpoint("--restart " + dir +
+                      ": the checkpoint is of another problem (its identity "
                       "hash differs from this run's)");
   check_instant(dir, r, end_time);
   return r;
@@ -264,34 +264,84 @@ std::string Checkpoints::part(const std::string& stem, int k) const {
   return (fs::path(folder_) / (stem + ".part-" + std::to_string(k) + ".h5")).string();
 }
 
+namespace {
+
+/// Rank 0's claim on the checkpoint folder: creates it and takes its lock (kept in `lock`, the
+/// lock goes with the process). Returns 0 when taken, 1 when another run holds it, 2 when the
+/// name is not a real folder.
+double claim_folder(const std::string& dir, const std::string& folder, int& lock) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  MF_REQUIRE(!ec, dir, ": cannot create the output folder: ", ec.message());
+  // mkdir, not create_directories: a link at the name is never followed.
+  if (::mkdir(folder.c_str(), 0755) != 0 && errno != EEXIST)
+    fail(folder, ": cannot create the checkpoint folder: ", system_reason(errno));
+  if (!real_folder(folder)) return 2.0;
+  lock =
+      ::open((fs::path(folder) / kLock).c_str(), O_CREAT | O_RDWR | O_CLOEXEC | O_NOFOLLOW, 0644);
+  return lock < 0 || ::flock(lock, LOCK_EX | LOCK_NB) != 0 ? 1.0 : 0.0;
+}
+
+void warn_unclaimed(const std::string& folder, double busy) {
+  if (busy > 1.0)
+    log::warn(folder, ": not a folder (a link?); meshfree follows no link, and this run "
+                      "writes no checkpoints");
+  else
+    log::warn(folder, ": another run into this folder keeps its checkpoints there; this run "
+                      "writes none");
+}
+
+/// Writes this rank's state file; returns its size in bytes.
+double write_state_file(const std::string& path, const ProblemSettings& settings,
+                        const distribution::Ranks& ranks, double t, long step,
+                        const std::function<void(StateWriter&)>& save) {
+  StateWriter out(path);
+  // Every rank's file says whose state it holds (a restart checks each against its run).
+  out.put("meta.format", kFormat);
+  out.put("meta.identity", identity(settings));
+  out.put_text("meta.version", program_version());
+  out.put("meta.ranks", static_cast<long>(ranks.size));
+  out.put("meta.threads", static_cast<long>(omp_get_max_threads()));
+  out.put("meta.time", t);
+  out.put("meta.step", step);
+  if (ranks.rank == 0) out.put_text("meta.settings", settings_text(settings));
+  save(out);
+  out.close();
+  return static_cast<double>(out.bytes());
+}
+
+/// Rank 0, once every rank's file is whole: the marker names the new generation, and the
+/// older generations' files go.
+void publish_generation(const fs::path& folder, long generation) {
+  std::error_code ec;
+  const std::string next = (folder / (std::string(kMarker) + ".new")).string();
+  fs::remove(next, ec);
+  {
+    OutputStream marker(next, next);
+    marker.append("generation " + std::to_string(generation) + "\n");
+    marker.close();
+  }
+  fs::rename(next, folder / kMarker, ec);
+  MF_REQUIRE(!ec, (folder / kMarker).string(),
+             ": cannot put the checkpoint in place: ", ec.message());
+  sync_path(folder.string(), true);
+  const std::string current = "state-" + std::to_string(generation) + ".";
+  remove_ours(folder, [&current](const std::string& name) {
+    return name.rfind("state-", 0) == 0 && name.rfind(current, 0) != 0;
+  });
+}
+
+} // namespace
+
 void Checkpoints::write(double t, long step, const std::function<void(StateWriter&)>& save) {
   const auto start = std::chrono::steady_clock::now();
   const fs::path folder(folder_);
   if (!locked_) {
-    // One run at a time keeps its checkpoints in a folder; the lock goes with its process.
-    double busy = 0.0;
-    if (ranks_.rank == 0) {
-      std::error_code ec;
-      fs::create_directories(dir_, ec);
-      MF_REQUIRE(!ec, dir_, ": cannot create the output folder: ", ec.message());
-      // mkdir, not create_directories: a link at the name is never followed.
-      if (::mkdir(folder_.c_str(), 0755) != 0 && errno != EEXIST)
-        fail(folder_, ": cannot create the checkpoint folder: ", system_reason(errno));
-      if (!real_folder(folder)) {
-        busy = 2.0;
-      } else {
-        lock_ = ::open((folder / kLock).c_str(), O_CREAT | O_RDWR | O_CLOEXEC | O_NOFOLLOW, 0644);
-        busy = lock_ < 0 || ::flock(lock_, LOCK_EX | LOCK_NB) != 0 ? 1.0 : 0.0;
-      }
-    }
+    // One run at a time keeps its checkpoints in a folder.
+    double busy = ranks_.rank == 0 ? claim_folder(dir_, folder_, lock_) : 0.0;
     if (!ranks_.serial()) ranks_.broadcast(&busy, 1, 0);
     if (busy > 0.0) {
-      if (ranks_.rank == 0 && busy > 1.0)
-        log::warn(folder_, ": not a folder (a link?); meshfree follows no link, and this run "
-                           "writes no checkpoints");
-      else if (ranks_.rank == 0)
-        log::warn(folder_, ": another run into this folder keeps its checkpoints there; this run "
-                           "writes none");
+      if (ranks_.rank == 0) warn_unclaimed(folder_, busy);
       policy_ = {0.0, 0.0};
       return;
     }
@@ -305,42 +355,10 @@ void Checkpoints::write(double t, long step, const std::function<void(StateWrite
   const std::string mine = (folder / state_name(generation_, ranks_.rank)).string();
   std::error_code ec;
   fs::remove(mine, ec); // a killed run's unfinished file of the same generation
-  double bytes = 0.0;
-  {
-    StateWriter out(mine);
-    // Every rank's file says whose state it holds (a restart checks each against its run).
-    out.put("meta.format", kFormat);
-    out.put("meta.identity", identity(settings_));
-    out.put_text("meta.version", program_version());
-    out.put("meta.ranks", static_cast<long>(ranks_.size));
-    out.put("meta.threads", static_cast<long>(omp_get_max_threads()));
-    out.put("meta.time", t);
-    out.put("meta.step", step);
-    if (ranks_.rank == 0) out.put_text("meta.settings", settings_text(settings_));
-    save(out);
-    out.close();
-    bytes = static_cast<double>(out.bytes());
-  }
+  const double bytes = write_state_file(mine, settings_, ranks_, t, step, save);
   sync_path(mine, false);
   bytes_ = ranks_.sum(bytes); // every rank's file is whole from here on
-  if (ranks_.rank == 0) {
-    // The marker names the new generation only once all of it is on disk.
-    const std::string next = (folder / (std::string(kMarker) + ".new")).string();
-    fs::remove(next, ec);
-    {
-      OutputStream marker(next, next);
-      marker.append("generation " + std::to_string(generation_) + "\n");
-      marker.close();
-    }
-    fs::rename(next, folder / kMarker, ec);
-    MF_REQUIRE(!ec, (folder / kMarker).string(),
-               ": cannot put the checkpoint in place: ", ec.message());
-    sync_path(folder_, true);
-    const std::string current = "state-" + std::to_string(generation_) + ".";
-    remove_ours(folder, [&current](const std::string& name) {
-      return name.rfind("state-", 0) == 0 && name.rfind(current, 0) != 0;
-    });
-  }
+  if (ranks_.rank == 0) publish_generation(folder, generation_);
   ranks_.max(0.0);
   if (policy_.interval > 0.0) next_time_ = next_multiple_after(t, policy_.interval);
   last_ = std::chrono::steady_clock::now();

@@ -1,8 +1,8 @@
 // The Galerkin analyses of a problem file (elastic_static, elastoplastic_static and the 1D model
 // problem): body, discretisation, boundary conditions, load schedule and output. Every key is
 // checked; errors name the key path.
-#include "meshfree/core/memory.hpp"
 #include "meshfree/core/input_file.hpp"
+#include "meshfree/core/memory.hpp"
 #include "meshfree/io/analysis_read.hpp"
 #include "meshfree/io/spec_read.hpp"
 #include <algorithm>
@@ -39,13 +39,8 @@ double bytes_per_node(const LinearSolverSpec& solver, double count) {
                                            : bytes_per::galerkin_node;
 }
 
-DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox& bounds,
-                                       const std::string& base_dir,
-                                       const LinearSolverSpec& solver = {}) {
-  KeyReader d = r.map("discretisation");
-  DiscretisationSpec s;
-  s.method =
-      d.choice("method", {"meshfree", "fem"}, "meshfree") == "fem" ? Method::Fem : Method::Meshfree;
+/// discretisation.fem: the element, an optional gmsh mesh file and the polynomial order.
+void read_fem_options(KeyReader& d, const std::string& base_dir, DiscretisationSpec& s) {
   if (auto f = d.optional_map("fem")) {
     s.fem.element = f->choice("element", {"t3", "q4", "q8"}, "q8");
     if (f->has("mesh")) {
@@ -57,12 +52,18 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
           f->error("mesh", e.what());
         }
       std::ifstream probe(s.fem.mesh);
-      if (!probe.good()) f->error("mesh", "cannot open the mesh file '" + one_line(s.fem.mesh) + "'");
+      if (!probe.good())
+        f->error("mesh", "cannot open the mesh file '" + one_line(s.fem.mesh) + "'");
     }
     f->allow("mesh");
     s.fem.order = f->integer("order", 0, 1, 10);
     f->finish();
   }
+}
+
+/// The spacing, refused beyond the body's size; returns the estimated node count over the body.
+double read_spacing(KeyReader& d, const BoundingBox& bounds, const LinearSolverSpec& solver,
+                    DiscretisationSpec& s) {
   s.spacing = d.positive("spacing");
   // Node counts estimated in floating point, so that a tiny spacing cannot overflow a count.
   const Vec2 size = bounds.hi - bounds.lo;
@@ -72,34 +73,40 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
   if (s.spacing > size.maxCoeff())
     d.error("spacing", detail::concat("expected at most the body's size (", size.x(), " x ",
                                       size.y(), "), got ", s.spacing));
-  double nodes_total = (size.x() / s.spacing + 1.0) * (size.y() / s.spacing + 1.0);
-  require_memory(d.path_of("spacing"), "nodes over the body", nodes_total,
-                 bytes_per_node(solver, nodes_total));
-  for (KeyReader& f : d.map_list("refinement")) {
-    geometry::Refinement ref;
-    const Box b = read_box(f, "box", 2);
-    ref.box = BoundingBox{b.lo.head<2>(), b.hi.head<2>()};
-    ref.spacing = f.positive("spacing");
-    if (ref.spacing >= s.spacing)
-      f.error("spacing", "a refinement must be finer than discretisation.spacing");
-    const Vec2 lo = ref.box.lo.cwiseMax(bounds.lo), hi = ref.box.hi.cwiseMin(bounds.hi);
-    const Vec2 extent = (hi - lo).cwiseMax(Vec2::Zero());
-    // The box is clipped to the body's bounds and one spacing around them: what lies farther
-    // out refines nothing, and node generation walks the whole box.
-    const Vec2 margin(s.spacing, s.spacing);
-    const Vec2 clip_lo = ref.box.lo.cwiseMax(bounds.lo - margin);
-    const Vec2 clip_hi = ref.box.hi.cwiseMin(bounds.hi + margin);
-    if (!(clip_lo.array() < clip_hi.array()).all())
-      f.error("box", "lies outside the body: it refines nothing");
-    ref.box = BoundingBox{clip_lo, clip_hi};
-    const double nodes = (extent.x() / ref.spacing + 1.0) * (extent.y() / ref.spacing + 1.0);
-    require_memory(f.path_of("spacing"), "nodes in the box", nodes, bytes_per_node(solver, nodes));
-    nodes_total += nodes;
-    f.finish();
-    s.refinement.push_back(ref);
-  }
-  require_memory(d.path_of("spacing"), "nodes over the body and its refinements", nodes_total,
-                 bytes_per_node(solver, nodes_total));
+  const double nodes = (size.x() / s.spacing + 1.0) * (size.y() / s.spacing + 1.0);
+  require_memory(d.path_of("spacing"), "nodes over the body", nodes, bytes_per_node(solver, nodes));
+  return nodes;
+}
+
+/// One discretisation.refinement box, clipped to the body; adds its node count to `nodes_total`.
+geometry::Refinement read_refinement(KeyReader& f, const BoundingBox& bounds,
+                                     const LinearSolverSpec& solver, const DiscretisationSpec& s,
+                                     double& nodes_total) {
+  geometry::Refinement ref;
+  const Box b = read_box(f, "box", 2);
+  ref.box = BoundingBox{b.lo.head<2>(), b.hi.head<2>()};
+  ref.spacing = f.positive("spacing");
+  if (ref.spacing >= s.spacing)
+    f.error("spacing", "a refinement must be finer than discretisation.spacing");
+  const Vec2 lo = ref.box.lo.cwiseMax(bounds.lo), hi = ref.box.hi.cwiseMin(bounds.hi);
+  const Vec2 extent = (hi - lo).cwiseMax(Vec2::Zero());
+  // The box is clipped to the body's bounds and one spacing around them: what lies farther
+  // out refines nothing, and node generation walks the whole box.
+  const Vec2 margin(s.spacing, s.spacing);
+  const Vec2 clip_lo = ref.box.lo.cwiseMax(bounds.lo - margin);
+  const Vec2 clip_hi = ref.box.hi.cwiseMin(bounds.hi + margin);
+  if (!(clip_lo.array() < clip_hi.array()).all())
+    f.error("box", "lies outside the body: it refines nothing");
+  ref.box = BoundingBox{clip_lo, clip_hi};
+  const double nodes = (extent.x() / ref.spacing + 1.0) * (extent.y() / ref.spacing + 1.0);
+  require_memory(f.path_of("spacing"), "nodes in the box", nodes, bytes_per_node(solver, nodes));
+  nodes_total += nodes;
+  f.finish();
+  return ref;
+}
+
+/// The shape functions: approximation, basis, window, support shape and dilation.
+void read_shape_functions(KeyReader& d, int dim, DiscretisationSpec& s) {
   const std::string approx = d.choice("approximation", {"rk", "mls"}, "rk");
   s.shape.approximation = approx == "rk" ? kernels::Approximation::ReproducingKernel
                                          : kernels::Approximation::MovingLeastSquares;
@@ -119,6 +126,9 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
   if (s.dilation.minCoeff() <= min_dilation)
     d.error("dilation", "must exceed " + std::to_string(min_dilation) +
                             " so that every point is covered by enough nodes for the basis");
+}
+
+void read_quadrature(KeyReader& d, DiscretisationSpec& s) {
   if (auto q = d.optional_map("quadrature")) {
     s.order = q->integer("order", 3, 2, 10);
     s.cell_size = q->positive("cell_size", s.spacing);
@@ -131,6 +141,23 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
     s.cell_size = s.spacing;
     s.boundary_order = s.order;
   }
+}
+
+DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox& bounds,
+                                       const std::string& base_dir,
+                                       const LinearSolverSpec& solver = {}) {
+  KeyReader d = r.map("discretisation");
+  DiscretisationSpec s;
+  s.method =
+      d.choice("method", {"meshfree", "fem"}, "meshfree") == "fem" ? Method::Fem : Method::Meshfree;
+  read_fem_options(d, base_dir, s);
+  double nodes_total = read_spacing(d, bounds, solver, s);
+  for (KeyReader& f : d.map_list("refinement"))
+    s.refinement.push_back(read_refinement(f, bounds, solver, s, nodes_total));
+  require_memory(d.path_of("spacing"), "nodes over the body and its refinements", nodes_total,
+                 bytes_per_node(solver, nodes_total));
+  read_shape_functions(d, dim, s);
+  read_quadrature(d, s);
   d.finish();
   return s;
 }
@@ -378,8 +405,7 @@ std::vector<geometry::Curve> select_boundary(const geometry::Domain& domain, con
       for (const auto& c : all)
         if (names.find(c.name) == std::string::npos) names += (names.empty() ? "" : ", ") + c.name;
       fail(key_path, ".edges: no boundary piece is named '", one_line(name),
-           "' (the body's pieces: ", names,
-           ")");
+           "' (the body's pieces: ", names, ")");
     }
   }
   for (const auto& c : all) {
@@ -497,21 +523,9 @@ void read_gravity_and_initial_stress(KeyReader& r, ProblemSpec& p, bool plastic)
   p.initial_stress = g;
 }
 
-} // namespace
-
-void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
-  const bool plastic = p.analysis == Analysis::ElastoplasticStatic;
-  const std::string analysis = plastic ? "elastoplastic_static" : "elastic_static";
-  if (p.model_type != ModelType::PlaneStress && p.model_type != ModelType::PlaneStrain)
-    r.error("model", "analysis " + analysis + " takes model.type plane_stress or plane_strain");
-  take_material(r, p, analysis);
-  p.linear_solver = read_linear_solver(r);
-  p.discretisation = read_discretisation(r, 2, p.domain.bounds(), base_dir, p.linear_solver);
-  p.exact = read_exact(r);
-  if (r.has("body_force")) p.body_force = r.vec2("body_force");
-  r.allow("body_force");
-  read_material_regions(r, p, analysis, plastic);
-  read_gravity_and_initial_stress(r, p, plastic);
+/// The boundary conditions: unique names, 'exact' only with an exact solution, selectors that
+/// pick something, and at least one displacement condition.
+void read_boundary(KeyReader& r, ProblemSpec& p) {
   // Default penalty: alpha = 1e6 E / h, stiff enough that the constraint error is ~1e-6 of the
   // boundary displacement scale, and far from the round-off limit of a direct solve.
   const double stiffness_scale = p.material.E / p.discretisation.spacing;
@@ -531,7 +545,10 @@ void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
   for (const auto& c : p.boundary) constrained = constrained || c.constrains;
   if (!constrained)
     r.error("boundary", "no displacement condition: the body is free to move as a rigid body");
+}
 
+/// The plasticity law, the load steps and the Newton controls belong to elastoplastic_static.
+void read_plastic_controls(KeyReader& r, ProblemSpec& p, bool plastic) {
   const MaterialSpec& mat = p.materials[p.material_index];
   // A material without plasticity is elastic at its points. An elastoplastic analysis of one
   // elastic material and nothing else is an elastic_static problem; with material regions,
@@ -550,45 +567,79 @@ void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
     for (const char* key : {"steps", "nonlinear"})
       if (r.has(key)) r.error(key, "used only by analysis elastoplastic_static");
   }
+}
 
+/// output.gauges: points of the body whose history an elastoplastic run records.
+void read_body_gauges(KeyReader& out, ProblemSpec& p, bool plastic) {
+  if (!plastic && out.has("gauges"))
+    out.error("gauges", "gauges are recorded only by analysis elastoplastic_static");
+  p.gauges = read_gauges(out, 2);
+  for (std::size_t k = 0; k < p.gauges.size(); ++k) {
+    const Vec2 at = p.gauges[k].at.head<2>();
+    if (!p.domain.contains(at, 1e-9 * p.domain.bounds().size().maxCoeff()))
+      fail(out.path_of("gauges"), "[", k, "].at: the point (", detail::concat(at.x(), ", ", at.y()),
+           ") is not in the body");
+  }
+}
+
+void read_checkpoint_output(KeyReader& out, ProblemSpec& p, bool plastic) {
+  for (const char* key : {"checkpoint_every", "checkpoint_wall_interval"})
+    if (!plastic && out.has(key))
+      out.error(key, "checkpoints are written only by analysis elastoplastic_static");
+  p.checkpoint.interval = out.integer("checkpoint_every", 0, 0, 1000000);
+  p.checkpoint.wall_interval = out.number("checkpoint_wall_interval", 600.0);
+  if (!(p.checkpoint.wall_interval >= 0.0) || !std::isfinite(p.checkpoint.wall_interval))
+    out.error("checkpoint_wall_interval", "expected seconds of wall time, 0 for none, got " +
+                                              detail::concat(p.checkpoint.wall_interval));
+}
+
+/// One output.lines entry: a sampled segment with at least one sample point in the body.
+LineSpec read_line(KeyReader& l, const ProblemSpec& p) {
+  LineSpec s;
+  s.name = l.text("name");
+  s.from = l.vec2("from");
+  s.to = l.vec2("to");
+  s.points = l.integer("points", 51, 2, 1000000);
+  check_name(l, "name", s.name, false);
+  for (const auto& other : p.lines)
+    if (other.name == s.name) l.error("name", "another line is named '" + s.name + "'");
+  bool inside = false;
+  for (int k = 0; k < s.points && !inside; ++k)
+    inside = p.domain.contains(s.from + (s.to - s.from) * (static_cast<double>(k) / (s.points - 1)),
+                               1e-9);
+  if (!inside) l.error("from", "no sample point of the line lies in the body");
+  l.finish();
+  return s;
+}
+
+void read_output(KeyReader& r, ProblemSpec& p, bool plastic) {
   if (auto out = r.optional_map("output")) {
-    if (!plastic && out->has("gauges"))
-      out->error("gauges", "gauges are recorded only by analysis elastoplastic_static");
-    p.gauges = read_gauges(*out, 2);
-    for (std::size_t k = 0; k < p.gauges.size(); ++k) {
-      const Vec2 at = p.gauges[k].at.head<2>();
-      if (!p.domain.contains(at, 1e-9 * p.domain.bounds().size().maxCoeff()))
-        fail(out->path_of("gauges"), "[", k, "].at: the point (",
-             detail::concat(at.x(), ", ", at.y()), ") is not in the body");
-    }
+    read_body_gauges(*out, p, plastic);
     p.fields_every = out->integer("fields_every", 1, 1, 1000000);
-    for (const char* key : {"checkpoint_every", "checkpoint_wall_interval"})
-      if (!plastic && out->has(key))
-        out->error(key, "checkpoints are written only by analysis elastoplastic_static");
-    p.checkpoint.interval = out->integer("checkpoint_every", 0, 0, 1000000);
-    p.checkpoint.wall_interval = out->number("checkpoint_wall_interval", 600.0);
-    if (!(p.checkpoint.wall_interval >= 0.0) || !std::isfinite(p.checkpoint.wall_interval))
-      out->error("checkpoint_wall_interval", "expected seconds of wall time, 0 for none, got " +
-                                                 detail::concat(p.checkpoint.wall_interval));
-    for (KeyReader& l : out->map_list("lines")) {
-      LineSpec s;
-      s.name = l.text("name");
-      s.from = l.vec2("from");
-      s.to = l.vec2("to");
-      s.points = l.integer("points", 51, 2, 1000000);
-      check_name(l, "name", s.name, false);
-      for (const auto& other : p.lines)
-        if (other.name == s.name) l.error("name", "another line is named '" + s.name + "'");
-      bool inside = false;
-      for (int k = 0; k < s.points && !inside; ++k)
-        inside = p.domain.contains(
-            s.from + (s.to - s.from) * (static_cast<double>(k) / (s.points - 1)), 1e-9);
-      if (!inside) l.error("from", "no sample point of the line lies in the body");
-      l.finish();
-      p.lines.push_back(s);
-    }
+    read_checkpoint_output(*out, p, plastic);
+    for (KeyReader& l : out->map_list("lines")) p.lines.push_back(read_line(l, p));
     out->finish();
   }
+}
+
+} // namespace
+
+void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
+  const bool plastic = p.analysis == Analysis::ElastoplasticStatic;
+  const std::string analysis = plastic ? "elastoplastic_static" : "elastic_static";
+  if (p.model_type != ModelType::PlaneStress && p.model_type != ModelType::PlaneStrain)
+    r.error("model", "analysis " + analysis + " takes model.type plane_stress or plane_strain");
+  take_material(r, p, analysis);
+  p.linear_solver = read_linear_solver(r);
+  p.discretisation = read_discretisation(r, 2, p.domain.bounds(), base_dir, p.linear_solver);
+  p.exact = read_exact(r);
+  if (r.has("body_force")) p.body_force = r.vec2("body_force");
+  r.allow("body_force");
+  read_material_regions(r, p, analysis, plastic);
+  read_gravity_and_initial_stress(r, p, plastic);
+  read_boundary(r, p);
+  read_plastic_controls(r, p, plastic);
+  read_output(r, p, plastic);
 }
 
 } // namespace mf::io

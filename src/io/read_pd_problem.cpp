@@ -126,22 +126,17 @@ void take_material(const MaterialSpec& m, materials::PdDimension dimension) {
     material_error(m, "bulk_modulus", "the micromodulus from the bulk modulus is a 3D formula");
 }
 
-} // namespace
-
-PdSpec parse_pd(KeyReader& r, const ProblemSpec& front, const std::string& base_dir) {
-  PdSpec s;
+materials::PdDimension read_pd_dimension(KeyReader& r, const ProblemSpec& front) {
   if (front.model_type == ModelType::UniaxialStrain)
     r.error("model", "analysis peridynamics takes model.type plane_stress, plane_strain or "
                      "solid_3d");
-  s.dimension = front.model_type == ModelType::Solid3D       ? materials::PdDimension::Solid3D
-                : front.model_type == ModelType::PlaneStress ? materials::PdDimension::PlaneStress
-                                                             : materials::PdDimension::PlaneStrain;
-  s.thickness = front.thickness;
-  const int dim = front.dimension;
-  const std::vector<MaterialSpec>& all = front.materials;
-  // The materials the body uses: its own (a `material:` reference or the single entry), those
-  // of its regions and those of the interfaces; indices below are into `all` until the end.
-  std::vector<char> used(all.size(), 0);
+  return front.model_type == ModelType::Solid3D       ? materials::PdDimension::Solid3D
+         : front.model_type == ModelType::PlaneStress ? materials::PdDimension::PlaneStress
+                                                      : materials::PdDimension::PlaneStrain;
+}
+
+/// The body's own material: a `material:` reference, or the single entry of the file.
+void read_body_material(KeyReader& r, const std::vector<MaterialSpec>& all, PdSpec& s) {
   if (r.has("material")) {
     s.body_material = find_material(r, "material", all, r.text("material"));
   } else if (all.size() != 1) {
@@ -149,53 +144,62 @@ PdSpec parse_pd(KeyReader& r, const ProblemSpec& front, const std::string& base_
                             std::to_string(all.size()) + " materials)");
   }
   r.allow("material");
-  used[s.body_material] = 1;
-  for (KeyReader& i : r.map_list("interfaces")) {
-    PdInterface f;
-    const YAML::Node names = i.raw("materials");
-    if (!names.IsSequence() || names.size() != 2)
-      i.error("materials", "expected the two material names [a, b]");
-    f.a = names[0].as<std::string>();
-    f.b = names[1].as<std::string>();
-    used[find_material(i, "materials", all, f.a)] = 1;
-    used[find_material(i, "materials", all, f.b)] = 1;
-    f.base = i.text("base", f.a);
-    used[find_material(i, "base", all, f.base)] = 1;
-    f.yield_stretch_factor = i.positive("yield_stretch_factor", 1.0);
-    f.critical_stretch_factor = i.positive("critical_stretch_factor", 1.0);
-    i.finish();
-    s.interfaces.push_back(f);
-  }
+}
 
-  {
-    KeyReader d = r.map("discretisation");
-    s.spacing = d.positive("spacing");
-    s.horizon_factor = d.positive("horizon", 3.0);
-    if (s.horizon_factor < 1.0 || s.horizon_factor > 10.0)
-      d.error("horizon",
-              "expected delta / spacing between 1 and 10, got " + detail::concat(s.horizon_factor));
-    s.volume_correction = d.choice("volume_correction", {"exact", "linear", "none"}, "exact");
-    const std::string surface = d.choice("surface_correction", {"none", "energy"}, "none");
-    s.surface_correction = surface == "energy";
-    s.short_range_contact = d.choice("short_range_contact", {"false", "true"}, "false") == "true";
-    s.deterministic = d.choice("deterministic", {"true", "false"}, "false") == "true";
-    d.finish();
+PdInterface read_interface(KeyReader& i, const std::vector<MaterialSpec>& all,
+                           std::vector<char>& used) {
+  PdInterface f;
+  const YAML::Node names = i.raw("materials");
+  if (!names.IsSequence() || names.size() != 2)
+    i.error("materials", "expected the two material names [a, b]");
+  f.a = names[0].as<std::string>();
+  f.b = names[1].as<std::string>();
+  used[find_material(i, "materials", all, f.a)] = 1;
+  used[find_material(i, "materials", all, f.b)] = 1;
+  f.base = i.text("base", f.a);
+  used[find_material(i, "base", all, f.base)] = 1;
+  f.yield_stretch_factor = i.positive("yield_stretch_factor", 1.0);
+  f.critical_stretch_factor = i.positive("critical_stretch_factor", 1.0);
+  i.finish();
+  return f;
+}
+
+void read_discretisation(KeyReader& r, PdSpec& s) {
+  KeyReader d = r.map("discretisation");
+  s.spacing = d.positive("spacing");
+  s.horizon_factor = d.positive("horizon", 3.0);
+  if (s.horizon_factor < 1.0 || s.horizon_factor > 10.0)
+    d.error("horizon",
+            "expected delta / spacing between 1 and 10, got " + detail::concat(s.horizon_factor));
+  s.volume_correction = d.choice("volume_correction", {"exact", "linear", "none"}, "exact");
+  const std::string surface = d.choice("surface_correction", {"none", "energy"}, "none");
+  s.surface_correction = surface == "energy";
+  s.short_range_contact = d.choice("short_range_contact", {"false", "true"}, "false") == "true";
+  s.deterministic = d.choice("deterministic", {"true", "false"}, "false") == "true";
+  d.finish();
+}
+
+PdRegion read_pd_region(KeyReader& g, int dim, const std::vector<MaterialSpec>& all,
+                        std::vector<char>& used) {
+  PdRegion reg;
+  reg.region = read_region(g, dim, kSolids);
+  if (g.has("material")) {
+    reg.material = find_material(g, "material", all, g.text("material"));
+    used[reg.material] = 1;
   }
-  for (KeyReader& g : r.map_list("regions")) {
-    PdRegion reg;
-    reg.region = read_region(g, dim, kSolids);
-    if (g.has("material")) {
-      reg.material = find_material(g, "material", all, g.text("material"));
-      used[reg.material] = 1;
-    }
-    g.allow("material");
-    if (g.has("velocity")) reg.velocity = read_point(g, "velocity", dim);
-    g.allow("velocity");
-    if (reg.material < 0 && !reg.velocity)
-      g.error("material", "a region sets a 'material', a 'velocity' or both");
-    g.finish();
-    s.regions.push_back(reg);
-  }
+  g.allow("material");
+  if (g.has("velocity")) reg.velocity = read_point(g, "velocity", dim);
+  g.allow("velocity");
+  if (reg.material < 0 && !reg.velocity)
+    g.error("material", "a region sets a 'material', a 'velocity' or both");
+  g.finish();
+  return reg;
+}
+
+/// Keeps the used materials of `all` (checked) in s.materials and renumbers the body's and the
+/// regions' material indices into that list.
+void keep_used_materials(const std::vector<MaterialSpec>& all, const std::vector<char>& used,
+                         PdSpec& s) {
   std::vector<int> index(all.size(), -1);
   for (std::size_t k = 0; k < all.size(); ++k)
     if (used[k]) {
@@ -206,68 +210,79 @@ PdSpec parse_pd(KeyReader& r, const ProblemSpec& front, const std::string& base_
   s.body_material = index[s.body_material];
   for (PdRegion& g : s.regions)
     if (g.material >= 0) g.material = index[g.material];
-  for (KeyReader& g : r.map_list("notches")) {
-    s.removed.push_back(read_region(g, dim, kSolids));
-    if (s.removed.back().everything()) g.error("box", "a notch needs the region it removes");
-    g.finish();
+}
+
+PdCrack read_crack(KeyReader& c, int dim) {
+  PdCrack k;
+  k.a = read_point(c, "from", dim);
+  k.b = read_point(c, "to", dim);
+  if (dim == 3) k.c = read_point(c, "to2", dim);
+  c.allow("to2");
+  c.finish();
+  return k;
+}
+
+/// An impactor's shape: a sphere of a radius, or a flat box of a size.
+void read_impactor_shape(KeyReader& k, int dim, PdImpactor& imp) {
+  imp.sphere = k.choice("shape", {"sphere", "flat"}, "") == "sphere";
+  if (imp.sphere) {
+    imp.radius = k.positive("radius");
+  } else {
+    imp.half_size = 0.5 * read_point(k, "size", dim);
+    if (dim == 2) imp.half_size.z() = 1e300;
+    if (imp.half_size.minCoeff() <= 0.0) k.error("size", "expected positive extents");
   }
-  for (KeyReader& c : r.map_list("cracks")) {
-    PdCrack k;
-    k.a = read_point(c, "from", dim);
-    k.b = read_point(c, "to", dim);
-    if (dim == 3) k.c = read_point(c, "to2", dim);
-    c.allow("to2");
-    c.finish();
-    s.cracks.push_back(k);
+  k.allow(imp.sphere ? "size" : "radius");
+  if (k.has(imp.sphere ? "size" : "radius"))
+    k.error(imp.sphere ? "size" : "radius", "does not belong to this shape");
+}
+
+/// An impactor's motion: free (mass and velocity), fixed (a support) or prescribed (velocity).
+void read_impactor_motion(KeyReader& k, int dim, PdImpactor& imp) {
+  const std::string motion = k.choice("motion", {"free", "fixed", "prescribed"}, "free");
+  imp.fixed = motion == "fixed";
+  imp.prescribed = motion == "prescribed";
+  if (imp.fixed) {
+    if (k.has("mass") || k.has("velocity"))
+      k.error("motion", "a fixed impactor (a support) has no mass or velocity");
+    k.allow("mass");
+    k.allow("velocity");
+  } else if (imp.prescribed) {
+    if (k.has("mass")) k.error("mass", "a prescribed motion does not depend on a mass");
+    k.allow("mass");
+    imp.velocity = read_point(k, "velocity", dim);
+  } else {
+    imp.mass = k.positive("mass");
+    imp.velocity = read_point(k, "velocity", dim);
   }
-  for (KeyReader& f : r.map_list("functions")) s.functions.push_back(read_function(f, base_dir, s));
-  for (KeyReader& c : r.map_list("boundary")) s.conditions.push_back(read_condition(c, s, dim));
-  for (KeyReader& k : r.map_list("impactors")) {
-    PdImpactor imp;
-    imp.name = k.text("name");
-    check_name(k, "name", imp.name);
-    imp.sphere = k.choice("shape", {"sphere", "flat"}, "") == "sphere";
-    if (imp.sphere) {
-      imp.radius = k.positive("radius");
-    } else {
-      imp.half_size = 0.5 * read_point(k, "size", dim);
-      if (dim == 2) imp.half_size.z() = 1e300;
-      if (imp.half_size.minCoeff() <= 0.0) k.error("size", "expected positive extents");
-    }
-    k.allow(imp.sphere ? "size" : "radius");
-    if (k.has(imp.sphere ? "size" : "radius"))
-      k.error(imp.sphere ? "size" : "radius", "does not belong to this shape");
-    const std::string motion = k.choice("motion", {"free", "fixed", "prescribed"}, "free");
-    imp.fixed = motion == "fixed";
-    imp.prescribed = motion == "prescribed";
-    if (imp.fixed) {
-      if (k.has("mass") || k.has("velocity"))
-        k.error("motion", "a fixed impactor (a support) has no mass or velocity");
-      k.allow("mass");
-      k.allow("velocity");
-    } else if (imp.prescribed) {
-      if (k.has("mass")) k.error("mass", "a prescribed motion does not depend on a mass");
-      k.allow("mass");
-      imp.velocity = read_point(k, "velocity", dim);
-    } else {
-      imp.mass = k.positive("mass");
-      imp.velocity = read_point(k, "velocity", dim);
-    }
-    if (auto c = k.optional_map("contact")) {
-      imp.penalty = c->choice("type", {"kinematic", "penalty"}, "kinematic") == "penalty";
-      if (c->has("stiffness") && !imp.penalty)
-        c->error("stiffness", "only a penalty contact has a stiffness");
-      if (imp.penalty) imp.stiffness = c->positive("stiffness", 0.0);
-      c->allow("stiffness");
-      c->finish();
-    }
-    imp.position = read_point(k, "position", dim);
-    if (imp.velocity.norm() == 0.0 && !imp.sphere)
-      k.error("velocity",
-              "a flat impactor needs a velocity: its direction is the impact direction");
-    k.finish();
-    s.impactors.push_back(imp);
+}
+
+void read_impactor_contact(KeyReader& k, PdImpactor& imp) {
+  if (auto c = k.optional_map("contact")) {
+    imp.penalty = c->choice("type", {"kinematic", "penalty"}, "kinematic") == "penalty";
+    if (c->has("stiffness") && !imp.penalty)
+      c->error("stiffness", "only a penalty contact has a stiffness");
+    if (imp.penalty) imp.stiffness = c->positive("stiffness", 0.0);
+    c->allow("stiffness");
+    c->finish();
   }
+}
+
+PdImpactor read_impactor(KeyReader& k, int dim) {
+  PdImpactor imp;
+  imp.name = k.text("name");
+  check_name(k, "name", imp.name);
+  read_impactor_shape(k, dim, imp);
+  read_impactor_motion(k, dim, imp);
+  read_impactor_contact(k, imp);
+  imp.position = read_point(k, "position", dim);
+  if (imp.velocity.norm() == 0.0 && !imp.sphere)
+    k.error("velocity", "a flat impactor needs a velocity: its direction is the impact direction");
+  k.finish();
+  return imp;
+}
+
+void read_relaxation(KeyReader& r, PdSpec& s) {
   if (auto x = r.optional_map("relaxation")) {
     PdRelaxation relax;
     relax.tolerance = x->positive("tolerance", relax.tolerance);
@@ -276,30 +291,71 @@ PdSpec parse_pd(KeyReader& r, const ProblemSpec& front, const std::string& base_
     x->finish();
     s.relaxation = relax;
   }
-  {
-    const TimeSpec t = read_time(r, StepControl::Safety);
-    s.end_time = t.end;
-    s.dt = t.dt;
-    s.safety = t.safety;
+}
+
+void read_time_control(KeyReader& r, PdSpec& s) {
+  const TimeSpec t = read_time(r, StepControl::Safety);
+  s.end_time = t.end;
+  s.dt = t.dt;
+  s.safety = t.safety;
+}
+
+/// output.crack: the crack-tip tracking along a direction from an origin.
+void read_crack_output(KeyReader& o, int dim, PdSpec& s) {
+  if (auto c = o.optional_map("crack")) {
+    s.crack.enabled = true;
+    s.crack.threshold = c->positive("damage_threshold", 0.38);
+    if (s.crack.threshold >= 1.0) c->error("damage_threshold", "expected a value in (0, 1)");
+    s.crack.origin = read_point(*c, "origin", dim);
+    s.crack.direction = read_point(*c, "direction", dim);
+    if (s.crack.direction.norm() == 0.0) c->error("direction", "expected a nonzero direction");
+    s.crack.direction.normalize();
+    c->finish();
   }
+}
+
+void read_output(KeyReader& r, int dim, PdSpec& s) {
   if (auto o = r.optional_map("output")) {
     SeriesOutputSpec series = read_series_output(*o, dim);
     s.history_interval = series.history_interval;
     s.fields_interval = series.fields_interval;
     s.gauges = std::move(series.gauges);
     s.checkpoint = series.checkpoint;
-    if (auto c = o->optional_map("crack")) {
-      s.crack.enabled = true;
-      s.crack.threshold = c->positive("damage_threshold", 0.38);
-      if (s.crack.threshold >= 1.0) c->error("damage_threshold", "expected a value in (0, 1)");
-      s.crack.origin = read_point(*c, "origin", dim);
-      s.crack.direction = read_point(*c, "direction", dim);
-      if (s.crack.direction.norm() == 0.0) c->error("direction", "expected a nonzero direction");
-      s.crack.direction.normalize();
-      c->finish();
-    }
+    read_crack_output(*o, dim, s);
     o->finish();
   }
+}
+
+} // namespace
+
+PdSpec parse_pd(KeyReader& r, const ProblemSpec& front, const std::string& base_dir) {
+  PdSpec s;
+  s.dimension = read_pd_dimension(r, front);
+  s.thickness = front.thickness;
+  const int dim = front.dimension;
+  const std::vector<MaterialSpec>& all = front.materials;
+  // The materials the body uses: its own (a `material:` reference or the single entry), those
+  // of its regions and those of the interfaces; indices below are into `all` until the end.
+  std::vector<char> used(all.size(), 0);
+  read_body_material(r, all, s);
+  used[s.body_material] = 1;
+  for (KeyReader& i : r.map_list("interfaces"))
+    s.interfaces.push_back(read_interface(i, all, used));
+  read_discretisation(r, s);
+  for (KeyReader& g : r.map_list("regions")) s.regions.push_back(read_pd_region(g, dim, all, used));
+  keep_used_materials(all, used, s);
+  for (KeyReader& g : r.map_list("notches")) {
+    s.removed.push_back(read_region(g, dim, kSolids));
+    if (s.removed.back().everything()) g.error("box", "a notch needs the region it removes");
+    g.finish();
+  }
+  for (KeyReader& c : r.map_list("cracks")) s.cracks.push_back(read_crack(c, dim));
+  for (KeyReader& f : r.map_list("functions")) s.functions.push_back(read_function(f, base_dir, s));
+  for (KeyReader& c : r.map_list("boundary")) s.conditions.push_back(read_condition(c, s, dim));
+  for (KeyReader& k : r.map_list("impactors")) s.impactors.push_back(read_impactor(k, dim));
+  read_relaxation(r, s);
+  read_time_control(r, s);
+  read_output(r, dim, s);
   return s;
 }
 

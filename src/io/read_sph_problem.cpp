@@ -138,14 +138,8 @@ void read_condition(KeyReader& c, int dim, SphSpec& s) {
   c.finish();
 }
 
-} // namespace
-
-SphSpec parse_sph(KeyReader& r, const ProblemSpec& front) {
-  SphSpec s;
-  if (front.model_type == ModelType::PlaneStress)
-    r.error("model", "analysis sph takes model.type uniaxial_strain, plane_strain or solid_3d");
-  s.dimension = front.dimension;
-  const int dim = s.dimension;
+/// discretisation: returns the particle spacing (0 when each region gives its own).
+double read_discretisation(KeyReader& r, SphSpec& s) {
   double spacing = 0.0;
   if (auto m = r.optional_map("discretisation")) {
     spacing = m->positive("spacing", 0.0);
@@ -161,8 +155,12 @@ SphSpec parse_sph(KeyReader& r, const ProblemSpec& front) {
                "expected h / spacing between 1 and 3, got " + std::to_string(s.smoothing));
     m->finish();
   }
-  // The materials the particles use, in the order of the list.
-  const std::vector<MaterialSpec>& all = front.materials;
+  return spacing;
+}
+
+/// The regions of particles, and the materials they use (checked) in the order of the list.
+void read_regions(KeyReader& r, const std::vector<MaterialSpec>& all, int dim, double spacing,
+                  SphSpec& s) {
   std::vector<KeyReader> regions = r.map_list("regions");
   if (regions.empty()) r.error("regions", "at least one region of particles is required");
   std::vector<char> used(all.size(), 0);
@@ -174,9 +172,10 @@ SphSpec parse_sph(KeyReader& r, const ProblemSpec& front) {
     }
   for (KeyReader& b : regions)
     s.regions.push_back(read_region_of_particles(b, dim, spacing, s.materials));
-  for (KeyReader& c : r.map_list("boundary")) read_condition(c, dim, s);
-  if (r.has("gravity")) s.gravity = read_point(r, "gravity", dim);
-  r.allow("gravity");
+}
+
+/// detonation: a point, or a plane {at, normal}, and the burn front's width and ignition.
+void read_detonation(KeyReader& r, int dim, SphSpec& s) {
   if (auto d = r.optional_map("detonation")) {
     if (d->has("point") == d->has("plane"))
       d->error("point", "give exactly one of 'point' or 'plane: {at, normal}'");
@@ -193,22 +192,31 @@ SphSpec parse_sph(KeyReader& r, const ProblemSpec& front) {
         d->positive("ignition_compression", s.numerics.ignition_compression);
     d->finish();
   }
+}
+
+void read_viscosity(KeyReader& r, SphNumerics& n) {
   if (auto v = r.optional_map("viscosity")) {
-    s.numerics.alpha = v->number("alpha", 1.0);
-    s.numerics.beta = v->number("beta", 1.0);
-    s.numerics.phi = v->positive("phi", 0.1);
-    if (s.numerics.alpha < 0.0 || s.numerics.beta < 0.0)
+    n.alpha = v->number("alpha", 1.0);
+    n.beta = v->number("beta", 1.0);
+    n.phi = v->positive("phi", 0.1);
+    if (n.alpha < 0.0 || n.beta < 0.0)
       v->error("alpha", "the viscosity coefficients must not be negative");
     v->finish();
   }
+}
+
+void read_artificial_stress(KeyReader& r, SphNumerics& n) {
   if (auto a = r.optional_map("artificial_stress")) {
-    s.numerics.artificial_stress = a->positive("epsilon", 0.3);
-    s.numerics.artificial_stress_exponent = a->integer("exponent", 4, 1, 12);
+    n.artificial_stress = a->positive("epsilon", 0.3);
+    n.artificial_stress_exponent = a->integer("exponent", 4, 1, 12);
     a->finish();
   }
+}
+
+/// interface: the inter-material penalty force (sph::Settings::Penalty).
+void read_interface_penalty(KeyReader& r, SphNumerics& n) {
   if (auto f = r.optional_map("interface")) {
-    // The inter-material penalty force (sph::Settings::Penalty).
-    SphNumerics::Penalty& pen = s.numerics.penalty;
+    SphNumerics::Penalty& pen = n.penalty;
     pen.pressure = f->positive("penalty_pressure");
     pen.n1 = f->integer("n1", 12, 1, 32);
     pen.n2 = f->integer("n2", 6, 0, 31);
@@ -217,11 +225,9 @@ SphSpec parse_sph(KeyReader& r, const ProblemSpec& front) {
     if (pen.distance > 2.0) f->error("distance", "expected at most 2 particle spacings");
     f->finish();
   }
-  {
-    const TimeSpec t = read_time(r, StepControl::Courant);
-    s.end_time = t.end;
-    s.numerics.courant = t.courant;
-  }
+}
+
+void read_output(KeyReader& r, int dim, SphSpec& s) {
   if (auto o = r.optional_map("output")) {
     SeriesOutputSpec series = read_series_output(*o, dim);
     s.history_interval = series.history_interval;
@@ -230,6 +236,29 @@ SphSpec parse_sph(KeyReader& r, const ProblemSpec& front) {
     s.checkpoint = series.checkpoint;
     o->finish();
   }
+}
+
+} // namespace
+
+SphSpec parse_sph(KeyReader& r, const ProblemSpec& front) {
+  SphSpec s;
+  if (front.model_type == ModelType::PlaneStress)
+    r.error("model", "analysis sph takes model.type uniaxial_strain, plane_strain or solid_3d");
+  s.dimension = front.dimension;
+  const int dim = s.dimension;
+  const double spacing = read_discretisation(r, s);
+  read_regions(r, front.materials, dim, spacing, s);
+  for (KeyReader& c : r.map_list("boundary")) read_condition(c, dim, s);
+  if (r.has("gravity")) s.gravity = read_point(r, "gravity", dim);
+  r.allow("gravity");
+  read_detonation(r, dim, s);
+  read_viscosity(r, s.numerics);
+  read_artificial_stress(r, s.numerics);
+  read_interface_penalty(r, s.numerics);
+  const TimeSpec t = read_time(r, StepControl::Courant);
+  s.end_time = t.end;
+  s.numerics.courant = t.courant;
+  read_output(r, dim, s);
   return s;
 }
 

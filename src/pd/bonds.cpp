@@ -168,79 +168,100 @@ double bond_reach(const Model& m, VolumeCorrection correction) {
              : m.horizon;
 }
 
-void build_bonds(Model& m, const LawTable& table, VolumeCorrection correction) {
-  MF_REQUIRE(m.horizon > 0.0 && m.spacing > 0.0, "peridynamics: horizon and spacing must be set");
-  MF_REQUIRE(!table.laws.empty() && table.laws.size() < 256, "peridynamics: 1 to 255 bond laws");
-  const particles::ParticleSet& p = m.particles;
-  const double dx = m.spacing, r = 0.5 * dx;
-  const bool plane = m.plane();
-  const bool half = !m.deterministic;
-  const double reach = bond_reach(m, correction);
-  const double reach2 = reach * reach;
-  const double inner = m.horizon - r * std::sqrt(plane ? 2.0 : 3.0);
-  const int owned = p.owned_count();
-  m.laws = table.laws;
-  m.law_of = table.law_of;
-  Bonds b;
-  b.layout = half ? BondLayout::Half : BondLayout::Full;
-  if (p.size() == 0) {
-    m.bonds = std::move(b);
-    m.weight_sum.clear();
-    return;
-  }
-  const CellList cells(p.X, reach);
-  // A bond's length is |X_j - X_i| evaluated as the force loop evaluates |y_j - y_i|, so that
-  // the reference configuration is free of force to the last bit; on a lattice the lengths of
-  // an offset then differ only by the round-off of the positions, and the classes stay few. The
-  // exact partial volume depends only on the offset in spacings there: computed once per offset.
-  std::unordered_map<long long, double> fraction_of_offset;
-  struct Geometry {
-    double length, beta;
-  };
-  const auto geometry = [&](int i, int j) {
-    const double ex = p.X[3 * j] - p.X[3 * i], ey = p.X[3 * j + 1] - p.X[3 * i + 1],
-                 ez = p.X[3 * j + 2] - p.X[3 * i + 2];
+namespace {
+
+/// A bond's reference length and partial-volume factor beta.
+struct Geometry {
+  double length, beta;
+};
+
+/// A bond's length is |X_j - X_i| evaluated as the force loop evaluates |y_j - y_i|, so that
+/// the reference configuration is free of force to the last bit; on a lattice the lengths of
+/// an offset then differ only by the round-off of the positions, and the classes stay few. The
+/// exact partial volume depends only on the offset in spacings there: computed once per offset.
+class PartialVolumes {
+public:
+  PartialVolumes(const Model& m, VolumeCorrection correction)
+      : p_(m.particles), horizon_(m.horizon), dx_(m.spacing), r_(0.5 * m.spacing),
+        plane_(m.plane()), inner_(m.horizon - r_ * std::sqrt(plane_ ? 2.0 : 3.0)),
+        correction_(correction) {}
+
+  Geometry operator()(int i, int j) {
+    const double ex = p_.X[3 * j] - p_.X[3 * i], ey = p_.X[3 * j + 1] - p_.X[3 * i + 1],
+                 ez = p_.X[3 * j + 2] - p_.X[3 * i + 2];
     const double xi = std::sqrt(ex * ex + ey * ey + ez * ez);
     double beta = 1.0;
-    if (correction == VolumeCorrection::Linear && xi > m.horizon - r) {
-      beta = (m.horizon + r - xi) / (2.0 * r);
-    } else if (correction == VolumeCorrection::Exact && xi > inner) {
+    if (correction_ == VolumeCorrection::Linear && xi > horizon_ - r_) {
+      beta = (horizon_ + r_ - xi) / (2.0 * r_);
+    } else if (correction_ == VolumeCorrection::Exact && xi > inner_) {
       const Eigen::Vector3d d(ex, ey, ez);
-      const Eigen::Vector3d spacings = d / dx;
+      const Eigen::Vector3d spacings = d / dx_;
       const Eigen::Vector3d rounded = spacings.array().round();
       if ((spacings - rounded).cwiseAbs().maxCoeff() > 1e-6)
-        return Geometry{xi, cell_fraction_inside(d, dx, m.horizon, plane)};
+        return Geometry{xi, cell_fraction_inside(d, dx_, horizon_, plane_)};
       const long long key = ((static_cast<long long>(rounded.x()) + 1000) * 2001 +
                              (static_cast<long long>(rounded.y()) + 1000)) *
                                 2001 +
                             (static_cast<long long>(rounded.z()) + 1000);
-      const auto it = fraction_of_offset.find(key);
-      if (it != fraction_of_offset.end()) return Geometry{xi, it->second};
-      beta = cell_fraction_inside(d, dx, m.horizon, plane);
-      fraction_of_offset.emplace(key, beta);
+      const auto it = fraction_of_offset_.find(key);
+      if (it != fraction_of_offset_.end()) return Geometry{xi, it->second};
+      beta = cell_fraction_inside(d, dx_, horizon_, plane_);
+      fraction_of_offset_.emplace(key, beta);
     }
     return Geometry{xi, beta};
-  };
-  // Calls f(j, geometry) for every bond of owned particle i that its row stores.
-  const auto row = [&](int i, auto&& f) {
-    cells.around(&p.X[3 * i], [&](int j) {
-      if (j == i || (half && j < i)) return; // Half: a pair in the row of its smaller index
-      const double ex = p.X[3 * j] - p.X[3 * i], ey = p.X[3 * j + 1] - p.X[3 * i + 1],
-                   ez = p.X[3 * j + 2] - p.X[3 * i + 2];
-      if (ex * ex + ey * ey + ez * ez > reach2) return;
-      const Geometry g = geometry(i, j);
+  }
+
+private:
+  const particles::ParticleSet& p_;
+  double horizon_, dx_, r_;
+  bool plane_;
+  double inner_;
+  VolumeCorrection correction_;
+  std::unordered_map<long long, double> fraction_of_offset_;
+};
+
+/// The bonds a row stores: the partners within reach with a nonzero partial volume (Half: a
+/// pair in the row of its smaller index).
+class BondRows {
+public:
+  BondRows(const Model& m, const CellList& cells, double reach, bool half, PartialVolumes& geometry)
+      : p_(m.particles), cells_(cells), reach2_(reach * reach), half_(half), geometry_(geometry) {}
+
+  /// Calls f(j, geometry) for every bond of owned particle i that its row stores.
+  template <class F> void each(int i, F&& f) const {
+    cells_.around(&p_.X[3 * i], [&](int j) {
+      if (j == i || (half_ && j < i)) return;
+      const double ex = p_.X[3 * j] - p_.X[3 * i], ey = p_.X[3 * j + 1] - p_.X[3 * i + 1],
+                   ez = p_.X[3 * j + 2] - p_.X[3 * i + 2];
+      if (ex * ex + ey * ey + ez * ez > reach2_) return;
+      const Geometry g = geometry_(i, j);
       if (g.beta > 0.0) f(j, g);
     });
-  };
-  // Counting pass: the row offsets.
+  }
+
+private:
+  const particles::ParticleSet& p_;
+  const CellList& cells_;
+  double reach2_;
+  bool half_;
+  PartialVolumes& geometry_;
+};
+
+/// Counting pass: the row offsets.
+void count_rows(const BondRows& rows, int owned, Bonds& b) {
   b.offset.assign(owned + 1, 0);
   for (int i = 0; i < owned; ++i) {
     long count = 0;
-    row(i, [&](int, const Geometry&) { ++count; });
+    rows.each(i, [&](int, const Geometry&) { ++count; });
     b.offset[i + 1] = b.offset[i] + count;
   }
-  // Filling pass: partners and classes, each row sorted (Half: by partner index, Full: by the
-  // partner's global id).
+}
+
+/// Filling pass: partners and classes, each row sorted (Half: by partner index, Full: by the
+/// partner's global id). Returns the capacity of the row buffer, for the peak memory.
+std::size_t fill_rows(const BondRows& rows, const particles::ParticleSet& p, const LawTable& table,
+                      bool half, Bonds& b) {
+  const int owned = p.owned_count();
   b.partner.resize(b.offset[owned]);
   b.cls.resize(b.offset[owned]);
   ClassTable classes(b.classes);
@@ -250,7 +271,7 @@ void build_bonds(Model& m, const LawTable& table, VolumeCorrection correction) {
   };
   for (int i = 0; i < owned; ++i) {
     entries.clear();
-    row(i, [&](int j, const Geometry& g) {
+    rows.each(i, [&](int j, const Geometry& g) {
       const std::uint32_t c =
           classes.find(law_of(i, j), g.length, p.volume[j] * g.beta, p.volume[i] * g.beta);
       entries.emplace_back(j, c);
@@ -265,12 +286,44 @@ void build_bonds(Model& m, const LawTable& table, VolumeCorrection correction) {
     long k = b.offset[i];
     for (const auto& [j, c] : entries) b.partner[k] = static_cast<int>(j), b.cls[k++] = c;
   }
-  b.directed = 0;
+  return entries.capacity();
+}
+
+/// Directed bonds: a Half pair of two owned particles counts at both ends.
+long directed_bonds(const Bonds& b, int owned, bool half) {
+  long directed = 0;
   for (int i = 0; i < owned; ++i)
     for (long k = b.offset[i]; k < b.offset[i + 1]; ++k)
-      b.directed += half && b.partner[k] < owned ? 2 : 1;
+      directed += half && b.partner[k] < owned ? 2 : 1;
+  return directed;
+}
+
+} // namespace
+
+void build_bonds(Model& m, const LawTable& table, VolumeCorrection correction) {
+  MF_REQUIRE(m.horizon > 0.0 && m.spacing > 0.0, "peridynamics: horizon and spacing must be set");
+  MF_REQUIRE(!table.laws.empty() && table.laws.size() < 256, "peridynamics: 1 to 255 bond laws");
+  const particles::ParticleSet& p = m.particles;
+  const bool half = !m.deterministic;
+  const double reach = bond_reach(m, correction);
+  const int owned = p.owned_count();
+  m.laws = table.laws;
+  m.law_of = table.law_of;
+  Bonds b;
+  b.layout = half ? BondLayout::Half : BondLayout::Full;
+  if (p.size() == 0) {
+    m.bonds = std::move(b);
+    m.weight_sum.clear();
+    return;
+  }
+  const CellList cells(p.X, reach);
+  PartialVolumes geometry(m, correction);
+  const BondRows rows(m, cells, reach, half, geometry);
+  count_rows(rows, owned, b);
+  const std::size_t entries = fill_rows(rows, p, table, half, b);
+  b.directed = directed_bonds(b, owned, half);
   b.peak_bytes = b.bytes(false) - 1.0 * b.stored() + cells.bytes() +
-                 8.0 * static_cast<double>(entries.capacity()) + 48.0 * b.classes.size();
+                 8.0 * static_cast<double>(entries) + 48.0 * b.classes.size();
   m.bonds = std::move(b);
   fold_laws(m);
   m.weight_sum.assign(p.size(), 0.0);

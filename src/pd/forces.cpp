@@ -60,6 +60,56 @@ inline double critical(const BondClass& c, const Arrays& a, double s0_i, int j) 
     return c.limit;
 }
 
+/// The first row of each of T threads, for an equal share of the bonds each (T + 1 entries,
+/// the last `owned`).
+std::vector<int> rows_of_threads(const Arrays& a, int T) {
+  const int owned = a.owned;
+  const long total = a.offset[owned];
+  std::vector<int> first_row(T + 1, owned);
+  for (int q = 0; q < T; ++q)
+    first_row[q] =
+        static_cast<int>(std::lower_bound(a.offset, a.offset + owned, total * q / T) - a.offset);
+  first_row[0] = 0;
+  return first_row;
+}
+
+/// Where a thread of the half loop writes force, energy density and trial s0: thread 0 to the
+/// outputs, another thread to its own zeroed buffers over [lo, owned), element 0 at row `base`.
+struct ThreadOutput {
+  double* f;
+  double* w;
+  double* s0n;
+  int base;
+};
+
+ThreadOutput thread_output(int t, int lo, int owned, bool alpha, double* force, double* density,
+                           double* s0_trial) {
+  if (t == 0) return {force, density, s0_trial, 0};
+  thread_local std::vector<double> own_f, own_w, own_s;
+  const std::size_t len = static_cast<std::size_t>(owned - lo);
+  ThreadOutput o{nullptr, density, s0_trial, lo};
+  own_f.assign(3 * len, 0.0);
+  o.f = own_f.data();
+  if (density) own_w.assign(len, 0.0), o.w = own_w.data();
+  if (alpha) own_s.assign(len, kNone), o.s0n = own_s.data();
+  return o;
+}
+
+/// Adds the buffers of threads 1.. to the outputs, in thread order (a work-sharing loop of the
+/// enclosing parallel region).
+void add_thread_outputs(const std::vector<int>& first_row, const std::vector<ThreadOutput>& out,
+                        int owned, bool alpha, double* force, double* density, double* s0_trial) {
+  const int T = static_cast<int>(out.size());
+#pragma omp for schedule(static)
+  for (int i = 0; i < owned; ++i)
+    for (int q = 1; q < T && first_row[q] <= i; ++q) {
+      const std::ptrdiff_t iq = i - first_row[q];
+      for (int d = 0; d < 3; ++d) force[3 * i + d] += out[q].f[3 * iq + d];
+      if (density) density[i] += out[q].w[iq];
+      if (alpha) s0_trial[i] = std::max(s0_trial[i], out[q].s0n[iq]);
+    }
+}
+
 /// Half layout: each stored pair evaluated once, Newton's third law. Thread t takes a range of
 /// rows with an equal share of the bonds; its reactions on partners land in its own buffer over
 /// [first row, owned) (thread 0 writes the outputs directly), and the buffers are added in thread
@@ -67,38 +117,25 @@ inline double critical(const BondClass& c, const Arrays& a, double s0_i, int j) 
 template <bool Plastic, bool Alpha, bool Energy>
 ForceReport half_loop(const Arrays& a, double* force, double* density, double* s0_trial) {
   const int owned = a.owned;
-  const long total = a.offset[owned];
   long broken = 0;
   double energy = 0.0;
   std::vector<int> first_row;
-  std::vector<double*> f_buf, w_buf, s_buf;
+  std::vector<ThreadOutput> outputs;
 #pragma omp parallel reduction(+ : broken, energy)
   {
     const int T = omp_get_num_threads(), t = omp_get_thread_num();
 #pragma omp single
     {
-      first_row.assign(T + 1, owned);
-      for (int q = 0; q < T; ++q)
-        first_row[q] = static_cast<int>(
-            std::lower_bound(a.offset, a.offset + owned, total * q / T) - a.offset);
-      first_row[0] = 0;
-      f_buf.assign(T, nullptr), w_buf.assign(T, nullptr), s_buf.assign(T, nullptr);
+      first_row = rows_of_threads(a, T);
+      outputs.resize(T);
     }
     const int lo = first_row[t], hi = first_row[t + 1];
-    // This thread's arrays over [base, owned).
-    thread_local std::vector<double> own_f, own_w, own_s;
-    const int base = t == 0 ? 0 : lo; // index of element 0 of f, w and s0n
-    double* f = force;
-    double* w = density;
-    double* s0n = s0_trial;
-    if (t > 0) {
-      const std::size_t len = static_cast<std::size_t>(owned - lo);
-      own_f.assign(3 * len, 0.0);
-      f = own_f.data();
-      if (density) own_w.assign(len, 0.0), w = own_w.data();
-      if (Alpha) own_s.assign(len, kNone), s0n = own_s.data();
-    }
-    f_buf[t] = f, w_buf[t] = w, s_buf[t] = s0n;
+    const ThreadOutput out = thread_output(t, lo, owned, Alpha, force, density, s0_trial);
+    outputs[t] = out;
+    double* const f = out.f;
+    double* const w = out.w;
+    double* const s0n = out.s0n;
+    const int base = out.base;
     for (int i = lo; i < hi; ++i) {
       const double xi = a.y[3 * i], yi = a.y[3 * i + 1], zi = a.y[3 * i + 2];
       const double s0_i = Alpha ? a.s0[i] : 0.0;
@@ -144,16 +181,7 @@ ForceReport half_loop(const Arrays& a, double* force, double* density, double* s
       if constexpr (Alpha) s0n[ib] = std::max(s0n[ib], s0_next);
     }
 #pragma omp barrier
-    if (T > 1) {
-#pragma omp for schedule(static)
-      for (int i = 0; i < owned; ++i)
-        for (int q = 1; q < T && first_row[q] <= i; ++q) {
-          const std::ptrdiff_t iq = i - first_row[q];
-          for (int d = 0; d < 3; ++d) force[3 * i + d] += f_buf[q][3 * iq + d];
-          if (density) density[i] += w_buf[q][iq];
-          if (Alpha) s0_trial[i] = std::max(s0_trial[i], s_buf[q][iq]);
-        }
-    }
+    if (T > 1) add_thread_outputs(first_row, outputs, owned, Alpha, force, density, s0_trial);
   }
   return {broken, energy};
 }

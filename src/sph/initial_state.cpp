@@ -158,18 +158,8 @@ void scale_deviator(ParticleFields& F, int i, double scale, bool about_back_stre
   }
 }
 
-} // namespace
-
-EosDensity density_for_pressure(const materials::EquationOfState& eos, double p, double e) {
-  return std::visit([&](const auto& law) { return invert(law, p, e); }, eos);
-}
-
-InitialStateReport set_initial_state(Hydro& h, const std::vector<Vec6>& sigma,
-                                     const std::vector<double>& plastic_strain,
-                                     const std::vector<Vec6>& back_stress, bool return_to_surface) {
-  particles::ParticleSet& P = h.particles;
-  ParticleFields& F = h.fields;
-  const int n = P.owned_count();
+void check_sizes(int n, const std::vector<Vec6>& sigma, const std::vector<double>& plastic_strain,
+                 const std::vector<Vec6>& back_stress) {
   const std::size_t count = static_cast<std::size_t>(n);
   MF_REQUIRE(sigma.size() == count, "SPH initial state: ", sigma.size(), " stresses for ", n,
              " particles");
@@ -178,7 +168,10 @@ InitialStateReport set_initial_state(Hydro& h, const std::vector<Vec6>& sigma,
              " particles");
   MF_REQUIRE(back_stress.empty() || back_stress.size() == count,
              "SPH initial state: ", back_stress.size(), " back stresses for ", n, " particles");
-  group_materials(h);
+}
+
+/// An ideal gas or a JWL explosive gives no density for a stress state.
+void refuse_gases(const Hydro& h) {
   for (std::size_t m = 0; m < h.materials.size(); ++m) {
     const materials::EquationOfState& eos = h.materials[m].eos;
     if (h.groups.owned(m) > 0 && (std::holds_alternative<materials::IdealGas>(eos) ||
@@ -187,9 +180,15 @@ InitialStateReport set_initial_state(Hydro& h, const std::vector<Vec6>& sigma,
            std::holds_alternative<materials::IdealGas>(eos) ? "ideal-gas" : "JWL",
            " equation of state, which gives no density for a stress state");
   }
-  double scale = 0.0;
-  for (const Vec6& s : sigma) scale = std::max(scale, s.cwiseAbs().maxCoeff());
-  std::vector<double> pressure(count);
+}
+
+/// Each owned particle's density from the pressure of its stress, its deviatoric stress (solids),
+/// back stress and plastic strain, the rest of its history zeroed; returns the pressures.
+std::vector<double> set_stress_and_density(Hydro& h, const std::vector<Vec6>& sigma,
+                                           const std::vector<double>& plastic_strain,
+                                           const std::vector<Vec6>& back_stress) {
+  ParticleFields& F = h.fields;
+  std::vector<double> pressure(static_cast<std::size_t>(h.particles.owned_count()));
   for (std::size_t m = 0; m < h.materials.size(); ++m) {
     const Material& mat = h.materials[m];
     const int* members = h.groups.of(m);
@@ -217,14 +216,14 @@ InitialStateReport set_initial_state(Hydro& h, const std::vector<Vec6>& sigma,
         },
         mat.eos);
   }
-  refresh_ghosts(h);
-  update_state(h);
+  return pressure;
+}
 
-  InitialStateReport report;
+/// Each particle's stress against its yield surface (a floor of 1e-12 of the stress scale on
+/// the yield stress), returned to the surface from outside it when asked.
+void check_yield(Hydro& h, double scale, bool return_to_surface, InitialStateReport& report) {
+  ParticleFields& F = h.fields;
   const double floor = 1e-12 * scale;
-  for (int i = 0; i < n; ++i)
-    report.density_mismatch = std::max(report.density_mismatch, std::abs(F.p[i] - pressure[i]));
-  if (scale > 0.0) report.density_mismatch /= scale;
   for (std::size_t m = 0; m < h.materials.size(); ++m) {
     const int* members = h.groups.of(m);
     std::visit(
@@ -249,6 +248,34 @@ InitialStateReport set_initial_state(Hydro& h, const std::vector<Vec6>& sigma,
         },
         h.materials[m].strength);
   }
+}
+
+} // namespace
+
+EosDensity density_for_pressure(const materials::EquationOfState& eos, double p, double e) {
+  return std::visit([&](const auto& law) { return invert(law, p, e); }, eos);
+}
+
+InitialStateReport set_initial_state(Hydro& h, const std::vector<Vec6>& sigma,
+                                     const std::vector<double>& plastic_strain,
+                                     const std::vector<Vec6>& back_stress, bool return_to_surface) {
+  const int n = h.particles.owned_count();
+  check_sizes(n, sigma, plastic_strain, back_stress);
+  group_materials(h);
+  refuse_gases(h);
+  double scale = 0.0;
+  for (const Vec6& s : sigma) scale = std::max(scale, s.cwiseAbs().maxCoeff());
+  const std::vector<double> pressure =
+      set_stress_and_density(h, sigma, plastic_strain, back_stress);
+  refresh_ghosts(h);
+  update_state(h);
+
+  InitialStateReport report;
+  for (int i = 0; i < n; ++i)
+    report.density_mismatch =
+        std::max(report.density_mismatch, std::abs(h.fields.p[i] - pressure[i]));
+  if (scale > 0.0) report.density_mismatch /= scale;
+  check_yield(h, scale, return_to_surface, report);
   commit_history(h);
   refresh_ghosts(h);
   update_state(h);

@@ -26,23 +26,22 @@ inline void boundary_force(const TransmittingBoundary& b, std::size_t k, const d
     for (int d = 0; d < 3; ++d) f[d] += b.static_force[3 * k + d];
 }
 
-} // namespace
-
-void compute_rates(const Hydro& s, Rates& r) {
+/// Current positions x = X + u of all particles, owned and ghosts.
+void current_positions(const Hydro& s, Rates& r) {
   const particles::ParticleSet& P = s.particles;
-  const ParticleFields& F = s.fields;
-  if (s.groups.built_for != P.size())
-    fail("SPH: the particles changed since they were grouped by material (update_state or "
-         "refresh_neighbours groups them)");
-  const Settings& S = s.settings;
-  // Rates for the owned particles; ghosts (other ranks' particles, mirror images) only lend
-  // their state.
-  const int n = P.owned_count(), all = P.size(), dim = s.dim;
+  const int all = P.size();
   r.x.resize(3 * static_cast<std::size_t>(all));
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < 3 * all; ++k) r.x[k] = P.X[k] + P.u[k];
-  const bool corrected = S.gradient_correction;
-  if (corrected) {
+}
+
+/// The kernel gradient correction matrices, the artificial stresses and the initial spacings
+/// that the settings ask for, on the ghosts too.
+void pair_corrections(const Hydro& s, Rates& r) {
+  const particles::ParticleSet& P = s.particles;
+  const Settings& S = s.settings;
+  const int all = P.size(), dim = s.dim;
+  if (S.gradient_correction) {
     correction_matrices(s, r.x, r.correction);
     exchange_remote(s, r.correction, 9);
     mirror_matrices(s, r.correction);
@@ -59,9 +58,14 @@ void compute_rates(const Hydro& s, Rates& r) {
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < all; ++i) r.spacing[i] = std::pow(P.mass[i] / P.density[i], 1.0 / dim);
   }
-  // What the pairs read of each particle, gathered here once per particle (the same operations
-  // as per pair, so the same values).
-  const bool solids = s.any_solid();
+}
+
+/// What the pairs read of each particle, gathered here once per particle (the same operations
+/// as per pair, so the same values).
+void gather_records(const Hydro& s, bool solids, Rates& r) {
+  const particles::ParticleSet& P = s.particles;
+  const ParticleFields& F = s.fields;
+  const int all = P.size();
   r.xh.resize(4 * static_cast<std::size_t>(all));
   r.records.resize(Record::size * static_cast<std::size_t>(all));
 #pragma omp parallel for schedule(static)
@@ -79,31 +83,37 @@ void compute_rates(const Hydro& s, Rates& r) {
     const double inv_rho2 = 1.0 / (F.rho[k] * F.rho[k]);
     for (int c = 0; c < 6; ++c) q[Record::T + c] = solids ? F.S[6 * k + c] * inv_rho2 : 0.0;
   }
-  r.dv.assign(3 * static_cast<std::size_t>(all), 0.0);
-  r.drho.assign(all, 0.0);
-  r.de.assign(all, 0.0);
-  if (solids) {
-    // Velocity gradient L_i = sum_j (m_j / rho_j)(v_j - v_i) (x) grad_i W_ij, and the Jaumann
-    // rate of the deviatoric stress.
-    r.grad_v.assign(9 * static_cast<std::size_t>(all), 0.0);
-    r.dS.assign(6 * static_cast<std::size_t>(all), 0.0);
-    // Each owned particle's shear modulus, the law dispatched once per material; -1: no
-    // strength (no Jaumann rate).
-    r.shear.assign(n, -1.0);
-    for (std::size_t m = 0; m < s.materials.size(); ++m) {
-      const int* members = s.groups.of(m);
-      const int count = s.groups.owned(m);
-      std::visit(
-          [&](const auto& law) {
-            using Law = std::decay_t<decltype(law)>;
-            if constexpr (!std::is_same_v<Law, materials::NoStrength>)
-              for (int k = 0; k < count; ++k)
-                r.shear[members[k]] = materials::shear_modulus(law, F.rho[members[k]]);
-          },
-          s.materials[m].strength);
-    }
+}
+
+/// Zeroed velocity gradients and stress rates, and each owned particle's shear modulus, the
+/// law dispatched once per material; -1: no strength (no Jaumann rate).
+void prepare_strength(const Hydro& s, Rates& r) {
+  const ParticleFields& F = s.fields;
+  const int all = s.particles.size();
+  // Velocity gradient L_i = sum_j (m_j / rho_j)(v_j - v_i) (x) grad_i W_ij, and the Jaumann
+  // rate of the deviatoric stress.
+  r.grad_v.assign(9 * static_cast<std::size_t>(all), 0.0);
+  r.dS.assign(6 * static_cast<std::size_t>(all), 0.0);
+  r.shear.assign(s.particles.owned_count(), -1.0);
+  for (std::size_t m = 0; m < s.materials.size(); ++m) {
+    const int* members = s.groups.of(m);
+    const int count = s.groups.owned(m);
+    std::visit(
+        [&](const auto& law) {
+          using Law = std::decay_t<decltype(law)>;
+          if constexpr (!std::is_same_v<Law, materials::NoStrength>)
+            for (int k = 0; k < count; ++k)
+              r.shear[members[k]] = materials::shear_modulus(law, F.rho[members[k]]);
+        },
+        s.materials[m].strength);
   }
-  sum_pairs(s, r, solids);
+}
+
+/// The accelerations of the surface loads, held forces and transmitting boundaries; held
+/// components take whatever force it needs to keep them at rest: the roller's reaction.
+void add_boundary_accelerations(const Hydro& s, Rates& r) {
+  const particles::ParticleSet& P = s.particles;
+  const ParticleFields& F = s.fields;
   for (const SurfaceLoad& load : s.loads)
     for (std::size_t k = 0; k < load.particles.size(); ++k) {
       const int i = load.particles[k];
@@ -124,11 +134,31 @@ void compute_rates(const Hydro& s, Rates& r) {
       boundary_force(b, k, &P.v[3 * static_cast<std::size_t>(i)], f);
       for (int d = 0; d < 3; ++d) r.dv[3 * i + d] += f[d] / P.mass[i];
     }
-  // Held components take whatever force it needs to keep them at rest: the roller's reaction.
-  for (int i = 0; i < n; ++i)
+  for (int i = 0; i < P.owned_count(); ++i)
     if (F.held_axes[i])
       for (int d = 0; d < 3; ++d)
         if (F.held_axes[i] & (1 << d)) r.dv[3 * i + d] = 0.0;
+}
+
+} // namespace
+
+void compute_rates(const Hydro& s, Rates& r) {
+  if (s.groups.built_for != s.particles.size())
+    fail("SPH: the particles changed since they were grouped by material (update_state or "
+         "refresh_neighbours groups them)");
+  // Rates for the owned particles; ghosts (other ranks' particles, mirror images) only lend
+  // their state.
+  const int all = s.particles.size();
+  current_positions(s, r);
+  pair_corrections(s, r);
+  const bool solids = s.any_solid();
+  gather_records(s, solids, r);
+  r.dv.assign(3 * static_cast<std::size_t>(all), 0.0);
+  r.drho.assign(all, 0.0);
+  r.de.assign(all, 0.0);
+  if (solids) prepare_strength(s, r);
+  sum_pairs(s, r, solids);
+  add_boundary_accelerations(s, r);
 }
 
 void external_forces(const Hydro& s, std::vector<int>& who, std::vector<double>& force) {
