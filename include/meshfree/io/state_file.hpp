@@ -114,8 +114,7 @@ struct Saver {
   void operator()(const std::string& name, const Eigen::Matrix<double, R, C, O, MR, MC>& m) const {
     out.put(prefix + name, std::vector<double>(m.data(), m.data() + R * C));
   }
-  template <class T>
-  void operator()(const particles::FieldInfo& f, const std::vector<T>& v) const {
+  template <class T> void operator()(const particles::FieldInfo& f, const std::vector<T>& v) const {
     (*this)(f.name, v);
   }
   Saver operator/(const std::string& part) const { return {out, prefix + part + "."}; }

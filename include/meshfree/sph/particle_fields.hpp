@@ -63,7 +63,9 @@ struct ParticleFields {
     for_each_member([this, &visit](const particles::FieldInfo& f, auto m) { visit(f, this->*m); });
   }
   /// What a checkpoint keeps: every checkpointed array by name.
-  template <class Visit> void for_each_state(Visit&& visit) { particles::for_each_kept(*this, visit); }
+  template <class Visit> void for_each_state(Visit&& visit) {
+    particles::for_each_kept(*this, visit);
+  }
 };
 
 } // namespace mf::sph

@@ -2,10 +2,10 @@
 // with its ghosts, the halo exchange, one field file written by every rank together, and SPH's
 // particles moving between ranks with every registered array. Run on one rank by the unit-test
 // suite and on two by ctest `mpi.distribution_halo_and_fields`.
+#include "field_registry_support.hpp"
 #include "meshfree/distribution/local_part.hpp"
 #include "meshfree/io/results.hpp"
 #include "meshfree/sph/decomposition.hpp"
-#include "field_registry_support.hpp"
 #include "test_support.hpp"
 #include <catch2/catch.hpp>
 #include <filesystem>

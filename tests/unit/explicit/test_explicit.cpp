@@ -1,6 +1,7 @@
 // The pieces every explicit analysis shares: the time loop's output schedule and its stop on a
 // non-finite state, gauges, particle lattices, the particle set's owned and ghost ranges, and
 // the summary.json and history.csv writer.
+#include "field_registry_support.hpp"
 #include "meshfree/explicit/gauges.hpp"
 #include "meshfree/explicit/time_loop.hpp"
 #include "meshfree/geometry/lattice.hpp"
@@ -9,7 +10,6 @@
 #include "meshfree/particles/particle_set.hpp"
 #include "meshfree/pd/particle_order.hpp"
 #include "meshfree/sph/particle_fields.hpp"
-#include "field_registry_support.hpp"
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
