@@ -108,8 +108,7 @@ PdRun::PdRun(PdSetup& setup, const io::PdSpec& spec, io::OutputDirectory* out, P
 
   fields_.scalar("damage", phi_); // derived: pd::damage at each write
   p.for_each_field([this](const particles::FieldInfo& f, const auto& a) {
-    if (f.output && f.components == 3) fields_.vector(f.output, a);
-    if (f.output && f.components == 1) fields_.scalar(f.output, a);
+    if (f.output) f.components == 3 ? fields_.vector(f.output, a) : fields_.scalar(f.output, a);
   });
   // Each frame shows the deformed body, as LS-DYNA's d3plot does: the particles at X + u.
   fields_.positions([this](std::vector<double>& x) {
