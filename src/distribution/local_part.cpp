@@ -70,10 +70,9 @@ LocalPart local_part(const particles::ParticleSet& whole, const Ranks& ranks, do
   const long end = blocks.first(ranks.rank + 1);
   particles::ParticleSet& p = part.particles;
   std::vector<long> owned;
+  // Each particle held is a copy of the whole body's, every registered array with it.
   for (long i = part.first; i < end; ++i) {
-    const int k = p.add(whole.reference(i), whole.volume[i], whole.density[i], whole.material[i],
-                        whole.body[i]);
-    p.id[k] = i;
+    p.add_copy(whole, static_cast<int>(i));
     owned.push_back(i);
   }
   // Ids sorted increasingly are grouped by owner: the blocks are contiguous.
@@ -81,14 +80,6 @@ LocalPart local_part(const particles::ParticleSet& whole, const Ranks& ranks, do
   std::vector<int> owner(ghosts.size());
   for (std::size_t k = 0; k < ghosts.size(); ++k) owner[k] = blocks.owner(ghosts[k]);
   for (long j : ghosts) p.add_ghost(whole, static_cast<int>(j));
-  for (int i : p.all()) {
-    const long g = p.id[i];
-    for (int d = 0; d < 3; ++d) {
-      p.u[3 * i + d] = whole.u[3 * g + d];
-      p.v[3 * i + d] = whole.v[3 * g + d];
-      p.a[3 * i + d] = whole.a[3 * g + d];
-    }
-  }
   p.time = whole.time;
   p.step = whole.step;
   part.local_of.assign(n, -1);

@@ -106,10 +106,10 @@ PdRun::PdRun(PdSetup& setup, const io::PdSpec& spec, io::OutputDirectory* out, P
     H.insert(H.end(), {"crack_tip_x", "crack_tip_y", "crack_tip_z", "crack_length"});
   r_.history = io::History(H);
 
-  fields_.vector("displacement", p.u);
-  fields_.vector("velocity", p.v);
-  fields_.scalar("damage", phi_);
-  fields_.scalar("material", p.material);
+  fields_.scalar("damage", phi_); // derived: pd::damage at each write
+  p.for_each_field([this](const particles::FieldInfo& f, const auto& a) {
+    if (f.output) f.components == 3 ? fields_.vector(f.output, a) : fields_.scalar(f.output, a);
+  });
   // Each frame shows the deformed body, as LS-DYNA's d3plot does: the particles at X + u.
   fields_.positions([this](std::vector<double>& x) {
     const particles::ParticleSet& q = setup_.model.particles;
@@ -244,7 +244,8 @@ void PdRun::write_fields() {
 template <class Visit> void PdRun::for_each_state(const Visit& visit) {
   io::visit_count(visit, "particles", setup_.particles_total);
   particles::ParticleSet& p = setup_.model.particles;
-  visit("particles.u", p.u), visit("particles.v", p.v), visit("particles.a", p.a);
+  // The particles keep their rank: what the set-up made, it makes again at restart.
+  particles::for_each_kept(p, visit / "particles", particles::kSetUp);
   visit("particles.time", p.time), visit("particles.step", p.step);
   pd::BondState& b = setup_.state;
   visit("bonds.intact", b.intact), visit("bonds.plastic", b.plastic);

@@ -89,22 +89,18 @@ SphRun::SphRun(sph::Hydro& h, const io::SphSpec& spec, io::OutputDirectory* out,
   r_.history = io::History(H);
   e0_ = sph::energies(h_).total();
 
-  // The body's particles only (ghosts, copies and mirror images, are not written).
-  field("displacement", 3, owned_values(h_, P.u, 3));
-  field("velocity", 3, owned_values(h_, P.v, 3));
-  field("density", 1, owned_values(h_, F.rho, 1));
-  field("pressure", 1, owned_values(h_, F.p, 1));
-  field("specific_energy", 1, owned_values(h_, F.e, 1));
-  field("smoothing_length", 1, owned_values(h_, F.h, 1));
+  // The body's particles only (ghosts, copies and mirror images, are not written): the arrays
+  // the registries name for output, then the quantities derived from them.
+  const auto written = [this](const particles::FieldInfo& f, const auto& a) {
+    if (f.output) field(f.output, f.components, owned_values(h_, a, f.components));
+  };
+  P.for_each_field(written);
+  F.for_each_field(written);
   field("von_mises", 1, [this](std::vector<double>& mises) {
     mises.resize(h_.particles.owned_count());
     for (int i = 0; i < h_.particles.owned_count(); ++i) mises[i] = von_mises(i);
   });
   stress_fields();
-  field("plastic_strain", 1, owned_values(h_, F.alpha, 1));
-  field("damage", 1, owned_values(h_, F.damage, 1));
-  field("failed", 1, owned_values(h_, F.failed, 1));
-  field("material", 1, owned_values(h_, P.material, 1));
   // Each frame shows the deformed body, as LS-DYNA's d3plot does: the particles at X + u.
   fields_.positions([this](std::vector<double>& out) {
     const particles::ParticleSet& q = h_.particles;

@@ -230,6 +230,12 @@ void StateReader::other_length(const std::string& name, std::size_t size, std::s
                     "', this run has " + std::to_string(built) + " (" + path_ + ")");
 }
 
+void StateReader::not_whole(const std::string& name, std::size_t size, int components) const {
+  refuse_checkpoint("checkpoint holds " + std::to_string(size) + " values of '" + name +
+                    "', not a whole number of particles of " + std::to_string(components) +
+                    " values (" + path_ + ")");
+}
+
 template void StateWriter::put(const std::string&, const std::vector<double>&);
 template void StateWriter::put(const std::string&, const std::vector<long>&);
 template void StateWriter::put(const std::string&, const std::vector<int>&);

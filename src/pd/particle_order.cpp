@@ -50,10 +50,8 @@ std::vector<int> order_along_curve(particles::ParticleSet& p, double spacing) {
   std::vector<std::uint64_t> key(n);
   for (int i = 0; i < n; ++i) key[i] = morton_key(&p.X[3 * i], lo, spacing);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return key[a] < key[b]; });
-  for (auto* v : {&p.X, &p.u, &p.v, &p.a}) permute(*v, order, 3);
-  for (auto* v : {&p.volume, &p.density, &p.mass}) permute(*v, order, 1);
-  permute(p.material, order, 1);
-  permute(p.body, order, 1);
+  p.for_each_field(
+      [&order](const particles::FieldInfo& f, auto& a) { permute(a, order, f.components); });
   std::iota(p.id.begin(), p.id.end(), 0L);
   return order;
 }

@@ -11,23 +11,27 @@ namespace mf::sph {
 
 namespace {
 
-/// Calls visit(array, values per particle) for every per-particle array of the run.
-template <class Visit> void for_each_array(Hydro& s, Visit&& visit) {
-  s.particles.for_each_array(visit);
-  s.fields.for_each_array(visit);
+/// Calls visit(info, array) for every per-particle array of the run: the particle set's
+/// registry, then SPH's.
+template <class Visit> void for_each_field(Hydro& s, Visit&& visit) {
+  s.particles.for_each_field(visit);
+  s.fields.for_each_field(visit);
 }
 
-/// Bytes of one particle's record (every array's values).
+/// Bytes of one particle's record: the values of every array that migrates.
 std::size_t record_bytes(Hydro& s) {
   std::size_t bytes = 0;
-  for_each_array(s, [&bytes](auto& a, int per) { bytes += per * sizeof(a[0]); });
+  for_each_field(s, [&bytes](const particles::FieldInfo& f, auto& a) {
+    if (f.has(particles::kMigrates)) bytes += f.components * sizeof(a[0]);
+  });
   return bytes;
 }
 
 /// Appends the records of particles `which` to `out`, array by array.
 void pack(Hydro& s, const std::vector<int>& which, std::vector<unsigned char>& out) {
-  for_each_array(s, [&](auto& a, int per) {
-    const std::size_t item = per * sizeof(a[0]);
+  for_each_field(s, [&](const particles::FieldInfo& f, auto& a) {
+    if (!f.has(particles::kMigrates)) return;
+    const std::size_t per = f.components, item = per * sizeof(a[0]);
     const std::size_t at = out.size();
     out.resize(at + which.size() * item);
     for (std::size_t k = 0; k < which.size(); ++k)
@@ -35,12 +39,14 @@ void pack(Hydro& s, const std::vector<int>& which, std::vector<unsigned char>& o
   });
 }
 
-/// Appends `count` particles from records that pack() wrote at `in`; returns the bytes read.
+/// Appends `count` particles from records that pack() wrote at `in` (an array that does not
+/// migrate gets zeros); returns the bytes read.
 std::size_t unpack(Hydro& s, const unsigned char* in, std::size_t count) {
   std::size_t at = 0;
-  for_each_array(s, [&](auto& a, int per) {
-    const std::size_t item = per * sizeof(a[0]), old = a.size();
+  for_each_field(s, [&](const particles::FieldInfo& f, auto& a) {
+    const std::size_t per = f.components, item = per * sizeof(a[0]), old = a.size();
     a.resize(old + per * count);
+    if (!f.has(particles::kMigrates)) return;
     std::memcpy(&a[old], in + at, count * item);
     at += count * item;
   });
@@ -49,10 +55,11 @@ std::size_t unpack(Hydro& s, const unsigned char* in, std::size_t count) {
 
 /// Keeps particles `which` (owned, no ghost present), in that order.
 void keep_only(Hydro& s, const std::vector<int>& which) {
-  for_each_array(s, [&which](auto& a, int per) {
+  for_each_field(s, [&which](const particles::FieldInfo& f, auto& a) {
+    const std::size_t per = f.components;
     std::remove_reference_t<decltype(a)> kept(which.size() * per);
     for (std::size_t k = 0; k < which.size(); ++k)
-      for (int c = 0; c < per; ++c)
+      for (std::size_t c = 0; c < per; ++c)
         kept[per * k + c] = a[per * static_cast<std::size_t>(which[k]) + c];
     a.swap(kept);
   });

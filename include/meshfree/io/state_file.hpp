@@ -3,15 +3,16 @@
 // file, written exactly as held in memory (the doubles bit for bit), so that a restart reads back
 // the state the run had. The modules that hold state say what it is by a visitor,
 //   template <class Visit> void for_each_state(Visit&& visit) { visit("name", member); ... }
-// visiting vectors, scalars and fixed-size Eigen vectors by name, as ParticleSet::for_each_array
-// does for migration; the writer and the reader below are such visitors (Saver, Loader), so a
-// state is listed once.
+// visiting vectors, scalars and fixed-size Eigen vectors by name, and per-particle arrays by
+// their registry entry (visit(particles::FieldInfo, array): ParticleSet::for_each_state); the
+// writer and the reader below are such visitors (Saver, Loader), so a state is listed once.
 //
 // Every dataset carries a 64-bit checksum of its values (attribute "fnv1a64"), verified when it is
 // read: a flipped bit that leaves the file readable is refused like a truncated file, and so is an
 // array whose length differs from the one the run built (CheckpointRefused, exit 2).
 #include "meshfree/core/error.hpp"
 #include "meshfree/core/types.hpp"
+#include "meshfree/particles/field_info.hpp"
 #include <algorithm>
 #include <cstdint>
 #include <string>
@@ -84,6 +85,7 @@ public:
   [[noreturn]] void wrong_size(const std::string& name, std::size_t size) const;
   [[noreturn]] void other_length(const std::string& name, std::size_t size,
                                  std::size_t built) const;
+  [[noreturn]] void not_whole(const std::string& name, std::size_t size, int components) const;
 
 private:
   std::string path_;
@@ -111,6 +113,9 @@ struct Saver {
   template <int R, int C, int O, int MR, int MC>
   void operator()(const std::string& name, const Eigen::Matrix<double, R, C, O, MR, MC>& m) const {
     out.put(prefix + name, std::vector<double>(m.data(), m.data() + R * C));
+  }
+  template <class T> void operator()(const particles::FieldInfo& f, const std::vector<T>& v) const {
+    (*this)(f.name, v);
   }
   Saver operator/(const std::string& part) const { return {out, prefix + part + "."}; }
   /// See Loader::resizing.
@@ -145,6 +150,12 @@ struct Loader {
     in.get(prefix + name, v);
     if (v.size() != static_cast<std::size_t>(R * C)) in.wrong_size(prefix + name, v.size());
     std::copy(v.begin(), v.end(), m.data());
+  }
+  /// A per-particle array must hold whole particles: a multiple of its values per particle.
+  template <class T> void operator()(const particles::FieldInfo& f, std::vector<T>& v) const {
+    (*this)(f.name, v);
+    if (v.size() % static_cast<std::size_t>(f.components) != 0)
+      in.not_whole(prefix + f.name, v.size(), f.components);
   }
   Loader operator/(const std::string& part) const { return {in, prefix + part + ".", resizes}; }
   /// For arrays whose length changes as a run goes (neighbour lists, the bonds broken in the

@@ -9,6 +9,7 @@
 // its own arrays (composition, as CabanaPD's base particles and model layers), kept as committed
 // and trial values where a step may be redone (Peridigm's STEP_N and STEP_NP1).
 #include "meshfree/core/types.hpp"
+#include "meshfree/particles/field_info.hpp"
 #include <vector>
 
 namespace mf::particles {
@@ -80,7 +81,13 @@ struct ParticleSet {
   int add_ghost(int source) { return add_ghost(*this, source); }
   /// Appends a ghost particle, a copy of particle `source` of `from` (this set or the whole body
   /// another rank owns a part of), id included.
-  int add_ghost(const ParticleSet& from, int source);
+  int add_ghost(const ParticleSet& from, int source) {
+    begin_ghosts();
+    return add_copy(from, source);
+  }
+  /// Appends a copy of particle `source` of `from` (every registered array, id included): an
+  /// owned particle until the ghosts begin, a ghost after. Returns its index.
+  int add_copy(const ParticleSet& from, int source);
   /// Removes every ghost particle.
   void drop_ghosts();
   /// Removes the ghost particles from index `first` on (first >= owned_count()).
@@ -90,19 +97,36 @@ struct ParticleSet {
   void begin_ghosts() {
     if (owned_ < 0) owned_ = size();
   }
-  /// Calls visit(array, values per particle) for every per-particle array: what a particle that
-  /// moves to another rank takes with it.
-  template <class Visit> void for_each_array(Visit&& visit) {
-    visit(X, 3), visit(volume, 1), visit(density, 1), visit(mass, 1), visit(material, 1);
-    visit(body, 1), visit(id, 1), visit(u, 3), visit(v, 3), visit(a, 3);
+  /// The registry of the set's per-particle arrays (particles/field_info.hpp): calls
+  /// visit(info, &ParticleSet::array) once per array. A new per-particle array is added here.
+  template <class Visit> static constexpr void for_each_member(Visit&& visit) {
+    constexpr unsigned kept = kMigrates | kCheckpointed, reference = kept | kSetUp;
+    visit(FieldInfo{"X", 3, reference}, &ParticleSet::X);
+    visit(FieldInfo{"volume", 1, reference}, &ParticleSet::volume);
+    visit(FieldInfo{"density", 1, reference}, &ParticleSet::density);
+    visit(FieldInfo{"mass", 1, reference}, &ParticleSet::mass);
+    visit(FieldInfo{"material", 1, reference, "material"}, &ParticleSet::material);
+    visit(FieldInfo{"body", 1, reference}, &ParticleSet::body);
+    visit(FieldInfo{"id", 1, reference}, &ParticleSet::id);
+    visit(FieldInfo{"u", 3, kept, "displacement"}, &ParticleSet::u);
+    visit(FieldInfo{"v", 3, kept, "velocity"}, &ParticleSet::v);
+    visit(FieldInfo{"a", 3, kept}, &ParticleSet::a);
   }
-
-  /// Every array by name, the instant and where the ghosts begin (a checkpoint keeps them).
+  /// Calls visit(info, array) for every per-particle array, in the registry's order.
+  template <class Visit> void for_each_field(Visit&& visit) {
+    for_each_member([this, &visit](const FieldInfo& f, auto m) { visit(f, this->*m); });
+  }
+  template <class Visit> void for_each_field(Visit&& visit) const {
+    for_each_member([this, &visit](const FieldInfo& f, auto m) { visit(f, this->*m); });
+  }
+  /// The set's own numbers: the instant, the step and where the ghosts begin.
+  template <class Visit> void for_each_scalar(Visit&& visit) {
+    visit("time", time), visit("step", step), visit("owned", owned_);
+  }
+  /// What a checkpoint keeps: every checkpointed array by name, then the set's numbers.
   template <class Visit> void for_each_state(Visit&& visit) {
-    visit("X", X), visit("volume", volume), visit("density", density), visit("mass", mass);
-    visit("material", material), visit("body", body), visit("id", id), visit("u", u);
-    visit("v", v), visit("a", a), visit("time", time), visit("step", step);
-    visit("owned", owned_);
+    for_each_kept(*this, visit);
+    for_each_scalar(visit);
   }
 
 private:

@@ -2,6 +2,7 @@
 // What SPH adds to each particle of the particle set (particles/particle_set.hpp): density,
 // energy, smoothing length, the state the equations of state and strength models give, and the
 // strength history. Arrays run over the set's particles, ghosts (mirror images) included.
+#include "meshfree/particles/field_info.hpp"
 #include <vector>
 
 namespace mf::sph {
@@ -32,22 +33,38 @@ struct ParticleFields {
   void append_copy(int i);
   /// Drops every particle from index n on.
   void truncate(int n);
-  /// Calls visit(array, values per particle) for every array above: what a particle that moves
-  /// to another rank takes with it.
-  /// Every array by name (a checkpoint keeps them).
-  template <class Visit> void for_each_state(Visit&& visit) {
-    visit("rho", rho), visit("e", e), visit("h", h), visit("h_ref", h_ref);
-    visit("light_time", light_time), visit("fixed", fixed), visit("held_axes", held_axes);
-    visit("p", p), visit("c", c);
-    visit("S", S), visit("back_stress", back_stress), visit("alpha", alpha);
-    visit("rho_max", rho_max), visit("damage", damage), visit("strain_rate", strain_rate);
-    visit("failed", failed);
+  /// The registry of SPH's per-particle arrays (particles/field_info.hpp): calls
+  /// visit(info, &ParticleFields::array) once per array. A new per-particle array is added here.
+  template <class Visit> static constexpr void for_each_member(Visit&& visit) {
+    using namespace particles;
+    constexpr unsigned kept = kMigrates | kCheckpointed, set_up = kept | kSetUp;
+    visit(FieldInfo{"rho", 1, kept, "density"}, &ParticleFields::rho);
+    visit(FieldInfo{"e", 1, kept, "specific_energy"}, &ParticleFields::e);
+    visit(FieldInfo{"h", 1, kept, "smoothing_length"}, &ParticleFields::h);
+    visit(FieldInfo{"h_ref", 1, set_up}, &ParticleFields::h_ref);
+    visit(FieldInfo{"light_time", 1, kept}, &ParticleFields::light_time);
+    visit(FieldInfo{"fixed", 1, set_up}, &ParticleFields::fixed);
+    visit(FieldInfo{"held_axes", 1, set_up}, &ParticleFields::held_axes);
+    visit(FieldInfo{"p", 1, kept, "pressure"}, &ParticleFields::p);
+    visit(FieldInfo{"c", 1, kept}, &ParticleFields::c);
+    visit(FieldInfo{"S", 6, kept}, &ParticleFields::S);
+    visit(FieldInfo{"back_stress", 6, kept}, &ParticleFields::back_stress);
+    visit(FieldInfo{"alpha", 1, kept, "plastic_strain"}, &ParticleFields::alpha);
+    visit(FieldInfo{"rho_max", 1, kept}, &ParticleFields::rho_max);
+    visit(FieldInfo{"damage", 1, kept, "damage"}, &ParticleFields::damage);
+    visit(FieldInfo{"strain_rate", 1, kept}, &ParticleFields::strain_rate);
+    visit(FieldInfo{"failed", 1, kept, "failed"}, &ParticleFields::failed);
   }
-  template <class Visit> void for_each_array(Visit&& visit) {
-    visit(rho, 1), visit(e, 1), visit(h, 1), visit(h_ref, 1), visit(light_time, 1);
-    visit(fixed, 1), visit(held_axes, 1), visit(p, 1), visit(c, 1), visit(S, 6), visit(back_stress, 6);
-    visit(alpha, 1), visit(rho_max, 1), visit(damage, 1), visit(strain_rate, 1);
-    visit(failed, 1);
+  /// Calls visit(info, array) for every array, in the registry's order.
+  template <class Visit> void for_each_field(Visit&& visit) {
+    for_each_member([this, &visit](const particles::FieldInfo& f, auto m) { visit(f, this->*m); });
+  }
+  template <class Visit> void for_each_field(Visit&& visit) const {
+    for_each_member([this, &visit](const particles::FieldInfo& f, auto m) { visit(f, this->*m); });
+  }
+  /// What a checkpoint keeps: every checkpointed array by name.
+  template <class Visit> void for_each_state(Visit&& visit) {
+    particles::for_each_kept(*this, visit);
   }
 };
 

@@ -1,8 +1,11 @@
 // Domain decomposition of explicit runs (distribution/): id blocks, one rank's part of a body
-// with its ghosts, the halo exchange, and one field file written by every rank together. Run
-// on one rank by the unit-test suite and on two by ctest `mpi.distribution_halo_and_fields`.
+// with its ghosts, the halo exchange, one field file written by every rank together, and SPH's
+// particles moving between ranks with every registered array. Run on one rank by the unit-test
+// suite and on two by ctest `mpi.distribution_halo_and_fields`.
+#include "field_registry_support.hpp"
 #include "meshfree/distribution/local_part.hpp"
 #include "meshfree/io/results.hpp"
+#include "meshfree/sph/decomposition.hpp"
 #include "test_support.hpp"
 #include <catch2/catch.hpp>
 #include <filesystem>
@@ -78,6 +81,57 @@ TEST_CASE("a rank's part holds every particle within reach of its own, and the h
     REQUIRE(ids[i] == p.id[i]);
     for (int d = 0; d < 3; ++d) REQUIRE(u[3 * i + d] == value_of(p.id[i], d));
   }
+}
+
+TEST_CASE("a rank's part holds a copy of every registered array of its particles",
+          "[distribution]") {
+  const auto ranks = distribution::Ranks::of(test_session().comm());
+  particles::ParticleSet whole = lattice_block(6, 5, 4, 1.0);
+  const particles::ParticleSet body = whole;
+  fill_distinct(whole, whole.size());
+  whole.X = body.X, whole.id = body.id; // the body's shape and ids stay
+  whole.time = 0.5, whole.step = 3;
+  const distribution::LocalPart part = distribution::local_part(whole, ranks, 1.5);
+  const particles::ParticleSet& p = part.particles;
+  for (int i : p.all()) require_same_particle(p, i, whole, static_cast<int>(p.id[i]));
+  REQUIRE(p.time == 0.5);
+  REQUIRE(p.step == 3);
+}
+
+TEST_CASE("SPH particles that change rank take every registered array with them",
+          "[distribution]") {
+  const auto ranks = distribution::Ranks::of(test_session().comm());
+  const int n = 40;
+  sph::Hydro h;
+  for (int i = 0; i < n; ++i) sph::add_particle(h, {1.0 * i, 0, 0}, 1.0, 1.0, 0.0, 1.0, 0);
+  particles::ParticleSet& P = h.particles;
+  fill_distinct(P, n);
+  fill_distinct(h.fields, n);
+  // A row of particles along x, ids by index, displaced a little.
+  for (int i = 0; i < n; ++i) {
+    P.id[i] = i;
+    for (int d = 0; d < 3; ++d) P.X[3 * i + d] = d == 0 ? i : 0.0, P.u[3 * i + d] = 1e-3 * i;
+  }
+  particles::ParticleSet whole = P;
+  const sph::ParticleFields whole_fields = h.fields;
+  const auto same_as_whole = [&] {
+    REQUIRE(ranks.sum(static_cast<long>(P.owned_count())) == n);
+    REQUIRE(P.size() == P.owned_count());
+    for (int i : P.owned()) {
+      const int g = static_cast<int>(P.id[i]);
+      if (i > 0) REQUIRE(P.id[i - 1] < g); // in increasing id
+      require_same_particle(P, i, whole, g);
+      require_same_particle(h.fields, i, whole_fields, g);
+    }
+  };
+  sph::distribute(h, ranks);
+  same_as_whole();
+  // The row turned end for end: on two ranks every particle crosses to the other slab.
+  for (int g = 0; g < n; ++g) whole.u[3 * g] = (n - 1.0) - 2.0 * g;
+  for (int i : P.owned()) P.u[3 * i] = whole.u[3 * P.id[i]];
+  sph::migrate(h);
+  REQUIRE(ranks.sum(h.migrated) == (ranks.size == 2 ? n : 0));
+  same_as_whole();
 }
 
 TEST_CASE("a field series spread over the ranks is one file in global id order", "[distribution]") {

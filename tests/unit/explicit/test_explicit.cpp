@@ -1,15 +1,20 @@
 // The pieces every explicit analysis shares: the time loop's output schedule and its stop on a
 // non-finite state, gauges, particle lattices, the particle set's owned and ghost ranges, and
 // the summary.json and history.csv writer.
+#include "field_registry_support.hpp"
 #include "meshfree/explicit/gauges.hpp"
 #include "meshfree/explicit/time_loop.hpp"
 #include "meshfree/geometry/lattice.hpp"
 #include "meshfree/io/results.hpp"
+#include "meshfree/io/state_file.hpp"
 #include "meshfree/particles/particle_set.hpp"
+#include "meshfree/pd/particle_order.hpp"
+#include "meshfree/sph/particle_fields.hpp"
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <set>
 
 using namespace mf;
 
@@ -183,6 +188,132 @@ TEST_CASE("ghost particles follow the owned ones", "[explicit][particles]") {
   p.drop_ghosts();
   CHECK(p.size() == 2);
   CHECK(p.ghosts().size() == 0);
+}
+
+TEST_CASE("the particle registries name each array once and write scalars and vectors only",
+          "[explicit][particles]") {
+  std::set<std::string> written;
+  const auto check = [&written](auto registry) {
+    std::set<std::string> names;
+    registry([&](const particles::FieldInfo& f, auto) {
+      INFO(f.name);
+      REQUIRE(names.insert(f.name).second);
+      REQUIRE(f.components >= 1);
+      if (f.output) REQUIRE((f.components == 1 || f.components == 3));
+      if (f.output) REQUIRE(written.insert(f.output).second); // one fields.h5 for both
+    });
+  };
+  check([](auto&& visit) { particles::ParticleSet::for_each_member(visit); });
+  check([](auto&& visit) { sph::ParticleFields::for_each_member(visit); });
+  CHECK(written == std::set<std::string>{"displacement", "velocity", "material", "density",
+                                         "specific_energy", "smoothing_length", "pressure",
+                                         "plastic_strain", "damage", "failed"});
+}
+
+TEST_CASE("a ghost copy, a cut and a reordering carry every registered array of a particle",
+          "[explicit][particles]") {
+  particles::ParticleSet p;
+  sph::ParticleFields f;
+  for (int i = 0; i < 5; ++i) p.add({1.0 * i, 0, 0}, 1.0, 1.0, 0), f.add(1.0, 0.0, 1.0, false);
+  fill_distinct(p, p.size());
+  fill_distinct(f, p.size());
+  const int g = p.add_ghost(2);
+  f.append_copy(2);
+  require_same_particle(p, g, p, 2);
+  // SPH's copy is a mirror image: fixed, and otherwise its source.
+  REQUIRE(f.fixed[g] == 1);
+  f.fixed[g] = f.fixed[2];
+  require_same_particle(f, g, f, 2);
+  p.add_ghost(4);
+  p.drop_ghosts_from(g + 1);
+  f.truncate(g + 1);
+  const auto six = [](const particles::FieldInfo& info, const auto& a) {
+    INFO(info.name);
+    REQUIRE(a.size() == static_cast<std::size_t>(info.components) * 6);
+  };
+  p.for_each_field(six);
+  f.for_each_field(six);
+  // Reordered along the space-filling curve: particle k is particle order[k] of before, every
+  // array with it, and ids are numbered again.
+  particles::ParticleSet q;
+  for (int i = 0; i < 6; ++i) q.add({0, 0, 0}, 1.0, 1.0, 0);
+  fill_distinct(q, q.size());
+  for (int i = 0; i < q.size(); ++i) q.X[3 * i] = q.X[3 * i + 1] = q.X[3 * i + 2] = 6.0 - i;
+  const particles::ParticleSet before = q;
+  const std::vector<int> order = pd::order_along_curve(q, 1.0);
+  REQUIRE(order == std::vector<int>{5, 4, 3, 2, 1, 0});
+  for (int k = 0; k < q.size(); ++k) {
+    REQUIRE(q.id[k] == k);
+    particles::ParticleSet::for_each_member([&](const particles::FieldInfo& info, auto m) {
+      if (std::string(info.name) == "id") return;
+      INFO(info.name);
+      for (int c = 0; c < info.components; ++c)
+        REQUIRE((q.*m)[info.components * k + c] == (before.*m)[info.components * order[k] + c]);
+    });
+  }
+}
+
+TEST_CASE("a checkpoint keeps every registered array of a particle and refuses a broken one",
+          "[explicit][particles][checkpoint]") {
+  const std::string dir = "test_particle_registry";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  particles::ParticleSet p;
+  sph::ParticleFields f;
+  for (int i = 0; i < 5; ++i) p.add({1.0 * i, 0, 0}, 1.0, 1.0, 0), f.add(1.0, 0.0, 1.0, false);
+  p.add_ghost(1), f.append_copy(1);
+  p.add_ghost(3), f.append_copy(3);
+  fill_distinct(p, p.size());
+  fill_distinct(f, p.size());
+  p.time = 0.25, p.step = 7;
+  const auto save = [&dir](const std::string& name, particles::ParticleSet& ps,
+                           sph::ParticleFields& fs) {
+    io::StateWriter out(dir + "/" + name);
+    ps.for_each_state(io::Saver{out, ""} / "particles");
+    fs.for_each_state(io::Saver{out, ""} / "fields");
+    out.close();
+  };
+  save("state.h5", p, f);
+  const io::StateReader in(dir + "/state.h5");
+  SECTION("read back whole, as a rank whose particles move (SPH)") {
+    particles::ParticleSet q;
+    sph::ParticleFields g;
+    const io::Loader load{in, "", true};
+    q.for_each_state(load / "particles");
+    g.for_each_state(load / "fields");
+    require_same(q, p);
+    require_same(g, f);
+    REQUIRE(q.time == 0.25);
+    REQUIRE(q.step == 7);
+    REQUIRE(q.owned_count() == 5);
+    REQUIRE(q.ghosts().size() == 2);
+  }
+  SECTION("read back over the set-up's particles (peridynamics): what the set-up made is kept") {
+    particles::ParticleSet q = p;
+    q.for_each_field([](const particles::FieldInfo&, auto& a) {
+      for (auto& x : a) x = static_cast<std::decay_t<decltype(x)>>(x + 1);
+    });
+    particles::for_each_kept(q, io::Loader{in, "particles."}, particles::kSetUp);
+    require_same(q, p, particles::kSetUp);
+    REQUIRE(q.X[0] == p.X[0] + 1); // not read
+    REQUIRE(q.u[0] == p.u[0]);
+    particles::ParticleSet more = p;
+    more.add_ghost(0);
+    REQUIRE_THROWS_AS(
+        particles::for_each_kept(more, io::Loader{in, "particles."}, particles::kSetUp),
+        io::CheckpointRefused);
+  }
+  SECTION("an array that does not hold whole particles is refused") {
+    sph::ParticleFields bad = f;
+    bad.S.push_back(0.5);
+    save("bad.h5", p, bad);
+    const io::StateReader bad_in(dir + "/bad.h5");
+    sph::ParticleFields g;
+    REQUIRE_THROWS_WITH(g.for_each_state(io::Loader{bad_in, "fields.", true}),
+                        Catch::Contains("values of 'fields.S', not a whole number of particles "
+                                        "of 6 values"));
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("summary.json keeps the header, status, sections and timers in order", "[explicit][io]") {
