@@ -21,9 +21,9 @@ struct NonlinearBlockSystem::Impl {
   VecScatter pull = nullptr;         // x -> ghost
   std::vector<PetscInt> ghost_index; // global DOF of each ghost entry
 
-  std::vector<double> d; // full-length iterate seen by the callbacks
-  double scale = 0.0;    // force scale of the last residual evaluation
-  double floor = 0.0;    // round-off floor of |R| at the last residual evaluation
+  std::vector<double> d;      // full-length iterate seen by the callbacks
+  double scale = 0.0;         // force scale of the last residual evaluation
+  double floor = 0.0;         // round-off floor of |R| at the last residual evaluation
   bool floor_reached = false; // the previous iterate of this solve was within its floor
   double tolerance = 1e-8;
   int max_iterations = 20;
@@ -96,7 +96,7 @@ PetscErrorCode form_jacobian(SNES snes, Vec X, Mat, Mat P, void* ctx) {
 /// K_pen d and alpha times the prescribed value, both near alpha u, so it is known only to
 /// round-off of that size (near 1e-8 |F| with alpha = 1e6 E/h on a plate at its limit load,
 /// growing with the prescribed displacement). The residual reports that floor (eps times the
-/// magnitudes of each row's terms, [Higham 2002] §3.5). Two iterates in a row within it are as
+/// magnitudes of each row's terms, [Higham 2002] ch. 3). Two iterates in a row within it are as
 /// converged as the arithmetic can tell: the second is a full Newton iteration from the floor.
 /// One is not enough: near a limit load the tangent is nearly singular, and the first iterate
 /// to reach the floor may still differ from the next by a correction along the soft mode.
