@@ -162,7 +162,7 @@ ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
   ElastoplasticSystem problem(spec, m);
   solvers::NonlinearBlockSystem newton(
       session.comm(), R.nodes, m.own, m.pattern.offset, m.pattern.column, problem.needed_nodes(),
-      [&](const std::vector<double>& d, double* r, double& s) { problem.residual(d, r, s); },
+      [&](const std::vector<double>& d, double* r, auto& s) { problem.residual(d, r, s); },
       [&](const std::vector<double>& d, solvers::BlockValueArrays values) {
         problem.jacobian(d, values);
       },

@@ -7,6 +7,8 @@
 #include "meshfree/implicit/elasticity.hpp"
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <string>
 
 namespace mf::implicit {
@@ -70,26 +72,34 @@ void ElastoplasticSystem::commit() {
   states_.committed_stress_zz = states_.stress_zz;
 }
 
-void ElastoplasticSystem::residual(const std::vector<double>& d, double* r, double& scale_squared) {
+void ElastoplasticSystem::residual(const std::vector<double>& d, double* r,
+                                   solvers::ResidualSums& sums) {
   const auto t0 = Clock::now();
   update_materials(d);
   const int rows = m_.pattern.rows();
   std::fill(r, r + 2 * rows, 0.0);
   add_internal_force(m_.domain_table, m_.domain_groups, m_.domain_weight, states_.stress,
                      OwnedRowAdder{m_.pattern.begin, m_.pattern.end, r});
-  double internal = 0.0, external = 0.0;
-  for (int i = 0; i < 2 * rows; ++i) internal += r[i] * r[i];
-  penalty_.multiply_add(d, r);
+  // K_pen d apart from f_int: its magnitude sets the round-off floor of the penalty rows.
+  std::vector<double> penalty(2 * static_cast<std::size_t>(rows), 0.0);
+  penalty_.multiply_add(d, penalty.data());
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  double internal = 0.0, external = 0.0, floor = 0.0;
   for (int i = 0; i < 2 * rows; ++i) {
     double applied = 0.0, load = 0.0;
     for (std::size_t c = 0; c < loads_.size(); ++c) {
       applied += factors_[c] * loads_[c][i];
       if (counts_in_scale_[c]) load += factors_[c] * loads_[c][i];
     }
-    r[i] -= applied;
+    internal += r[i] * r[i];
     external += load * load;
+    const double terms = std::abs(r[i]) + std::abs(penalty[i]) + std::abs(applied);
+    floor += eps * terms * eps * terms;
+    r[i] += penalty[i];
+    r[i] -= applied;
   }
-  scale_squared = internal + external;
+  sums.scale_squared = internal + external;
+  sums.floor_squared = floor;
   residual_seconds_ += seconds_since(t0);
 }
 

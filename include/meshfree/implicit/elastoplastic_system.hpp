@@ -12,6 +12,7 @@
 #include "meshfree/io/problem_spec.hpp"
 #include "meshfree/io/state_file.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
+#include "meshfree/solvers/nonlinear_system.hpp"
 #include <type_traits>
 #include <vector>
 
@@ -56,8 +57,9 @@ public:
   void commit();
 
   /// R(d) on the owned rows and this rank's share of the force scale |F|^2 (internal forces,
-  /// tractions and body force; not the penalty right-hand sides).
-  void residual(const std::vector<double>& d, double* r, double& scale_squared);
+  /// tractions and body force; not the penalty right-hand sides) and of the round-off floor of
+  /// |R|^2 (eps times the magnitudes of each row's internal, penalty and applied forces).
+  void residual(const std::vector<double>& d, double* r, solvers::ResidualSums& sums);
   /// dR/dd as 2x2 blocks in the order of the model's block-row pattern.
   void jacobian(const std::vector<double>& d, solvers::BlockValueArrays values);
 

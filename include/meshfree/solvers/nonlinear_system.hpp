@@ -14,8 +14,8 @@ namespace mf::solvers {
 
 struct NewtonSettings {
   /// Converged when |R| <= tolerance * |F|, with F the force scale the residual reports
-  /// (internal and external forces together); see the source for the round-off floor that
-  /// penalty terms put under |R|.
+  /// (internal and external forces together), or when |R| is within the round-off floor the
+  /// residual reports (penalty terms put it above tolerance * |F|; see the source).
   double tolerance = 1e-8;
   int max_iterations = 20;
 };
@@ -31,12 +31,20 @@ struct NewtonReport {
   std::vector<double> scale;    // the force scale |F| at the same points
 };
 
-/// Residual R(d) on the owned rows (2 values per owned node) and this rank's share of |F|^2.
+/// What a residual evaluation reports besides R, as this rank's shares of squared norms: the
+/// force scale |F|^2, and the round-off floor of R, the sum over rows of (eps * the sum of the
+/// magnitudes of the terms that make the row)^2, below which |R| cannot be resolved.
+struct ResidualSums {
+  double scale_squared = 0.0;
+  double floor_squared = 0.0;
+};
+
+/// Residual R(d) on the owned rows (2 values per owned node) and this rank's ResidualSums.
 /// `d` has the full length 2N; the entries of the nodes named in `needed` (and the owned ones)
 /// hold the current iterate. Throwing an exception marks the point as outside the domain of the
 /// residual (a failed return mapping, a NaN): SNES then stops and the message is reported.
 using ResidualFunction =
-    std::function<void(const std::vector<double>& d, double* residual, double& scale_squared)>;
+    std::function<void(const std::vector<double>& d, double* residual, ResidualSums& sums)>;
 /// Jacobian dR/dd, written in place into the matrix's values (BlockValueArrays, zero on entry).
 using JacobianFunction = std::function<void(const std::vector<double>& d, BlockValueArrays values)>;
 
