@@ -1,6 +1,5 @@
 #include "meshfree/sph/held_loads.hpp"
 #include "meshfree/core/error.hpp"
-#include <algorithm>
 #include <cmath>
 
 namespace mf::sph {

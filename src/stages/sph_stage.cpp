@@ -5,7 +5,6 @@
 #include "meshfree/explicit/sph_setup.hpp"
 #include "meshfree/implicit/point_law.hpp"
 #include "meshfree/sph/decomposition.hpp"
-#include "meshfree/sph/held_loads.hpp"
 #include "meshfree/sph/initial_state.hpp"
 #include "meshfree/sph/step.hpp"
 #include "meshfree/sph/support_balance.hpp"
