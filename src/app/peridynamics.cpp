@@ -1,8 +1,8 @@
 #include "meshfree/app/peridynamics.hpp"
 #include "meshfree/core/memory.hpp"
 #include "meshfree/explicit/run_counts.hpp"
+#include "meshfree/explicit/run_driver.hpp"
 #include "meshfree/explicit/run_summaries.hpp"
-#include "meshfree/explicit/time_loop.hpp"
 #include <cmath>
 #include <iostream>
 #include <omp.h>
@@ -21,13 +21,8 @@ explicit_dynamics::PdRunResult run_peridynamics(const io::ProblemSpec& spec,
   explicit_dynamics::log_pd_setup(spec, setup);
   result.mpi_ranks = ranks.size;
   explicit_dynamics::PdRun run(setup, s, out, result);
-  // history.csv grows on disk as the run goes: a run that is killed keeps it up to then.
-  if (out) result.history.stream_to(*out);
-  io::Checkpoints checkpoints(dir, ranks, s.checkpoint, spec.settings, restart);
-  const auto resume = restart ? restart->open(ranks.rank) : nullptr;
-  run.finish(explicit_dynamics::run_time_loop(
-      run, {s.end_time, s.history_interval, s.fields_interval}, &checkpoints, resume.get()));
-  result.checkpoints = checkpoints.counts();
+  result.checkpoints = explicit_dynamics::run_to_end(run, s, result.history,
+                                                     {out, dir, ranks, &spec.settings, restart});
   return result;
 }
 

@@ -2,9 +2,9 @@
 #include "meshfree/core/log.hpp"
 #include "meshfree/core/memory.hpp"
 #include "meshfree/explicit/run_counts.hpp"
+#include "meshfree/explicit/run_driver.hpp"
 #include "meshfree/explicit/run_summaries.hpp"
 #include "meshfree/explicit/sph_setup.hpp"
-#include "meshfree/explicit/time_loop.hpp"
 #include "meshfree/sph/decomposition.hpp"
 #include "meshfree/sph/step.hpp"
 #include <cmath>
@@ -33,13 +33,8 @@ explicit_dynamics::SphRunResult run_sph(const io::ProblemSpec& spec, io::OutputD
   if (!ranks.serial())
     log::info("sph: spread over ", ranks.size, " MPI ranks (slabs, rebalanced at each list build)");
   explicit_dynamics::SphRun run(h, s, out, result);
-  // history.csv grows on disk as the run goes: a run that is killed keeps it up to then.
-  if (out) result.history.stream_to(*out);
-  io::Checkpoints checkpoints(dir, ranks, s.checkpoint, spec.settings, restart);
-  const auto resume = restart ? restart->open(ranks.rank) : nullptr;
-  run.finish(explicit_dynamics::run_time_loop(
-      run, {s.end_time, s.history_interval, s.fields_interval}, &checkpoints, resume.get()));
-  result.checkpoints = checkpoints.counts();
+  result.checkpoints = explicit_dynamics::run_to_end(run, s, result.history,
+                                                     {out, dir, ranks, &spec.settings, restart});
   return result;
 }
 

@@ -36,10 +36,34 @@ PdRun::PdRun(PdSetup& setup, const io::PdSpec& spec, io::OutputDirectory* out, P
       fields_(out, "fields", owned_positions(setup.model.particles), field_slice(setup)) {
   pd::Model& m = setup_.model;
   const particles::ParticleSet& p = m.particles;
+  count_body();
+  if (spec_.relaxation) relax_at_start();
+  contact_ = !setup_.impactors.empty() || setup_.short_range;
+  last_ = pd::accelerate(m, setup_.state, setup_.loading, interactions(), true);
+  e0_ = pd::kinetic_energy(m) + last_.strain_energy;
+  if (contact_) e0_ += last_.contact_energy + impactor_energy();
+  broken_ = last_.broken;
+  gauge_motion();
+  r_.history = io::History(history_columns());
+
+  fields_.scalar("damage", phi_); // derived: pd::damage at each write
+  p.for_each_field([this](const particles::FieldInfo& f, const auto& a) {
+    if (f.output) f.components == 3 ? fields_.vector(f.output, a) : fields_.scalar(f.output, a);
+  });
+  // Each frame shows the deformed body, as LS-DYNA's d3plot does: the particles at X + u.
+  fields_.positions([this](std::vector<double>& x) {
+    const particles::ParticleSet& q = setup_.model.particles;
+    x.resize(3 * static_cast<std::size_t>(q.owned_count()));
+    for (std::size_t k = 0; k < x.size(); ++k) x[k] = q.X[k] + q.u[k];
+  });
+}
+
+void PdRun::count_body() {
+  const pd::Model& m = setup_.model;
   r_.particles = static_cast<int>(setup_.particles_total);
   r_.bonds = ranks().sum(m.bonds.directed) / 2; // a bond between two ranks is held by both
   // The halo: each ghost is 24 bytes of displacement received before every force evaluation.
-  const long ghosts = p.ghosts().size();
+  const long ghosts = m.particles.ghosts().size();
   r_.ghosts = ranks().sum(ghosts);
   r_.ghosts_largest = static_cast<long>(ranks().max(static_cast<double>(ghosts)));
   const double directed = std::max(1.0, static_cast<double>(m.bonds.directed));
@@ -47,33 +71,33 @@ PdRun::PdRun(PdSetup& setup, const io::PdSpec& spec, io::OutputDirectory* out, P
   r_.bond_bytes_peak = std::max(m.bonds.peak_bytes / directed, r_.bond_bytes_steady);
   r_.dt = setup_.dt;
   r_.dt_limit = setup_.dt_limit;
-  if (spec_.relaxation) {
-    MF_REQUIRE(ranks().serial(),
-               "relaxation: the static relaxation before the first step runs on "
-               "one MPI rank (",
-               ranks().size, " given)");
-    PhaseTimer::Scope scope(r_.timer, "relaxation");
-    const std::vector<double> v0 = m.particles.v;
-    pd::RelaxSettings settings;
-    settings.tolerance = spec_.relaxation->tolerance;
-    settings.max_iterations = spec_.relaxation->max_iterations;
-    r_.relaxation = pd::relax(m, setup_.state, setup_.loading, settings);
-    m.particles.v = v0;
-    const pd::RelaxReport& x = *r_.relaxation;
-    MF_REQUIRE(x.converged, "relaxation: no static equilibrium within ", x.iterations,
-               " iterations (residual ratio ", x.residual_ratio, " against the tolerance ",
-               settings.tolerance, "); raise relaxation.max_iterations or check the supports");
-    log::info("relaxation: static equilibrium under the loads at t = 0 in ", x.iterations,
-              " iterations (residual ratio ", x.residual_ratio, "), ", x.seconds, " s");
-  }
-  contact_ = !setup_.impactors.empty() || setup_.short_range;
-  last_ = pd::accelerate(m, setup_.state, setup_.loading, interactions(), true);
-  e0_ = pd::kinetic_energy(m) + last_.strain_energy;
-  if (contact_) e0_ += last_.contact_energy + impactor_energy();
-  broken_ = last_.broken;
+}
 
+void PdRun::relax_at_start() {
+  MF_REQUIRE(ranks().serial(),
+             "relaxation: the static relaxation before the first step runs on "
+             "one MPI rank (",
+             ranks().size, " given)");
+  PhaseTimer::Scope scope(r_.timer, "relaxation");
+  pd::Model& m = setup_.model;
+  const std::vector<double> v0 = m.particles.v;
+  pd::RelaxSettings settings;
+  settings.tolerance = spec_.relaxation->tolerance;
+  settings.max_iterations = spec_.relaxation->max_iterations;
+  r_.relaxation = pd::relax(m, setup_.state, setup_.loading, settings);
+  m.particles.v = v0;
+  const pd::RelaxReport& x = *r_.relaxation;
+  MF_REQUIRE(x.converged, "relaxation: no static equilibrium within ", x.iterations,
+             " iterations (residual ratio ", x.residual_ratio, " against the tolerance ",
+             settings.tolerance, "); raise relaxation.max_iterations or check the supports");
+  log::info("relaxation: static equilibrium under the loads at t = 0 in ", x.iterations,
+            " iterations (residual ratio ", x.residual_ratio, "), ", x.seconds, " s");
+}
+
+void PdRun::gauge_motion() {
+  const particles::ParticleSet& p = setup_.model.particles;
   const char* axes[] = {"x", "y", "z"};
-  const int dims = m.plane() ? 2 : 3;
+  const int dims = setup_.model.plane() ? 2 : 3;
   for (const auto* field : {&p.u, &p.v, &p.a})
     for (int d = 0; d < dims; ++d) {
       const std::string name = std::string(field == &p.u   ? "u"
@@ -84,6 +108,11 @@ PdRun::PdRun(PdSetup& setup, const io::PdSpec& spec, io::OutputDirectory* out, P
       gauges_.record(name, value);
       gauges_.track(name, value);
     }
+}
+
+std::vector<std::string> PdRun::history_columns() const {
+  const char* axes[] = {"x", "y", "z"};
+  const int dims = setup_.model.plane() ? 2 : 3;
   std::vector<std::string> H = {"time",          "step",          "kinetic_energy",
                                 "strain_energy", "external_work", "energy_balance",
                                 "broken_bonds",  "max_damage"};
@@ -104,18 +133,7 @@ PdRun::PdRun(PdSetup& setup, const io::PdSpec& spec, io::OutputDirectory* out, P
   for (const std::string& c : gauges_.columns()) H.push_back(c);
   if (spec_.crack.enabled)
     H.insert(H.end(), {"crack_tip_x", "crack_tip_y", "crack_tip_z", "crack_length"});
-  r_.history = io::History(H);
-
-  fields_.scalar("damage", phi_); // derived: pd::damage at each write
-  p.for_each_field([this](const particles::FieldInfo& f, const auto& a) {
-    if (f.output) f.components == 3 ? fields_.vector(f.output, a) : fields_.scalar(f.output, a);
-  });
-  // Each frame shows the deformed body, as LS-DYNA's d3plot does: the particles at X + u.
-  fields_.positions([this](std::vector<double>& x) {
-    const particles::ParticleSet& q = setup_.model.particles;
-    x.resize(3 * static_cast<std::size_t>(q.owned_count()));
-    for (std::size_t k = 0; k < x.size(); ++k) x[k] = q.X[k] + q.u[k];
-  });
+  return H;
 }
 
 void PdRun::advance(double dt, bool history_due) {

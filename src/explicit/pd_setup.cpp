@@ -152,86 +152,92 @@ void keep_rank_part(PdSetup& out, const distribution::Ranks& ranks, double reach
   m.halo = std::move(part.halo);
 }
 
-} // namespace
-
-PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer,
-                       const distribution::Ranks& ranks) {
-  const io::PdSpec& s = *spec.pd;
-  PdSetup out;
-  pd::Model& m = out.model;
+/// The model's parameters from the spec, before it has particles.
+pd::Model model_of(const io::PdSpec& s) {
+  pd::Model m;
   m.dimension = s.dimension;
   m.thickness = s.thickness;
   m.spacing = s.spacing;
   m.horizon = s.horizon_factor * s.spacing;
   m.deterministic = s.deterministic;
   for (const auto& mat : s.materials) m.material_names.push_back(mat.name);
-  {
-    PhaseTimer::Scope scope(timer, "particles");
-    m.particles = lattice(spec);
-    // Neighbours close in space close in memory; everything below is built in this order.
-    pd::order_along_curve(m.particles, s.spacing);
+  return m;
+}
+
+pd::Constraint constraint_of(const io::PdCondition& c, const std::vector<int>& group) {
+  pd::Constraint k;
+  k.name = c.name;
+  k.particles = group;
+  k.velocity = c.kind == io::PdCondition::Kind::Velocity;
+  for (int d = 0; d < 3; ++d) k.fixed[d] = c.fixed[d], k.value[d] = c.value(d);
+  k.function = c.function;
+  return k;
+}
+
+/// A body force, a traction as a body force on its layer, or a blast.
+pd::BodyLoad load_of(const io::PdCondition& c, const particles::ParticleSet& p,
+                     const std::vector<int>& group, double spacing, int dims) {
+  pd::BodyLoad load;
+  load.name = c.name;
+  load.particles = group;
+  load.density = c.kind == io::PdCondition::Kind::Traction
+                     ? traction_density(c, p, group, spacing, dims)
+                     : c.value;
+  load.function = c.function;
+  if (c.kind == io::PdCondition::Kind::Blast) {
+    // Each particle of the layer gets the Friedlander history of its distance and angle of
+    // incidence; the force per volume of a unit pressure is -n / (layer thickness). In a
+    // plane model the charge lies in the plane and distances are measured in it.
+    io::PdCondition unit = c;
+    unit.value = -c.blast.normal;
+    unit.area = 0.0;
+    load.density = traction_density(unit, p, group, spacing, dims);
+    const Charge charge{c.blast.tnt_mass, c.blast.surface_burst, c.blast.clamp_below_range,
+                        c.blast.charge, c.blast.normal};
+    load.pulses = surface_pulses(charge, p.X, group, c.key_path);
   }
-  // Loads, constraints and initial velocities are set on the whole body (a traction's layer and
-  // a blast's pulses are properties of the whole layer), then each rank keeps its part.
-  particles::ParticleSet& p = m.particles;
-  out.particles_total = p.size();
+  return load;
+}
+
+/// The spec's functions, constraints, loads and initial velocities on the whole body (a
+/// traction's layer and a blast's pulses are properties of the whole layer).
+void load_body(PdSetup& out, const io::PdSpec& s) {
+  particles::ParticleSet& p = out.model.particles;
   const double tol = 1e-6 * s.spacing;
   for (const auto& f : s.functions) out.loading.functions.push_back(f.f);
   for (const io::PdCondition& c : s.conditions) {
     const std::vector<int> group = particles_in(p, c.region, tol);
     MF_REQUIRE(!group.empty(), c.key_path, ".box: selects no particle");
     if (c.kind == io::PdCondition::Kind::Displacement ||
-        c.kind == io::PdCondition::Kind::Velocity) {
-      pd::Constraint k;
-      k.name = c.name;
-      k.particles = group;
-      k.velocity = c.kind == io::PdCondition::Kind::Velocity;
-      for (int d = 0; d < 3; ++d) k.fixed[d] = c.fixed[d], k.value[d] = c.value(d);
-      k.function = c.function;
-      out.loading.constraints.push_back(k);
-    } else {
-      pd::BodyLoad load;
-      load.name = c.name;
-      load.particles = group;
-      load.density = c.kind == io::PdCondition::Kind::Traction
-                         ? traction_density(c, p, group, s.spacing, m.plane() ? 2 : 3)
-                         : c.value;
-      load.function = c.function;
-      if (c.kind == io::PdCondition::Kind::Blast) {
-        // Each particle of the layer gets the Friedlander history of its distance and angle of
-        // incidence; the force per volume of a unit pressure is -n / (layer thickness). In a
-        // plane model the charge lies in the plane and distances are measured in it.
-        io::PdCondition unit = c;
-        unit.value = -c.blast.normal;
-        unit.area = 0.0;
-        load.density = traction_density(unit, p, group, s.spacing, m.plane() ? 2 : 3);
-        const Charge charge{c.blast.tnt_mass, c.blast.surface_burst, c.blast.clamp_below_range,
-                            c.blast.charge, c.blast.normal};
-        load.pulses = surface_pulses(charge, p.X, group, c.key_path);
-      }
-      out.loading.loads.push_back(load);
-    }
+        c.kind == io::PdCondition::Kind::Velocity)
+      out.loading.constraints.push_back(constraint_of(c, group));
+    else
+      out.loading.loads.push_back(load_of(c, p, group, s.spacing, out.model.plane() ? 2 : 3));
   }
   for (const io::PdRegion& r : s.regions)
     if (r.velocity)
       for (int i : particles_in(p, r.region, tol))
         for (int d = 0; d < 3; ++d) p.v[3 * i + d] = (*r.velocity)(d);
-  const pd::VolumeCorrection correction =
-      s.volume_correction == "exact"    ? pd::VolumeCorrection::Exact
-      : s.volume_correction == "linear" ? pd::VolumeCorrection::Linear
-                                        : pd::VolumeCorrection::None;
-  if (!ranks.serial()) {
-    PhaseTimer::Scope scope(timer, "decomposition");
-    keep_rank_part(out, ranks, pd::bond_reach(m, correction));
-  }
-  {
-    PhaseTimer::Scope scope(timer, "bonds");
-    pd::build_bonds(m, law_table(s, m.horizon), correction);
-    if (s.surface_correction) pd::apply_surface_correction(m);
-    std::vector<pd::PreCrack> cracks;
-    for (const auto& c : s.cracks) cracks.push_back({c.a, c.b, c.c});
-    out.state = pd::initial_state(m, cracks);
-  }
+}
+
+pd::VolumeCorrection volume_correction(const io::PdSpec& s) {
+  return s.volume_correction == "exact"    ? pd::VolumeCorrection::Exact
+         : s.volume_correction == "linear" ? pd::VolumeCorrection::Linear
+                                           : pd::VolumeCorrection::None;
+}
+
+/// The bonds with their laws and surface correction, and the bond state with the pre-cracks.
+void bond_body(PdSetup& out, const io::PdSpec& s, pd::VolumeCorrection correction) {
+  pd::Model& m = out.model;
+  pd::build_bonds(m, law_table(s, m.horizon), correction);
+  if (s.surface_correction) pd::apply_surface_correction(m);
+  std::vector<pd::PreCrack> cracks;
+  for (const auto& c : s.cracks) cracks.push_back({c.a, c.b, c.c});
+  out.state = pd::initial_state(m, cracks);
+}
+
+std::vector<pd::Impactor> impactors_of(const io::PdSpec& s) {
+  std::vector<pd::Impactor> out;
   for (const io::PdImpactor& k : s.impactors) {
     pd::Impactor imp;
     imp.name = k.name;
@@ -246,26 +252,27 @@ PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer,
     imp.position = k.position;
     imp.velocity = k.velocity;
     if (!k.sphere) imp.direction = k.velocity.normalized();
-    out.impactors.push_back(imp);
+    out.push_back(imp);
   }
-  // The time step: the Silling-Askari bound times the safety factor, one step per load sample
-  // when a table is finer, or the step asked for (never above the bound).
-  int limiting = -1;
-  const double local_stable = pd::stable_time_step(m, &limiting);
-  const double stable = ranks.min(local_stable);
-  MF_REQUIRE(std::isfinite(stable), "peridynamics: no particle has a bond; is the horizon "
-                                    "(discretisation.horizon) smaller than the spacing?");
-  for (pd::Impactor& imp : out.impactors)
-    if (imp.law == pd::Impactor::Law::Penalty && imp.stiffness == 0.0)
-      imp.stiffness = pd::derived_penalty_stiffness(p.density[limiting], stable, s.spacing);
-  // A fragment may fly beyond the ghosts, which are fixed at the start: one rank sees it all.
-  MF_REQUIRE(!s.short_range_contact || ranks.serial(),
-             "discretisation.short_range_contact: runs on one MPI rank (", ranks.size, " given)");
-  if (s.short_range_contact) out.short_range.emplace(m);
+  return out;
+}
+
+/// The Silling-Askari bound on the time step over every rank, and where it is set.
+struct StableStep {
+  double local = 0.0; // of this rank's particles
+  double stable = 0.0;
+  int limiting = -1; // this rank's particle that sets `local`
+};
+
+/// The time step: the stable step times the safety factor, one step per load sample when a
+/// table is finer, or the step asked for (never above the bound).
+void set_time_step(PdSetup& out, const io::PdSpec& s, const distribution::Ranks& ranks,
+                   const StableStep& bound) {
+  const double stable = bound.stable;
   out.dt = s.safety * stable;
   Vec3d where(0.0, 0.0, 0.0);
-  const int holder = ranks.rank_of_min(local_stable);
-  if (ranks.rank == holder) where = p.reference(limiting);
+  const int holder = ranks.rank_of_min(bound.local);
+  if (ranks.rank == holder) where = out.model.particles.reference(bound.limiting);
   ranks.broadcast(where.data(), 3, holder);
   out.dt_limit = detail::concat("stable step ", stable, " (Silling & Askari 2005) times safety ",
                                 s.safety, ", set by the particle at (", where.x(), ", ", where.y(),
@@ -288,6 +295,56 @@ PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer,
       out.dt_key = "time.dt";
     }
   }
+}
+
+/// The impactors, the contact of particles and the time step of a bonded body.
+void set_contact_and_step(PdSetup& out, const io::PdSpec& s, const distribution::Ranks& ranks) {
+  pd::Model& m = out.model;
+  out.impactors = impactors_of(s);
+  StableStep bound;
+  bound.local = pd::stable_time_step(m, &bound.limiting);
+  bound.stable = ranks.min(bound.local);
+  MF_REQUIRE(std::isfinite(bound.stable), "peridynamics: no particle has a bond; is the horizon "
+                                          "(discretisation.horizon) smaller than the spacing?");
+  for (pd::Impactor& imp : out.impactors)
+    if (imp.law == pd::Impactor::Law::Penalty && imp.stiffness == 0.0)
+      imp.stiffness = pd::derived_penalty_stiffness(m.particles.density[bound.limiting],
+                                                    bound.stable, s.spacing);
+  // A fragment may fly beyond the ghosts, which are fixed at the start: one rank sees it all.
+  MF_REQUIRE(!s.short_range_contact || ranks.serial(),
+             "discretisation.short_range_contact: runs on one MPI rank (", ranks.size, " given)");
+  if (s.short_range_contact) out.short_range.emplace(m);
+  set_time_step(out, s, ranks, bound);
+}
+
+} // namespace
+
+PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer,
+                       const distribution::Ranks& ranks) {
+  const io::PdSpec& s = *spec.pd;
+  PdSetup out;
+  pd::Model& m = out.model;
+  m = model_of(s);
+  {
+    PhaseTimer::Scope scope(timer, "particles");
+    m.particles = lattice(spec);
+    // Neighbours close in space close in memory; everything below is built in this order.
+    pd::order_along_curve(m.particles, s.spacing);
+  }
+  // Loads, constraints and initial velocities are set on the whole body, then each rank keeps
+  // its part.
+  out.particles_total = m.particles.size();
+  load_body(out, s);
+  const pd::VolumeCorrection correction = volume_correction(s);
+  if (!ranks.serial()) {
+    PhaseTimer::Scope scope(timer, "decomposition");
+    keep_rank_part(out, ranks, pd::bond_reach(m, correction));
+  }
+  {
+    PhaseTimer::Scope scope(timer, "bonds");
+    bond_body(out, s, correction);
+  }
+  set_contact_and_step(out, s, ranks);
   return out;
 }
 

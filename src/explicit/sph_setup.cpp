@@ -69,107 +69,122 @@ sph::Settings to_solver(const io::SphNumerics& n) {
   return s;
 }
 
+/// The particles of region k: its lattice (or ring) less its circle's outside and its holes.
+void add_region(sph::Hydro& h, const io::SphSpec& s, std::size_t k) {
+  const io::SphRegion& b = s.regions[k];
+  const int mat = b.material;
+  const int before = h.particles.size();
+  const io::Region& g = b.region;
+  const auto add = [&](const Vec3& x, double volume) {
+    if (g.circle) {
+      const double dx = x[0] - g.circle->center[0], dy = x[1] - g.circle->center[1];
+      if (dx * dx + dy * dy > g.circle->radius * g.circle->radius) return;
+    }
+    for (const io::Circle& c : g.holes) {
+      const double dx = x[0] - c.center[0], dy = x[1] - c.center[1];
+      if (dx * dx + dy * dy < c.radius * c.radius) return;
+    }
+    const double spacing = std::pow(volume, 1.0 / s.dimension);
+    const int i =
+        sph::add_particle(h, x, volume, b.density, b.energy, s.smoothing * spacing, mat, b.fixed);
+    for (int d = 0; d < 3; ++d) h.particles.v[3 * i + d] = b.velocity[d];
+  };
+  if (g.ring)
+    geometry::for_each_ring_point(g.ring->center, g.ring->inner_radius, g.ring->outer_radius,
+                                  b.spacing, add);
+  else {
+    const geometry::Lattice grid =
+        geometry::Lattice::fitted(g.box->lo, g.box->hi, b.spacing, s.dimension);
+    const double volume = grid.cell_volume(s.dimension);
+    grid.for_each([&](const Vec3& x) { add(x, volume); });
+  }
+  // A region whose circle or holes leave none of its lattice would make a body without
+  // particles, or a material without any: refused as input, like an empty peridynamic region.
+  MF_REQUIRE(h.particles.size() > before, "regions[", k,
+             "]: holds no particle (its circle or holes leave none of its lattice points)");
+}
+
+/// Each particle of the layer carries its face area V / spacing and the Friedlander history
+/// of its own distance and angle of incidence (loads/blast.hpp).
+sph::SurfaceLoad blast_load(const sph::Hydro& h, const io::SphBlastLoad& l, int dim) {
+  const particles::ParticleSet& P = h.particles;
+  sph::SurfaceLoad load;
+  load.name = l.name;
+  const io::BlastSpec& blast = l.blast;
+  for (int d = 0; d < 3; ++d) load.direction[d] = -blast.normal[d];
+  for (const int i : P.owned())
+    if (free_in(h, i, l.region)) {
+      load.particles.push_back(i);
+      load.area.push_back(sph::face_area(P, i, dim));
+    }
+  const Charge charge{blast.tnt_mass, blast.surface_burst, blast.clamp_below_range, blast.charge,
+                      blast.normal};
+  load.pulses = surface_pulses(charge, P.X, load.particles, l.key_path);
+  MF_REQUIRE(!load.particles.empty(), l.key_path, ".box: selects no free particle");
+  return load;
+}
+
+sph::SurfaceForce traction(const sph::Hydro& h, const io::SphTraction& t) {
+  std::vector<int> layer;
+  for (const int i : h.particles.owned())
+    if (free_in(h, i, t.region)) layer.push_back(i);
+  MF_REQUIRE(!layer.empty(), t.key_path, ".box: selects no free particle");
+  return sph::traction_force(h, t.name, layer, t.traction.data());
+}
+
+/// A symmetry plane, which the body must lie on one side of.
+sph::SymmetryPlane symmetry_plane(const sph::Hydro& h, const io::SphSymmetry& m) {
+  const particles::ParticleSet& P = h.particles;
+  int below = 0, above = 0;
+  for (const int i : P.owned()) (P.X[3 * i + m.axis] < m.at ? below : above) += 1;
+  MF_REQUIRE(below == 0 || above == 0, "boundary ", m.name, ": the plane ", "xyz"[m.axis], " = ",
+             m.at, " cuts the body (", below, " particles below it, ", above, " above)");
+  return {m.axis, m.at};
+}
+
+/// Lysmer dashpots with the particle's initial impedances rho c_L and rho c_s.
+sph::TransmittingBoundary transmitting(const sph::Hydro& h, const io::SphTransmitting& t,
+                                       int dim) {
+  const particles::ParticleSet& P = h.particles;
+  const sph::ParticleFields& F = h.fields;
+  sph::TransmittingBoundary b;
+  b.name = t.name;
+  for (int d = 0; d < 3; ++d) b.normal[d] = t.normal[d];
+  for (const int i : P.owned()) {
+    if (!free_in(h, i, t.region)) continue;
+    b.particles.push_back(i);
+    b.area.push_back(sph::face_area(P, i, dim));
+    b.normal_impedance.push_back(F.rho[i] * F.c[i]);
+    b.shear_impedance.push_back(std::sqrt(
+        F.rho[i] * materials::shear_modulus(h.materials[P.material[i]].strength, F.rho[i])));
+  }
+  MF_REQUIRE(!b.particles.empty(), t.key_path, ".box: selects no free particle");
+  return b;
+}
+
 } // namespace
 
 sph::Hydro build_sph(const io::SphSpec& s) {
   sph::Hydro h;
   for (const io::MaterialSpec& m : s.materials) h.materials.push_back(to_solver(m));
   h.settings = to_solver(s.numerics);
-  const particles::ParticleSet& P = h.particles;
-  const sph::ParticleFields& F = h.fields;
   h.dim = s.dimension;
   // The list holds (1 + skin)^dim times the interacting pairs, every one of them examined at
   // every rate evaluation, while the number of rebuilds goes as 1 / skin: the best margin
   // shrinks with the dimension (measured in README.md, SPH).
   h.settings.skin = h.dim == 1 ? 0.5 : 0.3;
-  for (std::size_t k = 0; k < s.regions.size(); ++k) {
-    const io::SphRegion& b = s.regions[k];
-    const int mat = b.material;
-    const int before = h.particles.size();
-    const io::Region& g = b.region;
-    const auto add = [&](const Vec3& x, double volume) {
-      if (g.circle) {
-        const double dx = x[0] - g.circle->center[0], dy = x[1] - g.circle->center[1];
-        if (dx * dx + dy * dy > g.circle->radius * g.circle->radius) return;
-      }
-      for (const io::Circle& c : g.holes) {
-        const double dx = x[0] - c.center[0], dy = x[1] - c.center[1];
-        if (dx * dx + dy * dy < c.radius * c.radius) return;
-      }
-      const double spacing = std::pow(volume, 1.0 / s.dimension);
-      const int i =
-          sph::add_particle(h, x, volume, b.density, b.energy, s.smoothing * spacing, mat, b.fixed);
-      for (int d = 0; d < 3; ++d) h.particles.v[3 * i + d] = b.velocity[d];
-    };
-    if (g.ring)
-      geometry::for_each_ring_point(g.ring->center, g.ring->inner_radius, g.ring->outer_radius,
-                                    b.spacing, add);
-    else {
-      const geometry::Lattice grid =
-          geometry::Lattice::fitted(g.box->lo, g.box->hi, b.spacing, s.dimension);
-      const double volume = grid.cell_volume(s.dimension);
-      grid.for_each([&](const Vec3& x) { add(x, volume); });
-    }
-    // A region whose circle or holes leave none of its lattice would make a body without
-    // particles, or a material without any: refused as input, like an empty peridynamic region.
-    MF_REQUIRE(h.particles.size() > before, "regions[", k,
-               "]: holds no particle (its circle or holes leave none of its lattice points)");
-  }
-  for (const io::SphBlastLoad& l : s.loads) {
-    // Each particle of the layer carries its face area V / spacing and the Friedlander history
-    // of its own distance and angle of incidence (loads/blast.hpp).
-    sph::SurfaceLoad load;
-    load.name = l.name;
-    const io::BlastSpec& blast = l.blast;
-    for (int d = 0; d < 3; ++d) load.direction[d] = -blast.normal[d];
-    for (const int i : P.owned())
-      if (free_in(h, i, l.region)) {
-        load.particles.push_back(i);
-        load.area.push_back(sph::face_area(P, i, s.dimension));
-      }
-    const Charge charge{blast.tnt_mass, blast.surface_burst, blast.clamp_below_range, blast.charge,
-                        blast.normal};
-    load.pulses = surface_pulses(charge, P.X, load.particles, l.key_path);
-    MF_REQUIRE(!load.particles.empty(), l.key_path, ".box: selects no free particle");
-    h.loads.push_back(load);
-  }
-  for (const io::SphTraction& t : s.tractions) {
-    std::vector<int> layer;
-    for (const int i : P.owned())
-      if (free_in(h, i, t.region)) layer.push_back(i);
-    MF_REQUIRE(!layer.empty(), t.key_path, ".box: selects no free particle");
-    h.forces.push_back(sph::traction_force(h, t.name, layer, t.traction.data()));
-  }
+  for (std::size_t k = 0; k < s.regions.size(); ++k) add_region(h, s, k);
+  for (const io::SphBlastLoad& l : s.loads) h.loads.push_back(blast_load(h, l, s.dimension));
+  for (const io::SphTraction& t : s.tractions) h.forces.push_back(traction(h, t));
   for (int d = 0; d < 3; ++d) h.gravity[d] = s.gravity[d];
-  for (const io::SphSymmetry& m : s.symmetry) {
-    // The body must lie on one side of each symmetry plane.
-    int below = 0, above = 0;
-    for (const int i : P.owned()) (P.X[3 * i + m.axis] < m.at ? below : above) += 1;
-    MF_REQUIRE(below == 0 || above == 0, "boundary ", m.name, ": the plane ", "xyz"[m.axis], " = ",
-               m.at, " cuts the body (", below, " particles below it, ", above, " above)");
-    h.symmetry.push_back({m.axis, m.at});
-  }
+  for (const io::SphSymmetry& m : s.symmetry) h.symmetry.push_back(symmetry_plane(h, m));
   if (s.detonation_normal)
     sph::light_from_plane(h, s.detonation_point->data(), s.detonation_normal->data());
   else if (s.detonation_point)
     sph::light_from_point(h, s.detonation_point->data());
   sph::update_state(h);
-  for (const io::SphTransmitting& t : s.transmitting) {
-    // Lysmer dashpots with the particle's initial impedances rho c_L and rho c_s.
-    sph::TransmittingBoundary b;
-    b.name = t.name;
-    for (int d = 0; d < 3; ++d) b.normal[d] = t.normal[d];
-    for (const int i : P.owned()) {
-      if (!free_in(h, i, t.region)) continue;
-      b.particles.push_back(i);
-      b.area.push_back(sph::face_area(P, i, s.dimension));
-      b.normal_impedance.push_back(F.rho[i] * F.c[i]);
-      b.shear_impedance.push_back(std::sqrt(
-          F.rho[i] * materials::shear_modulus(h.materials[P.material[i]].strength, F.rho[i])));
-    }
-    MF_REQUIRE(!b.particles.empty(), t.key_path, ".box: selects no free particle");
-    h.transmitting.push_back(b);
-  }
+  for (const io::SphTransmitting& t : s.transmitting)
+    h.transmitting.push_back(transmitting(h, t, s.dimension));
   return h;
 }
 

@@ -3,13 +3,12 @@
 #include "meshfree/explicit/run_counts.hpp"
 #include "meshfree/explicit/pd_run.hpp"
 #include "meshfree/explicit/pd_setup.hpp"
-#include "meshfree/explicit/run_summaries.hpp"
-#include "meshfree/explicit/time_loop.hpp"
 #include "meshfree/implicit/point_law.hpp"
 #include "meshfree/pd/relaxation.hpp"
 #include "meshfree/stages/explicit_stage.hpp"
 #include "meshfree/stages/held_conditions.hpp"
 #include "meshfree/stages/preload_sampling.hpp"
+#include "meshfree/stages/stage_run.hpp"
 #include <cstddef>
 #include <chrono>
 #include <cmath>
@@ -143,124 +142,127 @@ double norm_of_difference(const std::vector<double>& a, const std::vector<Vec3>&
   return std::sqrt(d);
 }
 
+/// The preload's final state on the whole body with its held conditions; returns the preload at
+/// the particles and where the held conditions begin among the set-up's loads and constraints.
+PreloadAtParticles transfer(const io::ProblemSpec& preload,
+                            const implicit::ElastoplasticResult& pre, const io::StageLink& link,
+                            explicit_dynamics::PdSetup& setup, HeldFrom& held_from,
+                            TransferReport& t) {
+  const auto t0 = std::chrono::steady_clock::now();
+  pd::Model& m = setup.model;
+  const std::vector<Vec3> X = reference_positions(m.particles, m.particles.size());
+  PreloadAtParticles pa = sample_preload(preload, pre, X, link.mirror, link.key_path);
+  // A held force acts on the surface layer; a held displacement holds the particles within
+  // a horizon of its boundary, so that every free particle keeps its whole bond family.
+  held_from = {setup.loading.loads.size(), setup.loading.constraints.size()};
+  t.held = hold(held_conditions(preload, pre, link, X, {m.spacing, m.horizon}), preload, pa, setup);
+  pd::set_displacement(m, flat(pa.final_u()));
+  describe_preload(t, preload, pa, m.particles.volume);
+  t.residual_at_uh = pd::residual_ratio(m, setup.state, setup.loading);
+  t.seconds = seconds_since(t0);
+  return pa;
+}
+
+/// The body's own static equilibrium under the held loads, from the preload's displacement (and
+/// from zero when the link asks for the comparison): Newton on the linearised bond stiffness, or
+/// adaptive dynamic relaxation. No equilibrium is an error naming the link.
+void relax(const io::StageLink& link, const PreloadAtParticles& pa,
+           explicit_dynamics::PdSetup& setup, TransferReport& t) {
+  pd::Model& m = setup.model;
+  pd::RelaxSettings rs;
+  rs.tolerance = link.relax_tolerance;
+  rs.max_iterations = link.relax_max_iterations;
+  const auto equilibrium = [&link, &rs](pd::Model& body, pd::BondState& state,
+                                        const pd::Loading& loading) {
+    return link.implicit_equilibrium ? pd::solve_statics(body, state, loading, rs)
+                                     : pd::relax(body, state, loading, rs);
+  };
+  if (link.relax_from_zero) {
+    pd::Model zero = m;
+    pd::BondState state = setup.state;
+    pd::set_displacement(zero, std::vector<double>(3 * m.particles.size(), 0.0));
+    const pd::RelaxReport z = equilibrium(zero, state, setup.loading);
+    t.relax_iterations_from_zero = z.converged ? z.iterations : -1;
+    t.relax_seconds_from_zero = z.seconds;
+  }
+  const pd::RelaxReport r = equilibrium(m, setup.state, setup.loading);
+  t.relax_method = link.implicit_equilibrium ? "newton (" + r.solver + ")" : "adr";
+  t.relax_linear_iterations = r.linear_iterations;
+  MF_REQUIRE(r.converged, link.key_path,
+             ": the peridynamic body found no static equilibrium under the held loads within ",
+             r.iterations,
+             link.implicit_equilibrium ? " Newton iterations (residual ratio "
+                                       : " relaxation iterations (residual ratio ",
+             r.residual_ratio,
+             "); raise transfer.relax_max_iterations or check the held conditions");
+  t.relax_iterations = r.iterations;
+  t.relax_residual = r.residual_ratio;
+  t.out_of_balance = r.residual_ratio;
+  t.relax_seconds = r.seconds;
+  double norm_uh = 0.0;
+  t.pd_vs_galerkin =
+      norm_of_difference(m.particles.u, pa.final_u(), norm_uh) / std::max(norm_uh, 1e-300);
+}
+
+void log_transfer(const io::ProblemSpec& preload, const TransferReport& t) {
+  log::info("transfer: ", t.particles, " particles from stage ", preload.stage,
+            ", residual ratio at u^h ", t.residual_at_uh, "; equilibrium by ", t.relax_method,
+            " in ", t.relax_iterations, " iterations (from zero: ", t.relax_iterations_from_zero,
+            "), |u_PD - u^h| / |u^h| = ", t.pd_vs_galerkin);
+}
+
+/// Over several ranks: the body's blocks with their ghosts take the relaxed state and the held
+/// conditions of the whole body, made on every rank, and the preload at their own particles.
+void spread_over_ranks(const io::ProblemSpec& stage, const distribution::Ranks& ranks,
+                       const HeldFrom& held_from, explicit_dynamics::PdSetup& setup,
+                       PreloadAtParticles& pa, PhaseTimer& timer) {
+  explicit_dynamics::PdSetup local = explicit_dynamics::build_pd_setup(stage, timer, ranks);
+  carry_over(setup, held_from, local);
+  pa = select_particles(pa, local.model.particles.id);
+  setup = std::move(local);
+}
+
 } // namespace
 
 ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::ElastoplasticResult& pre,
                            const io::ProblemSpec& stage, const io::StageLink& link, int index,
-                           io::OutputDirectory* out, const StageCheckpoints& checkpoints) {
+                           const explicit_dynamics::RunPlace& place) {
   const io::PdSpec& s = *stage.pd;
   ExplicitStage st;
   explicit_dynamics::PdRunResult result;
   explicit_dynamics::PdSetup setup = explicit_dynamics::build_pd_setup(stage, result.timer);
   // `check` refuses an endless stage before anything runs; here it stops before the stage does.
   explicit_dynamics::require_finite_run(explicit_dynamics::planned_run(s, setup),
-                                        out ? out->dir() : ".");
+                                        place.out ? place.out->dir() : ".");
   explicit_dynamics::log_pd_setup(stage, setup);
-  pd::Model& m = setup.model;
-  particles::ParticleSet& P = m.particles;
-  const int n = P.size();
-  TransferReport& t = st.transfer;
-  t.peridynamic = true;
+  st.transfer.peridynamic = true;
   PreloadAtParticles pa;
   HeldFrom held_from;
   {
     PhaseTimer::Scope scope(result.timer, "transfer");
-    const auto t0 = std::chrono::steady_clock::now();
-    std::vector<Vec3> X(n);
-    for (int i = 0; i < n; ++i) X[i] = P.reference(i);
-    pa = sample_preload(preload, pre, X, link.mirror, link.key_path);
-    // A held force acts on the surface layer; a held displacement holds the particles within
-    // a horizon of its boundary, so that every free particle keeps its whole bond family.
-    held_from = {setup.loading.loads.size(), setup.loading.constraints.size()};
-    t.held = hold(held_conditions(preload, pre, link, X, {m.spacing, m.horizon}), preload, pa,
-                  setup);
-    pd::set_displacement(m, flat(pa.final_u()));
-    t.particles = n;
-    for (int i = 0; i < n; ++i) {
-      t.plastic_particles += pa.plastic[i];
-      t.max_u = std::max(t.max_u, pa.final_u()[i].norm());
-    }
-    t.stored_energy = stored_energy(preload, pa, P.volume);
-    t.residual_at_uh = pd::residual_ratio(m, setup.state, setup.loading);
-    t.seconds = seconds_since(t0);
+    pa = transfer(preload, pre, link, setup, held_from, st.transfer);
   }
   {
     PhaseTimer::Scope scope(result.timer, "relaxation");
-    pd::RelaxSettings rs;
-    rs.tolerance = link.relax_tolerance;
-    rs.max_iterations = link.relax_max_iterations;
-    // Newton on the linearised bond stiffness, or adaptive dynamic relaxation.
-    const auto equilibrium = [&link, &rs](pd::Model& body, pd::BondState& state,
-                                          const pd::Loading& loading) {
-      return link.implicit_equilibrium ? pd::solve_statics(body, state, loading, rs)
-                                       : pd::relax(body, state, loading, rs);
-    };
-    if (link.relax_from_zero) {
-      pd::Model zero = m;
-      pd::BondState state = setup.state;
-      pd::set_displacement(zero, std::vector<double>(3 * n, 0.0));
-      const pd::RelaxReport z = equilibrium(zero, state, setup.loading);
-      t.relax_iterations_from_zero = z.converged ? z.iterations : -1;
-      t.relax_seconds_from_zero = z.seconds;
-    }
-    const pd::RelaxReport r = equilibrium(m, setup.state, setup.loading);
-    t.relax_method = link.implicit_equilibrium ? "newton (" + r.solver + ")" : "adr";
-    t.relax_linear_iterations = r.linear_iterations;
-    MF_REQUIRE(r.converged, link.key_path,
-               ": the peridynamic body found no static equilibrium "
-               "under the held loads within ",
-               r.iterations,
-               link.implicit_equilibrium ? " Newton iterations (residual ratio "
-                                         : " relaxation iterations (residual ratio ",
-               r.residual_ratio,
-               "); raise transfer.relax_max_iterations or check the "
-               "held conditions");
-    t.relax_iterations = r.iterations;
-    t.relax_residual = r.residual_ratio;
-    t.out_of_balance = r.residual_ratio;
-    t.relax_seconds = r.seconds;
-    double norm_uh = 0.0;
-    t.pd_vs_galerkin = norm_of_difference(P.u, pa.final_u(), norm_uh) / std::max(norm_uh, 1e-300);
+    relax(link, pa, setup, st.transfer);
   }
-  log::info("transfer: ", n, " particles from stage ", preload.stage, ", residual ratio at u^h ",
-            t.residual_at_uh, "; equilibrium by ", t.relax_method, " in ", t.relax_iterations,
-            " iterations (from zero: ", t.relax_iterations_from_zero,
-            "), |u_PD - u^h| / |u^h| = ", t.pd_vs_galerkin);
-
-  // Over several ranks: the body's blocks with their ghosts take the relaxed state and the held
-  // conditions of the whole body, made on every rank.
-  if (!checkpoints.ranks.serial()) {
-    explicit_dynamics::PdSetup local =
-        explicit_dynamics::build_pd_setup(stage, result.timer, checkpoints.ranks);
-    carry_over(setup, held_from, local);
-    pa = select_particles(pa, local.model.particles.id);
-    setup = std::move(local);
-  }
-  explicit_dynamics::PdRun run(setup, s, out, result);
-  // The preload replayed on the particles, then the relaxed state back for t = 0.
-  const std::vector<double> u0 = P.u;
-  // The last increment is recorded (at t = 0, as the preload's end) but not written as a field
-  // step: the run's first step is the same instant.
-  const int N = pa.increments() - 1;
-  for (int k = 0; k <= N; ++k) {
+  log_transfer(preload, st.transfer);
+  if (!place.ranks.serial())
+    spread_over_ranks(stage, place.ranks, held_from, setup, pa, result.timer);
+  explicit_dynamics::PdRun run(setup, s, place.out, result);
+  pd::Model& m = setup.model;
+  const std::vector<double> u0 = m.particles.u; // the relaxed state, back for t = 0
+  replay_preload(run, pa.increments(), [&](int k) {
     pd::set_displacement(m, flat(pa.u[k]));
-    P.time = pa.pseudo_time[k];
-    run.record();
-    if (k < N) run.write_fields();
-  }
-  const io::History replay = take_rows(result.history);
-  begin_stage_history(st, replay, result.history, s.gauges, link.from, index, out);
-  pd::set_displacement(m, u0);
-  P.time = 0.0;
-  pd::accelerate(m, setup.state, setup.loading, false);
-  run.finish(explicit_dynamics::run_time_loop(run,
-                                              {s.end_time, s.history_interval, s.fields_interval},
-                                              checkpoints.checkpoints, checkpoints.resume));
-
-  explicit_dynamics::summarise(result, st.counts, st.time_step, st.results);
-  record_stage(st, result.status, result.stop_reason, result.timer);
-  st.displacement = P.u;
-  st.position = P.X;
+    m.particles.time = pa.pseudo_time[k];
+  });
+  run_stage(st, run, result, s, link, index, place, [&] {
+    pd::set_displacement(m, u0);
+    m.particles.time = 0.0;
+    pd::accelerate(m, setup.state, setup.loading, false);
+  });
+  st.displacement = m.particles.u;
+  st.position = m.particles.X;
   return st;
 }
 

@@ -1,18 +1,17 @@
 // The SPH stage of a staged run (stages/explicit_stage.hpp).
 #include "meshfree/core/log.hpp"
 #include "meshfree/explicit/run_counts.hpp"
-#include "meshfree/explicit/run_summaries.hpp"
 #include "meshfree/explicit/sph_run.hpp"
 #include "meshfree/explicit/sph_setup.hpp"
-#include "meshfree/explicit/time_loop.hpp"
 #include "meshfree/implicit/point_law.hpp"
 #include "meshfree/sph/decomposition.hpp"
-#include "meshfree/sph/held_loads.hpp"
 #include "meshfree/sph/initial_state.hpp"
 #include "meshfree/sph/step.hpp"
+#include "meshfree/sph/support_balance.hpp"
 #include "meshfree/stages/explicit_stage.hpp"
 #include "meshfree/stages/held_conditions.hpp"
 #include "meshfree/stages/preload_sampling.hpp"
+#include "meshfree/stages/stage_run.hpp"
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -132,43 +131,9 @@ Holding hold(const std::vector<HeldCondition>& held, const io::ProblemSpec& prel
   return out;
 }
 
-/// The scale of the out-of-balance forces: the largest held force on a particle, or the largest
-/// stress component times a particle's face area.
-double largest_force(const sph::Hydro& h, const std::vector<materials::Vec6>& sigma) {
-  double f = 0.0;
-  const particles::ParticleSet& P = h.particles;
-  for (std::size_t i = 0; i < sigma.size(); ++i)
-    f = std::max(f, sigma[i].cwiseAbs().maxCoeff() * sph::face_area(P, static_cast<int>(i), h.dim));
-  for (const auto& s : h.forces)
-    for (std::size_t k = 0; k < s.particles.size(); ++k)
-      f = std::max(f, Vec3(s.force[3 * k], s.force[3 * k + 1], s.force[3 * k + 2]).norm());
-  for (const auto& b : h.transmitting)
-    for (std::size_t k = 0; k < b.static_force.size() / 3; ++k)
-      f = std::max(
-          f,
-          Vec3(b.static_force[3 * k], b.static_force[3 * k + 1], b.static_force[3 * k + 2]).norm());
-  const double g = Vec3(h.gravity[0], h.gravity[1], h.gravity[2]).norm();
-  for (int i = 0; i < P.owned_count(); ++i) f = std::max(f, P.mass[i] * g);
-  return f;
-}
-
-/// The largest out-of-balance force of a free particle at the current state held at rest.
-double worst_out_of_balance(sph::Hydro& h) {
-  const std::vector<double> ob = sph::out_of_balance(h);
-  double worst = 0.0;
-  for (int i = 0; i < h.particles.owned_count(); ++i)
-    worst = std::max(worst, Vec3(ob[3 * i], ob[3 * i + 1], ob[3 * i + 2]).norm());
-  return worst;
-}
-
-/// The particles whose out-of-balance the transfer balances: every particle, except those
-/// within the kernel's reach of a released condition (a released body force: all of them), so
-/// that a release still acts. What is balanced is what the SPH sums of the transferred stress
-/// leave unbalanced where the Galerkin solution is in equilibrium: truncated kernels at free
-/// surfaces that are not straight (a hole stepped by the lattice), stress gradients the
-/// particles resolve differently, the plastic zone's kinks. Constant forces -m_i a_i hold that
-/// state at rest without moving it: a settle (damped motion to the particles' own equilibrium)
-/// would change the transferred stress instead (by 7% in a gripped homogeneous block).
+/// The particles whose out-of-balance the transfer balances (sph/support_balance.hpp): every
+/// particle, except those within the kernel's reach of a released condition (a released body
+/// force: all of them), so that a release still acts.
 std::vector<int> balanced_particles(const io::ProblemSpec& preload,
                                     const implicit::ElastoplasticResult& pre,
                                     const io::StageLink& link, const std::vector<Vec3>& X,
@@ -187,136 +152,117 @@ std::vector<int> balanced_particles(const io::ProblemSpec& preload,
   return out;
 }
 
-} // namespace
-
-ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
-                            const implicit::ElastoplasticResult& pre, const io::ProblemSpec& stage,
-                            const io::StageLink& link, int index, io::OutputDirectory* out,
-                            const StageCheckpoints& checkpoints) {
-  const io::SphSpec& s = *stage.sph;
-  ExplicitStage st;
-  explicit_dynamics::SphRunResult result;
+/// The stage's body from its own spec; `check` refuses an endless stage before anything runs,
+/// and this stops it before it does.
+sph::Hydro build_body(const io::SphSpec& s, PhaseTimer& timer, const io::OutputDirectory* out) {
   sph::Hydro h;
   {
-    PhaseTimer::Scope scope(result.timer, "particles");
+    PhaseTimer::Scope scope(timer, "particles");
     h = explicit_dynamics::build_sph(s);
   }
-  // `check` refuses an endless stage before anything runs; here it stops before the stage does.
   explicit_dynamics::require_finite_run(
       explicit_dynamics::planned_run(s, h.particles.size(), sph::stable_step(h)),
       out ? out->dir() : ".");
+  return h;
+}
+
+/// The preload's final state on the whole body, held by its held conditions and balanced at rest
+/// (sph::hold_at_rest); returns the preload at the particles.
+PreloadAtParticles transfer(const io::ProblemSpec& preload,
+                            const implicit::ElastoplasticResult& pre, const io::StageLink& link,
+                            const io::SphSpec& s, sph::Hydro& h, TransferReport& t) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<Vec3> X = reference_positions(h.particles, h.particles.owned_count());
+  PreloadAtParticles pa = sample_preload(preload, pre, X, link.mirror, link.key_path);
+  const HoldLayers layers = hold_layers(s, h);
+  const Holding held = hold(held_conditions(preload, pre, link, X, layers), preload, link, h);
+  t.held = held.how;
+  const sph::InitialStateReport rep =
+      put_increment(h, pa, pa.increments() - 1, link.return_to_surface);
+  const sph::RestBalance balance =
+      sph::hold_at_rest(h, pa.final_stress(), held.held_boundaries,
+                        balanced_particles(preload, pre, link, X, h, layers.held));
+  t.balanced_residual = balance.before;
+  t.out_of_balance = balance.after;
+  t.over_surface = rep.over_surface;
+  t.returned = rep.returned;
+  t.worst_yield_ratio = rep.worst_ratio;
+  t.density_mismatch = rep.density_mismatch;
+  describe_preload(t, preload, pa, h.particles.volume);
+  t.seconds = seconds_since(t0);
+  return pa;
+}
+
+/// Damped motion under the held loads alone for link.settle_time, with a progress line every
+/// tenth of it, or every 10 s of wall time, and at its end.
+void damped_motion(sph::Hydro& h, const io::StageLink& link) {
+  const auto began = std::chrono::steady_clock::now();
+  double next_report = 0.1, last_report = 0.0;
+  while (h.particles.time < link.settle_time) {
+    sph::advance(h, std::min(sph::stable_step(h), link.settle_time - h.particles.time));
+    const double done = h.particles.time / link.settle_time, wall = seconds_since(began);
+    if (done >= next_report || wall >= last_report + 10.0 || done >= 1.0) {
+      log::info("  settle: t = ", h.particles.time, " (", std::lround(100.0 * done), "%), step ",
+                h.particles.step, ", ", log::eta(wall, done));
+      while (next_report <= done) next_report += 0.1;
+      last_report = wall;
+    }
+  }
+}
+
+/// The settle: the body's damped motion to its own equilibrium under the held loads, which then
+/// starts the run at t = 0 at rest; the report gets how far it drifted from the preload.
+void settle(sph::Hydro& h, const io::StageLink& link, TransferReport& t) {
   const int n = h.particles.owned_count();
-  TransferReport& t = st.transfer;
-  PreloadAtParticles pa;
-  {
-    PhaseTimer::Scope scope(result.timer, "transfer");
-    const auto t0 = std::chrono::steady_clock::now();
-    std::vector<Vec3> X(n);
-    for (int i = 0; i < n; ++i) X[i] = h.particles.reference(i);
-    pa = sample_preload(preload, pre, X, link.mirror, link.key_path);
-    const HoldLayers layers = hold_layers(s, h);
-    const Holding held = hold(held_conditions(preload, pre, link, X, layers), preload, link, h);
-    t.held = held.how;
-    const sph::InitialStateReport rep =
-        put_increment(h, pa, pa.increments() - 1, link.return_to_surface);
-    std::vector<materials::Vec6> sigma(h.particles.size(), materials::Vec6::Zero());
-    std::copy(pa.final_stress().begin(), pa.final_stress().end(), sigma.begin());
-    // Every held boundary takes its static force before the balance is computed: a balance
-    // taken while a boundary still lacks its static force would carry its share of the body's
-    // weight and stress.
-    for (int b : held.held_boundaries) sph::hold_stress(h.transmitting[b], sigma);
-    const double scale = std::max(largest_force(h, pa.final_stress()), 1e-300);
-    t.balanced_residual = worst_out_of_balance(h) / scale;
-    h.forces.push_back(sph::balancing_force(
-        h, "transfer_balance", balanced_particles(preload, pre, link, X, h, layers.held)));
-    t.out_of_balance = worst_out_of_balance(h) / scale;
-    t.particles = n;
-    t.over_surface = rep.over_surface;
-    t.returned = rep.returned;
-    t.worst_yield_ratio = rep.worst_ratio;
-    t.density_mismatch = rep.density_mismatch;
-    for (int i = 0; i < n; ++i) {
-      t.plastic_particles += pa.plastic[i];
-      t.max_u = std::max(t.max_u, pa.final_u()[i].norm());
-    }
-    t.stored_energy = stored_energy(preload, pa, h.particles.volume);
-    t.seconds = seconds_since(t0);
-  }
-  if (link.settle_time > 0.0) {
-    PhaseTimer::Scope scope(result.timer, "settle");
-    const std::vector<double> u0 = h.particles.u;
-    // The settle is the preload's, under the held loads alone: the event's own pressure
-    // histories (a blast) start at t = 0, after it.
-    std::vector<sph::SurfaceLoad> event_loads;
-    std::swap(event_loads, h.loads);
-    h.damping = link.settle_damping;
-    const auto began = std::chrono::steady_clock::now();
-    double next_report = 0.1, last_report = 0.0;
-    while (h.particles.time < link.settle_time) {
-      sph::advance(h, std::min(sph::stable_step(h), link.settle_time - h.particles.time));
-      // Every tenth of the settle, or every 10 s of wall time, and at its end.
-      const double done = h.particles.time / link.settle_time, wall = seconds_since(began);
-      if (done >= next_report || wall >= last_report + 10.0 || done >= 1.0) {
-        log::info("  settle: t = ", h.particles.time, " (", std::lround(100.0 * done),
-                  "%), step ", h.particles.step, ", ", log::eta(wall, done));
-        while (next_report <= done) next_report += 0.1;
-        last_report = wall;
-      }
-    }
-    std::swap(event_loads, h.loads);
-    double drift = 0.0;
-    for (int i = 0; i < n; ++i)
-      drift = std::max(drift, Vec3(h.particles.u[3 * i] - u0[3 * i],
-                                   h.particles.u[3 * i + 1] - u0[3 * i + 1],
-                                   h.particles.u[3 * i + 2] - u0[3 * i + 2])
-                                  .norm());
-    t.settle_time = link.settle_time;
-    t.settle_drift = drift / std::max(t.max_u, 1e-300);
-    h.damping = 0.0;
-    sph::set_displacement(
-        h, std::vector<double>(h.particles.u.begin(), h.particles.u.begin() + 3 * n));
-    h.particles.time = 0.0;
-    h.particles.step = 0;
-    h.external_work = h.damping_work = 0.0;
-  }
-  log::info("transfer: ", n, " particles from stage ", preload.stage, ", ", t.plastic_particles,
-            " plastic, ", t.over_surface, " over their yield surface (worst q/Y ",
-            t.worst_yield_ratio, "), residual of the SPH sums ", t.balanced_residual,
-            " balanced, out-of-balance ", t.out_of_balance,
+  const std::vector<double> u0 = h.particles.u;
+  // The settle is the preload's, under the held loads alone: the event's own pressure
+  // histories (a blast) start at t = 0, after it.
+  std::vector<sph::SurfaceLoad> event_loads;
+  std::swap(event_loads, h.loads);
+  h.damping = link.settle_damping;
+  damped_motion(h, link);
+  std::swap(event_loads, h.loads);
+  double drift = 0.0;
+  for (int i = 0; i < n; ++i)
+    drift = std::max(drift, Vec3(h.particles.u[3 * i] - u0[3 * i],
+                                 h.particles.u[3 * i + 1] - u0[3 * i + 1],
+                                 h.particles.u[3 * i + 2] - u0[3 * i + 2])
+                                .norm());
+  t.settle_time = link.settle_time;
+  t.settle_drift = drift / std::max(t.max_u, 1e-300);
+  h.damping = 0.0;
+  sph::set_displacement(
+      h, std::vector<double>(h.particles.u.begin(), h.particles.u.begin() + 3 * n));
+  h.particles.time = 0.0;
+  h.particles.step = 0;
+  h.external_work = h.damping_work = 0.0;
+}
+
+void log_transfer(const io::ProblemSpec& preload, const io::StageLink& link,
+                  const TransferReport& t) {
+  log::info("transfer: ", t.particles, " particles from stage ", preload.stage, ", ",
+            t.plastic_particles, " plastic, ", t.over_surface,
+            " over their yield surface (worst q/Y ", t.worst_yield_ratio,
+            "), residual of the SPH sums ", t.balanced_residual, " balanced, out-of-balance ",
+            t.out_of_balance,
             link.settle_time > 0.0 ? detail::concat(", settle drift ", t.settle_drift) : "");
+}
 
-  // Over several ranks, each keeps its slab of the body with its share of the held forces and
-  // balance (sph::distribute), and the preload at its own particles.
-  if (!checkpoints.ranks.serial()) {
-    PhaseTimer::Scope scope(result.timer, "split over ranks");
-    sph::distribute(h, checkpoints.ranks);
-    pa = select_particles(pa, std::vector<long>(h.particles.id.begin(),
-                                                h.particles.id.begin() + h.particles.owned_count()));
-    log::info("sph: spread over ", checkpoints.ranks.size, " MPI ranks");
-  }
-  explicit_dynamics::SphRun run(h, s, out, result);
-  run.set_energy_scale(t.stored_energy);
-  // The preload replayed on the particles, then the transferred state back for t = 0.
-  const sph::Hydro start = h;
-  // The last increment is recorded (at t = 0, as the preload's end) but not written as a field
-  // step: the run's first step is the same instant.
-  const int N = pa.increments() - 1;
-  for (int k = 0; k <= N; ++k) {
-    put_increment(h, pa, k, false);
-    h.particles.time = pa.pseudo_time[k];
-    run.record();
-    if (k < N) run.write_fields();
-  }
-  h = start;
-  const io::History replay = take_rows(result.history);
-  begin_stage_history(st, replay, result.history, s.gauges, link.from, index, out);
-  result.energy_error = 0.0;
-  run.finish(explicit_dynamics::run_time_loop(run,
-                                              {s.end_time, s.history_interval, s.fields_interval},
-                                              checkpoints.checkpoints, checkpoints.resume));
+/// Over several ranks, each keeps its slab of the body with its share of the held forces and
+/// balance (sph::distribute), and the preload at its own particles.
+void spread_over_ranks(sph::Hydro& h, PreloadAtParticles& pa, const distribution::Ranks& ranks,
+                       PhaseTimer& timer) {
+  PhaseTimer::Scope scope(timer, "split over ranks");
+  sph::distribute(h, ranks);
+  pa = select_particles(pa, std::vector<long>(h.particles.id.begin(),
+                                              h.particles.id.begin() + h.particles.owned_count()));
+  log::info("sph: spread over ", ranks.size, " MPI ranks");
+}
 
-  explicit_dynamics::summarise(result, st.counts, st.time_step, st.results);
-  record_stage(st, result.status, result.stop_reason, result.timer);
+/// The owned particles' state at the end of the stage: plastic strain, Cauchy stress
+/// (S - p I), displacement and reference position.
+void keep_end_state(ExplicitStage& st, const sph::Hydro& h) {
+  const int n = h.particles.owned_count();
   st.plastic_strain.assign(h.fields.alpha.begin(), h.fields.alpha.begin() + n);
   for (int i = 0; i < n; ++i) {
     materials::Vec6 sigma;
@@ -325,6 +271,41 @@ ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
   }
   st.displacement.assign(h.particles.u.begin(), h.particles.u.begin() + 3 * n);
   st.position.assign(h.particles.X.begin(), h.particles.X.begin() + 3 * n);
+}
+
+} // namespace
+
+ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
+                            const implicit::ElastoplasticResult& pre, const io::ProblemSpec& stage,
+                            const io::StageLink& link, int index,
+                            const explicit_dynamics::RunPlace& place) {
+  const io::SphSpec& s = *stage.sph;
+  ExplicitStage st;
+  explicit_dynamics::SphRunResult result;
+  sph::Hydro h = build_body(s, result.timer, place.out);
+  PreloadAtParticles pa;
+  {
+    PhaseTimer::Scope scope(result.timer, "transfer");
+    pa = transfer(preload, pre, link, s, h, st.transfer);
+  }
+  if (link.settle_time > 0.0) {
+    PhaseTimer::Scope scope(result.timer, "settle");
+    settle(h, link, st.transfer);
+  }
+  log_transfer(preload, link, st.transfer);
+  if (!place.ranks.serial()) spread_over_ranks(h, pa, place.ranks, result.timer);
+  explicit_dynamics::SphRun run(h, s, place.out, result);
+  run.set_energy_scale(st.transfer.stored_energy);
+  const sph::Hydro start = h; // the transferred state, back for t = 0 after the replay
+  replay_preload(run, pa.increments(), [&](int k) {
+    put_increment(h, pa, k, false);
+    h.particles.time = pa.pseudo_time[k];
+  });
+  run_stage(st, run, result, s, link, index, place, [&] {
+    h = start;
+    result.energy_error = 0.0;
+  });
+  keep_end_state(st, h);
   return st;
 }
 

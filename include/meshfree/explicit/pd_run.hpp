@@ -76,6 +76,13 @@ public:
   void finish(const LoopReport& loop);
 
 private:
+  /// The body's counts (particles, bonds, ghosts, bytes per bond) and time step into the result.
+  void count_body();
+  /// The body relaxed to static equilibrium under its loads at t = 0, its velocities kept.
+  void relax_at_start();
+  /// Gauges of u, v and a in each of the body's axes, recorded and tracked.
+  void gauge_motion();
+  std::vector<std::string> history_columns() const;
   template <class Visit> void for_each_state(const Visit& visit);
   const distribution::Ranks& ranks() const { return setup_.model.halo.ranks(); }
   PdSetup& setup_;

@@ -32,6 +32,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 namespace mf::explicit_dynamics {
 
@@ -83,6 +84,10 @@ struct LoopReport {
   double advance_seconds = 0.0; // of which in the model's advance()
   std::string status = "completed", stop_reason;
   bool completed() const { return status == "completed"; }
+  void stop(std::string reason) {
+    status = "failed";
+    stop_reason = std::move(reason);
+  }
 };
 
 /// The loop's progress lines: at every tenth of the simulated time, at least every 10 s of wall
@@ -125,100 +130,134 @@ private:
   Clock::time_point start_, last_;
 };
 
+namespace loop {
+
+using Clock = std::chrono::steady_clock;
+
+/// The model's state and the loop's read back from the checkpoint `resume`, the schedule then
+/// that of `s`.
+template <class Model>
+void restore(Model& model, const Schedule& s, const io::StateReader& resume, LoopState& state) {
+  try {
+    const io::Loader load{resume, ""};
+    state.for_each_state(load / "loop");
+    model.restore(load);
+    io::check_resumed(resume, model.time(), model.step());
+    if (!state.plausible(model.time()))
+      io::refuse_checkpoint("the checkpoint's schedule of outputs is not that of a run at t = " +
+                            detail::concat(model.time()) + " (a damaged checkpoint)");
+  } catch (const io::CheckpointRefused& e) {
+    io::refused_on_this_rank(e);
+    throw;
+  }
+  state.reschedule(s, model.time());
+  log::info("restarted at t = ", model.time(), " (step ", model.step(), ")");
+}
+
+/// Where the loop begins: at the checkpoint `resume`, or at the model's present instant,
+/// recorded and written.
+template <class Model>
+LoopState begin(Model& model, const Schedule& s, const io::StateReader* resume) {
+  LoopState state;
+  if (resume) {
+    restore(model, s, *resume, state);
+    return state;
+  }
+  model.track();
+  model.record();
+  model.write_fields();
+  state.recorded = state.written = model.time();
+  state.next_history = state.history_interval = s.history_interval;
+  state.next_fields = state.fields_interval = s.fields_interval;
+  return state;
+}
+
+/// The history row due after a step; false (and why) when the state is no longer finite, which
+/// is checked where a row is written.
+template <class Model>
+bool record(Model& model, const Schedule& s, LoopState& state, std::string& why) {
+  const int bad = model.nonfinite();
+  if (bad >= 0) {
+    const Vec3 x = model.position(bad);
+    why = detail::concat("the motion became non-finite at step ", model.step(), " (t = ",
+                         model.time(), ") at particle ", bad, " at (", x.x(), ", ", x.y(), ", ",
+                         x.z(), "); ", model.advice());
+    return false;
+  }
+  model.record();
+  state.recorded = model.time();
+  if (s.history_interval > 0.0 && state.next_history <= model.time() * (1 + 1e-12))
+    state.next_history = next_multiple_after(model.time(), s.history_interval);
+  return true;
+}
+
+/// The field step due after a step, if one is.
+template <class Model> void write_fields(Model& model, const Schedule& s, LoopState& state) {
+  if (!(s.fields_interval > 0.0 && model.time() >= state.next_fields * (1 - 1e-12))) return;
+  model.write_fields();
+  state.written = model.time();
+  if (state.next_fields <= model.time() * (1 + 1e-12))
+    state.next_fields = next_multiple_after(model.time(), s.fields_interval);
+}
+
+/// One step and the outputs due after it; false (and why) when the run stops there.
+template <class Model>
+bool step(Model& model, const Schedule& s, LoopState& state, LoopReport& r, std::string& why) {
+  double dt = 0.0;
+  if (!model.time_step(s.end_time - model.time(), dt, why)) return false;
+  const bool history_due =
+      s.history_interval <= 0.0 || model.time() + dt >= state.next_history * (1 - 1e-12);
+  const auto t0 = Clock::now();
+  try {
+    model.advance(dt, history_due);
+  } catch (const Error& e) {
+    why = e.what();
+    return false;
+  }
+  r.advance_seconds += seconds_since(t0);
+  ++r.steps;
+  ++r.steps_timed;
+  model.track();
+  if (history_due && !record(model, s, state, why)) return false;
+  write_fields(model, s, state);
+  return true;
+}
+
+/// A checkpoint of the model's state and the loop's at the model's present instant.
+template <class Model>
+void keep(Model& model, io::Checkpoints& checkpoints, LoopState& state, long steps) {
+  state.steps = steps;
+  checkpoints.write(model.time(), model.step(), [&](io::StateWriter& file) {
+    const io::Saver save{file, ""};
+    state.for_each_state(save / "loop");
+    model.save(checkpoints, save);
+  });
+}
+
+} // namespace loop
+
 template <class Model>
 LoopReport run_time_loop(Model& model, const Schedule& s, io::Checkpoints* checkpoints = nullptr,
                          const io::StateReader* resume = nullptr) {
-  using Clock = std::chrono::steady_clock;
   LoopReport r;
-  const auto stop = [&r](std::string reason) {
-    r.status = "failed";
-    r.stop_reason = std::move(reason);
-  };
-  LoopState state;
-  if (resume) {
-    try {
-      const io::Loader load{*resume, ""};
-      state.for_each_state(load / "loop");
-      model.restore(load);
-      io::check_resumed(*resume, model.time(), model.step());
-      if (!state.plausible(model.time()))
-        io::refuse_checkpoint("the checkpoint's schedule of outputs is not that of a run at t = " +
-                              detail::concat(model.time()) + " (a damaged checkpoint)");
-    } catch (const io::CheckpointRefused& e) {
-      io::refused_on_this_rank(e);
-      throw;
-    }
-    state.reschedule(s, model.time());
-    log::info("restarted at t = ", model.time(), " (step ", model.step(), ")");
-  } else {
-    model.track();
-    model.record();
-    model.write_fields();
-    state.recorded = state.written = model.time();
-    state.next_history = state.history_interval = s.history_interval;
-    state.next_fields = state.fields_interval = s.fields_interval;
-  }
-  double& recorded = state.recorded;
-  double& next_history = state.next_history;
-  double& next_fields = state.next_fields;
+  LoopState state = loop::begin(model, s, resume);
   r.steps = state.steps;
   Progress progress(model.time(), s.end_time);
-  const auto start = Clock::now();
+  const auto start = loop::Clock::now();
   while (model.time() < s.end_time * (1.0 - 1e-12)) {
-    double dt = 0.0;
     std::string why;
-    if (!model.time_step(s.end_time - model.time(), dt, why)) {
-      stop(why);
+    if (!loop::step(model, s, state, r, why)) {
+      r.stop(std::move(why));
       break;
-    }
-    const bool history_due =
-        s.history_interval <= 0.0 || model.time() + dt >= next_history * (1 - 1e-12);
-    const auto t0 = Clock::now();
-    try {
-      model.advance(dt, history_due);
-    } catch (const Error& e) {
-      stop(e.what());
-      break;
-    }
-    r.advance_seconds += seconds_since(t0);
-    ++r.steps;
-    ++r.steps_timed;
-    model.track();
-    if (history_due) {
-      // Checked where a row is written: a state that is no longer finite stops the run there.
-      const int bad = model.nonfinite();
-      if (bad >= 0) {
-        const Vec3 x = model.position(bad);
-        stop(detail::concat("the motion became non-finite at step ", model.step(),
-                            " (t = ", model.time(), ") at particle ", bad, " at (", x.x(), ", ",
-                            x.y(), ", ", x.z(), "); ", model.advice()));
-        break;
-      }
-      model.record();
-      recorded = model.time();
-      if (s.history_interval > 0.0 && next_history <= model.time() * (1 + 1e-12))
-        next_history = next_multiple_after(model.time(), s.history_interval);
-    }
-    if (s.fields_interval > 0.0 && model.time() >= next_fields * (1 - 1e-12)) {
-      model.write_fields();
-      state.written = model.time();
-      if (next_fields <= model.time() * (1 + 1e-12))
-        next_fields = next_multiple_after(model.time(), s.fields_interval);
     }
     progress.update(model);
     if (checkpoints && model.time() < s.end_time * (1.0 - 1e-12) &&
-        checkpoints->due(model.time())) {
-      state.steps = r.steps;
-      checkpoints->write(model.time(), model.step(), [&](io::StateWriter& file) {
-        const io::Saver save{file, ""};
-        state.for_each_state(save / "loop");
-        model.save(*checkpoints, save);
-      });
-    }
+        checkpoints->due(model.time()))
+      loop::keep(model, *checkpoints, state, r.steps);
   }
   r.seconds = seconds_since(start);
   if (r.completed()) {
-    if (recorded < model.time()) model.record();
+    if (state.recorded < model.time()) model.record();
     if (state.written < model.time()) model.write_fields();
   }
   return r;

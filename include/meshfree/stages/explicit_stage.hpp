@@ -6,11 +6,12 @@
 // preload's increments are replayed on the particles first, at pseudo-times -1..0, so that the
 // history and the field series of the particles cover the whole run.
 #include "meshfree/core/timer.hpp"
-#include "meshfree/distribution/ranks.hpp"
+#include "meshfree/explicit/run_driver.hpp"
 #include "meshfree/implicit/elastoplastic_result.hpp"
 #include "meshfree/io/checkpoint.hpp"
 #include "meshfree/io/problem_spec.hpp"
 #include "meshfree/io/results.hpp"
+#include "meshfree/particles/particle_set.hpp"
 #include "meshfree/stages/preload_sampling.hpp"
 #include "meshfree/stages/transfer_report.hpp"
 #include <string>
@@ -24,6 +25,7 @@ struct ExplicitStage {
   std::string status = "completed", stop_reason;
   io::Json counts, time_step, results;
   PhaseTimer timer;
+  io::CheckpointCounts checkpoints; // what the stage's checkpoints cost
   // The owned particles at the end: reference positions and displacements (3 per particle), and
   // for SPH the stress (3D Voigt, tension positive) and equivalent plastic strain.
   std::vector<double> position, displacement;
@@ -31,24 +33,17 @@ struct ExplicitStage {
   std::vector<double> plastic_strain;
 };
 
-/// Where the stage's time loop keeps its checkpoints, and the state it restarts from (after the
-/// preload has been run again and replayed): either may be null.
-/// Where the explicit stage keeps its checkpoints, the state it resumes from, and the ranks it
-/// is spread over (SPH: the transfer is made on the whole body on every rank, then the body is
-/// split as a standalone SPH run's is).
-struct StageCheckpoints {
-  io::Checkpoints* checkpoints = nullptr;
-  const io::StateReader* resume = nullptr;
-  distribution::Ranks ranks;
-};
-
+/// The stage is run at `place` (explicit_dynamics::RunPlace): its output folder, checkpoints and
+/// the checkpoint it restarts from (after the preload has been run again and replayed), and the
+/// ranks it is spread over (the transfer is made on the whole body on every rank, then the body
+/// is split as a standalone run's is).
 ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::ElastoplasticResult& pre,
                            const io::ProblemSpec& stage, const io::StageLink& link, int index,
-                           io::OutputDirectory* out, const StageCheckpoints& checkpoints = {});
+                           const explicit_dynamics::RunPlace& place = {});
 ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
                             const implicit::ElastoplasticResult& pre, const io::ProblemSpec& stage,
-                            const io::StageLink& link, int index, io::OutputDirectory* out,
-                            const StageCheckpoints& checkpoints = {});
+                            const io::StageLink& link, int index,
+                            const explicit_dynamics::RunPlace& place = {});
 
 /// One history of the rows of the replayed preload (stage `from`) and of the run (stage `index`),
 /// with a "stage" column after "time". Of the preload's rows only time and the gauge columns
@@ -57,12 +52,10 @@ ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
 io::History staged_history(const io::History& preload, const io::History& run, int from, int index,
                            const std::vector<std::string>& gauges);
 
-/// Starts the stage's history: the replayed preload's rows (staged_history), streamed to
-/// `out`'s history.csv when there is one, to which every row the run's history records from now
-/// on is added as it comes (so a killed staged run keeps its history up to the kill).
+/// Starts the stage's history: the replayed preload's rows (staged_history), to which every row
+/// the run's history records from now on is added as it comes.
 void begin_stage_history(ExplicitStage& st, const io::History& replay, io::History& run,
-                         const std::vector<io::GaugeSpec>& gauges, int from, int index,
-                         io::OutputDirectory* out);
+                         const std::vector<io::GaugeSpec>& gauges, int from, int index);
 
 /// The stage's status and timer.
 void record_stage(ExplicitStage& st, const std::string& status, const std::string& stop_reason,
@@ -78,5 +71,14 @@ io::History take_rows(io::History& h);
 /// the preloaded one m / rho.
 double stored_energy(const io::ProblemSpec& preload, const PreloadAtParticles& pa,
                      const std::vector<double>& volume);
+
+/// The reference positions of the first n particles of P.
+std::vector<Vec3> reference_positions(const particles::ParticleSet& P, int n);
+
+/// What the transfer report says of the preload at the particles alone: how many particles, how
+/// many of them plastic, the largest displacement and the stored energy (particles of reference
+/// volume `volume`).
+void describe_preload(TransferReport& t, const io::ProblemSpec& preload,
+                      const PreloadAtParticles& pa, const std::vector<double>& volume);
 
 } // namespace mf::stages

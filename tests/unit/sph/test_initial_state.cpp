@@ -9,6 +9,7 @@
 #include "meshfree/materials/equation_of_state.hpp"
 #include "meshfree/materials/strength.hpp"
 #include "meshfree/sph/held_loads.hpp"
+#include "meshfree/sph/support_balance.hpp"
 #include "meshfree/sph/hydro.hpp"
 #include "meshfree/sph/initial_state.hpp"
 #include "meshfree/sph/state.hpp"

@@ -134,7 +134,7 @@ Column run_column(double k0, double settle, double end, bool transmitting_sides 
   const implicit::ElastoplasticResult pre =
       implicit::solve_elastoplastic_static(preload, test_session(), nullptr);
   REQUIRE(pre.status == "completed");
-  c.st = stages::run_sph_stage(preload, pre, c.spec.stages[1], c.spec.links[1], 1, nullptr);
+  c.st = stages::run_sph_stage(preload, pre, c.spec.stages[1], c.spec.links[1], 1);
   REQUIRE(c.st.status == "completed");
   return c;
 }

@@ -196,8 +196,7 @@ Quietness sph_quietness(const Held& c, Law law) {
   event.sph->end_time = 1000.0 * sph::stable_step(explicit_dynamics::build_sph(*event.sph)) * 1.01;
   event.sph->history_interval = 0.0;
   event.sph->fields_interval = 0.0;
-  const stages::ExplicitStage st = stages::run_sph_stage(preload, pre, event, spec.links[1], 1,
-                                                         nullptr);
+  const stages::ExplicitStage st = stages::run_sph_stage(preload, pre, event, spec.links[1], 1);
   REQUIRE(st.status == "completed");
   const std::vector<Vec3> X = positions(st);
   const int n = static_cast<int>(X.size());
@@ -321,7 +320,7 @@ PdQuietness pd_quietness(const Held& c) {
   event.pd->history_interval = 0.0;
   event.pd->fields_interval = 0.0;
   const stages::ExplicitStage st =
-      stages::run_pd_stage(preload, pre, event, spec.links[1], 1, nullptr);
+      stages::run_pd_stage(preload, pre, event, spec.links[1], 1);
   REQUIRE(st.status == "completed");
   const std::vector<Vec3> X = positions(st);
   const int n = static_cast<int>(X.size());
@@ -390,7 +389,7 @@ TEST_CASE("a released condition still acts: the transfer balances only the held 
   event.sph->history_interval = 0.0;
   event.sph->fields_interval = 0.0;
   const stages::ExplicitStage st =
-      stages::run_sph_stage(preload, pre, event, spec.links[1], 1, nullptr);
+      stages::run_sph_stage(preload, pre, event, spec.links[1], 1);
   REQUIRE(st.status == "completed");
   const io::History& H = st.history;
   double kinetic = 0.0;

@@ -123,7 +123,7 @@ Staged run(int steps, const std::string& equilibrium = "newton") {
   s.preload_seconds = elapsed(t0);
   REQUIRE(pre.status == "completed");
   t0 = std::chrono::steady_clock::now();
-  s.st = stages::run_pd_stage(preload, pre, s.spec.stages[1], s.spec.links[1], 1, nullptr);
+  s.st = stages::run_pd_stage(preload, pre, s.spec.stages[1], s.spec.links[1], 1);
   s.stage_seconds = elapsed(t0);
   REQUIRE(s.st.status == "completed");
   return s;

@@ -427,7 +427,7 @@ Quiet quiet_start(const std::string& yaml) {
   event.sph->history_interval = 0.0;
   event.sph->fields_interval = 0.0;
   Quiet q;
-  q.st = stages::run_sph_stage(preload, pre, event, spec.links[1], 1, nullptr);
+  q.st = stages::run_sph_stage(preload, pre, event, spec.links[1], 1);
   REQUIRE(q.st.status == "completed");
   const int n = static_cast<int>(q.st.position.size() / 3);
   std::vector<Vec3> X(n);
@@ -741,7 +741,7 @@ TEST_CASE("the settle of an SPH stage runs under the held loads alone, not the e
     io::ProblemSpec preload = spec.stages[0];
     const implicit::ElastoplasticResult pre = preload_of(preload);
     REQUIRE(pre.status == "completed");
-    return stages::run_sph_stage(preload, pre, spec.stages[1], spec.links[1], 1, nullptr);
+    return stages::run_sph_stage(preload, pre, spec.stages[1], spec.links[1], 1);
   };
   const stages::ExplicitStage quiet = run(false), struck = run(true);
   REQUIRE(quiet.transfer.settle_time == 1.0e-4);
