@@ -15,9 +15,12 @@ namespace {
 
 /// One row per analysis, in the order the documentation lists them.
 const std::vector<AnalysisEntry>& table() {
-  static const std::vector<AnalysisEntry> entries{
-      elastic_static_entry(), elastoplastic_static_entry(), model_problem_1d_entry(),
-      peridynamics_entry(),   sph_entry(),                  staged_entry()};
+  static const std::vector<AnalysisEntry> entries{elastic_static_entry(),
+                                                  elastoplastic_static_entry(),
+                                                  model_problem_1d_entry(),
+                                                  peridynamics_entry(),
+                                                  sph_entry(),
+                                                  staged_entry()};
   return entries;
 }
 

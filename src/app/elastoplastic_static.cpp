@@ -52,7 +52,9 @@ void admit(const io::ProblemSpec& spec, const std::string& folder) {
 }
 
 /// Checkpoints count increments: no bound in time.
-double end_time(const io::ProblemSpec&) { return std::numeric_limits<double>::infinity(); }
+double end_time(const io::ProblemSpec&) {
+  return std::numeric_limits<double>::infinity();
+}
 
 RunOutcome run(const RunRequest& q) {
   const auto r = elastoplastic_static(q.spec, q.session, q.out, q.dir, q.restart);

@@ -231,8 +231,8 @@ int end_thrown_run(const std::exception& e, const mf::solvers::PetscSession& ses
   }
   if (session.rank() == 0 || !everywhere)
     std::cerr << "meshfree: run failed"
-              << (everywhere ? "" : " on rank " + std::to_string(session.rank())) << ": "
-              << said(e) << std::endl;
+              << (everywhere ? "" : " on rank " + std::to_string(session.rank())) << ": " << said(e)
+              << std::endl;
   if (out) keep_failed(*out, spec, e);
   if (session.size() > 1 && !everywhere) mf::solvers::abort_every_rank(session.comm(), 1);
   return 1;

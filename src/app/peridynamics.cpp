@@ -1,9 +1,8 @@
 #include "meshfree/app/peridynamics.hpp"
-#include "meshfree/core/memory.hpp"
 #include "meshfree/explicit/run_counts.hpp"
 #include "meshfree/explicit/run_driver.hpp"
+#include "meshfree/explicit/run_plan.hpp"
 #include "meshfree/explicit/run_summaries.hpp"
-#include <cmath>
 #include <iostream>
 #include <omp.h>
 
@@ -48,26 +47,16 @@ void write_pd_outputs(const io::ProblemSpec& spec, const explicit_dynamics::PdRu
 namespace {
 
 void describe(const io::ProblemSpec& spec) {
-  PhaseTimer timer;
-  const explicit_dynamics::PdSetup setup = explicit_dynamics::build_pd_setup(spec, timer);
-  explicit_dynamics::require_finite_run(explicit_dynamics::planned_run(*spec.pd, setup),
-                                        "out/" + spec.name);
-  std::cout << "  peridynamics: " << setup.model.particles.size() << " particles, "
-            << setup.model.bonds.pairs() << " bonds, horizon " << setup.model.horizon
-            << "\n  time step " << setup.dt << " (" << setup.dt_limit << "), "
-            << static_cast<long>(std::ceil(spec.pd->end_time / setup.dt)) << " steps\n"
-            << "  memory: "
-            << describe_bytes(bytes_per::pd_particle * setup.model.particles.size() +
-                              bytes_per::pd_partner * setup.model.bonds.directed)
-            << " for the discretisation, besides " << describe_bytes(bytes_per::program)
-            << " for the program\n";
+  explicit_dynamics::print_pd_plan(spec, std::cout);
 }
 
-double end_time(const io::ProblemSpec& spec) { return spec.pd->end_time; }
+double end_time(const io::ProblemSpec& spec) {
+  return spec.pd->end_time;
+}
 
 RunOutcome run(const RunRequest& q) {
-  explicit_dynamics::PdRunResult r = run_peridynamics(
-      q.spec, q.out, distribution::Ranks::of(q.session.comm()), q.dir, q.restart);
+  explicit_dynamics::PdRunResult r =
+      run_peridynamics(q.spec, q.out, distribution::Ranks::of(q.session.comm()), q.dir, q.restart);
   {
     PhaseTimer::Scope scope(r.timer, "output");
     if (q.out) write_pd_outputs(q.spec, r, *q.out);
@@ -77,12 +66,6 @@ RunOutcome run(const RunRequest& q) {
 }
 
 } // namespace
-
-void require_finite_pd_run(const io::ProblemSpec& spec, const std::string& folder) {
-  PhaseTimer timer;
-  const auto setup = explicit_dynamics::build_pd_setup(spec, timer);
-  explicit_dynamics::require_finite_run(explicit_dynamics::planned_run(*spec.pd, setup), folder);
-}
 
 AnalysisEntry peridynamics_entry() {
   AnalysisEntry e{io::Analysis::Peridynamics, "peridynamics"};

@@ -1,13 +1,12 @@
 #include "meshfree/app/sph_run.hpp"
 #include "meshfree/core/log.hpp"
-#include "meshfree/core/memory.hpp"
 #include "meshfree/explicit/run_counts.hpp"
 #include "meshfree/explicit/run_driver.hpp"
+#include "meshfree/explicit/run_plan.hpp"
 #include "meshfree/explicit/run_summaries.hpp"
 #include "meshfree/explicit/sph_setup.hpp"
 #include "meshfree/sph/decomposition.hpp"
 #include "meshfree/sph/step.hpp"
-#include <cmath>
 #include <iostream>
 
 namespace mf::app {
@@ -63,21 +62,12 @@ void write_sph_outputs(const io::ProblemSpec& spec, const explicit_dynamics::Sph
 namespace {
 
 void describe(const io::ProblemSpec& spec) {
-  const sph::Hydro h = explicit_dynamics::build_sph(*spec.sph);
-  int limiting = -1;
-  const double dt = sph::stable_step(h, &limiting);
-  explicit_dynamics::require_finite_run(
-      explicit_dynamics::planned_run(*spec.sph, h.particles.size(), dt), "out/" + spec.name);
-  std::cout << "  sph: " << h.particles.size() << " particles in " << spec.sph->dimension
-            << "D, first CFL step " << dt << " (particle " << limiting << "), about "
-            << static_cast<long>(std::ceil(spec.sph->end_time / dt)) << " steps or more\n"
-            << "  memory: "
-            << describe_bytes(h.particles.size() * bytes_per::sph_particle(spec.sph->dimension))
-            << " for the discretisation, besides " << describe_bytes(bytes_per::program)
-            << " for the program\n";
+  explicit_dynamics::print_sph_plan(spec, std::cout);
 }
 
-double end_time(const io::ProblemSpec& spec) { return spec.sph->end_time; }
+double end_time(const io::ProblemSpec& spec) {
+  return spec.sph->end_time;
+}
 
 RunOutcome run(const RunRequest& q) {
   explicit_dynamics::SphRunResult r =
@@ -91,12 +81,6 @@ RunOutcome run(const RunRequest& q) {
 }
 
 } // namespace
-
-void require_finite_sph_run(const io::ProblemSpec& spec, const std::string& folder) {
-  const sph::Hydro h = explicit_dynamics::build_sph(*spec.sph);
-  explicit_dynamics::require_finite_run(
-      explicit_dynamics::planned_run(*spec.sph, h.particles.size(), sph::stable_step(h)), folder);
-}
 
 AnalysisEntry sph_entry() {
   AnalysisEntry e{io::Analysis::Sph, "sph"};

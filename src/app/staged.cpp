@@ -1,6 +1,5 @@
 #include "meshfree/app/staged.hpp"
-#include "meshfree/app/peridynamics.hpp"
-#include "meshfree/app/sph_run.hpp"
+#include "meshfree/explicit/run_plan.hpp"
 #include "meshfree/stages/staged_run.hpp"
 #include <iostream>
 #include <limits>
@@ -27,8 +26,8 @@ void check(const io::ProblemSpec& spec) {
 /// as input, with its key path (stages[1].time.end), not after the preload's solve.
 void admit(const io::ProblemSpec& spec, const std::string& folder) {
   for (const io::ProblemSpec& stage : spec.stages) {
-    if (stage.sph) require_finite_sph_run(stage, folder);
-    if (stage.pd) require_finite_pd_run(stage, folder);
+    if (stage.sph) explicit_dynamics::require_finite_sph_run(stage, folder);
+    if (stage.pd) explicit_dynamics::require_finite_pd_run(stage, folder);
   }
 }
 

@@ -16,8 +16,8 @@ namespace mf::app {
 struct RunRequest {
   const io::ProblemSpec& spec;
   const solvers::PetscSession& session;
-  io::OutputDirectory* out; // rank 0's output folder; null on the other ranks
-  const std::string& dir;   // the folder's path (checkpoints go to dir/checkpoint)
+  io::OutputDirectory* out;   // rank 0's output folder; null on the other ranks
+  const std::string& dir;     // the folder's path (checkpoints go to dir/checkpoint)
   const io::Restart* restart; // the checkpoint to go on from, or null
 };
 

@@ -21,10 +21,6 @@ explicit_dynamics::PdRunResult run_peridynamics(const io::ProblemSpec& spec,
 void write_pd_outputs(const io::ProblemSpec& spec, const explicit_dynamics::PdRunResult& r,
                       io::OutputDirectory& out);
 
-/// The run's set-up built to bound it: a run that would never end or not fit on the disk of
-/// `folder` is refused (a stage of a staged run, before its preload).
-void require_finite_pd_run(const io::ProblemSpec& spec, const std::string& folder);
-
 /// The table entry of `analysis: peridynamics`.
 AnalysisEntry peridynamics_entry();
 

@@ -21,10 +21,6 @@ explicit_dynamics::SphRunResult run_sph(const io::ProblemSpec& spec, io::OutputD
 void write_sph_outputs(const io::ProblemSpec& spec, const explicit_dynamics::SphRunResult& r,
                        io::OutputDirectory& out);
 
-/// The run's particles and first step built to bound it: a run that would never end or not fit on
-/// the disk of `folder` is refused (a stage of a staged run, before its preload).
-void require_finite_sph_run(const io::ProblemSpec& spec, const std::string& folder);
-
 /// The table entry of `analysis: sph`.
 AnalysisEntry sph_entry();
 
