@@ -26,7 +26,7 @@ const std::vector<AnalysisEntry>& table() {
 
 } // namespace
 
-const AnalysisEntry& entry_of(io::Analysis analysis) {
+const AnalysisEntry& entry_of(spec::Analysis analysis) {
   for (const AnalysisEntry& e : table())
     if (e.analysis == analysis) return e;
   fail("no analysis entry for analysis number ", static_cast<int>(analysis));

@@ -6,7 +6,7 @@
 
 namespace mf::app {
 
-implicit::ElasticResult elastic_static(const io::ProblemSpec& spec,
+implicit::ElasticResult elastic_static(const spec::ProblemSpec& spec,
                                        const solvers::PetscSession& session,
                                        io::OutputDirectory* out) {
   // The display mesh on every rank alike (its nodal average is collective; `out` is rank 0's).
@@ -27,16 +27,16 @@ RunOutcome run(const RunRequest& q) {
 
 } // namespace
 
-void describe_galerkin(const io::ProblemSpec& spec) {
+void describe_galerkin(const spec::ProblemSpec& spec) {
   implicit::print_galerkin_plan(spec, std::cout);
 }
 
-void admit_galerkin(const io::ProblemSpec& spec, const std::string&) {
-  if (spec.discretisation.method == io::Method::Fem) implicit::read_fe_mesh(spec);
+void admit_galerkin(const spec::ProblemSpec& spec, const std::string&) {
+  if (spec.discretisation.method == spec::Method::Fem) implicit::read_fe_mesh(spec);
 }
 
 AnalysisEntry elastic_static_entry() {
-  AnalysisEntry e{io::Analysis::ElasticStatic, "elastic_static"};
+  AnalysisEntry e{spec::Analysis::ElasticStatic, "elastic_static"};
   e.describe = describe_galerkin;
   e.check = describe_galerkin;
   e.admit = admit_galerkin;

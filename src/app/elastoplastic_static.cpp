@@ -7,7 +7,7 @@
 
 namespace mf::app {
 
-implicit::ElastoplasticResult elastoplastic_static(const io::ProblemSpec& spec,
+implicit::ElastoplasticResult elastoplastic_static(const spec::ProblemSpec& spec,
                                                    const solvers::PetscSession& session,
                                                    io::OutputDirectory* out, const std::string& dir,
                                                    const io::Restart* restart) {
@@ -23,7 +23,7 @@ implicit::ElastoplasticResult elastoplastic_static(const io::ProblemSpec& spec,
 /// Each increment is a Newton solve over every degree of freedom that writes a field frame, a
 /// Gauss-point frame and a display-mesh frame, about 700 bytes per node together (measured on
 /// plate_plastic_thesis, README.md "Running").
-void require_increment_output(const io::ProblemSpec& spec, const std::string& folder) {
+void require_increment_output(const spec::ProblemSpec& spec, const std::string& folder) {
   const Vec2 size = spec.domain.bounds().size();
   const double h = spec.discretisation.spacing;
   const double nodes = (size.x() / h + 1.0) * (size.y() / h + 1.0);
@@ -41,18 +41,18 @@ void require_increment_output(const io::ProblemSpec& spec, const std::string& fo
 
 namespace {
 
-void check(const io::ProblemSpec& spec) {
+void check(const spec::ProblemSpec& spec) {
   describe_galerkin(spec);
   require_increment_output(spec, "out/" + spec.name);
 }
 
-void admit(const io::ProblemSpec& spec, const std::string& folder) {
+void admit(const spec::ProblemSpec& spec, const std::string& folder) {
   admit_galerkin(spec, folder);
   require_increment_output(spec, folder);
 }
 
 /// Checkpoints count increments: no bound in time.
-double end_time(const io::ProblemSpec&) {
+double end_time(const spec::ProblemSpec&) {
   return std::numeric_limits<double>::infinity();
 }
 
@@ -65,7 +65,7 @@ RunOutcome run(const RunRequest& q) {
 } // namespace
 
 AnalysisEntry elastoplastic_static_entry() {
-  AnalysisEntry e{io::Analysis::ElastoplasticStatic, "elastoplastic_static"};
+  AnalysisEntry e{spec::Analysis::ElastoplasticStatic, "elastoplastic_static"};
   e.checkpoints = true;
   e.describe = describe_galerkin;
   e.check = check;

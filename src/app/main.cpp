@@ -5,10 +5,10 @@
 #include "meshfree/app/analysis.hpp"
 #include "meshfree/core/log.hpp"
 #include "meshfree/io/checkpoint.hpp"
-#include "meshfree/io/key_reader.hpp"
-#include "meshfree/io/problem_spec.hpp"
-#include "meshfree/io/unit_sanity.hpp"
 #include "meshfree/solvers/parallel.hpp"
+#include "meshfree/spec/key_reader.hpp"
+#include "meshfree/spec/problem_spec.hpp"
+#include "meshfree/spec/unit_sanity.hpp"
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
@@ -39,7 +39,7 @@ constexpr const char* kUsage =
 /// An error as the user reads it: always one line (control characters shown escaped), and never
 /// a whole file's worth however long a value it quotes.
 std::string said(const std::exception& e) {
-  return mf::io::one_line(e.what(), 2000);
+  return mf::spec::one_line(e.what(), 2000);
 }
 
 struct Command {
@@ -85,8 +85,8 @@ Command parse(int argc, char** argv) {
 /// Reads the problem and builds what its run builds before the first step or solve, stage by
 /// stage; says "valid" only when all of it passed.
 int check(const Command& c) {
-  const mf::io::ProblemSpec spec = mf::io::read_problem(c.problem, c.overrides);
-  mf::io::warn_unit_sanity(spec);
+  const mf::spec::ProblemSpec spec = mf::spec::read_problem(c.problem, c.overrides);
+  mf::spec::warn_unit_sanity(spec);
   mf::app::entry_of(spec.analysis).check(spec);
   std::cout << "problem " << spec.name << ": valid\n";
   return 0;
@@ -102,7 +102,7 @@ std::string refusal(const std::string& dir, const std::exception& e) {
 /// exit status 1.
 int report_failure(const mf::solvers::PetscSession& session, const std::string& reason) {
   if (session.rank() == 0)
-    std::cerr << "meshfree: run failed: " << mf::io::one_line(reason, 2000) << std::endl;
+    std::cerr << "meshfree: run failed: " << mf::spec::one_line(reason, 2000) << std::endl;
   return 1;
 }
 
@@ -126,7 +126,7 @@ int run(Command& c) {
 
 /// What the run wrote up to a failure is kept for diagnosis under DIR/failed, with a summary
 /// that says why; a good result in DIR stays as it was.
-void keep_failed(mf::io::OutputDirectory& out, const mf::io::ProblemSpec& spec,
+void keep_failed(mf::io::OutputDirectory& out, const mf::spec::ProblemSpec& spec,
                  const std::exception& e) {
   mf::io::Json summary;
   summary.set("problem", spec.name).set("status", "failed").set("error", e.what());
@@ -142,9 +142,9 @@ void keep_failed(mf::io::OutputDirectory& out, const mf::io::ProblemSpec& spec,
 }
 
 /// The problem of a run, read and checked; a restart only of an analysis that writes checkpoints.
-const mf::app::AnalysisEntry& read_for_run(const Command& c, mf::io::ProblemSpec& spec) {
-  spec = mf::io::read_problem(c.problem, c.overrides);
-  mf::io::warn_unit_sanity(spec);
+const mf::app::AnalysisEntry& read_for_run(const Command& c, mf::spec::ProblemSpec& spec) {
+  spec = mf::spec::read_problem(c.problem, c.overrides);
+  mf::spec::warn_unit_sanity(spec);
   const mf::app::AnalysisEntry& entry = mf::app::entry_of(spec.analysis);
   MF_REQUIRE(c.restart_dir.empty() || entry.checkpoints, "--restart ", c.restart_dir,
              ": only runs that go step by step write checkpoints (",
@@ -157,7 +157,7 @@ const mf::app::AnalysisEntry& read_for_run(const Command& c, mf::io::ProblemSpec
 /// refuses before writing (a mesh, a run that would not end). Rank 0 takes the folder; false on
 /// every rank when it was refused.
 bool take_output(const Command& c, const mf::solvers::PetscSession& session,
-                 const mf::io::ProblemSpec& spec, const mf::app::AnalysisEntry& entry,
+                 const mf::spec::ProblemSpec& spec, const mf::app::AnalysisEntry& entry,
                  const std::string& dir, std::unique_ptr<mf::io::OutputDirectory>& out) {
   double unusable = 0.0;
   if (session.rank() == 0) try {
@@ -177,7 +177,7 @@ bool take_output(const Command& c, const mf::solvers::PetscSession& session,
 /// The checkpoint must be this problem's, whole and undamaged (rank 0 reads every rank's file
 /// through), before anything is written. False on every rank when it was refused.
 bool take_restart(const std::string& dir, const mf::solvers::PetscSession& session,
-                  const mf::io::ProblemSpec& spec, const mf::app::AnalysisEntry& entry,
+                  const mf::spec::ProblemSpec& spec, const mf::app::AnalysisEntry& entry,
                   std::optional<mf::io::Restart>& restart) {
   double refused = 0.0;
   try {
@@ -213,7 +213,7 @@ void settle_output(mf::io::OutputDirectory* out, int exit_code, const std::strin
 /// A run that threw. A CollectiveError reached every rank: each returns normally. Any other error
 /// may have reached this rank only, and the others would wait for it forever: they are aborted.
 int end_thrown_run(const std::exception& e, const mf::solvers::PetscSession& session,
-                   const mf::io::ProblemSpec& spec, const mf::app::AnalysisEntry& entry,
+                   const mf::spec::ProblemSpec& spec, const mf::app::AnalysisEntry& entry,
                    mf::io::OutputDirectory* out, const std::string& dir, bool restarted) {
   const bool everywhere = dynamic_cast<const mf::solvers::CollectiveError*>(&e) != nullptr;
   if (restarted && dynamic_cast<const mf::io::CheckpointRefused*>(&e)) {
@@ -239,7 +239,7 @@ int end_thrown_run(const std::exception& e, const mf::solvers::PetscSession& ses
 }
 
 int run_in(Command& c, mf::solvers::PetscSession& session) {
-  mf::io::ProblemSpec spec;
+  mf::spec::ProblemSpec spec;
   const mf::app::AnalysisEntry* entry = nullptr;
   try {
     entry = &read_for_run(c, spec);

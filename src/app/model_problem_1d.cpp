@@ -4,7 +4,7 @@
 
 namespace mf::app {
 
-implicit::Model1DResult model_problem_1d(const io::ProblemSpec& spec, io::OutputDirectory& out) {
+implicit::Model1DResult model_problem_1d(const spec::ProblemSpec& spec, io::OutputDirectory& out) {
   const implicit::Model1DResult r = implicit::solve_model_problem_1d(spec);
   implicit::write_model_1d_outputs(spec, r, out);
   return r;
@@ -12,7 +12,7 @@ implicit::Model1DResult model_problem_1d(const io::ProblemSpec& spec, io::Output
 
 namespace {
 
-void describe(const io::ProblemSpec& spec) {
+void describe(const spec::ProblemSpec& spec) {
   std::cout << "  1D model problem on [0, " << spec.model_1d.length << "], spacing "
             << spec.discretisation.spacing << "\n";
 }
@@ -26,7 +26,7 @@ RunOutcome run(const RunRequest& q) {
 } // namespace
 
 AnalysisEntry model_problem_1d_entry() {
-  AnalysisEntry e{io::Analysis::ModelProblem1D, "model_problem_1d"};
+  AnalysisEntry e{spec::Analysis::ModelProblem1D, "model_problem_1d"};
   e.describe = describe;
   e.check = describe;
   e.run = run;

@@ -8,12 +8,12 @@
 
 namespace mf::app {
 
-explicit_dynamics::PdRunResult run_peridynamics(const io::ProblemSpec& spec,
+explicit_dynamics::PdRunResult run_peridynamics(const spec::ProblemSpec& spec,
                                                 io::OutputDirectory* out,
                                                 const distribution::Ranks& ranks,
                                                 const std::string& dir,
                                                 const io::Restart* restart) {
-  const io::PdSpec& s = *spec.pd;
+  const spec::PdSpec& s = *spec.pd;
   explicit_dynamics::PdRunResult result;
   explicit_dynamics::PdSetup setup = explicit_dynamics::build_pd_setup(spec, result.timer, ranks);
   explicit_dynamics::require_finite_run(explicit_dynamics::planned_run(s, setup), dir);
@@ -25,7 +25,7 @@ explicit_dynamics::PdRunResult run_peridynamics(const io::ProblemSpec& spec,
   return result;
 }
 
-void write_pd_outputs(const io::ProblemSpec& spec, const explicit_dynamics::PdRunResult& r,
+void write_pd_outputs(const spec::ProblemSpec& spec, const explicit_dynamics::PdRunResult& r,
                       io::OutputDirectory& out) {
   r.history.write(out);
   io::Summary summary({spec.name, spec.description, spec.units, "peridynamics", ""});
@@ -46,11 +46,11 @@ void write_pd_outputs(const io::ProblemSpec& spec, const explicit_dynamics::PdRu
 
 namespace {
 
-void describe(const io::ProblemSpec& spec) {
+void describe(const spec::ProblemSpec& spec) {
   explicit_dynamics::print_pd_plan(spec, std::cout);
 }
 
-double end_time(const io::ProblemSpec& spec) {
+double end_time(const spec::ProblemSpec& spec) {
   return spec.pd->end_time;
 }
 
@@ -68,7 +68,7 @@ RunOutcome run(const RunRequest& q) {
 } // namespace
 
 AnalysisEntry peridynamics_entry() {
-  AnalysisEntry e{io::Analysis::Peridynamics, "peridynamics"};
+  AnalysisEntry e{spec::Analysis::Peridynamics, "peridynamics"};
   e.checkpoints = true;
   e.folder_at_first_file = true;
   e.describe = describe;

@@ -11,10 +11,10 @@
 
 namespace mf::app {
 
-explicit_dynamics::SphRunResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out,
+explicit_dynamics::SphRunResult run_sph(const spec::ProblemSpec& spec, io::OutputDirectory* out,
                                         const distribution::Ranks& ranks, const std::string& dir,
                                         const io::Restart* restart) {
-  const io::SphSpec& s = *spec.sph;
+  const spec::SphSpec& s = *spec.sph;
   explicit_dynamics::SphRunResult result;
   sph::Hydro h;
   {
@@ -37,7 +37,7 @@ explicit_dynamics::SphRunResult run_sph(const io::ProblemSpec& spec, io::OutputD
   return result;
 }
 
-void write_sph_outputs(const io::ProblemSpec& spec, const explicit_dynamics::SphRunResult& r,
+void write_sph_outputs(const spec::ProblemSpec& spec, const explicit_dynamics::SphRunResult& r,
                        io::OutputDirectory& out) {
   r.history.write(out);
   io::Summary summary({spec.name, spec.description, spec.units, "sph", ""});
@@ -61,11 +61,11 @@ void write_sph_outputs(const io::ProblemSpec& spec, const explicit_dynamics::Sph
 
 namespace {
 
-void describe(const io::ProblemSpec& spec) {
+void describe(const spec::ProblemSpec& spec) {
   explicit_dynamics::print_sph_plan(spec, std::cout);
 }
 
-double end_time(const io::ProblemSpec& spec) {
+double end_time(const spec::ProblemSpec& spec) {
   return spec.sph->end_time;
 }
 
@@ -83,7 +83,7 @@ RunOutcome run(const RunRequest& q) {
 } // namespace
 
 AnalysisEntry sph_entry() {
-  AnalysisEntry e{io::Analysis::Sph, "sph"};
+  AnalysisEntry e{spec::Analysis::Sph, "sph"};
   e.checkpoints = true;
   e.folder_at_first_file = true;
   e.describe = describe;

@@ -9,9 +9,9 @@ namespace mf::app {
 namespace {
 
 /// Each stage as its own analysis describes itself, with where it starts from.
-void check(const io::ProblemSpec& spec) {
+void check(const spec::ProblemSpec& spec) {
   for (std::size_t k = 0; k < spec.stages.size(); ++k) {
-    const io::StageLink& l = spec.links[k];
+    const spec::StageLink& l = spec.links[k];
     std::cout << "stage " << spec.stages[k].stage;
     if (l.from >= 0)
       std::cout << " from " << spec.stages[l.from].stage << " (" << l.hold.size()
@@ -24,16 +24,16 @@ void check(const io::ProblemSpec& spec) {
 /// The explicit stages bounded as `check` bounds them (their particles and first step built as
 /// their set-up builds them), before the preload runs: a stage that would never end is refused
 /// as input, with its key path (stages[1].time.end), not after the preload's solve.
-void admit(const io::ProblemSpec& spec, const std::string& folder) {
-  for (const io::ProblemSpec& stage : spec.stages) {
+void admit(const spec::ProblemSpec& spec, const std::string& folder) {
+  for (const spec::ProblemSpec& stage : spec.stages) {
     if (stage.sph) explicit_dynamics::require_finite_sph_run(stage, folder);
     if (stage.pd) explicit_dynamics::require_finite_pd_run(stage, folder);
   }
 }
 
 /// Checkpoints are the explicit stage's.
-double end_time(const io::ProblemSpec& spec) {
-  const io::ProblemSpec& stage = spec.stages.at(1);
+double end_time(const spec::ProblemSpec& spec) {
+  const spec::ProblemSpec& stage = spec.stages.at(1);
   const AnalysisEntry& e = entry_of(stage.analysis);
   return e.end_time ? e.end_time(stage) : std::numeric_limits<double>::infinity();
 }
@@ -46,7 +46,7 @@ RunOutcome run(const RunRequest& q) {
 } // namespace
 
 AnalysisEntry staged_entry() {
-  AnalysisEntry e{io::Analysis::Staged, "staged"};
+  AnalysisEntry e{spec::Analysis::Staged, "staged"};
   e.checkpoints = true;
   e.describe = check;
   e.check = check;

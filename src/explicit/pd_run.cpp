@@ -9,7 +9,7 @@ namespace mf::explicit_dynamics {
 
 namespace {
 
-std::vector<GaugePoint> gauge_points(const io::PdSpec& s) {
+std::vector<GaugePoint> gauge_points(const spec::PdSpec& s) {
   std::vector<GaugePoint> g;
   for (const auto& p : s.gauges) g.push_back({p.name, p.at});
   return g;
@@ -29,7 +29,8 @@ io::PointSlice field_slice(const PdSetup& setup) {
 
 } // namespace
 
-PdRun::PdRun(PdSetup& setup, const io::PdSpec& spec, io::OutputDirectory* out, PdRunResult& result)
+PdRun::PdRun(PdSetup& setup, const spec::PdSpec& spec, io::OutputDirectory* out,
+             PdRunResult& result)
     : setup_(setup), spec_(spec), r_(result),
       gauges_(gauge_points(spec), setup.model.particles.X, setup.model.particles.owned_count(),
               setup.model.halo.ranks()),
@@ -176,9 +177,9 @@ std::string PdRun::overflowing_load() const {
         const double b = l.density_of(k, d) * f;
         const double move = std::abs(b) / m.particles.density[l.particles[k]] * dt * dt;
         if (!std::isfinite(b) || !(move < 1e6 * m.spacing))
-          return detail::concat("the load '", l.name, "' is ", b,
-                                " per unit volume at t = ", t, ", which moves a particle ", move,
-                                " in one step of ", dt, ": is its value (or its function's) meant?");
+          return detail::concat("the load '", l.name, "' is ", b, " per unit volume at t = ", t,
+                                ", which moves a particle ", move, " in one step of ", dt,
+                                ": is its value (or its function's) meant?");
       }
   }
   return "";
@@ -296,8 +297,7 @@ void PdRun::restore(const io::Loader& load) {
   const std::size_t plastic = setup_.state.plastic.size();
   for_each_state(load);
   if (setup_.state.plastic.size() != plastic)
-    io::refuse_checkpoint("the checkpoint holds " +
-                          std::to_string(setup_.state.plastic.size()) +
+    io::refuse_checkpoint("the checkpoint holds " + std::to_string(setup_.state.plastic.size()) +
                           " plastic stretches, this run has " + std::to_string(plastic));
   // Lists of particles, read back at the length kept, must name particles of this run.
   const int n = setup_.model.particles.size();
@@ -306,7 +306,9 @@ void PdRun::restore(const io::Loader& load) {
                                   [n](int i) { return i >= -1 && i < n; });
   if (!pairs || !gauges || !fracture_account_.consistent(setup_.model.particles.owned_count()))
     io::refuse_checkpoint(std::string("the checkpoint's ") +
-                          (!pairs ? "contact pairs" : !gauges ? "gauges" : "broken bonds") +
+                          (!pairs    ? "contact pairs"
+                           : !gauges ? "gauges"
+                                     : "broken bonds") +
                           " name particles this run does not have (a damaged checkpoint)");
 }
 

@@ -13,12 +13,12 @@ namespace mf::explicit_dynamics {
 
 namespace {
 
-using io::Vec3d;
+using spec::Vec3d;
 
 /// Cell-centred lattice of spacing dx over the body: a 3D box, or the 2D domain's bounding box
 /// with the points the domain contains; notches left out, regions with their own material.
-particles::ParticleSet lattice(const io::ProblemSpec& spec) {
-  const io::PdSpec& s = *spec.pd;
+particles::ParticleSet lattice(const spec::ProblemSpec& spec) {
+  const spec::PdSpec& s = *spec.pd;
   const double dx = s.spacing;
   const bool solid = s.dimension == materials::PdDimension::Solid3D;
   Vec3d lo, hi;
@@ -42,7 +42,7 @@ particles::ParticleSet lattice(const io::ProblemSpec& spec) {
   std::vector<long> in_region(s.regions.size(), 0);
   grid.for_each([&](const Vec3d& x) {
     if (!solid && !spec.domain.contains(Vec2(x.x(), x.y()))) return;
-    for (const io::Region& b : s.removed)
+    for (const spec::Region& b : s.removed)
       if (b.contains(x, 1e-9 * dx)) return;
     int mat = s.body_material, region = 0;
     for (std::size_t k = 0; k < s.regions.size(); ++k)
@@ -61,8 +61,9 @@ particles::ParticleSet lattice(const io::ProblemSpec& spec) {
 
 /// The bond law of one material: micromodulus (from E, the bulk modulus or given), critical
 /// stretch (from G0, given, or none), micro-plastic yield stretch and the LAMMPS alpha.
-materials::BondLaw material_law(const io::PdSpec& s, const io::MaterialSpec& mat, double delta) {
-  const io::BondSpec& m = *mat.bond;
+materials::BondLaw material_law(const spec::PdSpec& s, const spec::MaterialSpec& mat,
+                                double delta) {
+  const spec::BondSpec& m = *mat.bond;
   materials::BondLaw law;
   law.c = m.micromodulus > 0.0 ? m.micromodulus
           : mat.bulk_modulus > 0.0
@@ -83,7 +84,7 @@ materials::BondLaw material_law(const io::PdSpec& s, const io::MaterialSpec& mat
 
 /// Laws of every material pair: a material's own law, an interface's base law scaled by its
 /// factors, or (pairs with no interface) the law of the pair's softer material.
-pd::LawTable law_table(const io::PdSpec& s, double delta) {
+pd::LawTable law_table(const spec::PdSpec& s, double delta) {
   pd::LawTable t;
   const int n = static_cast<int>(s.materials.size());
   t.materials = n;
@@ -97,7 +98,7 @@ pd::LawTable law_table(const io::PdSpec& s, double delta) {
   for (int a = 0; a < n; ++a)
     for (int b = 0; b < n; ++b)
       t.law_of[a * n + b] = a == b ? a : (t.laws[a].c <= t.laws[b].c ? a : b);
-  for (const io::PdInterface& f : s.interfaces) {
+  for (const spec::PdInterface& f : s.interfaces) {
     materials::BondLaw law = t.laws[index(f.base)];
     law.yield_stretch *= f.yield_stretch_factor;
     law.critical_stretch *= f.critical_stretch_factor;
@@ -109,7 +110,7 @@ pd::LawTable law_table(const io::PdSpec& s, double delta) {
 }
 
 std::vector<int> particles_in(const particles::ParticleSet& p,
-                              const std::optional<io::Region>& region, double tol) {
+                              const std::optional<spec::Region>& region, double tol) {
   std::vector<int> out;
   for (int i = 0; i < p.size(); ++i)
     if (!region || region->contains(p.reference(i), tol)) out.push_back(i);
@@ -119,7 +120,7 @@ std::vector<int> particles_in(const particles::ParticleSet& p,
 /// Traction t on a layer of particles as a body force: b = t A / (volume of the layer). A is
 /// given, or is the layer's volume over its thickness normal to the loaded face (the thinnest
 /// extent of the layer, one spacing per particle row), so that b = t / thickness.
-Vec3d traction_density(const io::PdCondition& c, const particles::ParticleSet& p,
+Vec3d traction_density(const spec::PdCondition& c, const particles::ParticleSet& p,
                        const std::vector<int>& group, double dx, int dims) {
   double volume = 0.0;
   Vec3d lo = p.reference(group.front()), hi = lo;
@@ -153,7 +154,7 @@ void keep_rank_part(PdSetup& out, const distribution::Ranks& ranks, double reach
 }
 
 /// The model's parameters from the spec, before it has particles.
-pd::Model model_of(const io::PdSpec& s) {
+pd::Model model_of(const spec::PdSpec& s) {
   pd::Model m;
   m.dimension = s.dimension;
   m.thickness = s.thickness;
@@ -164,31 +165,31 @@ pd::Model model_of(const io::PdSpec& s) {
   return m;
 }
 
-pd::Constraint constraint_of(const io::PdCondition& c, const std::vector<int>& group) {
+pd::Constraint constraint_of(const spec::PdCondition& c, const std::vector<int>& group) {
   pd::Constraint k;
   k.name = c.name;
   k.particles = group;
-  k.velocity = c.kind == io::PdCondition::Kind::Velocity;
+  k.velocity = c.kind == spec::PdCondition::Kind::Velocity;
   for (int d = 0; d < 3; ++d) k.fixed[d] = c.fixed[d], k.value[d] = c.value(d);
   k.function = c.function;
   return k;
 }
 
 /// A body force, a traction as a body force on its layer, or a blast.
-pd::BodyLoad load_of(const io::PdCondition& c, const particles::ParticleSet& p,
+pd::BodyLoad load_of(const spec::PdCondition& c, const particles::ParticleSet& p,
                      const std::vector<int>& group, double spacing, int dims) {
   pd::BodyLoad load;
   load.name = c.name;
   load.particles = group;
-  load.density = c.kind == io::PdCondition::Kind::Traction
+  load.density = c.kind == spec::PdCondition::Kind::Traction
                      ? traction_density(c, p, group, spacing, dims)
                      : c.value;
   load.function = c.function;
-  if (c.kind == io::PdCondition::Kind::Blast) {
+  if (c.kind == spec::PdCondition::Kind::Blast) {
     // Each particle of the layer gets the Friedlander history of its distance and angle of
     // incidence; the force per volume of a unit pressure is -n / (layer thickness). In a
     // plane model the charge lies in the plane and distances are measured in it.
-    io::PdCondition unit = c;
+    spec::PdCondition unit = c;
     unit.value = -c.blast.normal;
     unit.area = 0.0;
     load.density = traction_density(unit, p, group, spacing, dims);
@@ -201,33 +202,33 @@ pd::BodyLoad load_of(const io::PdCondition& c, const particles::ParticleSet& p,
 
 /// The spec's functions, constraints, loads and initial velocities on the whole body (a
 /// traction's layer and a blast's pulses are properties of the whole layer).
-void load_body(PdSetup& out, const io::PdSpec& s) {
+void load_body(PdSetup& out, const spec::PdSpec& s) {
   particles::ParticleSet& p = out.model.particles;
   const double tol = 1e-6 * s.spacing;
   for (const auto& f : s.functions) out.loading.functions.push_back(f.f);
-  for (const io::PdCondition& c : s.conditions) {
+  for (const spec::PdCondition& c : s.conditions) {
     const std::vector<int> group = particles_in(p, c.region, tol);
     MF_REQUIRE(!group.empty(), c.key_path, ".box: selects no particle");
-    if (c.kind == io::PdCondition::Kind::Displacement ||
-        c.kind == io::PdCondition::Kind::Velocity)
+    if (c.kind == spec::PdCondition::Kind::Displacement ||
+        c.kind == spec::PdCondition::Kind::Velocity)
       out.loading.constraints.push_back(constraint_of(c, group));
     else
       out.loading.loads.push_back(load_of(c, p, group, s.spacing, out.model.plane() ? 2 : 3));
   }
-  for (const io::PdRegion& r : s.regions)
+  for (const spec::PdRegion& r : s.regions)
     if (r.velocity)
       for (int i : particles_in(p, r.region, tol))
         for (int d = 0; d < 3; ++d) p.v[3 * i + d] = (*r.velocity)(d);
 }
 
-pd::VolumeCorrection volume_correction(const io::PdSpec& s) {
+pd::VolumeCorrection volume_correction(const spec::PdSpec& s) {
   return s.volume_correction == "exact"    ? pd::VolumeCorrection::Exact
          : s.volume_correction == "linear" ? pd::VolumeCorrection::Linear
                                            : pd::VolumeCorrection::None;
 }
 
 /// The bonds with their laws and surface correction, and the bond state with the pre-cracks.
-void bond_body(PdSetup& out, const io::PdSpec& s, pd::VolumeCorrection correction) {
+void bond_body(PdSetup& out, const spec::PdSpec& s, pd::VolumeCorrection correction) {
   pd::Model& m = out.model;
   pd::build_bonds(m, law_table(s, m.horizon), correction);
   if (s.surface_correction) pd::apply_surface_correction(m);
@@ -236,9 +237,9 @@ void bond_body(PdSetup& out, const io::PdSpec& s, pd::VolumeCorrection correctio
   out.state = pd::initial_state(m, cracks);
 }
 
-std::vector<pd::Impactor> impactors_of(const io::PdSpec& s) {
+std::vector<pd::Impactor> impactors_of(const spec::PdSpec& s) {
   std::vector<pd::Impactor> out;
-  for (const io::PdImpactor& k : s.impactors) {
+  for (const spec::PdImpactor& k : s.impactors) {
     pd::Impactor imp;
     imp.name = k.name;
     imp.shape = k.sphere ? pd::Impactor::Shape::Sphere : pd::Impactor::Shape::Flat;
@@ -266,7 +267,7 @@ struct StableStep {
 
 /// The time step: the stable step times the safety factor, one step per load sample when a
 /// table is finer, or the step asked for (never above the bound).
-void set_time_step(PdSetup& out, const io::PdSpec& s, const distribution::Ranks& ranks,
+void set_time_step(PdSetup& out, const spec::PdSpec& s, const distribution::Ranks& ranks,
                    const StableStep& bound) {
   const double stable = bound.stable;
   out.dt = s.safety * stable;
@@ -298,7 +299,7 @@ void set_time_step(PdSetup& out, const io::PdSpec& s, const distribution::Ranks&
 }
 
 /// The impactors, the contact of particles and the time step of a bonded body.
-void set_contact_and_step(PdSetup& out, const io::PdSpec& s, const distribution::Ranks& ranks) {
+void set_contact_and_step(PdSetup& out, const spec::PdSpec& s, const distribution::Ranks& ranks) {
   pd::Model& m = out.model;
   out.impactors = impactors_of(s);
   StableStep bound;
@@ -319,9 +320,9 @@ void set_contact_and_step(PdSetup& out, const io::PdSpec& s, const distribution:
 
 } // namespace
 
-PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer,
+PdSetup build_pd_setup(const spec::ProblemSpec& spec, PhaseTimer& timer,
                        const distribution::Ranks& ranks) {
-  const io::PdSpec& s = *spec.pd;
+  const spec::PdSpec& s = *spec.pd;
   PdSetup out;
   pd::Model& m = out.model;
   m = model_of(s);
@@ -348,7 +349,7 @@ PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer,
   return out;
 }
 
-void log_pd_setup(const io::ProblemSpec& spec, const PdSetup& setup) {
+void log_pd_setup(const spec::ProblemSpec& spec, const PdSetup& setup) {
   const pd::Model& m = setup.model;
   log::info("peridynamics: ", setup.particles_total, " particles, ", m.bonds.pairs(),
             " bonds, horizon ", m.horizon, " (", spec.pd->horizon_factor, " spacings), ",

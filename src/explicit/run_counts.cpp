@@ -39,21 +39,20 @@ void require_finite_run(const PlannedRun& r, const std::string& folder) {
                    detail::concat(r.end_time, " s in time steps of ", r.dt, " s, ", r.particles,
                                   " particles: particle-steps"),
                    steps * std::max(1.0, r.particles), r.particle_steps_per_second);
-  const double frames =
-      2.0 + (r.fields_interval > 0.0 ? events(r.fields_interval, r, steps) : 0.0);
+  const double frames = 2.0 + (r.fields_interval > 0.0 ? events(r.fields_interval, r, steps) : 0.0);
   require_disk(k + "output.fields_interval", "field frames", frames,
                r.particles * r.bytes_per_particle_frame, folder);
   const double rows = 1.0 + events(r.history_interval, r, steps);
   // A row is its columns written as text, about 24 characters each.
-  require_disk(k + "output.history_interval", "history rows", rows, 24.0 * r.history_columns, folder);
+  require_disk(k + "output.history_interval", "history rows", rows, 24.0 * r.history_columns,
+               folder);
   if (r.checkpoint_interval > 0.0) {
     const double n = events(r.checkpoint_interval, r, steps);
     const double seconds = n * r.particles * r.bytes_per_particle_state / disk_bytes_per_second;
     if (!(seconds <= max_run_seconds))
       fail(k, "output.checkpoint_interval: ", r.checkpoint_interval, " s: about ", n,
-           " checkpoints, about ", seconds / 86400.0, " days of writing at ",
-           disk_bytes_per_second, " bytes per second, more than the ",
-           max_run_seconds / 86400.0, " days a run may take");
+           " checkpoints, about ", seconds / 86400.0, " days of writing at ", disk_bytes_per_second,
+           " bytes per second, more than the ", max_run_seconds / 86400.0, " days a run may take");
   }
   warn_clamped(r);
 }
@@ -65,7 +64,7 @@ double history_columns(std::size_t gauges) {
 }
 } // namespace
 
-PlannedRun planned_run(const io::PdSpec& s, const PdSetup& setup) {
+PlannedRun planned_run(const spec::PdSpec& s, const PdSetup& setup) {
   PlannedRun r;
   r.end_time = s.end_time;
   r.dt = setup.dt;
@@ -82,7 +81,7 @@ PlannedRun planned_run(const io::PdSpec& s, const PdSetup& setup) {
   return r;
 }
 
-PlannedRun planned_run(const io::SphSpec& s, double particles, double dt) {
+PlannedRun planned_run(const spec::SphSpec& s, double particles, double dt) {
   PlannedRun r;
   r.end_time = s.end_time;
   r.dt = dt;

@@ -7,7 +7,7 @@
 
 namespace mf::explicit_dynamics {
 
-void print_pd_plan(const io::ProblemSpec& spec, std::ostream& os) {
+void print_pd_plan(const spec::ProblemSpec& spec, std::ostream& os) {
   PhaseTimer timer;
   const PdSetup setup = build_pd_setup(spec, timer);
   require_finite_run(planned_run(*spec.pd, setup), "out/" + spec.name);
@@ -22,7 +22,7 @@ void print_pd_plan(const io::ProblemSpec& spec, std::ostream& os) {
      << " for the program\n";
 }
 
-void print_sph_plan(const io::ProblemSpec& spec, std::ostream& os) {
+void print_sph_plan(const spec::ProblemSpec& spec, std::ostream& os) {
   const sph::Hydro h = build_sph(*spec.sph);
   int limiting = -1;
   const double dt = sph::stable_step(h, &limiting);
@@ -36,13 +36,13 @@ void print_sph_plan(const io::ProblemSpec& spec, std::ostream& os) {
      << " for the program\n";
 }
 
-void require_finite_pd_run(const io::ProblemSpec& spec, const std::string& folder) {
+void require_finite_pd_run(const spec::ProblemSpec& spec, const std::string& folder) {
   PhaseTimer timer;
   const auto setup = build_pd_setup(spec, timer);
   require_finite_run(planned_run(*spec.pd, setup), folder);
 }
 
-void require_finite_sph_run(const io::ProblemSpec& spec, const std::string& folder) {
+void require_finite_sph_run(const spec::ProblemSpec& spec, const std::string& folder) {
   const sph::Hydro h = build_sph(*spec.sph);
   require_finite_run(planned_run(*spec.sph, h.particles.size(), sph::stable_step(h)), folder);
 }

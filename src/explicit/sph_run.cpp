@@ -10,7 +10,7 @@ namespace mf::explicit_dynamics {
 
 namespace {
 
-std::vector<GaugePoint> gauge_points(const io::SphSpec& s) {
+std::vector<GaugePoint> gauge_points(const spec::SphSpec& s) {
   std::vector<GaugePoint> g;
   for (const auto& p : s.gauges) g.push_back({p.name, Vec3(p.at[0], p.at[1], p.at[2])});
   return g;
@@ -53,7 +53,7 @@ long particles_total(const sph::Hydro& h) {
 
 } // namespace
 
-SphRun::SphRun(sph::Hydro& h, const io::SphSpec& spec, io::OutputDirectory* out,
+SphRun::SphRun(sph::Hydro& h, const spec::SphSpec& spec, io::OutputDirectory* out,
                SphRunResult& result)
     : h_(h), spec_(spec), r_(result), gauges_(gauge_points(spec), h.particles.X,
                                               h.particles.owned_count(), h.ranks, h.particles.id),
@@ -117,8 +117,8 @@ void SphRun::stress_fields() {
     const char* name;
     int k;
   };
-  std::vector<Component> components{{"stress_xx", 0}, {"stress_yy", 1}, {"stress_zz", 2},
-                                    {"stress_xy", 5}};
+  std::vector<Component> components{
+      {"stress_xx", 0}, {"stress_yy", 1}, {"stress_zz", 2}, {"stress_xy", 5}};
   if (h_.dim == 3) components.insert(components.end(), {{"stress_yz", 3}, {"stress_xz", 4}});
   for (const Component& c : components)
     field(c.name, 1, [this, k = c.k](std::vector<double>& out) {
@@ -230,9 +230,8 @@ void SphRun::record() {
   const double work = h_.ranks.sum(h_.external_work); // each rank's loads' part
   // The balance: total energy against its start plus the work of the loads.
   const double err =
-      std::abs(E.total() - e0_ - work) /
-      std::max({std::abs(e0_), std::abs(work), E.kinetic, std::abs(E.internal), energy_scale_,
-                1e-300});
+      std::abs(E.total() - e0_ - work) / std::max({std::abs(e0_), std::abs(work), E.kinetic,
+                                                   std::abs(E.internal), energy_scale_, 1e-300});
   r_.energy_error = std::max(r_.energy_error, err);
   std::vector<double> row{h_.particles.time,
                           static_cast<double>(h_.particles.step),

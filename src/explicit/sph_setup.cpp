@@ -13,20 +13,20 @@ namespace mf::explicit_dynamics {
 namespace {
 
 /// Whether a free particle lies in a region.
-bool free_in(const sph::Hydro& h, int i, const io::Region& region) {
+bool free_in(const sph::Hydro& h, int i, const spec::Region& region) {
   const std::vector<double>& X = h.particles.X;
   return !h.fields.fixed[i] &&
-         region.contains(io::Point(X[3 * i], X[3 * i + 1], X[3 * i + 2]), 1e-9);
+         region.contains(spec::Point(X[3 * i], X[3 * i + 1], X[3 * i + 2]), 1e-9);
 }
 
 /// The solver's material from the spec's: the equation of state, and the strength of a solid
 /// (J2 from the material's plasticity with mu = G, granular, HJC, or elastic when it has a shear
 /// modulus and no plasticity).
-sph::Material to_solver(const io::MaterialSpec& m) {
+sph::Material to_solver(const spec::MaterialSpec& m) {
   sph::Material out;
   out.name = m.name;
   out.eos = *m.eos;
-  using Model = io::StrengthSpec::Model;
+  using Model = spec::StrengthSpec::Model;
   const Model model = m.strength ? m.strength->model : Model::J2;
   if (model == Model::Granular) {
     materials::GranularStrength granular = m.strength->granular;
@@ -49,7 +49,7 @@ sph::Material to_solver(const io::MaterialSpec& m) {
   return out;
 }
 
-sph::Settings to_solver(const io::SphNumerics& n) {
+sph::Settings to_solver(const spec::SphNumerics& n) {
   sph::Settings s;
   s.kernel = n.kernel;
   s.gradient_correction = n.gradient_correction;
@@ -70,17 +70,17 @@ sph::Settings to_solver(const io::SphNumerics& n) {
 }
 
 /// The particles of region k: its lattice (or ring) less its circle's outside and its holes.
-void add_region(sph::Hydro& h, const io::SphSpec& s, std::size_t k) {
-  const io::SphRegion& b = s.regions[k];
+void add_region(sph::Hydro& h, const spec::SphSpec& s, std::size_t k) {
+  const spec::SphRegion& b = s.regions[k];
   const int mat = b.material;
   const int before = h.particles.size();
-  const io::Region& g = b.region;
+  const spec::Region& g = b.region;
   const auto add = [&](const Vec3& x, double volume) {
     if (g.circle) {
       const double dx = x[0] - g.circle->center[0], dy = x[1] - g.circle->center[1];
       if (dx * dx + dy * dy > g.circle->radius * g.circle->radius) return;
     }
-    for (const io::Circle& c : g.holes) {
+    for (const spec::Circle& c : g.holes) {
       const double dx = x[0] - c.center[0], dy = x[1] - c.center[1];
       if (dx * dx + dy * dy < c.radius * c.radius) return;
     }
@@ -106,11 +106,11 @@ void add_region(sph::Hydro& h, const io::SphSpec& s, std::size_t k) {
 
 /// Each particle of the layer carries its face area V / spacing and the Friedlander history
 /// of its own distance and angle of incidence (loads/blast.hpp).
-sph::SurfaceLoad blast_load(const sph::Hydro& h, const io::SphBlastLoad& l, int dim) {
+sph::SurfaceLoad blast_load(const sph::Hydro& h, const spec::SphBlastLoad& l, int dim) {
   const particles::ParticleSet& P = h.particles;
   sph::SurfaceLoad load;
   load.name = l.name;
-  const io::BlastSpec& blast = l.blast;
+  const spec::BlastSpec& blast = l.blast;
   for (int d = 0; d < 3; ++d) load.direction[d] = -blast.normal[d];
   for (const int i : P.owned())
     if (free_in(h, i, l.region)) {
@@ -124,7 +124,7 @@ sph::SurfaceLoad blast_load(const sph::Hydro& h, const io::SphBlastLoad& l, int 
   return load;
 }
 
-sph::SurfaceForce traction(const sph::Hydro& h, const io::SphTraction& t) {
+sph::SurfaceForce traction(const sph::Hydro& h, const spec::SphTraction& t) {
   std::vector<int> layer;
   for (const int i : h.particles.owned())
     if (free_in(h, i, t.region)) layer.push_back(i);
@@ -133,7 +133,7 @@ sph::SurfaceForce traction(const sph::Hydro& h, const io::SphTraction& t) {
 }
 
 /// A symmetry plane, which the body must lie on one side of.
-sph::SymmetryPlane symmetry_plane(const sph::Hydro& h, const io::SphSymmetry& m) {
+sph::SymmetryPlane symmetry_plane(const sph::Hydro& h, const spec::SphSymmetry& m) {
   const particles::ParticleSet& P = h.particles;
   int below = 0, above = 0;
   for (const int i : P.owned()) (P.X[3 * i + m.axis] < m.at ? below : above) += 1;
@@ -143,7 +143,7 @@ sph::SymmetryPlane symmetry_plane(const sph::Hydro& h, const io::SphSymmetry& m)
 }
 
 /// Lysmer dashpots with the particle's initial impedances rho c_L and rho c_s.
-sph::TransmittingBoundary transmitting(const sph::Hydro& h, const io::SphTransmitting& t,
+sph::TransmittingBoundary transmitting(const sph::Hydro& h, const spec::SphTransmitting& t,
                                        int dim) {
   const particles::ParticleSet& P = h.particles;
   const sph::ParticleFields& F = h.fields;
@@ -164,9 +164,9 @@ sph::TransmittingBoundary transmitting(const sph::Hydro& h, const io::SphTransmi
 
 } // namespace
 
-sph::Hydro build_sph(const io::SphSpec& s) {
+sph::Hydro build_sph(const spec::SphSpec& s) {
   sph::Hydro h;
-  for (const io::MaterialSpec& m : s.materials) h.materials.push_back(to_solver(m));
+  for (const spec::MaterialSpec& m : s.materials) h.materials.push_back(to_solver(m));
   h.settings = to_solver(s.numerics);
   h.dim = s.dimension;
   // The list holds (1 + skin)^dim times the interacting pairs, every one of them examined at
@@ -174,16 +174,16 @@ sph::Hydro build_sph(const io::SphSpec& s) {
   // shrinks with the dimension (measured in README.md, SPH).
   h.settings.skin = h.dim == 1 ? 0.5 : 0.3;
   for (std::size_t k = 0; k < s.regions.size(); ++k) add_region(h, s, k);
-  for (const io::SphBlastLoad& l : s.loads) h.loads.push_back(blast_load(h, l, s.dimension));
-  for (const io::SphTraction& t : s.tractions) h.forces.push_back(traction(h, t));
+  for (const spec::SphBlastLoad& l : s.loads) h.loads.push_back(blast_load(h, l, s.dimension));
+  for (const spec::SphTraction& t : s.tractions) h.forces.push_back(traction(h, t));
   for (int d = 0; d < 3; ++d) h.gravity[d] = s.gravity[d];
-  for (const io::SphSymmetry& m : s.symmetry) h.symmetry.push_back(symmetry_plane(h, m));
+  for (const spec::SphSymmetry& m : s.symmetry) h.symmetry.push_back(symmetry_plane(h, m));
   if (s.detonation_normal)
     sph::light_from_plane(h, s.detonation_point->data(), s.detonation_normal->data());
   else if (s.detonation_point)
     sph::light_from_point(h, s.detonation_point->data());
   sph::update_state(h);
-  for (const io::SphTransmitting& t : s.transmitting)
+  for (const spec::SphTransmitting& t : s.transmitting)
     h.transmitting.push_back(transmitting(h, t, s.dimension));
   return h;
 }

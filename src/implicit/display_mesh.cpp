@@ -40,7 +40,7 @@ ShapeTable identity_table(int n) {
 
 } // namespace
 
-DisplayMesh display_mesh(const io::ProblemSpec& spec, const GalerkinModel& m) {
+DisplayMesh display_mesh(const spec::ProblemSpec& spec, const GalerkinModel& m) {
   DisplayMesh d;
   d.cells.xdmf_type = "Triangle";
   d.cells.nodes_per_cell = 3;
@@ -51,7 +51,7 @@ DisplayMesh display_mesh(const io::ProblemSpec& spec, const GalerkinModel& m) {
   } else {
     // The mesh a T3 finite-element run of the body would have: a structured grid on a plain
     // rectangle (instant, where gmsh's frontal mesher takes seconds), gmsh's triangles otherwise.
-    io::ProblemSpec triangles = spec;
+    spec::ProblemSpec triangles = spec;
     triangles.discretisation.fem.element = "t3";
     triangles.discretisation.fem.mesh.clear();
     fem::Mesh mesh = read_fe_mesh(triangles);
@@ -64,8 +64,8 @@ DisplayMesh display_mesh(const io::ProblemSpec& spec, const GalerkinModel& m) {
   return d;
 }
 
-const char* const DisplayFields::kNames[kScalars] = {
-    "stress_xx", "stress_yy", "stress_xy", "stress_zz", "von_mises", "plastic_strain"};
+const char* const DisplayFields::kNames[kScalars] = {"stress_xx", "stress_yy", "stress_xy",
+                                                     "stress_zz", "von_mises", "plastic_strain"};
 
 DisplayFields display_fields(const DisplayMesh& mesh, const std::vector<double>& d,
                              const NodalAverage& avg) {
@@ -83,14 +83,14 @@ DisplayFields display_fields(const DisplayMesh& mesh, const std::vector<double>&
       alpha += t.phi[q] * avg.plastic_strain[I];
     }
     f.u[r] = displacement_at(t, r, d);
-    const double v[DisplayFields::kScalars] = {s(0), s(1), s(2),
-                                               szz,  materials::von_mises(s, szz), alpha};
+    const double v[DisplayFields::kScalars] = {s(0), s(1), s(2), szz, materials::von_mises(s, szz),
+                                               alpha};
     for (int c = 0; c < DisplayFields::kScalars; ++c) f.values[c][r] = v[c];
   }
   return f;
 }
 
-std::pair<DisplayMesh, DisplayFields> elastic_display(const io::ProblemSpec& spec,
+std::pair<DisplayMesh, DisplayFields> elastic_display(const spec::ProblemSpec& spec,
                                                       const GalerkinModel& m,
                                                       const std::vector<double>& d,
                                                       const solvers::PetscSession& session) {

@@ -24,9 +24,9 @@ PeakStress peak(double score, double vm, const Vec2& at, double sigma_ref,
 
 } // namespace
 
-std::string elastic_limit_skipped(const io::ProblemSpec& spec) {
+std::string elastic_limit_skipped(const spec::ProblemSpec& spec) {
   bool plastic = spec.plasticity.has_value();
-  for (const io::MaterialRegion& r : spec.material_regions)
+  for (const spec::MaterialRegion& r : spec.material_regions)
     plastic = plastic || spec.materials[r.material].plasticity.has_value();
   if (!plastic) return "no material of the body has plasticity";
   if (spec.initial_stress)
@@ -34,7 +34,7 @@ std::string elastic_limit_skipped(const io::ProblemSpec& spec) {
   return "";
 }
 
-ElasticLimit elastic_limit(const io::ProblemSpec& spec, const GalerkinModel& m,
+ElasticLimit elastic_limit(const spec::ProblemSpec& spec, const GalerkinModel& m,
                            const solvers::PetscSession& session) {
   ElasticLimit lim;
   lim.skipped = elastic_limit_skipped(spec);
@@ -47,7 +47,7 @@ ElasticLimit elastic_limit(const io::ProblemSpec& spec, const GalerkinModel& m,
   // plastic materials; sigma_ref is the yield stress of the analysis' material (or of the first
   // plastic one), so that one material gives the von Mises peak itself.
   double sigma_ref = spec.plasticity ? spec.plasticity->sigma0 : 0.0;
-  for (const io::MaterialRegion& r : spec.material_regions)
+  for (const spec::MaterialRegion& r : spec.material_regions)
     if (!(sigma_ref > 0.0) && spec.materials[r.material].plasticity)
       sigma_ref = spec.materials[r.material].plasticity->sigma0;
   const auto best_of = [&](const ShapeTable& t, const std::vector<Vec2>& x, const char* counted,

@@ -27,7 +27,7 @@ NodeStresses node_stresses(const ElasticResult& r) {
 
 /// fields/: the nodal displacements, parameters, exact displacements and stresses, and the
 /// display mesh's series.
-void write_fields(const io::ProblemSpec& spec, const ElasticResult& r,
+void write_fields(const spec::ProblemSpec& spec, const ElasticResult& r,
                   const materials::IsotropicElastic& exact_mat, const NodeStresses& st,
                   io::OutputDirectory& out) {
   io::FieldOutput fields(&out, "fields", r.node_x, r.output_cells);
@@ -56,7 +56,7 @@ void write_fields(const io::ProblemSpec& spec, const ElasticResult& r,
 }
 
 /// line_<name>.csv: the sampled lines, with the exact solution beside them when there is one.
-void write_lines(const io::ProblemSpec& spec, const ElasticResult& r,
+void write_lines(const spec::ProblemSpec& spec, const ElasticResult& r,
                  const materials::IsotropicElastic& exact_mat, io::OutputDirectory& out) {
   for (const auto& [name, s] : r.lines) {
     std::vector<std::string> header{"s",  "x",         "y",         "ux",
@@ -133,7 +133,7 @@ io::Json boundary_json(const ElasticResult& r) {
   return bnd;
 }
 
-void write_summary(const io::ProblemSpec& spec, const ElasticResult& r,
+void write_summary(const spec::ProblemSpec& spec, const ElasticResult& r,
                    const solvers::PetscSession& session, double umax, double vmmax,
                    io::OutputDirectory& out) {
   io::Summary summary(
@@ -153,7 +153,7 @@ void write_summary(const io::ProblemSpec& spec, const ElasticResult& r,
 
 } // namespace
 
-void write_elastic_outputs(const io::ProblemSpec& spec, const ElasticResult& r,
+void write_elastic_outputs(const spec::ProblemSpec& spec, const ElasticResult& r,
                            const solvers::PetscSession& session, io::OutputDirectory& out) {
   if (session.rank() != 0) return;
   const materials::IsotropicElastic exact_mat =

@@ -14,7 +14,7 @@ namespace mf::implicit {
 namespace {
 
 /// Fields at arbitrary points (nodes, line samples): u^h, stress, szz.
-void evaluate_fields(const GalerkinModel& m, const io::ProblemSpec& spec,
+void evaluate_fields(const GalerkinModel& m, const spec::ProblemSpec& spec,
                      const std::vector<Vec2>& x, const std::vector<double>& d, std::vector<Vec2>& u,
                      std::vector<Vec3>& stress, std::vector<double>& szz) {
   const ShapeTable t = shapes_at(m, x, true);
@@ -33,7 +33,7 @@ void evaluate_fields(const GalerkinModel& m, const io::ProblemSpec& spec,
 namespace {
 
 /// Relative L2 and energy-norm errors against the exact solution, over the whole body.
-std::pair<double, double> exact_errors(const io::ProblemSpec& spec, const GalerkinModel& m,
+std::pair<double, double> exact_errors(const spec::ProblemSpec& spec, const GalerkinModel& m,
                                        const std::vector<double>& d,
                                        const solvers::PetscSession& session) {
   const Mat3 C = materials::elastic_matrix(spec.material, spec.model);
@@ -59,7 +59,7 @@ std::pair<double, double> exact_errors(const io::ProblemSpec& spec, const Galerk
 }
 
 /// u^h and stresses at the nodes and along the sample lines (on the calling rank).
-void sample_fields(const io::ProblemSpec& spec, const GalerkinModel& m, ElasticResult& R) {
+void sample_fields(const spec::ProblemSpec& spec, const GalerkinModel& m, ElasticResult& R) {
   const auto& d = R.parameters;
   R.node_x = m.node_positions();
   evaluate_fields(m, spec, R.node_x, d, R.node_u, R.node_stress, R.node_szz);
@@ -80,7 +80,7 @@ void sample_fields(const io::ProblemSpec& spec, const GalerkinModel& m, ElasticR
 
 } // namespace
 
-ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
+ElasticResult solve_elastic_static(const spec::ProblemSpec& spec,
                                    const solvers::PetscSession& session, bool display) {
   ElasticResult R;
   const GalerkinModel m = build_galerkin_model(spec, session, R.timer);

@@ -28,7 +28,7 @@ IterationTotals iteration_totals(const ElastoplasticResult& r) {
 }
 
 /// history.csv: one row per converged increment, increment 0 the unloaded state.
-void write_history(const io::ProblemSpec& spec, const ElastoplasticResult& r,
+void write_history(const spec::ProblemSpec& spec, const ElastoplasticResult& r,
                    io::OutputDirectory& out) {
   io::History history({"increment", "step", "step_fraction"});
   for (const auto& bc : spec.boundary) history.add_column("factor_" + bc.name);
@@ -71,7 +71,8 @@ void write_lines(const ElastoplasticResult& r, io::OutputDirectory& out) {
 }
 
 /// The counts, memory, solver and Newton time sections of summary.json.
-void describe_run(const io::ProblemSpec& spec, const ElastoplasticResult& r, io::Summary& summary) {
+void describe_run(const spec::ProblemSpec& spec, const ElastoplasticResult& r,
+                  io::Summary& summary) {
   const IterationTotals totals = iteration_totals(r);
   const int increments = static_cast<int>(r.increments.size()) - 1;
   summary.section("counts")
@@ -112,7 +113,7 @@ io::Json peak_json(const PeakStress& p) {
 
 /// results.elastic_limit: the first yield's load factors, forces and peak stresses, or why the
 /// search was skipped.
-io::Json elastic_limit_json(const io::ProblemSpec& spec, const ElasticLimit& e) {
+io::Json elastic_limit_json(const spec::ProblemSpec& spec, const ElasticLimit& e) {
   io::Json limit;
   if (!e.skipped.empty()) limit.set("skipped", e.skipped);
   io::Json lim_factors, lim_forces;
@@ -131,7 +132,7 @@ io::Json elastic_limit_json(const io::ProblemSpec& spec, const ElasticLimit& e) 
 }
 
 /// results.final: the last converged increment.
-io::Json final_json(const io::ProblemSpec& spec, const IncrementRecord& fin) {
+io::Json final_json(const spec::ProblemSpec& spec, const IncrementRecord& fin) {
   io::Json fin_factors, fin_forces, fin_monitors;
   for (std::size_t c = 0; c < spec.boundary.size(); ++c) {
     fin_factors.set(spec.boundary[c].name, fin.factors[c]);
@@ -152,7 +153,7 @@ io::Json final_json(const io::ProblemSpec& spec, const IncrementRecord& fin) {
 }
 
 /// results.steps: per load step, the increments planned and done and their Newton iterations.
-io::Json steps_json(const io::ProblemSpec& spec, const ElastoplasticResult& r) {
+io::Json steps_json(const spec::ProblemSpec& spec, const ElastoplasticResult& r) {
   io::Json steps;
   for (std::size_t s = 0; s < spec.steps.size(); ++s) {
     std::vector<double> its;
@@ -168,7 +169,7 @@ io::Json steps_json(const io::ProblemSpec& spec, const ElastoplasticResult& r) {
   return steps;
 }
 
-void write_summary(const io::ProblemSpec& spec, const ElastoplasticResult& r,
+void write_summary(const spec::ProblemSpec& spec, const ElastoplasticResult& r,
                    const solvers::PetscSession& session, io::OutputDirectory& out) {
   io::Summary summary({spec.name, spec.description, spec.units, "elastoplastic_static", r.method});
   summary.set_status(r.status, r.stop_reason);
@@ -187,7 +188,7 @@ void write_summary(const io::ProblemSpec& spec, const ElastoplasticResult& r,
 
 } // namespace
 
-void write_elastoplastic_outputs(const io::ProblemSpec& spec, const ElastoplasticResult& r,
+void write_elastoplastic_outputs(const spec::ProblemSpec& spec, const ElastoplasticResult& r,
                                  const solvers::PetscSession& session, io::OutputDirectory& out) {
   if (session.rank() != 0) return;
   write_history(spec, r, out);

@@ -30,7 +30,7 @@ void count_model(const GalerkinModel& m, const solvers::PetscSession& session,
             R.boundary_points, " boundary points");
 }
 
-void log_elastic_limit(const io::ProblemSpec& spec, const ElasticLimit& e) {
+void log_elastic_limit(const spec::ProblemSpec& spec, const ElasticLimit& e) {
   if (!e.skipped.empty()) {
     log::info("first yield is not searched: ", e.skipped);
     return;
@@ -44,7 +44,7 @@ void log_elastic_limit(const io::ProblemSpec& spec, const ElasticLimit& e) {
 }
 
 /// The first yield of the first load step, searched on all ranks and logged.
-void find_elastic_limit(const io::ProblemSpec& spec, const GalerkinModel& m,
+void find_elastic_limit(const spec::ProblemSpec& spec, const GalerkinModel& m,
                         const solvers::PetscSession& session, ElastoplasticResult& R) {
   PhaseTimer::Scope scope(R.timer, "elastic_limit");
   session.collective([&] { R.elastic_limit = elastic_limit(spec, m, session); });
@@ -89,7 +89,7 @@ auto checkpoint_state(ElastoplasticResult& R, std::vector<double>& d, Elastoplas
 
 /// Loads the state of a checkpoint on this rank and logs where the schedule resumes.
 template <class State>
-void resume(const io::Restart& restart, const io::ProblemSpec& spec,
+void resume(const io::Restart& restart, const spec::ProblemSpec& spec,
             const solvers::PetscSession& session, const State& state, IncrementRecorder& recorder,
             const ElastoplasticResult& R, const SchedulePosition& at) {
   try {
@@ -109,7 +109,7 @@ void resume(const io::Restart& restart, const io::ProblemSpec& spec,
 }
 
 /// Increment 0: the unloaded state.
-void record_unloaded_state(const io::ProblemSpec& spec, const std::vector<double>& d,
+void record_unloaded_state(const spec::ProblemSpec& spec, const std::vector<double>& d,
                            const ElastoplasticSystem& problem,
                            const solvers::NonlinearBlockSystem& newton, IncrementRecorder& recorder,
                            ElastoplasticResult& R) {
@@ -146,7 +146,7 @@ void keep_converged_state(const std::shared_ptr<const GalerkinModel>& model,
 
 } // namespace
 
-ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
+ElastoplasticResult solve_elastoplastic_static(const spec::ProblemSpec& spec,
                                                const solvers::PetscSession& session,
                                                io::OutputDirectory* out, const std::string& dir,
                                                const io::Restart* restart) {

@@ -33,7 +33,7 @@ struct OwnedRowAdder {
 
 } // namespace
 
-ElastoplasticSystem::ElastoplasticSystem(const io::ProblemSpec& spec, const GalerkinModel& m)
+ElastoplasticSystem::ElastoplasticSystem(const spec::ProblemSpec& spec, const GalerkinModel& m)
     : spec_(spec), m_(m), laws_(point_laws(spec, domain_rows(m))), states_(m.domain_table.rows()),
       penalty_(m.pattern), scatter_(m.domain_table, m.pattern) {
   MF_REQUIRE(m.domain_groups.rows() == m.domain_table.rows(),

@@ -9,7 +9,7 @@ namespace mf::implicit {
 
 namespace {
 
-void assemble_linear_elastic(const io::ProblemSpec& spec, const GalerkinModel& m,
+void assemble_linear_elastic(const spec::ProblemSpec& spec, const GalerkinModel& m,
                              const std::vector<double>& factors, BlockRows& rows) {
   MF_REQUIRE(factors.size() == spec.boundary.size() + 1, "assemble_linear_elastic: factors");
   const auto add_matrix = [&](const int* nodes, int n, const double* v) {
@@ -58,7 +58,7 @@ void assemble_linear_elastic(const io::ProblemSpec& spec, const GalerkinModel& m
 } // namespace
 
 std::unique_ptr<solvers::BlockLinearSystem>
-linear_elastic_system(const io::ProblemSpec& spec, const GalerkinModel& m,
+linear_elastic_system(const spec::ProblemSpec& spec, const GalerkinModel& m,
                       const std::vector<double>& factors, const solvers::PetscSession& session) {
   const RowPattern& p = m.pattern;
   return std::make_unique<solvers::BlockLinearSystem>(
@@ -73,7 +73,7 @@ linear_elastic_system(const io::ProblemSpec& spec, const GalerkinModel& m,
 
 BoundaryReport boundary_report(const ConditionPoints& c, const std::vector<double>& d,
                                double factor, const solvers::PetscSession& session) {
-  const io::BoundaryCondition& bc = *c.bc;
+  const spec::BoundaryCondition& bc = *c.bc;
   BoundaryReport rep;
   rep.name = bc.name;
   rep.constraint = bc.constrains;

@@ -36,7 +36,7 @@ void require_covered(const Csr& support, const std::vector<Vec2>& x) {
 
 } // namespace
 
-std::vector<Vec2> condition_values(const io::ProblemSpec& spec, const io::BoundaryCondition& bc,
+std::vector<Vec2> condition_values(const spec::ProblemSpec& spec, const spec::BoundaryCondition& bc,
                                    const quadrature::BoundaryPoints& pts,
                                    const std::vector<int>& rows) {
   const materials::IsotropicElastic m =
@@ -59,9 +59,9 @@ std::vector<Vec2> condition_values(const io::ProblemSpec& spec, const io::Bounda
 
 namespace {
 
-GalerkinModel build_meshfree_model(const io::ProblemSpec& spec,
+GalerkinModel build_meshfree_model(const spec::ProblemSpec& spec,
                                    const solvers::PetscSession& session, PhaseTimer& timer) {
-  const io::DiscretisationSpec& disc = spec.discretisation;
+  const spec::DiscretisationSpec& disc = spec.discretisation;
   GalerkinModel m;
   {
     PhaseTimer::Scope scope(timer, "nodes");
@@ -82,10 +82,10 @@ GalerkinModel build_meshfree_model(const io::ProblemSpec& spec,
     m.domain = quadrature::domain_points(spec.domain, disc.cell_size, disc.order, disc.cut_levels,
                                          sizing, disc.cut_arcs);
     for (std::size_t b = 0; b < spec.boundary.size(); ++b) {
-      const io::BoundaryCondition& bc = spec.boundary[b];
+      const spec::BoundaryCondition& bc = spec.boundary[b];
       m.conditions[b].bc = &bc;
       m.conditions[b].points =
-          quadrature::boundary_points(io::select_boundary(spec.domain, bc.on, bc.key_path),
+          quadrature::boundary_points(spec::select_boundary(spec.domain, bc.on, bc.key_path),
                                       disc.cell_size, disc.boundary_order, sizing);
     }
   }
@@ -168,8 +168,8 @@ bool is_plain_rectangle(const geometry::Domain& domain,
 
 } // namespace
 
-fem::Mesh read_fe_mesh(const io::ProblemSpec& spec) {
-  const io::DiscretisationSpec& disc = spec.discretisation;
+fem::Mesh read_fe_mesh(const spec::ProblemSpec& spec) {
+  const spec::DiscretisationSpec& disc = spec.discretisation;
   const std::string& e = disc.fem.element;
   const fem::ElementType type = e == "t3"   ? fem::ElementType::T3
                                 : e == "q4" ? fem::ElementType::Q4
@@ -219,9 +219,9 @@ ShapeTable table_rows(const std::vector<int>& offset, const std::vector<int>& no
 /// The mesh edges on a condition's boundary pieces (all of an edge's nodes lie on one piece);
 /// their length must match the pieces'.
 std::vector<fem::BoundaryEdge>
-edges_of_condition(const io::ProblemSpec& spec, const io::BoundaryCondition& bc,
+edges_of_condition(const spec::ProblemSpec& spec, const spec::BoundaryCondition& bc,
                    const fem::Mesh& mesh, const std::vector<fem::BoundaryEdge>& edges, double tol) {
-  const auto pieces = io::select_boundary(spec.domain, bc.on, bc.key_path);
+  const auto pieces = spec::select_boundary(spec.domain, bc.on, bc.key_path);
   std::vector<fem::BoundaryEdge> chosen;
   double length = 0.0, wanted = 0.0;
   for (const auto& piece : pieces) wanted += piece.length();
@@ -243,10 +243,10 @@ edges_of_condition(const io::ProblemSpec& spec, const io::BoundaryCondition& bc,
 }
 
 /// Gauss points of the elements and of each condition's boundary edges, with their shapes.
-void place_fem_points(const io::ProblemSpec& spec, const solvers::PetscSession& session,
+void place_fem_points(const spec::ProblemSpec& spec, const solvers::PetscSession& session,
                       GalerkinModel& m, fem::PointShapes& domain,
                       std::vector<fem::EdgePoints>& edge_sets) {
-  const io::DiscretisationSpec& disc = spec.discretisation;
+  const spec::DiscretisationSpec& disc = spec.discretisation;
   const fem::Mesh& mesh = m.fe->mesh;
   const int order = disc.fem.order > 0 ? disc.fem.order : fem::default_order(mesh.type);
   session.collective([&] { domain = fem::domain_points(mesh, order); });
@@ -258,7 +258,7 @@ void place_fem_points(const io::ProblemSpec& spec, const solvers::PetscSession& 
   const double tol = 1e-6 * fem::characteristic_size(mesh);
   const int edge_order = disc.fem.order > 0 ? disc.fem.order : fem::default_edge_order(mesh.type);
   for (std::size_t b = 0; b < spec.boundary.size(); ++b) {
-    const io::BoundaryCondition& bc = spec.boundary[b];
+    const spec::BoundaryCondition& bc = spec.boundary[b];
     const std::vector<fem::BoundaryEdge> chosen = edges_of_condition(spec, bc, mesh, edges, tol);
     const fem::EdgePoints& ep = edge_sets[b] = fem::edge_points(mesh, chosen, edge_order);
     ConditionPoints& c = m.conditions[b];
@@ -287,7 +287,7 @@ void couple_fem_nodes(const fem::PointShapes& domain, const solvers::PetscSessio
 }
 
 /// The shape tables, weights and prescribed values of this rank's points.
-void fem_shape_tables(const io::ProblemSpec& spec, const fem::PointShapes& domain,
+void fem_shape_tables(const spec::ProblemSpec& spec, const fem::PointShapes& domain,
                       const std::vector<fem::EdgePoints>& edge_sets, GalerkinModel& m) {
   m.domain_table =
       table_rows(domain.offset, domain.node, domain.phi, &domain.dphi, m.domain_mine.rows);
@@ -301,7 +301,7 @@ void fem_shape_tables(const io::ProblemSpec& spec, const fem::PointShapes& domai
   }
 }
 
-GalerkinModel build_fem_model(const io::ProblemSpec& spec, const solvers::PetscSession& session,
+GalerkinModel build_fem_model(const spec::ProblemSpec& spec, const solvers::PetscSession& session,
                               PhaseTimer& timer) {
   GalerkinModel m;
   {
@@ -334,9 +334,9 @@ GalerkinModel build_fem_model(const io::ProblemSpec& spec, const solvers::PetscS
 
 } // namespace
 
-GalerkinModel build_galerkin_model(const io::ProblemSpec& spec,
+GalerkinModel build_galerkin_model(const spec::ProblemSpec& spec,
                                    const solvers::PetscSession& session, PhaseTimer& timer) {
-  GalerkinModel m = spec.discretisation.method == io::Method::Fem
+  GalerkinModel m = spec.discretisation.method == spec::Method::Fem
                         ? build_fem_model(spec, session, timer)
                         : build_meshfree_model(spec, session, timer);
   PhaseTimer::Scope scope(timer, "shape_functions");
@@ -351,7 +351,7 @@ std::vector<Vec2> domain_rows(const GalerkinModel& m) {
   return x;
 }
 
-solvers::LinearSolverSettings linear_solver_settings(const io::ProblemSpec& spec,
+solvers::LinearSolverSettings linear_solver_settings(const spec::ProblemSpec& spec,
                                                      const GalerkinModel& m) {
   solvers::LinearSolverSettings s;
   s.multigrid = spec.linear_solver.multigrid_for(2.0 * m.node_count());
@@ -364,9 +364,9 @@ solvers::LinearSolverSettings linear_solver_settings(const io::ProblemSpec& spec
   return s;
 }
 
-std::string describe_method(const io::ProblemSpec& spec) {
-  const io::DiscretisationSpec& d = spec.discretisation;
-  if (d.method == io::Method::Fem) {
+std::string describe_method(const spec::ProblemSpec& spec) {
+  const spec::DiscretisationSpec& d = spec.discretisation;
+  if (d.method == spec::Method::Fem) {
     std::string e = d.fem.element;
     for (char& c : e) c = static_cast<char>(std::toupper(c));
     if (!d.fem.mesh.empty()) return "FE " + e + " on " + d.fem.mesh;

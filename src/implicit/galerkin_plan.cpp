@@ -8,7 +8,7 @@ namespace mf::implicit {
 
 namespace {
 
-void describe_fe_mesh(const io::ProblemSpec& spec, std::ostream& os) {
+void describe_fe_mesh(const spec::ProblemSpec& spec, std::ostream& os) {
   const fem::Mesh mesh = read_fe_mesh(spec);
   os << "  method: " << describe_method(spec) << "\n"
      << "  mesh: " << mesh.element_count() << " " << fem::element_name(mesh.type) << " elements, "
@@ -18,7 +18,7 @@ void describe_fe_mesh(const io::ProblemSpec& spec, std::ostream& os) {
      << " for the program\n";
 }
 
-void describe_meshfree_nodes(const io::ProblemSpec& spec, std::ostream& os) {
+void describe_meshfree_nodes(const spec::ProblemSpec& spec, std::ostream& os) {
   const auto& d = spec.discretisation;
   const auto nodes = geometry::generate_nodes(spec.domain, d.spacing, d.refinement);
   const auto pts = quadrature::domain_points(
@@ -36,14 +36,14 @@ void describe_meshfree_nodes(const io::ProblemSpec& spec, std::ostream& os) {
 
 } // namespace
 
-void print_galerkin_plan(const io::ProblemSpec& spec, std::ostream& os) {
-  if (spec.discretisation.method == io::Method::Fem)
+void print_galerkin_plan(const spec::ProblemSpec& spec, std::ostream& os) {
+  if (spec.discretisation.method == spec::Method::Fem)
     describe_fe_mesh(spec, os);
   else
     describe_meshfree_nodes(spec, os);
   for (const auto& bc : spec.boundary) {
     double len = 0.0;
-    for (const auto& p : io::select_boundary(spec.domain, bc.on, bc.key_path)) len += p.length();
+    for (const auto& p : spec::select_boundary(spec.domain, bc.on, bc.key_path)) len += p.length();
     os << "  boundary " << bc.name << ": " << (bc.constrains ? "displacement" : "traction")
        << " on length " << len << "\n";
   }

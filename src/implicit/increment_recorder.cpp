@@ -56,7 +56,7 @@ struct IncrementRecorder::GaussOutput {
   }
 };
 
-IncrementRecorder::IncrementRecorder(const io::ProblemSpec& spec, const GalerkinModel& m,
+IncrementRecorder::IncrementRecorder(const spec::ProblemSpec& spec, const GalerkinModel& m,
                                      const solvers::PetscSession& session, io::OutputDirectory* out)
     : spec_(spec), m_(m), session_(session) {
   const bool root = session.rank() == 0;
@@ -108,7 +108,7 @@ void IncrementRecorder::record(IncrementRecord rec, const std::vector<double>& d
                                const PointStates& st, const solvers::NonlinearBlockSystem& newton,
                                bool write_fields, ElastoplasticResult& R) {
   const GalerkinModel& m = m_;
-  const io::ProblemSpec& spec = spec_;
+  const spec::ProblemSpec& spec = spec_;
   const solvers::PetscSession& session = session_;
   const bool root = session.rank() == 0;
   if (R.lines.size() != line_points_.size())

@@ -14,7 +14,7 @@ using Clock = std::chrono::steady_clock;
 
 /// True for a condition whose factor changes something: a nonzero prescribed displacement or
 /// traction (a clamp's factor does not matter).
-bool drives(const io::BoundaryCondition& bc) {
+bool drives(const spec::BoundaryCondition& bc) {
   if (bc.value_from_exact || bc.traction_from_exact) return true;
   if (bc.constrains) return !bc.value.cwiseProduct(bc.mask).isZero();
   return bc.pressure_load ? bc.pressure != 0.0 : !bc.traction.isZero();
@@ -22,13 +22,13 @@ bool drives(const io::BoundaryCondition& bc) {
 
 /// The nominal increments of the whole schedule, and how many of them are done when step `s`
 /// has come `tau` of its way (a cut increment counts by its share).
-double increments_total(const io::ProblemSpec& spec) {
+double increments_total(const spec::ProblemSpec& spec) {
   double n = 0.0;
-  for (const io::LoadStep& step : spec.steps) n += step.increments;
+  for (const spec::LoadStep& step : spec.steps) n += step.increments;
   return n;
 }
 
-double increments_done(const io::ProblemSpec& spec, std::size_t s, double tau) {
+double increments_done(const spec::ProblemSpec& spec, std::size_t s, double tau) {
   double n = 0.0;
   for (std::size_t k = 0; k < s; ++k) n += spec.steps[k].increments;
   return n + tau * spec.steps[s].increments;
@@ -36,7 +36,7 @@ double increments_done(const io::ProblemSpec& spec, std::size_t s, double tau) {
 
 } // namespace
 
-std::string factors_text(const io::ProblemSpec& spec, const std::vector<double>& f) {
+std::string factors_text(const spec::ProblemSpec& spec, const std::vector<double>& f) {
   std::string s;
   for (std::size_t c = 0; c < spec.boundary.size(); ++c)
     if (drives(spec.boundary[c]))
@@ -50,7 +50,7 @@ namespace {
 /// What the increments of a schedule share: the system, Newton, the state and the position,
 /// the clock and the increment counts of the progress lines, and the outcome so far.
 struct ScheduleRun {
-  const io::ProblemSpec& spec;
+  const spec::ProblemSpec& spec;
   ElastoplasticSystem& problem;
   solvers::NonlinearBlockSystem& newton;
   std::vector<double>& d;
@@ -65,7 +65,7 @@ struct ScheduleRun {
 
 /// Halves the increment towards `to` after Newton failed there; after the last allowed
 /// cut-back, stops the schedule instead and returns false.
-bool cut_back(ScheduleRun& run, const io::LoadStep& step, double to,
+bool cut_back(ScheduleRun& run, const spec::LoadStep& step, double to,
               const solvers::NewtonReport& rep) {
   SchedulePosition& at = run.at;
   const std::string why = rep.reason + (rep.failure.empty() ? "" : ": " + rep.failure);
@@ -92,9 +92,9 @@ bool cut_back(ScheduleRun& run, const io::LoadStep& step, double to,
 /// the progress line, and grows a cut increment back.
 void record_increment(ScheduleRun& run, std::size_t s, const std::vector<double>& f,
                       const solvers::NewtonReport& rep, bool last, double nominal) {
-  const io::ProblemSpec& spec = run.spec;
+  const spec::ProblemSpec& spec = run.spec;
   SchedulePosition& at = run.at;
-  const io::LoadStep& step = spec.steps[s];
+  const spec::LoadStep& step = spec.steps[s];
   IncrementRecord rec;
   rec.step = static_cast<int>(s);
   rec.step_fraction = at.tau;
@@ -129,7 +129,7 @@ void run_step(ScheduleRun& run) {
   SchedulePosition& at = run.at;
   const std::size_t nf = run.spec.boundary.size() + 1;
   const std::size_t s = static_cast<std::size_t>(at.step);
-  const io::LoadStep& step = run.spec.steps[s];
+  const spec::LoadStep& step = run.spec.steps[s];
   const double nominal = 1.0 / step.increments;
   if (at.dtau <= 0.0) at.dtau = nominal;
   while (at.tau < 1.0 - 1e-12) {
@@ -157,7 +157,7 @@ void run_step(ScheduleRun& run) {
 
 } // namespace
 
-ScheduleOutcome run_load_schedule(const io::ProblemSpec& spec, ElastoplasticSystem& problem,
+ScheduleOutcome run_load_schedule(const spec::ProblemSpec& spec, ElastoplasticSystem& problem,
                                   solvers::NonlinearBlockSystem& newton, std::vector<double>& d,
                                   const IncrementDone& done, SchedulePosition& at,
                                   const PositionKept& kept) {

@@ -7,18 +7,18 @@
 
 namespace mf::implicit {
 
-double model_1d_exact(const io::ModelProblem1D& p, double x) {
+double model_1d_exact(const spec::ModelProblem1D& p, double x) {
   const double k = p.sine_waves * M_PI / p.length;
   return p.sine_amplitude * std::sin(k * x) + p.linear * x * (p.length * p.length - x * x) / 6.0;
 }
 
-double model_1d_exact_slope(const io::ModelProblem1D& p, double x) {
+double model_1d_exact_slope(const spec::ModelProblem1D& p, double x) {
   const double k = p.sine_waves * M_PI / p.length;
   return p.sine_amplitude * k * std::cos(k * x) +
          p.linear * (p.length * p.length - 3.0 * x * x) / 6.0;
 }
 
-double model_1d_source(const io::ModelProblem1D& p, double x) { // f = -y''
+double model_1d_source(const spec::ModelProblem1D& p, double x) { // f = -y''
   const double k = p.sine_waves * M_PI / p.length;
   return p.sine_amplitude * k * k * std::sin(k * x) + p.linear * x;
 }
@@ -42,7 +42,7 @@ struct LinePoints {
   std::vector<double> w;
 };
 
-LinePoints gauss_points(const io::DiscretisationSpec& disc, double L) {
+LinePoints gauss_points(const spec::DiscretisationSpec& disc, double L) {
   LinePoints p;
   const GaussRule& g = gauss_legendre(disc.order);
   const int cells = std::max(1, static_cast<int>(std::ceil(L / disc.cell_size - 1e-9)));
@@ -62,7 +62,7 @@ ShapeTable shape_rows(const MeshfreeSpace& space, const std::vector<Vec2>& x, bo
 }
 
 /// K_IJ = int phi_I' phi_J' dx + alpha (phi_I phi_J)|_{0, L};  F_I = int phi_I f dx.
-void assemble(const io::ModelProblem1D& P, const MeshfreeSpace& space, const ShapeTable& t,
+void assemble(const spec::ModelProblem1D& P, const MeshfreeSpace& space, const ShapeTable& t,
               const LinePoints& g, Eigen::MatrixXd& K, Eigen::VectorXd& F) {
   for (int r = 0; r < t.rows(); ++r) {
     const double f = model_1d_source(P, g.x[r].x());
@@ -94,7 +94,7 @@ Eigen::VectorXd solve(const Eigen::MatrixXd& K, const Eigen::VectorXd& F) {
 }
 
 /// Relative L2 and H1 errors by the Gauss points.
-void measure_errors(const io::ModelProblem1D& P, const ShapeTable& t, const LinePoints& g,
+void measure_errors(const spec::ModelProblem1D& P, const ShapeTable& t, const LinePoints& g,
                     const Eigen::VectorXd& d, Model1DResult& R) {
   double s[4] = {0, 0, 0, 0};
   for (int r = 0; r < t.rows(); ++r) {
@@ -119,7 +119,7 @@ void measure_errors(const io::ModelProblem1D& P, const ShapeTable& t, const Line
 }
 
 /// The solution and the exact one at 10 samples per node interval, and the relative max error.
-void sample_solution(const io::ModelProblem1D& P, const MeshfreeSpace& space, int n,
+void sample_solution(const spec::ModelProblem1D& P, const MeshfreeSpace& space, int n,
                      const Eigen::VectorXd& d, Model1DResult& R) {
   const double L = P.length;
   const int samples = 10 * (n - 1) + 1;
@@ -146,10 +146,10 @@ void sample_solution(const io::ModelProblem1D& P, const MeshfreeSpace& space, in
 
 } // namespace
 
-Model1DResult solve_model_problem_1d(const io::ProblemSpec& spec) {
+Model1DResult solve_model_problem_1d(const spec::ProblemSpec& spec) {
   Model1DResult R;
-  const io::ModelProblem1D& P = spec.model_1d;
-  const io::DiscretisationSpec& disc = spec.discretisation;
+  const spec::ModelProblem1D& P = spec.model_1d;
+  const spec::DiscretisationSpec& disc = spec.discretisation;
   const double L = P.length;
   const int n = static_cast<int>(std::round(L / disc.spacing)) + 1;
   MF_REQUIRE(n >= 3 && n <= 4000, "discretisation.spacing: gives ", n, " nodes on [0, ", L,

@@ -4,7 +4,7 @@
 
 namespace mf::implicit {
 
-void write_model_1d_outputs(const io::ProblemSpec& spec, const Model1DResult& r,
+void write_model_1d_outputs(const spec::ProblemSpec& spec, const Model1DResult& r,
                             io::OutputDirectory& out) {
   std::vector<std::vector<double>> rows;
   for (std::size_t k = 0; k < r.x.size(); ++k)

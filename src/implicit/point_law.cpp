@@ -15,7 +15,7 @@ std::pair<Vec3, double> PointLaws::elastic_stress(materials::PlaneModel model, i
 namespace {
 
 /// Tolerance of region membership: a point on a region's boundary belongs to it.
-double region_tolerance(const io::ProblemSpec& spec) {
+double region_tolerance(const spec::ProblemSpec& spec) {
   return 1e-9 * spec.domain.bounds().size().maxCoeff();
 }
 
@@ -28,8 +28,8 @@ void add_circle_crossings(double x, const Vec2& center, double radius, std::vect
   ys.push_back(center.y() + h);
 }
 
-void add_region_crossings(double x, const io::Region& g, std::vector<double>& ys) {
-  const auto c2 = [](const io::Point& p) { return Vec2(p.x(), p.y()); };
+void add_region_crossings(double x, const spec::Region& g, std::vector<double>& ys) {
+  const auto c2 = [](const spec::Point& p) { return Vec2(p.x(), p.y()); };
   if (g.box) {
     ys.push_back(g.box->lo.y());
     ys.push_back(g.box->hi.y());
@@ -39,7 +39,7 @@ void add_region_crossings(double x, const io::Region& g, std::vector<double>& ys
     add_circle_crossings(x, c2(g.ring->center), g.ring->inner_radius, ys);
     add_circle_crossings(x, c2(g.ring->center), g.ring->outer_radius, ys);
   }
-  for (const io::Circle& h : g.holes) add_circle_crossings(x, c2(h.center), h.radius, ys);
+  for (const spec::Circle& h : g.holes) add_circle_crossings(x, c2(h.center), h.radius, ys);
 }
 
 /// The 3D compliance applied to [xx, yy, xy, zz]: the elastic strain of a stress, engineering
@@ -56,19 +56,19 @@ bool is_zero(const Vec4& v) {
 
 } // namespace
 
-int material_at(const io::ProblemSpec& spec, const Vec2& x) {
-  const io::Point p(x.x(), x.y(), 0.0);
+int material_at(const spec::ProblemSpec& spec, const Vec2& x) {
+  const spec::Point p(x.x(), x.y(), 0.0);
   const double tol = region_tolerance(spec);
   for (auto r = spec.material_regions.rbegin(); r != spec.material_regions.rend(); ++r)
     if (r->region.contains(p, tol)) return r->material;
   return spec.material_index;
 }
 
-materials::J2Parameters material_parameters(const io::ProblemSpec& spec, int material) {
+materials::J2Parameters material_parameters(const spec::ProblemSpec& spec, int material) {
   // The analysis' own material as the spec holds it (spec.material, spec.plasticity), the
   // others from the materials list.
   const bool own = material == spec.material_index;
-  const io::MaterialSpec& m = spec.materials.at(static_cast<std::size_t>(material));
+  const spec::MaterialSpec& m = spec.materials.at(static_cast<std::size_t>(material));
   const auto& plasticity = own ? spec.plasticity : m.plasticity;
   materials::J2Parameters p;
   if (plasticity) p = *plasticity;
@@ -77,14 +77,14 @@ materials::J2Parameters material_parameters(const io::ProblemSpec& spec, int mat
   return p;
 }
 
-Vec4 initial_stress_at(const io::ProblemSpec& spec, const Vec2& x) {
+Vec4 initial_stress_at(const spec::ProblemSpec& spec, const Vec2& x) {
   if (!spec.initial_stress) return Vec4::Zero();
-  const io::GeostaticStress& g = *spec.initial_stress;
+  const spec::GeostaticStress& g = *spec.initial_stress;
   const double top = g.surface;
   if (!(x.y() < top)) return Vec4::Zero();
   // The breaks of the column: where it crosses a region's, a hole's or the outline's boundary.
   std::vector<double> ys{x.y(), top};
-  for (const io::MaterialRegion& mr : spec.material_regions)
+  for (const spec::MaterialRegion& mr : spec.material_regions)
     add_region_crossings(x.x(), mr.region, ys);
   for (const geometry::Circle& h : spec.domain.holes())
     add_circle_crossings(x.x(), h.center, h.radius, ys);
@@ -111,7 +111,7 @@ Vec4 initial_stress_at(const io::ProblemSpec& spec, const Vec2& x) {
   return {g.k0 * sv, sv, 0.0, szz};
 }
 
-PointLaw point_law(const io::ProblemSpec& spec, const Vec2& x) {
+PointLaw point_law(const spec::ProblemSpec& spec, const Vec2& x) {
   PointLaw law;
   law.material = material_at(spec, x);
   law.params = material_parameters(spec, law.material);
@@ -122,7 +122,7 @@ PointLaw point_law(const io::ProblemSpec& spec, const Vec2& x) {
   return law;
 }
 
-Vec2 body_force_at(const io::ProblemSpec& spec, const Vec2& x) {
+Vec2 body_force_at(const spec::ProblemSpec& spec, const Vec2& x) {
   if (!has_gravity(spec)) return spec.body_force;
   return spec.body_force + spec.materials[material_at(spec, x)].density * spec.gravity;
 }
@@ -175,12 +175,12 @@ materials::J2Result2D update_law(materials::PlaneModel model, const materials::J
   return r;
 }
 
-materials::J2Result2D update_point(const io::ProblemSpec& spec, const PointLaw& law,
+materials::J2Result2D update_point(const spec::ProblemSpec& spec, const PointLaw& law,
                                    const Vec3& strain, const materials::J2State& committed) {
   return update_law(spec.model, law.params, law.plastic, law.initial_stress, strain, committed);
 }
 
-PointLaws point_laws(const io::ProblemSpec& spec, const std::vector<Vec2>& x) {
+PointLaws point_laws(const spec::ProblemSpec& spec, const std::vector<Vec2>& x) {
   PointLaws L;
   const std::size_t nm = spec.materials.size();
   L.params.resize(nm);

@@ -4,8 +4,8 @@
 #include "meshfree/core/run_bounds.hpp"
 #include "meshfree/core/timer.hpp"
 #include "meshfree/core/version.hpp"
-#include "meshfree/io/key_reader.hpp"
 #include "meshfree/io/output.hpp"
+#include "meshfree/spec/key_reader.hpp"
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -61,7 +61,7 @@ void remove_ours(const fs::path& folder, const std::function<bool(const std::str
   }
 }
 
-std::string settings_text(const ProblemSettings& s) {
+std::string settings_text(const spec::ProblemSettings& s) {
   std::string text;
   for (const auto& [key, value] : s) text += key + "\t" + value + "\n";
   return text;
@@ -80,7 +80,7 @@ std::map<std::string, std::string> settings_map(const std::string& text) {
 
 /// The problem's identity: a hash of every setting a restart may not change (its physics and
 /// discretisation).
-long identity(const ProblemSettings& settings);
+long identity(const spec::ProblemSettings& settings);
 
 /// True when `path` is a folder itself, not a link to one.
 bool real_folder(const fs::path& path) {
@@ -120,7 +120,7 @@ bool restart_may_change(const std::string& path) {
 
 namespace {
 
-long identity(const ProblemSettings& settings) {
+long identity(const spec::ProblemSettings& settings) {
   std::string text;
   for (const auto& [key, value] : settings)
     if (!restart_may_change(key)) text += key + "\t" + value + "\n";
@@ -130,15 +130,15 @@ long identity(const ProblemSettings& settings) {
 /// The first key that differs between the checkpoint's settings and this run's, but for those a
 /// restart may change: an input error naming it.
 void compare_settings(const std::string& dir, const std::map<std::string, std::string>& before,
-                      const ProblemSettings& settings) {
+                      const spec::ProblemSettings& settings) {
   const std::map<std::string, std::string> now(settings.begin(), settings.end());
   for (const auto* side : {&before, &now})
     for (const auto& [key, value] : *side) {
       const auto b = before.find(key), n = now.find(key);
-      const std::string was = b == before.end() ? "(not given)" : one_line(b->second, 40);
-      const std::string is = n == now.end() ? "(not given)" : one_line(n->second, 40);
+      const std::string was = b == before.end() ? "(not given)" : spec::one_line(b->second, 40);
+      const std::string is = n == now.end() ? "(not given)" : spec::one_line(n->second, 40);
       if (was != is && !restart_may_change(key))
-        refuse_checkpoint("--restart " + dir + ": " + one_line(key) +
+        refuse_checkpoint("--restart " + dir + ": " + spec::one_line(key) +
                           " changed since the checkpoint (" + was + " then, " + is +
                           " now); a restart may change only time.end and the output intervals");
     }
@@ -188,7 +188,7 @@ void refused_on_this_rank(const CheckpointRefused& refusal) {
   MPI_Abort(MPI_COMM_WORLD, 2);
 }
 
-Restart find_restart(const std::string& dir, const ProblemSettings& settings, int ranks,
+Restart find_restart(const std::string& dir, const spec::ProblemSettings& settings, int ranks,
                      double end_time) {
   Restart r;
   r.folder = (fs::path(dir) / "checkpoint").string();
@@ -210,7 +210,7 @@ Restart find_restart(const std::string& dir, const ProblemSettings& settings, in
   const std::string version = state->text("meta.version");
   if (version != program_version())
     refuse_checkpoint("--restart " + dir + ": the checkpoint was written by meshfree " +
-                      one_line(version, 40) + ", this is meshfree " + program_version() +
+                      spec::one_line(version, 40) + ", this is meshfree " + program_version() +
                       "; restart it with the version that wrote it");
   state->get("meta.ranks", count);
   state->get("meta.threads", threads);
@@ -233,8 +233,9 @@ Restart find_restart(const std::string& dir, const ProblemSettings& settings, in
   return r;
 }
 
-Checkpoints::Checkpoints(std::string dir, const distribution::Ranks& ranks, CheckpointPolicy policy,
-                         ProblemSettings settings, const Restart* restart)
+Checkpoints::Checkpoints(std::string dir, const distribution::Ranks& ranks,
+                         spec::CheckpointPolicy policy, spec::ProblemSettings settings,
+                         const Restart* restart)
     : dir_(std::move(dir)), folder_((fs::path(dir_) / "checkpoint").string()), ranks_(ranks),
       policy_(policy), settings_(std::move(settings)), last_(std::chrono::steady_clock::now()) {
   if (dir_.empty()) policy_ = {0.0, 0.0};
@@ -292,7 +293,7 @@ void warn_unclaimed(const std::string& folder, double busy) {
 }
 
 /// Writes this rank's state file; returns its size in bytes.
-double write_state_file(const std::string& path, const ProblemSettings& settings,
+double write_state_file(const std::string& path, const spec::ProblemSettings& settings,
                         const distribution::Ranks& ranks, double t, long step,
                         const std::function<void(StateWriter&)>& save) {
   StateWriter out(path);

@@ -1,7 +1,7 @@
 #include "meshfree/io/output.hpp"
 #include "meshfree/core/error.hpp"
-#include "meshfree/io/key_reader.hpp"
 #include "meshfree/io/state_file.hpp"
+#include "meshfree/spec/key_reader.hpp"
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -281,7 +281,8 @@ void FieldSeries::add_step(const FieldStep& step) {
     require_finite(stem_, name, v.data(), v.size(), 3, step.time);
   require_finite(stem_, "position", step.positions.data(), step.positions.size(), 3, step.time);
   {
-    std::size_t per_point = step.scalars.size() + 3 * step.vectors.size() + 3 * step.vectors3.size();
+    std::size_t per_point =
+        step.scalars.size() + 3 * step.vectors.size() + 3 * step.vectors3.size();
     if (!step.positions.empty()) per_point += 3;
     const double total = static_cast<double>(slice_.spread() ? slice_.total : points_);
     require_room(file_, h5_temp_, 8.0 * total * static_cast<double>(per_point));
@@ -369,7 +370,7 @@ std::string FieldSeries::parts_in(const std::string& parts, const std::string& f
     const std::string path = (std::filesystem::path(folder) / name).string();
     struct stat st {};
     if (!named || ::lstat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
-      refuse_checkpoint("the checkpoint's field steps name " + one_line(line, 80) +
+      refuse_checkpoint("the checkpoint's field steps name " + spec::one_line(line, 80) +
                         ", not a file of " + folder);
     found += path + "\n";
   }

@@ -40,7 +40,7 @@ io::History staged_history(const io::History& preload, const io::History& run, i
 }
 
 void begin_stage_history(ExplicitStage& st, const io::History& replay, io::History& run,
-                         const std::vector<io::GaugeSpec>& gauges, int from, int index) {
+                         const std::vector<spec::GaugeSpec>& gauges, int from, int index) {
   std::vector<std::string> names;
   for (const auto& g : gauges) names.push_back(g.name);
   st.history = staged_history(replay, run, from, index, names);
@@ -59,7 +59,7 @@ void record_stage(ExplicitStage& st, const std::string& status, const std::strin
   st.timer = timer;
 }
 
-double stored_energy(const io::ProblemSpec& preload, const PreloadAtParticles& pa,
+double stored_energy(const spec::ProblemSpec& preload, const PreloadAtParticles& pa,
                      const std::vector<double>& volume) {
   // sigma : C^-1 sigma = [(s11^2 + s22^2 + s33^2) - 2 nu (s11 s22 + s22 s33 + s33 s11)
   //                       + 2 (1 + nu) (s23^2 + s13^2 + s12^2)] / E  (isotropic compliance).
@@ -82,7 +82,7 @@ std::vector<Vec3> reference_positions(const particles::ParticleSet& P, int n) {
   return X;
 }
 
-void describe_preload(TransferReport& t, const io::ProblemSpec& preload,
+void describe_preload(TransferReport& t, const spec::ProblemSpec& preload,
                       const PreloadAtParticles& pa, const std::vector<double>& volume) {
   const int n = static_cast<int>(pa.final_u().size());
   t.particles = n;

@@ -12,9 +12,9 @@ namespace {
 /// Every image of a particle across the mirror planes (itself first), with the reflections that
 /// made it: the preload's part sees the particle at one of them.
 std::vector<std::pair<Vec2, Mirrored>> images(const Vec3& x,
-                                              const std::vector<io::MirrorPlane>& mirror) {
+                                              const std::vector<spec::MirrorPlane>& mirror) {
   std::vector<std::pair<Vec2, Mirrored>> out{{x.head<2>(), Mirrored{x.head<2>(), {}}}};
-  for (const io::MirrorPlane& m : mirror) {
+  for (const spec::MirrorPlane& m : mirror) {
     if (m.axis > 1) continue;
     const std::size_t n = out.size();
     for (std::size_t k = 0; k < n; ++k) {
@@ -47,8 +47,8 @@ bool on_line(const std::vector<Vec2>& pts, int axis, double at, double tol) {
 }
 
 bool on_mirror_plane(const std::vector<Vec2>& ends, bool straight,
-                     const std::vector<io::MirrorPlane>& mirror, double tol) {
-  for (const io::MirrorPlane& m : mirror)
+                     const std::vector<spec::MirrorPlane>& mirror, double tol) {
+  for (const spec::MirrorPlane& m : mirror)
     if (straight && m.axis < 2 && on_line(ends, m.axis, m.at, tol)) return true;
   return false;
 }
@@ -62,7 +62,7 @@ struct Layer {
 };
 
 Layer layer_of(const std::vector<Vec3>& x, const std::vector<geometry::Curve>& pieces,
-               const std::vector<io::MirrorPlane>& mirror, double depth) {
+               const std::vector<spec::MirrorPlane>& mirror, double depth) {
   Layer l;
   for (std::size_t i = 0; i < x.size(); ++i) {
     double best = depth;
@@ -96,7 +96,7 @@ int nearest_point(const quadrature::BoundaryPoints& pts, const Vec2& p) {
 /// A traction or pressure as constant forces on the surface layer: the condition's length
 /// (times the thickness) shared equally by the layer's particles, each with the preload's final
 /// traction at its nearest boundary point.
-void hold_force(HeldCondition& h, const io::ProblemSpec& preload,
+void hold_force(HeldCondition& h, const spec::ProblemSpec& preload,
                 const implicit::ConditionPoints& c, const Layer& l, double f, std::size_t mirrors) {
   h.kind = HeldCondition::Kind::Force;
   h.particles = l.particles;
@@ -118,9 +118,9 @@ void hold_force(HeldCondition& h, const io::ProblemSpec& preload,
 
 } // namespace
 
-std::vector<HeldCondition> held_conditions(const io::ProblemSpec& preload,
+std::vector<HeldCondition> held_conditions(const spec::ProblemSpec& preload,
                                            const implicit::ElastoplasticResult& r,
-                                           const io::StageLink& link, const std::vector<Vec3>& x,
+                                           const spec::StageLink& link, const std::vector<Vec3>& x,
                                            const HoldLayers& layers) {
   const implicit::GalerkinModel& model = *r.state.model;
   const std::vector<double>& factor = r.state.factors;
@@ -139,10 +139,10 @@ std::vector<HeldCondition> held_conditions(const io::ProblemSpec& preload,
         std::find_if(model.conditions.begin(), model.conditions.end(),
                      [&](const implicit::ConditionPoints& p) { return p.bc->name == name; });
     MF_REQUIRE(c != model.conditions.end(), link.key_path, ".hold: no condition '", name, "'");
-    const io::BoundaryCondition& bc = *c->bc;
+    const spec::BoundaryCondition& bc = *c->bc;
     const double f = factor[static_cast<std::size_t>(&bc - preload.boundary.data())];
     const std::vector<geometry::Curve> pieces =
-        io::select_boundary(preload.domain, bc.on, bc.key_path);
+        spec::select_boundary(preload.domain, bc.on, bc.key_path);
     bool straight = true;
     const std::vector<Vec2> ends = segment_ends(pieces, straight);
     double scale = 1.0;

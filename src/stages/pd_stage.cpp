@@ -1,17 +1,17 @@
 // The peridynamic stage of a staged run (stages/explicit_stage.hpp).
 #include "meshfree/core/log.hpp"
-#include "meshfree/explicit/run_counts.hpp"
 #include "meshfree/explicit/pd_run.hpp"
 #include "meshfree/explicit/pd_setup.hpp"
+#include "meshfree/explicit/run_counts.hpp"
 #include "meshfree/implicit/point_law.hpp"
 #include "meshfree/pd/relaxation.hpp"
 #include "meshfree/stages/explicit_stage.hpp"
 #include "meshfree/stages/held_conditions.hpp"
 #include "meshfree/stages/preload_sampling.hpp"
 #include "meshfree/stages/stage_run.hpp"
-#include <cstddef>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 
 namespace mf::stages {
 
@@ -28,14 +28,14 @@ void add_body_load(pd::Loading& loading, const std::string& name, const std::vec
 }
 
 /// Force per volume at x of the preload's gravity (rho g) or its uniform body force.
-Vec2 body_force(const io::ProblemSpec& preload, bool gravity, const Vec2& x) {
+Vec2 body_force(const spec::ProblemSpec& preload, bool gravity, const Vec2& x) {
   if (!gravity) return preload.body_force;
   return preload.materials[implicit::material_at(preload, x)].density * preload.gravity;
 }
 
 /// The held conditions as the body's loads and constraints; returns how each acts.
 std::vector<std::string> hold(const std::vector<HeldCondition>& held,
-                              const io::ProblemSpec& preload, const PreloadAtParticles& pa,
+                              const spec::ProblemSpec& preload, const PreloadAtParticles& pa,
                               explicit_dynamics::PdSetup& setup) {
   pd::Model& m = setup.model;
   const particles::ParticleSet& P = m.particles;
@@ -144,8 +144,8 @@ double norm_of_difference(const std::vector<double>& a, const std::vector<Vec3>&
 
 /// The preload's final state on the whole body with its held conditions; returns the preload at
 /// the particles and where the held conditions begin among the set-up's loads and constraints.
-PreloadAtParticles transfer(const io::ProblemSpec& preload,
-                            const implicit::ElastoplasticResult& pre, const io::StageLink& link,
+PreloadAtParticles transfer(const spec::ProblemSpec& preload,
+                            const implicit::ElastoplasticResult& pre, const spec::StageLink& link,
                             explicit_dynamics::PdSetup& setup, HeldFrom& held_from,
                             TransferReport& t) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -166,7 +166,7 @@ PreloadAtParticles transfer(const io::ProblemSpec& preload,
 /// The body's own static equilibrium under the held loads, from the preload's displacement (and
 /// from zero when the link asks for the comparison): Newton on the linearised bond stiffness, or
 /// adaptive dynamic relaxation. No equilibrium is an error naming the link.
-void relax(const io::StageLink& link, const PreloadAtParticles& pa,
+void relax(const spec::StageLink& link, const PreloadAtParticles& pa,
            explicit_dynamics::PdSetup& setup, TransferReport& t) {
   pd::Model& m = setup.model;
   pd::RelaxSettings rs;
@@ -204,7 +204,7 @@ void relax(const io::StageLink& link, const PreloadAtParticles& pa,
       norm_of_difference(m.particles.u, pa.final_u(), norm_uh) / std::max(norm_uh, 1e-300);
 }
 
-void log_transfer(const io::ProblemSpec& preload, const TransferReport& t) {
+void log_transfer(const spec::ProblemSpec& preload, const TransferReport& t) {
   log::info("transfer: ", t.particles, " particles from stage ", preload.stage,
             ", residual ratio at u^h ", t.residual_at_uh, "; equilibrium by ", t.relax_method,
             " in ", t.relax_iterations, " iterations (from zero: ", t.relax_iterations_from_zero,
@@ -213,7 +213,7 @@ void log_transfer(const io::ProblemSpec& preload, const TransferReport& t) {
 
 /// Over several ranks: the body's blocks with their ghosts take the relaxed state and the held
 /// conditions of the whole body, made on every rank, and the preload at their own particles.
-void spread_over_ranks(const io::ProblemSpec& stage, const distribution::Ranks& ranks,
+void spread_over_ranks(const spec::ProblemSpec& stage, const distribution::Ranks& ranks,
                        const HeldFrom& held_from, explicit_dynamics::PdSetup& setup,
                        PreloadAtParticles& pa, PhaseTimer& timer) {
   explicit_dynamics::PdSetup local = explicit_dynamics::build_pd_setup(stage, timer, ranks);
@@ -224,10 +224,11 @@ void spread_over_ranks(const io::ProblemSpec& stage, const distribution::Ranks& 
 
 } // namespace
 
-ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::ElastoplasticResult& pre,
-                           const io::ProblemSpec& stage, const io::StageLink& link, int index,
+ExplicitStage run_pd_stage(const spec::ProblemSpec& preload,
+                           const implicit::ElastoplasticResult& pre, const spec::ProblemSpec& stage,
+                           const spec::StageLink& link, int index,
                            const explicit_dynamics::RunPlace& place) {
-  const io::PdSpec& s = *stage.pd;
+  const spec::PdSpec& s = *stage.pd;
   ExplicitStage st;
   explicit_dynamics::PdRunResult result;
   explicit_dynamics::PdSetup setup = explicit_dynamics::build_pd_setup(stage, result.timer);

@@ -1,16 +1,16 @@
 #include "meshfree/stages/preload_sampling.hpp"
-#include <type_traits>
 #include "meshfree/core/error.hpp"
 #include "meshfree/implicit/elasticity.hpp"
 #include "meshfree/implicit/elastoplastic_system.hpp"
+#include <type_traits>
 
 namespace mf::stages {
 
-Mirrored mirror_into(const Vec3& x, const std::vector<io::MirrorPlane>& mirror,
+Mirrored mirror_into(const Vec3& x, const std::vector<spec::MirrorPlane>& mirror,
                      const Vec2& inside) {
   Mirrored m;
   Vec3 y = x;
-  for (const io::MirrorPlane& p : mirror) {
+  for (const spec::MirrorPlane& p : mirror) {
     const double side = (p.axis < 2 ? inside[p.axis] : 0.0) - p.at;
     if ((y[p.axis] - p.at) * side < 0.0) {
       y[p.axis] = 2.0 * p.at - y[p.axis];
@@ -82,10 +82,10 @@ materials::J2State mirrored(const materials::J2State& h, const Mirrored& m) {
 
 } // namespace
 
-PreloadAtParticles sample_preload(const io::ProblemSpec& preload,
+PreloadAtParticles sample_preload(const spec::ProblemSpec& preload,
                                   const implicit::ElastoplasticResult& r,
                                   const std::vector<Vec3>& x,
-                                  const std::vector<io::MirrorPlane>& mirror,
+                                  const std::vector<spec::MirrorPlane>& mirror,
                                   const std::string& key_path) {
   const implicit::GalerkinModel& model = *r.state.model;
   const int np = static_cast<int>(x.size());

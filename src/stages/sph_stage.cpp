@@ -50,16 +50,17 @@ int transmitting_of(const sph::Hydro& h, const std::vector<int>& particles) {
 
 struct Holding {
   std::vector<std::string> how;
-  std::vector<int> held_boundaries;           // transmitting boundaries holding their stress
+  std::vector<int> held_boundaries; // transmitting boundaries holding their stress
 };
 
 /// A held force acts on the surface layer, one (smallest) particle spacing deep; a held
 /// displacement holds the particles within the kernel's reach (r < h_i + h_j) of its boundary.
-HoldLayers hold_layers(const io::SphSpec& s, const sph::Hydro& h) {
+HoldLayers hold_layers(const spec::SphSpec& s, const sph::Hydro& h) {
   HoldLayers l;
   l.surface = s.regions.front().spacing;
   for (const auto& r : s.regions) l.surface = std::min(l.surface, r.spacing);
-  for (int i = 0; i < h.particles.owned_count(); ++i) l.held = std::max(l.held, 2.0 * h.fields.h[i]);
+  for (int i = 0; i < h.particles.owned_count(); ++i)
+    l.held = std::max(l.held, 2.0 * h.fields.h[i]);
   return l;
 }
 
@@ -94,8 +95,8 @@ std::string hold_displacement(const HeldCondition& c, sph::Hydro& h,
 
 /// The held conditions on the SPH body: forces, fixed particles, symmetry planes, dashpots with
 /// their static force, gravity.
-Holding hold(const std::vector<HeldCondition>& held, const io::ProblemSpec& preload,
-             const io::StageLink& link, sph::Hydro& h) {
+Holding hold(const std::vector<HeldCondition>& held, const spec::ProblemSpec& preload,
+             const spec::StageLink& link, sph::Hydro& h) {
   Holding out;
   for (const HeldCondition& c : held) {
     switch (c.kind) {
@@ -134,13 +135,13 @@ Holding hold(const std::vector<HeldCondition>& held, const io::ProblemSpec& prel
 /// The particles whose out-of-balance the transfer balances (sph/support_balance.hpp): every
 /// particle, except those within the kernel's reach of a released condition (a released body
 /// force: all of them), so that a release still acts.
-std::vector<int> balanced_particles(const io::ProblemSpec& preload,
+std::vector<int> balanced_particles(const spec::ProblemSpec& preload,
                                     const implicit::ElastoplasticResult& pre,
-                                    const io::StageLink& link, const std::vector<Vec3>& X,
+                                    const spec::StageLink& link, const std::vector<Vec3>& X,
                                     const sph::Hydro& h, double reach) {
   const int n = h.particles.owned_count();
   std::vector<char> released(n, 0);
-  io::StageLink off = link;
+  spec::StageLink off = link;
   off.hold = link.release;
   for (const HeldCondition& c : held_conditions(preload, pre, off, X, {reach, reach})) {
     if (c.kind == HeldCondition::Kind::Body) return {};
@@ -154,7 +155,7 @@ std::vector<int> balanced_particles(const io::ProblemSpec& preload,
 
 /// The stage's body from its own spec; `check` refuses an endless stage before anything runs,
 /// and this stops it before it does.
-sph::Hydro build_body(const io::SphSpec& s, PhaseTimer& timer, const io::OutputDirectory* out) {
+sph::Hydro build_body(const spec::SphSpec& s, PhaseTimer& timer, const io::OutputDirectory* out) {
   sph::Hydro h;
   {
     PhaseTimer::Scope scope(timer, "particles");
@@ -168,9 +169,9 @@ sph::Hydro build_body(const io::SphSpec& s, PhaseTimer& timer, const io::OutputD
 
 /// The preload's final state on the whole body, held by its held conditions and balanced at rest
 /// (sph::hold_at_rest); returns the preload at the particles.
-PreloadAtParticles transfer(const io::ProblemSpec& preload,
-                            const implicit::ElastoplasticResult& pre, const io::StageLink& link,
-                            const io::SphSpec& s, sph::Hydro& h, TransferReport& t) {
+PreloadAtParticles transfer(const spec::ProblemSpec& preload,
+                            const implicit::ElastoplasticResult& pre, const spec::StageLink& link,
+                            const spec::SphSpec& s, sph::Hydro& h, TransferReport& t) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<Vec3> X = reference_positions(h.particles, h.particles.owned_count());
   PreloadAtParticles pa = sample_preload(preload, pre, X, link.mirror, link.key_path);
@@ -195,7 +196,7 @@ PreloadAtParticles transfer(const io::ProblemSpec& preload,
 
 /// Damped motion under the held loads alone for link.settle_time, with a progress line every
 /// tenth of it, or every 10 s of wall time, and at its end.
-void damped_motion(sph::Hydro& h, const io::StageLink& link) {
+void damped_motion(sph::Hydro& h, const spec::StageLink& link) {
   const auto began = std::chrono::steady_clock::now();
   double next_report = 0.1, last_report = 0.0;
   while (h.particles.time < link.settle_time) {
@@ -212,7 +213,7 @@ void damped_motion(sph::Hydro& h, const io::StageLink& link) {
 
 /// The settle: the body's damped motion to its own equilibrium under the held loads, which then
 /// starts the run at t = 0 at rest; the report gets how far it drifted from the preload.
-void settle(sph::Hydro& h, const io::StageLink& link, TransferReport& t) {
+void settle(sph::Hydro& h, const spec::StageLink& link, TransferReport& t) {
   const int n = h.particles.owned_count();
   const std::vector<double> u0 = h.particles.u;
   // The settle is the preload's, under the held loads alone: the event's own pressure
@@ -231,14 +232,14 @@ void settle(sph::Hydro& h, const io::StageLink& link, TransferReport& t) {
   t.settle_time = link.settle_time;
   t.settle_drift = drift / std::max(t.max_u, 1e-300);
   h.damping = 0.0;
-  sph::set_displacement(
-      h, std::vector<double>(h.particles.u.begin(), h.particles.u.begin() + 3 * n));
+  sph::set_displacement(h,
+                        std::vector<double>(h.particles.u.begin(), h.particles.u.begin() + 3 * n));
   h.particles.time = 0.0;
   h.particles.step = 0;
   h.external_work = h.damping_work = 0.0;
 }
 
-void log_transfer(const io::ProblemSpec& preload, const io::StageLink& link,
+void log_transfer(const spec::ProblemSpec& preload, const spec::StageLink& link,
                   const TransferReport& t) {
   log::info("transfer: ", t.particles, " particles from stage ", preload.stage, ", ",
             t.plastic_particles, " plastic, ", t.over_surface,
@@ -275,11 +276,11 @@ void keep_end_state(ExplicitStage& st, const sph::Hydro& h) {
 
 } // namespace
 
-ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
-                            const implicit::ElastoplasticResult& pre, const io::ProblemSpec& stage,
-                            const io::StageLink& link, int index,
+ExplicitStage run_sph_stage(const spec::ProblemSpec& preload,
+                            const implicit::ElastoplasticResult& pre,
+                            const spec::ProblemSpec& stage, const spec::StageLink& link, int index,
                             const explicit_dynamics::RunPlace& place) {
-  const io::SphSpec& s = *stage.sph;
+  const spec::SphSpec& s = *stage.sph;
   ExplicitStage st;
   explicit_dynamics::SphRunResult result;
   sph::Hydro h = build_body(s, result.timer, place.out);

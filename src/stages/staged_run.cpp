@@ -7,14 +7,14 @@
 
 namespace mf::stages {
 
-StagedOutcome run_staged(const io::ProblemSpec& spec, const solvers::PetscSession& session,
+StagedOutcome run_staged(const spec::ProblemSpec& spec, const solvers::PetscSession& session,
                          io::OutputDirectory* out, const std::string& dir,
                          const io::Restart* restart) {
   StagedOutcome outcome;
-  io::ProblemSpec preload = spec.stages[0];
+  spec::ProblemSpec preload = spec.stages[0];
   preload.record_increment_parameters = true; // each particle is carried through them
-  const io::ProblemSpec& event = spec.stages[1];
-  const io::StageLink& link = spec.links[1];
+  const spec::ProblemSpec& event = spec.stages[1];
+  const spec::StageLink& link = spec.links[1];
   io::Summary summary({spec.name, spec.description, spec.units, "staged", ""});
   PhaseTimer timer;
 
@@ -42,13 +42,13 @@ StagedOutcome run_staged(const io::ProblemSpec& spec, const solvers::PetscSessio
     log::info("stage ", event.stage, " from ", preload.stage);
     const explicit_dynamics::RunPlace place{out, dir, distribution::Ranks::of(session.comm()),
                                             &spec.settings, restart};
-    ExplicitStage st = event.analysis == io::Analysis::Sph
+    ExplicitStage st = event.analysis == spec::Analysis::Sph
                            ? run_sph_stage(preload, pre, event, link, 1, place)
                            : run_pd_stage(preload, pre, event, link, 1, place);
     summary.section("checkpoints") = st.checkpoints.describe(st.timer.total());
     timer.add_all(st.timer, event.stage + ".");
     io::Json stage;
-    stage.set("analysis", event.analysis == io::Analysis::Sph ? "sph" : "peridynamics")
+    stage.set("analysis", event.analysis == spec::Analysis::Sph ? "sph" : "peridynamics")
         .set("status", st.status)
         .set("counts", st.counts)
         .set("time_step", st.time_step)

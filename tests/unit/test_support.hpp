@@ -1,6 +1,6 @@
 #pragma once
-#include "meshfree/io/problem_spec.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include <cmath>
 #include <string>
 #include <vector>
@@ -11,9 +11,9 @@ inline std::string source_path(const std::string& relative) {
   return std::string(MESHFREE_SOURCE_DIR) + "/" + relative;
 }
 
-inline mf::io::ProblemSpec load_problem(const std::string& name,
-                                        const std::vector<std::string>& overrides = {}) {
-  return mf::io::read_problem(source_path("problems/" + name + ".yaml"), overrides);
+inline mf::spec::ProblemSpec load_problem(const std::string& name,
+                                          const std::vector<std::string>& overrides = {}) {
+  return mf::spec::read_problem(source_path("problems/" + name + ".yaml"), overrides);
 }
 
 /// Least-squares slope of log(error) against log(h).

@@ -5,8 +5,8 @@
 #include "meshfree/core/timer.hpp"
 #include "meshfree/io/checkpoint.hpp"
 #include "meshfree/io/output.hpp"
-#include "meshfree/io/problem_spec.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include <string>
 
 namespace mf::app {
@@ -14,7 +14,7 @@ namespace mf::app {
 /// What `meshfree run` hands an analysis once the problem, the output folder and any checkpoint
 /// were accepted.
 struct RunRequest {
-  const io::ProblemSpec& spec;
+  const spec::ProblemSpec& spec;
   const solvers::PetscSession& session;
   io::OutputDirectory* out;   // rank 0's output folder; null on the other ranks
   const std::string& dir;     // the folder's path (checkpoints go to dir/checkpoint)
@@ -29,7 +29,7 @@ struct RunOutcome {
 };
 
 struct AnalysisEntry {
-  io::Analysis analysis;
+  spec::Analysis analysis;
   const char* name; // as in the problem file
   /// Goes step by step and writes checkpoints that --restart continues.
   bool checkpoints = false;
@@ -38,21 +38,21 @@ struct AnalysisEntry {
   bool folder_at_first_file = false;
   /// Prints what a run would build (counts, time step, memory) as one stage of a staged run;
   /// throws what the run's set-up would throw.
-  void (*describe)(const io::ProblemSpec& spec) = nullptr;
+  void (*describe)(const spec::ProblemSpec& spec) = nullptr;
   /// `meshfree check`: describe and the bounds a run of its own checks before it writes.
-  void (*check)(const io::ProblemSpec& spec) = nullptr;
+  void (*check)(const spec::ProblemSpec& spec) = nullptr;
   /// What a run refuses as input before anything is written into `folder` (rank 0): a mesh that
   /// cannot be read, a run that would never end or not fit on the disk. May be null.
-  void (*admit)(const io::ProblemSpec& spec, const std::string& folder) = nullptr;
+  void (*admit)(const spec::ProblemSpec& spec, const std::string& folder) = nullptr;
   /// The last instant a checkpoint of this run may hold (infinity when checkpoints count
   /// increments). May be null when `checkpoints` is false.
-  double (*end_time)(const io::ProblemSpec& spec) = nullptr;
+  double (*end_time)(const spec::ProblemSpec& spec) = nullptr;
   /// Runs the analysis and writes its results.
   RunOutcome (*run)(const RunRequest& request) = nullptr;
 };
 
 /// The entry of `analysis`.
-const AnalysisEntry& entry_of(io::Analysis analysis);
+const AnalysisEntry& entry_of(spec::Analysis analysis);
 
 /// The names of the analyses whose runs write checkpoints, as a sentence ("a, b and c").
 std::string checkpointing_analyses();

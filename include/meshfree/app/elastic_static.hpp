@@ -3,22 +3,22 @@
 #include "meshfree/app/analysis.hpp"
 #include "meshfree/implicit/elastic_solve.hpp"
 #include "meshfree/io/output.hpp"
-#include "meshfree/io/problem_spec.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 
 namespace mf::app {
 
 /// Builds the model, solves K d = f, and writes the results to `out` (rank 0; null elsewhere).
-implicit::ElasticResult elastic_static(const io::ProblemSpec& spec,
+implicit::ElasticResult elastic_static(const spec::ProblemSpec& spec,
                                        const solvers::PetscSession& session,
                                        io::OutputDirectory* out);
 
 /// What `check` prints of a Galerkin analysis (elastic or elastoplastic): method, nodes or mesh,
 /// integration points, memory, the boundary conditions and the steps.
-void describe_galerkin(const io::ProblemSpec& spec);
+void describe_galerkin(const spec::ProblemSpec& spec);
 
 /// A finite-element mesh is input too: read and checked before anything is written.
-void admit_galerkin(const io::ProblemSpec& spec, const std::string& folder);
+void admit_galerkin(const spec::ProblemSpec& spec, const std::string& folder);
 
 /// The table entry of `analysis: elastic_static`.
 AnalysisEntry elastic_static_entry();

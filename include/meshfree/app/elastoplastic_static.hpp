@@ -3,15 +3,15 @@
 #include "meshfree/app/analysis.hpp"
 #include "meshfree/implicit/elastoplastic_result.hpp"
 #include "meshfree/io/output.hpp"
-#include "meshfree/io/problem_spec.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 
 namespace mf::app {
 
 /// Builds the model, runs the load schedule (fields written as it goes), and writes the history
 /// and summary to `out` (rank 0; null elsewhere). The result holds the converged state.
 /// Checkpoints go to `dir`/checkpoint (empty: none); `restart` continues from one.
-implicit::ElastoplasticResult elastoplastic_static(const io::ProblemSpec& spec,
+implicit::ElastoplasticResult elastoplastic_static(const spec::ProblemSpec& spec,
                                                    const solvers::PetscSession& session,
                                                    io::OutputDirectory* out,
                                                    const std::string& dir = {},
@@ -19,7 +19,7 @@ implicit::ElastoplasticResult elastoplastic_static(const io::ProblemSpec& spec,
 
 /// An elastoplastic schedule's increments bounded by the time a run may take here and by the disk
 /// of `folder`; the step whose increments pass a bound is named.
-void require_increment_output(const io::ProblemSpec& spec, const std::string& folder);
+void require_increment_output(const spec::ProblemSpec& spec, const std::string& folder);
 
 /// The table entry of `analysis: elastoplastic_static`.
 AnalysisEntry elastoplastic_static_entry();

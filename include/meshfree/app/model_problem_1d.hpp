@@ -3,12 +3,12 @@
 #include "meshfree/app/analysis.hpp"
 #include "meshfree/implicit/model_problem_1d.hpp"
 #include "meshfree/io/output.hpp"
-#include "meshfree/io/problem_spec.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 
 namespace mf::app {
 
 /// Solves the problem and writes its results to `out`.
-implicit::Model1DResult model_problem_1d(const io::ProblemSpec& spec, io::OutputDirectory& out);
+implicit::Model1DResult model_problem_1d(const spec::ProblemSpec& spec, io::OutputDirectory& out);
 
 /// The table entry of `analysis: model_problem_1d`.
 AnalysisEntry model_problem_1d_entry();

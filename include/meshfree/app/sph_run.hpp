@@ -5,20 +5,20 @@
 #include "meshfree/distribution/ranks.hpp"
 #include "meshfree/explicit/sph_run.hpp"
 #include "meshfree/io/output.hpp"
-#include "meshfree/io/problem_spec.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 
 namespace mf::app {
 
 /// Runs the problem to its end time spread over `ranks`; fields go to `out` (null: none; the
 /// ranks other than the first have none). Collective. Checkpoints go to `dir`/checkpoint (empty:
 /// none); with `restart` the run goes on from that checkpoint.
-explicit_dynamics::SphRunResult run_sph(const io::ProblemSpec& spec, io::OutputDirectory* out,
+explicit_dynamics::SphRunResult run_sph(const spec::ProblemSpec& spec, io::OutputDirectory* out,
                                         const distribution::Ranks& ranks = {},
                                         const std::string& dir = {},
                                         const io::Restart* restart = nullptr);
 
 /// history.csv and summary.json.
-void write_sph_outputs(const io::ProblemSpec& spec, const explicit_dynamics::SphRunResult& r,
+void write_sph_outputs(const spec::ProblemSpec& spec, const explicit_dynamics::SphRunResult& r,
                        io::OutputDirectory& out);
 
 /// The table entry of `analysis: sph`.

@@ -46,7 +46,7 @@ public:
   /// The body relaxed to static equilibrium under its loads at t = 0 when the spec asks for it
   /// (pd::relax; the initial velocities are kept), accelerations at t = 0 and the columns of the
   /// history; fields go to `out` (null: none). A relaxation that does not converge is an error.
-  PdRun(PdSetup& setup, const io::PdSpec& spec, io::OutputDirectory* out, PdRunResult& result);
+  PdRun(PdSetup& setup, const spec::PdSpec& spec, io::OutputDirectory* out, PdRunResult& result);
 
   double time() const { return setup_.model.particles.time; }
   long step() const { return setup_.model.particles.step; }
@@ -86,7 +86,7 @@ private:
   template <class Visit> void for_each_state(const Visit& visit);
   const distribution::Ranks& ranks() const { return setup_.model.halo.ranks(); }
   PdSetup& setup_;
-  const io::PdSpec& spec_;
+  const spec::PdSpec& spec_;
   PdRunResult& r_;
   Gauges gauges_;
   io::FieldOutput fields_;

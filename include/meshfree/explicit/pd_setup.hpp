@@ -3,8 +3,8 @@
 // bonds and their laws, pre-cracks, constraints, loads (blasts per particle), initial velocities,
 // impactors, and the time step with what set it.
 #include "meshfree/core/timer.hpp"
-#include "meshfree/io/problem_spec.hpp"
 #include "meshfree/pd/dynamics.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,10 +27,10 @@ struct PdSetup {
 
 /// On a run spread over MPI ranks (`ranks`), each rank sets up its block of particles and the
 /// ghosts within reach of them (distribution/local_part.hpp). Collective.
-PdSetup build_pd_setup(const io::ProblemSpec& spec, PhaseTimer& timer,
+PdSetup build_pd_setup(const spec::ProblemSpec& spec, PhaseTimer& timer,
                        const distribution::Ranks& ranks = {});
 
 /// The body, its bond laws, time step and blast pulses, on the log.
-void log_pd_setup(const io::ProblemSpec& spec, const PdSetup& setup);
+void log_pd_setup(const spec::ProblemSpec& spec, const PdSetup& setup);
 
 } // namespace mf::explicit_dynamics

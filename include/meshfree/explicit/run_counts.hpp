@@ -3,15 +3,15 @@
 // checkpoints) and bounded by the machine: `meshfree check` and `run` refuse the same runs, with
 // the key that asked for them, before anything is written.
 #include "meshfree/explicit/pd_setup.hpp"
-#include "meshfree/io/sph_spec.hpp"
+#include "meshfree/spec/sph_spec.hpp"
 #include <string>
 
 namespace mf::explicit_dynamics {
 
 struct PlannedRun {
   double end_time = 0.0;
-  double dt = 0.0;            // the first time step
-  std::string dt_key;         // the key whose value set it, when not the stability bound
+  double dt = 0.0;    // the first time step
+  std::string dt_key; // the key whose value set it, when not the stability bound
   double history_interval = 0.0, fields_interval = 0.0, checkpoint_interval = 0.0;
   double particles = 0.0;
   double particle_steps_per_second = 0.0; // per core (core/run_bounds.hpp)
@@ -29,8 +29,8 @@ struct PlannedRun {
 void require_finite_run(const PlannedRun& r, const std::string& folder);
 
 /// The run a peridynamic set-up and its spec make.
-PlannedRun planned_run(const io::PdSpec& s, const PdSetup& setup);
+PlannedRun planned_run(const spec::PdSpec& s, const PdSetup& setup);
 /// The run an SPH spec makes with `particles` particles and a first step dt.
-PlannedRun planned_run(const io::SphSpec& s, double particles, double dt);
+PlannedRun planned_run(const spec::SphSpec& s, double particles, double dt);
 
 } // namespace mf::explicit_dynamics

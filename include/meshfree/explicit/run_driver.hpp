@@ -13,14 +13,14 @@ namespace mf::explicit_dynamics {
 
 /// Where an explicit run writes, over which ranks, and what it restarts from.
 struct RunPlace {
-  io::OutputDirectory* out = nullptr;            // fields and history.csv (null: none)
-  std::string dir;                               // the output folder ("": no checkpoints)
-  distribution::Ranks ranks;                     // the MPI ranks the body is spread over
-  const io::ProblemSettings* settings = nullptr; // the problem as given (a restart matches it)
-  const io::Restart* restart = nullptr;          // the checkpoint the run goes on from, or null
+  io::OutputDirectory* out = nullptr;              // fields and history.csv (null: none)
+  std::string dir;                                 // the output folder ("": no checkpoints)
+  distribution::Ranks ranks;                       // the MPI ranks the body is spread over
+  const spec::ProblemSettings* settings = nullptr; // the problem as given (a restart matches it)
+  const io::Restart* restart = nullptr;            // the checkpoint the run goes on from, or null
 };
 
-/// The loop's schedule in a spec (io::PdSpec, io::SphSpec): end time and output intervals.
+/// The loop's schedule in a spec (spec::PdSpec, spec::SphSpec): end time and output intervals.
 template <class Spec> Schedule schedule_of(const Spec& s) {
   return {s.end_time, s.history_interval, s.fields_interval};
 }
@@ -35,7 +35,7 @@ io::CheckpointCounts run_to_end(Run& run, const Spec& s, io::History& history,
                                 const RunPlace& place) {
   if (place.out) history.stream_to(*place.out);
   io::Checkpoints checkpoints(place.dir, place.ranks, s.checkpoint,
-                              place.settings ? *place.settings : io::ProblemSettings{},
+                              place.settings ? *place.settings : spec::ProblemSettings{},
                               place.restart);
   const auto resume = place.restart ? place.restart->open(place.ranks.rank) : nullptr;
   run.finish(run_time_loop(run, schedule_of(s), &checkpoints, resume.get()));

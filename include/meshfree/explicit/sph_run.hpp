@@ -6,7 +6,7 @@
 #include "meshfree/explicit/gauges.hpp"
 #include "meshfree/explicit/time_loop.hpp"
 #include "meshfree/io/results.hpp"
-#include "meshfree/io/sph_spec.hpp"
+#include "meshfree/spec/sph_spec.hpp"
 #include "meshfree/sph/hydro.hpp"
 #include "meshfree/sph/step.hpp"
 #include <string>
@@ -42,7 +42,7 @@ public:
   /// The history's columns and the gauges of the body `h` at t = 0; fields go to `out` (null:
   /// none; on more than one rank: the ranks without it). Every call below is collective over the
   /// ranks the body is spread over (sph/decomposition.hpp).
-  SphRun(sph::Hydro& h, const io::SphSpec& spec, io::OutputDirectory* out, SphRunResult& result);
+  SphRun(sph::Hydro& h, const spec::SphSpec& spec, io::OutputDirectory* out, SphRunResult& result);
 
   double time() const { return h_.particles.time; }
   long step() const { return h_.particles.step; }
@@ -79,7 +79,7 @@ private:
   /// it is written in global-id order.
   void field(std::string name, int per, io::FieldOutput::Fill owned);
   sph::Hydro& h_;
-  const io::SphSpec& spec_;
+  const spec::SphSpec& spec_;
   SphRunResult& r_;
   Gauges gauges_;
   io::FieldOutput fields_;

@@ -16,8 +16,8 @@
 #include "meshfree/implicit/meshfree_space.hpp"
 #include "meshfree/implicit/nodal_average.hpp"
 #include "meshfree/io/output.hpp"
-#include "meshfree/io/problem_spec.hpp"
 #include "meshfree/io/results.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include <memory>
 #include <utility>
 #include <vector>
@@ -25,13 +25,13 @@
 namespace mf::implicit {
 
 struct DisplayMesh {
-  std::vector<Vec2> x;  // vertices
-  io::GridCells cells;  // triangles
-  ShapeTable table;     // the model's shape functions at the vertices (values)
+  std::vector<Vec2> x; // vertices
+  io::GridCells cells; // triangles
+  ShapeTable table;    // the model's shape functions at the vertices (values)
 };
 
 /// The display mesh of the model (on the calling rank: gmsh and the shape functions).
-DisplayMesh display_mesh(const io::ProblemSpec& spec, const GalerkinModel& m);
+DisplayMesh display_mesh(const spec::ProblemSpec& spec, const GalerkinModel& m);
 
 /// Fields at the vertices of a display mesh.
 struct DisplayFields {
@@ -47,7 +47,7 @@ DisplayFields display_fields(const DisplayMesh& mesh, const std::vector<double>&
 
 /// The display mesh of an elastic solution d (all nodal parameters) with its fields, on rank 0
 /// (empty elsewhere): the Gauss-point stresses C eps(u^h) averaged as above. Collective.
-std::pair<DisplayMesh, DisplayFields> elastic_display(const io::ProblemSpec& spec,
+std::pair<DisplayMesh, DisplayFields> elastic_display(const spec::ProblemSpec& spec,
                                                       const GalerkinModel& m,
                                                       const std::vector<double>& d,
                                                       const solvers::PetscSession& session);

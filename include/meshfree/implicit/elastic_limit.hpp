@@ -3,8 +3,8 @@
 // solve on the same Galerkin model.
 #include "meshfree/implicit/galerkin_forms.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
-#include "meshfree/io/problem_spec.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include <limits>
 #include <string>
 #include <vector>
@@ -34,11 +34,11 @@ struct ElasticLimit {
 };
 
 /// Why first yield is not searched (no plastic material, or an initial stress), or "".
-std::string elastic_limit_skipped(const io::ProblemSpec& spec);
+std::string elastic_limit_skipped(const spec::ProblemSpec& spec);
 
 /// Solves the first step's elastic problem on every rank and finds first yield; over the points
 /// of plastic materials, each against its own yield stress.
-ElasticLimit elastic_limit(const io::ProblemSpec& spec, const GalerkinModel& m,
+ElasticLimit elastic_limit(const spec::ProblemSpec& spec, const GalerkinModel& m,
                            const solvers::PetscSession& session);
 
 } // namespace mf::implicit

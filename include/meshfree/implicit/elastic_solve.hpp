@@ -6,9 +6,9 @@
 #include "meshfree/implicit/galerkin_forms.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/io/output.hpp"
-#include "meshfree/io/problem_spec.hpp"
 #include "meshfree/solvers/parallel.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include <limits>
 #include <string>
 #include <vector>
@@ -43,7 +43,7 @@ struct ElasticResult {
 
 /// Solves the problem. Every rank returns the global numbers; node and line fields are filled
 /// on rank 0 only, and with `display` the display mesh and its fields (for the results files).
-ElasticResult solve_elastic_static(const io::ProblemSpec& spec,
+ElasticResult solve_elastic_static(const spec::ProblemSpec& spec,
                                    const solvers::PetscSession& session, bool display = false);
 
 } // namespace mf::implicit

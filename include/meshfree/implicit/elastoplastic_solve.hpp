@@ -5,8 +5,8 @@
 // the consistent tangent (see elastoplastic_system.hpp and load_stepping.hpp).
 #include "meshfree/implicit/elastoplastic_result.hpp"
 #include "meshfree/io/output.hpp"
-#include "meshfree/io/problem_spec.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 
 namespace mf::implicit {
 
@@ -17,7 +17,7 @@ namespace mf::implicit {
 /// `dir`/checkpoint (empty: none): the nodal parameters, every Gauss point's committed history
 /// and the trial response kept with it, the load factors and the schedule's position, and the
 /// increments recorded; with `restart` the schedule goes on from that checkpoint.
-ElastoplasticResult solve_elastoplastic_static(const io::ProblemSpec& spec,
+ElastoplasticResult solve_elastoplastic_static(const spec::ProblemSpec& spec,
                                                const solvers::PetscSession& session,
                                                io::OutputDirectory* out,
                                                const std::string& dir = {},

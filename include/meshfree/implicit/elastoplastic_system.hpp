@@ -9,10 +9,10 @@
 #include "meshfree/implicit/coupling.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/implicit/point_law.hpp"
-#include "meshfree/io/problem_spec.hpp"
 #include "meshfree/io/state_file.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
 #include "meshfree/solvers/nonlinear_system.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include <type_traits>
 #include <vector>
 
@@ -38,7 +38,7 @@ struct PointStates {
 class ElastoplasticSystem {
 public:
   /// `spec` and `m` must outlive the system.
-  ElastoplasticSystem(const io::ProblemSpec& spec, const GalerkinModel& m);
+  ElastoplasticSystem(const spec::ProblemSpec& spec, const GalerkinModel& m);
 
   /// Load factors per boundary condition, then the body force.
   void set_factors(const std::vector<double>& f) { factors_ = f; }
@@ -95,7 +95,7 @@ private:
   /// d is the one the trial states already belong to (SNES asks for R and then J at one point).
   void update_materials(const std::vector<double>& d);
 
-  const io::ProblemSpec& spec_;
+  const spec::ProblemSpec& spec_;
   const GalerkinModel& m_;
   PointLaws laws_;
   PointStates states_;

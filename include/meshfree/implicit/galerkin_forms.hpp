@@ -3,8 +3,8 @@
 // the linear elastic system K d = f and what each boundary condition does to the body.
 #include "meshfree/implicit/coupling.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
-#include "meshfree/io/problem_spec.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,7 +23,7 @@ struct BoundaryReport {
 /// rank's rows, with each condition's value (and the body force, the last entry) times its factor,
 /// assembled in place into the matrix of a linear system solved as the problem says.
 std::unique_ptr<solvers::BlockLinearSystem>
-linear_elastic_system(const io::ProblemSpec& spec, const GalerkinModel& m,
+linear_elastic_system(const spec::ProblemSpec& spec, const GalerkinModel& m,
                       const std::vector<double>& factors, const solvers::PetscSession& session);
 
 /// Reaction (the penalty force on the body) and largest gap of a displacement condition whose

@@ -11,9 +11,9 @@
 #include "meshfree/implicit/meshfree_space.hpp"
 #include "meshfree/implicit/point_groups.hpp"
 #include "meshfree/io/output.hpp"
-#include "meshfree/io/problem_spec.hpp"
 #include "meshfree/quadrature/integration_points.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include <memory>
 #include <string>
 #include <vector>
@@ -32,7 +32,7 @@ struct RankPoints {
 
 /// Integration points of one boundary condition, as integrated by this rank.
 struct ConditionPoints {
-  const io::BoundaryCondition* bc = nullptr;
+  const spec::BoundaryCondition* bc = nullptr;
   quadrature::BoundaryPoints points; // all of the condition's points
   Csr support;                       // support lists of all of them
   RankPoints mine;
@@ -67,13 +67,13 @@ struct GalerkinModel {
 /// Builds the model, meshfree or finite elements as the discretisation says; phases "nodes",
 /// "quadrature", "neighbours" and "shape_functions" go to `timer`. Errors on any rank reach every
 /// rank.
-GalerkinModel build_galerkin_model(const io::ProblemSpec& spec,
+GalerkinModel build_galerkin_model(const spec::ProblemSpec& spec,
                                    const solvers::PetscSession& session, PhaseTimer& timer);
 
 /// The finite-element mesh a fem discretisation asks for: the gmsh file (checked against the
 /// element type and the geometry) or a structured mesh of the rectangle; nodes numbered for
 /// locality. Throws mf::Error naming the key.
-fem::Mesh read_fe_mesh(const io::ProblemSpec& spec);
+fem::Mesh read_fe_mesh(const spec::ProblemSpec& spec);
 
 /// Cells for field output: the elements of a finite-element model, none (points) for meshfree.
 io::GridCells output_cells(const GalerkinModel& m);
@@ -87,15 +87,15 @@ std::vector<Vec2> domain_rows(const GalerkinModel& m);
 
 /// How this model's linear systems are solved: multigrid as spec.linear_solver says (under
 /// auto, from its DOF count up), with this rank's node coordinates for the rigid-body modes.
-solvers::LinearSolverSettings linear_solver_settings(const io::ProblemSpec& spec,
+solvers::LinearSolverSettings linear_solver_settings(const spec::ProblemSpec& spec,
                                                      const GalerkinModel& m);
 
 /// Short description of the discretisation for logs and the summary.
-std::string describe_method(const io::ProblemSpec& spec);
+std::string describe_method(const spec::ProblemSpec& spec);
 
 /// Prescribed displacement or traction (force per area) at the given rows of a condition's
 /// points: its value, the exact solution's, or -p n for a pressure.
-std::vector<Vec2> condition_values(const io::ProblemSpec& spec, const io::BoundaryCondition& bc,
+std::vector<Vec2> condition_values(const spec::ProblemSpec& spec, const spec::BoundaryCondition& bc,
                                    const quadrature::BoundaryPoints& pts,
                                    const std::vector<int>& rows);
 

@@ -8,10 +8,10 @@
 #include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/io/checkpoint.hpp"
 #include "meshfree/io/output.hpp"
-#include "meshfree/io/problem_spec.hpp"
 #include "meshfree/io/results.hpp"
 #include "meshfree/solvers/nonlinear_system.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include <memory>
 #include <utility>
 #include <vector>
@@ -22,7 +22,7 @@ class IncrementRecorder {
 public:
   /// Shape functions at the nodes, monitors and line points (rank 0) and the field series
   /// (rank 0, when `out` is given), fixed for the run. Collective.
-  IncrementRecorder(const io::ProblemSpec& spec, const GalerkinModel& m,
+  IncrementRecorder(const spec::ProblemSpec& spec, const GalerkinModel& m,
                     const solvers::PetscSession& session, io::OutputDirectory* out);
   ~IncrementRecorder();
 
@@ -42,11 +42,11 @@ public:
 
 private:
   struct GaussOutput;
-  const io::ProblemSpec& spec_;
+  const spec::ProblemSpec& spec_;
   const GalerkinModel& m_;
   const solvers::PetscSession& session_;
   ShapeTable node_table_, monitor_table_;
-  std::vector<std::pair<const io::LineSpec*, std::vector<Vec2>>> line_points_;
+  std::vector<std::pair<const spec::LineSpec*, std::vector<Vec2>>> line_points_;
   std::vector<ShapeTable> line_tables_;
   std::unique_ptr<io::FieldOutput> fields_; // nodal fields (rank 0)
   std::vector<Vec2> node_u_, node_parameters_;
@@ -54,7 +54,7 @@ private:
   std::unique_ptr<GaussOutput> gauss_;
   DisplayMesh display_mesh_;               // rank 0, when the fields are written
   std::unique_ptr<DisplaySeries> display_; // its series (rank 0)
-  Vec2 body_load_{0.0, 0.0}; // gravity and body force over the body at factor 1
+  Vec2 body_load_{0.0, 0.0};               // gravity and body force over the body at factor 1
 };
 
 } // namespace mf::implicit

@@ -13,7 +13,7 @@ namespace mf::implicit {
 /// xi_I = (int_Gamma Psi_I n - sum_g w_g grad Psi_I(x_g)) / sum_g w_g Psi_I(x_g)
 /// (the boundary integral over the body's whole boundary: its outline and its holes' arcs).
 /// Collective: each rank corrects its own nodes and the ranks exchange the xi_I.
-void correct_test_gradients(const io::ProblemSpec& spec, GalerkinModel& m,
+void correct_test_gradients(const spec::ProblemSpec& spec, GalerkinModel& m,
                             const solvers::PetscSession& session);
 
 } // namespace mf::implicit

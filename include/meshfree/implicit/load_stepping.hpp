@@ -5,8 +5,8 @@
 // easy ones.
 #include "meshfree/implicit/elastoplastic_result.hpp"
 #include "meshfree/implicit/elastoplastic_system.hpp"
-#include "meshfree/io/problem_spec.hpp"
 #include "meshfree/solvers/nonlinear_system.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include <functional>
 #include <string>
 #include <vector>
@@ -43,12 +43,12 @@ using PositionKept = std::function<void(bool finished)>;
 
 /// Runs spec.steps from `at` (the unloaded state: a default position) and the state in `d`;
 /// `d` ends at the last converged state and `at` at its position.
-ScheduleOutcome run_load_schedule(const io::ProblemSpec& spec, ElastoplasticSystem& problem,
+ScheduleOutcome run_load_schedule(const spec::ProblemSpec& spec, ElastoplasticSystem& problem,
                                   solvers::NonlinearBlockSystem& newton, std::vector<double>& d,
                                   const IncrementDone& done, SchedulePosition& at,
                                   const PositionKept& kept = {});
 
 /// "pull 0.002, tension 308": the factors of the conditions that drive the body.
-std::string factors_text(const io::ProblemSpec& spec, const std::vector<double>& f);
+std::string factors_text(const spec::ProblemSpec& spec, const std::vector<double>& f);
 
 } // namespace mf::implicit

@@ -3,7 +3,7 @@
 // solved by RK Galerkin from the potential Pi = 1/2 int y'^2 dx - int f y dx ([Faraji 2007]
 // eq. 4-2), with background Gauss cells and penalty end conditions.
 #include "meshfree/core/timer.hpp"
-#include "meshfree/io/problem_spec.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include <vector>
 
 namespace mf::implicit {
@@ -16,10 +16,10 @@ struct Model1DResult {
   PhaseTimer timer;
 };
 
-double model_1d_exact(const io::ModelProblem1D& p, double x);
-double model_1d_exact_slope(const io::ModelProblem1D& p, double x);
-double model_1d_source(const io::ModelProblem1D& p, double x);
+double model_1d_exact(const spec::ModelProblem1D& p, double x);
+double model_1d_exact_slope(const spec::ModelProblem1D& p, double x);
+double model_1d_source(const spec::ModelProblem1D& p, double x);
 
-Model1DResult solve_model_problem_1d(const io::ProblemSpec& spec);
+Model1DResult solve_model_problem_1d(const spec::ProblemSpec& spec);
 
 } // namespace mf::implicit

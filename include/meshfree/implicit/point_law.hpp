@@ -10,8 +10,8 @@
 // from sigma0 (Abaqus *GEOSTATIC; Zienkiewicz & Taylor, The Finite Element Method vol. 1, 6th
 // ed., eq. 2.4 sigma = D (eps - eps0) + sigma0).
 #include "meshfree/core/types.hpp"
-#include "meshfree/io/problem_spec.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include <utility>
 #include <vector>
 
@@ -28,24 +28,24 @@ struct PointLaw {
 
 /// The index into spec.materials of the material at x: the last material region holding x, or
 /// the analysis' material.
-int material_at(const io::ProblemSpec& spec, const Vec2& x);
+int material_at(const spec::ProblemSpec& spec, const Vec2& x);
 
 /// The J2 parameters of a material of the spec (E and nu, and its plasticity if it has one).
-materials::J2Parameters material_parameters(const io::ProblemSpec& spec, int material);
+materials::J2Parameters material_parameters(const spec::ProblemSpec& spec, int material);
 
 /// The initial stress at x [xx, yy, xy, zz]: zero without `initial_stress`; geostatic: the
 /// column integral of rho |g| from y up to the surface, piecewise exact (the density changes
 /// only where the column crosses a region's or the body's boundary, and those crossings are the
 /// integration breaks; outside the body, e.g. in a hole, the density is 0).
-Vec4 initial_stress_at(const io::ProblemSpec& spec, const Vec2& x);
+Vec4 initial_stress_at(const spec::ProblemSpec& spec, const Vec2& x);
 
-PointLaw point_law(const io::ProblemSpec& spec, const Vec2& x);
+PointLaw point_law(const spec::ProblemSpec& spec, const Vec2& x);
 
 /// The body force per volume at x at body-force factor 1: body_force + rho g.
-Vec2 body_force_at(const io::ProblemSpec& spec, const Vec2& x);
+Vec2 body_force_at(const spec::ProblemSpec& spec, const Vec2& x);
 
 /// The stress update of a Galerkin point (plane model, initial stress, J2 or elastic).
-materials::J2Result2D update_point(const io::ProblemSpec& spec, const PointLaw& law,
+materials::J2Result2D update_point(const spec::ProblemSpec& spec, const PointLaw& law,
                                    const Vec3& strain, const materials::J2State& committed);
 
 /// The same update from its parts: the material's parameters, whether it is plastic, and the
@@ -81,13 +81,13 @@ struct PointLaws {
 };
 
 /// The laws at the points x (the spec's materials that no point uses keep default entries).
-PointLaws point_laws(const io::ProblemSpec& spec, const std::vector<Vec2>& x);
+PointLaws point_laws(const spec::ProblemSpec& spec, const std::vector<Vec2>& x);
 
-inline bool has_gravity(const io::ProblemSpec& spec) {
+inline bool has_gravity(const spec::ProblemSpec& spec) {
   return (spec.gravity.array() != 0.0).any();
 }
 /// True when the body carries a body force (a uniform one or gravity).
-inline bool has_body_force(const io::ProblemSpec& spec) {
+inline bool has_body_force(const spec::ProblemSpec& spec) {
   return !spec.body_force.isZero() || has_gravity(spec);
 }
 

@@ -21,8 +21,8 @@
 // link.
 #include "meshfree/distribution/ranks.hpp"
 #include "meshfree/io/output.hpp"
-#include "meshfree/io/region_spec.hpp"
 #include "meshfree/io/state_file.hpp"
+#include "meshfree/spec/region_spec.hpp"
 #include <chrono>
 #include <functional>
 #include <memory>
@@ -63,7 +63,7 @@ void refused_on_this_rank(const CheckpointRefused& refusal);
 /// is not finite or not inside the run, or no checkpoint at all is an input error naming it
 /// (CheckpointRefused, or Error for a missing one). DIR/checkpoint and its files are read only
 /// as what they are, never through a link.
-Restart find_restart(const std::string& dir, const ProblemSettings& settings, int ranks,
+Restart find_restart(const std::string& dir, const spec::ProblemSettings& settings, int ranks,
                      double end_time);
 
 /// What a run's checkpoints cost (summary.json's "checkpoints").
@@ -85,8 +85,8 @@ class Checkpoints {
 public:
   /// `restart`: the checkpoint this run started from (its generation is continued), or null. An
   /// empty `dir` or a policy without intervals writes none.
-  Checkpoints(std::string dir, const distribution::Ranks& ranks, CheckpointPolicy policy,
-              ProblemSettings settings, const Restart* restart = nullptr);
+  Checkpoints(std::string dir, const distribution::Ranks& ranks, spec::CheckpointPolicy policy,
+              spec::ProblemSettings settings, const Restart* restart = nullptr);
   ~Checkpoints();
   Checkpoints(const Checkpoints&) = delete;
   Checkpoints& operator=(const Checkpoints&) = delete;
@@ -106,8 +106,8 @@ public:
 private:
   std::string dir_, folder_;
   distribution::Ranks ranks_;
-  CheckpointPolicy policy_;
-  ProblemSettings settings_;
+  spec::CheckpointPolicy policy_;
+  spec::ProblemSettings settings_;
   long generation_ = 0;
   int lock_ = -1; // the folder's lock file, held while this run writes there
   bool locked_ = false;

@@ -9,9 +9,9 @@
 #include "meshfree/explicit/run_driver.hpp"
 #include "meshfree/implicit/elastoplastic_result.hpp"
 #include "meshfree/io/checkpoint.hpp"
-#include "meshfree/io/problem_spec.hpp"
 #include "meshfree/io/results.hpp"
 #include "meshfree/particles/particle_set.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include "meshfree/stages/preload_sampling.hpp"
 #include "meshfree/stages/transfer_report.hpp"
 #include <string>
@@ -37,12 +37,13 @@ struct ExplicitStage {
 /// the checkpoint it restarts from (after the preload has been run again and replayed), and the
 /// ranks it is spread over (the transfer is made on the whole body on every rank, then the body
 /// is split as a standalone run's is).
-ExplicitStage run_pd_stage(const io::ProblemSpec& preload, const implicit::ElastoplasticResult& pre,
-                           const io::ProblemSpec& stage, const io::StageLink& link, int index,
+ExplicitStage run_pd_stage(const spec::ProblemSpec& preload,
+                           const implicit::ElastoplasticResult& pre, const spec::ProblemSpec& stage,
+                           const spec::StageLink& link, int index,
                            const explicit_dynamics::RunPlace& place = {});
-ExplicitStage run_sph_stage(const io::ProblemSpec& preload,
-                            const implicit::ElastoplasticResult& pre, const io::ProblemSpec& stage,
-                            const io::StageLink& link, int index,
+ExplicitStage run_sph_stage(const spec::ProblemSpec& preload,
+                            const implicit::ElastoplasticResult& pre,
+                            const spec::ProblemSpec& stage, const spec::StageLink& link, int index,
                             const explicit_dynamics::RunPlace& place = {});
 
 /// One history of the rows of the replayed preload (stage `from`) and of the run (stage `index`),
@@ -55,7 +56,7 @@ io::History staged_history(const io::History& preload, const io::History& run, i
 /// Starts the stage's history: the replayed preload's rows (staged_history), to which every row
 /// the run's history records from now on is added as it comes.
 void begin_stage_history(ExplicitStage& st, const io::History& replay, io::History& run,
-                         const std::vector<io::GaugeSpec>& gauges, int from, int index);
+                         const std::vector<spec::GaugeSpec>& gauges, int from, int index);
 
 /// The stage's status and timer.
 void record_stage(ExplicitStage& st, const std::string& status, const std::string& stop_reason,
@@ -69,7 +70,7 @@ io::History take_rows(io::History& h);
 /// volume V with the elasticity of the preload's material there: sum V sigma : C^-1 sigma / 2.
 /// The small-strain energy is an integral over the reference body, so the reference volume, not
 /// the preloaded one m / rho.
-double stored_energy(const io::ProblemSpec& preload, const PreloadAtParticles& pa,
+double stored_energy(const spec::ProblemSpec& preload, const PreloadAtParticles& pa,
                      const std::vector<double>& volume);
 
 /// The reference positions of the first n particles of P.
@@ -78,7 +79,7 @@ std::vector<Vec3> reference_positions(const particles::ParticleSet& P, int n);
 /// What the transfer report says of the preload at the particles alone: how many particles, how
 /// many of them plastic, the largest displacement and the stored energy (particles of reference
 /// volume `volume`).
-void describe_preload(TransferReport& t, const io::ProblemSpec& preload,
+void describe_preload(TransferReport& t, const spec::ProblemSpec& preload,
                       const PreloadAtParticles& pa, const std::vector<double>& volume);
 
 } // namespace mf::stages

@@ -16,7 +16,7 @@
 //   single held row would otherwise take the transferred stress as an unbalanced force.
 // - A body force stays on.
 #include "meshfree/implicit/elastoplastic_result.hpp"
-#include "meshfree/io/problem_spec.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include <string>
 #include <vector>
 
@@ -46,9 +46,9 @@ struct HoldLayers {
 /// The held conditions of `preload` (those `link.hold` names) on particles at reference positions
 /// `x`, mirrored across `link.mirror`; a roller on a mirror plane is held by the mirror image and
 /// yields nothing. Throws naming the condition if its layer holds no particle.
-std::vector<HeldCondition> held_conditions(const io::ProblemSpec& preload,
+std::vector<HeldCondition> held_conditions(const spec::ProblemSpec& preload,
                                            const implicit::ElastoplasticResult& r,
-                                           const io::StageLink& link, const std::vector<Vec3>& x,
+                                           const spec::StageLink& link, const std::vector<Vec3>& x,
                                            const HoldLayers& layers);
 
 } // namespace mf::stages

@@ -6,7 +6,7 @@
 // projection is made and no particle overshoots its yield surface. A preload computed on a
 // symmetric part is mirrored across the given planes to the whole body.
 #include "meshfree/implicit/elastoplastic_result.hpp"
-#include "meshfree/io/problem_spec.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include <vector>
 
 namespace mf::stages {
@@ -38,15 +38,16 @@ struct PreloadAtParticles {
 /// The preload `r` of `preload` at the particles' reference positions `x` (3 per particle), after
 /// mirroring each position into the preload's part. Throws mf::Error naming `key_path` for a
 /// particle that no node of the preload covers.
-PreloadAtParticles sample_preload(const io::ProblemSpec& preload,
+PreloadAtParticles sample_preload(const spec::ProblemSpec& preload,
                                   const implicit::ElastoplasticResult& r,
                                   const std::vector<Vec3>& x,
-                                  const std::vector<io::MirrorPlane>& mirror,
+                                  const std::vector<spec::MirrorPlane>& mirror,
                                   const std::string& key_path);
 
 /// The image of `x` in the part of the body that `inside` (a point of the preload's part) lies
 /// in, across each mirror plane `x` is on the other side of.
-Mirrored mirror_into(const Vec3& x, const std::vector<io::MirrorPlane>& mirror, const Vec2& inside);
+Mirrored mirror_into(const Vec3& x, const std::vector<spec::MirrorPlane>& mirror,
+                     const Vec2& inside);
 
 /// Vectors as a flat array, x, y, z of each in turn (the particle set's layout).
 std::vector<double> flat(const std::vector<Vec3>& v);

@@ -26,7 +26,7 @@ template <class Run, class Put> void replay_preload(Run& run, int increments, Pu
 /// results, checkpoints, status and timer in `st`.
 template <class Run, class Result, class Spec, class Restore>
 void run_stage(ExplicitStage& st, Run& run, Result& result, const Spec& s,
-               const io::StageLink& link, int index, const explicit_dynamics::RunPlace& place,
+               const spec::StageLink& link, int index, const explicit_dynamics::RunPlace& place,
                Restore restore) {
   const io::History replay = take_rows(result.history);
   begin_stage_history(st, replay, result.history, s.gauges, link.from, index);

@@ -7,8 +7,8 @@
 // section per stage and a "transfer" section.
 #include "meshfree/io/checkpoint.hpp"
 #include "meshfree/io/output.hpp"
-#include "meshfree/io/problem_spec.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 
 namespace mf::stages {
 
@@ -20,7 +20,7 @@ struct StagedOutcome {
 /// Runs every stage; results go to `out` (rank 0; null: none). The explicit stage writes
 /// checkpoints into `dir`/checkpoint (empty: none); with `restart` the preload runs again and the
 /// explicit stage goes on from that checkpoint.
-StagedOutcome run_staged(const io::ProblemSpec& spec, const solvers::PetscSession& session,
+StagedOutcome run_staged(const spec::ProblemSpec& spec, const solvers::PetscSession& session,
                          io::OutputDirectory* out, const std::string& dir = {},
                          const io::Restart* restart = nullptr);
 

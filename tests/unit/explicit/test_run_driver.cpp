@@ -12,10 +12,10 @@ using namespace mf;
 
 namespace {
 
-/// The spec keys the driver reads, as io::PdSpec and io::SphSpec hold them.
+/// The spec keys the driver reads, as spec::PdSpec and spec::SphSpec hold them.
 struct Spec {
   double end_time = 2.05, history_interval = 0.25, fields_interval = 0.5;
-  io::CheckpointPolicy checkpoint{0.7, 0.0};
+  spec::CheckpointPolicy checkpoint{0.7, 0.0};
 };
 
 /// One particle at unit speed, a history row {t, x} per recorded instant.
@@ -64,7 +64,7 @@ TEST_CASE("run_to_end streams the history, keeps the checkpoints and finishes th
           "[explicit][driver]") {
   const std::string dir = "test_run_driver";
   std::filesystem::remove_all(dir);
-  const io::ProblemSettings settings{{"time.end", "2.05"}};
+  const spec::ProblemSettings settings{{"time.end", "2.05"}};
   const Spec spec;
   Walk whole; // the run with neither output nor checkpoints, as a stage test runs it
   const io::CheckpointCounts none = explicit_dynamics::run_to_end(whole, spec, whole.history, {});
@@ -83,7 +83,7 @@ TEST_CASE("run_to_end streams the history, keeps the checkpoints and finishes th
     w.history.append({-1.0, 0.0}); // a row before the loop, as a stage's replayed preload
     const io::CheckpointCounts counts =
         explicit_dynamics::run_to_end(w, spec, w.history, {&out, dir, {}, &settings, nullptr});
-    CHECK(out.opened()); // history.csv is being written as the run goes
+    CHECK(out.opened());        // history.csv is being written as the run goes
     CHECK(counts.written == 2); // at t = 0.7 and 1.4
     CHECK(counts.restarted_at < 0.0);
     CHECK(w.report.steps == 21);

@@ -6,8 +6,8 @@
 #include "meshfree/explicit/pd_setup.hpp"
 #include "meshfree/explicit/sph_setup.hpp"
 #include "meshfree/implicit/elastoplastic_solve.hpp"
-#include "meshfree/io/key_reader.hpp"
-#include "meshfree/io/problem_spec.hpp"
+#include "meshfree/spec/key_reader.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include "meshfree/sph/step.hpp"
 #include "test_support.hpp"
 #include <catch2/catch.hpp>
@@ -77,10 +77,10 @@ regions:
 time: {end: 2.0e-6}
 )";
 
-io::ProblemSpec parse(const std::string& analysis, const std::string& remove = "") {
+spec::ProblemSpec parse(const std::string& analysis, const std::string& remove = "") {
   YAML::Node root = YAML::Load(kMaterials + analysis);
   if (!remove.empty()) root["materials"][0].remove(remove);
-  return io::parse_problem(root);
+  return spec::parse_problem(root);
 }
 
 std::string error_of(const std::string& analysis, const std::string& remove) {
@@ -96,7 +96,7 @@ std::string error_of(const std::string& analysis, const std::string& remove) {
 
 TEST_CASE("one steel entry feeds an elastoplastic, a peridynamic and an SPH analysis",
           "[input][materials]") {
-  const io::ProblemSpec bar = parse(kBar), cube = parse(kCube), impact = parse(kImpact);
+  const spec::ProblemSpec bar = parse(kBar), cube = parse(kCube), impact = parse(kImpact);
   // Galerkin: E, nu and the J2 law.
   CHECK(bar.material.E == kE);
   CHECK(bar.material.nu == kNu);
@@ -127,7 +127,7 @@ TEST_CASE("each analysis names the part of the material it misses", "[input][mat
 
 TEST_CASE("shared steel, elastoplastic: a bar in uniaxial stress yields at sigma0",
           "[materials][elastoplastic]") {
-  const io::ProblemSpec spec = parse(kBar);
+  const spec::ProblemSpec spec = parse(kBar);
   const auto r = implicit::solve_elastoplastic_static(spec, test_session(), nullptr);
   REQUIRE(r.status == "completed");
   REQUIRE(r.increments.size() == 8); // the initial state and 2 + 5 increments
@@ -145,7 +145,7 @@ TEST_CASE("shared steel, elastoplastic: a bar in uniaxial stress yields at sigma
 
 TEST_CASE("shared steel, peridynamics: micromodulus from E and a free rigid translation",
           "[materials][pd]") {
-  const io::ProblemSpec spec = parse(kCube);
+  const spec::ProblemSpec spec = parse(kCube);
   PhaseTimer timer;
   const explicit_dynamics::PdSetup setup = explicit_dynamics::build_pd_setup(spec, timer);
   const double delta = 3.0 * 0.001;
@@ -163,7 +163,7 @@ TEST_CASE("shared steel, peridynamics: micromodulus from E and a free rigid tran
 
 TEST_CASE("shared steel, SPH: bulk sound speed and the stress behind an elastic front",
           "[materials][sph]") {
-  const io::ProblemSpec spec = parse(kImpact);
+  const spec::ProblemSpec spec = parse(kImpact);
   sph::Hydro h = explicit_dynamics::build_sph(*spec.sph);
   // A solid's sound speed at rest: the longitudinal c_L = sqrt((K + 4G/3) / rho), K from the
   // linear equation of state p = K mu and G from E and nu.
@@ -202,20 +202,20 @@ stages:
       - {name: bottom, edges: bottom, displacement: {x: 0, y: 0}}
 )");
   root["materials"][0].remove("plasticity");
-  const io::ProblemSpec one = io::parse_problem(root);
+  const spec::ProblemSpec one = spec::parse_problem(root);
   CHECK(one.stage == "preload");
-  CHECK(one.analysis == io::Analysis::ElasticStatic);
+  CHECK(one.analysis == spec::Analysis::ElasticStatic);
   CHECK(one.name == "staged_bar");
   CHECK(one.boundary.size() == 1);
   root["stages"].push_back(YAML::Load("{name: blast, analysis: sph}"));
-  CHECK_THROWS_WITH(io::parse_problem(root),
+  CHECK_THROWS_WITH(spec::parse_problem(root),
                     Catch::StartsWith("stages[1].from: a later stage names the stage it starts "
                                       "from"));
   root["stages"][1]["from"] = "preload";
   root["stages"][1]["release"] = YAML::Load("[bottom]");
-  CHECK_THROWS_WITH(io::parse_problem(root), Catch::StartsWith("stages[1].model: required"));
+  CHECK_THROWS_WITH(spec::parse_problem(root), Catch::StartsWith("stages[1].model: required"));
   root["stages"].push_back(YAML::Load("{name: after, analysis: sph, from: blast}"));
-  CHECK_THROWS_WITH(io::parse_problem(root),
+  CHECK_THROWS_WITH(spec::parse_problem(root),
                     Catch::StartsWith("stages: a staged run is a preload followed by one "
                                       "explicit stage"));
 }

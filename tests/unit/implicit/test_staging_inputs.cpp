@@ -7,8 +7,8 @@
 #include "meshfree/implicit/elastoplastic_solve.hpp"
 #include "meshfree/implicit/galerkin_forms.hpp"
 #include "meshfree/implicit/point_law.hpp"
-#include "meshfree/io/key_reader.hpp"
-#include "meshfree/io/problem_spec.hpp"
+#include "meshfree/spec/key_reader.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include "test_support.hpp"
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -18,10 +18,10 @@ using namespace mf;
 
 namespace {
 
-io::ProblemSpec parse(const std::string& yaml, const std::vector<std::string>& overrides = {}) {
+spec::ProblemSpec parse(const std::string& yaml, const std::vector<std::string>& overrides = {}) {
   YAML::Node root = YAML::Load(yaml);
-  for (const auto& o : overrides) io::apply_override(root, o);
-  return io::parse_problem(root);
+  for (const auto& o : overrides) spec::apply_override(root, o);
+  return spec::parse_problem(root);
 }
 
 std::string error_of(const std::string& yaml, const std::vector<std::string>& overrides) {
@@ -127,10 +127,10 @@ TEST_CASE("gravity turned on without an initial stress gives K0 = nu / (1 - nu)"
   for (const std::string basis : {"fem", "quadratic"}) {
     YAML::Node root = YAML::Load(kColumn);
     root.remove("initial_stress");
-    io::apply_override(root, "steps=[{name: gravity, factors: {body_force: 1}, increments: 1}]");
-    io::apply_override(root, basis == "fem" ? "discretisation.method=fem"
-                                            : "discretisation.basis=quadratic");
-    const io::ProblemSpec spec = io::parse_problem(root);
+    spec::apply_override(root, "steps=[{name: gravity, factors: {body_force: 1}, increments: 1}]");
+    spec::apply_override(root, basis == "fem" ? "discretisation.method=fem"
+                                              : "discretisation.basis=quadratic");
+    const spec::ProblemSpec spec = spec::parse_problem(root);
     const auto r = implicit::solve_elastoplastic_static(spec, test_session(), nullptr);
     REQUIRE(r.status == "completed");
     const ColumnErrors e = column_errors(r, kNu / (1.0 - kNu), 0.25);
@@ -143,9 +143,9 @@ TEST_CASE("gravity turned on without an initial stress gives K0 = nu / (1 - nu)"
   // elastic_static takes gravity through the same body force: Q8 nodal stresses.
   YAML::Node root = YAML::Load(kColumn);
   root.remove("initial_stress");
-  io::apply_override(root, "analysis=elastic_static");
-  io::apply_override(root, "discretisation.method=fem");
-  const auto r = implicit::solve_elastic_static(io::parse_problem(root), test_session());
+  spec::apply_override(root, "analysis=elastic_static");
+  spec::apply_override(root, "discretisation.method=fem");
+  const auto r = implicit::solve_elastic_static(spec::parse_problem(root), test_session());
   double worst = 0.0;
   for (std::size_t n = 0; n < r.node_x.size(); ++n) {
     if (-r.node_x[n].y() < 0.25) continue;
@@ -276,9 +276,9 @@ TEST_CASE("a uniform pressure on every boundary piece, the hole's arc included, 
   YAML::Node root = YAML::Load(kPressurePatch);
   root["geometry"].remove("holes");
   root["boundary"].remove(3);
-  io::apply_override(root, "discretisation.method=fem");
-  io::apply_override(root, "discretisation.fem={element: q4}");
-  const auto fe = implicit::solve_elastic_static(io::parse_problem(root), test_session());
+  spec::apply_override(root, "discretisation.method=fem");
+  spec::apply_override(root, "discretisation.fem={element: q4}");
+  const auto fe = implicit::solve_elastic_static(spec::parse_problem(root), test_session());
   double fe_err = 0.0;
   for (std::size_t n = 0; n < fe.node_x.size(); ++n)
     fe_err = std::max({fe_err, (fe.node_u[n] - eps * fe.node_x[n]).norm() / (std::abs(eps) * 2.0),
@@ -322,7 +322,7 @@ steps: [{name: load, load_factor: 1, increments: 3}]
 TEST_CASE("the geostatic stress is the weight of the column above, layer by layer",
           "[implicit][staging]") {
   // sigma_v = -g sum rho_i t_i over the layers above; a hole in the column carries no weight.
-  io::ProblemSpec spec = parse(kLayers);
+  spec::ProblemSpec spec = parse(kLayers);
   const double g = 9.81;
   CHECK(implicit::material_at(spec, {1.0, -1.0}) == 1);
   CHECK(implicit::material_at(spec, {1.0, -5.0}) == 0);
@@ -352,7 +352,7 @@ TEST_CASE("a point carried through the increments by update_point has the Gauss 
   // functions (evaluated by the same code), to round-off with finite elements (whose shapes_at
   // maps the point back into its element).
   for (const std::string method : {"meshfree", "fem"}) {
-    io::ProblemSpec spec = parse(kLayers, {"discretisation.method=" + method});
+    spec::ProblemSpec spec = parse(kLayers, {"discretisation.method=" + method});
     spec.record_increment_parameters = true;
     REQUIRE(spec.steps.size() == 2);
     const auto r = implicit::solve_elastoplastic_static(spec, test_session(), nullptr);

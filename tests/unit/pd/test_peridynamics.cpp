@@ -466,7 +466,7 @@ TEST_CASE("a blast gives a free slab the momentum of the Kingery-Bulmash impulse
     }
   }
   for (double safety : {0.8, 0.4}) {
-    const io::ProblemSpec spec =
+    const spec::ProblemSpec spec =
         load_problem("pd_slab_blast", {"time.safety=" + std::to_string(safety)});
     PhaseTimer timer;
     explicit_dynamics::PdSetup setup = explicit_dynamics::build_pd_setup(spec, timer);

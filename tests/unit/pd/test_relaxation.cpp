@@ -2,9 +2,9 @@
 // uniaxial-stress solution, its quiet start under velocity Verlet, explicit damped dynamic
 // relaxation against it, and per-particle held displacements.
 #include "meshfree/explicit/pd_run.hpp"
-#include "meshfree/io/key_reader.hpp"
-#include "meshfree/io/problem_spec.hpp"
 #include "meshfree/pd/relaxation.hpp"
+#include "meshfree/spec/key_reader.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <cmath>
@@ -258,7 +258,7 @@ output:
 
 TEST_CASE("a peridynamics problem with relaxation starts from static equilibrium",
           "[pd][relaxation]") {
-  const io::ProblemSpec spec = io::parse_problem(YAML::Load(kPlate));
+  const spec::ProblemSpec spec = spec::parse_problem(YAML::Load(kPlate));
   REQUIRE(spec.pd->relaxation);
   CHECK(spec.pd->relaxation->tolerance == 1e-7);
   PhaseTimer timer;
@@ -288,9 +288,9 @@ TEST_CASE("a peridynamics problem with relaxation starts from static equilibrium
 
 TEST_CASE("bad relaxation keys are refused naming the key", "[pd][relaxation][input]") {
   YAML::Node root = YAML::Load(kPlate);
-  io::apply_override(root, "relaxation.tolerance=2");
-  CHECK_THROWS_WITH(io::parse_problem(root),
+  spec::apply_override(root, "relaxation.tolerance=2");
+  CHECK_THROWS_WITH(spec::parse_problem(root),
                     Catch::StartsWith("relaxation.tolerance: expected a value below 1"));
-  io::apply_override(root, "relaxation.tolerance=0");
-  CHECK_THROWS_WITH(io::parse_problem(root), Catch::StartsWith("relaxation.tolerance:"));
+  spec::apply_override(root, "relaxation.tolerance=0");
+  CHECK_THROWS_WITH(spec::parse_problem(root), Catch::StartsWith("relaxation.tolerance:"));
 }

@@ -1,6 +1,6 @@
 // Input validation: each bad input is one error that names the key path.
-#include "meshfree/io/key_reader.hpp"
-#include "meshfree/io/problem_spec.hpp"
+#include "meshfree/spec/key_reader.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include <catch2/catch.hpp>
 
 using namespace mf;
@@ -23,8 +23,8 @@ boundary:
 std::string error_of(const std::string& assignment) {
   YAML::Node root = YAML::Load(kGood);
   try {
-    if (!assignment.empty()) io::apply_override(root, assignment);
-    io::parse_problem(root);
+    if (!assignment.empty()) spec::apply_override(root, assignment);
+    spec::parse_problem(root);
   } catch (const Error& e) {
     return e.what();
   }
@@ -33,7 +33,7 @@ std::string error_of(const std::string& assignment) {
 } // namespace
 
 TEST_CASE("a valid problem parses with the documented defaults", "[input]") {
-  const io::ProblemSpec p = io::parse_problem(YAML::Load(kGood));
+  const spec::ProblemSpec p = spec::parse_problem(YAML::Load(kGood));
   CHECK(p.discretisation.dilation.x() == 2.0);
   CHECK(p.discretisation.order == 3);
   CHECK(p.discretisation.cell_size == 0.25);
@@ -41,10 +41,10 @@ TEST_CASE("a valid problem parses with the documented defaults", "[input]") {
   CHECK(p.boundary[0].penalty == Approx(1e6 * 2.0e5 / 0.25));
   CHECK(p.boundary[0].mask == Vec2(1, 1));
   YAML::Node root = YAML::Load(kGood);
-  io::apply_override(root, "boundary.0.penalty_scale=1e3");
-  CHECK(io::parse_problem(root).boundary[0].penalty == Approx(1e3 * 2.0e5 / 0.25));
-  io::apply_override(root, "boundary.0.penalty=1e12");
-  CHECK_THROWS_WITH(io::parse_problem(root),
+  spec::apply_override(root, "boundary.0.penalty_scale=1e3");
+  CHECK(spec::parse_problem(root).boundary[0].penalty == Approx(1e3 * 2.0e5 / 0.25));
+  spec::apply_override(root, "boundary.0.penalty=1e12");
+  CHECK_THROWS_WITH(spec::parse_problem(root),
                     Catch::StartsWith("boundary[0].penalty_scale: give either"));
 }
 
@@ -77,37 +77,37 @@ TEST_CASE("bad inputs are rejected with the key path and the value", "[input]") 
 TEST_CASE("missing required values and missing constraints are errors", "[input]") {
   YAML::Node root = YAML::Load(kGood);
   root["materials"][0].remove("E");
-  CHECK_THROWS_WITH(io::parse_problem(root),
+  CHECK_THROWS_WITH(spec::parse_problem(root),
                     "materials[0].E: analysis elastic_static needs Young's modulus E");
   YAML::Node free = YAML::Load(kGood);
   free["boundary"] = YAML::Load("[{name: pull, edges: right, traction: [1, 0]}]");
-  CHECK_THROWS_WITH(io::parse_problem(free),
+  CHECK_THROWS_WITH(spec::parse_problem(free),
                     Catch::Contains("boundary: no displacement condition"));
 }
 
 TEST_CASE("command-line overrides reach nested maps and list items", "[input]") {
   YAML::Node root = YAML::Load(kGood);
-  io::apply_override(root, "discretisation.spacing=0.125");
-  io::apply_override(root, "boundary.1.traction=[2, 0]");
-  const io::ProblemSpec p = io::parse_problem(root);
+  spec::apply_override(root, "discretisation.spacing=0.125");
+  spec::apply_override(root, "boundary.1.traction=[2, 0]");
+  const spec::ProblemSpec p = spec::parse_problem(root);
   CHECK(p.discretisation.spacing == 0.125);
   CHECK(p.boundary[1].traction == Vec2(2, 0));
-  CHECK_THROWS_WITH(io::apply_override(root, "boundary.7.name=x"),
+  CHECK_THROWS_WITH(spec::apply_override(root, "boundary.7.name=x"),
                     Catch::Contains("index 7 is out of range"));
 }
 
 TEST_CASE("override paths in either style, a.1.b or a[1].b; empty keys refused", "[input]") {
   YAML::Node root = YAML::Load(kGood);
-  io::apply_override(root, "boundary[1].traction=[3, 0]");
-  CHECK(io::parse_problem(root).boundary[1].traction == Vec2(3, 0));
+  spec::apply_override(root, "boundary[1].traction=[3, 0]");
+  CHECK(spec::parse_problem(root).boundary[1].traction == Vec2(3, 0));
   for (const char* bad : {".name=x", "a..b=1", "boundary[]=1", "boundary[1]x=1", "name.=x"})
-    CHECK_THROWS_WITH(io::apply_override(root, bad),
+    CHECK_THROWS_WITH(spec::apply_override(root, bad),
                       Catch::Contains("an empty key") || Catch::Contains("expected"));
 }
 
 TEST_CASE("quoted text is one line: control characters escaped, cut at the limit", "[input]") {
-  CHECK(io::one_line(std::string("a\nb\tc\0d", 7)) == "a\\nb\\tc\\x00d");
-  const std::string cut = io::one_line(std::string(1000, 'x'));
+  CHECK(spec::one_line(std::string("a\nb\tc\0d", 7)) == "a\\nb\\tc\\x00d");
+  const std::string cut = spec::one_line(std::string(1000, 'x'));
   CHECK(cut.size() == 80);
   CHECK(cut.substr(77) == "...");
 }
@@ -120,12 +120,12 @@ TEST_CASE("a polygon given clockwise runs as given counter-clockwise, its edges 
                                "edge_names: [bottom, right, top, left]}}");
   cw["geometry"] = YAML::Load("{polygon: {vertices: [[0, 0], [0, 1], [2, 1], [2, 0]], "
                               "edge_names: [left, top, right, bottom]}}");
-  const io::ProblemSpec a = io::parse_problem(ccw), b = io::parse_problem(cw);
+  const spec::ProblemSpec a = spec::parse_problem(ccw), b = spec::parse_problem(cw);
   for (std::size_t c = 0; c < a.boundary.size(); ++c) {
-    const auto length = [](const io::ProblemSpec& p, std::size_t k) {
+    const auto length = [](const spec::ProblemSpec& p, std::size_t k) {
       double l = 0.0;
       Vec2 mid(0.0, 0.0);
-      for (const auto& curve : io::select_boundary(p.domain, p.boundary[k].on, ""))
+      for (const auto& curve : spec::select_boundary(p.domain, p.boundary[k].on, ""))
         l += curve.length(), mid += curve.length() * curve.point(0.5);
       return std::make_pair(l, Vec2(mid / l));
     };
@@ -144,9 +144,9 @@ TEST_CASE("a Voce law that softens is refused unless the file says it means it",
   root["materials"][0]["plasticity"] =
       YAML::Load("{yield_stress: 400, hardening: {type: voce, H: 0, sigma_inf: 300, delta: 10}}");
   root["steps"] = YAML::Load("[{name: pull, load_factor: 1, increments: 2}]");
-  CHECK_THROWS_WITH(io::parse_problem(root),
+  CHECK_THROWS_WITH(spec::parse_problem(root),
                     Catch::Contains("materials[0].plasticity.hardening.sigma_inf: is below the "
                                     "yield stress 400: a softening law; give softening: true"));
   root["materials"][0]["plasticity"]["hardening"]["softening"] = "true";
-  CHECK_NOTHROW(io::parse_problem(root));
+  CHECK_NOTHROW(spec::parse_problem(root));
 }

@@ -1,7 +1,7 @@
 // Unit-sanity warnings: plausible values in each common unit system pass silently; a value in
 // the wrong units is named with its key and the range expected; no shipped problem warns.
-#include "meshfree/io/problem_spec.hpp"
-#include "meshfree/io/unit_sanity.hpp"
+#include "meshfree/spec/problem_spec.hpp"
+#include "meshfree/spec/unit_sanity.hpp"
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <string>
@@ -27,7 +27,7 @@ std::vector<std::string> warnings_of(const std::string& units, const std::string
       "  - {name: pull, edges: right, traction: " +
       traction + "}\n" +
       (plastic ? "steps:\n  - {name: pull, load_factor: 1, increments: 1}\n" : "");
-  return io::unit_sanity_warnings(io::parse_problem(YAML::Load(text)));
+  return spec::unit_sanity_warnings(spec::parse_problem(YAML::Load(text)));
 }
 
 bool any_names(const std::vector<std::string>& lines, const std::string& key) {
@@ -46,29 +46,29 @@ std::vector<std::string> sph_warnings(const std::string& units, const std::strin
       "regions:\n  - {material: al, box: [[0], [0.1]], spacing: 0.001, density: 2700, energy: 0}\n"
       "time: {end: " +
       end + "}\n";
-  return io::unit_sanity_warnings(io::parse_problem(YAML::Load(text)));
+  return spec::unit_sanity_warnings(spec::parse_problem(YAML::Load(text)));
 }
 
 } // namespace
 
 TEST_CASE("unit systems are read from the units key", "[unit_sanity]") {
-  const auto si = io::parse_units("N, m, kg, s");
+  const auto si = spec::parse_units("N, m, kg, s");
   REQUIRE(si);
   CHECK(si->stress() == 1.0);
   CHECK(si->density() == 1.0);
-  const auto nmm = io::parse_units("N, mm, MPa");
+  const auto nmm = spec::parse_units("N, mm, MPa");
   REQUIRE(nmm);
   CHECK(nmm->stress() == Approx(1e6));
   CHECK(nmm->mass == Approx(1e3)); // N s^2 / mm: the tonne
   CHECK(nmm->density() == Approx(1e12));
-  const auto kgf = io::parse_units("kgf, mm, kgf/mm^2");
+  const auto kgf = spec::parse_units("kgf, mm, kgf/mm^2");
   REQUIRE(kgf);
   CHECK(kgf->stress() == Approx(9.80665e6));
-  CHECK(io::parse_units("N, mm, tonne, s")->density() == Approx(1e12));
-  CHECK(io::parse_units("N, mm, t, ms")->time == Approx(1e-3));
-  CHECK_FALSE(io::parse_units("consistent"));
-  CHECK_FALSE(io::parse_units("dimensionless"));
-  CHECK_FALSE(io::parse_units(""));
+  CHECK(spec::parse_units("N, mm, tonne, s")->density() == Approx(1e12));
+  CHECK(spec::parse_units("N, mm, t, ms")->time == Approx(1e-3));
+  CHECK_FALSE(spec::parse_units("consistent"));
+  CHECK_FALSE(spec::parse_units("dimensionless"));
+  CHECK_FALSE(spec::parse_units(""));
 }
 
 TEST_CASE("plausible values in each unit system give no warning", "[unit_sanity]") {
@@ -143,7 +143,7 @@ TEST_CASE("no shipped problem warns", "[unit_sanity]") {
   for (const auto& entry : fs::directory_iterator(dir)) {
     if (entry.path().extension() != ".yaml") continue;
     INFO(entry.path().filename().string());
-    const auto lines = io::unit_sanity_warnings(io::read_problem(entry.path().string()));
+    const auto lines = spec::unit_sanity_warnings(spec::read_problem(entry.path().string()));
     CAPTURE(lines);
     CHECK(lines.empty());
     ++read;

@@ -5,15 +5,15 @@
 // and the problem-file keys gravity and traction.
 #include "meshfree/core/error.hpp"
 #include "meshfree/explicit/sph_setup.hpp"
-#include "meshfree/io/problem_spec.hpp"
 #include "meshfree/materials/equation_of_state.hpp"
 #include "meshfree/materials/strength.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include "meshfree/sph/held_loads.hpp"
-#include "meshfree/sph/support_balance.hpp"
 #include "meshfree/sph/hydro.hpp"
 #include "meshfree/sph/initial_state.hpp"
 #include "meshfree/sph/state.hpp"
 #include "meshfree/sph/step.hpp"
+#include "meshfree/sph/support_balance.hpp"
 #include "sph_test_support.hpp"
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -503,7 +503,7 @@ boundary:
   - {name: pull, box: [[0.0095, 0], [0.0105, 0.01]], traction: [1.0e6, -2.0e5]}
 time: {end: 1.0e-6}
 )";
-  const io::ProblemSpec spec = io::parse_problem(YAML::Load(problem));
+  const spec::ProblemSpec spec = spec::parse_problem(YAML::Load(problem));
   const sph::Hydro h = explicit_dynamics::build_sph(*spec.sph);
   CHECK(h.gravity[0] == 0.0);
   CHECK(h.gravity[1] == -9.81);
@@ -524,7 +524,7 @@ time: {end: 1.0e-6}
     else
       root["boundary"][0]["traction"] = YAML::Load(value);
     try {
-      io::parse_problem(root);
+      spec::parse_problem(root);
     } catch (const Error& e) {
       return std::string(e.what());
     }

@@ -359,7 +359,7 @@ TEST_CASE("a blast gives a free SPH plate the momentum of the Kingery-Bulmash im
   // top-row particle's Friedlander history, computed here from the geometry), and kinetic plus
   // internal energy must equal the work of the loads.
   const double dx = 0.01;
-  const io::ProblemSpec spec = load_problem(
+  const spec::ProblemSpec spec = load_problem(
       "sph_plate_blast",
       {"regions.0.spacing=0.01", "boundary.0.box=[[0, 0.04], [1.0, 0.05]]", "time.end=1.6e-3"});
   double expected = 0.0, peak_force = 0.0;

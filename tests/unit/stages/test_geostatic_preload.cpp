@@ -20,9 +20,9 @@
 // admits 0.319 <= K0 <= 8.4; K0 = 0.5 (q / p = 0.75, 60% of Y) is the normally consolidated
 // value of Jaky's K0 = 1 - sin(phi') for phi' = 30 deg (Jaky 1944, J. Soc. Hung. Arch. Eng.).
 #include "meshfree/implicit/elastoplastic_solve.hpp"
-#include "meshfree/io/problem_spec.hpp"
 #include "meshfree/materials/geomaterials.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include "meshfree/stages/explicit_stage.hpp"
 #include "test_support.hpp"
 #include <algorithm>
@@ -122,14 +122,14 @@ SIDES    time: {end: END, courant: 0.3}
 }
 
 struct Column {
-  io::ProblemSpec spec;
+  spec::ProblemSpec spec;
   stages::ExplicitStage st;
 };
 
 Column run_column(double k0, double settle, double end, bool transmitting_sides = false) {
   Column c;
-  c.spec = io::parse_problem(YAML::Load(column(k0, settle, end, transmitting_sides)));
-  io::ProblemSpec preload = c.spec.stages[0];
+  c.spec = spec::parse_problem(YAML::Load(column(k0, settle, end, transmitting_sides)));
+  spec::ProblemSpec preload = c.spec.stages[0];
   preload.record_increment_parameters = true; // as a staged run does: the particles replay it
   const implicit::ElastoplasticResult pre =
       implicit::solve_elastoplastic_static(preload, test_session(), nullptr);

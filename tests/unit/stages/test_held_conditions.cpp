@@ -1,12 +1,12 @@
 // Every held condition hands a homogeneous plane-strain state to SPH and to peridynamics
 // quietly, with no settle and no event: a table over the held conditions (a grip, clamps on two
 // edges, a roller with a value, a traction, a pressure, gravity, whose state is linear) and the
-// laws (elastic, J2 with isotropic and with kinematic hardening). The particles a condition holds are chosen by geometry: the same
-// whatever the preload's spacing.
+// laws (elastic, J2 with isotropic and with kinematic hardening). The particles a condition holds
+// are chosen by geometry: the same whatever the preload's spacing.
 #include "meshfree/explicit/pd_setup.hpp"
 #include "meshfree/explicit/sph_setup.hpp"
 #include "meshfree/implicit/elastoplastic_solve.hpp"
-#include "meshfree/io/problem_spec.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include "meshfree/sph/step.hpp"
 #include "meshfree/stages/explicit_stage.hpp"
 #include "meshfree/stages/held_conditions.hpp"
@@ -35,8 +35,8 @@ enum class Law { Elastic, Isotropic, Kinematic };
 std::string material(Law law, bool peridynamic) {
   std::ostringstream s;
   s.precision(17);
-  s << "materials:\n  - name: aluminium\n    E: " << kE << "\n    nu: "
-    << (peridynamic ? 0.25 : kNu) << "\n    density: " << kRho << "\n";
+  s << "materials:\n  - name: aluminium\n    E: " << kE
+    << "\n    nu: " << (peridynamic ? 0.25 : kNu) << "\n    density: " << kRho << "\n";
   if (peridynamic) {
     s << "    bond: {law: pmb}\n";
     return s.str();
@@ -81,8 +81,9 @@ std::vector<Held> table(Law law) {
   g.precision(17);
   g << (law == Law::Elastic ? 0.5 : 2.5) * kYield;
   return {
-      {"grip", "      - {name: grip, edges: left, displacement: {x: 0, y: 0}}\n" + rollers_y +
-                   "      - {name: pull, edges: right, traction: [" + g.str() + ", 0]}\n",
+      {"grip",
+       "      - {name: grip, edges: left, displacement: {x: 0, y: 0}}\n" + rollers_y +
+           "      - {name: pull, edges: right, traction: [" + g.str() + ", 0]}\n",
        ""},
       {"clamps on two edges",
        "      - {name: grip, edges: left, displacement: {x: 0, y: 0}}\n"
@@ -100,8 +101,8 @@ std::vector<Held> table(Law law) {
        ""},
       // A column under its weight between rollers: sigma_yy = -rho g (H - y), sigma_xx =
       // sigma_zz = nu / (1 - nu) sigma_yy (13.5 MPa at the base with g = 1e5).
-      {"gravity",
-       rollers_x0_y0 + "      - {name: wall, edges: right, displacement: {x: 0}}\n", "[0, -1.0e5]"},
+      {"gravity", rollers_x0_y0 + "      - {name: wall, edges: right, displacement: {x: 0}}\n",
+       "[0, -1.0e5]"},
   };
 }
 
@@ -122,8 +123,8 @@ std::string staged(const Held& c, Law law, const std::string& target, double pre
   for (const std::string& n : names_of(c.boundary)) hold += (hold.empty() ? "" : ", ") + n;
   if (!c.gravity.empty()) hold += ", gravity";
   s << "name: held_table\nunits: N, m, kg, s\nanalysis: staged\nmodel: {type: plane_strain}\n"
-    << material(law, target == "peridynamics") << "geometry: {rectangle: {origin: [0, 0], size: [" << kLength << ", "
-    << kHeight << "]}}\n"
+    << material(law, target == "peridynamics") << "geometry: {rectangle: {origin: [0, 0], size: ["
+    << kLength << ", " << kHeight << "]}}\n"
     << "stages:\n  - name: preload\n    analysis: elastoplastic_static\n"
     << "    discretisation: {method: fem, spacing: " << preload_spacing << "}\n"
     << "    nonlinear: {tolerance: 1.0e-11}\n    boundary:\n"
@@ -143,7 +144,7 @@ std::string staged(const Held& c, Law law, const std::string& target, double pre
   return s.str();
 }
 
-implicit::ElastoplasticResult preload_of(io::ProblemSpec& preload) {
+implicit::ElastoplasticResult preload_of(spec::ProblemSpec& preload) {
   preload.record_increment_parameters = true;
   return implicit::solve_elastoplastic_static(preload, test_session(), nullptr);
 }
@@ -181,15 +182,15 @@ struct Quietness {
   double kinetic = 0.0;  // largest kinetic energy over the run / stored strain energy
   double interior = 0.0; // largest stress change of an interior particle / largest |sigma|
   double out_of_balance = 0.0;
-  double residual = 0.0; // the out-of-balance the held conditions leave, before any balancing
+  double residual = 0.0;       // the out-of-balance the held conditions leave, before any balancing
   double plastic_change = 0.0; // largest change of alpha / largest alpha
 };
 
 /// The SPH stage run for 1,000 steps from the transferred state.
 Quietness sph_quietness(const Held& c, Law law) {
-  const io::ProblemSpec spec = io::parse_problem(YAML::Load(staged(c, law, "sph", 0.0125)));
-  io::ProblemSpec preload = spec.stages[0];
-  io::ProblemSpec event = spec.stages[1];
+  const spec::ProblemSpec spec = spec::parse_problem(YAML::Load(staged(c, law, "sph", 0.0125)));
+  spec::ProblemSpec preload = spec.stages[0];
+  spec::ProblemSpec event = spec.stages[1];
   const implicit::ElastoplasticResult pre = preload_of(preload);
   REQUIRE(pre.status == "completed");
   // Preloaded particles are a little denser or lighter than at rest: 1% covers their step.
@@ -204,9 +205,9 @@ Quietness sph_quietness(const Held& c, Law law) {
   Quietness q;
   q.out_of_balance = st.transfer.out_of_balance;
   q.residual = st.transfer.balanced_residual;
-  largest_kinetic(st.history, [&st](const std::vector<double>&) {
-    return st.transfer.stored_energy;
-  }, q.steps, q.kinetic);
+  largest_kinetic(
+      st.history, [&st](const std::vector<double>&) { return st.transfer.stored_energy; }, q.steps,
+      q.kinetic);
   // Interior: beyond the kernel's reach (2 h = 3 spacings) of every edge.
   const double reach = 3.0 * kSpacing;
   double scale = 0.0, alpha = 0.0;
@@ -221,8 +222,8 @@ Quietness sph_quietness(const Held& c, Law law) {
     const Vec3& x = X[i];
     if (x.x() < reach || x.x() > kLength - reach || x.y() < reach || x.y() > kHeight - reach)
       continue;
-    q.interior = std::max(q.interior,
-                          (st.stress[i] - pa.final_stress()[i]).cwiseAbs().maxCoeff() / scale);
+    q.interior =
+        std::max(q.interior, (st.stress[i] - pa.final_stress()[i]).cwiseAbs().maxCoeff() / scale);
   }
   return q;
 }
@@ -265,9 +266,9 @@ TEST_CASE("the particles a condition holds do not depend on the preload's spacin
       std::vector<std::vector<int>> held[2];
       for (int k = 0; k < 2; ++k) {
         // 12.5 mm and 2.5 mm: five times finer.
-        const io::ProblemSpec spec =
-            io::parse_problem(YAML::Load(staged(c, Law::Elastic, target, k == 0 ? 0.0125 : 0.0025)));
-        io::ProblemSpec preload = spec.stages[0];
+        const spec::ProblemSpec spec = spec::parse_problem(
+            YAML::Load(staged(c, Law::Elastic, target, k == 0 ? 0.0125 : 0.0025)));
+        spec::ProblemSpec preload = spec.stages[0];
         const implicit::ElastoplasticResult pre = preload_of(preload);
         REQUIRE(pre.status == "completed");
         std::vector<Vec3> X;
@@ -301,26 +302,25 @@ namespace {
 
 struct PdQuietness {
   long steps = 0;
-  double kinetic = 0.0;    // largest kinetic / strain energy over the run
-  double interior = 0.0;   // largest |u - u^h| of an interior particle / largest |u^h|
-  double pd_vs_uh = 0.0;   // |u_PD - u^h| / |u^h| over the body after the relaxation
+  double kinetic = 0.0;  // largest kinetic / strain energy over the run
+  double interior = 0.0; // largest |u - u^h| of an interior particle / largest |u^h|
+  double pd_vs_uh = 0.0; // |u_PD - u^h| / |u^h| over the body after the relaxation
   int relax_iterations = 0;
 };
 
 /// The peridynamic stage relaxed from u^h under the held conditions, then run for 1,000 steps.
 PdQuietness pd_quietness(const Held& c) {
-  const io::ProblemSpec spec =
-      io::parse_problem(YAML::Load(staged(c, Law::Elastic, "peridynamics", 0.0125)));
-  io::ProblemSpec preload = spec.stages[0];
-  io::ProblemSpec event = spec.stages[1];
+  const spec::ProblemSpec spec =
+      spec::parse_problem(YAML::Load(staged(c, Law::Elastic, "peridynamics", 0.0125)));
+  spec::ProblemSpec preload = spec.stages[0];
+  spec::ProblemSpec event = spec.stages[1];
   const implicit::ElastoplasticResult pre = preload_of(preload);
   REQUIRE(pre.status == "completed");
   PhaseTimer timer;
   event.pd->end_time = 999.5 * explicit_dynamics::build_pd_setup(event, timer).dt;
   event.pd->history_interval = 0.0;
   event.pd->fields_interval = 0.0;
-  const stages::ExplicitStage st =
-      stages::run_pd_stage(preload, pre, event, spec.links[1], 1);
+  const stages::ExplicitStage st = stages::run_pd_stage(preload, pre, event, spec.links[1], 1);
   REQUIRE(st.status == "completed");
   const std::vector<Vec3> X = positions(st);
   const int n = static_cast<int>(X.size());
@@ -329,8 +329,9 @@ PdQuietness pd_quietness(const Held& c) {
   q.pd_vs_uh = st.transfer.pd_vs_galerkin;
   q.relax_iterations = st.transfer.relax_iterations;
   const std::size_t strain = column(st.history, "strain_energy");
-  largest_kinetic(st.history, [strain](const std::vector<double>& row) { return row[strain]; },
-                  q.steps, q.kinetic);
+  largest_kinetic(
+      st.history, [strain](const std::vector<double>& row) { return row[strain]; }, q.steps,
+      q.kinetic);
   // Interior: two horizons (6 spacings) inside every edge, beyond the surface layers.
   const double inside = 6.0 * kSpacing;
   double umax = 0.0;
@@ -380,16 +381,15 @@ TEST_CASE("a released condition still acts: the transfer balances only the held 
   const std::string hold = "hold: [axis, base, pull]";
   REQUIRE(yaml.find(hold) != std::string::npos);
   yaml.replace(yaml.find(hold), hold.size(), "hold: [axis, base]\n    release: [pull]");
-  const io::ProblemSpec spec = io::parse_problem(YAML::Load(yaml));
-  io::ProblemSpec preload = spec.stages[0];
-  io::ProblemSpec event = spec.stages[1];
+  const spec::ProblemSpec spec = spec::parse_problem(YAML::Load(yaml));
+  spec::ProblemSpec preload = spec.stages[0];
+  spec::ProblemSpec event = spec.stages[1];
   const implicit::ElastoplasticResult pre = preload_of(preload);
   REQUIRE(pre.status == "completed");
   event.sph->end_time = 200.0 * sph::stable_step(explicit_dynamics::build_sph(*event.sph));
   event.sph->history_interval = 0.0;
   event.sph->fields_interval = 0.0;
-  const stages::ExplicitStage st =
-      stages::run_sph_stage(preload, pre, event, spec.links[1], 1);
+  const stages::ExplicitStage st = stages::run_sph_stage(preload, pre, event, spec.links[1], 1);
   REQUIRE(st.status == "completed");
   const io::History& H = st.history;
   double kinetic = 0.0;

@@ -7,9 +7,9 @@
 #include "meshfree/explicit/gauges.hpp"
 #include "meshfree/explicit/pd_setup.hpp"
 #include "meshfree/implicit/elastoplastic_solve.hpp"
-#include "meshfree/io/key_reader.hpp"
-#include "meshfree/io/problem_spec.hpp"
 #include "meshfree/pd/relaxation.hpp"
+#include "meshfree/spec/key_reader.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include "meshfree/stages/explicit_stage.hpp"
 #include "meshfree/stages/held_conditions.hpp"
 #include "test_support.hpp"
@@ -89,10 +89,10 @@ std::size_t column(const io::History& h, const std::string& name) {
   return static_cast<std::size_t>(it - c.begin());
 }
 
-io::ProblemSpec plate(const std::vector<std::string>& overrides = {}) {
+spec::ProblemSpec plate(const std::vector<std::string>& overrides = {}) {
   YAML::Node root = YAML::Load(kPlate);
-  for (const auto& o : overrides) io::apply_override(root, o);
-  return io::parse_problem(root);
+  for (const auto& o : overrides) spec::apply_override(root, o);
+  return spec::parse_problem(root);
 }
 
 double elapsed(std::chrono::steady_clock::time_point t0) {
@@ -100,7 +100,7 @@ double elapsed(std::chrono::steady_clock::time_point t0) {
 }
 
 struct Staged {
-  io::ProblemSpec spec;
+  spec::ProblemSpec spec;
   stages::ExplicitStage st;
   double preload_seconds = 0.0; // the Galerkin solve
   double stage_seconds = 0.0;   // transfer, relaxation (from u^h and from zero) and the run
@@ -115,7 +115,7 @@ Staged run(int steps, const std::string& equilibrium = "newton") {
   const double dt = explicit_dynamics::build_pd_setup(s.spec.stages[1], timer).dt;
   s.spec = plate({"stages.1.time.end=" + std::to_string((steps - 0.5) * dt),
                   "stages.1.transfer={equilibrium: " + equilibrium + "}"});
-  io::ProblemSpec preload = s.spec.stages[0];
+  spec::ProblemSpec preload = s.spec.stages[0];
   preload.record_increment_parameters = true;
   auto t0 = std::chrono::steady_clock::now();
   const implicit::ElastoplasticResult pre =
@@ -153,13 +153,13 @@ double relative(const Vec2& a, const Vec2& b) {
 
 /// A staged problem's peridynamic body at rest, with the held loads of its stage (on the staged
 /// plate the pull's constant forces; the rollers lie on the mirror planes and hold nothing).
-explicit_dynamics::PdSetup held_body(const io::ProblemSpec& spec) {
+explicit_dynamics::PdSetup held_body(const spec::ProblemSpec& spec) {
   PhaseTimer timer;
   explicit_dynamics::PdSetup setup = explicit_dynamics::build_pd_setup(spec.stages[1], timer);
   pd::Model& m = setup.model;
   std::vector<Vec3> X(m.particles.size());
   for (int i = 0; i < m.particles.size(); ++i) X[i] = m.particles.reference(i);
-  io::ProblemSpec preload = spec.stages[0];
+  spec::ProblemSpec preload = spec.stages[0];
   preload.record_increment_parameters = true;
   const implicit::ElastoplasticResult pre =
       implicit::solve_elastoplastic_static(preload, test_session(), nullptr);
@@ -233,12 +233,11 @@ TEST_CASE("a peridynamic stage after a Galerkin preload starts quiet at the Gale
   }
   std::cout << "staged pd quiet start: " << t.particles << " particles, residual ratio at u^h "
             << t.residual_at_uh << ", " << t.relax_method << " " << t.relax_iterations
-            << " iterations from u^h ("
-            << t.relax_seconds << " s), " << t.relax_iterations_from_zero << " from zero ("
-            << t.relax_seconds_from_zero << " s), |u_PD - u^h| / |u^h| " << t.pd_vs_galerkin
-            << "; over " << last_step << " steps (" << rows
-            << " rows) kinetic / strain energy <= " << worst_kinetic << ", monitors within "
-            << worst_monitor << " of u^h\n";
+            << " iterations from u^h (" << t.relax_seconds << " s), "
+            << t.relax_iterations_from_zero << " from zero (" << t.relax_seconds_from_zero
+            << " s), |u_PD - u^h| / |u^h| " << t.pd_vs_galerkin << "; over " << last_step
+            << " steps (" << rows << " rows) kinetic / strain energy <= " << worst_kinetic
+            << ", monitors within " << worst_monitor << " of u^h\n";
   CHECK(last_step >= steps);
   CHECK(rows == static_cast<int>(last_step) + 1); // every step recorded
   CHECK(worst_kinetic <= 1e-8);
@@ -302,8 +301,8 @@ TEST_CASE("explicit dynamic relaxation from zero reaches the staged preload and 
             << t.relax_iterations_from_zero << " iterations " << t.relax_seconds_from_zero
             << " s); explicit / implicit " << r.seconds / implicit_seconds
             << "; explicit relaxation from zero / the stage's equilibrium from zero "
-            << r.seconds / t.relax_seconds_from_zero
-            << "; largest monitor difference " << worst << "\n";
+            << r.seconds / t.relax_seconds_from_zero << "; largest monitor difference " << worst
+            << "\n";
   CHECK(r.kinetic_ratio <= 1e-3);
   CHECK(worst <= 0.01);
 }
@@ -354,8 +353,7 @@ TEST_CASE("the implicit peridynamic equilibrium of a body held by forces alone r
   explicit_dynamics::PdSetup setup = held_body(plate());
   pd::ExplicitRelaxSettings dr = dynamic_relaxation(setup.model, 0.0);
   dr.residual_tolerance = 1e-6;
-  const pd::ExplicitRelaxReport r =
-      pd::explicit_relax(setup.model, setup.state, setup.loading, dr);
+  const pd::ExplicitRelaxReport r = pd::explicit_relax(setup.model, setup.state, setup.loading, dr);
   CHECK(r.converged);
   CHECK(r.residual_ratio <= 1e-6);
   CHECK(r.time >= dr.ramp_time);
@@ -373,7 +371,7 @@ double cpu_seconds(std::clock_t start) {
 /// (processor seconds, wall seconds in brackets). Dynamic relaxation as dynamic_relaxation() sets
 /// it up, stopped as soon as its residual ratio meets the tolerance (no kinetic energy criterion
 /// stops it earlier at that residual).
-void benchmark(const std::string& name, const io::ProblemSpec& spec) {
+void benchmark(const std::string& name, const spec::ProblemSpec& spec) {
   std::cout << "| problem | particles | tolerance | Newton iterations | Newton s (wall; assembly, "
                "factorisation) | ADR iterations | ADR s | DR steps | DR s (wall) | DR / Newton |\n"
                "|---|---|---|---|---|---|---|---|---|---|\n";
@@ -407,18 +405,21 @@ void benchmark(const std::string& name, const io::ProblemSpec& spec) {
 
 // Benchmarks (hidden: run them by their tag, on one thread, OMP_NUM_THREADS=1): the staged plate
 // at three spacings (2,500, 10,000 and 40,000 particles) and problems/staged_pmma_impact.yaml.
-TEST_CASE("the implicit peridynamic equilibrium against dynamic relaxation, plate of 2500 particles",
-          "[.][staged][pd][benchmark]") {
+TEST_CASE(
+    "the implicit peridynamic equilibrium against dynamic relaxation, plate of 2500 particles",
+    "[.][staged][pd][benchmark]") {
   benchmark("plate", plate());
 }
 
-TEST_CASE("the implicit peridynamic equilibrium against dynamic relaxation, plate of 10000 particles",
-          "[.][staged][pd][benchmark]") {
+TEST_CASE(
+    "the implicit peridynamic equilibrium against dynamic relaxation, plate of 10000 particles",
+    "[.][staged][pd][benchmark]") {
   benchmark("plate", plate({"stages.1.discretisation.spacing=0.001"}));
 }
 
-TEST_CASE("the implicit peridynamic equilibrium against dynamic relaxation, plate of 40000 particles",
-          "[.][staged][pd][benchmark]") {
+TEST_CASE(
+    "the implicit peridynamic equilibrium against dynamic relaxation, plate of 40000 particles",
+    "[.][staged][pd][benchmark]") {
   benchmark("plate", plate({"stages.1.discretisation.spacing=0.0005"}));
 }
 
@@ -426,4 +427,3 @@ TEST_CASE("the implicit peridynamic equilibrium against dynamic relaxation, stag
           "[.][staged][pd][benchmark]") {
   benchmark("staged_pmma_impact", load_problem("staged_pmma_impact"));
 }
-

@@ -5,8 +5,8 @@
 #include "meshfree/explicit/sph_setup.hpp"
 #include "meshfree/implicit/elastoplastic_solve.hpp"
 #include "meshfree/io/output.hpp"
-#include "meshfree/io/problem_spec.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include "meshfree/sph/initial_state.hpp"
 #include "meshfree/sph/step.hpp"
 #include "meshfree/stages/explicit_stage.hpp"
@@ -43,8 +43,8 @@ std::string material(const std::string& plasticity) {
   return s.str();
 }
 
-io::ProblemSpec parse(const std::string& yaml) {
-  return io::parse_problem(YAML::Load(yaml));
+spec::ProblemSpec parse(const std::string& yaml) {
+  return spec::parse_problem(YAML::Load(yaml));
 }
 
 std::string error_of(const std::string& yaml) {
@@ -60,7 +60,7 @@ bool starts_with(const std::string& s, const std::string& prefix) {
   return s.rfind(prefix, 0) == 0;
 }
 
-implicit::ElastoplasticResult preload_of(io::ProblemSpec& preload) {
+implicit::ElastoplasticResult preload_of(spec::ProblemSpec& preload) {
   preload.record_increment_parameters = true;
   return implicit::solve_elastoplastic_static(preload, test_session(), nullptr);
 }
@@ -155,8 +155,8 @@ double rel(double a, double b, double scale) {
 }
 
 void check_homogeneous(const std::string& yaml, const Homogeneous& c) {
-  io::ProblemSpec spec = parse(yaml);
-  io::ProblemSpec preload = spec.stages[0];
+  spec::ProblemSpec spec = parse(yaml);
+  spec::ProblemSpec preload = spec.stages[0];
   const implicit::ElastoplasticResult pre = preload_of(preload);
   REQUIRE(pre.status == "completed");
   REQUIRE(pre.increments.size() == c.factors.size());
@@ -394,7 +394,7 @@ const std::string kPlastic = [] {
 }();
 
 /// The CFL step of the unloaded particles of an SPH stage.
-double first_step(const io::ProblemSpec& event) {
+double first_step(const spec::ProblemSpec& event) {
   return sph::stable_step(explicit_dynamics::build_sph(*event.sph));
 }
 
@@ -416,9 +416,9 @@ struct Quiet {
 
 /// The strip preloaded, held and run for 2,000 explicit steps, a history row at every step.
 Quiet quiet_start(const std::string& yaml) {
-  io::ProblemSpec spec = parse(yaml);
-  io::ProblemSpec preload = spec.stages[0];
-  io::ProblemSpec event = spec.stages[1];
+  spec::ProblemSpec spec = parse(yaml);
+  spec::ProblemSpec preload = spec.stages[0];
+  spec::ProblemSpec event = spec.stages[1];
   const implicit::ElastoplasticResult pre = preload_of(preload);
   REQUIRE(pre.status == "completed");
   // The preloaded particles are a little denser or lighter than at rest: their step differs by
@@ -564,8 +564,8 @@ TEST_CASE("the implicit preload agrees with explicit dynamic relaxation in SPH",
   const double T = 100.0e6;
   // The implicit preload and its transfer to the particles.
   const auto t0 = Clock::now();
-  io::ProblemSpec spec = parse(strip("", T, 1));
-  io::ProblemSpec preload = spec.stages[0];
+  spec::ProblemSpec spec = parse(strip("", T, 1));
+  spec::ProblemSpec preload = spec.stages[0];
   const implicit::ElastoplasticResult pre = preload_of(preload);
   REQUIRE(pre.status == "completed");
   sph::Hydro loaded = explicit_dynamics::build_sph(*spec.stages[1].sph);
@@ -667,7 +667,7 @@ Csv read_csv(const std::string& path) {
 
 TEST_CASE("the displacement is continuous across the stage boundary of a staged run",
           "[staged][sph]") {
-  io::ProblemSpec spec = parse(strip(kPlastic, 320.0e6, 4));
+  spec::ProblemSpec spec = parse(strip(kPlastic, 320.0e6, 4));
   spec.stages[1].sph->end_time = 20.0 * first_step(spec.stages[1]);
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / "meshfree_test_staged_sph";
@@ -737,8 +737,8 @@ TEST_CASE("the settle of an SPH stage runs under the held loads alone, not the e
       file["stages"][1]["boundary"] = YAML::Load(
           "[{name: blast, box: [[0.0475, 0.0], [0.05, 0.1]], blast: {tnt_mass: 0.25, burst: "
           "free_air, charge_at: [0.15, 0.05], normal: [1, 0]}}]");
-    io::ProblemSpec spec = io::parse_problem(file);
-    io::ProblemSpec preload = spec.stages[0];
+    spec::ProblemSpec spec = spec::parse_problem(file);
+    spec::ProblemSpec preload = spec.stages[0];
     const implicit::ElastoplasticResult pre = preload_of(preload);
     REQUIRE(pre.status == "completed");
     return stages::run_sph_stage(preload, pre, spec.stages[1], spec.links[1], 1);

@@ -3,12 +3,12 @@
 // later stage names the stage it starts from, which of that stage's conditions it holds and
 // which it releases, and how the transferred state is settled. Everything a transfer cannot take
 // is refused here, before anything runs.
-#include "meshfree/io/analysis_read.hpp"
-#include "meshfree/io/spec_read.hpp"
+#include "meshfree/spec/analysis_read.hpp"
+#include "meshfree/spec/spec_read.hpp"
 #include <algorithm>
 #include <cmath>
 
-namespace mf::io {
+namespace mf::spec {
 
 namespace {
 
@@ -232,4 +232,4 @@ void parse_stages(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
   r.allow("analysis");
 }
 
-} // namespace mf::io
+} // namespace mf::spec

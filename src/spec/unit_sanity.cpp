@@ -1,7 +1,7 @@
 // Unit-sanity warnings: each value is converted to SI with the declared unit system and compared
 // with the range real solids and loads span. The ranges are wide (a slip of units moves a value
 // by 10^3 to 10^12, a factor of g by about 10), so a warning means a likely slip, not an error.
-#include "meshfree/io/unit_sanity.hpp"
+#include "meshfree/spec/unit_sanity.hpp"
 #include "meshfree/core/log.hpp"
 #include <algorithm>
 #include <cctype>
@@ -10,7 +10,7 @@
 #include <set>
 #include <sstream>
 
-namespace mf::io {
+namespace mf::spec {
 namespace {
 
 // Plausible SI ranges (README "Units"). Moduli: soft foams and rubbers (about 1e5 Pa) up to
@@ -174,8 +174,8 @@ void check_step(Report& r, const ProblemSpec& p) {
   r.check("the stable time step, about spacing / wave speed,", dt, r.units().time, kStep,
           "explicit time steps");
   if (end / dt > kMaxSteps)
-    r.add(prefix + "time.end = " + num(end) + " is about " + num(end / dt) + " steps of " + num(dt) +
-          " (spacing / wave speed): check the end time's units");
+    r.add(prefix + "time.end = " + num(end) + " is about " + num(end / dt) + " steps of " +
+          num(dt) + " (spacing / wave speed): check the end time's units");
 }
 
 void check_problem(Report& r, const ProblemSpec& p) {
@@ -239,4 +239,4 @@ void warn_unit_sanity(const ProblemSpec& spec) {
   for (const auto& line : unit_sanity_warnings(spec)) log::warn(line);
 }
 
-} // namespace mf::io
+} // namespace mf::spec

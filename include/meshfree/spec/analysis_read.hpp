@@ -1,11 +1,11 @@
 #pragma once
 // The reader of each analysis: what follows the front (name, units, analysis, model, materials,
 // geometry) that read_problem reads for every analysis.
-#include "meshfree/io/key_reader.hpp"
-#include "meshfree/io/problem_spec.hpp"
+#include "meshfree/spec/key_reader.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include <string>
 
-namespace mf::io {
+namespace mf::spec {
 
 /// geometry: a rectangle or a polygon, with circular holes (2D bodies).
 geometry::Domain read_domain(KeyReader& geometry);
@@ -28,4 +28,4 @@ void parse_stages(KeyReader& r, ProblemSpec& p, const std::string& base_dir);
 /// conditions, its body force ("body_force") and its gravity ("gravity").
 std::vector<std::string> stage_conditions(const ProblemSpec& p);
 
-} // namespace mf::io
+} // namespace mf::spec

@@ -1,9 +1,9 @@
 // The geometry of a 2D body in a problem file (a rectangle or a polygon, with circular holes) and
 // the pieces of its boundary a condition names. Every key is checked; errors name the key path.
-#include "meshfree/io/analysis_read.hpp"
-#include "meshfree/io/spec_read.hpp"
+#include "meshfree/spec/analysis_read.hpp"
+#include "meshfree/spec/spec_read.hpp"
 
-namespace mf::io {
+namespace mf::spec {
 
 geometry::Domain read_domain(KeyReader& g) {
   const bool rect = g.has("rectangle"), poly = g.has("polygon");
@@ -97,4 +97,4 @@ std::vector<geometry::Curve> select_boundary(const geometry::Domain& domain, con
   return out;
 }
 
-} // namespace mf::io
+} // namespace mf::spec

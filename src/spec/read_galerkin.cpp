@@ -3,14 +3,14 @@
 // checked; errors name the key path.
 #include "meshfree/core/input_file.hpp"
 #include "meshfree/core/memory.hpp"
-#include "meshfree/io/analysis_read.hpp"
-#include "meshfree/io/spec_read.hpp"
+#include "meshfree/spec/analysis_read.hpp"
+#include "meshfree/spec/spec_read.hpp"
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 
-namespace mf::io {
+namespace mf::spec {
 
 namespace {
 
@@ -550,4 +550,4 @@ void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
   read_output(r, p, plastic);
 }
 
-} // namespace mf::io
+} // namespace mf::spec

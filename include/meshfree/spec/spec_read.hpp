@@ -1,13 +1,13 @@
 #pragma once
 // Readers shared by every analysis: names, points, boxes and regions, gauges, blasts, the
 // `materials:` list and the `time:` map. Every error names the key path.
-#include "meshfree/io/key_reader.hpp"
-#include "meshfree/io/material_spec.hpp"
-#include "meshfree/io/region_spec.hpp"
+#include "meshfree/spec/key_reader.hpp"
+#include "meshfree/spec/material_spec.hpp"
+#include "meshfree/spec/region_spec.hpp"
 #include <string>
 #include <vector>
 
-namespace mf::io {
+namespace mf::spec {
 
 /// Names end up in file names and CSV/JSON keys: letters, digits, '_' and '-' only.
 void check_name(KeyReader& r, const std::string& key, const std::string& name,
@@ -62,4 +62,4 @@ int find_material(KeyReader& r, const std::string& key, const std::vector<Materi
 [[noreturn]] void material_error(const MaterialSpec& m, const std::string& part,
                                  const std::string& message);
 
-} // namespace mf::io
+} // namespace mf::spec

@@ -1,15 +1,15 @@
 #pragma once
 // What the peridynamics part of a problem file says (analysis: peridynamics), validated and
 // typed. Materials are the problem's `materials:` entries the body uses, each with its bond.
-#include "meshfree/io/material_spec.hpp"
-#include "meshfree/io/region_spec.hpp"
 #include "meshfree/loads/time_function.hpp"
 #include "meshfree/materials/pd_bonds.hpp"
+#include "meshfree/spec/material_spec.hpp"
+#include "meshfree/spec/region_spec.hpp"
 #include <optional>
 #include <string>
 #include <vector>
 
-namespace mf::io {
+namespace mf::spec {
 
 using Vec3d = Eigen::Vector3d;
 
@@ -105,4 +105,4 @@ struct PdSpec {
   std::string key_prefix; // "stages[k]." for a stage of a staged run: its keys' path in messages
 };
 
-} // namespace mf::io
+} // namespace mf::spec

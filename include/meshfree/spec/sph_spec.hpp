@@ -1,14 +1,14 @@
 #pragma once
 // What the SPH part of a problem file says (analysis: sph), validated and typed: plain data that
 // the SPH builder maps to the solver's own settings.
-#include "meshfree/io/material_spec.hpp"
-#include "meshfree/io/region_spec.hpp"
 #include "meshfree/kernels/sph_kernel.hpp"
+#include "meshfree/spec/material_spec.hpp"
+#include "meshfree/spec/region_spec.hpp"
 #include <optional>
 #include <string>
 #include <vector>
 
-namespace mf::io {
+namespace mf::spec {
 
 /// A body of particles, one material, uniform initial state: a box on a lattice of the given
 /// spacing (kept inside the region's circle, less its holes), or (2D) a ring of concentric
@@ -90,4 +90,4 @@ struct SphSpec {
   std::string key_prefix; // "stages[k]." for a stage of a staged run: its keys' path in messages
 };
 
-} // namespace mf::io
+} // namespace mf::spec

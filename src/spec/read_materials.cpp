@@ -1,11 +1,11 @@
 // The `materials:` list: elastic constants, density, plasticity, equation of state, strength,
 // HJC constants and peridynamic bond parameters of each named material. Every key is checked;
 // errors name the key path.
-#include "meshfree/io/spec_read.hpp"
+#include "meshfree/spec/spec_read.hpp"
 #include <cmath>
 #include <variant>
 
-namespace mf::io {
+namespace mf::spec {
 
 void read_hardening(KeyReader& p, materials::J2Parameters& j) {
   const bool has_yield = p.has("yield_stress");
@@ -321,4 +321,4 @@ void material_error(const MaterialSpec& m, const std::string& part, const std::s
   fail(m.key_path, ".", part, ": ", message);
 }
 
-} // namespace mf::io
+} // namespace mf::spec

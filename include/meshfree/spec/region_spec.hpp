@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-namespace mf::io {
+namespace mf::spec {
 
 using Point = Eigen::Vector3d;
 
@@ -106,4 +106,4 @@ struct BlastSpec {
   Point normal{0, 0, 0};          // unit outward normal of the loaded face
 };
 
-} // namespace mf::io
+} // namespace mf::spec

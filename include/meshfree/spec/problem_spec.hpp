@@ -5,21 +5,21 @@
 #include "meshfree/core/types.hpp"
 #include "meshfree/geometry/domain.hpp"
 #include "meshfree/geometry/node_generation.hpp"
-#include "meshfree/io/material_spec.hpp"
-#include "meshfree/io/pd_spec.hpp"
-#include "meshfree/io/region_spec.hpp"
-#include "meshfree/io/sph_spec.hpp"
-#include "meshfree/io/stage_spec.hpp"
 #include "meshfree/kernels/shape_functions.hpp"
 #include "meshfree/materials/elastic.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
+#include "meshfree/spec/material_spec.hpp"
+#include "meshfree/spec/pd_spec.hpp"
+#include "meshfree/spec/region_spec.hpp"
+#include "meshfree/spec/sph_spec.hpp"
+#include "meshfree/spec/stage_spec.hpp"
 #include "meshfree/verification/exact_solutions.hpp"
 #include <optional>
 #include <string>
 #include <vector>
 #include <yaml-cpp/yaml.h>
 
-namespace mf::io {
+namespace mf::spec {
 
 enum class Analysis {
   ElasticStatic,
@@ -205,4 +205,4 @@ ProblemSpec parse_problem(YAML::Node root, const std::string& base_dir = "",
 std::vector<geometry::Curve> select_boundary(const geometry::Domain& domain, const Region& on,
                                              const std::string& key_path);
 
-} // namespace mf::io
+} // namespace mf::spec

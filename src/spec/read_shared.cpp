@@ -1,8 +1,8 @@
 // Readers shared by every analysis: names, points, boxes, regions, gauges and blasts.
-#include "meshfree/io/spec_read.hpp"
+#include "meshfree/spec/spec_read.hpp"
 #include <cmath>
 
-namespace mf::io {
+namespace mf::spec {
 
 void check_name(KeyReader& r, const std::string& key, const std::string& name, bool may_be_empty) {
   if (name.empty() && may_be_empty) return;
@@ -154,4 +154,4 @@ BlastSpec read_blast(KeyReader& b, int dim, bool near_field) {
   return out;
 }
 
-} // namespace mf::io
+} // namespace mf::spec

@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-namespace mf::io {
+namespace mf::spec {
 
 /// A strength model other than J2 (which comes from `plasticity:`): a granular yield table and
 /// shear modulus table (soil) or the Holmquist-Johnson-Cook model (concrete, constants from the
@@ -45,4 +45,4 @@ struct MaterialSpec {
   std::optional<BondSpec> bond;
 };
 
-} // namespace mf::io
+} // namespace mf::spec

@@ -1,19 +1,22 @@
-#include "meshfree/io/key_reader.hpp"
+#include "meshfree/spec/key_reader.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <set>
 #include <sstream>
 
-namespace mf::io {
+namespace mf::spec {
 
 std::string one_line(const std::string& text, std::size_t limit) {
   std::string out;
   for (const char c : text) {
     std::string shown(1, c);
-    if (c == '\n') shown = "\\n";
-    else if (c == '\r') shown = "\\r";
-    else if (c == '\t') shown = "\\t";
+    if (c == '\n')
+      shown = "\\n";
+    else if (c == '\r')
+      shown = "\\r";
+    else if (c == '\t')
+      shown = "\\t";
     else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
       char hex[8];
       std::snprintf(hex, sizeof hex, "\\x%02x", static_cast<unsigned char>(c));
@@ -276,8 +279,8 @@ std::size_t list_index(const std::string& part, std::size_t size, const std::str
     fail("--set ", one_line(path), ": '", one_line(part), "' indexes a list and must be a number");
   const std::size_t idx = part.size() > 9 ? size : std::stoul(part);
   if (idx >= size)
-    fail("--set ", one_line(path), ": index ", part.substr(0, 20), " is out of range (the list has ", size,
-         " items)");
+    fail("--set ", one_line(path), ": index ", part.substr(0, 20),
+         " is out of range (the list has ", size, " items)");
   return idx;
 }
 } // namespace
@@ -309,8 +312,7 @@ std::vector<std::string> override_path(const std::string& path) {
       i = close;
       after_bracket = true;
     } else {
-      if (after_bracket)
-        fail("--set ", one_line(path), ": expected '.' or '[' after ']'");
+      if (after_bracket) fail("--set ", one_line(path), ": expected '.' or '[' after ']'");
       part += c;
     }
   }
@@ -321,8 +323,8 @@ std::vector<std::string> override_path(const std::string& path) {
 
 void apply_override(YAML::Node& root, const std::string& assignment) {
   const auto eq = assignment.find('=');
-  MF_REQUIRE(eq != std::string::npos && eq > 0, "--set expects key.path=value, got '", one_line(assignment),
-             "'");
+  MF_REQUIRE(eq != std::string::npos && eq > 0, "--set expects key.path=value, got '",
+             one_line(assignment), "'");
   const std::string path = assignment.substr(0, eq);
   YAML::Node value;
   try {
@@ -353,9 +355,10 @@ void apply_override(YAML::Node& root, const std::string& assignment) {
     } else {
       std::string prefix;
       for (std::size_t k = 0; k < i; ++k) prefix += (k ? "." : "") + parts[k];
-      fail("--set ", one_line(path), ": '", one_line(prefix), "' holds a single value, not a map or a list");
+      fail("--set ", one_line(path), ": '", one_line(prefix),
+           "' holds a single value, not a map or a list");
     }
   }
 }
 
-} // namespace mf::io
+} // namespace mf::spec

@@ -2,12 +2,12 @@
 // Plausibility of a problem's numbers in the unit system its `units:` key declares. A modulus in
 // Pa in an N-mm model, or a density in kg/m^3 in it, reads as valid input and runs; these checks
 // turn such slips into warnings (never errors: an unusual material may be meant).
-#include "meshfree/io/problem_spec.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include <optional>
 #include <string>
 #include <vector>
 
-namespace mf::io {
+namespace mf::spec {
 
 /// A declared unit system as factors to SI: a value in it times the factor is the SI value.
 struct UnitSystem {
@@ -33,4 +33,4 @@ std::vector<std::string> unit_sanity_warnings(const ProblemSpec& spec);
 /// Prints unit_sanity_warnings(spec) as warnings on stderr (rank 0).
 void warn_unit_sanity(const ProblemSpec& spec);
 
-} // namespace mf::io
+} // namespace mf::spec

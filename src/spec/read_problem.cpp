@@ -1,12 +1,12 @@
 // The front of a problem file, shared by every analysis: name, description, units, analysis,
 // model, materials and geometry; then the reader of the analysis for the rest. A file may list
 // `stages:` instead of one analysis.
-#include "meshfree/io/analysis_read.hpp"
 #include "meshfree/core/input_file.hpp"
-#include "meshfree/io/spec_read.hpp"
+#include "meshfree/spec/analysis_read.hpp"
+#include "meshfree/spec/spec_read.hpp"
 #include <fstream>
 
-namespace mf::io {
+namespace mf::spec {
 
 namespace {
 
@@ -151,4 +151,4 @@ ProblemSpec read_problem(const std::string& path, const std::vector<std::string>
   }
 }
 
-} // namespace mf::io
+} // namespace mf::spec

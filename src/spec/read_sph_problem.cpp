@@ -3,13 +3,13 @@
 // boundaries, constant tractions, symmetry planes), gravity, detonation, viscosity, time and
 // output. Every key is checked; errors name the key path.
 #include "meshfree/core/memory.hpp"
-#include "meshfree/io/analysis_read.hpp"
-#include "meshfree/io/spec_read.hpp"
+#include "meshfree/spec/analysis_read.hpp"
+#include "meshfree/spec/spec_read.hpp"
 #include <algorithm>
 #include <cmath>
 #include <variant>
 
-namespace mf::io {
+namespace mf::spec {
 
 namespace {
 
@@ -262,4 +262,4 @@ SphSpec parse_sph(KeyReader& r, const ProblemSpec& front) {
   return s;
 }
 
-} // namespace mf::io
+} // namespace mf::spec

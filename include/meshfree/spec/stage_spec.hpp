@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace mf::io {
+namespace mf::spec {
 
 /// A plane x_axis = at across which a preload computed on a symmetric part is mirrored to give
 /// the whole body of the next stage.
@@ -33,4 +33,4 @@ struct StageLink {
   bool relax_from_zero = true;
 };
 
-} // namespace mf::io
+} // namespace mf::spec

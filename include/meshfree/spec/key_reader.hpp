@@ -10,7 +10,7 @@
 #include <vector>
 #include <yaml-cpp/yaml.h>
 
-namespace mf::io {
+namespace mf::spec {
 
 /// Text as messages quote it: on one line (line breaks and other control characters, a NUL
 /// among them, shown escaped: \n, \t, \x00) and at most `limit` characters, cut with "...".
@@ -73,4 +73,4 @@ private:
 /// Applies "a.b.0.c=value" to a YAML tree (value parsed as YAML; list indices by number).
 void apply_override(YAML::Node& root, const std::string& assignment);
 
-} // namespace mf::io
+} // namespace mf::spec

@@ -1,11 +1,11 @@
 // The peridynamics part of a problem file (analysis: peridynamics): the materials the body uses
 // and their interfaces, the particles, regions, cracks and notches, time functions, boundary
 // conditions, impactors, time and output. Every key is checked; errors name the key path.
-#include "meshfree/io/analysis_read.hpp"
-#include "meshfree/io/spec_read.hpp"
+#include "meshfree/spec/analysis_read.hpp"
+#include "meshfree/spec/spec_read.hpp"
 #include <cmath>
 
-namespace mf::io {
+namespace mf::spec {
 
 namespace {
 
@@ -359,4 +359,4 @@ PdSpec parse_pd(KeyReader& r, const ProblemSpec& front, const std::string& base_
   return s;
 }
 
-} // namespace mf::io
+} // namespace mf::spec
