@@ -49,26 +49,6 @@ sph::Material to_solver(const spec::MaterialSpec& m) {
   return out;
 }
 
-sph::Settings to_solver(const spec::SphNumerics& n) {
-  sph::Settings s;
-  s.kernel = n.kernel;
-  s.gradient_correction = n.gradient_correction;
-  s.deterministic = n.deterministic;
-  s.alpha = n.alpha;
-  s.beta = n.beta;
-  s.phi = n.phi;
-  s.courant = n.courant;
-  s.burn_width = n.burn_width;
-  s.ignition_compression = n.ignition_compression;
-  s.artificial_stress = n.artificial_stress;
-  s.artificial_stress_exponent = n.artificial_stress_exponent;
-  s.penalty.pressure = n.penalty.pressure;
-  s.penalty.n1 = n.penalty.n1;
-  s.penalty.n2 = n.penalty.n2;
-  s.penalty.distance = n.penalty.distance;
-  return s;
-}
-
 /// The particles of region k: its lattice (or ring) less its circle's outside and its holes.
 void add_region(sph::Hydro& h, const spec::SphSpec& s, std::size_t k) {
   const spec::SphRegion& b = s.regions[k];
@@ -167,7 +147,7 @@ sph::TransmittingBoundary transmitting(const sph::Hydro& h, const spec::SphTrans
 sph::Hydro build_sph(const spec::SphSpec& s) {
   sph::Hydro h;
   for (const spec::MaterialSpec& m : s.materials) h.materials.push_back(to_solver(m));
-  h.settings = to_solver(s.numerics);
+  h.settings = s.numerics;
   h.dim = s.dimension;
   // The list holds (1 + skin)^dim times the interacting pairs, every one of them examined at
   // every rate evaluation, while the number of rebuilds goes as 1 / skin: the best margin

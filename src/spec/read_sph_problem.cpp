@@ -194,7 +194,7 @@ void read_detonation(KeyReader& r, int dim, SphSpec& s) {
   }
 }
 
-void read_viscosity(KeyReader& r, SphNumerics& n) {
+void read_viscosity(KeyReader& r, sph::Settings& n) {
   if (auto v = r.optional_map("viscosity")) {
     n.alpha = v->number("alpha", 1.0);
     n.beta = v->number("beta", 1.0);
@@ -205,7 +205,7 @@ void read_viscosity(KeyReader& r, SphNumerics& n) {
   }
 }
 
-void read_artificial_stress(KeyReader& r, SphNumerics& n) {
+void read_artificial_stress(KeyReader& r, sph::Settings& n) {
   if (auto a = r.optional_map("artificial_stress")) {
     n.artificial_stress = a->positive("epsilon", 0.3);
     n.artificial_stress_exponent = a->integer("exponent", 4, 1, 12);
@@ -214,9 +214,9 @@ void read_artificial_stress(KeyReader& r, SphNumerics& n) {
 }
 
 /// interface: the inter-material penalty force (sph::Settings::Penalty).
-void read_interface_penalty(KeyReader& r, SphNumerics& n) {
+void read_interface_penalty(KeyReader& r, sph::Settings& n) {
   if (auto f = r.optional_map("interface")) {
-    SphNumerics::Penalty& pen = n.penalty;
+    sph::Settings::Penalty& pen = n.penalty;
     pen.pressure = f->positive("penalty_pressure");
     pen.n1 = f->integer("n1", 12, 1, 32);
     pen.n2 = f->integer("n2", 6, 0, 31);

@@ -4,6 +4,7 @@
 #include "meshfree/kernels/sph_kernel.hpp"
 #include "meshfree/spec/material_spec.hpp"
 #include "meshfree/spec/region_spec.hpp"
+#include "meshfree/sph/settings.hpp"
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,24 +53,6 @@ struct SphSymmetry {
   double at = 0.0;
 };
 
-/// The numerical parameters of the SPH solver (defaults: those of sph::Settings).
-struct SphNumerics {
-  kernels::SphKernel kernel = kernels::SphKernel::CubicSpline;
-  bool gradient_correction = false;
-  bool deterministic = false; // discretisation.deterministic: rows summed in global-id order
-  double alpha = 1.0, beta = 1.0, phi = 0.1; // Monaghan artificial viscosity
-  double courant = 0.3;
-  double burn_width = 2.0;
-  double ignition_compression = 0.1;
-  double artificial_stress = 0.0;
-  int artificial_stress_exponent = 4;
-  struct Penalty {
-    double pressure = 0.0;
-    int n1 = 12, n2 = 6;
-    double distance = 1.0;
-  } penalty;
-};
-
 struct SphSpec {
   int dimension = 1;      // 1 (uniaxial strain), 2 (plane strain, per unit thickness) or 3
   double smoothing = 1.5; // h = smoothing * spacing
@@ -77,7 +60,7 @@ struct SphSpec {
   std::vector<SphRegion> regions;
   std::optional<Point> detonation_point;  // a point, or with the normal a plane
   std::optional<Point> detonation_normal; // unit
-  SphNumerics numerics;
+  sph::Settings numerics; // the solver's own parameters (the neighbour-list skin is not read)
   double end_time = 0.0;
   double history_interval = 0.0, fields_interval = 0.0; // 0: every step / start and end only
   std::vector<GaugeSpec> gauges;
