@@ -11,7 +11,7 @@ namespace {
 
 std::vector<GaugePoint> gauge_points(const spec::PdSpec& s) {
   std::vector<GaugePoint> g;
-  for (const auto& p : s.gauges) g.push_back({p.name, p.at});
+  for (const auto& p : s.output.gauges) g.push_back({p.name, p.at});
   return g;
 }
 

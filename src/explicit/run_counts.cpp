@@ -69,14 +69,14 @@ PlannedRun planned_run(const spec::PdSpec& s, const PdSetup& setup) {
   r.end_time = s.end_time;
   r.dt = setup.dt;
   r.dt_key = setup.dt_key;
-  r.history_interval = s.history_interval;
-  r.fields_interval = s.fields_interval;
-  r.checkpoint_interval = s.checkpoint.interval;
+  r.history_interval = s.output.history_interval;
+  r.fields_interval = s.output.fields_interval;
+  r.checkpoint_interval = s.output.checkpoint.interval;
   r.particles = static_cast<double>(setup.particles_total);
   r.particle_steps_per_second = work_per_second::pd_particle_steps;
   r.bytes_per_particle_frame = 8.0 * 11.0; // displacement, velocity, position, damage, material
   r.bytes_per_particle_state = bytes_per::pd_particle;
-  r.history_columns = history_columns(s.gauges.size());
+  r.history_columns = history_columns(s.output.gauges.size());
   r.key_prefix = s.key_prefix;
   return r;
 }
@@ -85,14 +85,14 @@ PlannedRun planned_run(const spec::SphSpec& s, double particles, double dt) {
   PlannedRun r;
   r.end_time = s.end_time;
   r.dt = dt;
-  r.history_interval = s.history_interval;
-  r.fields_interval = s.fields_interval;
-  r.checkpoint_interval = s.checkpoint.interval;
+  r.history_interval = s.output.history_interval;
+  r.fields_interval = s.output.fields_interval;
+  r.checkpoint_interval = s.output.checkpoint.interval;
   r.particles = particles;
   r.particle_steps_per_second = work_per_second::sph_particle_steps;
   r.bytes_per_particle_frame = 8.0 * 24.0; // 24 values: motion, state, stress, position
   r.bytes_per_particle_state = bytes_per::sph_particle(s.dimension);
-  r.history_columns = history_columns(s.gauges.size());
+  r.history_columns = history_columns(s.output.gauges.size());
   r.key_prefix = s.key_prefix;
   return r;
 }

@@ -12,7 +12,7 @@ namespace {
 
 std::vector<GaugePoint> gauge_points(const spec::SphSpec& s) {
   std::vector<GaugePoint> g;
-  for (const auto& p : s.gauges) g.push_back({p.name, Vec3(p.at[0], p.at[1], p.at[2])});
+  for (const auto& p : s.output.gauges) g.push_back({p.name, Vec3(p.at[0], p.at[1], p.at[2])});
   return g;
 }
 

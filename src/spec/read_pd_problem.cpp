@@ -316,11 +316,7 @@ void read_crack_output(KeyReader& o, int dim, PdSpec& s) {
 
 void read_output(KeyReader& r, int dim, PdSpec& s) {
   if (auto o = r.optional_map("output")) {
-    SeriesOutputSpec series = read_series_output(*o, dim);
-    s.history_interval = series.history_interval;
-    s.fields_interval = series.fields_interval;
-    s.gauges = std::move(series.gauges);
-    s.checkpoint = series.checkpoint;
+    s.output = read_series_output(*o, dim);
     read_crack_output(*o, dim, s);
     o->finish();
   }

@@ -229,11 +229,7 @@ void read_interface_penalty(KeyReader& r, sph::Settings& n) {
 
 void read_output(KeyReader& r, int dim, SphSpec& s) {
   if (auto o = r.optional_map("output")) {
-    SeriesOutputSpec series = read_series_output(*o, dim);
-    s.history_interval = series.history_interval;
-    s.fields_interval = series.fields_interval;
-    s.gauges = std::move(series.gauges);
-    s.checkpoint = series.checkpoint;
+    s.output = read_series_output(*o, dim);
     o->finish();
   }
 }

@@ -22,7 +22,7 @@ struct RunPlace {
 
 /// The loop's schedule in a spec (spec::PdSpec, spec::SphSpec): end time and output intervals.
 template <class Spec> Schedule schedule_of(const Spec& s) {
-  return {s.end_time, s.history_interval, s.fields_interval};
+  return {s.end_time, s.output.history_interval, s.output.fields_interval};
 }
 
 /// Runs `run` (PdRun, SphRun: time_loop.hpp's model with finish(LoopReport)) from where it
@@ -34,7 +34,7 @@ template <class Run, class Spec>
 io::CheckpointCounts run_to_end(Run& run, const Spec& s, io::History& history,
                                 const RunPlace& place) {
   if (place.out) history.stream_to(*place.out);
-  io::Checkpoints checkpoints(place.dir, place.ranks, s.checkpoint,
+  io::Checkpoints checkpoints(place.dir, place.ranks, s.output.checkpoint,
                               place.settings ? *place.settings : spec::ProblemSettings{},
                               place.restart);
   const auto resume = place.restart ? place.restart->open(place.ranks.rank) : nullptr;

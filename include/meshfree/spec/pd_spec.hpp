@@ -97,9 +97,7 @@ struct PdSpec {
   std::vector<PdCondition> conditions;
   std::vector<PdImpactor> impactors;
   double end_time = 0.0, dt = 0.0, safety = 0.8;
-  double history_interval = 0.0, fields_interval = 0.0; // 0: every step / only the end
-  std::vector<GaugeSpec> gauges;
-  CheckpointPolicy checkpoint;
+  SeriesOutputSpec output; // output: the history and field intervals, gauges, checkpoints
   PdCrackTracking crack;
   std::optional<PdRelaxation> relaxation;
   std::string key_prefix; // "stages[k]." for a stage of a staged run: its keys' path in messages

@@ -62,9 +62,7 @@ struct SphSpec {
   std::optional<Point> detonation_normal; // unit
   sph::Settings numerics; // the solver's own parameters (the neighbour-list skin is not read)
   double end_time = 0.0;
-  double history_interval = 0.0, fields_interval = 0.0; // 0: every step / start and end only
-  std::vector<GaugeSpec> gauges;
-  CheckpointPolicy checkpoint;
+  SeriesOutputSpec output; // output: the history and field intervals, gauges, checkpoints
   std::vector<SphBlastLoad> loads;
   std::vector<SphTransmitting> transmitting;
   std::vector<SphTraction> tractions;

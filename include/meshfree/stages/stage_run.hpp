@@ -29,7 +29,7 @@ void run_stage(ExplicitStage& st, Run& run, Result& result, const Spec& s,
                const spec::StageLink& link, int index, const explicit_dynamics::RunPlace& place,
                Restore restore) {
   const io::History replay = take_rows(result.history);
-  begin_stage_history(st, replay, result.history, s.gauges, link.from, index);
+  begin_stage_history(st, replay, result.history, s.output.gauges, link.from, index);
   restore();
   st.checkpoints = explicit_dynamics::run_to_end(run, s, st.history, place);
   explicit_dynamics::summarise(result, st.counts, st.time_step, st.results);

@@ -14,8 +14,8 @@ namespace {
 
 /// The spec keys the driver reads, as spec::PdSpec and spec::SphSpec hold them.
 struct Spec {
-  double end_time = 2.05, history_interval = 0.25, fields_interval = 0.5;
-  spec::CheckpointPolicy checkpoint{0.7, 0.0};
+  double end_time = 2.05;
+  spec::SeriesOutputSpec output{0.25, 0.5, {}, {0.7, 0.0}};
 };
 
 /// One particle at unit speed, a history row {t, x} per recorded instant.

@@ -195,8 +195,8 @@ Quietness sph_quietness(const Held& c, Law law) {
   REQUIRE(pre.status == "completed");
   // Preloaded particles are a little denser or lighter than at rest: 1% covers their step.
   event.sph->end_time = 1000.0 * sph::stable_step(explicit_dynamics::build_sph(*event.sph)) * 1.01;
-  event.sph->history_interval = 0.0;
-  event.sph->fields_interval = 0.0;
+  event.sph->output.history_interval = 0.0;
+  event.sph->output.fields_interval = 0.0;
   const stages::ExplicitStage st = stages::run_sph_stage(preload, pre, event, spec.links[1], 1);
   REQUIRE(st.status == "completed");
   const std::vector<Vec3> X = positions(st);
@@ -318,8 +318,8 @@ PdQuietness pd_quietness(const Held& c) {
   REQUIRE(pre.status == "completed");
   PhaseTimer timer;
   event.pd->end_time = 999.5 * explicit_dynamics::build_pd_setup(event, timer).dt;
-  event.pd->history_interval = 0.0;
-  event.pd->fields_interval = 0.0;
+  event.pd->output.history_interval = 0.0;
+  event.pd->output.fields_interval = 0.0;
   const stages::ExplicitStage st = stages::run_pd_stage(preload, pre, event, spec.links[1], 1);
   REQUIRE(st.status == "completed");
   const std::vector<Vec3> X = positions(st);
@@ -387,8 +387,8 @@ TEST_CASE("a released condition still acts: the transfer balances only the held 
   const implicit::ElastoplasticResult pre = preload_of(preload);
   REQUIRE(pre.status == "completed");
   event.sph->end_time = 200.0 * sph::stable_step(explicit_dynamics::build_sph(*event.sph));
-  event.sph->history_interval = 0.0;
-  event.sph->fields_interval = 0.0;
+  event.sph->output.history_interval = 0.0;
+  event.sph->output.fields_interval = 0.0;
   const stages::ExplicitStage st = stages::run_sph_stage(preload, pre, event, spec.links[1], 1);
   REQUIRE(st.status == "completed");
   const io::History& H = st.history;

@@ -424,8 +424,8 @@ Quiet quiet_start(const std::string& yaml) {
   // The preloaded particles are a little denser or lighter than at rest: their step differs by
   // about the volumetric strain, 1e-3 here.
   event.sph->end_time = 2000.0 * first_step(event) * 1.01;
-  event.sph->history_interval = 0.0;
-  event.sph->fields_interval = 0.0;
+  event.sph->output.history_interval = 0.0;
+  event.sph->output.fields_interval = 0.0;
   Quiet q;
   q.st = stages::run_sph_stage(preload, pre, event, spec.links[1], 1);
   REQUIRE(q.st.status == "completed");
