@@ -25,7 +25,7 @@ PeakStress peak(double score, double vm, const Vec2& at, double sigma_ref,
 } // namespace
 
 std::string elastic_limit_skipped(const spec::ProblemSpec& spec) {
-  bool plastic = spec.plasticity.has_value();
+  bool plastic = spec.plasticity().has_value();
   for (const spec::MaterialRegion& r : spec.material_regions)
     plastic = plastic || spec.materials[r.material].plasticity.has_value();
   if (!plastic) return "no material of the body has plasticity";
@@ -46,7 +46,7 @@ ElasticLimit elastic_limit(const spec::ProblemSpec& spec, const GalerkinModel& m
   // First yield where sigma_vm / sigma_y of the point's material peaks, over the points of
   // plastic materials; sigma_ref is the yield stress of the analysis' material (or of the first
   // plastic one), so that one material gives the von Mises peak itself.
-  double sigma_ref = spec.plasticity ? spec.plasticity->sigma0 : 0.0;
+  double sigma_ref = spec.plasticity() ? spec.plasticity()->sigma0 : 0.0;
   for (const spec::MaterialRegion& r : spec.material_regions)
     if (!(sigma_ref > 0.0) && spec.materials[r.material].plasticity)
       sigma_ref = spec.materials[r.material].plasticity->sigma0;

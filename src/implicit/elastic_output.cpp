@@ -157,7 +157,7 @@ void write_elastic_outputs(const spec::ProblemSpec& spec, const ElasticResult& r
                            const solvers::PetscSession& session, io::OutputDirectory& out) {
   if (session.rank() != 0) return;
   const materials::IsotropicElastic exact_mat =
-      materials::plane_stress_equivalent(spec.material, spec.model);
+      materials::plane_stress_equivalent(spec.elasticity(), spec.model);
   const NodeStresses stresses = node_stresses(r);
   write_fields(spec, r, exact_mat, stresses, out);
   write_lines(spec, r, exact_mat, out);

@@ -36,10 +36,10 @@ namespace {
 std::pair<double, double> exact_errors(const spec::ProblemSpec& spec, const GalerkinModel& m,
                                        const std::vector<double>& d,
                                        const solvers::PetscSession& session) {
-  const Mat3 C = materials::elastic_matrix(spec.material, spec.model);
+  const Mat3 C = materials::elastic_matrix(spec.elasticity(), spec.model);
   const Mat3 Cinv = C.inverse();
   const materials::IsotropicElastic exact_mat =
-      materials::plane_stress_equivalent(spec.material, spec.model);
+      materials::plane_stress_equivalent(spec.elasticity(), spec.model);
   double sums[4] = {0, 0, 0, 0}; // |e_u|^2, |u|^2, e_eps.C.e_eps, eps.C.eps
   for (int k = 0; k < m.domain_table.rows(); ++k) {
     if (!m.domain_mine.counted[k]) continue;

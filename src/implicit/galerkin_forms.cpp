@@ -22,7 +22,7 @@ void assemble_linear_elastic(const spec::ProblemSpec& spec, const GalerkinModel&
   const PointLaws laws = regions ? point_laws(spec, domain_rows(m)) : PointLaws{};
   // Each point with the elastic matrix of its material, in the groups that let threads add at
   // once (no shared node in a group).
-  const Mat3 C = regions ? Mat3::Zero() : materials::elastic_matrix(spec.material, spec.model);
+  const Mat3 C = regions ? Mat3::Zero() : materials::elastic_matrix(spec.elasticity(), spec.model);
   const ShapeTable& t = m.domain_table;
   MF_REQUIRE(m.domain_groups.rows() == t.rows(), "assemble_linear_elastic: points not grouped");
   std::vector<std::vector<double>> K(PointGroups::threads());

@@ -40,7 +40,7 @@ std::vector<Vec2> condition_values(const spec::ProblemSpec& spec, const spec::Bo
                                    const quadrature::BoundaryPoints& pts,
                                    const std::vector<int>& rows) {
   const materials::IsotropicElastic m =
-      materials::plane_stress_equivalent(spec.material, spec.model);
+      materials::plane_stress_equivalent(spec.elasticity(), spec.model);
   std::vector<Vec2> out;
   for (int r : rows) {
     if (bc.constrains)

@@ -65,15 +65,11 @@ int material_at(const spec::ProblemSpec& spec, const Vec2& x) {
 }
 
 materials::J2Parameters material_parameters(const spec::ProblemSpec& spec, int material) {
-  // The analysis' own material as the spec holds it (spec.material, spec.plasticity), the
-  // others from the materials list.
-  const bool own = material == spec.material_index;
   const spec::MaterialSpec& m = spec.materials.at(static_cast<std::size_t>(material));
-  const auto& plasticity = own ? spec.plasticity : m.plasticity;
   materials::J2Parameters p;
-  if (plasticity) p = *plasticity;
-  p.E = own ? spec.material.E : m.E;
-  p.nu = own ? spec.material.nu : m.nu;
+  if (m.plasticity) p = *m.plasticity;
+  p.E = m.E;
+  p.nu = m.nu;
   return p;
 }
 
@@ -115,9 +111,7 @@ PointLaw point_law(const spec::ProblemSpec& spec, const Vec2& x) {
   PointLaw law;
   law.material = material_at(spec, x);
   law.params = material_parameters(spec, law.material);
-  law.plastic = law.material == spec.material_index
-                    ? spec.plasticity.has_value()
-                    : spec.materials[law.material].plasticity.has_value();
+  law.plastic = spec.materials[law.material].plasticity.has_value();
   law.initial_stress = initial_stress_at(spec, x);
   return law;
 }
@@ -197,8 +191,7 @@ PointLaws point_laws(const spec::ProblemSpec& spec, const std::vector<Vec2>& x) 
     if (!used[m]) continue;
     const int i = static_cast<int>(m);
     L.params[m] = material_parameters(spec, i);
-    L.plastic[m] = i == spec.material_index ? spec.plasticity.has_value()
-                                            : spec.materials[m].plasticity.has_value();
+    L.plastic[m] = spec.materials[m].plasticity.has_value();
     L.elastic[m] = materials::elastic_matrix({L.params[m].E, L.params[m].nu}, spec.model);
     density[m] = spec.materials[m].density;
     L.any_plastic = L.any_plastic || L.plastic[m];

@@ -366,9 +366,6 @@ void take_material(KeyReader& r, ProblemSpec& p, const std::string& analysis) {
                    "analysis " + analysis +
                        " needs Poisson's ratio nu (or the shear "
                        "modulus)");
-  p.material.E = m.E;
-  p.material.nu = m.nu;
-  p.plasticity = m.plasticity;
 }
 
 /// A material a Galerkin body uses: it needs E and nu, and plasticity only in an elastoplastic
@@ -436,7 +433,7 @@ void read_gravity_and_initial_stress(KeyReader& r, ProblemSpec& p, bool plastic)
 void read_boundary(KeyReader& r, ProblemSpec& p) {
   // Default penalty: alpha = 1e6 E / h, stiff enough that the constraint error is ~1e-6 of the
   // boundary displacement scale, and far from the round-off limit of a direct solve.
-  const double stiffness_scale = p.material.E / p.discretisation.spacing;
+  const double stiffness_scale = p.elasticity().E / p.discretisation.spacing;
   for (KeyReader& bc : r.map_list("boundary")) {
     p.boundary.push_back(read_condition(bc, stiffness_scale));
     const BoundaryCondition& c = p.boundary.back();
@@ -464,9 +461,9 @@ void read_plastic_controls(KeyReader& r, ProblemSpec& p, bool plastic) {
   // preload.
   const bool preload =
       !p.material_regions.empty() || !p.gravity.isZero() || p.initial_stress || !p.stage.empty();
-  if (plastic && !p.plasticity && !preload)
+  if (plastic && !p.plasticity() && !preload)
     material_error(mat, "plasticity", "analysis elastoplastic_static needs a plasticity law");
-  if (!plastic && p.plasticity)
+  if (!plastic && p.plasticity())
     material_error(mat, "plasticity", "used only by analysis elastoplastic_static");
   if (plastic) {
     p.steps = read_steps(r, p.boundary, p.initial_stress.has_value());

@@ -155,8 +155,6 @@ struct ProblemSpec {
   std::vector<MaterialSpec> materials; // the file's `materials:` list
   // Galerkin analyses: the material they use (a `material:` reference or the single entry).
   int material_index = 0;
-  materials::IsotropicElastic material;
-  std::optional<materials::J2Parameters> plasticity; // its plasticity (E and nu from above)
   geometry::Domain domain = geometry::Domain::rectangle({0.0, 0.0}, {1.0, 1.0}); // 2D bodies
   std::optional<Box> box; // a 3D body (peridynamics, model solid_3d)
   DiscretisationSpec discretisation;
@@ -190,6 +188,14 @@ struct ProblemSpec {
   // keys copied into it) and how it starts from an earlier one (links[k] for stages[k]).
   std::vector<ProblemSpec> stages;
   std::vector<StageLink> links;
+
+  /// Galerkin analyses: the body's material, its elasticity and its plasticity law (none: elastic
+  /// at its points), all from the one materials list.
+  const MaterialSpec& body_material() const { return materials.at(material_index); }
+  materials::IsotropicElastic elasticity() const { return {body_material().E, body_material().nu}; }
+  const std::optional<materials::J2Parameters>& plasticity() const {
+    return body_material().plasticity;
+  }
 };
 
 /// Reads and validates a problem file. `overrides` are "key.path=value" strings applied first.

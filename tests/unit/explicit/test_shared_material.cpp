@@ -98,10 +98,10 @@ TEST_CASE("one steel entry feeds an elastoplastic, a peridynamic and an SPH anal
           "[input][materials]") {
   const spec::ProblemSpec bar = parse(kBar), cube = parse(kCube), impact = parse(kImpact);
   // Galerkin: E, nu and the J2 law.
-  CHECK(bar.material.E == kE);
-  CHECK(bar.material.nu == kNu);
-  REQUIRE(bar.plasticity);
-  CHECK(bar.plasticity->sigma0 == kYield);
+  CHECK(bar.elasticity().E == kE);
+  CHECK(bar.elasticity().nu == kNu);
+  REQUIRE(bar.plasticity());
+  CHECK(bar.plasticity()->sigma0 == kYield);
   // Peridynamics: E, density and the bond.
   REQUIRE(cube.pd->materials.size() == 1);
   CHECK(cube.pd->materials[0].density == kRho);

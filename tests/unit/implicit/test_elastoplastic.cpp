@@ -48,7 +48,7 @@ double bar_error(const std::vector<std::string>& overrides) {
   const auto spec = load_problem("bar_uniaxial_cyclic", overrides);
   const auto r = implicit::solve_elastoplastic_static(spec, test_session(), nullptr);
   REQUIRE(r.status == "completed");
-  Uniaxial exact{*spec.plasticity};
+  Uniaxial exact{*spec.plasticity()};
   const double length = 2.0, area = 1.0; // height and width x thickness of the bar
   double worst = 0.0, largest = 0.0;
   int top = -1;
@@ -156,10 +156,10 @@ TEST_CASE("the converged state returned by the solver is the closed-form homogen
        {std::vector<std::string>{"discretisation.method=fem", "discretisation.fem.element=q4"},
         std::vector<std::string>{}}) {
     auto spec = load_problem("bar_uniaxial_cyclic", overrides);
-    spec.plasticity->hardening = materials::LinearHardening{1000.0};
-    spec.plasticity->H_kinematic = 3000.0;
+    spec.materials[spec.material_index].plasticity->hardening = materials::LinearHardening{1000.0};
+    spec.materials[spec.material_index].plasticity->H_kinematic = 3000.0;
     spec.steps.resize(1);
-    const materials::J2Parameters& p = *spec.plasticity;
+    const materials::J2Parameters& p = *spec.plasticity();
     const auto r = implicit::solve_elastoplastic_static(spec, test_session(), nullptr);
     REQUIRE(r.status == "completed");
     const implicit::ElastoplasticState& st = r.state;
