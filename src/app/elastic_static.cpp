@@ -36,12 +36,15 @@ void admit_galerkin(const spec::ProblemSpec& spec, const std::string&) {
 }
 
 AnalysisEntry elastic_static_entry() {
-  AnalysisEntry e{spec::Analysis::ElasticStatic, "elastic_static"};
-  e.describe = describe_galerkin;
-  e.check = describe_galerkin;
-  e.admit = admit_galerkin;
-  e.run = run;
-  return e;
+  return {spec::Analysis::ElasticStatic, // analysis
+          "elastic_static",              // name
+          false,                         // checkpoints
+          false,                         // folder at first file
+          describe_galerkin,             // describe
+          describe_galerkin,             // check
+          admit_galerkin,                // admit
+          nullptr,                       // end time
+          run};                          // run
 }
 
 } // namespace mf::app

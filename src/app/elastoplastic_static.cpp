@@ -65,14 +65,15 @@ RunOutcome run(const RunRequest& q) {
 } // namespace
 
 AnalysisEntry elastoplastic_static_entry() {
-  AnalysisEntry e{spec::Analysis::ElastoplasticStatic, "elastoplastic_static"};
-  e.checkpoints = true;
-  e.describe = describe_galerkin;
-  e.check = check;
-  e.admit = admit;
-  e.end_time = end_time;
-  e.run = run;
-  return e;
+  return {spec::Analysis::ElastoplasticStatic, // analysis
+          "elastoplastic_static",              // name
+          true,                                // checkpoints
+          false,                               // folder at first file
+          describe_galerkin,                   // describe
+          check,                               // check
+          admit,                               // admit
+          end_time,                            // end time
+          run};                                // run
 }
 
 } // namespace mf::app

@@ -26,11 +26,15 @@ RunOutcome run(const RunRequest& q) {
 } // namespace
 
 AnalysisEntry model_problem_1d_entry() {
-  AnalysisEntry e{spec::Analysis::ModelProblem1D, "model_problem_1d"};
-  e.describe = describe;
-  e.check = describe;
-  e.run = run;
-  return e;
+  return {spec::Analysis::ModelProblem1D, // analysis
+          "model_problem_1d",             // name
+          false,                          // checkpoints
+          false,                          // folder at first file
+          describe,                       // describe
+          describe,                       // check
+          nullptr,                        // admit
+          nullptr,                        // end time
+          run};                           // run
 }
 
 } // namespace mf::app

@@ -72,25 +72,22 @@ double end_time(const spec::ProblemSpec& spec) {
 RunOutcome run(const RunRequest& q) {
   explicit_dynamics::SphRunResult r =
       run_sph(q.spec, q.out, distribution::Ranks::of(q.session.comm()), q.dir, q.restart);
-  {
-    PhaseTimer::Scope scope(r.timer, "output");
-    if (q.out) write_sph_outputs(q.spec, r, *q.out);
-  }
-  log_phases(r.timer);
-  return {r.status == "failed" ? 1 : 0, r.stop_reason};
+  return explicit_outcome(r, q.out,
+                          [&](io::OutputDirectory& out) { write_sph_outputs(q.spec, r, out); });
 }
 
 } // namespace
 
 AnalysisEntry sph_entry() {
-  AnalysisEntry e{spec::Analysis::Sph, "sph"};
-  e.checkpoints = true;
-  e.folder_at_first_file = true;
-  e.describe = describe;
-  e.check = describe;
-  e.end_time = end_time;
-  e.run = run;
-  return e;
+  return {spec::Analysis::Sph, // analysis
+          "sph",               // name
+          true,                // checkpoints
+          true,                // folder at first file
+          describe,            // describe
+          describe,            // check
+          nullptr,             // admit
+          end_time,            // end time
+          run};                // run
 }
 
 } // namespace mf::app

@@ -46,14 +46,15 @@ RunOutcome run(const RunRequest& q) {
 } // namespace
 
 AnalysisEntry staged_entry() {
-  AnalysisEntry e{spec::Analysis::Staged, "staged"};
-  e.checkpoints = true;
-  e.describe = check;
-  e.check = check;
-  e.admit = admit;
-  e.end_time = end_time;
-  e.run = run;
-  return e;
+  return {spec::Analysis::Staged, // analysis
+          "staged",               // name
+          true,                   // checkpoints
+          false,                  // folder at first file
+          check,                  // describe
+          check,                  // check
+          admit,                  // admit
+          end_time,               // end time
+          run};                   // run
 }
 
 } // namespace mf::app

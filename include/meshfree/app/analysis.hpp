@@ -54,10 +54,22 @@ struct AnalysisEntry {
 /// The entry of `analysis`.
 const AnalysisEntry& entry_of(spec::Analysis analysis);
 
-/// The names of the analyses whose runs write checkpoints, as a sentence ("a, b and c").
-std::string checkpointing_analyses();
-
 /// One info line with the wall time of each phase of `timer`.
 void log_phases(const PhaseTimer& timer);
+
+/// An explicit run's result `r` written by `write(out)` (rank 0) and its phases logged: a failed
+/// run is exit 1 with its reason.
+template <class Result, class Write>
+RunOutcome explicit_outcome(Result& r, io::OutputDirectory* out, Write write) {
+  {
+    PhaseTimer::Scope scope(r.timer, "output");
+    if (out) write(*out);
+  }
+  log_phases(r.timer);
+  return {r.status == "failed" ? 1 : 0, r.stop_reason};
+}
+
+/// The names of the analyses whose runs write checkpoints, as a sentence ("a, b and c").
+std::string checkpointing_analyses();
 
 } // namespace mf::app
