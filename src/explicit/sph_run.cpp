@@ -283,14 +283,14 @@ void SphRun::finish(const LoopReport& loop) {
   r_.stop_reason = loop.stop_reason;
   r_.timer.add("stepping", loop.seconds);
   r_.steps = h_.particles.step;
-  r_.neighbour_rebuilds = h_.rebuilds;
+  r_.neighbour_rebuilds = h_.neighbours.rebuilds;
   const distribution::Ranks& ranks = h_.ranks;
-  r_.neighbour_seconds = ranks.max(h_.neighbour_seconds);
-  r_.neighbour_pairs = ranks.sum(static_cast<long>(h_.pairs.partner.size()));
+  r_.neighbour_seconds = ranks.max(h_.neighbours.seconds);
+  r_.neighbour_pairs = ranks.sum(static_cast<long>(h_.neighbours.pairs.partner.size()));
   const auto bytes = [](const neighbors::PairList& l) {
     return static_cast<long>(l.partner.size() * sizeof(int) + l.offset.size() * sizeof(long));
   };
-  r_.neighbour_list_bytes = ranks.sum(bytes(h_.pairs) + bytes(h_.half_pairs));
+  r_.neighbour_list_bytes = ranks.sum(bytes(h_.neighbours.pairs) + bytes(h_.neighbours.half_pairs));
   r_.remote_ghosts = ranks.sum(static_cast<long>(h_.remote));
   r_.remote_ghosts_largest = static_cast<long>(ranks.max(static_cast<double>(h_.remote)));
   r_.migrated = ranks.sum(h_.migrated);

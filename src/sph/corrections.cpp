@@ -14,8 +14,8 @@ void correction_matrices(const Hydro& s, const std::vector<double>& x, std::vect
 #pragma omp parallel for schedule(dynamic, 64)
   for (int i = 0; i < n; ++i) {
     double M[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
-    for (long k = s.pairs.offset[i]; k < s.pairs.offset[i + 1]; ++k) {
-      const int j = s.pairs.partner[k];
+    for (long k = s.neighbours.pairs.offset[i]; k < s.neighbours.pairs.offset[i + 1]; ++k) {
+      const int j = s.neighbours.pairs.partner[k];
       double xij[3], r2;
       const double g = pair_gradient(x, F.h, dim, s.settings.kernel, i, j, xij, r2);
       if (g == 0.0) continue;

@@ -73,7 +73,7 @@ void drop_ghosts(Hydro& s) {
   s.halo = distribution::Halo();
   s.ghost_source.clear();
   s.ghost_planes.clear();
-  s.x_at_build.clear(); // the list no longer matches the particles
+  s.neighbours.x_at_build.clear(); // the list no longer matches the particles
   s.groups.built_for = -1;
 }
 
@@ -335,7 +335,7 @@ void sort_rows_by_id(Hydro& s) {
     const unsigned long planes = j < first_mirror ? 0UL : s.ghost_planes[j - first_mirror];
     key[j] = planes << 48 | static_cast<unsigned long>(P.id[j]);
   }
-  neighbors::PairList& L = s.pairs;
+  neighbors::PairList& L = s.neighbours.pairs;
 #pragma omp parallel for schedule(dynamic, 256)
   for (int i = 0; i < rows; ++i)
     std::sort(L.partner.begin() + L.offset[i], L.partner.begin() + L.offset[i + 1],

@@ -385,7 +385,7 @@ template <int Dim, bool Solids> void full_rows(const Hydro& s, Rates& r) {
 #pragma omp for schedule(dynamic, 64)
     for (int i = 0; i < n; ++i) {
       const RowParticle o = row_particle<Solids>(s, r, i);
-      const int count = row_terms<Dim, Solids>(s, r, s.pairs, o, live);
+      const int count = row_terms<Dim, Solids>(s, r, s.neighbours.pairs, o, live);
       double a[3] = {0.0, 0.0, 0.0}, drho = 0.0, de = 0.0;
       double L[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
       row_sums<Dim, Solids>(s.settings, o, live, count, a, drho, de, L);
@@ -428,7 +428,7 @@ void partner_sums(const Settings& S, const RowParticle& o, const LivePairs& live
 /// order that depends on the threads and ranks.
 template <int Dim, bool Solids> void half_rows(const Hydro& s, Rates& r) {
   const int n = s.particles.owned_count();
-  const neighbors::PairList& half = s.half_pairs;
+  const neighbors::PairList& half = s.neighbours.half_pairs;
   const long total = half.offset[n];
   // Per particle: acceleration (3), drho, de and with strength L (9).
   constexpr int stride = Solids ? 14 : 5;
@@ -504,7 +504,7 @@ template <int Dim, bool Solids> void half_rows(const Hydro& s, Rates& r) {
 
 void sum_pairs(const Hydro& s, Rates& r, bool solids) {
   const int n = s.particles.owned_count();
-  if (!s.settings.deterministic && s.half_pairs.rows() != n)
+  if (!s.settings.deterministic && s.neighbours.half_pairs.rows() != n)
     fail("SPH: the half neighbour list is not built for these particles (refresh_neighbours "
          "builds it)");
   const bool half = !s.settings.deterministic;

@@ -29,8 +29,8 @@ std::vector<int> within_reach(Hydro& h, const std::vector<int>& layer) {
   for (const int i : layer) {
     MF_REQUIRE(i >= 0 && i < owned, "within_reach: particle ", i, " is not owned");
     in[i] = 1;
-    for (long k = h.pairs.offset[i]; k < h.pairs.offset[i + 1]; ++k) {
-      const int j = h.pairs.partner[k];
+    for (long k = h.neighbours.pairs.offset[i]; k < h.neighbours.pairs.offset[i + 1]; ++k) {
+      const int j = h.neighbours.pairs.partner[k];
       if (j >= owned) continue;
       double r2 = 0.0;
       for (int d = 0; d < 3; ++d) {

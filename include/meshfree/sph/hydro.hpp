@@ -78,18 +78,26 @@ struct MaterialGroups {
 /// A run's state: the particle set (reference positions, volume, mass, material, u, v and the
 /// instant; the current position is X + u) with SPH's fields beside it, materials, settings and
 /// the neighbour list with its margin.
+/// The neighbour lists of a rank's owned particles and what decides when they are built again
+/// (sph/neighbours.hpp).
+struct NeighbourState {
+  neighbors::PairList pairs;      // rows of the owned particles: every partner, ascending
+  neighbors::PairList half_pairs; // the same rows with partners j > i only (unless deterministic)
+  std::vector<double> x_at_build, h_at_build; // positions and h when the list was built
+  double build_radius = 0.0;
+  int rebuilds = 0;
+  double seconds = 0.0; // wall time in refresh_neighbours (checks and builds)
+};
+
+/// An SPH run's data: the particle layer (the set and SPH's fields), the materials, the solver's
+/// settings, the neighbour state, the loads and boundaries, and the distribution over ranks.
 struct Hydro {
   int dim = 3;
   particles::ParticleSet particles;
   ParticleFields fields;
   std::vector<Material> materials;
   Settings settings;
-  neighbors::PairList pairs;      // rows of the owned particles: every partner, ascending
-  neighbors::PairList half_pairs; // the same rows with partners j > i only (unless deterministic)
-  std::vector<double> x_at_build, h_at_build; // positions and h when the list was built
-  double build_radius = 0.0;
-  int rebuilds = 0;
-  double neighbour_seconds = 0.0; // wall time in refresh_neighbours (checks and builds)
+  NeighbourState neighbours;
   std::vector<SurfaceLoad> loads;
   std::vector<SurfaceForce> forces;
   std::vector<TransmittingBoundary> transmitting;
@@ -138,11 +146,12 @@ struct Hydro {
   template <class Visit> void for_each_state(Visit&& visit) {
     particles.for_each_state(visit / "particles");
     fields.for_each_state(visit / "fields");
-    visit("pairs.offset", pairs.offset), visit("pairs.partner", pairs.partner);
-    visit("half_pairs.offset", half_pairs.offset);
-    visit("half_pairs.partner", half_pairs.partner);
-    visit("x_at_build", x_at_build), visit("h_at_build", h_at_build);
-    visit("build_radius", build_radius), visit("rebuilds", rebuilds);
+    NeighbourState& n = neighbours;
+    visit("pairs.offset", n.pairs.offset), visit("pairs.partner", n.pairs.partner);
+    visit("half_pairs.offset", n.half_pairs.offset);
+    visit("half_pairs.partner", n.half_pairs.partner);
+    visit("x_at_build", n.x_at_build), visit("h_at_build", n.h_at_build);
+    visit("build_radius", n.build_radius), visit("rebuilds", n.rebuilds);
     visit("damping", damping), visit("external_work", external_work);
     visit("damping_work", damping_work), visit("ghost_source", ghost_source);
     visit("ghost_planes", ghost_planes), visit("groups.start", groups.start);

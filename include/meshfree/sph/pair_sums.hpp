@@ -11,9 +11,9 @@ namespace mf::sph {
 /// particle), r.drho and r.de and, with `solids`, r.grad_v and r.dS (zeros where a particle has no
 /// strength). r must hold the current positions x, p / rho^2, 1 / rho^2, m / rho, the correction
 /// matrices, artificial stresses and spacings when they are used, the shear moduli with `solids`,
-/// and zeroed outputs. By default each pair is evaluated once from s.half_pairs and its terms go
-/// to both ends (Newton's third law); with settings.deterministic every row of s.pairs is summed
-/// whole, in its order.
+/// and zeroed outputs. By default each pair is evaluated once from s.neighbours.half_pairs and its
+/// terms go to both ends (Newton's third law); with settings.deterministic every row of
+/// s.neighbours.pairs is summed whole, in its order.
 void sum_pairs(const Hydro& s, Rates& r, bool solids);
 
 } // namespace mf::sph

@@ -96,10 +96,10 @@ TEST_CASE("SPH: each pair once (Newton's third law) gives the rates of the whole
     const std::size_t n = static_cast<std::size_t>(s.particles.owned_count());
     REQUIRE(static_cast<int>(n) < s.particles.size()); // mirror images are in the lists
     s.settings.deterministic = false;
-    s.x_at_build.clear(); // the half list is made at the next build
+    s.neighbours.x_at_build.clear(); // the half list is made at the next build
     sph::refresh_neighbours(s);
-    REQUIRE(2 * s.half_pairs.partner.size() > s.pairs.partner.size());
-    REQUIRE(s.half_pairs.partner.size() < s.pairs.partner.size());
+    REQUIRE(2 * s.neighbours.half_pairs.partner.size() > s.neighbours.pairs.partner.size());
+    REQUIRE(s.neighbours.half_pairs.partner.size() < s.neighbours.pairs.partner.size());
     const int threads = omp_get_max_threads();
     for (const int t : {1, 2, 3}) {
       omp_set_num_threads(t);
