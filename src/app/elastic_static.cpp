@@ -41,7 +41,7 @@ AnalysisEntry elastic_static_entry() {
           false,                         // checkpoints
           false,                         // folder at first file
           describe_galerkin,             // describe
-          describe_galerkin,             // check
+          nullptr,                       // check
           admit_galerkin,                // admit
           nullptr,                       // end time
           run};                          // run

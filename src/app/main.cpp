@@ -87,7 +87,8 @@ Command parse(int argc, char** argv) {
 int check(const Command& c) {
   const mf::spec::ProblemSpec spec = mf::spec::read_problem(c.problem, c.overrides);
   mf::spec::warn_unit_sanity(spec);
-  mf::app::entry_of(spec.analysis).check(spec);
+  const mf::app::AnalysisEntry& entry = mf::app::entry_of(spec.analysis);
+  (entry.check ? entry.check : entry.describe)(spec);
   std::cout << "problem " << spec.name << ": valid\n";
   return 0;
 }

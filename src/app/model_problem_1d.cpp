@@ -31,7 +31,7 @@ AnalysisEntry model_problem_1d_entry() {
           false,                          // checkpoints
           false,                          // folder at first file
           describe,                       // describe
-          describe,                       // check
+          nullptr,                        // check
           nullptr,                        // admit
           nullptr,                        // end time
           run};                           // run

@@ -69,7 +69,7 @@ AnalysisEntry peridynamics_entry() {
           true,                         // checkpoints
           true,                         // folder at first file
           describe,                     // describe
-          describe,                     // check
+          nullptr,                      // check
           nullptr,                      // admit
           end_time,                     // end time
           run};                         // run

@@ -84,7 +84,7 @@ AnalysisEntry sph_entry() {
           true,                // checkpoints
           true,                // folder at first file
           describe,            // describe
-          describe,            // check
+          nullptr,             // check
           nullptr,             // admit
           end_time,            // end time
           run};                // run

@@ -9,7 +9,7 @@ namespace mf::app {
 namespace {
 
 /// Each stage as its own analysis describes itself, with where it starts from.
-void check(const spec::ProblemSpec& spec) {
+void describe_stages(const spec::ProblemSpec& spec) {
   for (std::size_t k = 0; k < spec.stages.size(); ++k) {
     const spec::StageLink& l = spec.links[k];
     std::cout << "stage " << spec.stages[k].stage;
@@ -50,8 +50,8 @@ AnalysisEntry staged_entry() {
           "staged",               // name
           true,                   // checkpoints
           false,                  // folder at first file
-          check,                  // describe
-          check,                  // check
+          describe_stages,        // describe
+          nullptr,                // check
           admit,                  // admit
           end_time,               // end time
           run};                   // run

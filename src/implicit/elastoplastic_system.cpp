@@ -81,7 +81,8 @@ void ElastoplasticSystem::residual(const std::vector<double>& d, double* r,
   add_internal_force(m_.domain_table, m_.domain_groups, m_.domain_weight, states_.stress,
                      OwnedRowAdder{m_.pattern.begin, m_.pattern.end, r});
   // K_pen d apart from f_int: its magnitude sets the round-off floor of the penalty rows.
-  std::vector<double> penalty(2 * static_cast<std::size_t>(rows), 0.0);
+  std::vector<double>& penalty = penalty_force_;
+  penalty.assign(2 * static_cast<std::size_t>(rows), 0.0);
   penalty_.multiply_add(d, penalty.data());
   constexpr double eps = std::numeric_limits<double>::epsilon();
   double internal = 0.0, external = 0.0, floor = 0.0;

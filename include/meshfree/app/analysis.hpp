@@ -39,7 +39,8 @@ struct AnalysisEntry {
   /// Prints what a run would build (counts, time step, memory) as one stage of a staged run;
   /// throws what the run's set-up would throw.
   void (*describe)(const spec::ProblemSpec& spec) = nullptr;
-  /// `meshfree check`: describe and the bounds a run of its own checks before it writes.
+  /// `meshfree check`, where it does more than `describe` (the bounds a run of its own checks
+  /// before it writes); null: `describe`.
   void (*check)(const spec::ProblemSpec& spec) = nullptr;
   /// What a run refuses as input before anything is written into `folder` (rank 0): a mesh that
   /// cannot be read, a run that would never end or not fit on the disk. May be null.

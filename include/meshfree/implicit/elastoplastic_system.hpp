@@ -99,8 +99,9 @@ private:
   const GalerkinModel& m_;
   PointLaws laws_;
   PointStates states_;
-  BlockRows penalty_;    // K_pen: constant
-  BlockScatter scatter_; // where each point's blocks go among the Jacobian's
+  BlockRows penalty_;                 // K_pen: constant
+  std::vector<double> penalty_force_; // K_pen d of the last residual (work array)
+  BlockScatter scatter_;              // where each point's blocks go among the Jacobian's
   std::vector<std::vector<double>> loads_;
   std::vector<char> counts_in_scale_; // tractions and body force, not penalty right-hand sides
   std::vector<double> factors_;
