@@ -32,7 +32,7 @@ void describe_galerkin(const spec::ProblemSpec& spec) {
 }
 
 void admit_galerkin(const spec::ProblemSpec& spec, const std::string&) {
-  if (spec.discretisation.method == spec::Method::Fem) implicit::read_fe_mesh(spec);
+  if (spec.galerkin().discretisation.method == spec::Method::Fem) implicit::read_fe_mesh(spec);
 }
 
 AnalysisEntry elastic_static_entry() {

@@ -24,13 +24,14 @@ implicit::ElastoplasticResult elastoplastic_static(const spec::ProblemSpec& spec
 /// Gauss-point frame and a display-mesh frame, about 700 bytes per node together (measured on
 /// plate_plastic_thesis, README.md "Running").
 void require_increment_output(const spec::ProblemSpec& spec, const std::string& folder) {
+  auto& galerkin = spec.galerkin();
   const Vec2 size = spec.domain.bounds().size();
-  const double h = spec.discretisation.spacing;
+  const double h = galerkin.discretisation.spacing;
   const double nodes = (size.x() / h + 1.0) * (size.y() / h + 1.0);
-  const std::size_t listed = spec.initial_stress ? 1 : 0; // "geostatic" is not in the file
+  const std::size_t listed = galerkin.initial_stress ? 1 : 0; // "geostatic" is not in the file
   double frames = 1.0;
-  for (std::size_t k = 0; k < spec.steps.size(); ++k) {
-    frames += spec.steps[k].increments;
+  for (std::size_t k = 0; k < galerkin.steps.size(); ++k) {
+    frames += galerkin.steps[k].increments;
     if (k < listed) continue;
     const std::string key = "steps[" + std::to_string(k - listed) + "].increments";
     require_run_time(key, "DOF-increments of the schedule so far", frames * 2.0 * nodes,

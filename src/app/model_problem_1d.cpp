@@ -13,8 +13,8 @@ implicit::Model1DResult model_problem_1d(const spec::ProblemSpec& spec, io::Outp
 namespace {
 
 void describe(const spec::ProblemSpec& spec) {
-  std::cout << "  1D model problem on [0, " << spec.model_1d.length << "], spacing "
-            << spec.discretisation.spacing << "\n";
+  std::cout << "  1D model problem on [0, " << spec.model_1d().length << "], spacing "
+            << spec.model_1d().discretisation.spacing << "\n";
 }
 
 /// On one rank: the others have nothing to do.

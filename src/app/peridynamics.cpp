@@ -13,7 +13,7 @@ explicit_dynamics::PdRunResult run_peridynamics(const spec::ProblemSpec& spec,
                                                 const distribution::Ranks& ranks,
                                                 const std::string& dir,
                                                 const io::Restart* restart) {
-  const spec::PdSpec& s = *spec.pd;
+  const spec::PdSpec& s = spec.pd();
   explicit_dynamics::PdRunResult result;
   explicit_dynamics::PdSetup setup = explicit_dynamics::build_pd_setup(spec, result.timer, ranks);
   explicit_dynamics::require_finite_run(explicit_dynamics::planned_run(s, setup), dir);
@@ -51,7 +51,7 @@ void describe(const spec::ProblemSpec& spec) {
 }
 
 double end_time(const spec::ProblemSpec& spec) {
-  return spec.pd->end_time;
+  return spec.pd().end_time;
 }
 
 RunOutcome run(const RunRequest& q) {

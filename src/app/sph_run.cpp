@@ -14,7 +14,7 @@ namespace mf::app {
 explicit_dynamics::SphRunResult run_sph(const spec::ProblemSpec& spec, io::OutputDirectory* out,
                                         const distribution::Ranks& ranks, const std::string& dir,
                                         const io::Restart* restart) {
-  const spec::SphSpec& s = *spec.sph;
+  const spec::SphSpec& s = spec.sph();
   explicit_dynamics::SphRunResult result;
   sph::Hydro h;
   {
@@ -66,7 +66,7 @@ void describe(const spec::ProblemSpec& spec) {
 }
 
 double end_time(const spec::ProblemSpec& spec) {
-  return spec.sph->end_time;
+  return spec.sph().end_time;
 }
 
 RunOutcome run(const RunRequest& q) {

@@ -10,14 +10,14 @@ namespace {
 
 /// Each stage as its own analysis describes itself, with where it starts from.
 void describe_stages(const spec::ProblemSpec& spec) {
-  for (std::size_t k = 0; k < spec.stages.size(); ++k) {
-    const spec::StageLink& l = spec.links[k];
-    std::cout << "stage " << spec.stages[k].stage;
+  for (std::size_t k = 0; k < spec.staged().stages.size(); ++k) {
+    const spec::StageLink& l = spec.staged().links[k];
+    std::cout << "stage " << spec.staged().stages[k].stage;
     if (l.from >= 0)
-      std::cout << " from " << spec.stages[l.from].stage << " (" << l.hold.size()
+      std::cout << " from " << spec.staged().stages[l.from].stage << " (" << l.hold.size()
                 << " condition(s) held, " << l.release.size() << " released)";
     std::cout << ":\n";
-    entry_of(spec.stages[k].analysis).describe(spec.stages[k]);
+    entry_of(spec.staged().stages[k].analysis).describe(spec.staged().stages[k]);
   }
 }
 
@@ -25,15 +25,15 @@ void describe_stages(const spec::ProblemSpec& spec) {
 /// their set-up builds them), before the preload runs: a stage that would never end is refused
 /// as input, with its key path (stages[1].time.end), not after the preload's solve.
 void admit(const spec::ProblemSpec& spec, const std::string& folder) {
-  for (const spec::ProblemSpec& stage : spec.stages) {
-    if (stage.sph) explicit_dynamics::require_finite_sph_run(stage, folder);
-    if (stage.pd) explicit_dynamics::require_finite_pd_run(stage, folder);
+  for (const spec::ProblemSpec& stage : spec.staged().stages) {
+    if (stage.is_sph()) explicit_dynamics::require_finite_sph_run(stage, folder);
+    if (stage.is_pd()) explicit_dynamics::require_finite_pd_run(stage, folder);
   }
 }
 
 /// Checkpoints are the explicit stage's.
 double end_time(const spec::ProblemSpec& spec) {
-  const spec::ProblemSpec& stage = spec.stages.at(1);
+  const spec::ProblemSpec& stage = spec.staged().stages.at(1);
   const AnalysisEntry& e = entry_of(stage.analysis);
   return e.end_time ? e.end_time(stage) : std::numeric_limits<double>::infinity();
 }

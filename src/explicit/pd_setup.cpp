@@ -18,7 +18,7 @@ using spec::Vec3d;
 /// Cell-centred lattice of spacing dx over the body: a 3D box, or the 2D domain's bounding box
 /// with the points the domain contains; notches left out, regions with their own material.
 particles::ParticleSet lattice(const spec::ProblemSpec& spec) {
-  const spec::PdSpec& s = *spec.pd;
+  const spec::PdSpec& s = spec.pd();
   const double dx = s.spacing;
   const bool solid = s.dimension == materials::PdDimension::Solid3D;
   Vec3d lo, hi;
@@ -322,7 +322,7 @@ void set_contact_and_step(PdSetup& out, const spec::PdSpec& s, const distributio
 
 PdSetup build_pd_setup(const spec::ProblemSpec& spec, PhaseTimer& timer,
                        const distribution::Ranks& ranks) {
-  const spec::PdSpec& s = *spec.pd;
+  const spec::PdSpec& s = spec.pd();
   PdSetup out;
   pd::Model& m = out.model;
   m = model_of(s);
@@ -352,7 +352,7 @@ PdSetup build_pd_setup(const spec::ProblemSpec& spec, PhaseTimer& timer,
 void log_pd_setup(const spec::ProblemSpec& spec, const PdSetup& setup) {
   const pd::Model& m = setup.model;
   log::info("peridynamics: ", setup.particles_total, " particles, ", m.bonds.pairs(),
-            " bonds, horizon ", m.horizon, " (", spec.pd->horizon_factor, " spacings), ",
+            " bonds, horizon ", m.horizon, " (", spec.pd().horizon_factor, " spacings), ",
             m.laws.size(), " bond law(s)");
   for (std::size_t k = 0; k < m.laws.size(); ++k)
     log::info("  law ", k, ": c ", m.laws[k].c, ", critical stretch ", m.laws[k].critical_stretch,

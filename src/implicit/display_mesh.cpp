@@ -52,8 +52,9 @@ DisplayMesh display_mesh(const spec::ProblemSpec& spec, const GalerkinModel& m) 
     // The mesh a T3 finite-element run of the body would have: a structured grid on a plain
     // rectangle (instant, where gmsh's frontal mesher takes seconds), gmsh's triangles otherwise.
     spec::ProblemSpec triangles = spec;
-    triangles.discretisation.fem.element = "t3";
-    triangles.discretisation.fem.mesh.clear();
+    spec::DiscretisationSpec& disc = triangles.galerkin().discretisation;
+    disc.fem.element = "t3";
+    disc.fem.mesh.clear();
     fem::Mesh mesh = read_fe_mesh(triangles);
     d.x = std::move(mesh.x);
     d.cells.connectivity = std::move(mesh.connectivity);

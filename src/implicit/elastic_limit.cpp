@@ -25,11 +25,12 @@ PeakStress peak(double score, double vm, const Vec2& at, double sigma_ref,
 } // namespace
 
 std::string elastic_limit_skipped(const spec::ProblemSpec& spec) {
+  auto& galerkin = spec.galerkin();
   bool plastic = spec.plasticity().has_value();
-  for (const spec::MaterialRegion& r : spec.material_regions)
+  for (const spec::MaterialRegion& r : galerkin.material_regions)
     plastic = plastic || spec.materials[r.material].plasticity.has_value();
   if (!plastic) return "no material of the body has plasticity";
-  if (spec.initial_stress)
+  if (galerkin.initial_stress)
     return "the body starts from an initial stress, so the stresses do not scale with the load";
   return "";
 }
@@ -39,7 +40,7 @@ ElasticLimit elastic_limit(const spec::ProblemSpec& spec, const GalerkinModel& m
   ElasticLimit lim;
   lim.skipped = elastic_limit_skipped(spec);
   if (!lim.skipped.empty()) return lim;
-  const std::vector<double>& target = spec.steps.front().target;
+  const std::vector<double>& target = spec.galerkin().steps.front().target;
   const auto system = linear_elastic_system(spec, m, target, session);
   system->solve();
   const std::vector<double> d = system->solution_everywhere();
@@ -47,7 +48,7 @@ ElasticLimit elastic_limit(const spec::ProblemSpec& spec, const GalerkinModel& m
   // plastic materials; sigma_ref is the yield stress of the analysis' material (or of the first
   // plastic one), so that one material gives the von Mises peak itself.
   double sigma_ref = spec.plasticity() ? spec.plasticity()->sigma0 : 0.0;
-  for (const spec::MaterialRegion& r : spec.material_regions)
+  for (const spec::MaterialRegion& r : spec.galerkin().material_regions)
     if (!(sigma_ref > 0.0) && spec.materials[r.material].plasticity)
       sigma_ref = spec.materials[r.material].plasticity->sigma0;
   const auto best_of = [&](const ShapeTable& t, const std::vector<Vec2>& x, const char* counted,

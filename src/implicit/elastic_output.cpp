@@ -37,11 +37,11 @@ void write_fields(const spec::ProblemSpec& spec, const ElasticResult& r,
     for (std::size_t i = 0; i < v.size(); ++i)
       v[i] = Vec2(r.parameters[2 * i], r.parameters[2 * i + 1]);
   });
-  if (spec.exact)
+  if (spec.galerkin().exact)
     fields.vector2("displacement_exact", [&](std::vector<Vec2>& v) {
       v.clear();
       for (const auto& x : r.node_x)
-        v.push_back(verification::exact_displacement(*spec.exact, exact_mat, x));
+        v.push_back(verification::exact_displacement(*spec.galerkin().exact, exact_mat, x));
     });
   fields.scalar("stress_xx", st.sxx);
   fields.scalar("stress_yy", st.syy);
@@ -61,16 +61,16 @@ void write_lines(const spec::ProblemSpec& spec, const ElasticResult& r,
   for (const auto& [name, s] : r.lines) {
     std::vector<std::string> header{"s",  "x",         "y",         "ux",
                                     "uy", "stress_xx", "stress_yy", "stress_xy"};
-    if (spec.exact)
+    if (spec.galerkin().exact)
       header.insert(header.end(), {"ux_exact", "uy_exact", "stress_xx_exact", "stress_yy_exact",
                                    "stress_xy_exact"});
     std::vector<std::vector<double>> rows;
     for (std::size_t k = 0; k < s.x.size(); ++k) {
       std::vector<double> row{s.s[k],     s.x[k].x(),     s.x[k].y(),     s.u[k].x(),
                               s.u[k].y(), s.stress[k](0), s.stress[k](1), s.stress[k](2)};
-      if (spec.exact) {
-        const Vec2 ue = verification::exact_displacement(*spec.exact, exact_mat, s.x[k]);
-        const Vec3 se = verification::exact_stress(*spec.exact, exact_mat, s.x[k]);
+      if (spec.galerkin().exact) {
+        const Vec2 ue = verification::exact_displacement(*spec.galerkin().exact, exact_mat, s.x[k]);
+        const Vec3 se = verification::exact_stress(*spec.galerkin().exact, exact_mat, s.x[k]);
         row.insert(row.end(), {ue.x(), ue.y(), se(0), se(1), se(2)});
       }
       rows.push_back(row);
@@ -136,8 +136,8 @@ io::Json boundary_json(const ElasticResult& r) {
 void write_summary(const spec::ProblemSpec& spec, const ElasticResult& r,
                    const solvers::PetscSession& session, double umax, double vmmax,
                    io::OutputDirectory& out) {
-  io::Summary summary(
-      {spec.name, spec.description, spec.units, "elastic_static", describe_method(spec)});
+  io::Summary summary({spec.name, spec.description, spec.units, "elastic_static",
+                       describe_method(spec.galerkin().discretisation, spec.domain)});
   summary.set("mpi_ranks", session.size()).set("openmp_threads", omp_get_max_threads());
   describe_run(r, summary);
   io::Json& results = summary.section("results");
@@ -146,7 +146,7 @@ void write_summary(const spec::ProblemSpec& spec, const ElasticResult& r,
       .set("constraint_violation_max", r.violation_max)
       .set("constraint_violation_relative", r.violation_relative)
       .set("boundary", boundary_json(r));
-  if (spec.exact)
+  if (spec.galerkin().exact)
     results.set("error_l2_relative", r.error_l2).set("error_energy_relative", r.error_energy);
   summary.write(out, r.timer);
 }

@@ -45,8 +45,8 @@ std::pair<double, double> exact_errors(const spec::ProblemSpec& spec, const Gale
     if (!m.domain_mine.counted[k]) continue;
     const Vec2& x = m.domain.x[m.domain_mine.rows[k]];
     const double w = m.domain.weight[m.domain_mine.rows[k]];
-    const Vec2 ue = verification::exact_displacement(*spec.exact, exact_mat, x);
-    const Vec3 ee = Cinv * verification::exact_stress(*spec.exact, exact_mat, x);
+    const Vec2 ue = verification::exact_displacement(*spec.galerkin().exact, exact_mat, x);
+    const Vec3 ee = Cinv * verification::exact_stress(*spec.galerkin().exact, exact_mat, x);
     const Vec2 eu = displacement_at(m.domain_table, k, d) - ue;
     const Vec3 eps = strain_at(m.domain_table, k, d) - ee;
     sums[0] += w * eu.squaredNorm();
@@ -63,7 +63,7 @@ void sample_fields(const spec::ProblemSpec& spec, const GalerkinModel& m, Elasti
   const auto& d = R.parameters;
   R.node_x = m.node_positions();
   evaluate_fields(m, spec, R.node_x, d, R.node_u, R.node_stress, R.node_szz);
-  for (const auto& line : spec.lines) {
+  for (const auto& line : spec.galerkin().lines) {
     LineSample s;
     for (int k = 0; k < line.points; ++k) {
       const double f = static_cast<double>(k) / (line.points - 1);
@@ -97,8 +97,8 @@ ElasticResult solve_elastic_static(const spec::ProblemSpec& spec,
   std::unique_ptr<solvers::BlockLinearSystem> system;
   {
     PhaseTimer::Scope scope(R.timer, "assembly");
-    system =
-        linear_elastic_system(spec, m, std::vector<double>(spec.boundary.size() + 1, 1.0), session);
+    system = linear_elastic_system(
+        spec, m, std::vector<double>(spec.galerkin().boundary.size() + 1, 1.0), session);
   }
   R.matrix_nonzeros = system->global_nonzeros();
   log::info("matrix: ", R.dofs, " x ", R.dofs, ", ", static_cast<long>(R.matrix_nonzeros),
@@ -115,7 +115,7 @@ ElasticResult solve_elastic_static(const spec::ProblemSpec& spec,
                                  "check the boundary conditions");
 
   PhaseTimer::Scope scope(R.timer, "postprocess");
-  if (spec.exact)
+  if (spec.galerkin().exact)
     std::tie(R.error_l2, R.error_energy) = exact_errors(spec, m, R.parameters, session);
   for (const auto& c : m.conditions) {
     R.boundary.push_back(boundary_report(c, R.parameters, 1.0, session));

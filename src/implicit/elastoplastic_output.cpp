@@ -31,13 +31,13 @@ IterationTotals iteration_totals(const ElastoplasticResult& r) {
 void write_history(const spec::ProblemSpec& spec, const ElastoplasticResult& r,
                    io::OutputDirectory& out) {
   io::History history({"increment", "step", "step_fraction"});
-  for (const auto& bc : spec.boundary) history.add_column("factor_" + bc.name);
-  for (const auto& bc : spec.boundary) {
+  for (const auto& bc : spec.galerkin().boundary) history.add_column("factor_" + bc.name);
+  for (const auto& bc : spec.galerkin().boundary) {
     const std::string kind = bc.constrains ? "reaction_" : "load_";
     history.add_column(kind + bc.name + "_x");
     history.add_column(kind + bc.name + "_y");
   }
-  for (const auto& mon : spec.gauges) {
+  for (const auto& mon : spec.galerkin().gauges) {
     history.add_column("ux_" + mon.name);
     history.add_column("uy_" + mon.name);
   }
@@ -48,7 +48,7 @@ void write_history(const spec::ProblemSpec& spec, const ElastoplasticResult& r,
     const IncrementRecord& inc = r.increments[i];
     std::vector<double> row{static_cast<double>(i), static_cast<double>(inc.step),
                             inc.step_fraction};
-    for (std::size_t c = 0; c < spec.boundary.size(); ++c) row.push_back(inc.factors[c]);
+    for (std::size_t c = 0; c < spec.galerkin().boundary.size(); ++c) row.push_back(inc.factors[c]);
     for (const auto& b : inc.boundary) row.insert(row.end(), {b.force.x(), b.force.y()});
     for (const auto& u : inc.monitor_u) row.insert(row.end(), {u.x(), u.y()});
     const double rel = inc.newton.residual.empty()
@@ -90,7 +90,7 @@ void describe_run(const spec::ProblemSpec& spec, const ElastoplasticResult& r,
       .set("peak_bytes_all_ranks", r.memory.all_ranks);
   summary.section("solver")
       .set("type", r.solver)
-      .set("tolerance", spec.nonlinear.tolerance)
+      .set("tolerance", spec.galerkin().nonlinear.tolerance)
       .set("linear_iterations", totals.linear)
       .set("linear_iterations_max_per_solve", totals.linear_max);
   double newton_s = 0.0;
@@ -114,12 +114,13 @@ io::Json peak_json(const PeakStress& p) {
 /// results.elastic_limit: the first yield's load factors, forces and peak stresses, or why the
 /// search was skipped.
 io::Json elastic_limit_json(const spec::ProblemSpec& spec, const ElasticLimit& e) {
+  auto& galerkin = spec.galerkin();
   io::Json limit;
   if (!e.skipped.empty()) limit.set("skipped", e.skipped);
   io::Json lim_factors, lim_forces;
-  for (std::size_t c = 0; c < spec.boundary.size() && e.skipped.empty(); ++c) {
-    lim_factors.set(spec.boundary[c].name, e.factors[c]);
-    lim_forces.set(spec.boundary[c].name,
+  for (std::size_t c = 0; c < galerkin.boundary.size() && e.skipped.empty(); ++c) {
+    lim_factors.set(galerkin.boundary[c].name, e.factors[c]);
+    lim_forces.set(galerkin.boundary[c].name,
                    std::vector<double>{e.boundary[c].force.x(), e.boundary[c].force.y()});
   }
   if (e.skipped.empty())
@@ -133,14 +134,15 @@ io::Json elastic_limit_json(const spec::ProblemSpec& spec, const ElasticLimit& e
 
 /// results.final: the last converged increment.
 io::Json final_json(const spec::ProblemSpec& spec, const IncrementRecord& fin) {
+  auto& galerkin = spec.galerkin();
   io::Json fin_factors, fin_forces, fin_monitors;
-  for (std::size_t c = 0; c < spec.boundary.size(); ++c) {
-    fin_factors.set(spec.boundary[c].name, fin.factors[c]);
-    fin_forces.set(spec.boundary[c].name,
+  for (std::size_t c = 0; c < galerkin.boundary.size(); ++c) {
+    fin_factors.set(galerkin.boundary[c].name, fin.factors[c]);
+    fin_forces.set(galerkin.boundary[c].name,
                    std::vector<double>{fin.boundary[c].force.x(), fin.boundary[c].force.y()});
   }
-  for (std::size_t k = 0; k < spec.gauges.size() && k < fin.monitor_u.size(); ++k)
-    fin_monitors.set(spec.gauges[k].name,
+  for (std::size_t k = 0; k < galerkin.gauges.size() && k < fin.monitor_u.size(); ++k)
+    fin_monitors.set(galerkin.gauges[k].name,
                      std::vector<double>{fin.monitor_u[k].x(), fin.monitor_u[k].y()});
   io::Json last;
   last.set("factors", fin_factors)
@@ -154,17 +156,18 @@ io::Json final_json(const spec::ProblemSpec& spec, const IncrementRecord& fin) {
 
 /// results.steps: per load step, the increments planned and done and their Newton iterations.
 io::Json steps_json(const spec::ProblemSpec& spec, const ElastoplasticResult& r) {
+  auto& galerkin = spec.galerkin();
   io::Json steps;
-  for (std::size_t s = 0; s < spec.steps.size(); ++s) {
+  for (std::size_t s = 0; s < galerkin.steps.size(); ++s) {
     std::vector<double> its;
     for (const auto& inc : r.increments)
       if (&inc != &r.increments.front() && inc.step == static_cast<int>(s))
         its.push_back(inc.newton.iterations);
     io::Json js;
-    js.set("increments_planned", spec.steps[s].increments)
+    js.set("increments_planned", galerkin.steps[s].increments)
         .set("increments_done", static_cast<int>(its.size()))
         .set("newton_iterations", its);
-    steps.set(spec.steps[s].name, js);
+    steps.set(galerkin.steps[s].name, js);
   }
   return steps;
 }
@@ -177,7 +180,7 @@ void write_summary(const spec::ProblemSpec& spec, const ElastoplasticResult& r,
   describe_run(spec, r, summary);
   io::Json& results = summary.section("results");
   results.set("elastic_limit", elastic_limit_json(spec, r.elastic_limit));
-  if (spec.initial_stress)
+  if (spec.galerkin().initial_stress)
     results.set(
         "initial_stress",
         io::Json().set("type", "geostatic").set("out_of_balance", r.initial_out_of_balance));

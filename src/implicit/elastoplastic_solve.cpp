@@ -37,7 +37,7 @@ void log_elastic_limit(const spec::ProblemSpec& spec, const ElasticLimit& e) {
   }
   const PeakStress& g = e.gauss_points;
   const PeakStress& n = e.nodes;
-  log::info("first yield at ", e.fraction, " of step '", spec.steps.front().name, "' (",
+  log::info("first yield at ", e.fraction, " of step '", spec.galerkin().steps.front().name, "' (",
             factors_text(spec, e.factors), "); elastic von Mises at its end: ", g.von_mises,
             " at the Gauss point (", g.at.x(), ", ", g.at.y(), "), ", n.von_mises, " at the node (",
             n.at.x(), ", ", n.at.y(), ")");
@@ -103,9 +103,10 @@ void resume(const io::Restart& restart, const spec::ProblemSpec& spec,
     io::refused_on_this_rank(e);
     throw;
   }
-  log::info("restarted after increment ", R.increments.size() - 1, " (step '",
-            spec.steps[std::min<std::size_t>(at.step, spec.steps.size() - 1)].name, "' at ", at.tau,
-            ")");
+  log::info(
+      "restarted after increment ", R.increments.size() - 1, " (step '",
+      spec.galerkin().steps[std::min<std::size_t>(at.step, spec.galerkin().steps.size() - 1)].name,
+      "' at ", at.tau, ")");
 }
 
 /// Increment 0: the unloaded state.
@@ -114,7 +115,7 @@ void record_unloaded_state(const spec::ProblemSpec& spec, const std::vector<doub
                            const solvers::NonlinearBlockSystem& newton, IncrementRecorder& recorder,
                            ElastoplasticResult& R) {
   IncrementRecord zero;
-  zero.factors.assign(spec.boundary.size() + 1, 0.0);
+  zero.factors.assign(spec.galerkin().boundary.size() + 1, 0.0);
   zero.newton.converged = true;
   recorder.record(zero, d, problem.states(), newton, false, R);
 }
@@ -150,12 +151,12 @@ ElastoplasticResult solve_elastoplastic_static(const spec::ProblemSpec& spec,
                                                const solvers::PetscSession& session,
                                                io::OutputDirectory* out, const std::string& dir,
                                                const io::Restart* restart) {
-  MF_REQUIRE(!spec.steps.empty(), "an elastoplastic analysis needs steps");
+  MF_REQUIRE(!spec.galerkin().steps.empty(), "an elastoplastic analysis needs steps");
   ElastoplasticResult R;
   const auto model =
       std::make_shared<const GalerkinModel>(build_galerkin_model(spec, session, R.timer));
   const GalerkinModel& m = *model;
-  R.method = describe_method(spec);
+  R.method = describe_method(spec.galerkin().discretisation, spec.domain);
   count_model(m, session, R);
   find_elastic_limit(spec, m, session, R);
 
@@ -168,7 +169,8 @@ ElastoplasticResult solve_elastoplastic_static(const spec::ProblemSpec& spec,
       },
       linear_solver_settings(spec, m));
   R.solver = newton.description();
-  log::info("Newton: ", R.solver, ", tolerance |R| <= ", spec.nonlinear.tolerance, " |F|");
+  log::info("Newton: ", R.solver, ", tolerance |R| <= ", spec.galerkin().nonlinear.tolerance,
+            " |F|");
 
   IncrementRecorder recorder(spec, m, session, session.rank() == 0 ? out : nullptr);
   std::vector<double> d(2 * static_cast<std::size_t>(R.nodes), 0.0);
@@ -179,8 +181,8 @@ ElastoplasticResult solve_elastoplastic_static(const spec::ProblemSpec& spec,
   else
     record_unloaded_state(spec, d, problem, newton, recorder, R);
   // The checkpoints' clock counts converged increments.
-  io::Checkpoints checkpoints(dir, distribution::Ranks::of(session.comm()), spec.checkpoint,
-                              spec.settings, restart);
+  io::Checkpoints checkpoints(dir, distribution::Ranks::of(session.comm()),
+                              spec.galerkin().checkpoint, spec.settings, restart);
   const auto keep = [&](bool finished) {
     const long done = static_cast<long>(R.increments.size()) - 1;
     if (finished || !checkpoints.due(static_cast<double>(done))) return;
@@ -196,7 +198,7 @@ ElastoplasticResult solve_elastoplastic_static(const spec::ProblemSpec& spec,
       [&](IncrementRecord rec, bool write_fields) -> const IncrementRecord& {
         PhaseTimer::Scope scope(R.timer, "increment_output");
         recorder.record(std::move(rec), d, problem.states(), newton, write_fields, R);
-        if (spec.initial_stress && R.increments.size() == 2) {
+        if (spec.galerkin().initial_stress && R.increments.size() == 2) {
           const double f = std::sqrt(
               solvers::sum_everywhere(session.comm(), problem.initial_stress_imbalance_squared()));
           const solvers::NewtonReport& n = R.increments[1].newton;
@@ -206,7 +208,7 @@ ElastoplasticResult solve_elastoplastic_static(const spec::ProblemSpec& spec,
       },
       at, keep);
   R.checkpoints = checkpoints.counts();
-  if (spec.initial_stress && R.increments.size() > 1) log_initial_stress(R);
+  if (spec.galerkin().initial_stress && R.increments.size() > 1) log_initial_stress(R);
   R.status = o.status;
   R.stop_reason = o.stop_reason;
   R.timer.add("newton", o.newton_seconds);

@@ -43,7 +43,7 @@ ElastoplasticSystem::ElastoplasticSystem(const spec::ProblemSpec& spec, const Ga
               ", more than a quarter of the memory here: each point's slots are searched anew "
               "at every assembly instead");
   const int rows = m.pattern.rows();
-  loads_.assign(spec.boundary.size() + 1, std::vector<double>(2 * rows, 0.0));
+  loads_.assign(spec.galerkin().boundary.size() + 1, std::vector<double>(2 * rows, 0.0));
   counts_in_scale_.assign(loads_.size(), 0);
   const auto add_penalty_matrix = [&](const int* nodes, int n, const double* v) {
     penalty_.add_matrix(nodes, n, v);

@@ -11,14 +11,15 @@ namespace {
 
 void assemble_linear_elastic(const spec::ProblemSpec& spec, const GalerkinModel& m,
                              const std::vector<double>& factors, BlockRows& rows) {
-  MF_REQUIRE(factors.size() == spec.boundary.size() + 1, "assemble_linear_elastic: factors");
+  MF_REQUIRE(factors.size() == spec.galerkin().boundary.size() + 1,
+             "assemble_linear_elastic: factors");
   const auto add_matrix = [&](const int* nodes, int n, const double* v) {
     rows.add_matrix(nodes, n, v);
   };
   const auto add_vector = [&](const int* nodes, int n, const double* v) {
     rows.add_vector(nodes, n, v);
   };
-  const bool regions = !spec.material_regions.empty() || has_gravity(spec);
+  const bool regions = !spec.galerkin().material_regions.empty() || has_gravity(spec);
   const PointLaws laws = regions ? point_laws(spec, domain_rows(m)) : PointLaws{};
   // Each point with the elastic matrix of its material, in the groups that let threads add at
   // once (no shared node in a group).
@@ -40,7 +41,8 @@ void assemble_linear_elastic(const spec::ProblemSpec& spec, const GalerkinModel&
   progress.finish();
   if (has_body_force(spec) && factors.back() != 0.0) {
     std::vector<Vec2> b =
-        regions ? laws.body_force : std::vector<Vec2>(m.domain_weight.size(), spec.body_force);
+        regions ? laws.body_force
+                : std::vector<Vec2>(m.domain_weight.size(), spec.galerkin().body_force);
     for (Vec2& v : b) v *= factors.back();
     add_load(m.domain_table, m.domain_weight, b, add_vector);
   }

@@ -44,15 +44,16 @@ std::vector<Vec2> condition_values(const spec::ProblemSpec& spec, const spec::Bo
   std::vector<Vec2> out;
   for (int r : rows) {
     if (bc.constrains)
-      out.push_back(bc.value_from_exact ? verification::exact_displacement(*spec.exact, m, pts.x[r])
-                                        : bc.value);
+      out.push_back(bc.value_from_exact
+                        ? verification::exact_displacement(*spec.galerkin().exact, m, pts.x[r])
+                        : bc.value);
     else if (bc.pressure_load)
       out.push_back(-bc.pressure * pts.normal[r]); // t = -p n, n the outward normal
     else
-      out.push_back(
-          bc.traction_from_exact
-              ? traction(verification::exact_stress(*spec.exact, m, pts.x[r]), pts.normal[r])
-              : bc.traction);
+      out.push_back(bc.traction_from_exact
+                        ? traction(verification::exact_stress(*spec.galerkin().exact, m, pts.x[r]),
+                                   pts.normal[r])
+                        : bc.traction);
   }
   return out;
 }
@@ -61,7 +62,7 @@ namespace {
 
 GalerkinModel build_meshfree_model(const spec::ProblemSpec& spec,
                                    const solvers::PetscSession& session, PhaseTimer& timer) {
-  const spec::DiscretisationSpec& disc = spec.discretisation;
+  const spec::DiscretisationSpec& disc = spec.galerkin().discretisation;
   GalerkinModel m;
   {
     PhaseTimer::Scope scope(timer, "nodes");
@@ -70,19 +71,20 @@ GalerkinModel build_meshfree_model(const spec::ProblemSpec& spec,
         disc.dilation);
   }
   const int N = m.node_count();
-  log::info("nodes: ", N, " (", 2 * N, " DOFs), ", describe_method(spec));
+  log::info("nodes: ", N, " (", 2 * N, " DOFs), ",
+            describe_method(spec.galerkin().discretisation, spec.domain));
 
   // Integration points: background cells over the body (refined with the nodes), Gauss points
   // on the loaded and constrained boundary pieces.
-  m.conditions.resize(spec.boundary.size());
+  m.conditions.resize(spec.galerkin().boundary.size());
   {
     PhaseTimer::Scope scope(timer, "quadrature");
     const quadrature::CellSizing sizing{disc.spacing, disc.refinement,
                                         disc.cell_size / disc.spacing, disc.dilation.maxCoeff()};
     m.domain = quadrature::domain_points(spec.domain, disc.cell_size, disc.order, disc.cut_levels,
                                          sizing, disc.cut_arcs);
-    for (std::size_t b = 0; b < spec.boundary.size(); ++b) {
-      const spec::BoundaryCondition& bc = spec.boundary[b];
+    for (std::size_t b = 0; b < spec.galerkin().boundary.size(); ++b) {
+      const spec::BoundaryCondition& bc = spec.galerkin().boundary[b];
       m.conditions[b].bc = &bc;
       m.conditions[b].points =
           quadrature::boundary_points(spec::select_boundary(spec.domain, bc.on, bc.key_path),
@@ -169,7 +171,7 @@ bool is_plain_rectangle(const geometry::Domain& domain,
 } // namespace
 
 fem::Mesh read_fe_mesh(const spec::ProblemSpec& spec) {
-  const spec::DiscretisationSpec& disc = spec.discretisation;
+  const spec::DiscretisationSpec& disc = spec.galerkin().discretisation;
   const std::string& e = disc.fem.element;
   const fem::ElementType type = e == "t3"   ? fem::ElementType::T3
                                 : e == "q4" ? fem::ElementType::Q4
@@ -246,7 +248,7 @@ edges_of_condition(const spec::ProblemSpec& spec, const spec::BoundaryCondition&
 void place_fem_points(const spec::ProblemSpec& spec, const solvers::PetscSession& session,
                       GalerkinModel& m, fem::PointShapes& domain,
                       std::vector<fem::EdgePoints>& edge_sets) {
-  const spec::DiscretisationSpec& disc = spec.discretisation;
+  const spec::DiscretisationSpec& disc = spec.galerkin().discretisation;
   const fem::Mesh& mesh = m.fe->mesh;
   const int order = disc.fem.order > 0 ? disc.fem.order : fem::default_order(mesh.type);
   session.collective([&] { domain = fem::domain_points(mesh, order); });
@@ -257,8 +259,8 @@ void place_fem_points(const spec::ProblemSpec& spec, const solvers::PetscSession
   const std::vector<fem::BoundaryEdge> edges = fem::boundary_edges(mesh);
   const double tol = 1e-6 * fem::characteristic_size(mesh);
   const int edge_order = disc.fem.order > 0 ? disc.fem.order : fem::default_edge_order(mesh.type);
-  for (std::size_t b = 0; b < spec.boundary.size(); ++b) {
-    const spec::BoundaryCondition& bc = spec.boundary[b];
+  for (std::size_t b = 0; b < spec.galerkin().boundary.size(); ++b) {
+    const spec::BoundaryCondition& bc = spec.galerkin().boundary[b];
     const std::vector<fem::BoundaryEdge> chosen = edges_of_condition(spec, bc, mesh, edges, tol);
     const fem::EdgePoints& ep = edge_sets[b] = fem::edge_points(mesh, chosen, edge_order);
     ConditionPoints& c = m.conditions[b];
@@ -311,11 +313,12 @@ GalerkinModel build_fem_model(const spec::ProblemSpec& spec, const solvers::Pets
     m.fe->locator = std::make_unique<fem::PointLocator>(m.fe->mesh);
   }
   const int N = m.node_count();
-  log::info("nodes: ", N, " (", 2 * N, " DOFs), ", describe_method(spec), ", ",
+  log::info("nodes: ", N, " (", 2 * N, " DOFs), ",
+            describe_method(spec.galerkin().discretisation, spec.domain), ", ",
             m.fe->mesh.element_count(), " elements");
-  m.conditions.resize(spec.boundary.size());
+  m.conditions.resize(spec.galerkin().boundary.size());
   fem::PointShapes domain;
-  std::vector<fem::EdgePoints> edge_sets(spec.boundary.size());
+  std::vector<fem::EdgePoints> edge_sets(spec.galerkin().boundary.size());
   {
     PhaseTimer::Scope scope(timer, "quadrature");
     place_fem_points(spec, session, m, domain, edge_sets);
@@ -336,7 +339,7 @@ GalerkinModel build_fem_model(const spec::ProblemSpec& spec, const solvers::Pets
 
 GalerkinModel build_galerkin_model(const spec::ProblemSpec& spec,
                                    const solvers::PetscSession& session, PhaseTimer& timer) {
-  GalerkinModel m = spec.discretisation.method == spec::Method::Fem
+  GalerkinModel m = spec.galerkin().discretisation.method == spec::Method::Fem
                         ? build_fem_model(spec, session, timer)
                         : build_meshfree_model(spec, session, timer);
   PhaseTimer::Scope scope(timer, "shape_functions");
@@ -354,7 +357,7 @@ std::vector<Vec2> domain_rows(const GalerkinModel& m) {
 solvers::LinearSolverSettings linear_solver_settings(const spec::ProblemSpec& spec,
                                                      const GalerkinModel& m) {
   solvers::LinearSolverSettings s;
-  s.multigrid = spec.linear_solver.multigrid_for(2.0 * m.node_count());
+  s.multigrid = spec.galerkin().linear_solver.multigrid_for(2.0 * m.node_count());
   s.symmetric = m.domain_table.test_dphi.empty(); // corrected test functions: Petrov-Galerkin
   if (s.multigrid)
     for (int I = m.own.begin; I < m.own.end; ++I) {
@@ -364,15 +367,14 @@ solvers::LinearSolverSettings linear_solver_settings(const spec::ProblemSpec& sp
   return s;
 }
 
-std::string describe_method(const spec::ProblemSpec& spec) {
-  const spec::DiscretisationSpec& d = spec.discretisation;
+std::string describe_method(const spec::DiscretisationSpec& d, const geometry::Domain& domain) {
   if (d.method == spec::Method::Fem) {
     std::string e = d.fem.element;
     for (char& c : e) c = static_cast<char>(std::toupper(c));
     if (!d.fem.mesh.empty()) return "FE " + e + " on " + d.fem.mesh;
     return "FE " + e +
-           (is_plain_rectangle(spec.domain, d.refinement) ? " on a structured mesh"
-                                                          : " on a gmsh mesh of the geometry");
+           (is_plain_rectangle(domain, d.refinement) ? " on a structured mesh"
+                                                     : " on a gmsh mesh of the geometry");
   }
   const auto& s = d.shape;
   std::string m = s.approximation == kernels::Approximation::ReproducingKernel    ? "RK"

@@ -64,9 +64,9 @@ IncrementRecorder::IncrementRecorder(const spec::ProblemSpec& spec, const Galerk
     if (!root) return;
     node_table_ = shapes_at(m, m.node_positions(), false);
     std::vector<Vec2> mx;
-    for (const auto& mon : spec.gauges) mx.push_back(mon.at.head<2>());
+    for (const auto& mon : spec.galerkin().gauges) mx.push_back(mon.at.head<2>());
     if (!mx.empty()) monitor_table_ = shapes_at(m, mx, false);
-    for (const auto& line : spec.lines) {
+    for (const auto& line : spec.galerkin().lines) {
       std::vector<Vec2> x;
       for (int k = 0; k < line.points; ++k) {
         const Vec2 p =
@@ -129,15 +129,16 @@ void IncrementRecorder::record(IncrementRecord rec, const std::vector<double>& d
   rec.max_plastic_strain = solvers::max_everywhere(session.comm(), alpha_max);
   rec.plastic_points = solvers::sum_everywhere(session.comm(), plastic);
   body_area = solvers::sum_everywhere(session.comm(), body_area);
-  Vec2 total = has_gravity(spec)
-                   ? Vec2(rec.factors.back() * body_load_)
-                   : Vec2(rec.factors.back() * spec.body_force * body_area * spec.thickness);
+  Vec2 total =
+      has_gravity(spec)
+          ? Vec2(rec.factors.back() * body_load_)
+          : Vec2(rec.factors.back() * spec.galerkin().body_force * body_area * spec.thickness);
   double magnitude = total.norm();
   for (const auto& b : rec.boundary) total += b.force, magnitude += b.force.norm();
   rec.equilibrium_error = magnitude > 0.0 ? total.norm() / magnitude : 0.0;
 
   const std::vector<double> all = newton.gather_on_root(d);
-  if (spec.record_increment_parameters) {
+  if (spec.galerkin().record_increment_parameters) {
     rec.parameters = all;
     solvers::broadcast(session.comm(), rec.parameters, 0);
   }

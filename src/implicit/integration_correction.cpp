@@ -6,7 +6,7 @@ namespace mf::implicit {
 
 void correct_test_gradients(const spec::ProblemSpec& spec, GalerkinModel& m,
                             const solvers::PetscSession& session) {
-  const spec::DiscretisationSpec& disc = spec.discretisation;
+  const spec::DiscretisationSpec& disc = spec.galerkin().discretisation;
   const int N = m.node_count();
   // Per owned node: the quadrature's sum of grad Psi_I (2), of Psi_I (1), and the boundary
   // integral of Psi_I n (2). Every point whose support holds an owned node is in this rank's

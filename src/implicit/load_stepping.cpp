@@ -24,23 +24,25 @@ bool drives(const spec::BoundaryCondition& bc) {
 /// has come `tau` of its way (a cut increment counts by its share).
 double increments_total(const spec::ProblemSpec& spec) {
   double n = 0.0;
-  for (const spec::LoadStep& step : spec.steps) n += step.increments;
+  for (const spec::LoadStep& step : spec.galerkin().steps) n += step.increments;
   return n;
 }
 
 double increments_done(const spec::ProblemSpec& spec, std::size_t s, double tau) {
+  auto& galerkin = spec.galerkin();
   double n = 0.0;
-  for (std::size_t k = 0; k < s; ++k) n += spec.steps[k].increments;
-  return n + tau * spec.steps[s].increments;
+  for (std::size_t k = 0; k < s; ++k) n += galerkin.steps[k].increments;
+  return n + tau * galerkin.steps[s].increments;
 }
 
 } // namespace
 
 std::string factors_text(const spec::ProblemSpec& spec, const std::vector<double>& f) {
+  auto& galerkin = spec.galerkin();
   std::string s;
-  for (std::size_t c = 0; c < spec.boundary.size(); ++c)
-    if (drives(spec.boundary[c]))
-      s += (s.empty() ? "" : ", ") + spec.boundary[c].name + " " + detail::concat(f[c]);
+  for (std::size_t c = 0; c < galerkin.boundary.size(); ++c)
+    if (drives(galerkin.boundary[c]))
+      s += (s.empty() ? "" : ", ") + galerkin.boundary[c].name + " " + detail::concat(f[c]);
   if (has_body_force(spec)) s += (s.empty() ? "" : ", ") + detail::concat("body_force ", f.back());
   return s.empty() ? "no load" : s;
 }
@@ -69,7 +71,7 @@ bool cut_back(ScheduleRun& run, const spec::LoadStep& step, double to,
               const solvers::NewtonReport& rep) {
   SchedulePosition& at = run.at;
   const std::string why = rep.reason + (rep.failure.empty() ? "" : ": " + rep.failure);
-  if (at.cuts >= run.spec.nonlinear.max_cutbacks) {
+  if (at.cuts >= run.spec.galerkin().nonlinear.max_cutbacks) {
     run.o.status = "stopped";
     run.o.stop_reason = detail::concat(
         "step '", step.name, "': the increment to ", to, " of the step did not converge (", why,
@@ -94,7 +96,7 @@ void record_increment(ScheduleRun& run, std::size_t s, const std::vector<double>
                       const solvers::NewtonReport& rep, bool last, double nominal) {
   const spec::ProblemSpec& spec = run.spec;
   SchedulePosition& at = run.at;
-  const spec::LoadStep& step = spec.steps[s];
+  const spec::LoadStep& step = spec.galerkin().steps[s];
   IncrementRecord rec;
   rec.step = static_cast<int>(s);
   rec.step_fraction = at.tau;
@@ -102,8 +104,8 @@ void record_increment(ScheduleRun& run, std::size_t s, const std::vector<double>
   rec.newton = rep;
   rec.cutbacks = at.cuts;
   const bool step_end = last;
-  const bool write_fields =
-      ++at.since_output >= spec.fields_every || (step_end && s + 1 == spec.steps.size());
+  const bool write_fields = ++at.since_output >= spec.galerkin().fields_every ||
+                            (step_end && s + 1 == spec.galerkin().steps.size());
   if (write_fields) at.since_output = 0;
   const IncrementRecord& recorded = run.done(std::move(rec), write_fields);
   const double done_now = increments_done(spec, s, at.tau);
@@ -121,15 +123,16 @@ void record_increment(ScheduleRun& run, std::size_t s, const std::vector<double>
     at.easy = 0;
   }
   at.cuts = 0;
-  if (run.kept) run.kept(step_end && s + 1 == spec.steps.size());
+  if (run.kept) run.kept(step_end && s + 1 == spec.galerkin().steps.size());
 }
 
 /// The increments of step at.step from at.tau to its end, or until the schedule stops.
 void run_step(ScheduleRun& run) {
+  auto& galerkin = run.spec.galerkin();
   SchedulePosition& at = run.at;
-  const std::size_t nf = run.spec.boundary.size() + 1;
+  const std::size_t nf = galerkin.boundary.size() + 1;
   const std::size_t s = static_cast<std::size_t>(at.step);
-  const spec::LoadStep& step = run.spec.steps[s];
+  const spec::LoadStep& step = galerkin.steps[s];
   const double nominal = 1.0 / step.increments;
   if (at.dtau <= 0.0) at.dtau = nominal;
   while (at.tau < 1.0 - 1e-12) {
@@ -162,16 +165,16 @@ ScheduleOutcome run_load_schedule(const spec::ProblemSpec& spec, ElastoplasticSy
                                   const IncrementDone& done, SchedulePosition& at,
                                   const PositionKept& kept) {
   ScheduleRun run{spec, problem, newton, d, done, at, kept, {}, Clock::now(), 0.0, 0.0, {}};
-  const std::size_t nf = spec.boundary.size() + 1;
+  const std::size_t nf = spec.galerkin().boundary.size() + 1;
   if (at.current.empty()) at.current.assign(nf, 0.0);
   if (at.start.empty()) at.start = at.current;
-  run.settings.tolerance = spec.nonlinear.tolerance;
-  run.settings.max_iterations = spec.nonlinear.max_iterations;
+  run.settings.tolerance = spec.galerkin().nonlinear.tolerance;
+  run.settings.max_iterations = spec.galerkin().nonlinear.max_iterations;
   run.total = increments_total(spec);
-  run.done_at_start = at.step < static_cast<int>(spec.steps.size())
+  run.done_at_start = at.step < static_cast<int>(spec.galerkin().steps.size())
                           ? increments_done(spec, at.step, at.tau)
                           : run.total;
-  while (at.step < static_cast<int>(spec.steps.size()) && run.o.status == "completed") {
+  while (at.step < static_cast<int>(spec.galerkin().steps.size()) && run.o.status == "completed") {
     run_step(run);
     if (run.o.status != "completed") break;
     // The next step starts where this one ended.

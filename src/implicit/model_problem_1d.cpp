@@ -148,8 +148,8 @@ void sample_solution(const spec::ModelProblem1D& P, const MeshfreeSpace& space, 
 
 Model1DResult solve_model_problem_1d(const spec::ProblemSpec& spec) {
   Model1DResult R;
-  const spec::ModelProblem1D& P = spec.model_1d;
-  const spec::DiscretisationSpec& disc = spec.discretisation;
+  const spec::ModelProblem1D& P = spec.model_1d();
+  const spec::DiscretisationSpec& disc = P.discretisation;
   const double L = P.length;
   const int n = static_cast<int>(std::round(L / disc.spacing)) + 1;
   MF_REQUIRE(n >= 3 && n <= 4000, "discretisation.spacing: gives ", n, " nodes on [0, ", L,

@@ -20,8 +20,8 @@ void write_model_1d_outputs(const spec::ProblemSpec& spec, const Model1DResult& 
   io::History history({"step", "error_l2_relative", "error_h1_relative", "error_max_relative"});
   history.append({1.0, r.error_l2, r.error_h1, r.error_max});
   history.write(out);
-  io::Summary summary(
-      {spec.name, spec.description, spec.units, "model_problem_1d", describe_method(spec)});
+  io::Summary summary({spec.name, spec.description, spec.units, "model_problem_1d",
+                       describe_method(spec.model_1d().discretisation, spec.domain)});
   summary.section("counts")
       .set("nodes", r.nodes)
       .set("quadrature_points", r.points)

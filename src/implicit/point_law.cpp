@@ -57,11 +57,12 @@ bool is_zero(const Vec4& v) {
 } // namespace
 
 int material_at(const spec::ProblemSpec& spec, const Vec2& x) {
+  auto& galerkin = spec.galerkin();
   const spec::Point p(x.x(), x.y(), 0.0);
   const double tol = region_tolerance(spec);
-  for (auto r = spec.material_regions.rbegin(); r != spec.material_regions.rend(); ++r)
+  for (auto r = galerkin.material_regions.rbegin(); r != galerkin.material_regions.rend(); ++r)
     if (r->region.contains(p, tol)) return r->material;
-  return spec.material_index;
+  return galerkin.material_index;
 }
 
 materials::J2Parameters material_parameters(const spec::ProblemSpec& spec, int material) {
@@ -74,13 +75,14 @@ materials::J2Parameters material_parameters(const spec::ProblemSpec& spec, int m
 }
 
 Vec4 initial_stress_at(const spec::ProblemSpec& spec, const Vec2& x) {
-  if (!spec.initial_stress) return Vec4::Zero();
-  const spec::GeostaticStress& g = *spec.initial_stress;
+  auto& galerkin = spec.galerkin();
+  if (!galerkin.initial_stress) return Vec4::Zero();
+  const spec::GeostaticStress& g = *galerkin.initial_stress;
   const double top = g.surface;
   if (!(x.y() < top)) return Vec4::Zero();
   // The breaks of the column: where it crosses a region's, a hole's or the outline's boundary.
   std::vector<double> ys{x.y(), top};
-  for (const spec::MaterialRegion& mr : spec.material_regions)
+  for (const spec::MaterialRegion& mr : galerkin.material_regions)
     add_region_crossings(x.x(), mr.region, ys);
   for (const geometry::Circle& h : spec.domain.holes())
     add_circle_crossings(x.x(), h.center, h.radius, ys);
@@ -102,7 +104,7 @@ Vec4 initial_stress_at(const spec::ProblemSpec& spec, const Vec2& x) {
     if (!spec.domain.contains(mid)) continue; // a hole or outside the outline: no weight
     weight += spec.materials[material_at(spec, mid)].density * (hi - lo);
   }
-  const double sv = -weight * spec.gravity.norm();
+  const double sv = -weight * galerkin.gravity.norm();
   const double szz = spec.model == materials::PlaneModel::PlaneStrain ? g.k0 * sv : 0.0;
   return {g.k0 * sv, sv, 0.0, szz};
 }
@@ -117,8 +119,9 @@ PointLaw point_law(const spec::ProblemSpec& spec, const Vec2& x) {
 }
 
 Vec2 body_force_at(const spec::ProblemSpec& spec, const Vec2& x) {
-  if (!has_gravity(spec)) return spec.body_force;
-  return spec.body_force + spec.materials[material_at(spec, x)].density * spec.gravity;
+  auto& galerkin = spec.galerkin();
+  if (!has_gravity(spec)) return galerkin.body_force;
+  return galerkin.body_force + spec.materials[material_at(spec, x)].density * galerkin.gravity;
 }
 
 materials::J2Result2D update_law(materials::PlaneModel model, const materials::J2Parameters& p,
@@ -175,6 +178,7 @@ materials::J2Result2D update_point(const spec::ProblemSpec& spec, const PointLaw
 }
 
 PointLaws point_laws(const spec::ProblemSpec& spec, const std::vector<Vec2>& x) {
+  auto& galerkin = spec.galerkin();
   PointLaws L;
   const std::size_t nm = spec.materials.size();
   L.params.resize(nm);
@@ -201,10 +205,10 @@ PointLaws point_laws(const spec::ProblemSpec& spec, const std::vector<Vec2>& x) 
     L.body_force.resize(x.size());
     for (std::size_t k = 0; k < x.size(); ++k)
       L.body_force[k] = !has_gravity(spec)
-                            ? spec.body_force
-                            : Vec2(spec.body_force + density[L.material[k]] * spec.gravity);
+                            ? galerkin.body_force
+                            : Vec2(galerkin.body_force + density[L.material[k]] * galerkin.gravity);
   }
-  if (spec.initial_stress) {
+  if (galerkin.initial_stress) {
     L.initial_stress.resize(x.size());
     for (std::size_t k = 0; k < x.size(); ++k) L.initial_stress[k] = initial_stress_at(spec, x[k]);
   }

@@ -336,15 +336,16 @@ NonlinearSpec read_nonlinear(KeyReader& r) {
 } // namespace
 
 void parse_model_1d(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
+  ModelProblem1D& model = p.part.emplace<ModelProblem1D>();
   KeyReader m = r.map("problem_1d");
-  p.model_1d.length = m.positive("length");
-  p.model_1d.sine_amplitude = m.number("sine_amplitude", 1.0);
-  p.model_1d.sine_waves = m.positive("sine_waves", 1.0);
-  p.model_1d.linear = m.number("linear", 0.0);
+  model.length = m.positive("length");
+  model.sine_amplitude = m.number("sine_amplitude", 1.0);
+  model.sine_waves = m.positive("sine_waves", 1.0);
+  model.linear = m.number("linear", 0.0);
   m.finish();
-  const BoundingBox line{{0.0, 0.0}, {p.model_1d.length, 0.0}};
-  p.discretisation = read_discretisation(r, 1, line, base_dir);
-  p.model_1d.penalty = r.positive("penalty", 1e6 / p.discretisation.spacing);
+  const BoundingBox line{{0.0, 0.0}, {model.length, 0.0}};
+  model.discretisation = read_discretisation(r, 1, line, base_dir);
+  model.penalty = r.positive("penalty", 1e6 / model.discretisation.spacing);
 }
 
 namespace {
@@ -352,14 +353,15 @@ namespace {
 /// The material of a Galerkin analysis: the one `material:` names, or the single entry; it
 /// needs E and nu, and plasticity exactly when the analysis is elastoplastic.
 void take_material(KeyReader& r, ProblemSpec& p, const std::string& analysis) {
+  auto& galerkin = p.galerkin();
   if (r.has("material")) {
-    p.material_index = find_material(r, "material", p.materials, r.text("material"));
+    galerkin.material_index = find_material(r, "material", p.materials, r.text("material"));
   } else if (p.materials.size() != 1) {
     r.error("material", "name the material of the body (the file lists " +
                             std::to_string(p.materials.size()) + " materials)");
   }
   r.allow("material");
-  const MaterialSpec& m = p.materials[p.material_index];
+  const MaterialSpec& m = p.materials[galerkin.material_index];
   if (!(m.E > 0.0)) material_error(m, "E", "analysis " + analysis + " needs Young's modulus E");
   if (!m.has_nu)
     material_error(m, "nu",
@@ -391,17 +393,18 @@ void read_material_regions(KeyReader& r, ProblemSpec& p, const std::string& anal
       g.error("material", "give the region of the material: a box, circle, ring or holes");
     g.finish();
     check_body_material(p.materials[mr.material], analysis, plastic);
-    p.material_regions.push_back(mr);
+    p.galerkin().material_regions.push_back(mr);
   }
 }
 
 /// gravity: [gx, gy] (an acceleration; every material of the body needs its density) and
 /// initial_stress: {type: geostatic, surface, k0}.
 void read_gravity_and_initial_stress(KeyReader& r, ProblemSpec& p, bool plastic) {
+  auto& galerkin = p.galerkin();
   if (r.has("gravity")) {
-    p.gravity = r.vec2("gravity");
-    std::vector<int> used{p.material_index};
-    for (const MaterialRegion& mr : p.material_regions) used.push_back(mr.material);
+    galerkin.gravity = r.vec2("gravity");
+    std::vector<int> used{galerkin.material_index};
+    for (const MaterialRegion& mr : galerkin.material_regions) used.push_back(mr.material);
     for (int k : used)
       if (!(p.materials[k].density > 0.0))
         material_error(p.materials[k], "density",
@@ -414,10 +417,10 @@ void read_gravity_and_initial_stress(KeyReader& r, ProblemSpec& p, bool plastic)
             "used only by analysis elastoplastic_static (its first step is the equilibrium "
             "iteration)");
   s->choice("type", {"geostatic"}, "");
-  if (p.gravity.isZero())
+  if (galerkin.gravity.isZero())
     r.error("initial_stress", "a geostatic initial stress needs 'gravity' (the weight of the "
                               "column above each point)");
-  if (p.gravity.x() != 0.0 || !(p.gravity.y() < 0.0))
+  if (galerkin.gravity.x() != 0.0 || !(galerkin.gravity.y() < 0.0))
     r.error("gravity", "a geostatic initial stress needs gravity along -y, [0, -g] (the column "
                        "above each point lies towards +y)");
   GeostaticStress g;
@@ -425,49 +428,52 @@ void read_gravity_and_initial_stress(KeyReader& r, ProblemSpec& p, bool plastic)
   g.k0 = s->number("k0");
   if (!(g.k0 >= 0.0)) s->error("k0", "expected a number >= 0, got " + detail::concat(g.k0));
   s->finish();
-  p.initial_stress = g;
+  galerkin.initial_stress = g;
 }
 
 /// The boundary conditions: unique names, 'exact' only with an exact solution, selectors that
 /// pick something, and at least one displacement condition.
 void read_boundary(KeyReader& r, ProblemSpec& p) {
+  auto& galerkin = p.galerkin();
   // Default penalty: alpha = 1e6 E / h, stiff enough that the constraint error is ~1e-6 of the
   // boundary displacement scale, and far from the round-off limit of a direct solve.
-  const double stiffness_scale = p.elasticity().E / p.discretisation.spacing;
+  const double stiffness_scale = p.elasticity().E / galerkin.discretisation.spacing;
   for (KeyReader& bc : r.map_list("boundary")) {
-    p.boundary.push_back(read_condition(bc, stiffness_scale));
-    const BoundaryCondition& c = p.boundary.back();
-    for (std::size_t k = 0; k + 1 < p.boundary.size(); ++k)
-      if (p.boundary[k].name == c.name)
-        bc.error("name", "'" + c.name + "' is used by " + p.boundary[k].key_path + " already");
-    if ((c.value_from_exact || c.traction_from_exact) && !p.exact)
+    galerkin.boundary.push_back(read_condition(bc, stiffness_scale));
+    const BoundaryCondition& c = galerkin.boundary.back();
+    for (std::size_t k = 0; k + 1 < galerkin.boundary.size(); ++k)
+      if (galerkin.boundary[k].name == c.name)
+        bc.error("name",
+                 "'" + c.name + "' is used by " + galerkin.boundary[k].key_path + " already");
+    if ((c.value_from_exact || c.traction_from_exact) && !galerkin.exact)
       bc.error(c.constrains ? "displacement" : "traction",
                "'exact' needs an 'exact' section in the problem");
     select_boundary(p.domain, c.on, c.key_path); // rejects selectors that pick nothing
   }
-  if (p.boundary.empty()) r.error("boundary", "at least one boundary condition is required");
+  if (galerkin.boundary.empty()) r.error("boundary", "at least one boundary condition is required");
   bool constrained = false;
-  for (const auto& c : p.boundary) constrained = constrained || c.constrains;
+  for (const auto& c : galerkin.boundary) constrained = constrained || c.constrains;
   if (!constrained)
     r.error("boundary", "no displacement condition: the body is free to move as a rigid body");
 }
 
 /// The plasticity law, the load steps and the Newton controls belong to elastoplastic_static.
 void read_plastic_controls(KeyReader& r, ProblemSpec& p, bool plastic) {
-  const MaterialSpec& mat = p.materials[p.material_index];
+  auto& galerkin = p.galerkin();
+  const MaterialSpec& mat = p.materials[galerkin.material_index];
   // A material without plasticity is elastic at its points. An elastoplastic analysis of one
   // elastic material and nothing else is an elastic_static problem; with material regions,
   // gravity or an initial stress, or as the preload stage of a staged run, it is an elastic
   // preload.
-  const bool preload =
-      !p.material_regions.empty() || !p.gravity.isZero() || p.initial_stress || !p.stage.empty();
+  const bool preload = !galerkin.material_regions.empty() || !galerkin.gravity.isZero() ||
+                       galerkin.initial_stress || !p.stage.empty();
   if (plastic && !p.plasticity() && !preload)
     material_error(mat, "plasticity", "analysis elastoplastic_static needs a plasticity law");
   if (!plastic && p.plasticity())
     material_error(mat, "plasticity", "used only by analysis elastoplastic_static");
   if (plastic) {
-    p.steps = read_steps(r, p.boundary, p.initial_stress.has_value());
-    p.nonlinear = read_nonlinear(r);
+    galerkin.steps = read_steps(r, galerkin.boundary, galerkin.initial_stress.has_value());
+    galerkin.nonlinear = read_nonlinear(r);
   } else {
     for (const char* key : {"steps", "nonlinear"})
       if (r.has(key)) r.error(key, "used only by analysis elastoplastic_static");
@@ -476,11 +482,12 @@ void read_plastic_controls(KeyReader& r, ProblemSpec& p, bool plastic) {
 
 /// output.gauges: points of the body whose history an elastoplastic run records.
 void read_body_gauges(KeyReader& out, ProblemSpec& p, bool plastic) {
+  auto& galerkin = p.galerkin();
   if (!plastic && out.has("gauges"))
     out.error("gauges", "gauges are recorded only by analysis elastoplastic_static");
-  p.gauges = read_gauges(out, 2);
-  for (std::size_t k = 0; k < p.gauges.size(); ++k) {
-    const Vec2 at = p.gauges[k].at.head<2>();
+  galerkin.gauges = read_gauges(out, 2);
+  for (std::size_t k = 0; k < galerkin.gauges.size(); ++k) {
+    const Vec2 at = galerkin.gauges[k].at.head<2>();
     if (!p.domain.contains(at, 1e-9 * p.domain.bounds().size().maxCoeff()))
       fail(out.path_of("gauges"), "[", k, "].at: the point (", detail::concat(at.x(), ", ", at.y()),
            ") is not in the body");
@@ -488,14 +495,16 @@ void read_body_gauges(KeyReader& out, ProblemSpec& p, bool plastic) {
 }
 
 void read_checkpoint_output(KeyReader& out, ProblemSpec& p, bool plastic) {
+  auto& galerkin = p.galerkin();
   for (const char* key : {"checkpoint_every", "checkpoint_wall_interval"})
     if (!plastic && out.has(key))
       out.error(key, "checkpoints are written only by analysis elastoplastic_static");
-  p.checkpoint.interval = out.integer("checkpoint_every", 0, 0, 1000000);
-  p.checkpoint.wall_interval = out.number("checkpoint_wall_interval", 600.0);
-  if (!(p.checkpoint.wall_interval >= 0.0) || !std::isfinite(p.checkpoint.wall_interval))
+  galerkin.checkpoint.interval = out.integer("checkpoint_every", 0, 0, 1000000);
+  galerkin.checkpoint.wall_interval = out.number("checkpoint_wall_interval", 600.0);
+  if (!(galerkin.checkpoint.wall_interval >= 0.0) ||
+      !std::isfinite(galerkin.checkpoint.wall_interval))
     out.error("checkpoint_wall_interval", "expected seconds of wall time, 0 for none, got " +
-                                              detail::concat(p.checkpoint.wall_interval));
+                                              detail::concat(galerkin.checkpoint.wall_interval));
 }
 
 /// One output.lines entry: a sampled segment with at least one sample point in the body.
@@ -506,7 +515,7 @@ LineSpec read_line(KeyReader& l, const ProblemSpec& p) {
   s.to = l.vec2("to");
   s.points = l.integer("points", 51, 2, 1000000);
   check_name(l, "name", s.name, false);
-  for (const auto& other : p.lines)
+  for (const auto& other : p.galerkin().lines)
     if (other.name == s.name) l.error("name", "another line is named '" + s.name + "'");
   bool inside = false;
   for (int k = 0; k < s.points && !inside; ++k)
@@ -518,11 +527,12 @@ LineSpec read_line(KeyReader& l, const ProblemSpec& p) {
 }
 
 void read_output(KeyReader& r, ProblemSpec& p, bool plastic) {
+  auto& galerkin = p.galerkin();
   if (auto out = r.optional_map("output")) {
     read_body_gauges(*out, p, plastic);
-    p.fields_every = out->integer("fields_every", 1, 1, 1000000);
+    galerkin.fields_every = out->integer("fields_every", 1, 1, 1000000);
     read_checkpoint_output(*out, p, plastic);
-    for (KeyReader& l : out->map_list("lines")) p.lines.push_back(read_line(l, p));
+    for (KeyReader& l : out->map_list("lines")) galerkin.lines.push_back(read_line(l, p));
     out->finish();
   }
 }
@@ -530,15 +540,17 @@ void read_output(KeyReader& r, ProblemSpec& p, bool plastic) {
 } // namespace
 
 void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
+  auto& galerkin = p.galerkin();
   const bool plastic = p.analysis == Analysis::ElastoplasticStatic;
   const std::string analysis = plastic ? "elastoplastic_static" : "elastic_static";
   if (p.model_type != ModelType::PlaneStress && p.model_type != ModelType::PlaneStrain)
     r.error("model", "analysis " + analysis + " takes model.type plane_stress or plane_strain");
   take_material(r, p, analysis);
-  p.linear_solver = read_linear_solver(r);
-  p.discretisation = read_discretisation(r, 2, p.domain.bounds(), base_dir, p.linear_solver);
-  p.exact = read_exact(r);
-  if (r.has("body_force")) p.body_force = r.vec2("body_force");
+  galerkin.linear_solver = read_linear_solver(r);
+  galerkin.discretisation =
+      read_discretisation(r, 2, p.domain.bounds(), base_dir, galerkin.linear_solver);
+  galerkin.exact = read_exact(r);
+  if (r.has("body_force")) galerkin.body_force = r.vec2("body_force");
   r.allow("body_force");
   read_material_regions(r, p, analysis, plastic);
   read_gravity_and_initial_stress(r, p, plastic);

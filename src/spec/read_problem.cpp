@@ -82,10 +82,11 @@ ProblemSpec parse_problem(YAML::Node root, const std::string& base_dir, const st
   analyses.push_back("staged");
   if (r.has("analysis") && r.text("analysis") == "staged") {
     if (!stage.empty()) r.error("analysis", "a stage cannot itself be staged");
+    StagedSpec& staged = p.part.emplace<StagedSpec>();
     parse_stages(r, p, base_dir);
     r.finish();
-    if (p.stages.size() == 1) return std::move(p.stages.front()); // runs as its analysis
-    const ProblemSpec& first = p.stages.front();
+    if (staged.stages.size() == 1) return std::move(staged.stages.front()); // runs as its analysis
+    const ProblemSpec& first = staged.stages.front();
     p.name = first.name;
     p.description = first.description;
     p.units = first.units;
@@ -117,11 +118,11 @@ ProblemSpec parse_problem(YAML::Node root, const std::string& base_dir, const st
   read_model(r, p);
   p.materials = read_materials(r);
   if (p.analysis == Analysis::Sph) {
-    p.sph = parse_sph(r, p);
+    p.part = parse_sph(r, p);
   } else {
     read_geometry(r, p);
     if (p.analysis == Analysis::Peridynamics)
-      p.pd = parse_pd(r, p, base_dir);
+      p.part = parse_pd(r, p, base_dir);
     else
       parse_galerkin(r, p, base_dir);
   }

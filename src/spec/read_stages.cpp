@@ -84,8 +84,9 @@ std::string joined(const std::vector<std::string>& v) {
 
 /// The materials a Galerkin stage uses: its own and those of its material regions.
 std::vector<int> materials_used(const ProblemSpec& p) {
-  std::vector<int> used{p.material_index};
-  for (const MaterialRegion& r : p.material_regions) used.push_back(r.material);
+  auto& galerkin = p.galerkin();
+  std::vector<int> used{galerkin.material_index};
+  for (const MaterialRegion& r : galerkin.material_regions) used.push_back(r.material);
   std::sort(used.begin(), used.end());
   used.erase(std::unique(used.begin(), used.end()), used.end());
   return used;
@@ -178,10 +179,11 @@ void check_conditions(KeyReader& s, const StageLink& l, const ProblemSpec& from)
 } // namespace
 
 std::vector<std::string> stage_conditions(const ProblemSpec& p) {
+  auto& galerkin = p.galerkin();
   std::vector<std::string> out;
-  for (const auto& bc : p.boundary) out.push_back(bc.name);
-  if (p.body_force.norm() > 0.0) out.push_back("body_force");
-  if (p.gravity.norm() > 0.0) out.push_back("gravity");
+  for (const auto& bc : galerkin.boundary) out.push_back(bc.name);
+  if (galerkin.body_force.norm() > 0.0) out.push_back("body_force");
+  if (galerkin.gravity.norm() > 0.0) out.push_back("gravity");
   return out;
 }
 
@@ -197,7 +199,7 @@ void parse_stages(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
     KeyReader& s = list[k];
     const std::string name = s.text("name");
     check_name(s, "name", name);
-    for (const auto& e : p.stages)
+    for (const auto& e : p.staged().stages)
       if (e.stage == name) s.error("name", "another stage is named '" + name + "'");
     // The link first: where a stage starts from is checked before its own keys.
     const YAML::Node own = s.raw_map();
@@ -205,15 +207,15 @@ void parse_stages(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
     for (const auto& kv : own)
       if (!is_link_key(kv.first.Scalar())) link_reader.allow(kv.first.Scalar());
     link_reader.allow("name");
-    StageLink link = read_link(link_reader, p.stages, static_cast<int>(k));
+    StageLink link = read_link(link_reader, p.staged().stages, static_cast<int>(k));
     link_reader.finish();
     ProblemSpec stage = parse_stage(stage_file(r, s), r, s.path(), name, base_dir);
     // The bounds on an explicit stage's run (time.end, output intervals) are checked on its set-up,
     // after reading: they name the stage's keys by its path.
-    if (stage.pd) stage.pd->key_prefix = s.path() + ".";
-    if (stage.sph) stage.sph->key_prefix = s.path() + ".";
+    if (stage.is_pd()) stage.pd().key_prefix = s.path() + ".";
+    if (stage.is_sph()) stage.sph().key_prefix = s.path() + ".";
     if (link.from >= 0) {
-      const ProblemSpec& from = p.stages[link.from];
+      const ProblemSpec& from = p.staged().stages[link.from];
       if (from.analysis != Analysis::ElastoplasticStatic || !explicit_dynamics(stage.analysis))
         s.error("from", "a stage starts from an implicit preload (elastoplastic_static; an "
                         "elastic preload is one whose materials have no plasticity) and is an "
@@ -225,8 +227,8 @@ void parse_stages(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
                                     "under the held conditions (transfer.relax_tolerance); "
                                     "settle is for SPH stages");
     }
-    p.stages.push_back(std::move(stage));
-    p.links.push_back(std::move(link));
+    p.staged().stages.push_back(std::move(stage));
+    p.staged().links.push_back(std::move(link));
   }
   for (const char* key : kSharedKeys) r.allow(key);
   r.allow("analysis");

@@ -123,19 +123,24 @@ void check_load(Report& r, const std::string& key, double load, double E) {
 
 void check_loads(Report& r, const ProblemSpec& p) {
   const double E = stiffest(p);
-  for (const auto& b : p.boundary) {
-    if (b.loads && !b.traction_from_exact)
-      check_load(r, b.key_path + ".traction", b.traction.norm(), E);
-    if (b.pressure_load) check_load(r, b.key_path + ".pressure", b.pressure, E);
+  double g = 0.0;
+  if (const GalerkinSpec* galerkin = std::get_if<GalerkinSpec>(&p.part)) {
+    for (const auto& b : galerkin->boundary) {
+      if (b.loads && !b.traction_from_exact)
+        check_load(r, b.key_path + ".traction", b.traction.norm(), E);
+      if (b.pressure_load) check_load(r, b.key_path + ".pressure", b.pressure, E);
+    }
+    g = galerkin->gravity.norm();
   }
-  if (p.sph)
-    for (const auto& t : p.sph->tractions)
+  if (const SphSpec* sph = std::get_if<SphSpec>(&p.part)) {
+    for (const auto& t : sph->tractions)
       check_load(r, t.key_path + ".traction", t.traction.norm(), E);
-  if (p.pd)
-    for (const auto& c : p.pd->conditions)
+    g = sph->gravity.norm();
+  }
+  if (const PdSpec* pd = std::get_if<PdSpec>(&p.part))
+    for (const auto& c : pd->conditions)
       if (c.kind == PdCondition::Kind::Traction)
         check_load(r, c.key_path + ".traction", c.value.norm(), E);
-  const double g = p.sph ? p.sph->gravity.norm() : p.gravity.norm();
   r.check("gravity", g, r.units().acceleration(), kGravity, "gravitational accelerations");
 }
 
@@ -147,12 +152,12 @@ double fastest_wave(Report& r, const ProblemSpec& p) {
       c = std::max(c, std::sqrt(wave_modulus(m) / density));
   };
   for (const auto& m : p.materials) take(m, m.density);
-  if (p.sph)
-    for (std::size_t k = 0; k < p.sph->regions.size(); ++k) {
-      const SphRegion& reg = p.sph->regions[k];
+  if (p.is_sph())
+    for (std::size_t k = 0; k < p.sph().regions.size(); ++k) {
+      const SphRegion& reg = p.sph().regions[k];
       r.check("regions[" + std::to_string(k) + "].density", reg.density, r.units().density(),
               kDensity, "densities");
-      take(p.sph->materials[reg.material], reg.density);
+      take(p.sph().materials[reg.material], reg.density);
     }
   return c;
 }
@@ -161,12 +166,12 @@ double fastest_wave(Report& r, const ProblemSpec& p) {
 void check_step(Report& r, const ProblemSpec& p) {
   double spacing = 0.0, end = 0.0;
   std::string prefix; // the stage's key path in a staged run
-  if (p.sph) {
-    end = p.sph->end_time, prefix = p.sph->key_prefix;
-    for (const auto& reg : p.sph->regions)
+  if (p.is_sph()) {
+    end = p.sph().end_time, prefix = p.sph().key_prefix;
+    for (const auto& reg : p.sph().regions)
       spacing = spacing > 0.0 ? std::min(spacing, reg.spacing) : reg.spacing;
-  } else if (p.pd) {
-    end = p.pd->end_time, spacing = p.pd->spacing, prefix = p.pd->key_prefix;
+  } else if (p.is_pd()) {
+    end = p.pd().end_time, spacing = p.pd().spacing, prefix = p.pd().key_prefix;
   }
   const double c = fastest_wave(r, p);
   if (spacing <= 0.0 || c <= 0.0) return;
@@ -182,7 +187,8 @@ void check_problem(Report& r, const ProblemSpec& p) {
   for (const auto& m : p.materials) check_material(r, m);
   check_loads(r, p);
   check_step(r, p);
-  for (const auto& s : p.stages) check_problem(r, s);
+  if (const StagedSpec* staged = std::get_if<StagedSpec>(&p.part))
+    for (const auto& s : staged->stages) check_problem(r, s);
 }
 
 } // namespace

@@ -140,7 +140,7 @@ std::vector<HeldCondition> held_conditions(const spec::ProblemSpec& preload,
                      [&](const implicit::ConditionPoints& p) { return p.bc->name == name; });
     MF_REQUIRE(c != model.conditions.end(), link.key_path, ".hold: no condition '", name, "'");
     const spec::BoundaryCondition& bc = *c->bc;
-    const double f = factor[static_cast<std::size_t>(&bc - preload.boundary.data())];
+    const double f = factor[static_cast<std::size_t>(&bc - preload.galerkin().boundary.data())];
     const std::vector<geometry::Curve> pieces =
         spec::select_boundary(preload.domain, bc.on, bc.key_path);
     bool straight = true;

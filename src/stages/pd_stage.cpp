@@ -29,8 +29,9 @@ void add_body_load(pd::Loading& loading, const std::string& name, const std::vec
 
 /// Force per volume at x of the preload's gravity (rho g) or its uniform body force.
 Vec2 body_force(const spec::ProblemSpec& preload, bool gravity, const Vec2& x) {
-  if (!gravity) return preload.body_force;
-  return preload.materials[implicit::material_at(preload, x)].density * preload.gravity;
+  auto& galerkin = preload.galerkin();
+  if (!gravity) return galerkin.body_force;
+  return preload.materials[implicit::material_at(preload, x)].density * galerkin.gravity;
 }
 
 /// The held conditions as the body's loads and constraints; returns how each acts.
@@ -228,7 +229,7 @@ ExplicitStage run_pd_stage(const spec::ProblemSpec& preload,
                            const implicit::ElastoplasticResult& pre, const spec::ProblemSpec& stage,
                            const spec::StageLink& link, int index,
                            const explicit_dynamics::RunPlace& place) {
-  const spec::PdSpec& s = *stage.pd;
+  const spec::PdSpec& s = stage.pd();
   ExplicitStage st;
   explicit_dynamics::PdRunResult result;
   explicit_dynamics::PdSetup setup = explicit_dynamics::build_pd_setup(stage, result.timer);

@@ -118,7 +118,7 @@ Holding hold(const std::vector<HeldCondition>& held, const spec::ProblemSpec& pr
       MF_REQUIRE(c.gravity, link.key_path, ".hold: '", c.name,
                  "': SPH holds gravity, not a "
                  "uniform body force (give the preload 'gravity')");
-      for (int d = 0; d < 2; ++d) h.gravity[d] = c.body_factor * preload.gravity[d];
+      for (int d = 0; d < 2; ++d) h.gravity[d] = c.body_factor * preload.galerkin().gravity[d];
       out.how.push_back(detail::concat(c.name, ": gravity (", h.gravity[0], ", ", h.gravity[1],
                                        ") on every particle"));
       break;
@@ -280,7 +280,7 @@ ExplicitStage run_sph_stage(const spec::ProblemSpec& preload,
                             const implicit::ElastoplasticResult& pre,
                             const spec::ProblemSpec& stage, const spec::StageLink& link, int index,
                             const explicit_dynamics::RunPlace& place) {
-  const spec::SphSpec& s = *stage.sph;
+  const spec::SphSpec& s = stage.sph();
   ExplicitStage st;
   explicit_dynamics::SphRunResult result;
   sph::Hydro h = build_body(s, result.timer, place.out);

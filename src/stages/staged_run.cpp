@@ -11,10 +11,10 @@ StagedOutcome run_staged(const spec::ProblemSpec& spec, const solvers::PetscSess
                          io::OutputDirectory* out, const std::string& dir,
                          const io::Restart* restart) {
   StagedOutcome outcome;
-  spec::ProblemSpec preload = spec.stages[0];
-  preload.record_increment_parameters = true; // each particle is carried through them
-  const spec::ProblemSpec& event = spec.stages[1];
-  const spec::StageLink& link = spec.links[1];
+  spec::ProblemSpec preload = spec.staged().stages[0];
+  preload.galerkin().record_increment_parameters = true; // each particle is carried through them
+  const spec::ProblemSpec& event = spec.staged().stages[1];
+  const spec::StageLink& link = spec.staged().links[1];
   io::Summary summary({spec.name, spec.description, spec.units, "staged", ""});
   PhaseTimer timer;
 

@@ -90,8 +90,8 @@ std::vector<Vec2> domain_rows(const GalerkinModel& m);
 solvers::LinearSolverSettings linear_solver_settings(const spec::ProblemSpec& spec,
                                                      const GalerkinModel& m);
 
-/// Short description of the discretisation for logs and the summary.
-std::string describe_method(const spec::ProblemSpec& spec);
+/// Short description of a body's discretisation for logs and the summary.
+std::string describe_method(const spec::DiscretisationSpec& d, const geometry::Domain& domain);
 
 /// Prescribed displacement or traction (force per area) at the given rows of a condition's
 /// points: its value, the exact solution's, or -p n for a pressure.

@@ -84,11 +84,11 @@ struct PointLaws {
 PointLaws point_laws(const spec::ProblemSpec& spec, const std::vector<Vec2>& x);
 
 inline bool has_gravity(const spec::ProblemSpec& spec) {
-  return (spec.gravity.array() != 0.0).any();
+  return (spec.galerkin().gravity.array() != 0.0).any();
 }
 /// True when the body carries a body force (a uniform one or gravity).
 inline bool has_body_force(const spec::ProblemSpec& spec) {
-  return !spec.body_force.isZero() || has_gravity(spec);
+  return !spec.galerkin().body_force.isZero() || has_gravity(spec);
 }
 
 } // namespace mf::implicit

@@ -4,18 +4,18 @@
 // analysis. Plain data: no solver header is included.
 #include "meshfree/core/types.hpp"
 #include "meshfree/geometry/domain.hpp"
-#include "meshfree/geometry/node_generation.hpp"
-#include "meshfree/kernels/shape_functions.hpp"
 #include "meshfree/materials/elastic.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
+#include "meshfree/spec/galerkin_spec.hpp"
 #include "meshfree/spec/material_spec.hpp"
 #include "meshfree/spec/pd_spec.hpp"
 #include "meshfree/spec/region_spec.hpp"
 #include "meshfree/spec/sph_spec.hpp"
 #include "meshfree/spec/stage_spec.hpp"
-#include "meshfree/verification/exact_solutions.hpp"
 #include <optional>
+#include <stdexcept>
 #include <string>
+#include <variant>
 #include <vector>
 #include <yaml-cpp/yaml.h>
 
@@ -33,114 +33,20 @@ enum class Analysis {
 /// model.type: the kinematic model of every analysis (uniaxial strain is 1D SPH).
 enum class ModelType { PlaneStress, PlaneStrain, Solid3D, UniaxialStrain };
 
-/// Meshfree Galerkin (RK/MLS nodes on background cells) or finite elements on a mesh; both feed
-/// the same assembly, material and solver.
-enum class Method { Meshfree, Fem };
+struct ProblemSpec;
 
-/// Finite-element settings (used when the method is fem).
-struct FemSpec {
-  std::string element = "q8"; // t3 | q4 | q8
-  std::string mesh;           // gmsh .msh file (absolute path); empty: a structured mesh of the
-                              // rectangle with elements of the discretisation's spacing
-  int order = 0;              // Gauss points per direction (0: the element's default)
+/// analysis: staged with more than one stage: each stage as a one-analysis problem (the shared
+/// keys copied into it) and how it starts from an earlier one (links[k] for stages[k]).
+struct StagedSpec {
+  std::vector<ProblemSpec> stages;
+  std::vector<StageLink> links;
 };
 
-struct DiscretisationSpec {
-  Method method = Method::Meshfree;
-  FemSpec fem;
-  double spacing = 0.0;
-  std::vector<geometry::Refinement> refinement;
-  kernels::ShapeSettings shape;
-  Vec2 dilation{2.0, 2.0}; // support radius = dilation * local spacing
-  int order = 3;           // Gauss points per direction in a background cell
-  double cell_size = 0.0;  // background cell size (default: spacing)
-  int cut_levels = 2;      // subdivisions of cells cut by the boundary
-  bool cut_arcs = false;   // cells cut by one hole: exact region (quadrature::cell_minus_disc)
-  int boundary_order = 3;  // Gauss points per boundary part
-  bool vci = false;        // meshfree: variationally consistent test-function gradients
-};
+/// What belongs to one analysis alone (ProblemSpec::analysis says which; elastic and
+/// elastoplastic both hold a GalerkinSpec).
+using AnalysisPart = std::variant<GalerkinSpec, ModelProblem1D, PdSpec, SphSpec, StagedSpec>;
 
-struct BoundaryCondition {
-  std::string name;
-  std::string key_path; // e.g. "boundary[0]", for messages
-  Region on;            // named boundary pieces (edges), optionally clipped to a box
-  // Displacement (penalty) constraint on the components with mask = 1.
-  bool constrains = false;
-  Vec2 mask{0.0, 0.0};
-  Vec2 value{0.0, 0.0};
-  bool value_from_exact = false;
-  double penalty = 0.0; // absolute alpha
-  // Traction (force per area of the edge face; times thickness gives force per length).
-  bool loads = false;
-  Vec2 traction{0.0, 0.0};
-  bool traction_from_exact = false;
-  // Normal pressure (force per area, positive pushing into the body): the traction -p n with n
-  // the outward normal of the boundary piece at each point; a load like a traction.
-  bool pressure_load = false;
-  double pressure = 0.0;
-};
-
-/// A region of a Galerkin body made of one entry of the `materials:` list.
-struct MaterialRegion {
-  int material = 0;     // index into ProblemSpec::materials
-  std::string key_path; // e.g. "material_regions[1]", for messages
-  Region region;        // box, circle, ring, holes
-};
-
-/// The initial stress of a Galerkin body before its first load step (Abaqus *GEOSTATIC, FLAC
-/// `initialize-stresses ratio`): at (x, y) the vertical stress is the weight of the column above,
-/// sigma_v = -int_y^surface rho(x, z) |g| dz (compression negative), the horizontal and
-/// out-of-plane stresses k0 sigma_v (0 out of plane in plane stress), no shear.
-struct GeostaticStress {
-  double surface = 0.0; // y of the ground surface
-  double k0 = 0.5;      // lateral earth pressure coefficient
-};
-
-/// A named step of a load schedule: over `increments` equal increments, the factor of every
-/// boundary condition (and of the body force, the last entry) moves linearly from its value at the
-/// end of the previous step (0 before the first) to `target`. A condition's prescribed
-/// displacement or traction is its value times its factor.
-struct LoadStep {
-  std::string name;
-  int increments = 1;
-  std::vector<double> target; // per boundary condition, then the body force
-};
-
-/// Newton settings and the automatic cut-back of increments that do not converge.
-struct NonlinearSpec {
-  double tolerance = 1e-8; // |R| <= tolerance * |F|
-  int max_iterations = 20;
-  int max_cutbacks = 8; // an increment is halved at most this many times in a row
-};
-
-/// The linear solver of the implicit analyses (`linear_solver:`): a direct factorisation below
-/// `multigrid_above` DOFs and algebraic multigrid from there (auto), or one of them always.
-struct LinearSolverSpec {
-  enum class Type { Auto, Direct, Multigrid };
-  Type type = Type::Auto;
-  double multigrid_above = 2e5; // DOFs
-  /// Whether a system of `dofs` unknowns is solved by multigrid.
-  bool multigrid_for(double dofs) const {
-    return type == Type::Multigrid || (type == Type::Auto && dofs >= multigrid_above);
-  }
-};
-
-struct LineSpec {
-  std::string name;
-  Vec2 from{0.0, 0.0}, to{0.0, 0.0};
-  int points = 0;
-};
-
-/// y'' + f = 0 on [0, L], y(0) = y(L) = 0, with f = A (k pi / L)^2 sin(k pi x / L) + B x; the
-/// exact solution is y = A sin(k pi x / L) + B x (L^2 - x^2) / 6.
-struct ModelProblem1D {
-  double length = 1.0;
-  double sine_amplitude = 1.0;
-  double sine_waves = 1.0;
-  double linear = 0.0;
-  double penalty = 0.0;
-};
-
+/// A problem: the front every analysis shares, then its analysis's own part.
 struct ProblemSpec {
   std::string name;
   std::string description;
@@ -150,51 +56,43 @@ struct ProblemSpec {
   ProblemSettings settings; // every scalar of the file after --set (a restart compares them)
   ModelType model_type = ModelType::PlaneStress;
   int dimension = 2;
-  materials::PlaneModel model = materials::PlaneModel::PlaneStress; // Galerkin: from model_type
+  materials::PlaneModel model = materials::PlaneModel::PlaneStress; // 2D: from model_type
   double thickness = 1.0;
   std::vector<MaterialSpec> materials; // the file's `materials:` list
-  // Galerkin analyses: the material they use (a `material:` reference or the single entry).
-  int material_index = 0;
   geometry::Domain domain = geometry::Domain::rectangle({0.0, 0.0}, {1.0, 1.0}); // 2D bodies
   std::optional<Box> box; // a 3D body (peridynamics, model solid_3d)
-  DiscretisationSpec discretisation;
-  std::vector<BoundaryCondition> boundary;
-  Vec2 body_force{0.0, 0.0}; // force per volume
-  // Galerkin analyses: the material of each region (later entries win; points in no region take
-  // `material_index`), gravity (acceleration: body force rho g with rho of the point's
-  // material; with body_force, scaled by the body-force factor of the steps) and the initial
-  // stress.
-  std::vector<MaterialRegion> material_regions;
-  Vec2 gravity{0.0, 0.0};
-  std::optional<GeostaticStress> initial_stress;
-  // Keep the nodal parameters of every converged increment (IncrementRecord::parameters), so
-  // that a point can be carried through the increments as a passive material point.
-  bool record_increment_parameters = false;
-  std::optional<verification::ExactSolution> exact;
-  std::vector<LineSpec> lines;
-  std::vector<GaugeSpec> gauges; // points whose displacement history is recorded
-  int fields_every = 1;          // write fields every this many converged increments (and the last)
-  // Checkpoints of elastoplastic_static, at converged increments: every `interval` increments
-  // (output.checkpoint_every; 0: none by count) and after `wall_interval` seconds of wall time
-  // (output.checkpoint_wall_interval).
-  CheckpointPolicy checkpoint;
-  std::vector<LoadStep> steps;
-  NonlinearSpec nonlinear;
-  LinearSolverSpec linear_solver; // implicit analyses
-  std::optional<SphSpec> sph;     // analysis: sph
-  std::optional<PdSpec> pd;       // analysis: peridynamics
-  ModelProblem1D model_1d;
-  // analysis: staged with more than one stage: each stage as a one-analysis problem (the shared
-  // keys copied into it) and how it starts from an earlier one (links[k] for stages[k]).
-  std::vector<ProblemSpec> stages;
-  std::vector<StageLink> links;
+  AnalysisPart part;
+
+  /// The part of the analysis; asking for another analysis's part is a program error.
+  GalerkinSpec& galerkin() { return part_as<GalerkinSpec>(); }
+  const GalerkinSpec& galerkin() const { return part_as<GalerkinSpec>(); }
+  PdSpec& pd() { return part_as<PdSpec>(); }
+  const PdSpec& pd() const { return part_as<PdSpec>(); }
+  SphSpec& sph() { return part_as<SphSpec>(); }
+  const SphSpec& sph() const { return part_as<SphSpec>(); }
+  StagedSpec& staged() { return part_as<StagedSpec>(); }
+  const StagedSpec& staged() const { return part_as<StagedSpec>(); }
+  ModelProblem1D& model_1d() { return part_as<ModelProblem1D>(); }
+  const ModelProblem1D& model_1d() const { return part_as<ModelProblem1D>(); }
+  bool is_pd() const { return std::holds_alternative<PdSpec>(part); }
+  bool is_sph() const { return std::holds_alternative<SphSpec>(part); }
+  bool is_galerkin() const { return std::holds_alternative<GalerkinSpec>(part); }
 
   /// Galerkin analyses: the body's material, its elasticity and its plasticity law (none: elastic
   /// at its points), all from the one materials list.
-  const MaterialSpec& body_material() const { return materials.at(material_index); }
+  const MaterialSpec& body_material() const { return materials.at(galerkin().material_index); }
   materials::IsotropicElastic elasticity() const { return {body_material().E, body_material().nu}; }
   const std::optional<materials::J2Parameters>& plasticity() const {
     return body_material().plasticity;
+  }
+
+private:
+  template <class Part> Part& part_as() {
+    if (Part* p = std::get_if<Part>(&part)) return *p;
+    throw std::logic_error("problem '" + name + "': its analysis has no such part");
+  }
+  template <class Part> const Part& part_as() const {
+    return const_cast<ProblemSpec*>(this)->part_as<Part>();
   }
 };
 

@@ -103,14 +103,14 @@ TEST_CASE("one steel entry feeds an elastoplastic, a peridynamic and an SPH anal
   REQUIRE(bar.plasticity());
   CHECK(bar.plasticity()->sigma0 == kYield);
   // Peridynamics: E, density and the bond.
-  REQUIRE(cube.pd->materials.size() == 1);
-  CHECK(cube.pd->materials[0].density == kRho);
-  CHECK(cube.pd->materials[0].bond->critical_stretch == 0.0);
+  REQUIRE(cube.pd().materials.size() == 1);
+  CHECK(cube.pd().materials[0].density == kRho);
+  CHECK(cube.pd().materials[0].bond->critical_stretch == 0.0);
   // SPH: the equation of state, and a J2 solid with G = E / (2 (1 + nu)).
-  REQUIRE(impact.sph->materials.size() == 1);
-  CHECK(std::holds_alternative<materials::LinearPolynomial>(*impact.sph->materials[0].eos));
-  CHECK(impact.sph->materials[0].shear_modulus == Approx(kShear).epsilon(1e-15));
-  CHECK(impact.sph->regions[0].density == kRho);
+  REQUIRE(impact.sph().materials.size() == 1);
+  CHECK(std::holds_alternative<materials::LinearPolynomial>(*impact.sph().materials[0].eos));
+  CHECK(impact.sph().materials[0].shear_modulus == Approx(kShear).epsilon(1e-15));
+  CHECK(impact.sph().regions[0].density == kRho);
 }
 
 TEST_CASE("each analysis names the part of the material it misses", "[input][materials]") {
@@ -164,7 +164,7 @@ TEST_CASE("shared steel, peridynamics: micromodulus from E and a free rigid tran
 TEST_CASE("shared steel, SPH: bulk sound speed and the stress behind an elastic front",
           "[materials][sph]") {
   const spec::ProblemSpec spec = parse(kImpact);
-  sph::Hydro h = explicit_dynamics::build_sph(*spec.sph);
+  sph::Hydro h = explicit_dynamics::build_sph(spec.sph());
   // A solid's sound speed at rest: the longitudinal c_L = sqrt((K + 4G/3) / rho), K from the
   // linear equation of state p = K mu and G from E and nu.
   const double cl = std::sqrt((kBulk + 4.0 / 3.0 * kShear) / kRho);
@@ -172,7 +172,7 @@ TEST_CASE("shared steel, SPH: bulk sound speed and the stress behind an elastic 
   const auto* vm = std::get_if<materials::VonMises>(&h.materials[0].strength);
   REQUIRE(vm);
   CHECK(vm->shear_modulus == Approx(kShear).epsilon(1e-15));
-  const double t = spec.sph->end_time, v0 = 5.0;
+  const double t = spec.sph().end_time, v0 = 5.0;
   while (h.particles.time < t) sph::advance(h, std::min(sph::stable_step(h), t - h.particles.time));
   // Uniaxial strain: sigma_xx = -rho c_L v0 behind the fronts.
   const particles::ParticleSet& P = h.particles;
@@ -206,7 +206,7 @@ stages:
   CHECK(one.stage == "preload");
   CHECK(one.analysis == spec::Analysis::ElasticStatic);
   CHECK(one.name == "staged_bar");
-  CHECK(one.boundary.size() == 1);
+  CHECK(one.galerkin().boundary.size() == 1);
   root["stages"].push_back(YAML::Load("{name: blast, analysis: sph}"));
   CHECK_THROWS_WITH(spec::parse_problem(root),
                     Catch::StartsWith("stages[1].from: a later stage names the stage it starts "

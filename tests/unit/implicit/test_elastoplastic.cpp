@@ -46,14 +46,15 @@ struct Uniaxial {
 /// Largest |reaction - sigma_exact * area| over the increments, relative to the largest stress.
 double bar_error(const std::vector<std::string>& overrides) {
   const auto spec = load_problem("bar_uniaxial_cyclic", overrides);
+  auto& galerkin = spec.galerkin();
   const auto r = implicit::solve_elastoplastic_static(spec, test_session(), nullptr);
   REQUIRE(r.status == "completed");
   Uniaxial exact{*spec.plasticity()};
   const double length = 2.0, area = 1.0; // height and width x thickness of the bar
   double worst = 0.0, largest = 0.0;
   int top = -1;
-  for (std::size_t c = 0; c < spec.boundary.size(); ++c)
-    if (spec.boundary[c].name == "top") top = static_cast<int>(c);
+  for (std::size_t c = 0; c < galerkin.boundary.size(); ++c)
+    if (galerkin.boundary[c].name == "top") top = static_cast<int>(c);
   REQUIRE(top >= 0);
   for (const auto& inc : r.increments) {
     // The strain the body really has: the penalty leaves the top and bottom edges off their
@@ -156,9 +157,10 @@ TEST_CASE("the converged state returned by the solver is the closed-form homogen
        {std::vector<std::string>{"discretisation.method=fem", "discretisation.fem.element=q4"},
         std::vector<std::string>{}}) {
     auto spec = load_problem("bar_uniaxial_cyclic", overrides);
-    spec.materials[spec.material_index].plasticity->hardening = materials::LinearHardening{1000.0};
-    spec.materials[spec.material_index].plasticity->H_kinematic = 3000.0;
-    spec.steps.resize(1);
+    spec.materials[spec.galerkin().material_index].plasticity->hardening =
+        materials::LinearHardening{1000.0};
+    spec.materials[spec.galerkin().material_index].plasticity->H_kinematic = 3000.0;
+    spec.galerkin().steps.resize(1);
     const materials::J2Parameters& p = *spec.plasticity();
     const auto r = implicit::solve_elastoplastic_static(spec, test_session(), nullptr);
     REQUIRE(r.status == "completed");

@@ -99,8 +99,8 @@ TEST_CASE("a geostatic soil column is in equilibrium under gravity from the star
     const auto spec =
         parse(kColumn, {"discretisation.method=" + method, "discretisation.fem={element: q4}",
                         "discretisation.quadrature={order: 6}"});
-    REQUIRE(spec.steps.size() == 1);
-    CHECK(spec.steps[0].name == "geostatic");
+    REQUIRE(spec.galerkin().steps.size() == 1);
+    CHECK(spec.galerkin().steps[0].name == "geostatic");
     const auto r = implicit::solve_elastoplastic_static(spec, test_session(), nullptr);
     REQUIRE(r.status == "completed");
     CHECK(r.elastic_limit.skipped == "no material of the body has plasticity");
@@ -249,7 +249,7 @@ TEST_CASE("a uniform pressure on every boundary piece, the hole's arc included, 
   // field: the RK patch test, to the quadrature error of the cut cells.
   const double p = 2.0, E = 1000.0, nu = 0.25;
   const auto spec = parse(kPressurePatch);
-  REQUIRE(spec.boundary[3].pressure_load);
+  REQUIRE(spec.galerkin().boundary[3].pressure_load);
   const auto r = implicit::solve_elastic_static(spec, test_session());
   const double eps = -p * (1.0 + nu) * (1.0 - 2.0 * nu) / E;
   double u_err = 0.0, s_err = 0.0;
@@ -353,8 +353,8 @@ TEST_CASE("a point carried through the increments by update_point has the Gauss 
   // maps the point back into its element).
   for (const std::string method : {"meshfree", "fem"}) {
     spec::ProblemSpec spec = parse(kLayers, {"discretisation.method=" + method});
-    spec.record_increment_parameters = true;
-    REQUIRE(spec.steps.size() == 2);
+    spec.galerkin().record_increment_parameters = true;
+    REQUIRE(spec.galerkin().steps.size() == 2);
     const auto r = implicit::solve_elastoplastic_static(spec, test_session(), nullptr);
     REQUIRE(r.status == "completed");
     CHECK(r.elastic_limit.skipped ==

@@ -259,13 +259,13 @@ output:
 TEST_CASE("a peridynamics problem with relaxation starts from static equilibrium",
           "[pd][relaxation]") {
   const spec::ProblemSpec spec = spec::parse_problem(YAML::Load(kPlate));
-  REQUIRE(spec.pd->relaxation);
-  CHECK(spec.pd->relaxation->tolerance == 1e-7);
+  REQUIRE(spec.pd().relaxation);
+  CHECK(spec.pd().relaxation->tolerance == 1e-7);
   PhaseTimer timer;
   explicit_dynamics::PdSetup setup = explicit_dynamics::build_pd_setup(spec, timer);
   explicit_dynamics::PdRunResult result;
-  explicit_dynamics::PdRun run(setup, *spec.pd, nullptr, result);
-  run.finish(explicit_dynamics::run_time_loop(run, {spec.pd->end_time, 0.0, 0.0}));
+  explicit_dynamics::PdRun run(setup, spec.pd(), nullptr, result);
+  run.finish(explicit_dynamics::run_time_loop(run, {spec.pd().end_time, 0.0, 0.0}));
   REQUIRE(result.relaxation);
   const io::History& h = result.history;
   const auto column = [&](const std::string& name) {

@@ -34,15 +34,16 @@ std::string error_of(const std::string& assignment) {
 
 TEST_CASE("a valid problem parses with the documented defaults", "[input]") {
   const spec::ProblemSpec p = spec::parse_problem(YAML::Load(kGood));
-  CHECK(p.discretisation.dilation.x() == 2.0);
-  CHECK(p.discretisation.order == 3);
-  CHECK(p.discretisation.cell_size == 0.25);
-  CHECK(p.boundary.size() == 2);
-  CHECK(p.boundary[0].penalty == Approx(1e6 * 2.0e5 / 0.25));
-  CHECK(p.boundary[0].mask == Vec2(1, 1));
+  auto& galerkin = p.galerkin();
+  CHECK(galerkin.discretisation.dilation.x() == 2.0);
+  CHECK(galerkin.discretisation.order == 3);
+  CHECK(galerkin.discretisation.cell_size == 0.25);
+  CHECK(galerkin.boundary.size() == 2);
+  CHECK(galerkin.boundary[0].penalty == Approx(1e6 * 2.0e5 / 0.25));
+  CHECK(galerkin.boundary[0].mask == Vec2(1, 1));
   YAML::Node root = YAML::Load(kGood);
   spec::apply_override(root, "boundary.0.penalty_scale=1e3");
-  CHECK(spec::parse_problem(root).boundary[0].penalty == Approx(1e3 * 2.0e5 / 0.25));
+  CHECK(spec::parse_problem(root).galerkin().boundary[0].penalty == Approx(1e3 * 2.0e5 / 0.25));
   spec::apply_override(root, "boundary.0.penalty=1e12");
   CHECK_THROWS_WITH(spec::parse_problem(root),
                     Catch::StartsWith("boundary[0].penalty_scale: give either"));
@@ -90,8 +91,9 @@ TEST_CASE("command-line overrides reach nested maps and list items", "[input]") 
   spec::apply_override(root, "discretisation.spacing=0.125");
   spec::apply_override(root, "boundary.1.traction=[2, 0]");
   const spec::ProblemSpec p = spec::parse_problem(root);
-  CHECK(p.discretisation.spacing == 0.125);
-  CHECK(p.boundary[1].traction == Vec2(2, 0));
+  auto& galerkin = p.galerkin();
+  CHECK(galerkin.discretisation.spacing == 0.125);
+  CHECK(galerkin.boundary[1].traction == Vec2(2, 0));
   CHECK_THROWS_WITH(spec::apply_override(root, "boundary.7.name=x"),
                     Catch::Contains("index 7 is out of range"));
 }
@@ -99,7 +101,7 @@ TEST_CASE("command-line overrides reach nested maps and list items", "[input]") 
 TEST_CASE("override paths in either style, a.1.b or a[1].b; empty keys refused", "[input]") {
   YAML::Node root = YAML::Load(kGood);
   spec::apply_override(root, "boundary[1].traction=[3, 0]");
-  CHECK(spec::parse_problem(root).boundary[1].traction == Vec2(3, 0));
+  CHECK(spec::parse_problem(root).galerkin().boundary[1].traction == Vec2(3, 0));
   for (const char* bad : {".name=x", "a..b=1", "boundary[]=1", "boundary[1]x=1", "name.=x"})
     CHECK_THROWS_WITH(spec::apply_override(root, bad),
                       Catch::Contains("an empty key") || Catch::Contains("expected"));
@@ -121,11 +123,11 @@ TEST_CASE("a polygon given clockwise runs as given counter-clockwise, its edges 
   cw["geometry"] = YAML::Load("{polygon: {vertices: [[0, 0], [0, 1], [2, 1], [2, 0]], "
                               "edge_names: [left, top, right, bottom]}}");
   const spec::ProblemSpec a = spec::parse_problem(ccw), b = spec::parse_problem(cw);
-  for (std::size_t c = 0; c < a.boundary.size(); ++c) {
+  for (std::size_t c = 0; c < a.galerkin().boundary.size(); ++c) {
     const auto length = [](const spec::ProblemSpec& p, std::size_t k) {
       double l = 0.0;
       Vec2 mid(0.0, 0.0);
-      for (const auto& curve : spec::select_boundary(p.domain, p.boundary[k].on, ""))
+      for (const auto& curve : spec::select_boundary(p.domain, p.galerkin().boundary[k].on, ""))
         l += curve.length(), mid += curve.length() * curve.point(0.5);
       return std::make_pair(l, Vec2(mid / l));
     };

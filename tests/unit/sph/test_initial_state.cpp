@@ -504,7 +504,7 @@ boundary:
 time: {end: 1.0e-6}
 )";
   const spec::ProblemSpec spec = spec::parse_problem(YAML::Load(problem));
-  const sph::Hydro h = explicit_dynamics::build_sph(*spec.sph);
+  const sph::Hydro h = explicit_dynamics::build_sph(spec.sph());
   CHECK(h.gravity[0] == 0.0);
   CHECK(h.gravity[1] == -9.81);
   REQUIRE(h.forces.size() == 1);

@@ -371,13 +371,13 @@ TEST_CASE("a blast gives a free SPH plate the momentum of the Kingery-Bulmash im
     expected += dx * f.impulse();
     peak_force += dx * f.peak;
   }
-  sph::Hydro h = explicit_dynamics::build_sph(*spec.sph);
+  sph::Hydro h = explicit_dynamics::build_sph(spec.sph());
   REQUIRE(h.loads.size() == 1);
   REQUIRE(h.loads[0].particles.size() == 100);
   const double e0 = sph::energies(h).total();
   double dt_max = 0.0;
-  while (h.particles.time < spec.sph->end_time) {
-    const double dt = std::min(sph::stable_step(h), spec.sph->end_time - h.particles.time);
+  while (h.particles.time < spec.sph().end_time) {
+    const double dt = std::min(sph::stable_step(h), spec.sph().end_time - h.particles.time);
     dt_max = std::max(dt_max, dt);
     sph::advance(h, dt);
   }

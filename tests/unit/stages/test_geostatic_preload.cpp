@@ -129,12 +129,14 @@ struct Column {
 Column run_column(double k0, double settle, double end, bool transmitting_sides = false) {
   Column c;
   c.spec = spec::parse_problem(YAML::Load(column(k0, settle, end, transmitting_sides)));
-  spec::ProblemSpec preload = c.spec.stages[0];
-  preload.record_increment_parameters = true; // as a staged run does: the particles replay it
+  spec::ProblemSpec preload = c.spec.staged().stages[0];
+  preload.galerkin().record_increment_parameters =
+      true; // as a staged run does: the particles replay it
   const implicit::ElastoplasticResult pre =
       implicit::solve_elastoplastic_static(preload, test_session(), nullptr);
   REQUIRE(pre.status == "completed");
-  c.st = stages::run_sph_stage(preload, pre, c.spec.stages[1], c.spec.links[1], 1);
+  c.st =
+      stages::run_sph_stage(preload, pre, c.spec.staged().stages[1], c.spec.staged().links[1], 1);
   REQUIRE(c.st.status == "completed");
   return c;
 }

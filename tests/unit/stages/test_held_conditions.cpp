@@ -145,7 +145,7 @@ std::string staged(const Held& c, Law law, const std::string& target, double pre
 }
 
 implicit::ElastoplasticResult preload_of(spec::ProblemSpec& preload) {
-  preload.record_increment_parameters = true;
+  preload.galerkin().record_increment_parameters = true;
   return implicit::solve_elastoplastic_static(preload, test_session(), nullptr);
 }
 
@@ -189,15 +189,17 @@ struct Quietness {
 /// The SPH stage run for 1,000 steps from the transferred state.
 Quietness sph_quietness(const Held& c, Law law) {
   const spec::ProblemSpec spec = spec::parse_problem(YAML::Load(staged(c, law, "sph", 0.0125)));
-  spec::ProblemSpec preload = spec.stages[0];
-  spec::ProblemSpec event = spec.stages[1];
+  spec::ProblemSpec preload = spec.staged().stages[0];
+  spec::ProblemSpec event = spec.staged().stages[1];
   const implicit::ElastoplasticResult pre = preload_of(preload);
   REQUIRE(pre.status == "completed");
   // Preloaded particles are a little denser or lighter than at rest: 1% covers their step.
-  event.sph->end_time = 1000.0 * sph::stable_step(explicit_dynamics::build_sph(*event.sph)) * 1.01;
-  event.sph->output.history_interval = 0.0;
-  event.sph->output.fields_interval = 0.0;
-  const stages::ExplicitStage st = stages::run_sph_stage(preload, pre, event, spec.links[1], 1);
+  event.sph().end_time =
+      1000.0 * sph::stable_step(explicit_dynamics::build_sph(event.sph())) * 1.01;
+  event.sph().output.history_interval = 0.0;
+  event.sph().output.fields_interval = 0.0;
+  const stages::ExplicitStage st =
+      stages::run_sph_stage(preload, pre, event, spec.staged().links[1], 1);
   REQUIRE(st.status == "completed");
   const std::vector<Vec3> X = positions(st);
   const int n = static_cast<int>(X.size());
@@ -268,25 +270,25 @@ TEST_CASE("the particles a condition holds do not depend on the preload's spacin
         // 12.5 mm and 2.5 mm: five times finer.
         const spec::ProblemSpec spec = spec::parse_problem(
             YAML::Load(staged(c, Law::Elastic, target, k == 0 ? 0.0125 : 0.0025)));
-        spec::ProblemSpec preload = spec.stages[0];
+        spec::ProblemSpec preload = spec.staged().stages[0];
         const implicit::ElastoplasticResult pre = preload_of(preload);
         REQUIRE(pre.status == "completed");
         std::vector<Vec3> X;
         stages::HoldLayers layers;
         if (std::string(target) == "sph") {
-          const sph::Hydro h = explicit_dynamics::build_sph(*spec.stages[1].sph);
+          const sph::Hydro h = explicit_dynamics::build_sph(spec.staged().stages[1].sph());
           for (int i = 0; i < h.particles.owned_count(); ++i) X.push_back(h.particles.reference(i));
           layers = {kSpacing, 2.0 * 1.5 * kSpacing};
         } else {
           PhaseTimer timer;
           const explicit_dynamics::PdSetup setup =
-              explicit_dynamics::build_pd_setup(spec.stages[1], timer);
+              explicit_dynamics::build_pd_setup(spec.staged().stages[1], timer);
           for (int i = 0; i < setup.model.particles.size(); ++i)
             X.push_back(setup.model.particles.reference(i));
           layers = {setup.model.spacing, setup.model.horizon};
         }
         for (const stages::HeldCondition& h :
-             stages::held_conditions(preload, pre, spec.links[1], X, layers))
+             stages::held_conditions(preload, pre, spec.staged().links[1], X, layers))
           held[k].push_back(h.particles);
       }
       INFO(target << ", " << c.name);
@@ -312,15 +314,16 @@ struct PdQuietness {
 PdQuietness pd_quietness(const Held& c) {
   const spec::ProblemSpec spec =
       spec::parse_problem(YAML::Load(staged(c, Law::Elastic, "peridynamics", 0.0125)));
-  spec::ProblemSpec preload = spec.stages[0];
-  spec::ProblemSpec event = spec.stages[1];
+  spec::ProblemSpec preload = spec.staged().stages[0];
+  spec::ProblemSpec event = spec.staged().stages[1];
   const implicit::ElastoplasticResult pre = preload_of(preload);
   REQUIRE(pre.status == "completed");
   PhaseTimer timer;
-  event.pd->end_time = 999.5 * explicit_dynamics::build_pd_setup(event, timer).dt;
-  event.pd->output.history_interval = 0.0;
-  event.pd->output.fields_interval = 0.0;
-  const stages::ExplicitStage st = stages::run_pd_stage(preload, pre, event, spec.links[1], 1);
+  event.pd().end_time = 999.5 * explicit_dynamics::build_pd_setup(event, timer).dt;
+  event.pd().output.history_interval = 0.0;
+  event.pd().output.fields_interval = 0.0;
+  const stages::ExplicitStage st =
+      stages::run_pd_stage(preload, pre, event, spec.staged().links[1], 1);
   REQUIRE(st.status == "completed");
   const std::vector<Vec3> X = positions(st);
   const int n = static_cast<int>(X.size());
@@ -382,14 +385,15 @@ TEST_CASE("a released condition still acts: the transfer balances only the held 
   REQUIRE(yaml.find(hold) != std::string::npos);
   yaml.replace(yaml.find(hold), hold.size(), "hold: [axis, base]\n    release: [pull]");
   const spec::ProblemSpec spec = spec::parse_problem(YAML::Load(yaml));
-  spec::ProblemSpec preload = spec.stages[0];
-  spec::ProblemSpec event = spec.stages[1];
+  spec::ProblemSpec preload = spec.staged().stages[0];
+  spec::ProblemSpec event = spec.staged().stages[1];
   const implicit::ElastoplasticResult pre = preload_of(preload);
   REQUIRE(pre.status == "completed");
-  event.sph->end_time = 200.0 * sph::stable_step(explicit_dynamics::build_sph(*event.sph));
-  event.sph->output.history_interval = 0.0;
-  event.sph->output.fields_interval = 0.0;
-  const stages::ExplicitStage st = stages::run_sph_stage(preload, pre, event, spec.links[1], 1);
+  event.sph().end_time = 200.0 * sph::stable_step(explicit_dynamics::build_sph(event.sph()));
+  event.sph().output.history_interval = 0.0;
+  event.sph().output.fields_interval = 0.0;
+  const stages::ExplicitStage st =
+      stages::run_sph_stage(preload, pre, event, spec.staged().links[1], 1);
   REQUIRE(st.status == "completed");
   const io::History& H = st.history;
   double kinetic = 0.0;

@@ -112,18 +112,18 @@ Staged run(int steps, const std::string& equilibrium = "newton") {
   Staged s;
   s.spec = plate();
   PhaseTimer timer;
-  const double dt = explicit_dynamics::build_pd_setup(s.spec.stages[1], timer).dt;
+  const double dt = explicit_dynamics::build_pd_setup(s.spec.staged().stages[1], timer).dt;
   s.spec = plate({"stages.1.time.end=" + std::to_string((steps - 0.5) * dt),
                   "stages.1.transfer={equilibrium: " + equilibrium + "}"});
-  spec::ProblemSpec preload = s.spec.stages[0];
-  preload.record_increment_parameters = true;
+  spec::ProblemSpec preload = s.spec.staged().stages[0];
+  preload.galerkin().record_increment_parameters = true;
   auto t0 = std::chrono::steady_clock::now();
   const implicit::ElastoplasticResult pre =
       implicit::solve_elastoplastic_static(preload, test_session(), nullptr);
   s.preload_seconds = elapsed(t0);
   REQUIRE(pre.status == "completed");
   t0 = std::chrono::steady_clock::now();
-  s.st = stages::run_pd_stage(preload, pre, s.spec.stages[1], s.spec.links[1], 1);
+  s.st = stages::run_pd_stage(preload, pre, s.spec.staged().stages[1], s.spec.staged().links[1], 1);
   s.stage_seconds = elapsed(t0);
   REQUIRE(s.st.status == "completed");
   return s;
@@ -155,16 +155,17 @@ double relative(const Vec2& a, const Vec2& b) {
 /// plate the pull's constant forces; the rollers lie on the mirror planes and hold nothing).
 explicit_dynamics::PdSetup held_body(const spec::ProblemSpec& spec) {
   PhaseTimer timer;
-  explicit_dynamics::PdSetup setup = explicit_dynamics::build_pd_setup(spec.stages[1], timer);
+  explicit_dynamics::PdSetup setup =
+      explicit_dynamics::build_pd_setup(spec.staged().stages[1], timer);
   pd::Model& m = setup.model;
   std::vector<Vec3> X(m.particles.size());
   for (int i = 0; i < m.particles.size(); ++i) X[i] = m.particles.reference(i);
-  spec::ProblemSpec preload = spec.stages[0];
-  preload.record_increment_parameters = true;
+  spec::ProblemSpec preload = spec.staged().stages[0];
+  preload.galerkin().record_increment_parameters = true;
   const implicit::ElastoplasticResult pre =
       implicit::solve_elastoplastic_static(preload, test_session(), nullptr);
   for (const stages::HeldCondition& c :
-       stages::held_conditions(preload, pre, spec.links[1], X, {m.spacing, m.horizon})) {
+       stages::held_conditions(preload, pre, spec.staged().links[1], X, {m.spacing, m.horizon})) {
     REQUIRE(c.kind == stages::HeldCondition::Kind::Force);
     pd::BodyLoad l;
     l.name = c.name;

@@ -61,7 +61,7 @@ bool starts_with(const std::string& s, const std::string& prefix) {
 }
 
 implicit::ElastoplasticResult preload_of(spec::ProblemSpec& preload) {
-  preload.record_increment_parameters = true;
+  preload.galerkin().record_increment_parameters = true;
   return implicit::solve_elastoplastic_static(preload, test_session(), nullptr);
 }
 
@@ -156,13 +156,13 @@ double rel(double a, double b, double scale) {
 
 void check_homogeneous(const std::string& yaml, const Homogeneous& c) {
   spec::ProblemSpec spec = parse(yaml);
-  spec::ProblemSpec preload = spec.stages[0];
+  spec::ProblemSpec preload = spec.staged().stages[0];
   const implicit::ElastoplasticResult pre = preload_of(preload);
   REQUIRE(pre.status == "completed");
   REQUIRE(pre.increments.size() == c.factors.size());
   for (std::size_t n = 0; n < c.factors.size(); ++n)
     REQUIRE(std::abs(pre.increments[n].factors[0] - c.factors[n]) <= 1e-14);
-  sph::Hydro h = explicit_dynamics::build_sph(*spec.stages[1].sph);
+  sph::Hydro h = explicit_dynamics::build_sph(spec.staged().stages[1].sph());
   const std::vector<Vec3> X = references(h);
   const int np = static_cast<int>(X.size());
   REQUIRE(np == 200);
@@ -395,7 +395,7 @@ const std::string kPlastic = [] {
 
 /// The CFL step of the unloaded particles of an SPH stage.
 double first_step(const spec::ProblemSpec& event) {
-  return sph::stable_step(explicit_dynamics::build_sph(*event.sph));
+  return sph::stable_step(explicit_dynamics::build_sph(event.sph()));
 }
 
 std::size_t column(const io::History& h, const std::string& name) {
@@ -417,17 +417,17 @@ struct Quiet {
 /// The strip preloaded, held and run for 2,000 explicit steps, a history row at every step.
 Quiet quiet_start(const std::string& yaml) {
   spec::ProblemSpec spec = parse(yaml);
-  spec::ProblemSpec preload = spec.stages[0];
-  spec::ProblemSpec event = spec.stages[1];
+  spec::ProblemSpec preload = spec.staged().stages[0];
+  spec::ProblemSpec event = spec.staged().stages[1];
   const implicit::ElastoplasticResult pre = preload_of(preload);
   REQUIRE(pre.status == "completed");
   // The preloaded particles are a little denser or lighter than at rest: their step differs by
   // about the volumetric strain, 1e-3 here.
-  event.sph->end_time = 2000.0 * first_step(event) * 1.01;
-  event.sph->output.history_interval = 0.0;
-  event.sph->output.fields_interval = 0.0;
+  event.sph().end_time = 2000.0 * first_step(event) * 1.01;
+  event.sph().output.history_interval = 0.0;
+  event.sph().output.fields_interval = 0.0;
   Quiet q;
-  q.st = stages::run_sph_stage(preload, pre, event, spec.links[1], 1);
+  q.st = stages::run_sph_stage(preload, pre, event, spec.staged().links[1], 1);
   REQUIRE(q.st.status == "completed");
   const int n = static_cast<int>(q.st.position.size() / 3);
   std::vector<Vec3> X(n);
@@ -565,10 +565,10 @@ TEST_CASE("the implicit preload agrees with explicit dynamic relaxation in SPH",
   // The implicit preload and its transfer to the particles.
   const auto t0 = Clock::now();
   spec::ProblemSpec spec = parse(strip("", T, 1));
-  spec::ProblemSpec preload = spec.stages[0];
+  spec::ProblemSpec preload = spec.staged().stages[0];
   const implicit::ElastoplasticResult pre = preload_of(preload);
   REQUIRE(pre.status == "completed");
-  sph::Hydro loaded = explicit_dynamics::build_sph(*spec.stages[1].sph);
+  sph::Hydro loaded = explicit_dynamics::build_sph(spec.staged().stages[1].sph());
   const std::vector<Vec3> X = references(loaded);
   const stages::PreloadAtParticles pa = stages::sample_preload(preload, pre, X, {}, "test");
   std::vector<double> u(3 * X.size());
@@ -584,7 +584,7 @@ TEST_CASE("the implicit preload agrees with explicit dynamic relaxation in SPH",
   // the quarter-wave of a bar of length H in plane-strain uniaxial stress:
   // omega_1 = pi / (2 H) sqrt(E / ((1 - nu^2) rho)).
   const auto t1 = Clock::now();
-  sph::Hydro h = explicit_dynamics::build_sph(*parse(strip_sph(T)).sph);
+  sph::Hydro h = explicit_dynamics::build_sph(parse(strip_sph(T)).sph());
   REQUIRE(h.particles.owned_count() == static_cast<int>(X.size()));
   REQUIRE(h.forces.size() == 1);
   const double omega = M_PI / (2.0 * kHeight) * std::sqrt(kE / ((1.0 - kNu * kNu) * kRho));
@@ -668,7 +668,7 @@ Csv read_csv(const std::string& path) {
 TEST_CASE("the displacement is continuous across the stage boundary of a staged run",
           "[staged][sph]") {
   spec::ProblemSpec spec = parse(strip(kPlastic, 320.0e6, 4));
-  spec.stages[1].sph->end_time = 20.0 * first_step(spec.stages[1]);
+  spec.staged().stages[1].sph().end_time = 20.0 * first_step(spec.staged().stages[1]);
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / "meshfree_test_staged_sph";
   std::filesystem::remove_all(dir);
@@ -738,10 +738,10 @@ TEST_CASE("the settle of an SPH stage runs under the held loads alone, not the e
           "[{name: blast, box: [[0.0475, 0.0], [0.05, 0.1]], blast: {tnt_mass: 0.25, burst: "
           "free_air, charge_at: [0.15, 0.05], normal: [1, 0]}}]");
     spec::ProblemSpec spec = spec::parse_problem(file);
-    spec::ProblemSpec preload = spec.stages[0];
+    spec::ProblemSpec preload = spec.staged().stages[0];
     const implicit::ElastoplasticResult pre = preload_of(preload);
     REQUIRE(pre.status == "completed");
-    return stages::run_sph_stage(preload, pre, spec.stages[1], spec.links[1], 1);
+    return stages::run_sph_stage(preload, pre, spec.staged().stages[1], spec.staged().links[1], 1);
   };
   const stages::ExplicitStage quiet = run(false), struck = run(true);
   REQUIRE(quiet.transfer.settle_time == 1.0e-4);
