@@ -1,0 +1,73 @@
+#!/usr/bin/env python3
+"""What the fuzzers found, one case each, with its expected one-line outcome: an SPH checkpoint
+whose per-particle arrays, ghosts or neighbour lists do not go together (a lengthened array, an
+owned count of another layout, a neighbour that is no particle; each with a checksum that
+matches) was restarted and failed in its first step (exit 1, "particle 1808 has material
+1202590843 of 1", "the half neighbour list is not built"). Each is refused: exit 2, one line
+naming what differs, the folder as it was.
+Usage: fuzz_findings.py MESHFREE SOURCE_DIR
+"""
+import shutil
+import sys
+import tempfile
+from pathlib import Path
+
+import h5py
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from fuzz_checkpoints import (Base, generation, listing, make_checkpoint, restart,  # noqa: E402
+                              state_files)
+from fuzz_support import fnv  # noqa: E402
+
+
+def forged(path, name, change):
+    """Replaces dataset `name` by change(its values), with a checksum that matches."""
+    with h5py.File(path, "r+") as f:
+        values = np.asarray(change(np.atleast_1d(f[name][()]).copy()), dtype=f[name].dtype)
+        del f[name]
+        f.create_dataset(name, data=values)
+        f[name].attrs.create("fnv1a64", fnv(values.tobytes()), dtype="u8")
+
+
+CASES = [
+    ("a per-particle array one particle longer", "sph.particles.volume",
+     lambda v: np.concatenate([v, v[:1]]),
+     "'sph.particles.volume' holds 1809 particles, the positions 1808"),
+    ("the owned particles of another layout", "sph.particles.owned", lambda v: v * 0 + 1000,
+     "the checkpoint's ranks own 1000 particles, this run has 1808"),
+    ("a neighbour that is no particle", "sph.pairs.partner",
+     lambda v: np.where(np.arange(v.size) == 7, 1808, v),
+     "neighbour lists and material groups do not go together"),
+]
+
+
+def main():
+    meshfree, source = sys.argv[1], Path(sys.argv[2])
+    work = Path(tempfile.mkdtemp(prefix="fuzz_findings_"))
+    fails = 0
+    try:
+        base = Base("sph_sod_tube", str(source / "problems" / "sph_sod_tube.yaml"),
+                    ["--set", "output.checkpoint_interval=1.0e-3"])
+        own = make_checkpoint(meshfree, base, work / "own")
+        with h5py.File(state_files(own)[0], "r") as f:
+            base.end = float(f["meta.time"][0]) + 1e-3
+        for what, name, change, expected in CASES:
+            folder = work / name
+            shutil.copytree(own / "checkpoint", folder / "checkpoint")
+            forged(folder / "checkpoint" / ("state-%d.0.h5" % generation(folder)), name, change)
+            before = listing(folder)
+            rc, err = restart(meshfree, base, folder)
+            lines = [l for l in err.split("\n") if l.strip()]
+            ok = rc == 2 and len(lines) == 1 and expected in lines[0] and \
+                listing(folder) == before
+            print("%s: %s (exit %s: %s)" % ("ok" if ok else "FAIL", what, rc, err.strip()[-300:]))
+            fails += not ok
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    print("%d failure(s)" % fails)
+    return 1 if fails else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
