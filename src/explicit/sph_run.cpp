@@ -84,18 +84,22 @@ void check_whole(const sph::Hydro& h, long particles) {
   particles::for_each_kept(h.particles, same_count("particles."));
   particles::for_each_kept(h.fields, same_count("fields."));
   const long owned = h.particles.owned_count();
-  const std::size_t ghosts = n - static_cast<std::size_t>(std::max(0L, owned));
-  if (owned < 0 || static_cast<std::size_t>(owned) > n || h.remote < 0 ||
-      static_cast<std::size_t>(h.remote) > ghosts ||
-      h.remote_owner.size() != static_cast<std::size_t>(h.remote) ||
-      !whole_list(h.neighbours.pairs, n) || !whole_list(h.neighbours.half_pairs, n) ||
-      !names_particles(h.groups.members, n) || !names_particles(h.ghost_source, n))
-    io::refuse_checkpoint("the checkpoint's particles, ghosts, neighbour lists and material "
-                          "groups do not go together (a damaged checkpoint)");
   const long total = h.ranks.sum(owned);
   if (total != particles)
     io::refuse_checkpoint("the checkpoint's ranks own " + std::to_string(total) +
                           " particles, this run has " + std::to_string(particles));
+  const std::size_t ghosts = n - static_cast<std::size_t>(std::max(0L, owned));
+  const std::size_t images = h.ghost_source.size(); // the last particles, after the remote ones
+  const std::size_t sources = n - images;            // images mirror owned or remote particles
+  if (owned < 0 || static_cast<std::size_t>(owned) > n || h.remote < 0 ||
+      static_cast<std::size_t>(h.remote) > ghosts ||
+      h.remote_owner.size() != static_cast<std::size_t>(h.remote) ||
+      static_cast<std::size_t>(h.remote) + images != ghosts ||
+      h.ghost_planes.size() != images || !names_particles(h.ghost_source, sources) ||
+      !whole_list(h.neighbours.pairs, n) || !whole_list(h.neighbours.half_pairs, n) ||
+      !names_particles(h.groups.members, n))
+    io::refuse_checkpoint("the checkpoint's particles, ghosts, neighbour lists and material "
+                          "groups do not go together (a damaged checkpoint)");
 }
 
 } // namespace

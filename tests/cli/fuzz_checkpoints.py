@@ -280,7 +280,11 @@ def marker(folder, state, base, rng):
                        "generation %d\n" % 10**18, "generation -1\n", "generation 0\n", "",
                        "generation\n", "generation 1e3\n", "\x00\xff" * 8, "g" * 10000])
     (folder / "checkpoint" / "checkpoint.txt").write_text(text, errors="surrogateescape")
-    return "marker %r" % text[:40], True, False
+    # A run killed between naming generation g and removing g - 1 leaves both: a marker that
+    # names the older one, as the run wrote it, restarts from there.
+    older = text == "generation %d\n" % (g - 1) and \
+        (folder / "checkpoint" / ("state-%d.0.h5" % (g - 1))).exists()
+    return "marker %r" % text[:40], not older, False
 
 
 def link(folder, state, base, rng):

@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
 """What the fuzzers found, one case each, with its expected one-line outcome: an SPH checkpoint
 whose per-particle arrays, ghosts or neighbour lists do not go together (a lengthened array, an
-owned count of another layout, a neighbour that is no particle; each with a checksum that
-matches) was restarted and failed in its first step (exit 1, "particle 1808 has material
-1202590843 of 1", "the half neighbour list is not built"). Each is refused: exit 2, one line
-naming what differs, the folder as it was.
+owned count of another layout, a neighbour that is no particle, a mirror image of no particle;
+each with a checksum that matches) was restarted and failed in its first step (exit 1, "particle
+1808 has material 1202590843 of 1", "the half neighbour list is not built"), crashed (SIGSEGV, a
+mirror image read past the particles) or completed (a neighbour past the particles); a marker
+"generation 2e3" was read as generation 2. Each is refused: exit 2, one line naming what
+differs, the folder as it was.
 Usage: fuzz_findings.py MESHFREE SOURCE_DIR
 """
 import shutil
@@ -21,8 +23,13 @@ from fuzz_checkpoints import (Base, generation, listing, make_checkpoint, restar
 from fuzz_support import fnv  # noqa: E402
 
 
-def forged(path, name, change):
-    """Replaces dataset `name` by change(its values), with a checksum that matches."""
+def forged(name, change):
+    """A mutation: dataset `name` replaced by change(its values), with a checksum that matches."""
+    return lambda folder: forge(folder / "checkpoint" / ("state-%d.0.h5" % generation(folder)),
+                                name, change)
+
+
+def forge(path, name, change):
     with h5py.File(path, "r+") as f:
         values = np.asarray(change(np.atleast_1d(f[name][()]).copy()), dtype=f[name].dtype)
         del f[name]
@@ -30,15 +37,26 @@ def forged(path, name, change):
         f[name].attrs.create("fnv1a64", fnv(values.tobytes()), dtype="u8")
 
 
+def marker(text):
+    """A mutation: checkpoint.txt says `text` (% the generation it named)."""
+    return lambda folder: (folder / "checkpoint" / "checkpoint.txt").write_text(
+        text % generation(folder))
+
+
 CASES = [
-    ("a per-particle array one particle longer", "sph.particles.volume",
-     lambda v: np.concatenate([v, v[:1]]),
+    ("a per-particle array one particle longer",
+     forged("sph.particles.volume", lambda v: np.concatenate([v, v[:1]])),
      "'sph.particles.volume' holds 1809 particles, the positions 1808"),
-    ("the owned particles of another layout", "sph.particles.owned", lambda v: v * 0 + 1000,
+    ("the owned particles of another layout",
+     forged("sph.particles.owned", lambda v: v * 0 + 1000),
      "the checkpoint's ranks own 1000 particles, this run has 1808"),
-    ("a neighbour that is no particle", "sph.pairs.partner",
-     lambda v: np.where(np.arange(v.size) == 7, 1808, v),
+    ("a neighbour that is no particle",
+     forged("sph.pairs.partner", lambda v: np.where(np.arange(v.size) == 7, 1808, v)),
      "neighbour lists and material groups do not go together"),
+    ("a mirror image of no particle",
+     forged("sph.ghost_source", lambda v: np.concatenate([v, np.zeros(1, v.dtype)])),
+     "neighbour lists and material groups do not go together"),
+    ("a marker 'generation <g>e3'", marker("generation %de3\n"), ": no checkpoint in "),
 ]
 
 
@@ -52,10 +70,10 @@ def main():
         own = make_checkpoint(meshfree, base, work / "own")
         with h5py.File(state_files(own)[0], "r") as f:
             base.end = float(f["meta.time"][0]) + 1e-3
-        for what, name, change, expected in CASES:
-            folder = work / name
+        for k, (what, mutate, expected) in enumerate(CASES):
+            folder = work / ("case%d" % k)
             shutil.copytree(own / "checkpoint", folder / "checkpoint")
-            forged(folder / "checkpoint" / ("state-%d.0.h5" % generation(folder)), name, change)
+            mutate(folder)
             before = listing(folder)
             rc, err = restart(meshfree, base, folder)
             lines = [l for l in err.split("\n") if l.strip()]
