@@ -186,7 +186,8 @@ def main():
     a = parse(ap)
     a.meshfree = os.path.abspath(a.meshfree)
     source = Path(a.source).resolve()
-    bases = sorted((source / "problems").glob("*.yaml"))
+    # Not the mutants another fuzzer is writing beside them (".fuzz_*").
+    bases = sorted(b for b in (source / "problems").glob("*.yaml") if not b.name.startswith("."))
     if a.run:
         bases = [b for b in bases if b.name.startswith(("pd_", "sph_"))]
     rng = random.Random(a.seed)
