@@ -5,7 +5,8 @@ owned count of another layout, a neighbour that is no particle, a mirror image o
 each with a checksum that matches) was restarted and failed in its first step (exit 1, "particle
 1808 has material 1202590843 of 1", "the half neighbour list is not built"), crashed (SIGSEGV, a
 mirror image read past the particles) or completed (a neighbour past the particles); a marker
-"generation 2e3" was read as generation 2. Each is refused: exit 2, one line naming what
+"generation 2e3" was read as generation 2; a PD checkpoint with the LAMMPS rule's s0 where the
+run's laws keep none crashed (SIGSEGV). Each is refused: exit 2, one line naming what
 differs, the folder as it was.
 Usage: fuzz_findings.py MESHFREE SOURCE_DIR
 """
@@ -43,20 +44,25 @@ def marker(text):
         text % generation(folder))
 
 
+SOD = ("sph_sod_tube", ["--set", "output.checkpoint_interval=1.0e-3"], 2.4e-4)
+SLAB = ("pd_slab_blast", ["--set", "output.checkpoint_interval=1.0e-5"], 2.5e-6)
 CASES = [
-    ("a per-particle array one particle longer",
+    (SLAB, "critical stretches s0 where the run keeps none",
+     forged("bonds.s0", lambda v: np.concatenate([v, np.zeros(1, v.dtype)])),
+     "the checkpoint holds 1 and 0 critical stretches s0, this run has 0 and 0"),
+    (SOD, "a per-particle array one particle longer",
      forged("sph.particles.volume", lambda v: np.concatenate([v, v[:1]])),
      "'sph.particles.volume' holds 1809 particles, the positions 1808"),
-    ("the owned particles of another layout",
+    (SOD, "the owned particles of another layout",
      forged("sph.particles.owned", lambda v: v * 0 + 1000),
      "the checkpoint's ranks own 1000 particles, this run has 1808"),
-    ("a neighbour that is no particle",
+    (SOD, "a neighbour that is no particle",
      forged("sph.pairs.partner", lambda v: np.where(np.arange(v.size) == 7, 1808, v)),
      "neighbour lists and material groups do not go together"),
-    ("a mirror image of no particle",
+    (SOD, "a mirror image of no particle",
      forged("sph.ghost_source", lambda v: np.concatenate([v, np.zeros(1, v.dtype)])),
      "neighbour lists and material groups do not go together"),
-    ("a marker 'generation <g>e3'", marker("generation %de3\n"), ": no checkpoint in "),
+    (SOD, "a marker 'generation <g>e3'", marker("generation %de3\n"), ": no checkpoint in "),
 ]
 
 
@@ -65,14 +71,17 @@ def main():
     work = Path(tempfile.mkdtemp(prefix="fuzz_findings_"))
     fails = 0
     try:
-        base = Base("sph_sod_tube", str(source / "problems" / "sph_sod_tube.yaml"),
-                    ["--set", "output.checkpoint_interval=1.0e-3"])
-        own = make_checkpoint(meshfree, base, work / "own")
-        with h5py.File(state_files(own)[0], "r") as f:
-            base.end = float(f["meta.time"][0]) + 1e-3
-        for k, (what, mutate, expected) in enumerate(CASES):
+        bases = {}
+        for name, sets, step in (SOD, SLAB):
+            base = Base(name, str(source / "problems" / (name + ".yaml")), sets)
+            base.own = make_checkpoint(meshfree, base, work / name)
+            with h5py.File(state_files(base.own)[0], "r") as f:
+                base.end = float(f["meta.time"][0]) + 3 * step
+            bases[name] = base
+        for k, ((name, _, _), what, mutate, expected) in enumerate(CASES):
+            base = bases[name]
             folder = work / ("case%d" % k)
-            shutil.copytree(own / "checkpoint", folder / "checkpoint")
+            shutil.copytree(base.own / "checkpoint", folder / "checkpoint")
             mutate(folder)
             before = listing(folder)
             rc, err = restart(meshfree, base, folder)
