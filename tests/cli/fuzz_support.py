@@ -34,7 +34,7 @@ def parse(ap):
 def one_rank_env(scratch):
     """The environment of a case: one rank, one thread, and none of the start-up work that a
     one-rank process does not need, which is most of a short case's cost (measured in README.md,
-    "Fuzzing"). meshfree runs itself again to set OMP_WAIT_POLICY=passive unless it is set, so it
+    "Running"). meshfree runs itself again to set OMP_WAIT_POLICY=passive unless it is set, so it
     is set here (the same policy, one program load less); OpenBLAS starts no threads that spin in
     sched_yield; Open MPI starts no orted for a singleton (ess_singleton_isolated) and probes no
     network transports (pml ob1, btl self). What meshfree computes is the same. Open MPI keeps a
