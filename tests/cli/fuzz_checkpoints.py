@@ -78,7 +78,8 @@ def make_checkpoint(meshfree, base, folder, extra=(), ranks=1):
     env = one_rank_env(folder.parent)
     if ranks > 1:
         cmd = ["mpirun", "-np", str(ranks)] + cmd
-        env = dict(os.environ, OMP_NUM_THREADS="1", OMPI_MCA_rmaps_base_oversubscribe="1")
+        env = dict(os.environ, OMP_NUM_THREADS="1", OMPI_MCA_rmaps_base_oversubscribe="1",
+                   OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env,
                          start_new_session=True)
     for _ in range(30000):
