@@ -293,12 +293,19 @@ void PdRun::save(io::Checkpoints& checkpoints, const io::Saver& save) {
 }
 
 void PdRun::restore(const io::Loader& load) {
-  // Plastic stretches are kept by a run with plastic bonds only: the set-up says which.
-  const std::size_t plastic = setup_.state.plastic.size();
+  // Plastic stretches and the LAMMPS rule's s0 are kept by a run whose laws use them only (else
+  // empty, and the loader would take any length): the set-up says which.
+  pd::BondState& b = setup_.state;
+  const std::size_t plastic = b.plastic.size(), s0 = b.s0.committed.size();
+  const std::size_t s0_trial = b.s0.trial.size();
   for_each_state(load);
-  if (setup_.state.plastic.size() != plastic)
-    io::refuse_checkpoint("the checkpoint holds " + std::to_string(setup_.state.plastic.size()) +
+  if (b.plastic.size() != plastic)
+    io::refuse_checkpoint("the checkpoint holds " + std::to_string(b.plastic.size()) +
                           " plastic stretches, this run has " + std::to_string(plastic));
+  if (b.s0.committed.size() != s0 || b.s0.trial.size() != s0_trial)
+    io::refuse_checkpoint("the checkpoint holds " + std::to_string(b.s0.committed.size()) + " and " +
+                          std::to_string(b.s0.trial.size()) + " critical stretches s0, this run " +
+                          "has " + std::to_string(s0) + " and " + std::to_string(s0_trial));
   // Lists of particles, read back at the length kept, must name particles of this run.
   const int n = setup_.model.particles.size();
   const bool pairs = !setup_.short_range || setup_.short_range->consistent();

@@ -51,6 +51,57 @@ long particles_total(const sph::Hydro& h) {
   return h.ranks.sum(static_cast<long>(h.particles.owned_count()));
 }
 
+/// Whether every index of `v` names one of `n` particles.
+bool names_particles(const std::vector<int>& v, std::size_t n) {
+  return std::all_of(v.begin(), v.end(),
+                     [n](int j) { return j >= 0 && static_cast<std::size_t>(j) < n; });
+}
+
+/// Whether a neighbour list read back is whole over `n` particles: offsets from 0 to the
+/// partners' count that never go down, no more rows than particles, partners that are particles.
+bool whole_list(const neighbors::PairList& l, std::size_t n) {
+  return !l.offset.empty() && l.offset.front() == 0 &&
+         l.offset.back() == static_cast<long>(l.partner.size()) &&
+         std::is_sorted(l.offset.begin(), l.offset.end()) &&
+         l.offset.size() <= n + 1 && names_particles(l.partner, n);
+}
+
+/// A state read back at the lengths it was kept (SphRun::restore) must be whole: every kept
+/// per-particle array of as many particles as the positions, the owned ones among them adding up
+/// over the ranks to the run's, and the neighbour lists, material groups, remote ghosts and
+/// mirror images naming particles there are. A forged or mixed checkpoint is refused so, before
+/// a step reads past an array.
+void check_whole(const sph::Hydro& h, long particles) {
+  const std::size_t n = h.particles.X.size() / 3;
+  const auto same_count = [n](const char* part) {
+    return [n, part](const particles::FieldInfo& f, const auto& a) {
+      if (a.size() != n * static_cast<std::size_t>(f.components))
+        io::refuse_checkpoint("'sph." + std::string(part) + f.name + "' holds " +
+                              std::to_string(a.size() / f.components) + " particles, the " +
+                              "positions " + std::to_string(n) + " (a damaged checkpoint)");
+    };
+  };
+  particles::for_each_kept(h.particles, same_count("particles."));
+  particles::for_each_kept(h.fields, same_count("fields."));
+  const long owned = h.particles.owned_count();
+  const long total = h.ranks.sum(owned);
+  if (total != particles)
+    io::refuse_checkpoint("the checkpoint's ranks own " + std::to_string(total) +
+                          " particles, this run has " + std::to_string(particles));
+  const std::size_t ghosts = n - static_cast<std::size_t>(std::max(0L, owned));
+  const std::size_t images = h.ghost_source.size(); // the last particles, after the remote ones
+  const std::size_t sources = n - images;            // images mirror owned or remote particles
+  if (owned < 0 || static_cast<std::size_t>(owned) > n || h.remote < 0 ||
+      static_cast<std::size_t>(h.remote) > ghosts ||
+      h.remote_owner.size() != static_cast<std::size_t>(h.remote) ||
+      static_cast<std::size_t>(h.remote) + images != ghosts ||
+      h.ghost_planes.size() != images || !names_particles(h.ghost_source, sources) ||
+      !whole_list(h.neighbours.pairs, n) || !whole_list(h.neighbours.half_pairs, n) ||
+      !names_particles(h.groups.members, n))
+    io::refuse_checkpoint("the checkpoint's particles, ghosts, neighbour lists and material "
+                          "groups do not go together (a damaged checkpoint)");
+}
+
 } // namespace
 
 SphRun::SphRun(sph::Hydro& h, const spec::SphSpec& spec, io::OutputDirectory* out,
@@ -274,6 +325,7 @@ void SphRun::restore(const io::Loader& load) {
   io::Loader moved = load;
   moved.resizes = true;
   for_each_state(moved);
+  check_whole(h_, r_.particles);
   sph::resume_distribution(h_);
 }
 

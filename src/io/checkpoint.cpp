@@ -89,7 +89,8 @@ bool real_folder(const fs::path& path) {
 }
 
 /// The generation checkpoint.txt names, or 0: read from a regular file only (never through a
-/// link, never blocking on a FIFO).
+/// link, never blocking on a FIFO), and only as publish_generation writes it ("generation 12e3"
+/// names none, not generation 12).
 long marked_generation(const fs::path& folder) {
   const int fd = ::open((folder / kMarker).c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) return 0;
@@ -101,7 +102,8 @@ long marked_generation(const fs::path& folder) {
   std::istringstream in(ok ? text : "");
   std::string word;
   long generation = 0;
-  return in >> word >> generation && word == "generation" && generation > 0 ? generation : 0;
+  const bool named = in >> word >> generation && word == "generation" && generation > 0;
+  return named && (in >> std::ws).eof() ? generation : 0;
 }
 
 } // namespace

@@ -11,10 +11,13 @@ OUT/mutant_<n>.yaml with its output.
 
 With --run, the mutants of the explicit problems (peridynamics, SPH) are checked and then run,
 with a short end time (--set time.end=END, or STEPS of the first time step that check reports,
-if sooner): each completes (exit 0), is refused as input (exit 2,
-one clean line, nothing written; a mutant that `check` said was valid must not be refused so), or
-fails (exit 1, one line "meshfree: run failed..." on stderr besides the log's "[meshfree] ..."
-lines, and a failed/summary.json of status "failed"), within 60 seconds.
+if sooner): each completes (exit 0, a summary.json of status "completed" and a history.csv whose
+numbers are all finite), is refused as input (exit 2, one clean line, nothing written; a mutant
+that `check` said was valid must not be refused so), or fails (exit 1, one line "meshfree: run
+failed..." on stderr besides the log's "[meshfree] ..." lines, and a failed/summary.json of status
+"failed"), within 60 seconds. The bodies are made smaller first: every `spacing:` of a problem is
+doubled where `check` still finds it valid (1/8 of the particles in 3D), since a short run's cost
+is its set-up, the bonds and neighbours of every particle.
 
 Any other outcome is a failure: a signal (a crash), a timeout (a hang), another exit status, a
 message of more than one line, files written on exit 2, or an exception in this script.
@@ -23,6 +26,7 @@ MPI and writing, not computing).
 Usage: fuzz_inputs.py MESHFREE SOURCE_DIR [--count N] [--seed S] [--out DIR] [--jobs J]
                       [--run [--end T] [--steps S]]
 """
+import math
 import os
 import random
 import re
@@ -35,13 +39,14 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from fuzz_support import arguments, parse  # noqa: E402
+from fuzz_support import arguments, one_rank_env, parse  # noqa: E402
 
 VALUES = ["-1", "0", "1e308", "-1e308", "1e-308", "1e999", ".nan", ".inf", "-.inf",
           "99999999999999999999", "abc", "[]", "{}", "[1, 2, 3, 4]", "''", "null", "true",
           "0x10", "1e30", "-0", "2147483648", "'\\x00'", "\"a\\tb\""]
 KEYS = ["E", "spacing", "material", "box", "end", "name", "type", "radius", "x", "zz", "points"]
 FIRST_STEP = re.compile(r"(?:first CFL step|time step) ([0-9.]+(?:[eE][-+]?[0-9]+)?)")
+SPACING = re.compile(r"^([^#\n]*\bspacing: *)([0-9.eE+-]+)", re.M)
 NUMBER = re.compile(r"(?<![\w.])-?\d+(\.\d*)?([eE][-+]?\d+)?(?![\w.])")
 
 
@@ -82,7 +87,7 @@ def status(rc):
 def check(meshfree, path, workdir):
     try:
         p = subprocess.run([meshfree, "check", str(path)], capture_output=True, timeout=20,
-                           cwd=workdir)
+                           cwd=workdir, env=one_rank_env(workdir))
     except subprocess.TimeoutExpired:
         return "hung (over 20 s)", b"", b""
     err_lines = p.stderr.decode(errors="replace").strip().split("\n") if p.stderr.strip() else []
@@ -121,15 +126,40 @@ def run_mutant(meshfree, path, workdir, end, steps):
         shutil.rmtree(folder, ignore_errors=True)
 
 
+def completed(out):
+    """Why a run that exited 0 did not complete with finite results, or None."""
+    summary = out / "summary.json"
+    if not summary.exists() or '"status": "completed"' not in summary.read_text(errors="replace"):
+        return "exit 0 without a summary.json of status completed"
+    history = out / "history.csv"
+    if history.exists():
+        for row in history.read_text(errors="replace").split("\n")[1:]:
+            if row and not all(math.isfinite(float(v)) for v in row.split(",")):
+                return "completed with a non-finite value in history.csv: " + row[:200]
+    return None
+
+
+def coarser(text, meshfree, path, workdir):
+    """`text` with every spacing doubled, if check finds it valid; else `text`."""
+    coarse = SPACING.sub(lambda m: m.group(1) + repr(2 * float(m.group(2))), text)
+    path.write_text(coarse)
+    try:
+        p = subprocess.run([meshfree, "check", str(path)], capture_output=True, timeout=20,
+                           cwd=workdir, env=one_rank_env(workdir))
+    finally:
+        path.unlink(missing_ok=True)
+    return coarse if p.returncode == 0 and b": valid" in p.stdout else text
+
+
 def judge_run(meshfree, path, out, workdir, end, valid):
     try:
         p = subprocess.run([meshfree, "run", str(path), "--out", str(out), "--set",
                             "time.end=%g" % end], capture_output=True, timeout=60,
-                           cwd=workdir, env=dict(os.environ, OMP_NUM_THREADS="1"))
+                           cwd=workdir, env=one_rank_env(workdir))
     except subprocess.TimeoutExpired:
         return "timeout", b"", b""
     if p.returncode == 0:
-        return None, p.stdout, p.stderr
+        return completed(out), p.stdout, p.stderr
     if p.returncode == 2:
         if not clean_line(p.stderr, "meshfree: "):
             return "exit 2 without one clean line on stderr", p.stdout, p.stderr
@@ -152,20 +182,25 @@ def main():
     ap = arguments(__doc__)
     ap.add_argument("--run", action="store_true")
     ap.add_argument("--end", type=float, default=1e-5)
-    ap.add_argument("--steps", type=float, default=10)
+    ap.add_argument("--steps", type=float, default=3)
     a = parse(ap)
     a.meshfree = os.path.abspath(a.meshfree)
     source = Path(a.source).resolve()
-    bases = sorted((source / "problems").glob("*.yaml"))
+    # Not the mutants another fuzzer is writing beside them (".fuzz_*").
+    bases = sorted(b for b in (source / "problems").glob("*.yaml") if not b.name.startswith("."))
     if a.run:
         bases = [b for b in bases if b.name.startswith(("pd_", "sph_"))]
     rng = random.Random(a.seed)
     work = Path(tempfile.mkdtemp())
     out = Path(a.out) if a.out else work / "failures"
+    texts = {b: b.read_text() for b in bases}
+    if a.run:
+        texts = {b: coarser(t, a.meshfree, b.parent / (".fuzz_%d_%s" % (os.getpid(), b.name)), work)
+                 for b, t in texts.items()}
     jobs = []
     for n in range(a.count):
         base = rng.choice(bases)
-        text = base.read_text()
+        text = texts[base]
         for _ in range(rng.choice([1, 1, 1, 2, 3])):
             text = mutate(text, rng)
         # Beside the original, so that relative paths (meshes, load tables) resolve as there; named
@@ -176,16 +211,19 @@ def main():
 
     def run(job):
         n, base, path, text = job
+        case = work / ("case%d" % n)  # its working folder, Open MPI's session folder inside
         try:
+            case.mkdir()
             path.write_text(text, errors="replace")
             if a.run:
-                return n, base, text, run_mutant(a.meshfree, path, work, a.end, a.steps)
-            return n, base, text, check(a.meshfree, path, work)
+                return n, base, text, run_mutant(a.meshfree, path, case, a.end, a.steps)
+            return n, base, text, check(a.meshfree, path, case)
         except Exception:  # the fuzzer's own error is a failure of the case, not of the run
             return n, base, text, ("exception in the fuzzer", b"",
                                    traceback.format_exc().encode())
         finally:
             path.unlink(missing_ok=True)
+            shutil.rmtree(case, ignore_errors=True)
 
     with ThreadPoolExecutor(max_workers=max(1, a.jobs)) as pool:
         for n, base, text, (why, stdout, stderr) in pool.map(run, jobs):
