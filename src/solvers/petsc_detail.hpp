@@ -54,7 +54,8 @@ inline constexpr const char* kPenaltyBandMultigrid = "gamg+held-rows";
 /// stiffness through shape functions that couple them along the edge; their errors that the
 /// penalty does not stiffen are left by the Jacobi-scaled smoother and not represented in the
 /// coarse spaces (whose modes are zero there), so the cycle alone converged ever slower as the
-/// penalty grew. The held rows are found anew from the matrix's values at each set-up.
+/// penalty grew ([Lee, Wu, Xu & Zikatanov 2007]; the symmetric product as in [Xu 1992]). The
+/// held rows are found anew from the matrix's values at each set-up.
 void set_penalty_band_multigrid(PC pc);
 
 /// A's near-null space for GAMG, from A's values: the translations and the in-plane rotation of
