@@ -1,8 +1,8 @@
 // The multigrid preconditioner of the iterative solves: GAMG with the penalty-held rows solved
 // exactly before and after each cycle (see set_penalty_band_multigrid in petsc_detail.hpp).
 #include "petsc_detail.hpp"
+#include <exception>
 #include <petscksp.h>
-#include <string>
 #include <vector>
 
 namespace mf::solvers::detail {
@@ -15,7 +15,8 @@ struct PenaltyBand {
   IS rows = nullptr;      // the penalty-held rows (global numbers, the owned ones on each rank)
   Mat held = nullptr;     // A restricted to rows x rows
   Mat coupling = nullptr; // A restricted to rows x all columns
-  KSP exact = nullptr;    // Cholesky of `held`
+  Mat columns = nullptr;  // A restricted to all rows x `rows`; null when A is symmetric
+  KSP exact = nullptr;    // Cholesky of `held` (LU unless A is known to be symmetric)
   Vec r_held = nullptr, y_held = nullptr, z = nullptr, work = nullptr;
   PetscInt held_count = 0; // over all ranks
 };
@@ -24,6 +25,7 @@ void destroy_band_parts(PenaltyBand& b) {
   if (b.rows) ISDestroy(&b.rows);
   if (b.held) MatDestroy(&b.held);
   if (b.coupling) MatDestroy(&b.coupling);
+  if (b.columns) MatDestroy(&b.columns);
   if (b.exact) KSPDestroy(&b.exact);
   for (Vec* v : {&b.r_held, &b.y_held, &b.z, &b.work})
     if (*v) VecDestroy(v);
@@ -46,8 +48,17 @@ IS held_row_set(Mat A) {
   return is;
 }
 
-/// Extracts the held block and the held rows of A and factorises the block (MUMPS Cholesky: the
-/// held rows of all ranks in one factorisation, a few rows of nodes along the held edges).
+bool known_symmetric(Mat A) {
+  PetscBool set = PETSC_FALSE, flag = PETSC_FALSE;
+  check(MatIsSymmetricKnown(A, &set, &flag), "MatIsSymmetricKnown");
+  if (set && flag) return true;
+  check(MatIsSPDKnown(A, &set, &flag), "MatIsSPDKnown");
+  return set && flag;
+}
+
+/// Extracts the held block and the held rows (and columns, for a matrix not known to be
+/// symmetric) of A and factorises the block with MUMPS: the held rows of all ranks in one
+/// factorisation, a few per node along the held edges.
 void set_up_band(PenaltyBand& b, Mat A) {
   destroy_band_parts(b);
   b.rows = held_row_set(A);
@@ -62,8 +73,12 @@ void set_up_band(PenaltyBand& b, Mat A) {
   check(MatCreateSubMatrix(A, b.rows, b.rows, MAT_INITIAL_MATRIX, &b.held), "MatCreateSubMatrix");
   check(MatCreateSubMatrix(A, b.rows, all, MAT_INITIAL_MATRIX, &b.coupling),
         "MatCreateSubMatrix");
+  const bool symmetric = known_symmetric(A);
+  if (!symmetric)
+    check(MatCreateSubMatrix(A, all, b.rows, MAT_INITIAL_MATRIX, &b.columns),
+          "MatCreateSubMatrix");
   check(ISDestroy(&all), "ISDestroy");
-  check(MatSetOption(b.held, MAT_SPD, PETSC_TRUE), "MatSetOption(MAT_SPD)");
+  if (symmetric) check(MatSetOption(b.held, MAT_SPD, PETSC_TRUE), "MatSetOption(MAT_SPD)");
   check(KSPCreate(comm, &b.exact), "KSPCreate");
   check(KSPSetOperators(b.exact, b.held, b.held), "KSPSetOperators");
   // A prefix of its own, so that -ksp_ options (-ksp_converged_reason) address the outer solve.
@@ -71,7 +86,7 @@ void set_up_band(PenaltyBand& b, Mat A) {
   check(KSPSetType(b.exact, KSPPREONLY), "KSPSetType");
   PC pc;
   check(KSPGetPC(b.exact, &pc), "KSPGetPC");
-  check(PCSetType(pc, PCCHOLESKY), "PCSetType");
+  check(PCSetType(pc, symmetric ? PCCHOLESKY : PCLU), "PCSetType");
   check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
   check(KSPSetUp(b.exact), "KSPSetUp");
   check(MatCreateVecs(b.held, &b.y_held, &b.r_held), "MatCreateVecs");
@@ -94,8 +109,8 @@ PetscErrorCode band_set_up(PC pc) {
   PetscCall(PCGetOperators(pc, &A, &P));
   try {
     set_up_band(*b, P);
-  } catch (const std::exception&) {
-    return PETSC_ERR_LIB;
+  } catch (const std::exception& e) {
+    SETERRQ(PETSC_COMM_SELF, PETSC_ERR_LIB, "%s", e.what());
   }
   if (!b->multigrid) {
     MPI_Comm comm;
@@ -131,7 +146,7 @@ PetscErrorCode correct_held_rows(PenaltyBand& b, Vec r, Vec y) {
 
 /// Symmetric multiplicative: exact on the held rows, a multigrid cycle on the residual, exact on
 /// the held rows again. The residual after the first held solve needs A y for a y that is zero
-/// off the held rows: A's held rows, transposed (A is symmetric).
+/// off the held rows: A's held columns (A's held rows, transposed, when A is symmetric).
 PetscErrorCode band_apply(PC pc, Vec r, Vec y) {
   PenaltyBand* b = nullptr;
   PetscCall(PCShellGetContext(pc, &b));
@@ -141,7 +156,10 @@ PetscErrorCode band_apply(PC pc, Vec r, Vec y) {
   }
   PetscCall(VecSet(y, 0.0));
   PetscCall(correct_held_rows(*b, r, y));
-  PetscCall(MatMultTranspose(b->coupling, b->y_held, b->work));
+  if (b->columns)
+    PetscCall(MatMult(b->columns, b->y_held, b->work));
+  else
+    PetscCall(MatMultTranspose(b->coupling, b->y_held, b->work));
   PetscCall(VecAYPX(b->work, -1.0, r));
   PetscCall(PCApply(b->multigrid, b->work, b->z));
   PetscCall(pass_failure(b->multigrid, pc));
