@@ -40,6 +40,24 @@ void write_block_values(Mat A, const std::function<void(BlockValueArrays)>& writ
 /// stderr every 10 s and stops early when its residual stagnates.
 void set_default_solver(KSP ksp, Mat A, const LinearSolverSettings& settings);
 
+/// The owned rows of A held by a penalty: a diagonal above kHeldRatio times the median diagonal
+/// of the owned rows (one flag per owned row).
+std::vector<char> penalty_held_rows(Mat A);
+
+/// What describe() names the preconditioner of set_penalty_band_multigrid.
+inline constexpr const char* kPenaltyBandMultigrid = "gamg+held-rows";
+
+/// Makes pc the multigrid preconditioner of the iterative solves: a V-cycle of GAMG (with the
+/// options of pc's prefix, -pc_gamg_*, -mg_levels_*) between two exact solves on the
+/// penalty-held rows, symmetric multiplicative (B = S + (I - S A) G (I - A S), S the exact
+/// inverse on the held rows, G the cycle). The held rows carry penalties up to 10^6 times the
+/// stiffness through shape functions that couple them along the edge; their errors that the
+/// penalty does not stiffen are left by the Jacobi-scaled smoother and not represented in the
+/// coarse spaces (whose modes are zero there), so the cycle alone converged ever slower as the
+/// penalty grew ([Lee, Wu, Xu & Zikatanov 2007]; the symmetric product as in [Xu 1992]). The
+/// held rows are found anew from the matrix's values at each set-up.
+void set_penalty_band_multigrid(PC pc);
+
 /// A's near-null space for GAMG, from A's values: the translations and the in-plane rotation of
 /// the nodes (MatNullSpaceCreateRigidBody) with the penalty-held rows set to zero. Those rows'
 /// values are fixed by their penalties, so the modes that are nearly free of energy are zero

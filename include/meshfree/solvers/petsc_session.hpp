@@ -54,8 +54,10 @@ int owner_of(int node, int n, int size);
 /// - multigrid: conjugate gradients (GMRES for a matrix that is not symmetric) preconditioned by
 ///   PETSc's smoothed-aggregation algebraic multigrid (GAMG; Vanek, Mandel & Brezina 1996), given
 ///   the three rigid-body modes of the nodes as its near-null space (without them the coarse
-///   spaces cannot represent rotation and the iterations grow with the size), stopped when the
-///   preconditioned residual falls below `relative_tolerance` of its initial value.
+///   spaces cannot represent rotation and the iterations grow with the size), with the rows held
+///   by penalties solved exactly before and after each cycle (without that the iterations grow
+///   with the penalty), stopped when the preconditioned residual falls below
+///   `relative_tolerance` of its initial value.
 struct LinearSolverSettings {
   bool multigrid = false;
   bool symmetric = true; // false for a Petrov-Galerkin form: LU, or GMRES with multigrid
