@@ -100,7 +100,8 @@ RestBalance hold_at_rest(Hydro& h, const std::vector<materials::Vec6>& sigma,
                          const std::vector<int>& held, const std::vector<int>& balanced) {
   std::vector<materials::Vec6> of_particle(h.particles.size(), materials::Vec6::Zero());
   std::copy(sigma.begin(), sigma.end(), of_particle.begin());
-  const std::vector<TransmittingBoundary*> boundaries = h.conditions.of_kind<TransmittingBoundary>();
+  const std::vector<TransmittingBoundary*> boundaries =
+      h.conditions.of_kind<TransmittingBoundary>();
   for (int b : held) hold_stress(*boundaries[b], of_particle);
   const double scale = std::max(largest_force(h, sigma), 1e-300);
   RestBalance r;

@@ -8,8 +8,8 @@ void TransmittingBoundary::force_on(std::size_t k, const double* v, double f[3])
   const double vn = v[0] * normal[0] + v[1] * normal[1] + v[2] * normal[2];
   for (int d = 0; d < 3; ++d) {
     const double normal_part = vn * normal[d];
-    f[d] = -area[k] *
-           (normal_impedance[k] * normal_part + shear_impedance[k] * (v[d] - normal_part));
+    f[d] =
+        -area[k] * (normal_impedance[k] * normal_part + shear_impedance[k] * (v[d] - normal_part));
   }
   if (!static_force.empty())
     for (int d = 0; d < 3; ++d) f[d] += static_force[3 * k + d];
@@ -55,8 +55,8 @@ std::unique_ptr<Condition> TransmittingBoundary::owned_part(const particles::Par
 double TransmittingBoundary::largest_held_force() const {
   double f = 0.0;
   for (std::size_t k = 0; k < static_force.size() / 3; ++k)
-    f = std::max(f, Vec3(static_force[3 * k], static_force[3 * k + 1], static_force[3 * k + 2])
-                        .norm());
+    f = std::max(
+        f, Vec3(static_force[3 * k], static_force[3 * k + 1], static_force[3 * k + 2]).norm());
   return f;
 }
 

@@ -125,8 +125,7 @@ Holding hold(const std::vector<HeldCondition>& held, const spec::ProblemSpec& pr
                  "uniform body force (give the preload 'gravity')");
       for (int d = 0; d < 2; ++d) h.body.gravity[d] = c.body_factor * preload.gravity[d];
       out.how.push_back(detail::concat(c.name, ": gravity (", h.body.gravity[0], ", ",
-                                       h.body.gravity[1],
-                                       ") on every particle"));
+                                       h.body.gravity[1], ") on every particle"));
       break;
     }
     case HeldCondition::Kind::Clamp:

@@ -1,6 +1,6 @@
 #pragma once
-// Boundary conditions of an SPH run as objects of one interface, in the manner of LAMMPS's fixes
-// (a `post_force` hook per fix, called once per step in the fixes' order) and MFEM's integrators
+// Boundary conditions of an SPH run as objects of one interface, in the manner of [LAMMPS]'s fixes
+// (a `post_force` hook per fix, called once per step in the fixes' order) and [MFEM]'s integrators
 // (one object per term, a list that the assembly loops over): the step and the distribution over
 // ranks call the hooks of every condition in the run's list without knowing its kind. A hook is
 // called once per condition per evaluation; what it does per particle is a loop over its own
@@ -40,9 +40,7 @@ public:
   void operator()(const std::string& name, std::vector<double>& v) const override {
     visit_(name, v);
   }
-  void operator()(const std::string& name, std::vector<int>& v) const override {
-    visit_(name, v);
-  }
+  void operator()(const std::string& name, std::vector<int>& v) const override { visit_(name, v); }
 
 private:
   Visit visit_;

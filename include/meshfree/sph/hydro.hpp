@@ -5,11 +5,11 @@
 // viscosity (alpha = beta = 1, phi = 0.1 h), smoothing lengths that follow the density, a
 // midpoint predictor-corrector step under the CFL bound, equations of state per material,
 // programmed burn of explosives (lighting time = distance / D_CJ) or a ZND front lit by its own
-// shock, solid strength, symmetry planes (mirror particles), boundary conditions (sph/condition.hpp:
-// loads, constant forces, transmitting boundaries), and the optional kernel-gradient correction
-// and artificial stress. This header holds a run's data; the steps that act on it are declared in
-// sph/state.hpp, sph/neighbours.hpp, sph/rates.hpp, sph/corrections.hpp, sph/step.hpp,
-// sph/symmetry.hpp and sph/detonation.hpp.
+// shock, solid strength, symmetry planes (mirror particles), boundary conditions
+// (sph/condition.hpp: loads, constant forces, transmitting boundaries), and the optional
+// kernel-gradient correction and artificial stress. This header holds a run's data; the steps that
+// act on it are declared in sph/state.hpp, sph/neighbours.hpp, sph/rates.hpp, sph/corrections.hpp,
+// sph/step.hpp, sph/symmetry.hpp and sph/detonation.hpp.
 #include "meshfree/distribution/halo.hpp"
 #include "meshfree/kernels/sph_kernel.hpp"
 #include "meshfree/neighbors/pair_list.hpp"
