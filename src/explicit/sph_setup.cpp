@@ -5,6 +5,8 @@
 #include "meshfree/sph/detonation.hpp"
 #include "meshfree/sph/held_loads.hpp"
 #include "meshfree/sph/state.hpp"
+#include "meshfree/sph/surface_load.hpp"
+#include "meshfree/sph/transmitting_boundary.hpp"
 #include <algorithm>
 #include <cmath>
 
@@ -154,9 +156,9 @@ sph::Hydro build_sph(const spec::SphSpec& s) {
   // shrinks with the dimension (measured in README.md, SPH).
   h.settings.skin = h.dim == 1 ? 0.5 : 0.3;
   for (std::size_t k = 0; k < s.regions.size(); ++k) add_region(h, s, k);
-  for (const spec::SphBlastLoad& l : s.loads) h.loads.push_back(blast_load(h, l, s.dimension));
-  for (const spec::SphTraction& t : s.tractions) h.forces.push_back(traction(h, t));
-  for (int d = 0; d < 3; ++d) h.gravity[d] = s.gravity[d];
+  for (const spec::SphBlastLoad& l : s.loads) h.conditions.add(blast_load(h, l, s.dimension));
+  for (const spec::SphTraction& t : s.tractions) h.conditions.add(traction(h, t));
+  for (int d = 0; d < 3; ++d) h.body.gravity[d] = s.gravity[d];
   for (const spec::SphSymmetry& m : s.symmetry) h.symmetry.push_back(symmetry_plane(h, m));
   if (s.detonation_normal)
     sph::light_from_plane(h, s.detonation_point->data(), s.detonation_normal->data());
@@ -164,7 +166,7 @@ sph::Hydro build_sph(const spec::SphSpec& s) {
     sph::light_from_point(h, s.detonation_point->data());
   sph::update_state(h);
   for (const spec::SphTransmitting& t : s.transmitting)
-    h.transmitting.push_back(transmitting(h, t, s.dimension));
+    h.conditions.add(transmitting(h, t, s.dimension));
   return h;
 }
 

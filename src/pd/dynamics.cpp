@@ -3,15 +3,30 @@
 
 namespace mf::pd {
 
-namespace {
+void Loading::add_forces(double t, std::vector<double>& f) const {
+  for (const BodyLoad& load : loads)
+    for (std::size_t k = 0; k < load.particles.size(); ++k) {
+      const int i = load.particles[k];
+      const double g = factor(load, k, t);
+      for (int d = 0; d < 3; ++d) f[3 * i + d] += g * load.density_of(k, d);
+    }
+}
 
-/// Applies the prescribed components at time t: displacement constraints set u (and the
-/// velocity that moved them there from u_before over dt), velocity constraints set v;
-/// accelerations of constrained components are zero. Without u_before only the accelerations
-/// are set.
-void impose(const Loading& loading, particles::ParticleSet& q, double t, double dt,
-            const std::vector<double>* u_before) {
-  loading.for_each_fixed(t, [&](std::size_t k, const Constraint& c, double value) {
+double Loading::power(const std::vector<double>& du, const std::vector<double>& volume,
+                      double t) const {
+  double w = 0.0;
+  for (const BodyLoad& load : loads)
+    for (std::size_t k = 0; k < load.particles.size(); ++k) {
+      const int i = load.particles[k];
+      const double g = factor(load, k, t);
+      for (int d = 0; d < 3; ++d) w += g * load.density_of(k, d) * volume[i] * du[3 * i + d];
+    }
+  return w;
+}
+
+void Loading::impose(particles::ParticleSet& q, double t, double dt,
+                     const std::vector<double>* u_before) const {
+  for_each_fixed(t, [&](std::size_t k, const Constraint& c, double value) {
     q.a[k] = 0.0;
     if (!u_before) return;
     if (c.velocity) {
@@ -23,7 +38,15 @@ void impose(const Loading& loading, particles::ParticleSet& q, double t, double 
   });
 }
 
-} // namespace
+void Loading::keep_velocities(particles::ParticleSet& q, double t) const {
+  for (const Constraint& c : constraints)
+    if (c.velocity) {
+      const double f = factor(c.function, t);
+      for (int i : c.particles)
+        for (int d = 0; d < 3; ++d)
+          if (c.fixed[d]) q.v[3 * i + d] = c.value[d] * f;
+    }
+}
 
 StepReport accelerate(Model& m, BondState& s, const Loading& loading, bool with_energy) {
   return accelerate(m, s, loading, Interactions{}, with_energy);
@@ -41,12 +64,7 @@ StepReport accelerate(Model& m, BondState& s, const Loading& loading, const Inte
   if (x.fracture) intact_before = s.intact;
   const ForceReport fr = bond_forces(m, s, y, f, with_energy);
   if (!s.s0.empty()) m.halo.exchange(s.s0.committed); // the ghosts' critical stretch
-  for (const BodyLoad& load : loading.loads)
-    for (std::size_t k = 0; k < load.particles.size(); ++k) {
-      const int i = load.particles[k];
-      const double g = loading.factor(load, k, q.time);
-      for (int d = 0; d < 3; ++d) f[3 * i + d] += g * load.density_of(k, d);
-    }
+  loading.add_forces(q.time, f);
   double contact_energy = 0.0;
   if (x.short_range) contact_energy += m.halo.ranks().sum(x.short_range->add_forces(m, y, f));
   if (x.impactors)
@@ -58,7 +76,7 @@ StepReport accelerate(Model& m, BondState& s, const Loading& loading, const Inte
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i)
     for (int d = 0; d < 3; ++d) q.a[3 * i + d] = f[3 * i + d] / q.density[i];
-  impose(loading, q, q.time, 0.0, nullptr);
+  loading.impose(q, q.time, 0.0, nullptr);
   const distribution::Ranks& ranks = m.halo.ranks();
   StepReport r;
   r.broken = ranks.sum(fr.broken);
@@ -82,19 +100,6 @@ StepReport advance(Model& m, BondState& s, const Loading& loading, const Interac
   std::vector<Impactor> none;
   std::vector<Impactor>& impactors = x.impactors ? *x.impactors : none;
   const std::size_t size = 3 * static_cast<std::size_t>(q.owned_count());
-  // Work of the body loads over the step: the trapezoidal rule on b . du.
-  double work = 0.0;
-  const auto load_power = [&](const std::vector<double>& du, double t) {
-    double w = 0.0;
-    for (const BodyLoad& load : loading.loads)
-      for (std::size_t k = 0; k < load.particles.size(); ++k) {
-        const int i = load.particles[k];
-        const double g = loading.factor(load, k, t);
-        for (int d = 0; d < 3; ++d)
-          w += g * load.density_of(k, d) * m.particles.volume[i] * du[3 * i + d];
-      }
-    return w;
-  };
   std::vector<double> u_old = q.u;
   // Half kick and drift.
 #pragma omp parallel for schedule(static)
@@ -105,7 +110,7 @@ StepReport advance(Model& m, BondState& s, const Loading& loading, const Interac
   const double t_old = q.time;
   q.time += dt;
   ++q.step;
-  impose(loading, q, q.time, dt, &u_old);
+  loading.impose(q, q.time, dt, &u_old);
   // Impactors: a free penalty impactor takes its half kick from the last contact force; each
   // moving one drifts; kinematic ones then push the particles out.
   std::vector<Eigen::Vector3d> start(impactors.size()), force_before(impactors.size());
@@ -120,7 +125,9 @@ StepReport advance(Model& m, BondState& s, const Loading& loading, const Interac
   }
   std::vector<double> du(size);
   for (std::size_t k = 0; k < size; ++k) du[k] = q.u[k] - u_old[k];
-  work += 0.5 * (load_power(du, t_old) + load_power(du, q.time));
+  // Work of the body loads over the step: the trapezoidal rule on b . du.
+  const double work =
+      0.5 * (loading.power(du, q.volume, t_old) + loading.power(du, q.volume, q.time));
   const double fracture_work =
       x.fracture ? m.halo.ranks().sum(x.fracture->work_over_step(du)) : 0.0;
   // New accelerations and the second half kick.
@@ -136,13 +143,7 @@ StepReport advance(Model& m, BondState& s, const Loading& loading, const Interac
     if (imp.prescribed)
       imp.work -= 0.5 * (force_before[k] + imp.contact_force).dot(imp.position - start[k]);
   }
-  for (const Constraint& c : loading.constraints) // prescribed velocities stay as prescribed
-    if (c.velocity) {
-      const double f = loading.factor(c.function, q.time);
-      for (int i : c.particles)
-        for (int d = 0; d < 3; ++d)
-          if (c.fixed[d]) q.v[3 * i + d] = c.value[d] * f;
-    }
+  loading.keep_velocities(q, q.time);
   r.external_work = m.halo.ranks().sum(work);
   r.fracture_work = fracture_work;
   return r;

@@ -119,58 +119,6 @@ std::vector<int> slab_owners(const Hydro& s, bool replicated) {
   return owner;
 }
 
-/// The local index of owned particle `id` (owned particles are in increasing id), or -1.
-int local_of(const particles::ParticleSet& P, long id) {
-  const auto end = P.id.begin() + P.owned_count();
-  const auto it = std::lower_bound(P.id.begin(), end, id);
-  return it != end && *it == id ? static_cast<int>(it - P.id.begin()) : -1;
-}
-
-/// Cuts this rank's lists of loads, held forces and transmitting particles out of the whole
-/// body's: the entries of its owned particles, in the whole list's order.
-void cut_lists(Hydro& s) {
-  const particles::ParticleSet& P = s.particles;
-  s.loads.clear();
-  for (const SurfaceLoad& whole : s.whole.loads) {
-    SurfaceLoad mine = whole;
-    mine.particles.clear(), mine.area.clear(), mine.pulses.clear();
-    for (std::size_t k = 0; k < whole.particles.size(); ++k)
-      if (const int i = local_of(P, whole.particles[k]); i >= 0) {
-        mine.particles.push_back(i);
-        mine.area.push_back(whole.area[k]);
-        mine.pulses.push_back(whole.pulses[k]);
-      }
-    s.loads.push_back(std::move(mine));
-  }
-  s.forces.clear();
-  for (const SurfaceForce& whole : s.whole.forces) {
-    SurfaceForce mine{whole.name, {}, {}};
-    for (std::size_t k = 0; k < whole.particles.size(); ++k)
-      if (const int i = local_of(P, whole.particles[k]); i >= 0) {
-        mine.particles.push_back(i);
-        mine.force.insert(mine.force.end(), &whole.force[3 * k], &whole.force[3 * k] + 3);
-      }
-    s.forces.push_back(std::move(mine));
-  }
-  s.transmitting.clear();
-  for (const TransmittingBoundary& whole : s.whole.transmitting) {
-    TransmittingBoundary mine = whole;
-    mine.particles.clear(), mine.area.clear(), mine.static_force.clear();
-    mine.normal_impedance.clear(), mine.shear_impedance.clear();
-    for (std::size_t k = 0; k < whole.particles.size(); ++k)
-      if (const int i = local_of(P, whole.particles[k]); i >= 0) {
-        mine.particles.push_back(i);
-        mine.area.push_back(whole.area[k]);
-        mine.normal_impedance.push_back(whole.normal_impedance[k]);
-        mine.shear_impedance.push_back(whole.shear_impedance[k]);
-        if (!whole.static_force.empty())
-          mine.static_force.insert(mine.static_force.end(), &whole.static_force[3 * k],
-                                   &whole.static_force[3 * k] + 3);
-      }
-    s.transmitting.push_back(std::move(mine));
-  }
-}
-
 /// Sends the records of particles to[r] to rank r and appends what the other ranks send, rank
 /// by rank; returns the number appended from each rank. Collective.
 std::vector<int> send_records(Hydro& s, const std::vector<std::vector<int>>& to) {
@@ -227,8 +175,7 @@ void distribute(Hydro& s, const distribution::Ranks& ranks) {
   for (int i = 0; i < static_cast<int>(owner.size()); ++i)
     if (owner[i] == ranks.rank) mine.push_back(i);
   keep_only(s, mine);
-  s.whole = {std::move(s.loads), std::move(s.forces), std::move(s.transmitting)};
-  cut_lists(s);
+  s.conditions.keep_whole(s.particles);
   s.groups.built_for = -1;
 }
 
@@ -249,13 +196,13 @@ void migrate(Hydro& s) {
     kept.push_back(static_cast<int>(i));
   keep_only(s, kept);
   sort_by_id(s);
-  cut_lists(s);
+  s.conditions.cut(s.particles);
   s.groups.built_for = -1;
 }
 
 void resume_distribution(Hydro& s) {
   if (s.ranks.serial()) return;
-  cut_lists(s);
+  s.conditions.cut(s.particles);
   const particles::ParticleSet& P = s.particles;
   const long n = P.owned_count();
   MF_REQUIRE(static_cast<std::size_t>(s.remote) == s.remote_owner.size(),

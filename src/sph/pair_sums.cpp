@@ -353,9 +353,9 @@ inline void store_acceleration(const Hydro& s, Rates& r, int i, double acc[3]) {
     return;
   }
   const double* v = &s.particles.v[3 * static_cast<std::size_t>(i)];
-  if (s.gravity[0] != 0.0 || s.gravity[1] != 0.0 || s.gravity[2] != 0.0 || s.damping > 0.0) {
-    const double damping = std::max(s.damping, 0.0);
-    for (int d = 0; d < 3; ++d) acc[d] += s.gravity[d] - damping * v[d];
+  if (s.body.any()) {
+    const double damping = std::max(s.body.damping, 0.0);
+    for (int d = 0; d < 3; ++d) acc[d] += s.body.gravity[d] - damping * v[d];
   }
   for (int d = 0; d < 3; ++d) r.dv[3 * i + d] = acc[d];
 }

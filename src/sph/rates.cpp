@@ -12,20 +12,6 @@
 namespace mf::sph {
 
 namespace {
-/// The dashpot force of particle k of a transmitting boundary at velocity v, plus its static
-/// force when it holds one.
-inline void boundary_force(const TransmittingBoundary& b, std::size_t k, const double* v,
-                           double f[3]) {
-  const double vn = v[0] * b.normal[0] + v[1] * b.normal[1] + v[2] * b.normal[2];
-  for (int d = 0; d < 3; ++d) {
-    const double normal_part = vn * b.normal[d];
-    f[d] = -b.area[k] *
-           (b.normal_impedance[k] * normal_part + b.shear_impedance[k] * (v[d] - normal_part));
-  }
-  if (!b.static_force.empty())
-    for (int d = 0; d < 3; ++d) f[d] += b.static_force[3 * k + d];
-}
-
 /// Current positions x = X + u of all particles, owned and ghosts.
 void current_positions(const Hydro& s, Rates& r) {
   const particles::ParticleSet& P = s.particles;
@@ -109,32 +95,13 @@ void prepare_strength(const Hydro& s, Rates& r) {
   }
 }
 
-/// The accelerations of the surface loads, held forces and transmitting boundaries; held
-/// components take whatever force it needs to keep them at rest: the roller's reaction.
+/// The accelerations of the boundary conditions; held components take whatever force it needs
+/// to keep them at rest: the roller's reaction.
 void add_boundary_accelerations(const Hydro& s, Rates& r) {
-  const particles::ParticleSet& P = s.particles;
+  for (std::size_t c = 0; c < s.conditions.size(); ++c)
+    s.conditions[c].add_accelerations(s, s.particles.time, r.dv);
   const ParticleFields& F = s.fields;
-  for (const SurfaceLoad& load : s.loads)
-    for (std::size_t k = 0; k < load.particles.size(); ++k) {
-      const int i = load.particles[k];
-      if (F.fixed[i]) continue;
-      const double f = load.pulses[k](s.particles.time) * load.area[k] / P.mass[i];
-      for (int d = 0; d < 3; ++d) r.dv[3 * i + d] += f * load.direction[d];
-    }
-  for (const SurfaceForce& held : s.forces)
-    for (std::size_t k = 0; k < held.particles.size(); ++k) {
-      const int i = held.particles[k];
-      if (F.fixed[i]) continue;
-      for (int d = 0; d < 3; ++d) r.dv[3 * i + d] += held.force[3 * k + d] / P.mass[i];
-    }
-  for (const TransmittingBoundary& b : s.transmitting)
-    for (std::size_t k = 0; k < b.particles.size(); ++k) {
-      const int i = b.particles[k];
-      double f[3];
-      boundary_force(b, k, &P.v[3 * static_cast<std::size_t>(i)], f);
-      for (int d = 0; d < 3; ++d) r.dv[3 * i + d] += f[d] / P.mass[i];
-    }
-  for (int i = 0; i < P.owned_count(); ++i)
+  for (int i = 0; i < s.particles.owned_count(); ++i)
     if (F.held_axes[i])
       for (int d = 0; d < 3; ++d)
         if (F.held_axes[i] & (1 << d)) r.dv[3 * i + d] = 0.0;
@@ -162,31 +129,9 @@ void compute_rates(const Hydro& s, Rates& r) {
 }
 
 void external_forces(const Hydro& s, std::vector<int>& who, std::vector<double>& force) {
-  const particles::ParticleSet& P = s.particles;
-  const ParticleFields& F = s.fields;
   who.clear();
   force.clear();
-  for (const SurfaceLoad& load : s.loads)
-    for (std::size_t k = 0; k < load.particles.size(); ++k) {
-      const int i = load.particles[k];
-      if (F.fixed[i]) continue;
-      const double f = load.pulses[k](s.particles.time) * load.area[k];
-      who.push_back(i);
-      for (int d = 0; d < 3; ++d) force.push_back(f * load.direction[d]);
-    }
-  for (const SurfaceForce& held : s.forces)
-    for (std::size_t k = 0; k < held.particles.size(); ++k) {
-      const int i = held.particles[k];
-      if (F.fixed[i]) continue;
-      who.push_back(i);
-      for (int d = 0; d < 3; ++d) force.push_back(held.force[3 * k + d]);
-    }
-  for (const TransmittingBoundary& b : s.transmitting)
-    for (std::size_t k = 0; k < b.particles.size(); ++k) {
-      double f[3];
-      boundary_force(b, k, &P.v[3 * static_cast<std::size_t>(b.particles[k])], f);
-      who.push_back(b.particles[k]);
-      for (int d = 0; d < 3; ++d) force.push_back(f[d]);
-    }
+  for (std::size_t c = 0; c < s.conditions.size(); ++c)
+    s.conditions[c].append_forces(s, s.particles.time, who, force);
 }
 } // namespace mf::sph

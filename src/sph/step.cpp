@@ -72,7 +72,7 @@ void body_force_work(Hydro& s, const std::vector<double>& v0, const std::vector<
   const particles::ParticleSet& P = s.particles;
   const ParticleFields& F = s.fields;
   const int n = P.owned_count();
-  const double c = std::max(s.damping, 0.0);
+  const double c = std::max(s.body.damping, 0.0);
   double gravity = 0.0, damping = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : gravity, damping)
   for (int i = 0; i < n; ++i) {
@@ -80,7 +80,7 @@ void body_force_work(Hydro& s, const std::vector<double>& v0, const std::vector<
     for (int d = 0; d < 3; ++d) {
       const std::size_t k = 3 * static_cast<std::size_t>(i) + d;
       const double mean_v = v0[k] + 0.5 * dt * dv[k];
-      gravity += P.mass[i] * s.gravity[d] * mean_v;
+      gravity += P.mass[i] * s.body.gravity[d] * mean_v;
       damping -= c * P.mass[i] * P.v[k] * mean_v;
     }
   }
@@ -128,8 +128,7 @@ void advance(Hydro& s, double dt) {
   // Corrector: the full step with the mid-step rates.
   refresh_neighbours(s);
   compute_rates(s, r);
-  if (s.gravity[0] != 0.0 || s.gravity[1] != 0.0 || s.gravity[2] != 0.0 || s.damping > 0.0)
-    body_force_work(s, v0, r.dv, dt);
+  if (s.body.any()) body_force_work(s, v0, r.dv, dt);
 #pragma omp parallel for schedule(static)
   for (std::size_t k = 0; k < n3; ++k) {
     P.u[k] = u0[k] + dt * P.v[k];

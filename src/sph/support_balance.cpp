@@ -81,15 +81,9 @@ double largest_force(const Hydro& h, const std::vector<materials::Vec6>& sigma) 
   const particles::ParticleSet& P = h.particles;
   for (std::size_t i = 0; i < sigma.size(); ++i)
     f = std::max(f, sigma[i].cwiseAbs().maxCoeff() * face_area(P, static_cast<int>(i), h.dim));
-  for (const auto& s : h.forces)
-    for (std::size_t k = 0; k < s.particles.size(); ++k)
-      f = std::max(f, Vec3(s.force[3 * k], s.force[3 * k + 1], s.force[3 * k + 2]).norm());
-  for (const auto& b : h.transmitting)
-    for (std::size_t k = 0; k < b.static_force.size() / 3; ++k)
-      f = std::max(
-          f,
-          Vec3(b.static_force[3 * k], b.static_force[3 * k + 1], b.static_force[3 * k + 2]).norm());
-  const double g = Vec3(h.gravity[0], h.gravity[1], h.gravity[2]).norm();
+  for (std::size_t c = 0; c < h.conditions.size(); ++c)
+    f = std::max(f, h.conditions[c].largest_held_force());
+  const double g = Vec3(h.body.gravity[0], h.body.gravity[1], h.body.gravity[2]).norm();
   for (int i = 0; i < P.owned_count(); ++i) f = std::max(f, P.mass[i] * g);
   return f;
 }
@@ -106,11 +100,13 @@ RestBalance hold_at_rest(Hydro& h, const std::vector<materials::Vec6>& sigma,
                          const std::vector<int>& held, const std::vector<int>& balanced) {
   std::vector<materials::Vec6> of_particle(h.particles.size(), materials::Vec6::Zero());
   std::copy(sigma.begin(), sigma.end(), of_particle.begin());
-  for (int b : held) hold_stress(h.transmitting[b], of_particle);
+  const std::vector<TransmittingBoundary*> boundaries =
+      h.conditions.of_kind<TransmittingBoundary>();
+  for (int b : held) hold_stress(*boundaries[b], of_particle);
   const double scale = std::max(largest_force(h, sigma), 1e-300);
   RestBalance r;
   r.before = worst_out_of_balance(h) / scale;
-  h.forces.push_back(balancing_force(h, "transfer_balance", balanced));
+  h.conditions.add(balancing_force(h, "transfer_balance", balanced));
   r.after = worst_out_of_balance(h) / scale;
   return r;
 }

@@ -8,6 +8,8 @@
 #include "meshfree/sph/initial_state.hpp"
 #include "meshfree/sph/step.hpp"
 #include "meshfree/sph/support_balance.hpp"
+#include "meshfree/sph/surface_force.hpp"
+#include "meshfree/sph/transmitting_boundary.hpp"
 #include "meshfree/stages/explicit_stage.hpp"
 #include "meshfree/stages/held_conditions.hpp"
 #include "meshfree/stages/preload_sampling.hpp"
@@ -38,9 +40,11 @@ sph::InitialStateReport put_increment(sph::Hydro& h, const PreloadAtParticles& p
 
 /// The transmitting boundary of the stage most of whose particles a held condition acts on, or
 /// -1: a roller or clamp there becomes the dashpot with its static force.
-int transmitting_of(const sph::Hydro& h, const std::vector<int>& particles) {
-  for (std::size_t b = 0; b < h.transmitting.size(); ++b) {
-    const auto& p = h.transmitting[b].particles;
+int transmitting_of(sph::Hydro& h, const std::vector<int>& particles) {
+  const std::vector<sph::TransmittingBoundary*> boundaries =
+      h.conditions.of_kind<sph::TransmittingBoundary>();
+  for (std::size_t b = 0; b < boundaries.size(); ++b) {
+    const auto& p = boundaries[b]->particles;
     std::size_t shared = 0;
     for (int i : particles) shared += std::binary_search(p.begin(), p.end(), i);
     if (2 * shared > particles.size()) return static_cast<int>(b);
@@ -75,7 +79,8 @@ std::string hold_displacement(const HeldCondition& c, sph::Hydro& h,
   const int b = transmitting_of(h, c.surface);
   if (b >= 0) {
     held_boundaries.push_back(b);
-    return detail::concat(c.name, ": transmitting boundary '", h.transmitting[b].name,
+    return detail::concat(c.name, ": transmitting boundary '",
+                          h.conditions.of_kind<sph::TransmittingBoundary>()[b]->name,
                           "' with the static force of the preload's stress");
   }
   if (c.kind == HeldCondition::Kind::Clamp) {
@@ -109,7 +114,7 @@ Holding hold(const std::vector<HeldCondition>& held, const spec::ProblemSpec& pr
         f.force.insert(f.force.end(), {F.x(), F.y(), F.z()});
         total += F;
       }
-      h.forces.push_back(f);
+      h.conditions.add(std::move(f));
       out.how.push_back(detail::concat(c.name, ": constant force on ", c.particles.size(),
                                        " particles, total (", total.x(), ", ", total.y(), ")"));
       break;
@@ -118,9 +123,9 @@ Holding hold(const std::vector<HeldCondition>& held, const spec::ProblemSpec& pr
       MF_REQUIRE(c.gravity, link.key_path, ".hold: '", c.name,
                  "': SPH holds gravity, not a "
                  "uniform body force (give the preload 'gravity')");
-      for (int d = 0; d < 2; ++d) h.gravity[d] = c.body_factor * preload.galerkin().gravity[d];
-      out.how.push_back(detail::concat(c.name, ": gravity (", h.gravity[0], ", ", h.gravity[1],
-                                       ") on every particle"));
+      for (int d = 0; d < 2; ++d) h.body.gravity[d] = c.body_factor * preload.galerkin().gravity[d];
+      out.how.push_back(detail::concat(c.name, ": gravity (", h.body.gravity[0], ", ",
+                                       h.body.gravity[1], ") on every particle"));
       break;
     }
     case HeldCondition::Kind::Clamp:
@@ -218,11 +223,10 @@ void settle(sph::Hydro& h, const spec::StageLink& link, TransferReport& t) {
   const std::vector<double> u0 = h.particles.u;
   // The settle is the preload's, under the held loads alone: the event's own pressure
   // histories (a blast) start at t = 0, after it.
-  std::vector<sph::SurfaceLoad> event_loads;
-  std::swap(event_loads, h.loads);
-  h.damping = link.settle_damping;
+  sph::Conditions event_loads = h.conditions.take_event_loads();
+  h.body.damping = link.settle_damping;
   damped_motion(h, link);
-  std::swap(event_loads, h.loads);
+  h.conditions.add_all(std::move(event_loads));
   double drift = 0.0;
   for (int i = 0; i < n; ++i)
     drift = std::max(drift, Vec3(h.particles.u[3 * i] - u0[3 * i],
@@ -231,7 +235,7 @@ void settle(sph::Hydro& h, const spec::StageLink& link, TransferReport& t) {
                                 .norm());
   t.settle_time = link.settle_time;
   t.settle_drift = drift / std::max(t.max_u, 1e-300);
-  h.damping = 0.0;
+  h.body.damping = 0.0;
   sph::set_displacement(h,
                         std::vector<double>(h.particles.u.begin(), h.particles.u.begin() + 3 * n));
   h.particles.time = 0.0;

@@ -52,6 +52,12 @@ struct BodyLoad {
   }
 };
 
+/// The conditions of a peridynamic body: two closed lists of plain data rather than SPH's objects
+/// with hooks (sph/condition.hpp), because the static solvers (pd/relaxation.hpp) and a staged
+/// run's transfer read them as data too (a load vector at one instant, the held components), and
+/// the particles they name never change rank, so no condition is cut again after a step. Their
+/// hooks in the step are the members below, with the names SPH's conditions use where they do
+/// the same: add_forces (post_force), power (the work), impose (kinematic components).
 struct Loading {
   std::vector<loads::TimeFunction> functions;
   std::vector<Constraint> constraints;
@@ -64,6 +70,18 @@ struct Loading {
     const double g = factor(load.function, t);
     return load.pulses.empty() ? g : g * load.pulses[k](t);
   }
+  /// Adds every load's force per volume at time t to f (3 per particle).
+  void add_forces(double t, std::vector<double>& f) const;
+  /// The loads' power sum_i b_i(t) . du_i V_i on the displacement increments du (3 per particle).
+  double power(const std::vector<double>& du, const std::vector<double>& volume, double t) const;
+  /// Applies the prescribed components at time t: displacement constraints set u (and the
+  /// velocity that moved them there from u_before over dt), velocity constraints set v;
+  /// accelerations of constrained components are zero. Without u_before only the accelerations
+  /// are set.
+  void impose(particles::ParticleSet& q, double t, double dt,
+              const std::vector<double>* u_before) const;
+  /// Sets the prescribed velocity components at time t again (after the second half kick).
+  void keep_velocities(particles::ParticleSet& q, double t) const;
   /// Calls f(k, c, value) for every fixed component of every constraint at time t: k indexes the
   /// component (3 per particle), c is its constraint and value its prescribed displacement (or
   /// velocity) times the time function.

@@ -24,19 +24,19 @@
 namespace mf::sph {
 
 /// Splits a body built whole on every rank (global id = index; its ghosts are dropped) over `ranks`:
-/// each rank keeps its slab's particles and cuts its own lists of loads, held forces and
-/// transmitting particles out of the whole body's, which it keeps in s.whole. On one rank it
-/// only records `ranks`. Collective.
+/// each rank keeps its slab's particles and cuts its own part of each boundary condition out of
+/// the whole body's, which it keeps (Conditions::keep_whole). On one rank it only records
+/// `ranks`. Collective.
 void distribute(Hydro& s, const distribution::Ranks& ranks);
 
 /// Splits the owned particles again by their current positions; each that changed slab moves to
-/// its new owner with its state, and the lists of loads are cut again. Drops every ghost.
+/// its new owner with its state, and the conditions are cut again. Drops every ghost.
 /// Collective.
 void migrate(Hydro& s);
 
-/// After a rank's state was read back from a checkpoint (Hydro::for_each_state): cuts its lists
-/// of loads, held forces and transmitting particles for its owned particles again and rebuilds
-/// the halo of its remote ghosts, as they were. Collective; nothing on one rank.
+/// After a rank's state was read back from a checkpoint (Hydro::for_each_state): cuts its part
+/// of the conditions for its owned particles again and rebuilds the halo of its remote ghosts,
+/// as they were. Collective; nothing on one rank.
 void resume_distribution(Hydro& s);
 
 /// Drops every ghost and copies in, as remote ghosts, the other ranks' particles that lie within

@@ -5,6 +5,8 @@
 #include "meshfree/materials/j2_plasticity.hpp"
 #include "meshfree/particles/particle_set.hpp"
 #include "meshfree/sph/hydro.hpp"
+#include "meshfree/sph/surface_force.hpp"
+#include "meshfree/sph/transmitting_boundary.hpp"
 #include <string>
 #include <vector>
 

@@ -5,15 +5,16 @@
 // viscosity (alpha = beta = 1, phi = 0.1 h), smoothing lengths that follow the density, a
 // midpoint predictor-corrector step under the CFL bound, equations of state per material,
 // programmed burn of explosives (lighting time = distance / D_CJ) or a ZND front lit by its own
-// shock, solid strength, symmetry planes (mirror particles), transmitting boundaries, and the
-// optional kernel-gradient correction and artificial stress. This header holds a run's data; the
-// steps that act on it are declared in sph/state.hpp, sph/neighbours.hpp, sph/rates.hpp,
-// sph/corrections.hpp, sph/step.hpp, sph/symmetry.hpp and sph/detonation.hpp.
+// shock, solid strength, symmetry planes (mirror particles), boundary conditions
+// (sph/condition.hpp: loads, constant forces, transmitting boundaries), and the optional
+// kernel-gradient correction and artificial stress. This header holds a run's data; the steps that
+// act on it are declared in sph/state.hpp, sph/neighbours.hpp, sph/rates.hpp, sph/corrections.hpp,
+// sph/step.hpp, sph/symmetry.hpp and sph/detonation.hpp.
 #include "meshfree/distribution/halo.hpp"
 #include "meshfree/kernels/sph_kernel.hpp"
-#include "meshfree/loads/blast.hpp"
 #include "meshfree/neighbors/pair_list.hpp"
 #include "meshfree/particles/particle_set.hpp"
+#include "meshfree/sph/condition.hpp"
 #include "meshfree/sph/material.hpp"
 #include "meshfree/sph/particle_fields.hpp"
 #include "meshfree/sph/settings.hpp"
@@ -22,39 +23,6 @@
 
 namespace mf::sph {
 
-/// A pressure history on a surface layer of particles (an empirical blast load): particle k of
-/// the layer takes the force pulses[k](t) area[k] along `direction` (the inward normal).
-struct SurfaceLoad {
-  std::string name;
-  std::vector<int> particles;
-  std::vector<double> area;
-  std::vector<loads::Friedlander> pulses;
-  double direction[3] = {0.0, 0.0, 0.0};
-};
-
-/// Constant forces on a set of particles (a held traction, a preload kept on): particle
-/// particles[k] takes force[3k..3k+2] at all times. sph/held_loads.hpp builds one from a traction.
-struct SurfaceForce {
-  std::string name;
-  std::vector<int> particles;
-  std::vector<double> force; // 3 per particle
-};
-
-/// A transmitting (non-reflecting) boundary on a surface layer: Lysmer & Kuhlemeyer (1969)
-/// dashpots, a traction -rho c_p (v.n) n - rho c_s (v - (v.n) n) on each particle's face area,
-/// which absorbs plane waves arriving along the normal. A body cut out of a stressed medium
-/// (soil under its own weight) also needs the traction sigma0 . n that the medium beyond the
-/// boundary exerted on it, else the boundary gives way under the initial stress (the "free-field"
-/// or reaction forces of viscous boundaries; Lysmer & Kuhlemeyer 1969, and e.g. Kontoe,
-/// Zdravkovic & Potts 2009): static_force holds it, 3 per particle, constant (empty: none).
-struct TransmittingBoundary {
-  std::string name;
-  std::vector<int> particles;
-  std::vector<double> area, normal_impedance, shear_impedance; // A, rho c_p, rho c_s per particle
-  double normal[3] = {0.0, 0.0, 0.0};                          // unit, outward
-  std::vector<double> static_force;                            // 3 per particle, or empty
-};
-
 /// A symmetry plane x_axis = at (Libersky & Petschek 1991; [Altafi 2018] type-II particles):
 /// the particles within reach of the plane are mirrored across it, with the normal velocity and
 /// the shear stresses on the plane reversed, so that the body behaves as half of a symmetric
@@ -62,6 +30,21 @@ struct TransmittingBoundary {
 struct SymmetryPlane {
   int axis = 0;
   double at = 0.0;
+};
+
+/// Forces on every free owned particle: body-level settings rather than conditions, summed
+/// inside the pair sums' own loop over the particles and their work in one sum over them.
+struct BodyForces {
+  /// Body acceleration (gravity).
+  double gravity[3] = {0.0, 0.0, 0.0};
+  /// Mass-proportional viscous damping c [1/s]: a -= c v, while c > 0. It brings a body to rest
+  /// under its loads (a settle phase before an event: dynamic relaxation, as LS-DYNA's
+  /// *CONTROL_DYNAMIC_RELAXATION or Underwood 1983); c = 2 omega_1 damps the lowest mode omega_1
+  /// critically. Switch it off (0) for the event.
+  double damping = 0.0;
+  bool any() const {
+    return gravity[0] != 0.0 || gravity[1] != 0.0 || gravity[2] != 0.0 || damping > 0.0;
+  }
 };
 
 /// The particles of each material, so that a material's laws are dispatched once for all of its
@@ -75,9 +58,6 @@ struct MaterialGroups {
   int owned(std::size_t m) const { return owned_end[m] - start[m]; }
 };
 
-/// A run's state: the particle set (reference positions, volume, mass, material, u, v and the
-/// instant; the current position is X + u) with SPH's fields beside it, materials, settings and
-/// the neighbour list with its margin.
 /// The neighbour lists of a rank's owned particles and what decides when they are built again
 /// (sph/neighbours.hpp).
 struct NeighbourState {
@@ -90,7 +70,8 @@ struct NeighbourState {
 };
 
 /// An SPH run's data: the particle layer (the set and SPH's fields), the materials, the solver's
-/// settings, the neighbour state, the loads and boundaries, and the distribution over ranks.
+/// settings, the neighbour state, the boundary conditions and body forces, and the distribution
+/// over ranks.
 struct Hydro {
   int dim = 3;
   particles::ParticleSet particles;
@@ -98,18 +79,12 @@ struct Hydro {
   std::vector<Material> materials;
   Settings settings;
   NeighbourState neighbours;
-  std::vector<SurfaceLoad> loads;
-  std::vector<SurfaceForce> forces;
-  std::vector<TransmittingBoundary> transmitting;
-  /// Body acceleration (gravity) on every owned particle that is not fixed.
-  double gravity[3] = {0.0, 0.0, 0.0};
-  /// Mass-proportional viscous damping c [1/s]: a -= c v on every owned particle that is not
-  /// fixed, while c > 0. It brings a body to rest under its loads (a settle phase before an
-  /// event: dynamic relaxation, as LS-DYNA's *CONTROL_DYNAMIC_RELAXATION or Underwood 1983);
-  /// c = 2 omega_1 damps the lowest mode omega_1 critically. Switch it off (0) for the event.
-  double damping = 0.0;
-  /// Work of the surface loads, constant forces, boundaries, gravity and damping so far, so that
-  /// kinetic + internal energy - external_work stays at its start.
+  /// The loads and boundaries acting on this rank's particles (and, over several ranks, the whole
+  /// body's, from which each rank cuts its own after particles migrate).
+  Conditions conditions;
+  BodyForces body;
+  /// Work of the conditions, gravity and damping so far, so that kinetic + internal energy -
+  /// external_work stays at its start.
   double external_work = 0.0;
   double damping_work = 0.0; // the damping's part of external_work (not positive)
   std::vector<SymmetryPlane> symmetry;
@@ -130,19 +105,12 @@ struct Hydro {
   std::vector<int> remote_owner; // the rank that owns each remote ghost
   distribution::Halo halo;
   long migrated = 0; // particles that moved to another rank so far
-  /// The loads, held forces and transmitting boundaries of the whole body, by global id, from
-  /// which each rank cuts its own lists after particles migrate (empty on one rank).
-  struct WholeBody {
-    std::vector<SurfaceLoad> loads;
-    std::vector<SurfaceForce> forces;
-    std::vector<TransmittingBoundary> transmitting;
-  } whole;
   MaterialGroups groups;
   bool any_solid() const;
   /// What changes as a run goes: this rank's particles (owned, remote ghosts and mirror images),
-  /// fields, the neighbour lists, the material groups, the work of the loads and which rank owns
-  /// each remote ghost (a checkpoint keeps them; sph::resume_distribution rebuilds the halo and
-  /// the rank's lists of loads from them).
+  /// fields, the neighbour lists, the material groups, the work of the loads, which rank owns
+  /// each remote ghost and the conditions' own state (a checkpoint keeps them;
+  /// sph::resume_distribution rebuilds the halo and cuts the rank's conditions from them).
   template <class Visit> void for_each_state(Visit&& visit) {
     particles.for_each_state(visit / "particles");
     fields.for_each_state(visit / "fields");
@@ -152,12 +120,13 @@ struct Hydro {
     visit("half_pairs.partner", n.half_pairs.partner);
     visit("x_at_build", n.x_at_build), visit("h_at_build", n.h_at_build);
     visit("build_radius", n.build_radius), visit("rebuilds", n.rebuilds);
-    visit("damping", damping), visit("external_work", external_work);
+    visit("damping", body.damping), visit("external_work", external_work);
     visit("damping_work", damping_work), visit("ghost_source", ghost_source);
     visit("ghost_planes", ghost_planes), visit("groups.start", groups.start);
     visit("groups.owned_end", groups.owned_end), visit("groups.members", groups.members);
     visit("groups.built_for", groups.built_for);
     visit("remote", remote), visit("remote_owner", remote_owner), visit("migrated", migrated);
+    conditions.for_each_state(visit / "conditions");
   }
 };
 

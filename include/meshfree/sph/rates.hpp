@@ -2,7 +2,7 @@
 // Rates of an SPH run: the continuity, momentum and energy equations ([Altafi 2018] eqs. 3-41,
 // 3-48 and 3-64) with Monaghan's viscosity, the Jaumann rate of the deviatoric stress, the
 // kernel-gradient correction, the artificial stress, the inter-material penalty, gravity,
-// damping, and the forces of surface loads, constant surface forces and transmitting boundaries.
+// damping, and the forces of the boundary conditions (sph/condition.hpp).
 #include "meshfree/sph/hydro.hpp"
 #include <vector>
 
@@ -31,9 +31,8 @@ struct Rates {
 /// state.
 void compute_rates(const Hydro& s, Rates& r);
 
-/// The forces of the surface loads, the constant surface forces and the boundaries at the
-/// current state, particle by particle (a particle may appear more than once); gravity and
-/// damping are not among them.
+/// The forces of the boundary conditions at the current state, particle by particle (a particle
+/// may appear more than once); gravity and damping are not among them.
 void external_forces(const Hydro& s, std::vector<int>& who, std::vector<double>& force);
 
 } // namespace mf::sph

@@ -10,6 +10,7 @@
 // block).
 #include "meshfree/materials/j2_plasticity.hpp"
 #include "meshfree/sph/hydro.hpp"
+#include "meshfree/sph/surface_force.hpp"
 #include <string>
 #include <vector>
 
@@ -28,7 +29,7 @@ std::vector<double> out_of_balance(Hydro& h);
 std::vector<int> within_reach(Hydro& h, const std::vector<int>& layer);
 
 /// Constant forces -m_i a_i on the given particles, from out_of_balance at the current state:
-/// added to h.forces, they hold those particles exactly at rest in the current state. A staged
+/// added to h.conditions, they hold those particles exactly at rest in the current state. A staged
 /// run balances every particle but those near a released condition with it: the outer layer of
 /// a held face carries its traction t A while SPH spreads a stress's surface force over the
 /// kernel's reach, and stepped surfaces and gradients leave residuals of their own.
@@ -41,8 +42,8 @@ std::vector<int> within_reach(Hydro& h, const std::vector<int>& layer);
 SurfaceForce balancing_force(Hydro& h, const std::string& name, const std::vector<int>& particles,
                              bool take_resultant = false);
 
-/// The scale of the out-of-balance forces: the largest held force on a particle (constant
-/// forces, the static forces of transmitting boundaries, gravity), or the largest stress
+/// The scale of the out-of-balance forces: the largest held force on a particle (the conditions'
+/// Condition::largest_held_force, gravity), or the largest stress
 /// component of `sigma` (one per owned particle, Voigt, tension positive) times a particle's face
 /// area.
 double largest_force(const Hydro& h, const std::vector<materials::Vec6>& sigma);
@@ -57,8 +58,9 @@ struct RestBalance {
 };
 
 /// Holds the body at rest in its current state of stress `sigma` (one per owned particle): the
-/// transmitting boundaries `held` take the static force of sigma (hold_stress), and then the
-/// particles `balanced` the balancing force "transfer_balance" (added to h.forces). Every held
+/// transmitting boundaries `held` (their places among the body's transmitting boundaries, in the
+/// list's order) take the static force of sigma (hold_stress), and then the
+/// particles `balanced` the balancing force "transfer_balance" (added to h.conditions). Every held
 /// boundary takes its static force before the balance is computed: a balance taken while a
 /// boundary still lacks its static force would carry its share of the body's weight and stress.
 RestBalance hold_at_rest(Hydro& h, const std::vector<materials::Vec6>& sigma,

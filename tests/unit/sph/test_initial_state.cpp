@@ -188,8 +188,8 @@ BlockResult stressed_block(int n, int steps, Hold hold) {
   CHECK(std::abs(h.fields.S[6 * mid + 1] - (syy + p)) < 1e-12 * std::abs(syy));
   CHECK(std::abs(h.fields.S[6 * mid + 2] - (szz + p)) < 1e-12 * std::abs(syy));
   const double tx[3] = {sxx * (1.0 + eps.eyy), 0, 0}, ty[3] = {0, syy * (1.0 + eps.exx), 0};
-  h.forces.push_back(sph::traction_force(h, "right", right, tx));
-  h.forces.push_back(sph::traction_force(h, "top", top, ty));
+  h.conditions.add(sph::traction_force(h, "right", right, tx));
+  h.conditions.add(sph::traction_force(h, "top", top, ty));
   BlockResult out;
   if (hold != Hold::TractionOnly) {
     std::vector<int> faces = right;
@@ -199,7 +199,7 @@ BlockResult stressed_block(int n, int steps, Hold hold) {
     for (std::size_t k = 0; k < bal.particles.size(); ++k)
       sum[0] += bal.force[3 * k], sum[1] += bal.force[3 * k + 1];
     out.resultant = std::max(std::abs(sum[0] / (tx[0] * L)), std::abs(sum[1] / (ty[1] * L)));
-    h.forces.push_back(bal);
+    h.conditions.add(bal);
   }
   const double W = 0.5 * (sxx * eps.exx + syy * eps.eyy) * L * L;
   for (int s = 0; s < steps; ++s) {
@@ -355,7 +355,7 @@ ColumnResult column(int settle, double c, int quiet) {
     }
   h.symmetry.push_back({0, 0.0});
   h.symmetry.push_back({0, cols * dx});
-  h.gravity[1] = -g;
+  h.body.gravity[1] = -g;
   const int n = h.particles.size();
   std::vector<sph::Vec6> sigma(n);
   std::vector<double> u(3 * n, 0.0);
@@ -376,16 +376,16 @@ ColumnResult column(int settle, double c, int quiet) {
   sph::hold_stress(b, sigma);
   // The static force is the column's weight above the layer's centre, per face.
   CHECK(std::abs(b.static_force[1] - rs * g * (H - 0.5 * dx) * dx) < 1e-12 * rs * g * H * dx);
-  h.transmitting.push_back(b);
-  h.forces.push_back(sph::balancing_force(h, "bottom_band", sph::within_reach(h, bottom), true));
+  h.conditions.add(b);
+  h.conditions.add(sph::balancing_force(h, "bottom_band", sph::within_reach(h, bottom), true));
   const double W = cols * dx * std::pow(rs * g, 2) * std::pow(H, 3) / (6.0 * M);
   ColumnResult out;
-  h.damping = c;
+  h.body.damping = c;
   for (int s = 0; s < settle; ++s) {
     sph::advance(h, sph::stable_step(h));
     out.settle_peak = std::max(out.settle_peak, sph::energies(h).kinetic / W);
   }
-  h.damping = 0.0;
+  h.body.damping = 0.0;
   for (int s = 0; s < quiet; ++s) {
     sph::advance(h, sph::stable_step(h));
     out.kinetic = std::max(out.kinetic, sph::energies(h).kinetic / W);
@@ -451,10 +451,10 @@ TEST_CASE("SPH: gravity, constant surface forces and damping do the work the ene
         const int k = add(h, x, dx * dx, rho0, 0.0, 1.5 * dx, 0);
         if (i == 9) right.push_back(k);
       }
-    h.gravity[1] = -1e5;
-    h.damping = c;
+    h.body.gravity[1] = -1e5;
+    h.body.damping = c;
     const double t[3] = {20e6, 0, 0};
-    h.forces.push_back(sph::traction_force(h, "pull", right, t));
+    h.conditions.add(sph::traction_force(h, "pull", right, t));
     sph::update_state(h);
     const double e0 = sph::energies(h).total(), mass = rho0 * 100 * dx * dx;
     const double F = 20e6 * 10 * dx;
@@ -505,10 +505,11 @@ time: {end: 1.0e-6}
 )";
   const spec::ProblemSpec spec = spec::parse_problem(YAML::Load(problem));
   const sph::Hydro h = explicit_dynamics::build_sph(spec.sph());
-  CHECK(h.gravity[0] == 0.0);
-  CHECK(h.gravity[1] == -9.81);
-  REQUIRE(h.forces.size() == 1);
-  const sph::SurfaceForce& f = h.forces[0];
+  CHECK(h.body.gravity[0] == 0.0);
+  CHECK(h.body.gravity[1] == -9.81);
+  REQUIRE(h.conditions.size() == 1);
+  REQUIRE(h.conditions.of_kind<sph::SurfaceForce>().size() == 1);
+  const sph::SurfaceForce& f = *h.conditions.of_kind<sph::SurfaceForce>()[0];
   CHECK(f.name == "pull");
   CHECK(f.particles.size() == 10);
   for (std::size_t k = 0; k < f.particles.size(); ++k) {

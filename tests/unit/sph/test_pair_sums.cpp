@@ -35,8 +35,8 @@ sph::Hydro mixed_block(int dim, int n) {
   s.settings.gradient_correction = true;
   s.settings.artificial_stress = 0.3;
   s.settings.penalty.pressure = 1e8;
-  s.gravity[dim - 1] = -9.81;
-  s.damping = 50.0;
+  s.body.gravity[dim - 1] = -9.81;
+  s.body.damping = 50.0;
   s.symmetry = {{0, -0.5 * n * 1e-3}};
   const double dx = 1e-3;
   unsigned seed = 2024u;

@@ -14,6 +14,8 @@
 #include "meshfree/sph/rates.hpp"
 #include "meshfree/sph/state.hpp"
 #include "meshfree/sph/step.hpp"
+#include "meshfree/sph/surface_load.hpp"
+#include "meshfree/sph/transmitting_boundary.hpp"
 #include "sph_test_support.hpp"
 #include "test_support.hpp"
 #include <algorithm>
@@ -372,8 +374,9 @@ TEST_CASE("a blast gives a free SPH plate the momentum of the Kingery-Bulmash im
     peak_force += dx * f.peak;
   }
   sph::Hydro h = explicit_dynamics::build_sph(spec.sph());
-  REQUIRE(h.loads.size() == 1);
-  REQUIRE(h.loads[0].particles.size() == 100);
+  REQUIRE(h.conditions.size() == 1);
+  REQUIRE(h.conditions.of_kind<sph::SurfaceLoad>().size() == 1);
+  REQUIRE(h.conditions.of_kind<sph::SurfaceLoad>()[0]->particles.size() == 100);
   const double e0 = sph::energies(h).total();
   double dt_max = 0.0;
   while (h.particles.time < spec.sph().end_time) {
@@ -425,7 +428,7 @@ TEST_CASE("a transmitting boundary absorbs an elastic pulse", "[sph][solid]") {
       b.normal_impedance = {rho * cl};
       b.shear_impedance = {rho * std::sqrt(G / rho)};
       b.normal[0] = 1.0;
-      s.transmitting.push_back(b);
+      s.conditions.add(b);
     }
     sph::update_state(s);
     const double e0 = sph::energies(s).total();

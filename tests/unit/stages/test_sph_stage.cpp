@@ -9,6 +9,7 @@
 #include "meshfree/spec/problem_spec.hpp"
 #include "meshfree/sph/initial_state.hpp"
 #include "meshfree/sph/step.hpp"
+#include "meshfree/sph/surface_force.hpp"
 #include "meshfree/stages/explicit_stage.hpp"
 #include "meshfree/stages/preload_sampling.hpp"
 #include "meshfree/stages/staged_run.hpp"
@@ -586,16 +587,17 @@ TEST_CASE("the implicit preload agrees with explicit dynamic relaxation in SPH",
   const auto t1 = Clock::now();
   sph::Hydro h = explicit_dynamics::build_sph(parse(strip_sph(T)).sph());
   REQUIRE(h.particles.owned_count() == static_cast<int>(X.size()));
-  REQUIRE(h.forces.size() == 1);
+  REQUIRE(h.conditions.of_kind<sph::SurfaceForce>().size() == 1);
+  sph::SurfaceForce& held = *h.conditions.of_kind<sph::SurfaceForce>()[0];
   const double omega = M_PI / (2.0 * kHeight) * std::sqrt(kE / ((1.0 - kNu * kNu) * kRho));
   const double ramp_time = 2.0 * M_PI / omega;
-  h.damping = 2.0 * omega;
-  const std::vector<double> full = h.forces[0].force;
+  h.body.damping = 2.0 * omega;
+  const std::vector<double> full = held.force;
   double peak = 0.0, kinetic = 0.0;
   long steps = 0;
   while (true) {
     const double f = std::min(1.0, h.particles.time / ramp_time);
-    for (std::size_t k = 0; k < full.size(); ++k) h.forces[0].force[k] = f * full[k];
+    for (std::size_t k = 0; k < full.size(); ++k) held.force[k] = f * full[k];
     sph::advance(h, sph::stable_step(h));
     ++steps;
     kinetic = sph::energies(h).kinetic;
