@@ -3,6 +3,7 @@
 #include "meshfree/implicit/elastoplastic_output.hpp"
 #include "meshfree/implicit/elastoplastic_solve.hpp"
 #include "meshfree/implicit/point_law.hpp"
+#include "meshfree/solvers/parallel.hpp"
 #include "meshfree/stages/explicit_stage.hpp"
 #include <memory>
 
@@ -40,6 +41,7 @@ StagedOutcome run_staged(const spec::ProblemSpec& spec, const solvers::PetscSess
   const spec::ProblemSpec& event = spec.stages[1];
   const spec::StageLink& link = spec.links[1];
   io::Summary summary({spec.name, spec.description, spec.units, "staged", ""});
+  summary.set("mpi_ranks", session.size());
   PhaseTimer timer;
 
   log::info("stage ", preload.stage, ": ", preload.description);
@@ -48,6 +50,7 @@ StagedOutcome run_staged(const spec::ProblemSpec& spec, const solvers::PetscSess
   if (out) out->set_prefix(preload.stage + "_");
   implicit::ElastoplasticResult pre =
       implicit::solve_elastoplastic_static(preload, preload_session, out);
+  if (alone) pre.memory = solvers::peak_memory(session.comm()); // every rank holds it whole
   if (out) implicit::write_elastoplastic_outputs(preload, pre, preload_session, *out);
   if (out) out->set_prefix("");
   timer.add_all(pre.timer, preload.stage + ".");
