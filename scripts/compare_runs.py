@@ -129,7 +129,8 @@ def main():
         return ("force" if col.startswith(("reaction_", "load_")) else
                 "displacement" if col.startswith(("ux_", "uy_")) else
                 "gauge displacement" if col.endswith(("_ux", "_uy", "_uz")) else
-                "gauge velocity" if col.endswith(("_vx", "_vy", "_vz")) else vector(col))
+                "gauge velocity" if col.endswith(("_vx", "_vy", "_vz")) else
+                "gauge acceleration" if col.endswith(("_ax", "_ay", "_az")) else vector(col))
 
     columns = [c for c in (ha[0].keys() if ha else []) if c not in solver]
     kinds = {}

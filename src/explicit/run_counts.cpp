@@ -5,6 +5,8 @@
 #include "meshfree/core/run_bounds.hpp"
 #include <algorithm>
 #include <cmath>
+#include <set>
+#include <string>
 #include <utility>
 
 namespace mf::explicit_dynamics {
@@ -19,16 +21,21 @@ double events(double interval, const PlannedRun& r, double steps) {
 }
 
 /// Says which output intervals lie below the time step (after every refusal: a refused run
-/// says one line).
+/// says one line), each once: a staged run bounds its explicit stage before the preload and
+/// again as the stage starts.
 void warn_clamped(const PlannedRun& r) {
+  static std::set<std::string> said;
   const std::pair<const char*, double> intervals[] = {
       {"output.history_interval", r.history_interval},
       {"output.fields_interval", r.fields_interval},
       {"output.checkpoint_interval", r.checkpoint_interval}};
-  for (const auto& [key, interval] : intervals)
-    if (interval > 0.0 && interval < r.dt)
-      log::warn(r.key_prefix, key, ": ", interval, " s is below the time step ", r.dt,
-                " s: written at every step instead");
+  for (const auto& [key, interval] : intervals) {
+    if (!(interval > 0.0 && interval < r.dt)) continue;
+    const std::string text = detail::concat(r.key_prefix, key, ": ", interval,
+                                            " s is below the time step ", r.dt,
+                                            " s: written at every step instead");
+    if (said.insert(text).second) log::warn(text);
+  }
 }
 } // namespace
 

@@ -46,8 +46,17 @@ PetscSession::PetscSession(int* argc, char*** argv) {
   log::rank() = rank_;
 }
 
+PetscSession::PetscSession(MPI_Comm comm) : comm_(comm), finalises_(false) {
+  MPI_Comm_rank(comm_, &rank_);
+  MPI_Comm_size(comm_, &size_);
+}
+
+std::unique_ptr<const PetscSession> PetscSession::this_rank_alone() {
+  return std::unique_ptr<const PetscSession>(new PetscSession(MPI_COMM_SELF));
+}
+
 PetscSession::~PetscSession() {
-  PetscFinalize();
+  if (finalises_) PetscFinalize();
 }
 
 void PetscSession::collective(const std::function<void()>& work) const {
@@ -60,12 +69,12 @@ void PetscSession::collective(const std::function<void()>& work) const {
     message = e.what();
   }
   int mine = message.empty() ? size_ : rank_, first = size_;
-  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm_);
   if (first == size_) return;
   int length = static_cast<int>(message.size());
-  MPI_Bcast(&length, 1, MPI_INT, first, MPI_COMM_WORLD);
+  MPI_Bcast(&length, 1, MPI_INT, first, comm_);
   message.resize(length);
-  MPI_Bcast(message.data(), length, MPI_CHAR, first, MPI_COMM_WORLD);
+  MPI_Bcast(message.data(), length, MPI_CHAR, first, comm_);
   throw CollectiveError(size_ > 1 ? message + " (on rank " + std::to_string(first) + ")" : message);
 }
 

@@ -251,6 +251,7 @@ ExplicitStage run_pd_stage(const spec::ProblemSpec& preload,
   log_transfer(preload, st.transfer);
   if (!place.ranks.serial())
     spread_over_ranks(stage, place.ranks, held_from, setup, pa, result.timer);
+  result.mpi_ranks = place.ranks.size;
   explicit_dynamics::PdRun run(setup, s, place.out, result);
   pd::Model& m = setup.model;
   const std::vector<double> u0 = m.particles.u; // the relaxed state, back for t = 0

@@ -25,7 +25,12 @@ public:
   PetscSession& operator=(const PetscSession&) = delete;
   int rank() const { return rank_; }
   int size() const { return size_; }
-  MPI_Comm comm() const { return MPI_COMM_WORLD; }
+  MPI_Comm comm() const { return comm_; }
+
+  /// The running session seen by this rank alone (MPI_COMM_SELF: rank 0 of 1), for work that
+  /// every rank repeats whole so that each holds the one-rank result bit for bit. It leaves
+  /// PETSc to the session it is made from, which must outlive it.
+  static std::unique_ptr<const PetscSession> this_rank_alone();
 
   /// Runs `work` on every rank; if it fails on any rank, every rank throws a CollectiveError
   /// with the message of the lowest failing rank, so no rank is left waiting in a later
@@ -37,7 +42,10 @@ public:
   std::vector<std::string> unused_options() const;
 
 private:
+  explicit PetscSession(MPI_Comm comm);
+  MPI_Comm comm_ = MPI_COMM_WORLD;
   int rank_ = 0, size_ = 1;
+  bool finalises_ = true; // the session that initialised PETSc
 };
 
 /// Contiguous block of node indices owned by `rank` out of `n` nodes on `size` ranks.
