@@ -14,7 +14,8 @@ namespace {
 /// Whether the explicit stage sums in global-id order (discretisation.deterministic): its fields
 /// are then those of one rank, and so must be the preload it starts from.
 bool deterministic_sums(const spec::ProblemSpec& event) {
-  return event.sph ? event.sph->numerics.deterministic : event.pd && event.pd->deterministic;
+  return event.is_sph() ? event.sph().numerics.deterministic
+                        : event.is_pd() && event.pd().deterministic;
 }
 
 /// Over several ranks with deterministic sums, the preload is solved whole on every rank, on
