@@ -5,7 +5,6 @@
 #include "meshfree/core/run_bounds.hpp"
 #include <algorithm>
 #include <cmath>
-#include <set>
 #include <string>
 #include <utility>
 
@@ -21,25 +20,20 @@ double events(double interval, const PlannedRun& r, double steps) {
 }
 
 /// Says which output intervals lie below the time step (after every refusal: a refused run
-/// says one line), each once: a staged run bounds its explicit stage before the preload and
-/// again as the stage starts.
+/// says one line).
 void warn_clamped(const PlannedRun& r) {
-  static std::set<std::string> said;
   const std::pair<const char*, double> intervals[] = {
       {"output.history_interval", r.history_interval},
       {"output.fields_interval", r.fields_interval},
       {"output.checkpoint_interval", r.checkpoint_interval}};
-  for (const auto& [key, interval] : intervals) {
-    if (!(interval > 0.0 && interval < r.dt)) continue;
-    const std::string text = detail::concat(r.key_prefix, key, ": ", interval,
-                                            " s is below the time step ", r.dt,
-                                            " s: written at every step instead");
-    if (said.insert(text).second) log::warn(text);
-  }
+  for (const auto& [key, interval] : intervals)
+    if (interval > 0.0 && interval < r.dt)
+      log::warn(r.key_prefix, key, ": ", interval, " s is below the time step ", r.dt,
+                " s: written at every step instead");
 }
 } // namespace
 
-void require_finite_run(const PlannedRun& r, const std::string& folder) {
+void refuse_endless_run(const PlannedRun& r, const std::string& folder) {
   const double steps = std::ceil(r.end_time / r.dt);
   const std::string& k = r.key_prefix;
   require_run_time(k + (r.dt_key.empty() ? "time.end" : r.dt_key),
@@ -61,6 +55,10 @@ void require_finite_run(const PlannedRun& r, const std::string& folder) {
            " checkpoints, about ", seconds / 86400.0, " days of writing at ", disk_bytes_per_second,
            " bytes per second, more than the ", max_run_seconds / 86400.0, " days a run may take");
   }
+}
+
+void require_finite_run(const PlannedRun& r, const std::string& folder) {
+  refuse_endless_run(r, folder);
   warn_clamped(r);
 }
 

@@ -39,12 +39,12 @@ void print_sph_plan(const spec::ProblemSpec& spec, std::ostream& os) {
 void require_finite_pd_run(const spec::ProblemSpec& spec, const std::string& folder) {
   PhaseTimer timer;
   const auto setup = build_pd_setup(spec, timer);
-  require_finite_run(planned_run(spec.pd(), setup), folder);
+  refuse_endless_run(planned_run(spec.pd(), setup), folder);
 }
 
 void require_finite_sph_run(const spec::ProblemSpec& spec, const std::string& folder) {
   const sph::Hydro h = build_sph(spec.sph());
-  require_finite_run(planned_run(spec.sph(), h.particles.size(), sph::stable_step(h)), folder);
+  refuse_endless_run(planned_run(spec.sph(), h.particles.size(), sph::stable_step(h)), folder);
 }
 
 } // namespace mf::explicit_dynamics

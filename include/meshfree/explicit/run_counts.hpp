@@ -23,9 +23,11 @@ struct PlannedRun {
 
 /// Refuses a run whose steps would take longer than max_run_seconds on the cores here, or whose
 /// frames or history rows would not fit on the disk of `folder`, or whose checkpoints would take
-/// that long to write. An output interval below the time step is clamped with a warning: the loop
-/// writes at most once per step, and an SPH step changes as the run goes, so an interval below
-/// the first step says "every step" rather than something impossible.
+/// that long to write.
+void refuse_endless_run(const PlannedRun& r, const std::string& folder);
+/// refuse_endless_run, then a warning for each output interval below the time step, clamped: the
+/// loop writes at most once per step, and an SPH step changes as the run goes, so an interval
+/// below the first step says "every step" rather than something impossible.
 void require_finite_run(const PlannedRun& r, const std::string& folder);
 
 /// The run a peridynamic set-up and its spec make.

@@ -14,7 +14,8 @@ void print_pd_plan(const spec::ProblemSpec& spec, std::ostream& os);
 void print_sph_plan(const spec::ProblemSpec& spec, std::ostream& os);
 
 /// The run's set-up built to bound it: a run that would never end or not fit on the disk of
-/// `folder` is refused.
+/// `folder` is refused. No warning: a staged run bounds its explicit stage so before the preload,
+/// and the stage warns of clamped intervals as it starts.
 void require_finite_pd_run(const spec::ProblemSpec& spec, const std::string& folder);
 void require_finite_sph_run(const spec::ProblemSpec& spec, const std::string& folder);
 

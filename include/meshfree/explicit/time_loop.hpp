@@ -179,9 +179,9 @@ bool record(Model& model, const Schedule& s, LoopState& state, std::string& why)
   const int bad = model.nonfinite();
   if (bad >= 0) {
     const Vec3 x = model.position(bad);
-    why = detail::concat("the motion became non-finite at step ", model.step(), " (t = ",
-                         model.time(), ") at particle ", bad, " at (", x.x(), ", ", x.y(), ", ",
-                         x.z(), "); ", model.advice());
+    why = detail::concat("the motion became non-finite at step ", model.step(),
+                         " (t = ", model.time(), ") at particle ", bad, " at (", x.x(), ", ", x.y(),
+                         ", ", x.z(), "); ", model.advice());
     return false;
   }
   model.record();
@@ -251,8 +251,7 @@ LoopReport run_time_loop(Model& model, const Schedule& s, io::Checkpoints* check
       break;
     }
     progress.update(model);
-    if (checkpoints && model.time() < s.end_time * (1.0 - 1e-12) &&
-        checkpoints->due(model.time()))
+    if (checkpoints && model.time() < s.end_time * (1.0 - 1e-12) && checkpoints->due(model.time()))
       loop::keep(model, *checkpoints, state, r.steps);
   }
   r.seconds = seconds_since(start);
