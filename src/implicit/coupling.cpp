@@ -63,16 +63,27 @@ RowPattern coupling_pattern(const std::vector<const Csr*>& lists, int node_count
   return p;
 }
 
-BlockRows::BlockRows(const RowPattern& pattern)
-    : pattern_(&pattern), rhs_(2 * static_cast<std::size_t>(pattern.rows()), 0.0) {
+namespace {
+
+int checked_dofs(int dofs) {
+  MF_REQUIRE(dofs == 2 || dofs == 3, "BlockRows: ", dofs, " DOFs per node (2 or 3 are held)");
+  return dofs;
+}
+
+} // namespace
+
+BlockRows::BlockRows(const RowPattern& pattern, int dofs)
+    : pattern_(&pattern), dofs_(checked_dofs(dofs)),
+      rhs_(dofs * static_cast<std::size_t>(pattern.rows()), 0.0) {
   set_layout();
   own_.assign(diagonal_values_ + off_values_, 0.0);
   diagonal_ = own_.data();
   off_ = own_.data() + diagonal_values_;
 }
 
-BlockRows::BlockRows(const RowPattern& pattern, solvers::BlockValueArrays values)
-    : pattern_(&pattern), rhs_(2 * static_cast<std::size_t>(pattern.rows()), 0.0) {
+BlockRows::BlockRows(const RowPattern& pattern, solvers::BlockValueArrays values, int dofs)
+    : pattern_(&pattern), dofs_(checked_dofs(dofs)),
+      rhs_(dofs * static_cast<std::size_t>(pattern.rows()), 0.0) {
   set_layout();
   MF_REQUIRE((values.diagonal || diagonal_values_ == 0) &&
                  (values.off_diagonal || off_values_ == 0),
@@ -83,6 +94,8 @@ BlockRows::BlockRows(const RowPattern& pattern, solvers::BlockValueArrays values
 
 void BlockRows::set_layout() {
   const RowPattern& p = *pattern_;
+  // dofs scalar rows of dofs values per block.
+  const std::size_t block_values = static_cast<std::size_t>(dofs_) * dofs_;
   layout_.resize(p.rows());
   for (int i = 0; i < p.rows(); ++i) {
     const int* first = p.column.data() + p.offset[i];
@@ -94,15 +107,21 @@ void BlockRows::set_layout() {
     L.diagonal_end = static_cast<int>(own_end - p.column.data());
     L.diagonal_start = diagonal_values_;
     L.off_start = off_values_;
-    // Two scalar rows of two values per block.
-    diagonal_values_ += 4 * static_cast<std::size_t>(own_end - own_begin);
-    off_values_ += 4 * static_cast<std::size_t>((last - first) - (own_end - own_begin));
+    diagonal_values_ += block_values * static_cast<std::size_t>(own_end - own_begin);
+    off_values_ += block_values * static_cast<std::size_t>((last - first) - (own_end - own_begin));
   }
 }
 
 void BlockRows::add_matrix(const int* nodes, int n, const double* block) {
+  if (dofs_ == 3)
+    add_matrix_dofs<3>(nodes, n, block);
+  else
+    add_matrix_dofs<2>(nodes, n, block);
+}
+
+template <int D> void BlockRows::add_matrix_dofs(const int* nodes, int n, const double* block) {
   const RowPattern& p = *pattern_;
-  const int stride = 2 * n;
+  const int stride = D * n;
   for (int a = 0; a < n; ++a) {
     const int I = nodes[a];
     if (I < p.begin || I >= p.end) continue;
@@ -115,53 +134,68 @@ void BlockRows::add_matrix(const int* nodes, int n, const double* block) {
       k = gallop(k, k_end, nodes[b]);
       MF_ASSERT(k < k_end && *k == nodes[b]);
       int s;
-      double* v = block_at(row, static_cast<int>(k - col), s);
-      const double* src = block + (2 * a) * stride + 2 * b;
-      v[0] += src[0];
-      v[1] += src[1];
-      v[s] += src[stride];
-      v[s + 1] += src[stride + 1];
+      double* v = block_at<D>(row, static_cast<int>(k - col), s);
+      const double* src = block + (D * a) * stride + D * b;
+      for (int c = 0; c < D; ++c)
+        for (int e = 0; e < D; ++e) v[c * s + e] += src[c * stride + e];
     }
   }
 }
 
 void BlockRows::add_matrix_at(const int* nodes, const int* slots, int n, const double* block) {
-  const int stride = 2 * n;
+  if (dofs_ == 3)
+    add_matrix_at_dofs<3>(nodes, slots, n, block);
+  else
+    add_matrix_at_dofs<2>(nodes, slots, n, block);
+}
+
+template <int D>
+void BlockRows::add_matrix_at_dofs(const int* nodes, const int* slots, int n, const double* block) {
+  const int stride = D * n;
   for (int a = 0; a < n; ++a) {
     const int row = nodes[a] - pattern_->begin;
     for (int b = 0; b < n; ++b) {
       const int k = slots[a * n + b];
       if (k < 0) continue;
       int s;
-      double* v = block_at(row, k, s);
-      const double* src = block + (2 * a) * stride + 2 * b;
-      v[0] += src[0];
-      v[1] += src[1];
-      v[s] += src[stride];
-      v[s + 1] += src[stride + 1];
+      double* v = block_at<D>(row, k, s);
+      const double* src = block + (D * a) * stride + D * b;
+      for (int c = 0; c < D; ++c)
+        for (int e = 0; e < D; ++e) v[c * s + e] += src[c * stride + e];
     }
   }
 }
 
 void BlockRows::copy_values(const BlockRows& other) {
-  MF_REQUIRE(other.pattern_ == pattern_, "BlockRows::copy_values: another pattern");
+  MF_REQUIRE(other.pattern_ == pattern_ && other.dofs_ == dofs_,
+             "BlockRows::copy_values: another pattern");
   std::copy(other.diagonal_, other.diagonal_ + diagonal_values_, diagonal_);
   if (off_values_ > 0) std::copy(other.off_, other.off_ + off_values_, off_);
 }
 
 void BlockRows::multiply_add(const std::vector<double>& d, double* r) const {
+  if (dofs_ == 3)
+    multiply_add_dofs<3>(d, r);
+  else
+    multiply_add_dofs<2>(d, r);
+}
+
+template <int D> void BlockRows::multiply_add_dofs(const std::vector<double>& d, double* r) const {
   const RowPattern& p = *pattern_;
   for (int i = 0; i < p.rows(); ++i) {
-    double sx = 0.0, sy = 0.0;
+    double sum[D] = {};
     for (int k = p.offset[i]; k < p.offset[i + 1]; ++k) {
       int s;
-      const double* b = block_at(i, k, s);
-      const double dx = d[2 * p.column[k]], dy = d[2 * p.column[k] + 1];
-      sx += b[0] * dx + b[1] * dy;
-      sy += b[s] * dx + b[s + 1] * dy;
+      const double* b = block_at<D>(i, k, s);
+      const double* dJ = d.data() + D * static_cast<std::size_t>(p.column[k]);
+      // Each row of the block summed first, then added: (b0 dx + b1 dy) as one term.
+      for (int c = 0; c < D; ++c) {
+        double t = b[c * s] * dJ[0];
+        for (int e = 1; e < D; ++e) t += b[c * s + e] * dJ[e];
+        sum[c] += t;
+      }
     }
-    r[2 * i] += sx;
-    r[2 * i + 1] += sy;
+    for (int c = 0; c < D; ++c) r[D * static_cast<std::size_t>(i) + c] += sum[c];
   }
 }
 
@@ -204,8 +238,8 @@ void BlockRows::add_vector(const int* nodes, int n, const double* values) {
   for (int a = 0; a < n; ++a) {
     const int I = nodes[a];
     if (I < p.begin || I >= p.end) continue;
-    rhs_[2 * (I - p.begin)] += values[2 * a];
-    rhs_[2 * (I - p.begin) + 1] += values[2 * a + 1];
+    for (int c = 0; c < dofs_; ++c)
+      rhs_[dofs_ * static_cast<std::size_t>(I - p.begin) + c] += values[dofs_ * a + c];
   }
 }
 

@@ -10,6 +10,7 @@ using detail::check;
 struct NonlinearBlockSystem::Impl {
   MPI_Comm comm;
   int node_count = 0;
+  int dofs = 2; // per node
   OwnedRange owned;
   ResidualFunction residual;
   JacobianFunction jacobian;
@@ -131,17 +132,18 @@ NonlinearBlockSystem::NonlinearBlockSystem(MPI_Comm comm, int node_count, OwnedR
                                            const std::vector<int>& columns,
                                            const std::vector<int>& needed,
                                            ResidualFunction residual, JacobianFunction jacobian,
-                                           const LinearSolverSettings& linear)
+                                           const LinearSolverSettings& linear, int dofs)
     : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
   s.comm = comm;
   s.node_count = node_count;
+  s.dofs = dofs;
   s.owned = owned;
   s.residual = std::move(residual);
   s.jacobian = std::move(jacobian);
-  s.d.assign(2 * static_cast<std::size_t>(node_count), 0.0);
+  s.d.assign(dofs * static_cast<std::size_t>(node_count), 0.0);
 
-  s.J = detail::create_block_matrix(comm, node_count, owned, row_offset, columns);
+  s.J = detail::create_block_matrix(comm, node_count, owned, row_offset, columns, dofs);
   // The consistent tangent of associative plasticity plus the penalty terms is symmetric (in a
   // Galerkin form, not with corrected test functions).
   if (linear.symmetric)
@@ -156,10 +158,8 @@ NonlinearBlockSystem::NonlinearBlockSystem(MPI_Comm comm, int node_count, OwnedR
     mark[I] = 1;
   }
   for (int I = 0; I < node_count; ++I)
-    if (mark[I]) {
-      s.ghost_index.push_back(2 * static_cast<PetscInt>(I));
-      s.ghost_index.push_back(2 * static_cast<PetscInt>(I) + 1);
-    }
+    if (mark[I])
+      for (int c = 0; c < dofs; ++c) s.ghost_index.push_back(dofs * static_cast<PetscInt>(I) + c);
   IS is;
   check(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(s.ghost_index.size()),
                         s.ghost_index.data(), PETSC_COPY_VALUES, &is),
@@ -212,7 +212,7 @@ NewtonReport NonlinearBlockSystem::solve(std::vector<double>& d, const NewtonSet
         "SNESSetTolerances");
   PetscScalar* xv;
   check(VecGetArray(s.x, &xv), "VecGetArray");
-  std::copy(d.begin() + 2 * s.owned.begin, d.begin() + 2 * s.owned.end, xv);
+  std::copy(d.begin() + s.dofs * s.owned.begin, d.begin() + s.dofs * s.owned.end, xv);
   check(VecRestoreArray(s.x, &xv), "VecRestoreArray");
 
   KSP ksp;
@@ -260,7 +260,8 @@ std::vector<double> NonlinearBlockSystem::gather_on_root(const std::vector<doubl
   check(VecDuplicate(s.x, &local), "VecDuplicate");
   PetscScalar* lv;
   check(VecGetArray(local, &lv), "VecGetArray");
-  std::copy(d.begin() + 2 * s.owned.begin, d.begin() + 2 * s.owned.end, lv);
+  MF_REQUIRE(d.size() == s.d.size(), "NonlinearBlockSystem::gather_on_root: wrong vector length");
+  std::copy(d.begin() + s.dofs * s.owned.begin, d.begin() + s.dofs * s.owned.end, lv);
   check(VecRestoreArray(local, &lv), "VecRestoreArray");
   std::vector<double> out = detail::gather(local, /*everywhere=*/false);
   VecDestroy(&local);

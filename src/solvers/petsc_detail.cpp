@@ -32,20 +32,19 @@ LocalParts local_parts(Mat A) {
 
 /// Inserts zeros on the pattern, a scalar row at a time, and assembles A.
 void insert_pattern(Mat A, OwnedRange owned, const std::vector<int>& row_offset,
-                    const std::vector<int>& columns) {
+                    const std::vector<int>& columns, int dofs) {
   std::vector<PetscInt> cols;
   std::vector<PetscScalar> zeros;
   for (int i = 0; i < owned.end - owned.begin; ++i) {
     const int n = row_offset[i + 1] - row_offset[i];
-    cols.resize(2 * n);
-    zeros.assign(2 * n, 0.0);
-    for (int q = 0; q < n; ++q) {
-      cols[2 * q] = 2 * static_cast<PetscInt>(columns[row_offset[i] + q]);
-      cols[2 * q + 1] = cols[2 * q] + 1;
-    }
-    for (int comp = 0; comp < 2; ++comp) {
-      const PetscInt row = 2 * static_cast<PetscInt>(owned.begin + i) + comp;
-      check(MatSetValues(A, 1, &row, 2 * n, cols.data(), zeros.data(), INSERT_VALUES),
+    cols.resize(dofs * n);
+    zeros.assign(dofs * n, 0.0);
+    for (int q = 0; q < n; ++q)
+      for (int c = 0; c < dofs; ++c)
+        cols[dofs * q + c] = dofs * static_cast<PetscInt>(columns[row_offset[i] + q]) + c;
+    for (int comp = 0; comp < dofs; ++comp) {
+      const PetscInt row = dofs * static_cast<PetscInt>(owned.begin + i) + comp;
+      check(MatSetValues(A, 1, &row, dofs * n, cols.data(), zeros.data(), INSERT_VALUES),
             "MatSetValues");
     }
   }
@@ -59,27 +58,27 @@ void insert_pattern(Mat A, OwnedRange owned, const std::vector<int>& row_offset,
 /// global columns); the check, one pass over the column indices, guards the values written in
 /// place against a PETSc that stored them otherwise.
 void require_storage_order(Mat A, OwnedRange owned, const std::vector<int>& row_offset,
-                           const std::vector<int>& columns) {
+                           const std::vector<int>& columns, int dofs) {
   const LocalParts p = local_parts(A);
   PetscInt nd = 0, no = 0;
   const PetscInt *id = nullptr, *jd = nullptr, *io = nullptr, *jo = nullptr;
   PetscBool done = PETSC_FALSE;
   check(MatGetRowIJ(p.diagonal, 0, PETSC_FALSE, PETSC_FALSE, &nd, &id, &jd, &done), "MatGetRowIJ");
-  bool ok = done && nd == 2 * (owned.end - owned.begin);
+  bool ok = done && nd == dofs * (owned.end - owned.begin);
   if (p.off_diagonal) {
     check(MatGetRowIJ(p.off_diagonal, 0, PETSC_FALSE, PETSC_FALSE, &no, &io, &jo, &done),
           "MatGetRowIJ");
     ok = ok && done && no == nd;
   }
   for (int i = 0; ok && i < owned.end - owned.begin; ++i)
-    for (int comp = 0; ok && comp < 2; ++comp) {
-      const int r = 2 * i + comp;
+    for (int comp = 0; ok && comp < dofs; ++comp) {
+      const int r = dofs * i + comp;
       PetscInt kd = id[r], ko = io ? io[r] : 0;
       for (int k = row_offset[i]; ok && k < row_offset[i + 1]; ++k)
-        for (int c = 0; ok && c < 2; ++c) {
-          const PetscInt column = 2 * static_cast<PetscInt>(columns[k]) + c;
+        for (int c = 0; ok && c < dofs; ++c) {
+          const PetscInt column = dofs * static_cast<PetscInt>(columns[k]) + c;
           if (owned.owns(columns[k]))
-            ok = kd < id[r + 1] && jd[kd++] == column - 2 * static_cast<PetscInt>(owned.begin);
+            ok = kd < id[r + 1] && jd[kd++] == column - dofs * static_cast<PetscInt>(owned.begin);
           else
             ok = io && ko < io[r + 1] && p.off_columns[jo[ko++]] == column;
         }
@@ -97,8 +96,10 @@ void require_storage_order(Mat A, OwnedRange owned, const std::vector<int>& row_
 } // namespace
 
 Mat create_block_matrix(MPI_Comm comm, int node_count, OwnedRange owned,
-                        const std::vector<int>& row_offset, const std::vector<int>& columns) {
+                        const std::vector<int>& row_offset, const std::vector<int>& columns,
+                        int dofs) {
   const int rows = owned.end - owned.begin;
+  MF_REQUIRE(dofs == 2 || dofs == 3, "block matrix: ", dofs, " DOFs per node (2 or 3 are made)");
   MF_REQUIRE(static_cast<int>(row_offset.size()) == rows + 1,
              "block matrix: inconsistent block rows");
   // Exact preallocation in blocks: those in the owned columns (the diagonal part) and the rest.
@@ -106,19 +107,19 @@ Mat create_block_matrix(MPI_Comm comm, int node_count, OwnedRange owned,
   for (int i = 0; i < rows; ++i)
     for (int k = row_offset[i]; k < row_offset[i + 1]; ++k)
       ++(owned.owns(columns[k]) ? diagonal : off_diagonal)[i];
-  const PetscInt local = 2 * static_cast<PetscInt>(rows),
-                 global = 2 * static_cast<PetscInt>(node_count);
+  const PetscInt local = dofs * static_cast<PetscInt>(rows),
+                 global = dofs * static_cast<PetscInt>(node_count);
   Mat A;
   check(MatCreate(comm, &A), "MatCreate");
   check(MatSetSizes(A, local, local, global, global), "MatSetSizes");
-  check(MatSetBlockSize(A, 2), "MatSetBlockSize");
+  check(MatSetBlockSize(A, dofs), "MatSetBlockSize");
   check(MatSetType(A, MATAIJ), "MatSetType");
-  check(MatXAIJSetPreallocation(A, 2, diagonal.data(), off_diagonal.data(), nullptr, nullptr),
+  check(MatXAIJSetPreallocation(A, dofs, diagonal.data(), off_diagonal.data(), nullptr, nullptr),
         "MatXAIJSetPreallocation");
-  insert_pattern(A, owned, row_offset, columns);
+  insert_pattern(A, owned, row_offset, columns, dofs);
   // Later value updates must stay on this pattern.
   check(MatSetOption(A, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE), "MatSetOption");
-  require_storage_order(A, owned, row_offset, columns);
+  require_storage_order(A, owned, row_offset, columns, dofs);
   return A;
 }
 
@@ -160,8 +161,10 @@ void default_option(const std::string& name, const char* value) {
 /// A row is held by a penalty when its diagonal exceeds kHeldRatio times the median diagonal
 /// of the owned rows. In 2D an elastic stiffness diagonal is about E t whatever the spacing, and
 /// a penalty alpha = beta E / h adds about beta E t phi_I^2 to the rows of the nodes that carry
-/// a boundary point, so the held rows stand apart by the penalty factor beta. Ten: rows whose
-/// penalty outweighs their stiffness tenfold are solved exactly by the multigrid preconditioner
+/// a boundary point, so the held rows stand apart by the penalty factor beta. In 3D the
+/// diagonal is about E h and the same penalty over a face adds about beta E h phi_I^2 (its
+/// points weigh areas of order h^2): the same ratio. Ten: rows whose penalty outweighs their
+/// stiffness tenfold are solved exactly by the multigrid preconditioner
 /// (set_penalty_band_multigrid); below that the smoothers handle them. A material over ten times
 /// stiffer than the median row would count as held too: solved exactly, at the cost of its
 /// factorisation.
@@ -205,13 +208,15 @@ void set_direct_solver(KSP ksp, bool symmetric) {
   default_option("mat_mumps_icntl_14", "100");
 }
 
-/// Copies of the translations and the in-plane rotation of the nodes, one entry per owned
-/// coordinate (MatNullSpaceCreateRigidBody).
-std::vector<Vec> rigid_body_modes(MPI_Comm comm, const std::vector<double>& coordinates) {
+/// Copies of the rigid-body modes of the nodes, one entry per owned coordinate, `dofs`
+/// coordinates per node (MatNullSpaceCreateRigidBody): the two translations and the in-plane
+/// rotation in 2D, the three translations and three rotations in 3D.
+std::vector<Vec> rigid_body_modes(MPI_Comm comm, const std::vector<double>& coordinates,
+                                  PetscInt dofs) {
   Vec x;
   check(VecCreateMPI(comm, static_cast<PetscInt>(coordinates.size()), PETSC_DECIDE, &x),
         "VecCreateMPI");
-  check(VecSetBlockSize(x, 2), "VecSetBlockSize");
+  check(VecSetBlockSize(x, dofs), "VecSetBlockSize");
   PetscScalar* v;
   check(VecGetArray(x, &v), "VecGetArray");
   std::copy(coordinates.begin(), coordinates.end(), v);
@@ -263,11 +268,13 @@ void zero_held_rows(std::vector<Vec>& modes, const std::vector<char>& held) {
 void set_near_null_space(Mat A, const std::vector<double>& coordinates) {
   MPI_Comm comm;
   check(PetscObjectGetComm(reinterpret_cast<PetscObject>(A), &comm), "PetscObjectGetComm");
-  PetscInt local_rows = 0;
+  PetscInt local_rows = 0, dofs = 1;
   check(MatGetLocalSize(A, &local_rows, nullptr), "MatGetLocalSize");
+  check(MatGetBlockSize(A, &dofs), "MatGetBlockSize");
   MF_REQUIRE(static_cast<PetscInt>(coordinates.size()) == local_rows,
-             "multigrid: one coordinate pair per owned node is needed");
-  std::vector<Vec> modes = rigid_body_modes(comm, coordinates);
+             "multigrid: ", static_cast<int>(dofs), " coordinates per owned node are needed (",
+             static_cast<long>(local_rows), " in all here), not ", coordinates.size());
+  std::vector<Vec> modes = rigid_body_modes(comm, coordinates, dofs);
   zero_held_rows(modes, penalty_held_rows(A));
   MatNullSpace near;
   check(MatNullSpaceCreate(comm, PETSC_FALSE, static_cast<PetscInt>(modes.size()), modes.data(),

@@ -23,11 +23,13 @@ inline void check(PetscErrorCode ierr, const char* what) {
        " (check the PETSc options given after --)");
 }
 
-/// A distributed AIJ matrix (block size 2) of zeros with the exact pattern of the owned block
-/// rows: block row I gives scalar rows 2I and 2I+1, block column J columns 2J and 2J+1. Its
-/// storage is checked to be in the order BlockValueArrays describes.
+/// A distributed AIJ matrix (block size `dofs`, 2 or 3 DOFs per node) of zeros with the exact
+/// pattern of the owned block rows: block row I gives scalar rows dofs I .. dofs I + dofs - 1,
+/// block column J the columns dofs J .. dofs J + dofs - 1. Its storage is checked to be in the
+/// order BlockValueArrays describes.
 Mat create_block_matrix(MPI_Comm comm, int node_count, OwnedRange owned,
-                        const std::vector<int>& row_offset, const std::vector<int>& columns);
+                        const std::vector<int>& row_offset, const std::vector<int>& columns,
+                        int dofs);
 
 /// Lets `write` change the values of a matrix made by create_block_matrix in place (zero when it
 /// is new); the arrays go back to the matrix, marked as changed, whether or not `write` throws.
@@ -58,8 +60,10 @@ inline constexpr const char* kPenaltyBandMultigrid = "gamg+held-rows";
 /// held rows are found anew from the matrix's values at each set-up.
 void set_penalty_band_multigrid(PC pc);
 
-/// A's near-null space for GAMG, from A's values: the translations and the in-plane rotation of
-/// the nodes (MatNullSpaceCreateRigidBody) with the penalty-held rows set to zero. Those rows'
+/// A's near-null space for GAMG, from A's values: the rigid-body modes of the nodes
+/// (MatNullSpaceCreateRigidBody on `coordinates`, A's block size of them per owned node: the
+/// translations and the in-plane rotation in 2D, three translations and three rotations in 3D)
+/// with the penalty-held rows set to zero. Those rows'
 /// values are fixed by their penalties, so the modes that are nearly free of energy are zero
 /// there; the full rigid-body modes would make GAMG build coarse functions that move them, at
 /// the cost of the penalty (smoothed aggregation interpolates the near-kernel it is given,

@@ -114,15 +114,15 @@ struct BlockLinearSystem::Impl {
 BlockLinearSystem::BlockLinearSystem(MPI_Comm comm, int node_count, OwnedRange owned,
                                      const std::vector<int>& row_offset,
                                      const std::vector<int>& columns, const BlockFill& fill,
-                                     bool spd, const LinearSolverSettings& settings)
+                                     bool spd, const LinearSolverSettings& settings, int dofs)
     : impl_(std::make_unique<Impl>()) {
   impl_->settings = settings;
   impl_->settings.symmetric = spd && settings.symmetric;
-  impl_->A = detail::create_block_matrix(comm, node_count, owned, row_offset, columns);
-  std::vector<double> rhs(2 * static_cast<std::size_t>(owned.end - owned.begin), 0.0);
+  impl_->A = detail::create_block_matrix(comm, node_count, owned, row_offset, columns, dofs);
+  const std::size_t owned_dofs = dofs * static_cast<std::size_t>(owned.end - owned.begin);
+  std::vector<double> rhs(owned_dofs, 0.0);
   detail::write_block_values(impl_->A, [&](BlockValueArrays values) { fill(values, rhs); });
-  MF_REQUIRE(rhs.size() == 2 * static_cast<std::size_t>(owned.end - owned.begin),
-             "BlockLinearSystem: inconsistent right-hand side");
+  MF_REQUIRE(rhs.size() == owned_dofs, "BlockLinearSystem: inconsistent right-hand side");
   if (impl_->settings.symmetric)
     check(MatSetOption(impl_->A, MAT_SPD, PETSC_TRUE), "MatSetOption(MAT_SPD)");
   check(MatCreateVecs(impl_->A, &impl_->x, &impl_->b), "MatCreateVecs");

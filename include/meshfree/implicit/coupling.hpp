@@ -20,58 +20,67 @@ struct RowPattern {
 RowPattern coupling_pattern(const std::vector<const Csr*>& lists, int node_count, int begin,
                             int end);
 
-/// The 2x2 blocks of the rows [pattern.begin, pattern.end) of a sparse matrix with a fixed
-/// pattern, and the matching right-hand side. Contributions to other rows are dropped: the rank
-/// that owns them integrates the same points. The values are in the order of a PETSc matrix's
-/// storage (solvers::BlockValueArrays): in their own arrays, or in a matrix's, written in place.
-/// The pattern is the model's, which must outlive the rows: a copy would be another 4 bytes per
-/// block to page in at every assembly.
+/// The dofs x dofs blocks (2 or 3 DOFs per node) of the rows [pattern.begin, pattern.end) of a
+/// sparse matrix with a fixed pattern, and the matching right-hand side. Contributions to other
+/// rows are dropped: the rank that owns them integrates the same points. The values are in the
+/// order of a PETSc matrix's storage (solvers::BlockValueArrays): in their own arrays, or in a
+/// matrix's, written in place. The pattern is the model's, which must outlive the rows: a copy
+/// would be another 4 bytes per block to page in at every assembly.
 class BlockRows {
 public:
   /// Zero values in arrays of their own.
-  explicit BlockRows(const RowPattern& pattern);
-  /// The values of a matrix made on `pattern` (solvers::BlockLinearSystem, the Jacobian of a
-  /// solvers::NonlinearBlockSystem), which must outlive the rows.
-  BlockRows(const RowPattern& pattern, solvers::BlockValueArrays values);
+  explicit BlockRows(const RowPattern& pattern, int dofs = 2);
+  /// The values of a matrix made on `pattern` with the same DOFs per node
+  /// (solvers::BlockLinearSystem, the Jacobian of a solvers::NonlinearBlockSystem), which must
+  /// outlive the rows.
+  BlockRows(const RowPattern& pattern, solvers::BlockValueArrays values, int dofs = 2);
 
-  /// Adds a (2n x 2n, row-major) block on nodes[0..n), which must be sorted.
+  /// Adds a (dofs n x dofs n, row-major) block on nodes[0..n), which must be sorted.
   void add_matrix(const int* nodes, int n, const double* block);
   /// The same with the slots of the (row, column) pairs known (BlockScatter): no search.
   void add_matrix_at(const int* nodes, const int* slots, int n, const double* block);
+  /// Adds dofs n values, dofs per node of nodes[0..n), to the right-hand side.
   void add_vector(const int* nodes, int n, const double* values);
 
   /// Overwrites the values with those of `other`, on the same pattern.
   void copy_values(const BlockRows& other);
-  /// r[2 i + c] += sum_J (block_IJ d_J)_c over the owned rows i; `d` is the full-length vector.
+  /// r[dofs i + c] += sum_J (block_IJ d_J)_c over the owned rows i; `d` is the full-length vector.
   void multiply_add(const std::vector<double>& d, double* r) const;
 
   const RowPattern& pattern() const { return *pattern_; }
   const std::vector<double>& rhs() const { return rhs_; }
+  int dofs() const { return dofs_; }
 
 private:
   /// Where a block row's values lie: its owned block columns are the pattern entries
   /// [diagonal_begin, diagonal_end), at diagonal_start in the diagonal array; the others at
-  /// off_start in the off-diagonal one (2 values per block in each scalar row).
+  /// off_start in the off-diagonal one (D values per block in each of the D scalar rows).
   struct RowLayout {
     int diagonal_begin, diagonal_end;
     std::size_t diagonal_start, off_start;
   };
-  /// The upper-left value of the block of pattern entry k in block row `row`; the lower row of
-  /// the block lies `stride` values further on.
-  double* block_at(int row, int k, int& stride) const {
+  /// The upper-left value of the block of pattern entry k in block row `row`, with D DOFs per
+  /// node; each next row of the block lies `stride` values further on.
+  template <int D> double* block_at(int row, int k, int& stride) const {
     const RowLayout& L = layout_[row];
     const int diagonal = L.diagonal_end - L.diagonal_begin;
     if (k >= L.diagonal_begin && k < L.diagonal_end) {
-      stride = 2 * diagonal;
-      return diagonal_ + L.diagonal_start + 2 * (k - L.diagonal_begin);
+      stride = D * diagonal;
+      return diagonal_ + L.diagonal_start + D * (k - L.diagonal_begin);
     }
     const int first = pattern_->offset[row];
-    stride = 2 * (pattern_->offset[row + 1] - first - diagonal);
-    return off_ + L.off_start + 2 * (k - first - (k >= L.diagonal_end ? diagonal : 0));
+    stride = D * (pattern_->offset[row + 1] - first - diagonal);
+    return off_ + L.off_start + D * (k - first - (k >= L.diagonal_end ? diagonal : 0));
   }
+  // The loops over the entries, with the DOFs per node a constant (coupling.cpp).
+  template <int D> void add_matrix_dofs(const int* nodes, int n, const double* block);
+  template <int D>
+  void add_matrix_at_dofs(const int* nodes, const int* slots, int n, const double* block);
+  template <int D> void multiply_add_dofs(const std::vector<double>& d, double* r) const;
   void set_layout();
 
   const RowPattern* pattern_;
+  int dofs_;
   std::vector<RowLayout> layout_;
   std::size_t diagonal_values_ = 0, off_values_ = 0;
   std::vector<double> own_; // the values, where they are not a matrix's

@@ -1,5 +1,5 @@
 #pragma once
-// Newton-Raphson on a distributed system with 2 DOFs per node through PETSc SNES. The caller
+// Newton-Raphson on a distributed system with 2 or 3 DOFs per node through PETSc SNES. The caller
 // supplies the residual and the Jacobian as block rows on the exact pattern of the owned nodes
 // (the same rows the elastic solver assembles); SNES does the iteration (newtonls with a line
 // search by default), KSP the linear solves (LinearSolverSettings); every -snes_/-ksp_/-pc_ option
@@ -25,7 +25,7 @@ struct NewtonReport {
   int iterations = 0;
   int linear_iterations = 0;
   int linear_iterations_max = 0; // the most of one Newton iteration's linear solve
-  std::string reason;           // SNES converged reason, e.g. CONVERGED_FNORM_ABS
+  std::string reason;            // SNES converged reason, e.g. CONVERGED_FNORM_ABS
   std::string failure;          // what went wrong in a residual or Jacobian evaluation, if anything
   std::vector<double> residual; // |R| at the start and after each iteration
   std::vector<double> scale;    // the force scale |F| at the same points
@@ -39,8 +39,8 @@ struct ResidualSums {
   double floor_squared = 0.0;
 };
 
-/// Residual R(d) on the owned rows (2 values per owned node) and this rank's ResidualSums.
-/// `d` has the full length 2N; the entries of the nodes named in `needed` (and the owned ones)
+/// Residual R(d) on the owned rows (dofs values per owned node) and this rank's ResidualSums.
+/// `d` has the full length dofs N; the entries of the nodes named in `needed` (and the owned ones)
 /// hold the current iterate. Throwing an exception marks the point as outside the domain of the
 /// residual (a failed return mapping, a NaN): SNES then stops and the message is reported.
 using ResidualFunction =
@@ -52,10 +52,12 @@ class NonlinearBlockSystem {
 public:
   /// `row_offset`/`columns`: for each owned node, the sorted global nodes it couples to.
   /// `needed`: the nodes whose values the residual and Jacobian read (besides the owned ones).
+  /// `dofs`: the DOFs per node, 2 or 3.
   NonlinearBlockSystem(MPI_Comm comm, int node_count, OwnedRange owned,
                        const std::vector<int>& row_offset, const std::vector<int>& columns,
                        const std::vector<int>& needed, ResidualFunction residual,
-                       JacobianFunction jacobian, const LinearSolverSettings& linear = {});
+                       JacobianFunction jacobian, const LinearSolverSettings& linear = {},
+                       int dofs = 2);
   ~NonlinearBlockSystem();
   NonlinearBlockSystem(const NonlinearBlockSystem&) = delete;
   NonlinearBlockSystem& operator=(const NonlinearBlockSystem&) = delete;

@@ -1,6 +1,6 @@
 #pragma once
 // The one place the code meets PETSc. PetscSession initialises PETSc (and MPI) for the lifetime
-// of a run; BlockLinearSystem is a distributed sparse system with 2 DOFs per node.
+// of a run; BlockLinearSystem is a distributed sparse system with 2 or 3 DOFs per node.
 #include "meshfree/core/error.hpp"
 #include <functional>
 #include <memory>
@@ -61,7 +61,8 @@ int owner_of(int node, int n, int size);
 /// - direct: a sparse factorisation by MUMPS (Cholesky for symmetric matrices, LU otherwise);
 /// - multigrid: conjugate gradients (GMRES for a matrix that is not symmetric) preconditioned by
 ///   PETSc's smoothed-aggregation algebraic multigrid (GAMG; Vanek, Mandel & Brezina 1996), given
-///   the three rigid-body modes of the nodes as its near-null space (without them the coarse
+///   the rigid-body modes of the nodes as its near-null space (three in 2D, six in 3D; without
+///   them the coarse
 ///   spaces cannot represent rotation and the iterations grow with the size), with the rows held
 ///   by penalties solved exactly before and after each cycle (without that the iterations grow
 ///   with the penalty), stopped when the preconditioned residual falls below
@@ -70,7 +71,8 @@ struct LinearSolverSettings {
   bool multigrid = false;
   bool symmetric = true; // false for a Petrov-Galerkin form: LU, or GMRES with multigrid
   double relative_tolerance = 1e-12;
-  std::vector<double> coordinates; // multigrid: x and y of each owned node, in order
+  /// multigrid: the dofs-per-node coordinates of each owned node in order (x, y or x, y, z)
+  std::vector<double> coordinates;
 };
 
 struct SolveReport {
@@ -81,10 +83,11 @@ struct SolveReport {
   std::string solver; // KSP and PC type, and the factorisation package where one is used
 };
 
-/// The values of a matrix with 2 DOFs per node in the matrix's own storage (PETSc's AIJ arrays),
-/// on the pattern it was made with. For each owned node I in order, scalar rows 2I and 2I+1 each
-/// hold two values per block column J (columns 2J, 2J+1) in column order: those of the owned
-/// nodes in `diagonal`, the others in `off_diagonal` (null on one rank). Writing them in place
+/// The values of a matrix with `dofs` DOFs per node (2 or 3) in the matrix's own storage (PETSc's
+/// AIJ arrays), on the pattern it was made with. For each owned node I in order, scalar rows
+/// dofs I + c (c = 0 .. dofs - 1) each hold `dofs` values per block column J (columns dofs J ..
+/// dofs J + dofs - 1) in column order: those of the owned nodes in `diagonal`, the others in
+/// `off_diagonal` (null on one rank). Writing them in place
 /// spares a separate array of blocks and its copy into the matrix: one matrix's worth of memory
 /// less to page in.
 struct BlockValueArrays {
@@ -92,12 +95,13 @@ struct BlockValueArrays {
   double* off_diagonal = nullptr;
 };
 
-/// Fills the values of a matrix in place (zero on entry) and the right-hand side (two values per
+/// Fills the values of a matrix in place (zero on entry) and the right-hand side (dofs values per
 /// owned node, sized and zero on entry).
 using BlockFill = std::function<void(BlockValueArrays values, std::vector<double>& rhs)>;
 
-/// A distributed sparse system with 2 DOFs per node on the pattern of the owned block rows:
-/// row_offset/columns give, for each owned node, the sorted global nodes it couples to.
+/// A distributed sparse system with `dofs` DOFs per node (2 or 3) on the pattern of the owned
+/// block rows: row_offset/columns give, for each owned node, the sorted global nodes it couples
+/// to.
 class BlockLinearSystem {
 public:
   /// Makes the matrix on the pattern and lets `fill` write its values and the right-hand side.
@@ -105,7 +109,8 @@ public:
   /// by Cholesky, any other by LU.
   BlockLinearSystem(MPI_Comm comm, int node_count, OwnedRange owned,
                     const std::vector<int>& row_offset, const std::vector<int>& columns,
-                    const BlockFill& fill, bool spd, const LinearSolverSettings& settings = {});
+                    const BlockFill& fill, bool spd, const LinearSolverSettings& settings = {},
+                    int dofs = 2);
   ~BlockLinearSystem();
   BlockLinearSystem(const BlockLinearSystem&) = delete;
   BlockLinearSystem& operator=(const BlockLinearSystem&) = delete;
@@ -113,10 +118,10 @@ public:
   /// Solves with KSP as the settings say; every KSP/PC option given on the command line
   /// overrides them.
   SolveReport solve();
-  /// Solves again for another right-hand side (two values per owned node), reusing the
+  /// Solves again for another right-hand side (dofs values per owned node), reusing the
   /// factorisation or the multigrid hierarchy of the first solve.
   SolveReport solve(const std::vector<double>& rhs);
-  /// The owned entries of the solution (two per owned node).
+  /// The owned entries of the solution (dofs per owned node).
   std::vector<double> solution() const;
   /// The whole solution vector on every rank.
   std::vector<double> solution_everywhere() const;

@@ -105,3 +105,98 @@ TEST_CASE("block rows: values in PETSc's storage order, by search and by slots a
   copy.multiply_add(d, r3.data());
   CHECK(r3 == r1);
 }
+
+namespace {
+
+/// A distinct value for every entry of a point's (dofs n x dofs n) block.
+std::vector<double> point_block(int r, int n, int dofs) {
+  std::vector<double> b(dofs * dofs * n * n);
+  for (std::size_t q = 0; q < b.size(); ++q) b[q] = 100.0 * (r + 1) + static_cast<double>(q);
+  return b;
+}
+
+/// The dense matrix (dofs kNodes square) of the owned rows that the points add up to.
+std::vector<double> dense(const ShapeTable& t, int dofs) {
+  const int size = dofs * kNodes;
+  std::vector<double> K(size * size, 0.0);
+  for (int r = 0; r < t.rows(); ++r) {
+    const int n = t.offset[r + 1] - t.offset[r];
+    const std::vector<double> b = point_block(r, n, dofs);
+    for (int a = 0; a < n; ++a)
+      for (int c = 0; c < n; ++c) {
+        const int I = t.node[t.offset[r] + a], J = t.node[t.offset[r] + c];
+        if (I < kBegin || I >= kEnd) continue;
+        for (int i = 0; i < dofs; ++i)
+          for (int j = 0; j < dofs; ++j)
+            K[(dofs * I + i) * size + dofs * J + j] += b[(dofs * a + i) * dofs * n + dofs * c + j];
+      }
+  }
+  return K;
+}
+
+/// PETSc's AIJ storage of the owned rows of K on the pattern: per scalar row, the owned block
+/// columns' values, then (in `off`) the others', each in column order.
+void storage_order(const std::vector<double>& K, const RowPattern& p, int dofs,
+                   std::vector<double>& diagonal, std::vector<double>& off) {
+  const int size = dofs * kNodes;
+  for (int I = p.begin; I < p.end; ++I)
+    for (int i = 0; i < dofs; ++i)
+      for (int k = p.offset[I - p.begin]; k < p.offset[I - p.begin + 1]; ++k) {
+        const int J = p.column[k];
+        auto& part = J >= p.begin && J < p.end ? diagonal : off;
+        for (int j = 0; j < dofs; ++j) part.push_back(K[(dofs * I + i) * size + dofs * J + j]);
+      }
+}
+
+} // namespace
+
+TEST_CASE("block rows with 3 DOFs per node: values in PETSc's storage order, by search and by "
+          "slots alike, and K d",
+          "[assembly]") {
+  const int dofs = 3;
+  const ShapeTable t = points();
+  const Csr lists{t.offset, t.node};
+  const RowPattern p = coupling_pattern({&lists}, kNodes, kBegin, kEnd);
+  const std::vector<double> K = dense(t, dofs);
+  std::vector<double> expected_diagonal, expected_off;
+  storage_order(K, p, dofs, expected_diagonal, expected_off);
+  // 4 owned and 5 other blocks of 9 values.
+  REQUIRE(expected_diagonal.size() == 36);
+  REQUIRE(expected_off.size() == 45);
+
+  std::vector<double> diagonal(36, 0.0), off(45, 0.0);
+  BlockRows in_matrix(p, {diagonal.data(), off.data()}, dofs);
+  BlockRows by_slots(p, dofs);
+  CHECK(in_matrix.dofs() == 3);
+  const BlockScatter scatter(t, p);
+  std::vector<int> buffer;
+  for (int r = 0; r < t.rows(); ++r) {
+    const int n = t.offset[r + 1] - t.offset[r];
+    const std::vector<double> b = point_block(r, n, dofs);
+    in_matrix.add_matrix(t.node.data() + t.offset[r], n, b.data());
+    by_slots.add_matrix_at(t.node.data() + t.offset[r], scatter.slots(r, buffer), n, b.data());
+    // The same node-block vector on the points' nodes: 3 values per node.
+    std::vector<double> f(dofs * n);
+    for (int q = 0; q < dofs * n; ++q) f[q] = 10.0 * r + q;
+    in_matrix.add_vector(t.node.data() + t.offset[r], n, f.data());
+  }
+  CHECK(diagonal == expected_diagonal);
+  CHECK(off == expected_off);
+  // Owned nodes 2 and 3: node 2 is point 0's second node (3, 4, 5) and point 1's first (10, 11,
+  // 12), node 3 point 0's third (6, 7, 8) and point 2's second (23, 24, 25).
+  CHECK(in_matrix.rhs() == std::vector<double>{13, 15, 17, 29, 31, 33});
+  CHECK(by_slots.rhs() == std::vector<double>(6, 0.0));
+
+  std::vector<double> d(dofs * kNodes);
+  for (int q = 0; q < dofs * kNodes; ++q) d[q] = 0.5 + q;
+  std::vector<double> r1(6, 0.0), r2(6, 0.0);
+  in_matrix.multiply_add(d, r1.data());
+  by_slots.multiply_add(d, r2.data());
+  for (int i = 0; i < 6; ++i) {
+    double exact = 0.0;
+    for (int q = 0; q < dofs * kNodes; ++q)
+      exact += K[(dofs * kBegin + i) * dofs * kNodes + q] * d[q];
+    CHECK(r1[i] == Approx(exact).epsilon(1e-15));
+    CHECK(r2[i] == r1[i]);
+  }
+}
