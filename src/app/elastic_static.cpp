@@ -2,6 +2,8 @@
 #include "meshfree/implicit/elastic_output.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/implicit/galerkin_plan.hpp"
+#include "meshfree/implicit/solid_elastic.hpp"
+#include "meshfree/implicit/solid_model.hpp"
 #include <iostream>
 
 namespace mf::app {
@@ -21,18 +23,29 @@ implicit::ElasticResult elastic_static(const spec::ProblemSpec& spec,
 namespace {
 
 RunOutcome run(const RunRequest& q) {
-  log_phases(elastic_static(q.spec, q.session, q.out).timer);
+  if (!q.spec.is_solid()) {
+    log_phases(elastic_static(q.spec, q.session, q.out).timer);
+    return {};
+  }
+  implicit::SolidElasticResult r = implicit::solve_solid_elastic(q.spec, q.session); // 3D body
+  {
+    PhaseTimer::Scope scope(r.timer, "output");
+    if (q.out) implicit::write_solid_elastic_outputs(q.spec, r, q.session, *q.out);
+  }
+  log_phases(r.timer);
   return {};
 }
 
 } // namespace
 
 void describe_galerkin(const spec::ProblemSpec& spec) {
-  implicit::print_galerkin_plan(spec, std::cout);
+  spec.is_solid() ? implicit::print_solid_plan(spec, std::cout)
+                  : implicit::print_galerkin_plan(spec, std::cout);
 }
 
 void admit_galerkin(const spec::ProblemSpec& spec, const std::string&) {
-  if (spec.galerkin().discretisation.method == spec::Method::Fem) implicit::read_fe_mesh(spec);
+  if (spec.is_galerkin() && spec.galerkin().discretisation.method == spec::Method::Fem)
+    implicit::read_fe_mesh(spec);
 }
 
 AnalysisEntry elastic_static_entry() {

@@ -8,6 +8,19 @@ namespace mf::implicit {
 
 namespace {
 
+/// Traction sigma . n from Voigt stress [sxx, syy, sxy].
+Vec2 traction(const Vec3& s, const Vec2& n) {
+  return {s(0) * n.x() + s(2) * n.y(), s(2) * n.x() + s(1) * n.y()};
+}
+
+void require_covered(const Csr& support, const std::vector<Vec2>& x) {
+  for (int r = 0; r < support.rows(); ++r)
+    MF_REQUIRE(support.size(r) > 0, "integration point (", x[r].x(), ", ", x[r].y(),
+               ") is covered by no node: raise discretisation.dilation");
+}
+
+} // namespace
+
 RankPoints rank_points(const Csr& support, solvers::OwnedRange own, int node_count,
                        const solvers::PetscSession& s) {
   RankPoints p;
@@ -22,19 +35,6 @@ RankPoints rank_points(const Csr& support, solvers::OwnedRange own, int node_cou
   }
   return p;
 }
-
-/// Traction sigma . n from Voigt stress [sxx, syy, sxy].
-Vec2 traction(const Vec3& s, const Vec2& n) {
-  return {s(0) * n.x() + s(2) * n.y(), s(2) * n.x() + s(1) * n.y()};
-}
-
-void require_covered(const Csr& support, const std::vector<Vec2>& x) {
-  for (int r = 0; r < support.rows(); ++r)
-    MF_REQUIRE(support.size(r) > 0, "integration point (", x[r].x(), ", ", x[r].y(),
-               ") is covered by no node: raise discretisation.dilation");
-}
-
-} // namespace
 
 std::vector<Vec2> condition_values(const spec::ProblemSpec& spec, const spec::BoundaryCondition& bc,
                                    const quadrature::BoundaryPoints& pts,

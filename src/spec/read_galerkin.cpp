@@ -4,6 +4,7 @@
 #include "meshfree/core/input_file.hpp"
 #include "meshfree/core/memory.hpp"
 #include "meshfree/spec/analysis_read.hpp"
+#include "meshfree/spec/galerkin_read.hpp"
 #include "meshfree/spec/spec_read.hpp"
 #include <algorithm>
 #include <cmath>
@@ -20,6 +21,8 @@ kernels::WindowType window_type(const std::string& s) {
   return kernels::WindowType::Gaussian;
 }
 
+} // namespace
+
 LinearSolverSpec read_linear_solver(KeyReader& r) {
   LinearSolverSpec s;
   if (auto l = r.optional_map("linear_solver")) {
@@ -32,6 +35,8 @@ LinearSolverSpec read_linear_solver(KeyReader& r) {
   }
   return s;
 }
+
+namespace {
 
 /// Bytes per Galerkin node at a run's peak with the linear solver that `count` nodes get.
 double bytes_per_node(const LinearSolverSpec& solver, double count) {
@@ -143,9 +148,11 @@ void read_quadrature(KeyReader& d, DiscretisationSpec& s) {
   }
 }
 
+} // namespace
+
 DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox& bounds,
                                        const std::string& base_dir,
-                                       const LinearSolverSpec& solver = {}) {
+                                       const LinearSolverSpec& solver) {
   KeyReader d = r.map("discretisation");
   DiscretisationSpec s;
   s.method =
@@ -161,6 +168,8 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
   d.finish();
   return s;
 }
+
+namespace {
 
 /// `stiffness_scale` = E / h: the penalty is alpha = penalty_scale * E / h unless an absolute
 /// `penalty` is given ([Faraji 2007] uses alpha = 1e12 with E = 2e5 MPa).
@@ -264,7 +273,9 @@ std::optional<verification::ExactSolution> read_exact(KeyReader& r) {
 /// the body force at its full value and every condition at 0, the equilibrium iteration of the
 /// initial stress; `load_factor` then moves the conditions only (the body force stays on unless
 /// `factors` names it).
-std::vector<LoadStep> read_steps(KeyReader& r, const std::vector<BoundaryCondition>& boundary,
+} // namespace
+
+std::vector<LoadStep> read_steps(KeyReader& r, const std::vector<std::string>& boundary,
                                  bool geostatic) {
   std::vector<LoadStep> steps;
   const std::size_t n = boundary.size() + 1; // the body force is the last factor
@@ -292,7 +303,7 @@ std::vector<LoadStep> read_steps(KeyReader& r, const std::vector<BoundaryConditi
     s.target = current;
     if (auto f = k.optional_map("factors")) {
       for (std::size_t c = 0; c < n; ++c) {
-        const std::string key = c < boundary.size() ? boundary[c].name : "body_force";
+        const std::string key = c < boundary.size() ? boundary[c] : "body_force";
         if (f->has(key)) {
           s.target[c] = f->number(key);
           named[c] = 1;
@@ -333,8 +344,6 @@ NonlinearSpec read_nonlinear(KeyReader& r) {
   return s;
 }
 
-} // namespace
-
 void parse_model_1d(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
   ModelProblem1D& model = p.part.emplace<ModelProblem1D>();
   KeyReader m = r.map("problem_1d");
@@ -348,27 +357,28 @@ void parse_model_1d(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
   model.penalty = r.positive("penalty", 1e6 / model.discretisation.spacing);
 }
 
-namespace {
-
 /// The material of a Galerkin analysis: the one `material:` names, or the single entry; it
 /// needs E and nu, and plasticity exactly when the analysis is elastoplastic.
-void take_material(KeyReader& r, ProblemSpec& p, const std::string& analysis) {
-  auto& galerkin = p.galerkin();
+int take_material(KeyReader& r, const ProblemSpec& p, const std::string& analysis) {
+  int index = 0;
   if (r.has("material")) {
-    galerkin.material_index = find_material(r, "material", p.materials, r.text("material"));
+    index = find_material(r, "material", p.materials, r.text("material"));
   } else if (p.materials.size() != 1) {
     r.error("material", "name the material of the body (the file lists " +
                             std::to_string(p.materials.size()) + " materials)");
   }
   r.allow("material");
-  const MaterialSpec& m = p.materials[galerkin.material_index];
+  const MaterialSpec& m = p.materials[index];
   if (!(m.E > 0.0)) material_error(m, "E", "analysis " + analysis + " needs Young's modulus E");
   if (!m.has_nu)
     material_error(m, "nu",
                    "analysis " + analysis +
                        " needs Poisson's ratio nu (or the shear "
                        "modulus)");
+  return index;
 }
+
+namespace {
 
 /// A material a Galerkin body uses: it needs E and nu, and plasticity only in an elastoplastic
 /// analysis.
@@ -472,7 +482,9 @@ void read_plastic_controls(KeyReader& r, ProblemSpec& p, bool plastic) {
   if (!plastic && p.plasticity())
     material_error(mat, "plasticity", "used only by analysis elastoplastic_static");
   if (plastic) {
-    galerkin.steps = read_steps(r, galerkin.boundary, galerkin.initial_stress.has_value());
+    std::vector<std::string> names;
+    for (const BoundaryCondition& c : galerkin.boundary) names.push_back(c.name);
+    galerkin.steps = read_steps(r, names, galerkin.initial_stress.has_value());
     galerkin.nonlinear = read_nonlinear(r);
   } else {
     for (const char* key : {"steps", "nonlinear"})
@@ -545,7 +557,7 @@ void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
   const std::string analysis = plastic ? "elastoplastic_static" : "elastic_static";
   if (p.model_type != ModelType::PlaneStress && p.model_type != ModelType::PlaneStrain)
     r.error("model", "analysis " + analysis + " takes model.type plane_stress or plane_strain");
-  take_material(r, p, analysis);
+  galerkin.material_index = take_material(r, p, analysis);
   galerkin.linear_solver = read_linear_solver(r);
   galerkin.discretisation =
       read_discretisation(r, 2, p.domain.bounds(), base_dir, galerkin.linear_solver);

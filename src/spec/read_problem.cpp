@@ -40,10 +40,44 @@ void read_model(KeyReader& r, ProblemSpec& p) {
   m.finish();
 }
 
+bool galerkin(Analysis a) {
+  return a == Analysis::ElasticStatic || a == Analysis::ElastoplasticStatic;
+}
+
+/// geometry of a 3D Galerkin body: a box {origin, size}, or a plane body (rectangle or polygon,
+/// with holes) and `extrude: {z0, depth}`; both are prisms along z (geometry::Prism).
+void read_solid_geometry(KeyReader& g, ProblemSpec& p) {
+  SolidSpec& solid = p.part.emplace<SolidSpec>();
+  if (g.has("box")) {
+    KeyReader b = g.map("box");
+    const Point origin = b.has("origin") ? read_point(b, "origin", 3) : Point(0, 0, 0);
+    b.allow("origin");
+    const Point size = read_point(b, "size", 3);
+    if (size.minCoeff() <= 0.0) b.error("size", "expected positive extents");
+    b.finish();
+    g.finish();
+    p.box = Box{origin, origin + size};
+    p.domain = geometry::Domain::rectangle(origin.head<2>(), size.head<2>());
+    solid.z0 = origin.z();
+    solid.depth = size.z();
+    return;
+  }
+  KeyReader e = g.map("extrude");
+  solid.z0 = e.number("z0", 0.0);
+  solid.depth = e.positive("depth");
+  e.finish();
+  p.domain = read_domain(g);
+  const BoundingBox b = p.domain.bounds();
+  p.box =
+      Box{Point(b.lo.x(), b.lo.y(), solid.z0), Point(b.hi.x(), b.hi.y(), solid.z0 + solid.depth)};
+}
+
 /// geometry: a 2D body (rectangle or polygon, with holes) or a 3D box {origin, size}.
 void read_geometry(KeyReader& r, ProblemSpec& p) {
   KeyReader g = r.map("geometry");
-  if (p.dimension == 3) {
+  if (p.dimension == 3 && galerkin(p.analysis)) {
+    read_solid_geometry(g, p);
+  } else if (p.dimension == 3) {
     KeyReader b = g.map("box");
     const Point origin = b.has("origin") ? read_point(b, "origin", 3) : Point(0, 0, 0);
     b.allow("origin");
@@ -123,6 +157,8 @@ ProblemSpec parse_problem(YAML::Node root, const std::string& base_dir, const st
     read_geometry(r, p);
     if (p.analysis == Analysis::Peridynamics)
       p.part = parse_pd(r, p, base_dir);
+    else if (p.dimension == 3)
+      parse_solid(r, p, base_dir);
     else
       parse_galerkin(r, p, base_dir);
   }

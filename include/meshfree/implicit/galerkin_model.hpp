@@ -30,6 +30,11 @@ struct RankPoints {
   std::vector<char> counted;
 };
 
+/// The points of `support` (a support list per point) that this rank integrates: those whose
+/// support holds one of the nodes it owns.
+RankPoints rank_points(const Csr& support, solvers::OwnedRange own, int node_count,
+                       const solvers::PetscSession& session);
+
 /// Integration points of one boundary condition, as integrated by this rank.
 struct ConditionPoints {
   const spec::BoundaryCondition* bc = nullptr;

@@ -13,6 +13,10 @@ geometry::Domain read_domain(KeyReader& geometry);
 /// elastic_static and elastoplastic_static: the material, discretisation, exact solution, body
 /// force, boundary, steps, nonlinear and output.
 void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir);
+/// elastic_static and elastoplastic_static with model solid_3d (the geometry, read with the
+/// front, has emplaced the SolidSpec): material, discretisation, exact solution, body force,
+/// boundary conditions on faces, steps and nonlinear.
+void parse_solid(KeyReader& r, ProblemSpec& p, const std::string& base_dir);
 /// model_problem_1d: problem_1d, discretisation and penalty.
 void parse_model_1d(KeyReader& r, ProblemSpec& p, const std::string& base_dir);
 /// peridynamics: material, interfaces, discretisation, regions, notches, cracks, functions,

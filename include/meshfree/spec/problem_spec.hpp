@@ -10,6 +10,7 @@
 #include "meshfree/spec/material_spec.hpp"
 #include "meshfree/spec/pd_spec.hpp"
 #include "meshfree/spec/region_spec.hpp"
+#include "meshfree/spec/solid_spec.hpp"
 #include "meshfree/spec/sph_spec.hpp"
 #include "meshfree/spec/stage_spec.hpp"
 #include <optional>
@@ -43,8 +44,9 @@ struct StagedSpec {
 };
 
 /// What belongs to one analysis alone (ProblemSpec::analysis says which; elastic and
-/// elastoplastic both hold a GalerkinSpec).
-using AnalysisPart = std::variant<GalerkinSpec, ModelProblem1D, PdSpec, SphSpec, StagedSpec>;
+/// elastoplastic hold a GalerkinSpec for a plane body, a SolidSpec for a 3D one).
+using AnalysisPart =
+    std::variant<GalerkinSpec, SolidSpec, ModelProblem1D, PdSpec, SphSpec, StagedSpec>;
 
 /// A problem: the front every analysis shares, then its analysis's own part.
 struct ProblemSpec {
@@ -66,6 +68,8 @@ struct ProblemSpec {
   /// The part of the analysis; asking for another analysis's part is a program error.
   GalerkinSpec& galerkin() { return part_as<GalerkinSpec>(); }
   const GalerkinSpec& galerkin() const { return part_as<GalerkinSpec>(); }
+  SolidSpec& solid() { return part_as<SolidSpec>(); }
+  const SolidSpec& solid() const { return part_as<SolidSpec>(); }
   PdSpec& pd() { return part_as<PdSpec>(); }
   const PdSpec& pd() const { return part_as<PdSpec>(); }
   SphSpec& sph() { return part_as<SphSpec>(); }
@@ -77,10 +81,13 @@ struct ProblemSpec {
   bool is_pd() const { return std::holds_alternative<PdSpec>(part); }
   bool is_sph() const { return std::holds_alternative<SphSpec>(part); }
   bool is_galerkin() const { return std::holds_alternative<GalerkinSpec>(part); }
+  bool is_solid() const { return std::holds_alternative<SolidSpec>(part); }
 
   /// Galerkin analyses: the body's material, its elasticity and its plasticity law (none: elastic
   /// at its points), all from the one materials list.
-  const MaterialSpec& body_material() const { return materials.at(galerkin().material_index); }
+  const MaterialSpec& body_material() const {
+    return materials.at(is_solid() ? solid().material_index : galerkin().material_index);
+  }
   materials::IsotropicElastic elasticity() const { return {body_material().E, body_material().nu}; }
   const std::optional<materials::J2Parameters>& plasticity() const {
     return body_material().plasticity;

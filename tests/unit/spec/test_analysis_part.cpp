@@ -11,20 +11,21 @@ using namespace mf;
 
 namespace {
 
-/// Which part the analysis holds: 0 Galerkin, 1 the 1D model, 2 PD, 3 SPH, 4 staged.
-std::size_t expected_part(spec::Analysis a) {
-  switch (a) {
+/// Which part the problem holds: 0 Galerkin (plane), 1 solid (3D Galerkin), 2 the 1D model,
+/// 3 PD, 4 SPH, 5 staged.
+std::size_t expected_part(const spec::ProblemSpec& p) {
+  switch (p.analysis) {
   case spec::Analysis::ElasticStatic:
   case spec::Analysis::ElastoplasticStatic:
-    return 0;
+    return p.dimension == 3 ? 1 : 0;
   case spec::Analysis::ModelProblem1D:
-    return 1;
-  case spec::Analysis::Peridynamics:
     return 2;
-  case spec::Analysis::Sph:
+  case spec::Analysis::Peridynamics:
     return 3;
-  case spec::Analysis::Staged:
+  case spec::Analysis::Sph:
     return 4;
+  case spec::Analysis::Staged:
+    return 5;
   }
   return 99;
 }
@@ -32,21 +33,23 @@ std::size_t expected_part(spec::Analysis a) {
 /// Checks the part `p` holds and that each accessor of another part throws.
 void check_part(const spec::ProblemSpec& p) {
   INFO(p.name << " " << p.stage);
-  const std::size_t own = expected_part(p.analysis);
+  const std::size_t own = expected_part(p);
   CHECK(p.part.index() == own);
   CHECK((own == 0) == p.is_galerkin());
-  CHECK((own == 2) == p.is_pd());
-  CHECK((own == 3) == p.is_sph());
+  CHECK((own == 1) == p.is_solid());
+  CHECK((own == 3) == p.is_pd());
+  CHECK((own == 4) == p.is_sph());
   if (own != 0) CHECK_THROWS_AS(p.galerkin(), std::logic_error);
-  if (own != 1) CHECK_THROWS_AS(p.model_1d(), std::logic_error);
-  if (own != 2) CHECK_THROWS_AS(p.pd(), std::logic_error);
-  if (own != 3) CHECK_THROWS_AS(p.sph(), std::logic_error);
-  if (own != 4) CHECK_THROWS_AS(p.staged(), std::logic_error);
-  if (own == 0)
+  if (own != 1) CHECK_THROWS_AS(p.solid(), std::logic_error);
+  if (own != 2) CHECK_THROWS_AS(p.model_1d(), std::logic_error);
+  if (own != 3) CHECK_THROWS_AS(p.pd(), std::logic_error);
+  if (own != 4) CHECK_THROWS_AS(p.sph(), std::logic_error);
+  if (own != 5) CHECK_THROWS_AS(p.staged(), std::logic_error);
+  if (own <= 1)
     CHECK_NOTHROW(p.elasticity());
   else
     CHECK_THROWS_AS(p.elasticity(), std::logic_error);
-  if (own == 4)
+  if (own == 5)
     for (const spec::ProblemSpec& stage : p.staged().stages) check_part(stage);
 }
 

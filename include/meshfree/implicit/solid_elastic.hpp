@@ -1,0 +1,49 @@
+#pragma once
+// Linear elastic statics of a 3D meshfree body: K d = f assembled on the model with 3 DOFs a
+// node and solved once; u^h at the nodes, each face condition's reaction or load, and the
+// errors against an exact solution where the problem gives one.
+#include "meshfree/core/timer.hpp"
+#include "meshfree/io/output.hpp"
+#include "meshfree/solvers/parallel.hpp"
+#include "meshfree/solvers/petsc_session.hpp"
+#include "meshfree/spec/problem_spec.hpp"
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace mf::implicit {
+
+/// What a face condition does to the body: the reaction of a held face (the penalty force on
+/// the body) or the load applied on a loaded one, and a held face's largest gap |u^h - ubar|.
+struct FaceReport {
+  std::string name;
+  bool constraint = false;
+  Vec3 force{0.0, 0.0, 0.0};
+  double violation_max = 0.0;
+};
+
+struct SolidElasticResult {
+  PhaseTimer timer;
+  int nodes = 0, dofs = 0, domain_points = 0, boundary_points = 0;
+  double mean_support = 0.0, matrix_nonzeros = 0.0;
+  solvers::SolveReport solve;
+  std::vector<double> parameters;   // the nodal parameters, 3 per node (every node)
+  std::vector<Vec3> node_x, node_u; // nodes and u^h there
+  std::vector<FaceReport> boundary;
+  double error_l2 = std::numeric_limits<double>::quiet_NaN();     // relative, with an exact
+  double error_energy = std::numeric_limits<double>::quiet_NaN(); // solution
+  solvers::PeakMemory memory;
+};
+
+SolidElasticResult solve_solid_elastic(const spec::ProblemSpec& spec,
+                                       const solvers::PetscSession& session);
+
+/// summary.json, history.csv and fields.h5/.xmf (the nodes as points: u^h, the nodal
+/// parameters, and the exact displacement where there is one). Rank 0 writes.
+void write_solid_elastic_outputs(const spec::ProblemSpec& spec, const SolidElasticResult& r,
+                                 const solvers::PetscSession& session, io::OutputDirectory& out);
+
+/// "meshfree RK (linear basis), 3D, spacing 0.5, dilation 2" for logs and the summary.
+std::string describe_solid_method(const spec::ProblemSpec& spec);
+
+} // namespace mf::implicit

@@ -1,0 +1,59 @@
+#pragma once
+// The solution-independent part of a 3D meshfree Galerkin analysis on one rank: the prism, its
+// nodes and supports, the integration points of the body and of each face condition, the points
+// this rank integrates with their shape functions, and the pattern of its block rows (3 DOFs a
+// node). As in the plane model (galerkin_model.hpp), a rank integrates every point whose support
+// holds one of its nodes, so its rows are whole without communication.
+#include "meshfree/core/timer.hpp"
+#include "meshfree/geometry/prism.hpp"
+#include "meshfree/implicit/coupling.hpp"
+#include "meshfree/implicit/galerkin_model.hpp"
+#include "meshfree/implicit/solid_points.hpp"
+#include "meshfree/implicit/solid_space.hpp"
+#include "meshfree/solvers/petsc_session.hpp"
+#include "meshfree/spec/problem_spec.hpp"
+#include <memory>
+#include <ostream>
+#include <vector>
+
+namespace mf::implicit {
+
+struct SolidConditionPoints {
+  const spec::FaceCondition* bc = nullptr;
+  SolidPoints points; // all of the condition's points
+  Csr support;
+  RankPoints mine;
+  SolidShapeTable table;    // rows: mine.rows (values only)
+  std::vector<Vec3> values; // prescribed displacement or traction at factor 1, per table row
+};
+
+struct SolidModel {
+  geometry::Prism body;
+  std::unique_ptr<SolidSpace> space;
+  solvers::OwnedRange own;
+  SolidPoints domain;
+  Csr domain_support;
+  RankPoints domain_mine;
+  SolidShapeTable domain_table; // rows: domain_mine.rows, with gradients
+  std::vector<double> domain_weight;
+  std::vector<SolidConditionPoints> conditions;
+  RowPattern pattern;
+  int node_count() const { return space->node_count(); }
+};
+
+/// Builds the model: phases "nodes", "quadrature", "neighbours" and "shape_functions" go to
+/// `timer`; with VCI the test gradients are corrected (collective). Errors on any rank reach
+/// every rank.
+SolidModel build_solid_model(const spec::ProblemSpec& spec, const solvers::PetscSession& session,
+                             PhaseTimer& timer);
+
+/// What `meshfree check` prints of a 3D body: nodes, layers, integration points, each face
+/// condition's area, and the memory the run is expected to take.
+void print_solid_plan(const spec::ProblemSpec& spec, std::ostream& os);
+
+/// How the model's linear systems are solved (direct, or multigrid with the six rigid-body modes
+/// from the owned nodes' coordinates), as spec.solid().linear_solver says.
+solvers::LinearSolverSettings solid_solver_settings(const spec::ProblemSpec& spec,
+                                                    const SolidModel& m);
+
+} // namespace mf::implicit

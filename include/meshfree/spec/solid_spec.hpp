@@ -1,0 +1,50 @@
+#pragma once
+// The part of a problem file that belongs to a 3D Galerkin analysis (model solid_3d with
+// elastic_static or elastoplastic_static): the prism's extent along z, the discretisation,
+// conditions on named faces, the body force, load steps and solver controls. Plain data.
+#include "meshfree/core/types.hpp"
+#include "meshfree/spec/galerkin_spec.hpp"
+#include "meshfree/spec/region_spec.hpp"
+#include "meshfree/verification/exact_solutions_3d.hpp"
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mf::spec {
+
+/// A condition on faces of a 3D body (geometry::Prism's face names), optionally clipped to a box:
+/// a displacement held by a penalty on the components with mask 1, a traction (force per area),
+/// or a pressure (the traction -p n).
+struct FaceCondition {
+  std::string name;
+  std::string key_path; // e.g. "boundary[0]", for messages
+  std::vector<std::string> faces;
+  std::optional<Box> box;
+  bool constrains = false;
+  Vec3 mask{0.0, 0.0, 0.0};
+  Vec3 value{0.0, 0.0, 0.0};
+  bool value_from_exact = false;
+  double penalty = 0.0; // absolute alpha
+  bool loads = false;
+  Vec3 traction{0.0, 0.0, 0.0};
+  bool traction_from_exact = false;
+  bool pressure_load = false;
+  double pressure = 0.0;
+};
+
+/// elastic_static or elastoplastic_static with model solid_3d: the front's plane body extruded
+/// from z0 by depth, meshfree nodes (the plane node cloud in layers along z), conditions on
+/// faces, loaded in steps and solved by Newton's method and a linear solver with 3 DOFs a node.
+struct SolidSpec {
+  int material_index = 0;
+  double z0 = 0.0, depth = 1.0;
+  DiscretisationSpec discretisation;
+  std::vector<FaceCondition> boundary;
+  Vec3 body_force{0.0, 0.0, 0.0}; // force per volume
+  std::optional<verification::ExactSolution3D> exact;
+  std::vector<LoadStep> steps;
+  NonlinearSpec nonlinear;
+  LinearSolverSpec linear_solver;
+};
+
+} // namespace mf::spec

@@ -1,0 +1,160 @@
+#include "meshfree/implicit/solid_elastic.hpp"
+#include "meshfree/core/log.hpp"
+#include "meshfree/implicit/solid_forms.hpp"
+#include "meshfree/implicit/solid_model.hpp"
+#include "meshfree/verification/exact_solutions_3d.hpp"
+#include <cmath>
+
+namespace mf::implicit {
+
+namespace {
+
+/// Stiffness, penalties, loads and body force of this rank's rows.
+void assemble(const spec::ProblemSpec& spec, const SolidModel& m, BlockRows& rows) {
+  const Mat6 C = elastic_matrix_3d(spec.elasticity());
+  const SolidShapeTable& t = m.domain_table;
+  const Vec3 b = spec.solid().body_force;
+  std::vector<double> K, f;
+  for (int r = 0; r < t.rows(); ++r) {
+    const int n = t.offset[r + 1] - t.offset[r];
+    const int* nodes = t.node.data() + t.offset[r];
+    K.resize(9 * static_cast<std::size_t>(n) * n);
+    solid_point_stiffness(t, r, m.domain_weight[r] * C, K.data());
+    rows.add_matrix(nodes, n, K.data());
+    if (b.isZero()) continue;
+    f.resize(3 * n);
+    for (int a = 0; a < n; ++a)
+      for (int c = 0; c < 3; ++c) f[3 * a + c] = m.domain_weight[r] * t.phi[t.offset[r] + a] * b(c);
+    rows.add_vector(nodes, n, f.data());
+  }
+  for (const SolidConditionPoints& c : m.conditions) {
+    const SolidShapeTable& ct = c.table;
+    for (int k = 0; k < ct.rows(); ++k) {
+      const int n = ct.offset[k + 1] - ct.offset[k];
+      const int* nodes = ct.node.data() + ct.offset[k];
+      const double w = c.points.weight[c.mine.rows[k]];
+      f.resize(3 * n);
+      if (c.bc->constrains) {
+        K.resize(9 * static_cast<std::size_t>(n) * n);
+        solid_point_penalty(ct, k, c.bc->penalty * w, c.bc->mask, c.values[k], K.data(), f.data());
+        rows.add_matrix(nodes, n, K.data());
+      } else {
+        for (int a = 0; a < n; ++a)
+          for (int i = 0; i < 3; ++i) f[3 * a + i] = w * ct.phi[ct.offset[k] + a] * c.values[k](i);
+      }
+      rows.add_vector(nodes, n, f.data());
+    }
+  }
+}
+
+FaceReport face_report(const SolidConditionPoints& c, const std::vector<double>& d,
+                       const solvers::PetscSession& session) {
+  FaceReport rep;
+  rep.name = c.bc->name;
+  rep.constraint = c.bc->constrains;
+  double force[3] = {0, 0, 0}, gap_max = 0.0;
+  for (int k = 0; k < c.table.rows(); ++k) {
+    if (!c.mine.counted[k]) continue;
+    const double w = c.points.weight[c.mine.rows[k]];
+    Vec3 g = w * c.values[k];
+    if (c.bc->constrains) {
+      const Vec3 gap =
+          (solid_displacement_at(c.table, k, d) - c.values[k]).cwiseProduct(c.bc->mask);
+      g = -c.bc->penalty * w * gap;
+      gap_max = std::max(gap_max, gap.norm());
+    }
+    for (int i = 0; i < 3; ++i) force[i] += g(i);
+  }
+  solvers::sum_everywhere(session.comm(), force, 3);
+  rep.force = Vec3(force[0], force[1], force[2]);
+  rep.violation_max = solvers::max_everywhere(session.comm(), gap_max);
+  return rep;
+}
+
+/// Relative L2 error of u^h and energy error of the strain against the exact solution, over
+/// the points this rank counts, summed over the ranks.
+void exact_errors(const spec::ProblemSpec& spec, const SolidModel& m, const std::vector<double>& d,
+                  const solvers::PetscSession& session, SolidElasticResult& R) {
+  const auto& exact = *spec.solid().exact;
+  const materials::IsotropicElastic mat = spec.elasticity();
+  const Mat6 C = elastic_matrix_3d(mat);
+  const Mat6 S = C.inverse();
+  double sums[4] = {0, 0, 0, 0}; // |e_u|^2, |u|^2, e_s S e_s, s S s
+  for (int r = 0; r < m.domain_table.rows(); ++r) {
+    if (!m.domain_mine.counted[r]) continue;
+    const Vec3& x = m.domain.x[m.domain_mine.rows[r]];
+    const double w = m.domain_weight[r];
+    const Vec3 ue = verification::exact_displacement_3d(exact, mat, x);
+    const Vec6 se = verification::exact_stress_3d(exact, mat, x);
+    const Vec3 eu = solid_displacement_at(m.domain_table, r, d) - ue;
+    const Vec6 es = C * solid_strain_at(m.domain_table, r, d) - se;
+    sums[0] += w * eu.squaredNorm();
+    sums[1] += w * ue.squaredNorm();
+    sums[2] += w * es.dot(S * es);
+    sums[3] += w * se.dot(S * se);
+  }
+  solvers::sum_everywhere(session.comm(), sums, 4);
+  R.error_l2 = std::sqrt(sums[0] / sums[1]);
+  R.error_energy = std::sqrt(sums[2] / sums[3]);
+}
+
+} // namespace
+
+std::string describe_solid_method(const spec::ProblemSpec& spec) {
+  const spec::DiscretisationSpec& d = spec.solid().discretisation;
+  return detail::concat(
+      "meshfree RK (", d.shape.basis == kernels::Basis::Quadratic ? "quadratic" : "linear",
+      " basis, ", d.shape.support == kernels::SupportShape::Circular ? "spherical" : "box",
+      " supports), 3D, spacing ", d.spacing, ", dilation ", d.dilation.x(), d.vci ? ", VCI" : "");
+}
+
+SolidElasticResult solve_solid_elastic(const spec::ProblemSpec& spec,
+                                       const solvers::PetscSession& session) {
+  SolidElasticResult R;
+  const SolidModel m = build_solid_model(spec, session, R.timer);
+  const int N = m.node_count();
+  R.nodes = N;
+  R.dofs = 3 * N;
+  R.domain_points = static_cast<int>(m.domain.x.size());
+  for (const auto& c : m.conditions) R.boundary_points += static_cast<int>(c.points.x.size());
+  R.mean_support = static_cast<double>(m.domain_support.index.size()) /
+                   std::max<std::size_t>(1, m.domain.x.size());
+  log::info("3D meshfree: ", N, " nodes, ", 3 * N, " DOFs, ", R.domain_points, " domain points, ",
+            R.boundary_points, " boundary points, ", R.mean_support, " nodes per point");
+  std::unique_ptr<solvers::BlockLinearSystem> system;
+  {
+    PhaseTimer::Scope scope(R.timer, "assembly");
+    system = std::make_unique<solvers::BlockLinearSystem>(
+        session.comm(), N, m.own, m.pattern.offset, m.pattern.column,
+        [&](solvers::BlockValueArrays values, std::vector<double>& rhs) {
+          BlockRows rows(m.pattern, values, 3);
+          assemble(spec, m, rows);
+          rhs = rows.rhs();
+        },
+        /*spd=*/!spec.solid().discretisation.vci, solid_solver_settings(spec, m), 3);
+  }
+  {
+    PhaseTimer::Scope scope(R.timer, "solve");
+    R.solve = system->solve();
+    R.parameters = system->solution_everywhere();
+    R.matrix_nonzeros = system->global_nonzeros();
+  }
+  log::info("solved with ", R.solve.solver, ": ", R.solve.reason_name, ", ", R.solve.iterations,
+            " iterations, relative residual ", R.solve.residual_norm);
+  for (double v : R.parameters)
+    MF_REQUIRE(std::isfinite(v), "the solution contains NaN or Inf: the system is singular; "
+                                 "check the boundary conditions");
+  PhaseTimer::Scope scope(R.timer, "postprocess");
+  for (const auto& c : m.conditions) R.boundary.push_back(face_report(c, R.parameters, session));
+  if (spec.solid().exact) exact_errors(spec, m, R.parameters, session, R);
+  R.node_x = m.space->nodes().x;
+  const Csr at_nodes = m.space->support_lists(R.node_x);
+  std::vector<int> all(N);
+  for (int I = 0; I < N; ++I) all[I] = I;
+  const SolidShapeTable t = m.space->shape_table(R.node_x, all, at_nodes, false);
+  for (int I = 0; I < N; ++I) R.node_u.push_back(solid_displacement_at(t, I, R.parameters));
+  R.memory = solvers::peak_memory(session.comm());
+  return R;
+}
+
+} // namespace mf::implicit

@@ -1,0 +1,184 @@
+#include "meshfree/implicit/solid_model.hpp"
+#include "meshfree/core/log.hpp"
+#include "meshfree/core/memory.hpp"
+#include "meshfree/implicit/solid_forms.hpp"
+#include "meshfree/solvers/parallel.hpp"
+#include "meshfree/verification/exact_solutions_3d.hpp"
+#include <algorithm>
+
+namespace mf::implicit {
+
+namespace {
+
+void require_covered(const Csr& support, const std::vector<Vec3>& x) {
+  for (int r = 0; r < support.rows(); ++r)
+    MF_REQUIRE(support.size(r) > 0, "integration point (", x[r].x(), ", ", x[r].y(), ", ", x[r].z(),
+               ") is covered by no node: raise discretisation.dilation");
+}
+
+/// Traction sigma n from a Voigt stress [xx, yy, zz, yz, xz, xy].
+Vec3 traction(const Vec6& s, const Vec3& n) {
+  return {s(0) * n.x() + s(5) * n.y() + s(4) * n.z(), s(5) * n.x() + s(1) * n.y() + s(3) * n.z(),
+          s(4) * n.x() + s(3) * n.y() + s(2) * n.z()};
+}
+
+std::vector<Vec3> face_values(const spec::ProblemSpec& spec, const spec::FaceCondition& bc,
+                              const SolidPoints& pts, const std::vector<int>& rows) {
+  const materials::IsotropicElastic m = spec.elasticity();
+  const auto& exact = spec.solid().exact;
+  std::vector<Vec3> out;
+  for (int r : rows) {
+    if (bc.constrains)
+      out.push_back(bc.value_from_exact ? verification::exact_displacement_3d(*exact, m, pts.x[r])
+                                        : bc.value);
+    else if (bc.pressure_load)
+      out.push_back(-bc.pressure * pts.normal[r]); // t = -p n, n the outward normal
+    else
+      out.push_back(
+          bc.traction_from_exact
+              ? traction(verification::exact_stress_3d(*exact, m, pts.x[r]), pts.normal[r])
+              : bc.traction);
+  }
+  return out;
+}
+
+/// VCI in 3D (implicit/integration_correction.hpp): grad~ Psi_I = grad Psi_I + xi_I Psi_I with
+/// xi_I = (int_Gamma Psi_I n - sum_g w_g grad Psi_I) / sum_g w_g Psi_I, the boundary integral
+/// over every face of the prism.
+void correct_test_gradients_3d(const spec::ProblemSpec& spec, SolidModel& m,
+                               const solvers::PetscSession& session) {
+  const int N = m.node_count();
+  std::vector<double> sums(7 * static_cast<std::size_t>(N), 0.0);
+  SolidShapeTable& t = m.domain_table;
+  for (int k = 0; k < t.rows(); ++k) {
+    const double w = m.domain_weight[k];
+    for (int j = t.offset[k]; j < t.offset[k + 1]; ++j) {
+      double* s = sums.data() + 7 * static_cast<std::size_t>(t.node[j]);
+      for (int c = 0; c < 3; ++c) s[c] += w * t.dphi[j](c);
+      s[3] += w * t.phi[j];
+    }
+  }
+  const SolidPoints faces =
+      prism_face_points(m.body, spec.solid().discretisation, m.body.face_names());
+  const Csr support = m.space->support_lists(faces.x);
+  const RankPoints mine = rank_points(support, m.own, N, session);
+  const SolidShapeTable e = m.space->shape_table(faces.x, mine.rows, support, false);
+  for (int k = 0; k < e.rows(); ++k) {
+    const Vec3 wn = faces.weight[mine.rows[k]] * faces.normal[mine.rows[k]];
+    for (int j = e.offset[k]; j < e.offset[k + 1]; ++j) {
+      double* s = sums.data() + 7 * static_cast<std::size_t>(e.node[j]);
+      for (int c = 0; c < 3; ++c) s[4 + c] += e.phi[j] * wn(c);
+    }
+  }
+  std::vector<double> xi(3 * static_cast<std::size_t>(N), 0.0);
+  int bare = -1;
+  for (int I = m.own.begin; I < m.own.end; ++I) {
+    const double* s = sums.data() + 7 * static_cast<std::size_t>(I);
+    if (!(s[3] > 0.0)) {
+      bare = I;
+      continue;
+    }
+    for (int c = 0; c < 3; ++c) xi[3 * I + c] = (s[4 + c] - s[c]) / s[3];
+  }
+  solvers::sum_everywhere(session.comm(), xi.data(), static_cast<int>(xi.size()));
+  bare = static_cast<int>(solvers::max_everywhere(session.comm(), static_cast<double>(bare)));
+  MF_REQUIRE(bare < 0, "VCI: node ", bare, " has no integration point in its support");
+  t.test_dphi.resize(t.dphi.size());
+  for (std::size_t j = 0; j < t.dphi.size(); ++j) {
+    const double* x = xi.data() + 3 * static_cast<std::size_t>(t.node[j]);
+    t.test_dphi[j] = t.dphi[j] + t.phi[j] * Vec3(x[0], x[1], x[2]);
+  }
+}
+
+void build_points(const spec::ProblemSpec& spec, SolidModel& m) {
+  const spec::SolidSpec& s = spec.solid();
+  m.domain = prism_volume_points(m.body, s.discretisation);
+  m.conditions.resize(s.boundary.size());
+  for (std::size_t b = 0; b < s.boundary.size(); ++b) {
+    const spec::FaceCondition& bc = s.boundary[b];
+    m.conditions[b].bc = &bc;
+    m.conditions[b].points = prism_face_points(m.body, s.discretisation, bc.faces, bc.box);
+    MF_REQUIRE(!m.conditions[b].points.x.empty(), bc.key_path,
+               ": no point of the named faces lies in its box");
+  }
+}
+
+void build_tables(const spec::ProblemSpec& spec, const solvers::PetscSession& session,
+                  SolidModel& m) {
+  const int N = m.node_count();
+  m.domain_support = m.space->support_lists(m.domain.x);
+  require_covered(m.domain_support, m.domain.x);
+  m.domain_mine = rank_points(m.domain_support, m.own, N, session);
+  std::vector<const Csr*> coupling{&m.domain_support};
+  for (auto& c : m.conditions) {
+    c.support = m.space->support_lists(c.points.x);
+    require_covered(c.support, c.points.x);
+    if (c.bc->constrains) coupling.push_back(&c.support);
+    c.mine = rank_points(c.support, m.own, N, session);
+  }
+  m.pattern = coupling_pattern(coupling, N, m.own.begin, m.own.end);
+  m.domain_table = m.space->shape_table(m.domain.x, m.domain_mine.rows, m.domain_support, true);
+  for (int r : m.domain_mine.rows) m.domain_weight.push_back(m.domain.weight[r]);
+  for (auto& c : m.conditions) {
+    c.table = m.space->shape_table(c.points.x, c.mine.rows, c.support, false);
+    c.values = face_values(spec, *c.bc, c.points, c.mine.rows);
+  }
+}
+
+} // namespace
+
+SolidModel build_solid_model(const spec::ProblemSpec& spec, const solvers::PetscSession& session,
+                             PhaseTimer& timer) {
+  const spec::SolidSpec& s = spec.solid();
+  SolidModel m;
+  m.body = geometry::Prism{spec.domain, s.z0, s.depth};
+  session.collective([&] {
+    {
+      PhaseTimer::Scope scope(timer, "nodes");
+      m.space = std::make_unique<SolidSpace>(prism_nodes(m.body, s.discretisation),
+                                             s.discretisation.shape, s.discretisation.dilation.x());
+    }
+    {
+      PhaseTimer::Scope scope(timer, "quadrature");
+      build_points(spec, m);
+    }
+    m.own = solvers::owned_nodes(m.node_count(), session.rank(), session.size());
+    PhaseTimer::Scope scope(timer, "shape_functions");
+    build_tables(spec, session, m);
+  });
+  if (s.discretisation.vci) correct_test_gradients_3d(spec, m, session);
+  return m;
+}
+
+void print_solid_plan(const spec::ProblemSpec& spec, std::ostream& os) {
+  const spec::SolidSpec& s = spec.solid();
+  const geometry::Prism body{spec.domain, s.z0, s.depth};
+  const SolidNodes nodes = prism_nodes(body, s.discretisation);
+  const double n = static_cast<double>(nodes.x.size());
+  os << "  nodes: " << nodes.x.size() << " (" << layer_count(body, s.discretisation.spacing) + 1
+     << " layers along z), " << 3 * nodes.x.size() << " DOFs\n";
+  for (const auto& bc : s.boundary) {
+    double area = 0.0;
+    for (double w : prism_face_points(body, s.discretisation, bc.faces, bc.box).weight) area += w;
+    os << "  boundary " << bc.name << ": "
+       << (bc.constrains      ? "displacement"
+           : bc.pressure_load ? "pressure"
+                              : "traction")
+       << " on area " << area << "\n";
+  }
+  os << "  memory: about " << n * bytes_per::solid_node / 1048576.0 << " MiB\n";
+}
+
+solvers::LinearSolverSettings solid_solver_settings(const spec::ProblemSpec& spec,
+                                                    const SolidModel& m) {
+  const spec::SolidSpec& s = spec.solid();
+  solvers::LinearSolverSettings L;
+  L.symmetric = !s.discretisation.vci;
+  L.multigrid = s.linear_solver.multigrid_for(3.0 * m.node_count());
+  if (L.multigrid)
+    for (int I = m.own.begin; I < m.own.end; ++I)
+      for (int c = 0; c < 3; ++c) L.coordinates.push_back(m.space->nodes().x[I](c));
+  return L;
+}
+
+} // namespace mf::implicit

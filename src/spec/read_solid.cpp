@@ -1,0 +1,198 @@
+// The 3D Galerkin analyses of a problem file (model solid_3d with elastic_static or
+// elastoplastic_static): material, discretisation, exact solution, body force, conditions on
+// named faces and the load schedule. Every key is checked; errors name the key path.
+#include "meshfree/core/memory.hpp"
+#include "meshfree/geometry/prism.hpp"
+#include "meshfree/spec/analysis_read.hpp"
+#include "meshfree/spec/galerkin_read.hpp"
+#include "meshfree/spec/spec_read.hpp"
+#include <algorithm>
+#include <cmath>
+
+namespace mf::spec {
+
+namespace {
+
+Vec3 vec3(KeyReader& r, const std::string& key) {
+  const std::vector<double> v = r.numbers(key, 3);
+  return Vec3(v[0], v[1], v[2]);
+}
+
+/// exact: {solution: linear, u0, gradient} or {solution: thick_cylinder, inner_radius,
+/// outer_radius, pressure}.
+std::optional<verification::ExactSolution3D> read_exact_3d(KeyReader& r) {
+  auto e = r.optional_map("exact");
+  if (!e) return std::nullopt;
+  verification::ExactSolution3D out;
+  if (e->choice("solution", {"linear", "thick_cylinder"}, "") == "linear") {
+    verification::LinearField3D f;
+    f.u0 = vec3(*e, "u0");
+    const auto g = e->number_lists("gradient", 3);
+    if (g.size() != 3) e->error("gradient", "expected three rows [dui/dx, dui/dy, dui/dz]");
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) f.G(i, j) = g[i][j];
+    out = f;
+  } else {
+    verification::ThickCylinder c;
+    c.a = e->positive("inner_radius");
+    c.b = e->positive("outer_radius");
+    if (!(c.b > c.a)) e->error("outer_radius", "must exceed inner_radius");
+    c.p = e->number("pressure");
+    out = c;
+  }
+  e->finish();
+  return out;
+}
+
+std::vector<std::string> read_names(KeyReader& r, const std::string& key) {
+  std::vector<std::string> names;
+  const YAML::Node n = r.raw(key);
+  if (n.IsScalar()) return {n.Scalar()};
+  if (!n.IsSequence()) r.error(key, "expected a face name or a list of them");
+  for (const auto& item : n) {
+    if (!item.IsScalar()) r.error(key, "expected a list of face names");
+    names.push_back(item.Scalar());
+  }
+  return names;
+}
+
+/// displacement: exact | {x, y, z, exact: components}.
+void read_held_components(KeyReader& bc, FaceCondition& c) {
+  c.constrains = true;
+  const YAML::Node n = bc.raw("displacement");
+  if (n.IsScalar() && n.Scalar() == "exact") {
+    c.value_from_exact = true;
+    c.mask = Vec3(1.0, 1.0, 1.0);
+    return;
+  }
+  KeyReader u(n, bc.path_of("displacement"));
+  const char* axes[3] = {"x", "y", "z"};
+  for (int a = 0; a < 3; ++a)
+    if (u.has(axes[a])) c.mask(a) = 1.0, c.value(a) = u.number(axes[a]);
+  if (u.has("exact")) {
+    if (!c.mask.isZero()) u.error("exact", "give either prescribed values (x, y, z) or 'exact'");
+    const std::string comps = u.text("exact");
+    if (comps.empty() || comps.find_first_not_of("xyz") != std::string::npos)
+      u.error("exact", "expected the components held at the exact solution, e.g. 'xz', got '" +
+                           one_line(comps) + "'");
+    c.value_from_exact = true;
+    for (int a = 0; a < 3; ++a) c.mask(a) = comps.find(axes[a][0]) != std::string::npos;
+  }
+  u.finish();
+  if (c.mask.isZero()) bc.error("displacement", "hold at least one of x, y, z (or say 'exact')");
+}
+
+/// One boundary entry: {name, faces, box, displacement | traction | pressure, penalty}.
+FaceCondition read_face_condition(KeyReader& bc, const geometry::Prism& body, double stiffness) {
+  FaceCondition c;
+  c.key_path = bc.path();
+  c.name = bc.text("name");
+  check_name(bc, "name", c.name, false);
+  if (!bc.has("faces")) bc.error("faces", "name the faces the condition acts on");
+  c.faces = read_names(bc, "faces");
+  const std::vector<std::string> known = body.face_names();
+  for (const std::string& f : c.faces)
+    if (std::find(known.begin(), known.end(), f) == known.end()) {
+      std::string list;
+      for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+      bc.error("faces", "no face is named '" + one_line(f) + "' (the body's faces: " + list + ")");
+    }
+  if (bc.has("box")) c.box = read_box(bc, "box", 3);
+  const int kinds = bc.has("displacement") + bc.has("traction") + bc.has("pressure");
+  if (kinds != 1)
+    bc.error("name", "a boundary condition needs exactly one of 'displacement', 'traction' or "
+                     "'pressure'");
+  if (bc.has("displacement")) {
+    read_held_components(bc, c);
+    if (bc.has("penalty") && bc.has("penalty_scale"))
+      bc.error("penalty_scale", "give either 'penalty' (absolute) or 'penalty_scale' (times E/h)");
+    c.penalty =
+        bc.has("penalty") ? bc.positive("penalty") : bc.positive("penalty_scale", 1e6) * stiffness;
+  } else if (bc.has("traction")) {
+    c.loads = true;
+    const YAML::Node n = bc.raw("traction");
+    if (n.IsScalar() && n.Scalar() == "exact")
+      c.traction_from_exact = true;
+    else
+      c.traction = vec3(bc, "traction");
+  } else {
+    c.loads = c.pressure_load = true;
+    c.pressure = bc.number("pressure");
+  }
+  for (const char* key : {"penalty", "penalty_scale"})
+    if (!c.constrains && bc.has(key)) bc.error(key, "a penalty needs a 'displacement' condition");
+  for (const char* key : {"displacement", "traction", "penalty", "penalty_scale"}) bc.allow(key);
+  bc.finish();
+  return c;
+}
+
+void read_boundary(KeyReader& r, const ProblemSpec& p, SolidSpec& s) {
+  const geometry::Prism body{p.domain, s.z0, s.depth};
+  const double stiffness = p.elasticity().E / s.discretisation.spacing;
+  for (KeyReader& bc : r.map_list("boundary")) {
+    s.boundary.push_back(read_face_condition(bc, body, stiffness));
+    const FaceCondition& c = s.boundary.back();
+    for (std::size_t k = 0; k + 1 < s.boundary.size(); ++k)
+      if (s.boundary[k].name == c.name)
+        bc.error("name", "'" + c.name + "' is used by " + s.boundary[k].key_path + " already");
+    if ((c.value_from_exact || c.traction_from_exact) && !s.exact)
+      bc.error(c.constrains ? "displacement" : "traction",
+               "'exact' needs an 'exact' section in the problem");
+  }
+  if (std::none_of(s.boundary.begin(), s.boundary.end(),
+                   [](const FaceCondition& c) { return c.constrains; }))
+    r.error("boundary", "no displacement condition: the body is free to move as a rigid body");
+}
+
+/// The 3D discretisation: meshfree reproducing kernels; the plane node count times the layers
+/// along z checked against the memory.
+void read_solid_discretisation(KeyReader& r, const ProblemSpec& p, const std::string& base_dir,
+                               SolidSpec& s) {
+  s.discretisation = read_discretisation(r, 3, p.domain.bounds(), base_dir, s.linear_solver);
+  const DiscretisationSpec& d = s.discretisation;
+  const std::string key = "discretisation";
+  if (d.method != Method::Meshfree)
+    fail(key, ".method: fem is available for plane models only; model solid_3d is meshfree");
+  if (d.shape.approximation != kernels::Approximation::ReproducingKernel)
+    fail(key, ".approximation: model solid_3d takes rk");
+  if (s.depth < d.spacing)
+    fail(key, ".spacing: ", d.spacing, " exceeds the body's depth along z (", s.depth, ")");
+  const Vec2 size = p.domain.bounds().size();
+  const double nodes =
+      (size.x() / d.spacing + 1.0) * (size.y() / d.spacing + 1.0) * (s.depth / d.spacing + 1.0);
+  require_memory(key + ".spacing", "nodes over the 3D body", nodes, bytes_per::solid_node);
+}
+
+} // namespace
+
+void parse_solid(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
+  SolidSpec& s = p.solid();
+  const bool plastic = p.analysis == Analysis::ElastoplasticStatic;
+  const std::string analysis = plastic ? "elastoplastic_static" : "elastic_static";
+  if (plastic)
+    r.error("analysis", "model solid_3d runs analysis elastic_static; elastoplastic_static is "
+                        "available for plane models only");
+  s.material_index = take_material(r, p, analysis);
+  const MaterialSpec& m = p.materials[s.material_index];
+  if (plastic && !m.plasticity)
+    material_error(m, "plasticity", "analysis elastoplastic_static needs a plasticity law");
+  if (!plastic && m.plasticity)
+    material_error(m, "plasticity", "used only by analysis elastoplastic_static");
+  s.linear_solver = read_linear_solver(r);
+  read_solid_discretisation(r, p, base_dir, s);
+  s.exact = read_exact_3d(r);
+  if (r.has("body_force")) s.body_force = vec3(r, "body_force");
+  r.allow("body_force");
+  read_boundary(r, p, s);
+  if (plastic) {
+    std::vector<std::string> names;
+    for (const FaceCondition& c : s.boundary) names.push_back(c.name);
+    s.steps = read_steps(r, names, false);
+    s.nonlinear = read_nonlinear(r);
+  } else {
+    for (const char* key : {"steps", "nonlinear"})
+      if (r.has(key)) r.error(key, "used only by analysis elastoplastic_static");
+  }
+}
+
+} // namespace mf::spec
