@@ -3,7 +3,6 @@
 #include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/implicit/galerkin_plan.hpp"
 #include "meshfree/implicit/solid_elastic.hpp"
-#include "meshfree/implicit/solid_model.hpp"
 #include <iostream>
 
 namespace mf::app {
@@ -27,20 +26,17 @@ RunOutcome run(const RunRequest& q) {
     log_phases(elastic_static(q.spec, q.session, q.out).timer);
     return {};
   }
-  implicit::SolidElasticResult r = implicit::solve_solid_elastic(q.spec, q.session); // 3D body
-  {
-    PhaseTimer::Scope scope(r.timer, "output");
-    if (q.out) implicit::write_solid_elastic_outputs(q.spec, r, q.session, *q.out);
-  }
-  log_phases(r.timer);
+  auto r = implicit::solve_solid_elastic(q.spec, q.session); // a 3D body
+  write_and_log(r, q.out, [&](io::OutputDirectory& o) {
+    implicit::write_solid_elastic_outputs(q.spec, r, q.session, o);
+  });
   return {};
 }
 
 } // namespace
 
 void describe_galerkin(const spec::ProblemSpec& spec) {
-  spec.is_solid() ? implicit::print_solid_plan(spec, std::cout)
-                  : implicit::print_galerkin_plan(spec, std::cout);
+  implicit::print_galerkin_plan(spec, std::cout);
 }
 
 void admit_galerkin(const spec::ProblemSpec& spec, const std::string&) {

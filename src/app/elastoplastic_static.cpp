@@ -3,6 +3,8 @@
 #include "meshfree/core/run_bounds.hpp"
 #include "meshfree/implicit/elastoplastic_output.hpp"
 #include "meshfree/implicit/elastoplastic_solve.hpp"
+#include "meshfree/implicit/galerkin_plan.hpp"
+#include "meshfree/implicit/solid_elastoplastic.hpp"
 #include <limits>
 
 namespace mf::app {
@@ -24,14 +26,12 @@ implicit::ElastoplasticResult elastoplastic_static(const spec::ProblemSpec& spec
 /// Gauss-point frame and a display-mesh frame, about 700 bytes per node together (measured on
 /// plate_plastic_thesis, README.md "Running").
 void require_increment_output(const spec::ProblemSpec& spec, const std::string& folder) {
-  auto& galerkin = spec.galerkin();
-  const Vec2 size = spec.domain.bounds().size();
-  const double h = galerkin.discretisation.spacing;
-  const double nodes = (size.x() / h + 1.0) * (size.y() / h + 1.0);
-  const std::size_t listed = galerkin.initial_stress ? 1 : 0; // "geostatic" is not in the file
+  const auto& steps = spec.is_solid() ? spec.solid().steps : spec.galerkin().steps;
+  const double nodes = implicit::estimated_nodes(spec);
+  const std::size_t listed = spec.is_galerkin() && spec.galerkin().initial_stress; // "geostatic"
   double frames = 1.0;
-  for (std::size_t k = 0; k < galerkin.steps.size(); ++k) {
-    frames += galerkin.steps[k].increments;
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    frames += steps[k].increments;
     if (k < listed) continue;
     const std::string key = "steps[" + std::to_string(k - listed) + "].increments";
     require_run_time(key, "DOF-increments of the schedule so far", frames * 2.0 * nodes,
@@ -58,6 +58,13 @@ double end_time(const spec::ProblemSpec&) {
 }
 
 RunOutcome run(const RunRequest& q) {
+  if (q.spec.is_solid()) { // a 3D body
+    auto r = implicit::solve_solid_elastoplastic(q.spec, q.session);
+    write_and_log(r, q.out, [&](io::OutputDirectory& o) {
+      implicit::write_solid_elastoplastic_outputs(q.spec, r, q.session, o);
+    });
+    return {r.status == "completed" ? 0 : 3, r.status};
+  }
   const auto r = elastoplastic_static(q.spec, q.session, q.out, q.dir, q.restart);
   log_phases(r.timer);
   return {r.status == "completed" ? 0 : 3, r.status};

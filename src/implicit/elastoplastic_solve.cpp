@@ -38,7 +38,7 @@ void log_elastic_limit(const spec::ProblemSpec& spec, const ElasticLimit& e) {
   const PeakStress& g = e.gauss_points;
   const PeakStress& n = e.nodes;
   log::info("first yield at ", e.fraction, " of step '", spec.galerkin().steps.front().name, "' (",
-            factors_text(spec, e.factors), "); elastic von Mises at its end: ", g.von_mises,
+            factors_text(schedule_of(spec), e.factors), "); elastic von Mises at its end: ", g.von_mises,
             " at the Gauss point (", g.at.x(), ", ", g.at.y(), "), ", n.von_mises, " at the node (",
             n.at.x(), ", ", n.at.y(), ")");
 }
@@ -194,7 +194,7 @@ ElastoplasticResult solve_elastoplastic_static(const spec::ProblemSpec& spec,
     });
   };
   const ScheduleOutcome o = run_load_schedule(
-      spec, problem, newton, d,
+      schedule_of(spec), problem, newton, d,
       [&](IncrementRecord rec, bool write_fields) -> const IncrementRecord& {
         PhaseTimer::Scope scope(R.timer, "increment_output");
         recorder.record(std::move(rec), d, problem.states(), newton, write_fields, R);

@@ -2,6 +2,7 @@
 #include "meshfree/core/memory.hpp"
 #include "meshfree/geometry/node_generation.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
+#include "meshfree/implicit/solid_model.hpp"
 #include "meshfree/quadrature/integration_points.hpp"
 
 namespace mf::implicit {
@@ -36,7 +37,15 @@ void describe_meshfree_nodes(const spec::ProblemSpec& spec, std::ostream& os) {
 
 } // namespace
 
+double estimated_nodes(const spec::ProblemSpec& spec) {
+  const bool solid = spec.is_solid();
+  const Vec2 size = spec.domain.bounds().size();
+  const double h = (solid ? spec.solid().discretisation : spec.galerkin().discretisation).spacing;
+  return (size.x() / h + 1.0) * (size.y() / h + 1.0) * (solid ? spec.solid().depth / h + 1.0 : 1.0);
+}
+
 void print_galerkin_plan(const spec::ProblemSpec& spec, std::ostream& os) {
+  if (spec.is_solid()) return print_solid_plan(spec, os);
   auto& galerkin = spec.galerkin();
   if (galerkin.discretisation.method == spec::Method::Fem)
     describe_fe_mesh(spec, os);

@@ -22,28 +22,39 @@ bool drives(const spec::BoundaryCondition& bc) {
 
 /// The nominal increments of the whole schedule, and how many of them are done when step `s`
 /// has come `tau` of its way (a cut increment counts by its share).
-double increments_total(const spec::ProblemSpec& spec) {
+double increments_total(const ScheduleSpec& schedule) {
   double n = 0.0;
-  for (const spec::LoadStep& step : spec.galerkin().steps) n += step.increments;
+  for (const spec::LoadStep& step : *schedule.steps) n += step.increments;
   return n;
 }
 
-double increments_done(const spec::ProblemSpec& spec, std::size_t s, double tau) {
-  auto& galerkin = spec.galerkin();
+double increments_done(const ScheduleSpec& schedule, std::size_t s, double tau) {
+  const auto& steps = *schedule.steps;
   double n = 0.0;
-  for (std::size_t k = 0; k < s; ++k) n += galerkin.steps[k].increments;
-  return n + tau * galerkin.steps[s].increments;
+  for (std::size_t k = 0; k < s; ++k) n += steps[k].increments;
+  return n + tau * steps[s].increments;
 }
 
 } // namespace
 
-std::string factors_text(const spec::ProblemSpec& spec, const std::vector<double>& f) {
-  auto& galerkin = spec.galerkin();
+ScheduleSpec schedule_of(const spec::ProblemSpec& spec) {
+  const auto& galerkin = spec.galerkin();
+  ScheduleSpec s;
+  s.steps = &galerkin.steps;
+  s.nonlinear = galerkin.nonlinear;
+  s.fields_every = galerkin.fields_every;
+  for (const spec::BoundaryCondition& bc : galerkin.boundary)
+    s.driving.push_back(drives(bc) ? bc.name : std::string());
+  s.body_force = has_body_force(spec);
+  return s;
+}
+
+std::string factors_text(const ScheduleSpec& schedule, const std::vector<double>& f) {
   std::string s;
-  for (std::size_t c = 0; c < galerkin.boundary.size(); ++c)
-    if (drives(galerkin.boundary[c]))
-      s += (s.empty() ? "" : ", ") + galerkin.boundary[c].name + " " + detail::concat(f[c]);
-  if (has_body_force(spec)) s += (s.empty() ? "" : ", ") + detail::concat("body_force ", f.back());
+  for (std::size_t c = 0; c < schedule.driving.size(); ++c)
+    if (!schedule.driving[c].empty())
+      s += (s.empty() ? "" : ", ") + schedule.driving[c] + " " + detail::concat(f[c]);
+  if (schedule.body_force) s += (s.empty() ? "" : ", ") + detail::concat("body_force ", f.back());
   return s.empty() ? "no load" : s;
 }
 
@@ -52,8 +63,8 @@ namespace {
 /// What the increments of a schedule share: the system, Newton, the state and the position,
 /// the clock and the increment counts of the progress lines, and the outcome so far.
 struct ScheduleRun {
-  const spec::ProblemSpec& spec;
-  ElastoplasticSystem& problem;
+  const ScheduleSpec& spec;
+  IncrementalSystem& problem;
   solvers::NonlinearBlockSystem& newton;
   std::vector<double>& d;
   const IncrementDone& done;
@@ -71,7 +82,7 @@ bool cut_back(ScheduleRun& run, const spec::LoadStep& step, double to,
               const solvers::NewtonReport& rep) {
   SchedulePosition& at = run.at;
   const std::string why = rep.reason + (rep.failure.empty() ? "" : ": " + rep.failure);
-  if (at.cuts >= run.spec.galerkin().nonlinear.max_cutbacks) {
+  if (at.cuts >= run.spec.nonlinear.max_cutbacks) {
     run.o.status = "stopped";
     run.o.stop_reason = detail::concat(
         "step '", step.name, "': the increment to ", to, " of the step did not converge (", why,
@@ -94,9 +105,10 @@ bool cut_back(ScheduleRun& run, const spec::LoadStep& step, double to,
 /// the progress line, and grows a cut increment back.
 void record_increment(ScheduleRun& run, std::size_t s, const std::vector<double>& f,
                       const solvers::NewtonReport& rep, bool last, double nominal) {
-  const spec::ProblemSpec& spec = run.spec;
+  const ScheduleSpec& spec = run.spec;
   SchedulePosition& at = run.at;
-  const spec::LoadStep& step = spec.galerkin().steps[s];
+  const std::vector<spec::LoadStep>& steps = *spec.steps;
+  const spec::LoadStep& step = steps[s];
   IncrementRecord rec;
   rec.step = static_cast<int>(s);
   rec.step_fraction = at.tau;
@@ -104,8 +116,8 @@ void record_increment(ScheduleRun& run, std::size_t s, const std::vector<double>
   rec.newton = rep;
   rec.cutbacks = at.cuts;
   const bool step_end = last;
-  const bool write_fields = ++at.since_output >= spec.galerkin().fields_every ||
-                            (step_end && s + 1 == spec.galerkin().steps.size());
+  const bool write_fields =
+      ++at.since_output >= spec.fields_every || (step_end && s + 1 == steps.size());
   if (write_fields) at.since_output = 0;
   const IncrementRecord& recorded = run.done(std::move(rec), write_fields);
   const double done_now = increments_done(spec, s, at.tau);
@@ -123,16 +135,15 @@ void record_increment(ScheduleRun& run, std::size_t s, const std::vector<double>
     at.easy = 0;
   }
   at.cuts = 0;
-  if (run.kept) run.kept(step_end && s + 1 == spec.galerkin().steps.size());
+  if (run.kept) run.kept(step_end && s + 1 == steps.size());
 }
 
 /// The increments of step at.step from at.tau to its end, or until the schedule stops.
 void run_step(ScheduleRun& run) {
-  auto& galerkin = run.spec.galerkin();
   SchedulePosition& at = run.at;
-  const std::size_t nf = galerkin.boundary.size() + 1;
+  const std::size_t nf = run.spec.factors();
   const std::size_t s = static_cast<std::size_t>(at.step);
-  const spec::LoadStep& step = galerkin.steps[s];
+  const spec::LoadStep& step = (*run.spec.steps)[s];
   const double nominal = 1.0 / step.increments;
   if (at.dtau <= 0.0) at.dtau = nominal;
   while (at.tau < 1.0 - 1e-12) {
@@ -160,21 +171,19 @@ void run_step(ScheduleRun& run) {
 
 } // namespace
 
-ScheduleOutcome run_load_schedule(const spec::ProblemSpec& spec, ElastoplasticSystem& problem,
+ScheduleOutcome run_load_schedule(const ScheduleSpec& schedule, IncrementalSystem& problem,
                                   solvers::NonlinearBlockSystem& newton, std::vector<double>& d,
                                   const IncrementDone& done, SchedulePosition& at,
                                   const PositionKept& kept) {
-  ScheduleRun run{spec, problem, newton, d, done, at, kept, {}, Clock::now(), 0.0, 0.0, {}};
-  const std::size_t nf = spec.galerkin().boundary.size() + 1;
-  if (at.current.empty()) at.current.assign(nf, 0.0);
+  ScheduleRun run{schedule, problem, newton, d, done, at, kept, {}, Clock::now(), 0.0, 0.0, {}};
+  const int steps = static_cast<int>(schedule.steps->size());
+  if (at.current.empty()) at.current.assign(schedule.factors(), 0.0);
   if (at.start.empty()) at.start = at.current;
-  run.settings.tolerance = spec.galerkin().nonlinear.tolerance;
-  run.settings.max_iterations = spec.galerkin().nonlinear.max_iterations;
-  run.total = increments_total(spec);
-  run.done_at_start = at.step < static_cast<int>(spec.galerkin().steps.size())
-                          ? increments_done(spec, at.step, at.tau)
-                          : run.total;
-  while (at.step < static_cast<int>(spec.galerkin().steps.size()) && run.o.status == "completed") {
+  run.settings.tolerance = schedule.nonlinear.tolerance;
+  run.settings.max_iterations = schedule.nonlinear.max_iterations;
+  run.total = increments_total(schedule);
+  run.done_at_start = at.step < steps ? increments_done(schedule, at.step, at.tau) : run.total;
+  while (at.step < steps && run.o.status == "completed") {
     run_step(run);
     if (run.o.status != "completed") break;
     // The next step starts where this one ended.

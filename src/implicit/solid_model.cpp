@@ -150,6 +150,30 @@ SolidModel build_solid_model(const spec::ProblemSpec& spec, const solvers::Petsc
   return m;
 }
 
+FaceReport face_report(const SolidConditionPoints& c, const std::vector<double>& d, double factor,
+                       const solvers::PetscSession& session) {
+  FaceReport rep;
+  rep.name = c.bc->name;
+  rep.constraint = c.bc->constrains;
+  double force[3] = {0, 0, 0}, gap_max = 0.0;
+  for (int k = 0; k < c.table.rows(); ++k) {
+    if (!c.mine.counted[k]) continue;
+    const double w = c.points.weight[c.mine.rows[k]];
+    Vec3 g = factor * w * c.values[k];
+    if (c.bc->constrains) {
+      const Vec3 gap =
+          (solid_displacement_at(c.table, k, d) - factor * c.values[k]).cwiseProduct(c.bc->mask);
+      g = -c.bc->penalty * w * gap;
+      gap_max = std::max(gap_max, gap.norm());
+    }
+    for (int i = 0; i < 3; ++i) force[i] += g(i);
+  }
+  solvers::sum_everywhere(session.comm(), force, 3);
+  rep.force = Vec3(force[0], force[1], force[2]);
+  rep.violation_max = solvers::max_everywhere(session.comm(), gap_max);
+  return rep;
+}
+
 void print_solid_plan(const spec::ProblemSpec& spec, std::ostream& os) {
   const spec::SolidSpec& s = spec.solid();
   const geometry::Prism body{spec.domain, s.z0, s.depth};

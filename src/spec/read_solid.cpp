@@ -169,9 +169,6 @@ void parse_solid(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
   SolidSpec& s = p.solid();
   const bool plastic = p.analysis == Analysis::ElastoplasticStatic;
   const std::string analysis = plastic ? "elastoplastic_static" : "elastic_static";
-  if (plastic)
-    r.error("analysis", "model solid_3d runs analysis elastic_static; elastoplastic_static is "
-                        "available for plane models only");
   s.material_index = take_material(r, p, analysis);
   const MaterialSpec& m = p.materials[s.material_index];
   if (plastic && !m.plasticity)

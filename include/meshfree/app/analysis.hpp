@@ -58,15 +58,22 @@ const AnalysisEntry& entry_of(spec::Analysis analysis);
 /// One info line with the wall time of each phase of `timer`.
 void log_phases(const PhaseTimer& timer);
 
-/// An explicit run's result `r` written by `write(out)` (rank 0) and its phases logged: a failed
-/// run is exit 1 with its reason.
+/// A run's result `r` written by `write(out)` (rank 0's folder; null on the other ranks) in the
+/// phase "output", and its phases logged.
 template <class Result, class Write>
-RunOutcome explicit_outcome(Result& r, io::OutputDirectory* out, Write write) {
+void write_and_log(Result& r, io::OutputDirectory* out, Write write) {
   {
     PhaseTimer::Scope scope(r.timer, "output");
     if (out) write(*out);
   }
   log_phases(r.timer);
+}
+
+/// An explicit run's result `r` written by `write(out)` (rank 0) and its phases logged: a failed
+/// run is exit 1 with its reason.
+template <class Result, class Write>
+RunOutcome explicit_outcome(Result& r, io::OutputDirectory* out, Write write) {
+  write_and_log(r, out, write);
   return {r.status == "failed" ? 1 : 0, r.stop_reason};
 }
 

@@ -8,6 +8,7 @@
 // has converged ([Faraji 2007] incremental strategy B, section 3-1-2).
 #include "meshfree/implicit/coupling.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
+#include "meshfree/implicit/incremental_system.hpp"
 #include "meshfree/implicit/point_law.hpp"
 #include "meshfree/io/state_file.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
@@ -35,13 +36,13 @@ struct PointStates {
         stress(n, Vec3::Zero()), stress_zz(n, 0.0), tangent(n, Mat3::Zero()), plastic(n, 0) {}
 };
 
-class ElastoplasticSystem {
+class ElastoplasticSystem : public IncrementalSystem {
 public:
   /// `spec` and `m` must outlive the system.
   ElastoplasticSystem(const spec::ProblemSpec& spec, const GalerkinModel& m);
 
   /// Load factors per boundary condition, then the body force.
-  void set_factors(const std::vector<double>& f) { factors_ = f; }
+  void set_factors(const std::vector<double>& f) override { factors_ = f; }
   const std::vector<double>& factors() const { return factors_; }
   const PointStates& states() const { return states_; }
   /// The law of each domain point (rows of the model's domain table).
@@ -54,7 +55,7 @@ public:
   /// too, and its tangent, the consistent tangent of the converged increment, is the predictor
   /// for the next one. Recomputed from the new history, every plastic point would sit exactly on
   /// its yield surface and round-off would choose between the elastic and the plastic tangent.
-  void commit();
+  void commit() override;
 
   /// R(d) on the owned rows and this rank's share of the force scale |F|^2 (internal forces,
   /// tractions and body force; not the penalty right-hand sides) and of the round-off floor of

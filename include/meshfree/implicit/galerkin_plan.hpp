@@ -7,6 +7,10 @@
 
 namespace mf::implicit {
 
+/// A plane body's plan, or a 3D body's (print_solid_plan).
 void print_galerkin_plan(const spec::ProblemSpec& spec, std::ostream& os);
+/// The nodes a Galerkin body will have at its base spacing (a lattice over its bounding box, in
+/// layers along z for a 3D body), before they are made.
+double estimated_nodes(const spec::ProblemSpec& spec);
 
 } // namespace mf::implicit

@@ -4,7 +4,7 @@
 // increment that does not converge is halved and retried, and a cut increment grows back after
 // easy ones.
 #include "meshfree/implicit/elastoplastic_result.hpp"
-#include "meshfree/implicit/elastoplastic_system.hpp"
+#include "meshfree/implicit/incremental_system.hpp"
 #include "meshfree/solvers/nonlinear_system.hpp"
 #include "meshfree/spec/problem_spec.hpp"
 #include <functional>
@@ -34,6 +34,20 @@ struct SchedulePosition {
   }
 };
 
+/// What a schedule needs of its problem, plane or 3D: the steps, the Newton controls, how often
+/// fields are written, and for each condition its name if its factor drives the body (empty for
+/// a clamp, whose factor changes nothing), then whether there is a body force.
+struct ScheduleSpec {
+  const std::vector<spec::LoadStep>* steps = nullptr;
+  spec::NonlinearSpec nonlinear;
+  int fields_every = 1;
+  std::vector<std::string> driving; // per condition: its name, or empty
+  bool body_force = false;
+  std::size_t factors() const { return driving.size() + 1; }
+};
+/// The schedule of a plane Galerkin problem.
+ScheduleSpec schedule_of(const spec::ProblemSpec& spec);
+
 /// Called with each converged increment (the system committed, `d` converged) and whether the
 /// fields are due; returns the increment as recorded.
 using IncrementDone = std::function<const IncrementRecord&(IncrementRecord rec, bool write_fields)>;
@@ -41,14 +55,14 @@ using IncrementDone = std::function<const IncrementRecord&(IncrementRecord rec, 
 /// true after the schedule's last increment.
 using PositionKept = std::function<void(bool finished)>;
 
-/// Runs spec.steps from `at` (the unloaded state: a default position) and the state in `d`;
-/// `d` ends at the last converged state and `at` at its position.
-ScheduleOutcome run_load_schedule(const spec::ProblemSpec& spec, ElastoplasticSystem& problem,
+/// Runs the schedule's steps from `at` (the unloaded state: a default position) and the state in
+/// `d`; `d` ends at the last converged state and `at` at its position.
+ScheduleOutcome run_load_schedule(const ScheduleSpec& schedule, IncrementalSystem& problem,
                                   solvers::NonlinearBlockSystem& newton, std::vector<double>& d,
                                   const IncrementDone& done, SchedulePosition& at,
                                   const PositionKept& kept = {});
 
 /// "pull 0.002, tension 308": the factors of the conditions that drive the body.
-std::string factors_text(const spec::ProblemSpec& spec, const std::vector<double>& f);
+std::string factors_text(const ScheduleSpec& schedule, const std::vector<double>& f);
 
 } // namespace mf::implicit

@@ -3,6 +3,7 @@
 // node and solved once; u^h at the nodes, each face condition's reaction or load, and the
 // errors against an exact solution where the problem gives one.
 #include "meshfree/core/timer.hpp"
+#include "meshfree/implicit/solid_model.hpp"
 #include "meshfree/io/output.hpp"
 #include "meshfree/solvers/parallel.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
@@ -12,15 +13,6 @@
 #include <vector>
 
 namespace mf::implicit {
-
-/// What a face condition does to the body: the reaction of a held face (the penalty force on
-/// the body) or the load applied on a loaded one, and a held face's largest gap |u^h - ubar|.
-struct FaceReport {
-  std::string name;
-  bool constraint = false;
-  Vec3 force{0.0, 0.0, 0.0};
-  double violation_max = 0.0;
-};
 
 struct SolidElasticResult {
   PhaseTimer timer;

@@ -14,6 +14,7 @@
 #include "meshfree/spec/problem_spec.hpp"
 #include <memory>
 #include <ostream>
+#include <string>
 #include <vector>
 
 namespace mf::implicit {
@@ -40,6 +41,20 @@ struct SolidModel {
   RowPattern pattern;
   int node_count() const { return space->node_count(); }
 };
+
+/// What a face condition does to the body: the reaction of a held face (the penalty force on
+/// the body) or the load applied on a loaded one, and a held face's largest gap |u^h - ubar|.
+struct FaceReport {
+  std::string name;
+  bool constraint = false;
+  Vec3 force{0.0, 0.0, 0.0};
+  double violation_max = 0.0;
+};
+
+/// The report of condition `c` at nodal parameters `d` (every node's) with its value scaled by
+/// `factor`, summed over the ranks.
+FaceReport face_report(const SolidConditionPoints& c, const std::vector<double>& d, double factor,
+                       const solvers::PetscSession& session);
 
 /// Builds the model: phases "nodes", "quadrature", "neighbours" and "shape_functions" go to
 /// `timer`; with VCI the test gradients are corrected (collective). Errors on any rank reach

@@ -1,0 +1,51 @@
+#pragma once
+// Quasi-static elastoplastic analysis of a 3D meshfree body: the load schedule of the problem
+// (implicit/load_stepping, with cut-back) over SolidElastoplasticSystem, Newton through PETSc
+// SNES with 3 DOFs a node; each converged increment's factors, face reactions and loads, Newton
+// counts and plastic points, and at the end u^h at the nodes and the Gauss points' stress and
+// equivalent plastic strain.
+#include "meshfree/core/timer.hpp"
+#include "meshfree/implicit/elastoplastic_result.hpp"
+#include "meshfree/implicit/solid_forms.hpp"
+#include "meshfree/implicit/solid_model.hpp"
+#include "meshfree/io/output.hpp"
+#include "meshfree/solvers/parallel.hpp"
+#include "meshfree/solvers/petsc_session.hpp"
+#include "meshfree/spec/problem_spec.hpp"
+#include <string>
+#include <vector>
+
+namespace mf::implicit {
+
+struct SolidIncrement {
+  IncrementRecord record; // step, factors, Newton report, cut-backs, plastic points
+  std::vector<FaceReport> faces;
+};
+
+struct SolidElastoplasticResult {
+  PhaseTimer timer;
+  std::string status = "completed", stop_reason;
+  int nodes = 0, dofs = 0, domain_points = 0, boundary_points = 0;
+  std::string solver;
+  std::vector<SolidIncrement> increments; // [0]: the unloaded state
+  std::vector<double> parameters;         // the last converged state, 3 per node
+  std::vector<Vec3> node_x, node_u;
+  /// Every Gauss point once (rank 0): position, stress [xx, yy, zz, yz, xz, xy] and equivalent
+  /// plastic strain, at the last converged state.
+  std::vector<Vec3> point_x;
+  std::vector<Vec6> point_stress;
+  std::vector<double> point_plastic_strain;
+  solvers::PeakMemory memory;
+};
+
+SolidElastoplasticResult solve_solid_elastoplastic(const spec::ProblemSpec& spec,
+                                                   const solvers::PetscSession& session);
+
+/// summary.json, history.csv (a row per converged increment), fields.h5/.xmf (the nodes) and
+/// gauss_points.h5/.xmf (stress and plastic strain). Rank 0 writes.
+void write_solid_elastoplastic_outputs(const spec::ProblemSpec& spec,
+                                       const SolidElastoplasticResult& r,
+                                       const solvers::PetscSession& session,
+                                       io::OutputDirectory& out);
+
+} // namespace mf::implicit

@@ -1,0 +1,126 @@
+#include "meshfree/implicit/solid_elastic.hpp"
+#include "meshfree/implicit/solid_elastoplastic.hpp"
+#include "meshfree/io/results.hpp"
+#include "meshfree/materials/j2_plasticity.hpp"
+#include <algorithm>
+#include <omp.h>
+
+namespace mf::implicit {
+
+namespace {
+
+const char* kAxes[3] = {"x", "y", "z"};
+
+void write_history(const spec::ProblemSpec& spec, const SolidElastoplasticResult& r,
+                   io::OutputDirectory& out) {
+  io::History history({"increment", "step"});
+  const spec::SolidSpec& s = spec.solid();
+  for (const spec::FaceCondition& bc : s.boundary) history.add_column("factor_" + bc.name);
+  history.add_column("factor_body_force");
+  for (const FaceReport& f : r.increments.front().faces)
+    for (const char* a : kAxes)
+      history.add_column((f.constraint ? "reaction_" : "load_") + f.name + "_" + a);
+  for (const char* c : {"newton_iterations", "linear_iterations", "cutbacks", "plastic_points",
+                        "max_plastic_strain"})
+    history.add_column(c);
+  for (std::size_t k = 0; k < r.increments.size(); ++k) {
+    const SolidIncrement& inc = r.increments[k];
+    std::vector<double> row{static_cast<double>(k), static_cast<double>(inc.record.step)};
+    row.insert(row.end(), inc.record.factors.begin(), inc.record.factors.end());
+    for (const FaceReport& f : inc.faces)
+      row.insert(row.end(), {f.force.x(), f.force.y(), f.force.z()});
+    row.insert(row.end(),
+               {static_cast<double>(inc.record.newton.iterations),
+                static_cast<double>(inc.record.newton.linear_iterations),
+                static_cast<double>(inc.record.cutbacks),
+                static_cast<double>(inc.record.plastic_points), inc.record.max_plastic_strain});
+    history.append(std::move(row));
+  }
+  history.write(out);
+}
+
+void write_fields(const SolidElastoplasticResult& r, io::OutputDirectory& out) {
+  std::vector<double> xyz;
+  for (const Vec3& x : r.node_x) xyz.insert(xyz.end(), {x.x(), x.y(), x.z()});
+  io::FieldOutput fields(&out, "fields", xyz);
+  fields.vector("displacement", [&](std::vector<double>& v) {
+    v.clear();
+    for (const Vec3& u : r.node_u) v.insert(v.end(), {u.x(), u.y(), u.z()});
+  });
+  fields.write(1.0);
+  fields.close();
+  std::vector<double> pxyz;
+  for (const Vec3& x : r.point_x) pxyz.insert(pxyz.end(), {x.x(), x.y(), x.z()});
+  io::FieldOutput points(&out, "gauss_points", pxyz);
+  const char* names[6] = {"stress_xx", "stress_yy", "stress_zz",
+                          "stress_yz", "stress_xz", "stress_xy"};
+  for (int c = 0; c < 6; ++c)
+    points.scalar(names[c], [&r, c](std::vector<double>& v) {
+      v.clear();
+      for (const Vec6& s : r.point_stress) v.push_back(s(c));
+    });
+  points.scalar("von_mises", [&](std::vector<double>& v) {
+    v.clear();
+    for (const Vec6& s : r.point_stress) v.push_back(materials::von_mises_3d(s));
+  });
+  points.scalar("plastic_strain", r.point_plastic_strain);
+  points.write(1.0);
+  points.close();
+}
+
+void write_summary(const spec::ProblemSpec& spec, const SolidElastoplasticResult& r,
+                   const solvers::PetscSession& session, io::OutputDirectory& out) {
+  io::Summary summary({spec.name, spec.description, spec.units, "elastoplastic_static",
+                       describe_solid_method(spec)});
+  summary.set_status(r.status, r.stop_reason);
+  summary.set("mpi_ranks", session.size()).set("openmp_threads", omp_get_max_threads());
+  long newton = 0, linear = 0;
+  for (const SolidIncrement& inc : r.increments) {
+    newton += inc.record.newton.iterations;
+    linear += inc.record.newton.linear_iterations;
+  }
+  summary.section("counts")
+      .set("nodes", r.nodes)
+      .set("dofs", r.dofs)
+      .set("domain_points", r.domain_points)
+      .set("boundary_points", r.boundary_points)
+      .set("increments", static_cast<long>(r.increments.size()) - 1)
+      .set("newton_iterations", newton)
+      .set("linear_iterations", linear);
+  summary.section("memory")
+      .set("peak_bytes_largest_rank", r.memory.largest_rank)
+      .set("peak_bytes_all_ranks", r.memory.all_ranks)
+      .set("peak_bytes_per_dof", r.memory.all_ranks / std::max(1, r.dofs));
+  summary.section("solver").set("type", r.solver);
+  const SolidIncrement& last = r.increments.back();
+  io::Json boundary;
+  for (const FaceReport& f : last.faces) {
+    io::Json j;
+    j.set("kind", f.constraint ? "displacement" : "traction");
+    j.set(f.constraint ? "reaction" : "applied_force",
+          std::vector<double>{f.force.x(), f.force.y(), f.force.z()});
+    boundary.set(f.name, j);
+  }
+  double umax = 0.0;
+  for (const Vec3& u : r.node_u) umax = std::max(umax, u.norm());
+  summary.section("results")
+      .set("max_displacement", umax)
+      .set("max_plastic_strain", last.record.max_plastic_strain)
+      .set("plastic_points", last.record.plastic_points)
+      .set("boundary", boundary);
+  summary.write(out, r.timer);
+}
+
+} // namespace
+
+void write_solid_elastoplastic_outputs(const spec::ProblemSpec& spec,
+                                       const SolidElastoplasticResult& r,
+                                       const solvers::PetscSession& session,
+                                       io::OutputDirectory& out) {
+  if (session.rank() != 0) return;
+  write_history(spec, r, out);
+  write_fields(r, out);
+  write_summary(spec, r, session, out);
+}
+
+} // namespace mf::implicit

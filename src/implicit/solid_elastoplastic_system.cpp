@@ -1,0 +1,174 @@
+#include "meshfree/implicit/solid_elastoplastic_system.hpp"
+#include "meshfree/core/error.hpp"
+#include "meshfree/implicit/point_law.hpp"
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace mf::implicit {
+
+namespace {
+
+/// Adds node-block vectors (3 values a node) into the owned rows of a plain array.
+struct OwnedRows3 {
+  int begin, end;
+  double* r;
+  void add(const int* nodes, int n, const double* v) const {
+    for (int a = 0; a < n; ++a) {
+      const int I = nodes[a];
+      if (I < begin || I >= end) continue;
+      for (int c = 0; c < 3; ++c) r[3 * (I - begin) + c] += v[3 * a + c];
+    }
+  }
+};
+
+} // namespace
+
+SolidElastoplasticSystem::SolidElastoplasticSystem(const spec::ProblemSpec& spec,
+                                                   const SolidModel& m)
+    : spec_(spec), m_(m), params_(material_parameters(spec, spec.solid().material_index)),
+      states_(m.domain_table.rows()), penalty_(m.pattern, 3) {
+  const int rows = m.pattern.rows();
+  const spec::SolidSpec& s = spec.solid();
+  loads_.assign(s.boundary.size() + 1,
+                std::vector<double>(3 * static_cast<std::size_t>(rows), 0.0));
+  counts_in_scale_.assign(loads_.size(), 0);
+  std::vector<double> K, f;
+  for (std::size_t b = 0; b < m.conditions.size(); ++b) {
+    const SolidConditionPoints& c = m.conditions[b];
+    const OwnedRows3 into{m.pattern.begin, m.pattern.end, loads_[b].data()};
+    counts_in_scale_[b] = !c.bc->constrains;
+    for (int k = 0; k < c.table.rows(); ++k) {
+      const int n = c.table.offset[k + 1] - c.table.offset[k];
+      const int* nodes = c.table.node.data() + c.table.offset[k];
+      const double w = c.points.weight[c.mine.rows[k]];
+      f.resize(3 * n);
+      if (c.bc->constrains) {
+        K.resize(9 * static_cast<std::size_t>(n) * n);
+        solid_point_penalty(c.table, k, c.bc->penalty * w, c.bc->mask, c.values[k], K.data(),
+                            f.data());
+        penalty_.add_matrix(nodes, n, K.data());
+      } else {
+        for (int a = 0; a < n; ++a)
+          for (int i = 0; i < 3; ++i)
+            f[3 * a + i] = w * c.table.phi[c.table.offset[k] + a] * c.values[k](i);
+      }
+      into.add(nodes, n, f.data());
+    }
+  }
+  const Vec3 body = s.body_force;
+  if (!body.isZero()) {
+    const SolidShapeTable& t = m.domain_table;
+    const OwnedRows3 into{m.pattern.begin, m.pattern.end, loads_.back().data()};
+    for (int k = 0; k < t.rows(); ++k) {
+      const int n = t.offset[k + 1] - t.offset[k];
+      f.resize(3 * n);
+      for (int a = 0; a < n; ++a)
+        for (int i = 0; i < 3; ++i)
+          f[3 * a + i] = m.domain_weight[k] * t.phi[t.offset[k] + a] * body(i);
+      into.add(t.node.data() + t.offset[k], n, f.data());
+    }
+    counts_in_scale_.back() = 1;
+  }
+  factors_.assign(loads_.size(), 0.0);
+}
+
+void SolidElastoplasticSystem::commit() {
+  states_.committed = states_.trial;
+  states_.committed_stress = states_.stress;
+}
+
+void SolidElastoplasticSystem::residual(const std::vector<double>& d, double* r,
+                                        solvers::ResidualSums& sums) {
+  update_materials(d);
+  const int rows = m_.pattern.rows();
+  std::fill(r, r + 3 * rows, 0.0);
+  const SolidShapeTable& t = m_.domain_table;
+  const OwnedRows3 into{m_.pattern.begin, m_.pattern.end, r};
+  std::vector<double> f;
+  for (int k = 0; k < t.rows(); ++k) {
+    const int n = t.offset[k + 1] - t.offset[k];
+    f.resize(3 * n);
+    solid_point_force(t, k, m_.domain_weight[k] * states_.stress[k], f.data());
+    into.add(t.node.data() + t.offset[k], n, f.data());
+  }
+  // K_pen d apart from f_int: its magnitude sets the round-off floor of the penalty rows.
+  std::vector<double> penalty(3 * static_cast<std::size_t>(rows), 0.0);
+  penalty_.multiply_add(d, penalty.data());
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  double internal = 0.0, external = 0.0, floor = 0.0;
+  for (int i = 0; i < 3 * rows; ++i) {
+    double applied = 0.0, load = 0.0;
+    for (std::size_t c = 0; c < loads_.size(); ++c) {
+      applied += factors_[c] * loads_[c][i];
+      if (counts_in_scale_[c]) load += factors_[c] * loads_[c][i];
+    }
+    internal += r[i] * r[i];
+    external += load * load;
+    const double terms = std::abs(r[i]) + std::abs(penalty[i]) + std::abs(applied);
+    floor += eps * terms * eps * terms;
+    r[i] += penalty[i] - applied;
+  }
+  sums.scale_squared = internal + external;
+  sums.floor_squared = floor;
+}
+
+void SolidElastoplasticSystem::jacobian(const std::vector<double>& d,
+                                        solvers::BlockValueArrays values) {
+  update_materials(d);
+  BlockRows tangent(m_.pattern, values, 3);
+  tangent.copy_values(penalty_);
+  const SolidShapeTable& t = m_.domain_table;
+  std::vector<double> K;
+  for (int k = 0; k < t.rows(); ++k) {
+    const int n = t.offset[k + 1] - t.offset[k];
+    K.resize(9 * static_cast<std::size_t>(n) * n);
+    solid_point_stiffness(t, k, m_.domain_weight[k] * states_.tangent[k], K.data());
+    tangent.add_matrix(t.node.data() + t.offset[k], n, K.data());
+  }
+}
+
+std::vector<int> SolidElastoplasticSystem::needed_nodes() const {
+  std::vector<int> nodes(m_.domain_table.node);
+  nodes.insert(nodes.end(), m_.pattern.column.begin(), m_.pattern.column.end());
+  for (const SolidConditionPoints& c : m_.conditions)
+    nodes.insert(nodes.end(), c.table.node.begin(), c.table.node.end());
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  return nodes;
+}
+
+void SolidElastoplasticSystem::update_materials(const std::vector<double>& d) {
+  if (states_valid_ && d == states_d_) return;
+  const SolidShapeTable& t = m_.domain_table;
+  const int n = t.rows();
+  int failed = n;
+  std::string message;
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < n; ++k) {
+    const Vec6 eps = solid_strain_at(t, k, d);
+    try {
+      MF_REQUIRE(eps.allFinite(), "the strain is not finite");
+      const materials::J2Result3D r = materials::j2_update_3d(params_, eps, states_.committed[k]);
+      MF_REQUIRE(r.stress.allFinite(), "the stress is not finite");
+      states_.trial[k] = r.state;
+      states_.stress[k] = r.stress;
+      states_.tangent[k] = r.tangent;
+      states_.plastic[k] = r.plastic;
+    } catch (const std::exception& e) {
+#pragma omp critical
+      if (k < failed) failed = k, message = e.what();
+    }
+  }
+  if (failed < n) {
+    states_valid_ = false;
+    const Vec3& x = m_.domain.x[m_.domain_mine.rows[failed]];
+    fail("material update failed at the Gauss point (", x.x(), ", ", x.y(), ", ", x.z(),
+         "): ", message);
+  }
+  states_d_ = d;
+  states_valid_ = true;
+}
+
+} // namespace mf::implicit
