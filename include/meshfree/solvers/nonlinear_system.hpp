@@ -25,7 +25,7 @@ struct NewtonReport {
   int iterations = 0;
   int linear_iterations = 0;
   int linear_iterations_max = 0; // the most of one Newton iteration's linear solve
-  std::string reason;            // SNES converged reason, e.g. CONVERGED_FNORM_ABS
+  std::string reason;           // SNES converged reason, e.g. CONVERGED_FNORM_ABS
   std::string failure;          // what went wrong in a residual or Jacobian evaluation, if anything
   std::vector<double> residual; // |R| at the start and after each iteration
   std::vector<double> scale;    // the force scale |F| at the same points

@@ -62,10 +62,9 @@ int owner_of(int node, int n, int size);
 /// - multigrid: conjugate gradients (GMRES for a matrix that is not symmetric) preconditioned by
 ///   PETSc's smoothed-aggregation algebraic multigrid (GAMG; Vanek, Mandel & Brezina 1996), given
 ///   the rigid-body modes of the nodes as its near-null space (three in 2D, six in 3D; without
-///   them the coarse
-///   spaces cannot represent rotation and the iterations grow with the size), with the rows held
-///   by penalties solved exactly before and after each cycle (without that the iterations grow
-///   with the penalty), stopped when the preconditioned residual falls below
+///   them the coarse spaces cannot represent rotation and the iterations grow with the size),
+///   with the rows held by penalties solved exactly before and after each cycle (without that
+///   the iterations grow with the penalty), stopped when the preconditioned residual falls below
 ///   `relative_tolerance` of its initial value.
 struct LinearSolverSettings {
   bool multigrid = false;
@@ -87,9 +86,8 @@ struct SolveReport {
 /// AIJ arrays), on the pattern it was made with. For each owned node I in order, scalar rows
 /// dofs I + c (c = 0 .. dofs - 1) each hold `dofs` values per block column J (columns dofs J ..
 /// dofs J + dofs - 1) in column order: those of the owned nodes in `diagonal`, the others in
-/// `off_diagonal` (null on one rank). Writing them in place
-/// spares a separate array of blocks and its copy into the matrix: one matrix's worth of memory
-/// less to page in.
+/// `off_diagonal` (null on one rank). Writing them in place spares a separate array of blocks
+/// and its copy into the matrix: one matrix's worth of memory less to page in.
 struct BlockValueArrays {
   double* diagonal = nullptr;
   double* off_diagonal = nullptr;
