@@ -199,26 +199,27 @@ template <int D> void BlockRows::multiply_add_dofs(const std::vector<double>& d,
   }
 }
 
-BlockScatter::BlockScatter(const ShapeTable& t, const RowPattern& p, double max_bytes)
-    : table_(t), pattern_(p) {
-  offset_.assign(t.rows() + 1, 0);
-  for (int r = 0; r < t.rows(); ++r) {
-    const std::size_t n = t.offset[r + 1] - t.offset[r];
+BlockScatter::BlockScatter(const std::vector<int>& row_offset, const std::vector<int>& row_node,
+                           const RowPattern& p, double max_bytes)
+    : row_offset_(row_offset), row_node_(row_node), pattern_(p) {
+  const int rows = static_cast<int>(row_offset.size()) - 1;
+  offset_.assign(rows + 1, 0);
+  for (int r = 0; r < rows; ++r) {
+    const std::size_t n = row_offset[r + 1] - row_offset[r];
     offset_[r + 1] = offset_[r] + n * n;
   }
   if (max_bytes < 0.0) max_bytes = 0.25 * usable_memory();
   kept_ = max_bytes <= 0.0 ? false : full_bytes() <= max_bytes;
   if (!kept_) return;
   slot_.resize(offset_.back());
-  for (int r = 0; r < t.rows(); ++r) find(r, slot_.data() + offset_[r]);
+  for (int r = 0; r < rows; ++r) find(r, slot_.data() + offset_[r]);
 }
 
 void BlockScatter::find(int r, int* out) const {
-  const ShapeTable& t = table_;
   const RowPattern& p = pattern_;
   const int* col = p.column.data();
-  const int n = t.offset[r + 1] - t.offset[r];
-  const int* nodes = t.node.data() + t.offset[r];
+  const int n = row_offset_[r + 1] - row_offset_[r];
+  const int* nodes = row_node_.data() + row_offset_[r];
   std::fill(out, out + static_cast<std::size_t>(n) * n, -1);
   for (int a = 0; a < n; ++a) {
     const int I = nodes[a];

@@ -38,9 +38,9 @@ void log_elastic_limit(const spec::ProblemSpec& spec, const ElasticLimit& e) {
   const PeakStress& g = e.gauss_points;
   const PeakStress& n = e.nodes;
   log::info("first yield at ", e.fraction, " of step '", spec.galerkin().steps.front().name, "' (",
-            factors_text(schedule_of(spec), e.factors), "); elastic von Mises at its end: ", g.von_mises,
-            " at the Gauss point (", g.at.x(), ", ", g.at.y(), "), ", n.von_mises, " at the node (",
-            n.at.x(), ", ", n.at.y(), ")");
+            factors_text(schedule_of(spec), e.factors),
+            "); elastic von Mises at its end: ", g.von_mises, " at the Gauss point (", g.at.x(),
+            ", ", g.at.y(), "), ", n.von_mises, " at the node (", n.at.x(), ", ", n.at.y(), ")");
 }
 
 /// The first yield of the first load step, searched on all ranks and logged.

@@ -5,17 +5,17 @@
 
 namespace mf::implicit {
 
-PointGroups::PointGroups(const ShapeTable& t, const std::vector<Vec2>& x,
-                         const std::vector<Vec2>& nodes) {
-  const int rows = t.rows();
+PointGroups::PointGroups(const std::vector<int>& offset, const std::vector<int>& node,
+                         const std::vector<Vec2>& x, const std::vector<Vec2>& nodes) {
+  const int rows = static_cast<int>(offset.size()) - 1;
   if (rows == 0) return;
   double reach = 0.0;
   Vec2 lo = x[0], hi = x[0];
   for (int r = 0; r < rows; ++r) {
     lo = lo.cwiseMin(x[r]);
     hi = hi.cwiseMax(x[r]);
-    for (int k = t.offset[r]; k < t.offset[r + 1]; ++k)
-      reach = std::max(reach, (nodes[t.node[k]] - x[r]).norm());
+    for (int k = offset[r]; k < offset[r + 1]; ++k)
+      reach = std::max(reach, (nodes[node[k]] - x[r]).norm());
   }
   // Points of same-coloured tiles are at least one tile width apart: more than two reaches.
   const double width = std::max(2.0 * reach * (1.0 + 1e-9), 1e-300);

@@ -9,24 +9,28 @@ namespace mf::implicit {
 
 namespace {
 
-/// Stiffness, penalties, loads and body force of this rank's rows.
+/// Stiffness, penalties, loads and body force of this rank's rows; the body's points in the
+/// groups that threads assemble at once.
 void assemble(const spec::ProblemSpec& spec, const SolidModel& m, BlockRows& rows) {
   const Mat6 C = elastic_matrix_3d(spec.elasticity());
   const SolidShapeTable& t = m.domain_table;
   const Vec3 b = spec.solid().body_force;
-  std::vector<double> K, f;
-  for (int r = 0; r < t.rows(); ++r) {
+  const int threads = PointGroups::threads();
+  std::vector<std::vector<double>> Kt(threads), work(threads), ft(threads);
+  m.domain_groups.for_each([&](int r, int thread) {
     const int n = t.offset[r + 1] - t.offset[r];
     const int* nodes = t.node.data() + t.offset[r];
-    K.resize(9 * static_cast<std::size_t>(n) * n);
-    solid_point_stiffness(t, r, m.domain_weight[r] * C, K.data());
-    rows.add_matrix(nodes, n, K.data());
-    if (b.isZero()) continue;
+    Kt[thread].resize(9 * static_cast<std::size_t>(n) * n);
+    solid_point_stiffness(t, r, m.domain_weight[r] * C, Kt[thread].data(), work[thread]);
+    rows.add_matrix(nodes, n, Kt[thread].data());
+    if (b.isZero()) return;
+    std::vector<double>& f = ft[thread];
     f.resize(3 * n);
     for (int a = 0; a < n; ++a)
       for (int c = 0; c < 3; ++c) f[3 * a + c] = m.domain_weight[r] * t.phi[t.offset[r] + a] * b(c);
     rows.add_vector(nodes, n, f.data());
-  }
+  });
+  std::vector<double> K, f;
   for (const SolidConditionPoints& c : m.conditions) {
     const SolidShapeTable& ct = c.table;
     for (int k = 0; k < ct.rows(); ++k) {

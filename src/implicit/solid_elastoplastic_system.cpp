@@ -28,7 +28,8 @@ struct OwnedRows3 {
 SolidElastoplasticSystem::SolidElastoplasticSystem(const spec::ProblemSpec& spec,
                                                    const SolidModel& m)
     : spec_(spec), m_(m), params_(material_parameters(spec, spec.solid().material_index)),
-      states_(m.domain_table.rows()), penalty_(m.pattern, 3) {
+      states_(m.domain_table.rows()), penalty_(m.pattern, 3),
+      scatter_(m.domain_table.offset, m.domain_table.node, m.pattern) {
   const int rows = m.pattern.rows();
   const spec::SolidSpec& s = spec.solid();
   loads_.assign(s.boundary.size() + 1,
@@ -86,13 +87,13 @@ void SolidElastoplasticSystem::residual(const std::vector<double>& d, double* r,
   std::fill(r, r + 3 * rows, 0.0);
   const SolidShapeTable& t = m_.domain_table;
   const OwnedRows3 into{m_.pattern.begin, m_.pattern.end, r};
-  std::vector<double> f;
-  for (int k = 0; k < t.rows(); ++k) {
+  std::vector<std::vector<double>> f(PointGroups::threads());
+  m_.domain_groups.for_each([&](int k, int thread) {
     const int n = t.offset[k + 1] - t.offset[k];
-    f.resize(3 * n);
-    solid_point_force(t, k, m_.domain_weight[k] * states_.stress[k], f.data());
-    into.add(t.node.data() + t.offset[k], n, f.data());
-  }
+    f[thread].resize(3 * n);
+    solid_point_force(t, k, m_.domain_weight[k] * states_.stress[k], f[thread].data());
+    into.add(t.node.data() + t.offset[k], n, f[thread].data());
+  });
   // K_pen d apart from f_int: its magnitude sets the round-off floor of the penalty rows.
   std::vector<double> penalty(3 * static_cast<std::size_t>(rows), 0.0);
   penalty_.multiply_add(d, penalty.data());
@@ -120,13 +121,17 @@ void SolidElastoplasticSystem::jacobian(const std::vector<double>& d,
   BlockRows tangent(m_.pattern, values, 3);
   tangent.copy_values(penalty_);
   const SolidShapeTable& t = m_.domain_table;
-  std::vector<double> K;
-  for (int k = 0; k < t.rows(); ++k) {
+  const int threads = PointGroups::threads();
+  std::vector<std::vector<double>> K(threads), work(threads);
+  std::vector<std::vector<int>> slots(threads);
+  m_.domain_groups.for_each([&](int k, int thread) {
     const int n = t.offset[k + 1] - t.offset[k];
-    K.resize(9 * static_cast<std::size_t>(n) * n);
-    solid_point_stiffness(t, k, m_.domain_weight[k] * states_.tangent[k], K.data());
-    tangent.add_matrix(t.node.data() + t.offset[k], n, K.data());
-  }
+    K[thread].resize(9 * static_cast<std::size_t>(n) * n);
+    solid_point_stiffness(t, k, m_.domain_weight[k] * states_.tangent[k], K[thread].data(),
+                          work[thread]);
+    tangent.add_matrix_at(t.node.data() + t.offset[k], scatter_.slots(k, slots[thread]), n,
+                          K[thread].data());
+  });
 }
 
 std::vector<int> SolidElastoplasticSystem::needed_nodes() const {

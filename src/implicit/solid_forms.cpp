@@ -36,18 +36,20 @@ Mat6 elastic_matrix_3d(const materials::IsotropicElastic& m) {
   return C;
 }
 
-void solid_point_stiffness(const SolidShapeTable& t, int r, const Mat6& wC, double* K) {
+void solid_point_stiffness(const SolidShapeTable& t, int r, const Mat6& wC, double* K,
+                           std::vector<double>& work) {
   const int first = t.offset[r], n = t.offset[r + 1] - first;
   const Vec3* test = t.test_gradients(r);
-  const int cols = 3 * n;
+  work.resize(36 * static_cast<std::size_t>(n));
+  Eigen::Map<Eigen::MatrixXd> BtC(work.data(), 3 * n, 6);
+  Eigen::Map<Eigen::MatrixXd> B(work.data() + 18 * static_cast<std::size_t>(n), 6, 3 * n);
   for (int a = 0; a < n; ++a) {
-    const Eigen::Matrix<double, 3, 6> BtC = bt_times(test[a], wC);
-    for (int b = 0; b < n; ++b) {
-      const Eigen::Matrix3d k = BtC * strain_matrix_3d(t.dphi[first + b]);
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) K[(3 * a + i) * cols + 3 * b + j] = k(i, j);
-    }
+    BtC.middleRows<3>(3 * a) = bt_times(test[a], wC);
+    B.middleCols<3>(3 * a) = strain_matrix_3d(t.dphi[first + a]);
   }
+  Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> out(K, 3 * n,
+                                                                                         3 * n);
+  out.noalias() = BtC * B;
 }
 
 void solid_point_force(const SolidShapeTable& t, int r, const Vec6& ws, double* f) {

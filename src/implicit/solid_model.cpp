@@ -118,7 +118,13 @@ void build_tables(const spec::ProblemSpec& spec, const solvers::PetscSession& se
   }
   m.pattern = coupling_pattern(coupling, N, m.own.begin, m.own.end);
   m.domain_table = m.space->shape_table(m.domain.x, m.domain_mine.rows, m.domain_support, true);
-  for (int r : m.domain_mine.rows) m.domain_weight.push_back(m.domain.weight[r]);
+  std::vector<Vec2> at, nodes;
+  for (int r : m.domain_mine.rows) {
+    m.domain_weight.push_back(m.domain.weight[r]);
+    at.push_back(m.domain.x[r].head<2>());
+  }
+  for (const Vec3& x : m.space->nodes().x) nodes.push_back(x.head<2>());
+  m.domain_groups = PointGroups(m.domain_table.offset, m.domain_table.node, at, nodes);
   for (auto& c : m.conditions) {
     c.table = m.space->shape_table(c.points.x, c.mine.rows, c.support, false);
     c.values = face_values(spec, *c.bc, c.points, c.mine.rows);

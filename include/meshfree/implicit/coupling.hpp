@@ -99,11 +99,15 @@ private:
 /// anew when asked for, into a buffer given by the caller (one per thread).
 class BlockScatter {
 public:
-  BlockScatter(const ShapeTable& table, const RowPattern& pattern, double max_bytes = -1.0);
+  BlockScatter(const ShapeTable& table, const RowPattern& pattern, double max_bytes = -1.0)
+      : BlockScatter(table.offset, table.node, pattern, max_bytes) {}
+  /// The same for any table of points given by its compressed rows of nodes (a 3D table).
+  BlockScatter(const std::vector<int>& row_offset, const std::vector<int>& row_node,
+               const RowPattern& pattern, double max_bytes = -1.0);
   /// Point r's n * n slots: in the map, or searched into `buffer`.
   const int* slots(int r, std::vector<int>& buffer) const {
     if (kept_) return slot_.data() + offset_[r];
-    const int n = table_.offset[r + 1] - table_.offset[r];
+    const int n = row_offset_[r + 1] - row_offset_[r];
     buffer.resize(static_cast<std::size_t>(n) * n);
     find(r, buffer.data());
     return buffer.data();
@@ -116,7 +120,8 @@ public:
 
 private:
   void find(int r, int* out) const;
-  const ShapeTable& table_;
+  const std::vector<int>& row_offset_; // the table's rows of nodes
+  const std::vector<int>& row_node_;
   const RowPattern& pattern_;
   std::vector<std::size_t> offset_;
   std::vector<int> slot_;

@@ -18,7 +18,12 @@ class PointGroups {
 public:
   PointGroups() = default;
   /// `x`: the position of each table row; `nodes`: the positions of the nodes it names.
-  PointGroups(const ShapeTable& t, const std::vector<Vec2>& x, const std::vector<Vec2>& nodes);
+  PointGroups(const ShapeTable& t, const std::vector<Vec2>& x, const std::vector<Vec2>& nodes)
+      : PointGroups(t.offset, t.node, x, nodes) {}
+  /// The same for a table given by its compressed rows of nodes; a 3D table passes the x-y of
+  /// its points and nodes: tiles are then columns along z, whose points one thread takes.
+  PointGroups(const std::vector<int>& offset, const std::vector<int>& node,
+              const std::vector<Vec2>& x, const std::vector<Vec2>& nodes);
 
   /// Calls work(row, thread) for every row of the table, thread in [0, threads()).
   template <class Work> void for_each(Work&& work) const;

@@ -49,6 +49,7 @@ private:
   materials::J2Parameters params_;
   SolidPointStates states_;
   BlockRows penalty_;                      // K_pen: constant
+  BlockScatter scatter_;                   // where each point's blocks go among the Jacobian's
   std::vector<std::vector<double>> loads_; // per condition, then the body force: f_c at factor 1
   std::vector<char> counts_in_scale_;      // tractions and body force, not penalty right-hand sides
   std::vector<double> factors_, states_d_;

@@ -46,8 +46,10 @@ inline Vec3 solid_displacement_at(const SolidShapeTable& t, int r, const std::ve
 
 /// The (3n x 3n, row-major) block of point r with n nodes: K_IJ = B~_I^T wC B_J, wC the
 /// (symmetric) constitutive or tangent matrix times the point's weight, B~ the test functions'
-/// strain matrix.
-void solid_point_stiffness(const SolidShapeTable& t, int r, const Mat6& wC, double* K);
+/// strain matrix; one matrix product of the stacked B~^T wC (3n x 6) and B (6 x 3n), `work`
+/// holding them (resized, so a thread keeps one buffer for every point).
+void solid_point_stiffness(const SolidShapeTable& t, int r, const Mat6& wC, double* K,
+                           std::vector<double>& work);
 /// The 3n internal-force values of point r: B~_I^T ws, with ws = weight times stress.
 void solid_point_force(const SolidShapeTable& t, int r, const Vec6& ws, double* f);
 /// The penalty block alpha w phi_I phi_J on the held components (mask 1) of point r, and its

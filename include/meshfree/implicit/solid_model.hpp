@@ -8,6 +8,7 @@
 #include "meshfree/geometry/prism.hpp"
 #include "meshfree/implicit/coupling.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
+#include "meshfree/implicit/point_groups.hpp"
 #include "meshfree/implicit/solid_points.hpp"
 #include "meshfree/implicit/solid_space.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
@@ -39,6 +40,7 @@ struct SolidModel {
   std::vector<double> domain_weight;
   std::vector<SolidConditionPoints> conditions;
   RowPattern pattern;
+  PointGroups domain_groups; // the domain table's rows in columns along z for threaded assembly
   int node_count() const { return space->node_count(); }
 };
 
