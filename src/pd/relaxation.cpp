@@ -457,7 +457,8 @@ private:
 /// when the options ask for GAMG.
 bool multigrid_for(const Model& m, const RelaxSettings& settings) {
   using Solver = RelaxSettings::LinearSolver;
-  if (settings.linear_solver != Solver::automatic) return settings.linear_solver == Solver::multigrid;
+  if (settings.linear_solver != Solver::automatic)
+    return settings.linear_solver == Solver::multigrid;
   return m.particles.size() >= kMultigridFromParticles || solvers::multigrid_asked("pd_");
 }
 

@@ -2,8 +2,8 @@
 #include "petsc_detail.hpp"
 #include <chrono>
 #include <cmath>
-#include <string>
 #include <petscksp.h>
+#include <string>
 
 namespace mf::solvers {
 
@@ -187,8 +187,7 @@ MultigridBlockSystem::~MultigridBlockSystem() {
   if (impl_->x) VecDestroy(&impl_->x);
 }
 
-SolveReport MultigridBlockSystem::solve(const std::vector<double>& rhs,
-                                        double relative_tolerance) {
+SolveReport MultigridBlockSystem::solve(const std::vector<double>& rhs, double relative_tolerance) {
   Impl& s = *impl_;
   MF_REQUIRE(rhs.size() == static_cast<std::size_t>(s.size),
              "multigrid block system: a right-hand side of ", rhs.size(), " values for ", s.size,
@@ -223,7 +222,9 @@ std::vector<double> MultigridBlockSystem::solution() const {
   return out;
 }
 
-double MultigridBlockSystem::setup_seconds() const { return impl_->setup_seconds; }
+double MultigridBlockSystem::setup_seconds() const {
+  return impl_->setup_seconds;
+}
 
 bool multigrid_asked(const std::string& options_prefix) {
   char type[64] = "";

@@ -27,7 +27,8 @@ struct RelaxSettings {
   bool allow_breaking = false; // else bonds do not break (and the LAMMPS s0 is left as it is)
   /// solve_statics: the linear solver of the Newton steps; automatic takes multigrid from
   /// kMultigridFromParticles particles up and the Cholesky factorisation below.
-  enum class LinearSolver { automatic, cholesky, multigrid } linear_solver = LinearSolver::automatic;
+  enum class LinearSolver { automatic, cholesky, multigrid };
+  LinearSolver linear_solver = LinearSolver::automatic;
 };
 
 /// The body size (particles) from which solve_statics solves by multigrid rather than by a
@@ -39,10 +40,10 @@ struct RelaxReport {
   bool converged = false;
   double residual_ratio = 0.0; // |residual| / |external| at the end
   double seconds = 0.0;
-  int linear_iterations = 0; // solve_statics: the linear solver's, over all Newton iterations
-  std::string solver;        // solve_statics: the linear solver
-  double assembly_seconds = 0.0;      // solve_statics: making the stiffness matrix
-  double factorisation_seconds = 0.0; // solve_statics: its factorisation
+  int linear_iterations = 0;     // solve_statics: the linear solver's, over all Newton iterations
+  std::string solver;            // solve_statics: the linear solver
+  double assembly_seconds = 0.0; // solve_statics: making the stiffness matrix
+  double factorisation_seconds = 0.0; // solve_statics: its factorisation or multigrid set-up
 };
 
 /// Brings the body from its current u to static equilibrium under the loading (body loads at

@@ -404,8 +404,8 @@ TEST_CASE("conjugate gradients with multigrid reach the equilibrium of the Chole
       const bool multigrid = solver == pd::RelaxSettings::LinearSolver::multigrid;
       CHECK(r.solver == (multigrid ? "cg/gamg" : "preonly/cholesky/mumps"));
       std::cout << "pd equilibrium to 1e-10, " << (clamped ? "clamped" : "held by forces") << ", "
-                << r.solver << ": " << r.iterations << " Newton iterations, "
-                << r.linear_iterations << " linear\n";
+                << r.solver << ": " << r.iterations << " Newton iterations, " << r.linear_iterations
+                << " linear\n";
       u.push_back(setup.model.particles.u);
       if (!clamped) continue;
       for (int i : setup.loading.constraints[0].particles)
@@ -434,8 +434,9 @@ double cpu_seconds(std::clock_t start) {
 /// it up, stopped as soon as its residual ratio meets the tolerance (no kinetic energy criterion
 /// stops it earlier at that residual).
 void benchmark(const std::string& name, const spec::ProblemSpec& spec) {
-  std::cout << "| problem | particles | tolerance | Newton iterations (linear; solver) | Newton s (wall; assembly, "
-               "factorisation or multigrid set-up) | ADR iterations | ADR s | DR steps | DR s (wall) | DR / Newton |\n"
+  std::cout << "| problem | particles | tolerance | Newton iterations (linear; solver) | "
+               "Newton s (wall; assembly, factorisation or multigrid set-up) | ADR iterations | "
+               "ADR s | DR steps | DR s (wall) | DR / Newton |\n"
                "|---|---|---|---|---|---|---|---|---|---|\n";
   for (double tolerance : {1e-6, 1e-8}) {
     pd::RelaxSettings rs;
@@ -459,10 +460,10 @@ void benchmark(const std::string& name, const spec::ProblemSpec& spec) {
     CHECK(r.residual_ratio <= tolerance);
     std::cout << "| " << name << " | " << a.model.particles.size() << " | " << tolerance << " | "
               << newton.iterations << " (" << newton.linear_iterations << "; " << newton.solver
-              << ") | " << newton_cpu << " (" << newton.seconds << "; "
-              << newton.assembly_seconds << ", " << newton.factorisation_seconds << ") | "
-              << adr.iterations << " | " << adr_cpu << " | " << r.steps << " | " << dr_cpu << " ("
-              << r.seconds << ") | " << dr_cpu / newton_cpu << " |" << std::endl;
+              << ") | " << newton_cpu << " (" << newton.seconds << "; " << newton.assembly_seconds
+              << ", " << newton.factorisation_seconds << ") | " << adr.iterations << " | "
+              << adr_cpu << " | " << r.steps << " | " << dr_cpu << " (" << r.seconds << ") | "
+              << dr_cpu / newton_cpu << " |" << std::endl;
   }
 }
 
