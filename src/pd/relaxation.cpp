@@ -1,6 +1,7 @@
 #include "meshfree/pd/relaxation.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/pd/forces.hpp"
+#include "meshfree/solvers/pd_multigrid_system.hpp"
 #include "meshfree/solvers/symmetric_block_system.hpp"
 #include <algorithm>
 #include <chrono>
@@ -408,6 +409,61 @@ double residual_ratio(Model& m, BondState& s, const Loading& loading) {
 
 namespace mf::pd {
 
+namespace {
+
+/// The linear solver of the Newton steps: a Cholesky factorisation made once, or conjugate
+/// gradients with multigrid, each solve as accurate as the tolerance still asks.
+class StepSolver {
+public:
+  StepSolver(const Model& m, const BondState& s, const Statics& st, bool multigrid) {
+    const solvers::UpperBlockRows K = plane_stiffness(m, s, st);
+    if (!multigrid) {
+      cholesky_ = std::make_unique<solvers::SymmetricBlockSystem>(K, "pd_");
+      return;
+    }
+    const particles::ParticleSet& q = m.particles;
+    const std::size_t n = static_cast<std::size_t>(q.size());
+    std::vector<double> x(2 * n);
+    std::vector<unsigned char> held(2 * n);
+    for (std::size_t i = 0; i < n; ++i)
+      for (int d = 0; d < 2; ++d) {
+        x[2 * i + d] = q.X[3 * i + d];
+        held[2 * i + d] = st.held[3 * i + d];
+      }
+    multigrid_ = std::make_unique<solvers::MultigridBlockSystem>(K, x, held, "pd_");
+  }
+  /// Solves K du = rhs, where rhs is the residual of ratio `ratio` and `tolerance` the ratio
+  /// asked for: an iterative solve stops at half the tolerance's share of rhs, the step's
+  /// linear error then leaving half the tolerance (inexact Newton, [Eisenstat & Walker 1996]),
+  /// and at 1e-1 at most so that each step gains at least that.
+  solvers::SolveReport solve(const std::vector<double>& rhs, double ratio, double tolerance) {
+    if (cholesky_) return cholesky_->solve(rhs);
+    const double forcing = std::clamp(0.5 * tolerance / ratio, 1e-12, 1e-1);
+    return multigrid_->solve(rhs, forcing);
+  }
+  std::vector<double> solution() const {
+    return cholesky_ ? cholesky_->solution() : multigrid_->solution();
+  }
+  double setup_seconds() const {
+    return cholesky_ ? cholesky_->factorisation_seconds() : multigrid_->setup_seconds();
+  }
+
+private:
+  std::unique_ptr<solvers::SymmetricBlockSystem> cholesky_;
+  std::unique_ptr<solvers::MultigridBlockSystem> multigrid_;
+};
+
+/// Multigrid when the settings ask for it, or by default from kMultigridFromParticles up or
+/// when the options ask for GAMG.
+bool multigrid_for(const Model& m, const RelaxSettings& settings) {
+  using Solver = RelaxSettings::LinearSolver;
+  if (settings.linear_solver != Solver::automatic)
+    return settings.linear_solver == Solver::multigrid;
+  return m.particles.size() >= kMultigridFromParticles || solvers::multigrid_asked("pd_");
+}
+
+} // namespace
+
 RelaxReport solve_statics(Model& m, BondState& s, const Loading& loading,
                           const RelaxSettings& settings) {
   MF_REQUIRE(m.plane(), "peridynamics: the implicit equilibrium solves plane bodies");
@@ -423,7 +479,7 @@ RelaxReport solve_statics(Model& m, BondState& s, const Loading& loading,
   std::vector<double> y, f, rhs(2 * static_cast<std::size_t>(n));
   RelaxReport r;
   r.residual_ratio = net_force(m, s, st, 1.0, y, f).ratio();
-  std::unique_ptr<solvers::SymmetricBlockSystem> K; // made when a step is needed
+  std::unique_ptr<StepSolver> K; // made when a step is needed
   // A body that its held components leave free to move rigidly has a stiffness singular but for
   // the diagonal shift: the residual's part along those motions (the bond forces' moment, of
   // the order of the strain squared) would come back multiplied by the shift's inverse, a rigid
@@ -434,16 +490,16 @@ RelaxReport solve_statics(Model& m, BondState& s, const Loading& loading,
          r.iterations < most) {
     if (!K) {
       const Clock::time_point assembly = Clock::now();
-      K = std::make_unique<solvers::SymmetricBlockSystem>(plane_stiffness(m, s, st), "pd_");
+      K = std::make_unique<StepSolver>(m, s, st, multigrid_for(m, settings));
       r.assembly_seconds = seconds_since(assembly);
     }
     for (int i = 0; i < n; ++i)
       for (int d = 0; d < 2; ++d) rhs[2 * i + d] = f[3 * i + d] * q.volume[i];
     remove_modes(rigid, rhs);
-    const solvers::SolveReport solved = K->solve(rhs);
+    const solvers::SolveReport solved = K->solve(rhs, r.residual_ratio, settings.tolerance);
     r.linear_iterations += solved.iterations;
     r.solver = solved.solver;
-    r.factorisation_seconds = K->factorisation_seconds();
+    r.factorisation_seconds = K->setup_seconds();
     std::vector<double> du = K->solution();
     remove_modes(rigid, du);
     for (int i = 0; i < n; ++i)

@@ -25,17 +25,25 @@ struct RelaxSettings {
   double tolerance = 1e-6;
   int max_iterations = 100000;
   bool allow_breaking = false; // else bonds do not break (and the LAMMPS s0 is left as it is)
+  /// solve_statics: the linear solver of the Newton steps; automatic takes multigrid from
+  /// kMultigridFromParticles particles up and the Cholesky factorisation below.
+  enum class LinearSolver { automatic, cholesky, multigrid };
+  LinearSolver linear_solver = LinearSolver::automatic;
 };
+
+/// The body size (particles) from which solve_statics solves by multigrid rather than by a
+/// factorisation (see README, the implicit peridynamic equilibrium).
+inline constexpr int kMultigridFromParticles = 5000;
 
 struct RelaxReport {
   int iterations = 0;
   bool converged = false;
   double residual_ratio = 0.0; // |residual| / |external| at the end
   double seconds = 0.0;
-  int linear_iterations = 0; // solve_statics: the linear solver's, over all Newton iterations
-  std::string solver;        // solve_statics: the linear solver
-  double assembly_seconds = 0.0;      // solve_statics: making the stiffness matrix
-  double factorisation_seconds = 0.0; // solve_statics: its factorisation
+  int linear_iterations = 0;     // solve_statics: the linear solver's, over all Newton iterations
+  std::string solver;            // solve_statics: the linear solver
+  double assembly_seconds = 0.0; // solve_statics: making the stiffness matrix
+  double factorisation_seconds = 0.0; // solve_statics: its factorisation or multigrid set-up
 };
 
 /// Brings the body from its current u to static equilibrium under the loading (body loads at
@@ -48,9 +56,12 @@ RelaxReport relax(Model& m, BondState& s, const Loading& loading, const RelaxSet
 /// method with the linearised bond stiffness at the reference directions, K_ij = -V_i c w_ij /
 /// |xi| e e^T and K_ii = -sum_j K_ij over the intact bonds (the tangent of the bond force at
 /// u = 0; Peridigm's QuasiStatic solver is Newton on the same equations): its upper triangle
-/// assembled in one pass over the bonds, factorised once by a sparse Cholesky
-/// (solvers::SymmetricBlockSystem, MUMPS; PETSc options prefixed pd_ choose another) and reused
-/// at every iteration: a modified Newton whose residual falls by about the strain per iteration.
+/// assembled in one pass over the bonds and reused at every iteration: a modified Newton whose
+/// residual falls by about the strain per iteration. Below kMultigridFromParticles it is
+/// factorised once by a sparse Cholesky (solvers::SymmetricBlockSystem, MUMPS); from there up
+/// (or when settings.linear_solver or -pd_pc_type gamg asks) each step is solved by conjugate
+/// gradients with GAMG and the rigid-body near-null space (solvers::MultigridBlockSystem), as
+/// accurately as the tolerance still asks. PETSc options prefixed pd_ override either solver.
 /// Held components keep their targets (their rows and columns are the identity). A diagonal
 /// shift of 1e-8 of each free diagonal entry makes the matrix of a body held by forces alone
 /// positive definite, and the rigid motions the held components leave free are taken out of
