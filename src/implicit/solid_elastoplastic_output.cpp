@@ -17,9 +17,11 @@ void write_history(const spec::ProblemSpec& spec, const SolidElastoplasticResult
   const spec::SolidSpec& s = spec.solid();
   for (const spec::FaceCondition& bc : s.boundary) history.add_column("factor_" + bc.name);
   history.add_column("factor_body_force");
-  for (const FaceReport& f : r.increments.front().faces)
+  for (const FaceReport& f : r.increments.front().faces) {
     for (const char* a : kAxes)
       history.add_column((f.constraint ? "reaction_" : "load_") + f.name + "_" + a);
+    history.add_column("normal_displacement_" + f.name);
+  }
   for (const char* c : {"newton_iterations", "linear_iterations", "cutbacks", "plastic_points",
                         "max_plastic_strain"})
     history.add_column(c);
@@ -28,7 +30,7 @@ void write_history(const spec::ProblemSpec& spec, const SolidElastoplasticResult
     std::vector<double> row{static_cast<double>(k), static_cast<double>(inc.record.step)};
     row.insert(row.end(), inc.record.factors.begin(), inc.record.factors.end());
     for (const FaceReport& f : inc.faces)
-      row.insert(row.end(), {f.force.x(), f.force.y(), f.force.z()});
+      row.insert(row.end(), {f.force.x(), f.force.y(), f.force.z(), f.normal_displacement});
     row.insert(row.end(),
                {static_cast<double>(inc.record.newton.iterations),
                 static_cast<double>(inc.record.newton.linear_iterations),

@@ -161,21 +161,25 @@ FaceReport face_report(const SolidConditionPoints& c, const std::vector<double>&
   FaceReport rep;
   rep.name = c.bc->name;
   rep.constraint = c.bc->constrains;
-  double force[3] = {0, 0, 0}, gap_max = 0.0;
+  double sums[5] = {0, 0, 0, 0, 0}, gap_max = 0.0; // force, int u.n, area
   for (int k = 0; k < c.table.rows(); ++k) {
     if (!c.mine.counted[k]) continue;
-    const double w = c.points.weight[c.mine.rows[k]];
+    const int row = c.mine.rows[k];
+    const double w = c.points.weight[row];
+    const Vec3 u = solid_displacement_at(c.table, k, d);
     Vec3 g = factor * w * c.values[k];
     if (c.bc->constrains) {
-      const Vec3 gap =
-          (solid_displacement_at(c.table, k, d) - factor * c.values[k]).cwiseProduct(c.bc->mask);
+      const Vec3 gap = (u - factor * c.values[k]).cwiseProduct(c.bc->mask);
       g = -c.bc->penalty * w * gap;
       gap_max = std::max(gap_max, gap.norm());
     }
-    for (int i = 0; i < 3; ++i) force[i] += g(i);
+    for (int i = 0; i < 3; ++i) sums[i] += g(i);
+    sums[3] += w * u.dot(c.points.normal[row]);
+    sums[4] += w;
   }
-  solvers::sum_everywhere(session.comm(), force, 3);
-  rep.force = Vec3(force[0], force[1], force[2]);
+  solvers::sum_everywhere(session.comm(), sums, 5);
+  rep.force = Vec3(sums[0], sums[1], sums[2]);
+  rep.normal_displacement = sums[4] > 0.0 ? sums[3] / sums[4] : 0.0;
   rep.violation_max = solvers::max_everywhere(session.comm(), gap_max);
   return rep;
 }

@@ -9,7 +9,11 @@ problems/thick_cylinder_3d.yaml):
 - Lame's thick cylinder in plane strain at spacings 0.5, 0.25, 0.125: the linear basis's rates,
   energy >= 0.9 and L2 >= 1.8 from 0.25 to 0.125 (theory 1 and 2: Belytschko, Lu & Gu 1994), the
   bore's pressure resultant p a depth from the face points on the exact arcs (to 1e-8), CG + GAMG with the six
-  rigid-body modes equal to MUMPS to 1e-8, and two MPI ranks equal to one to 1e-8.
+  rigid-body modes equal to MUMPS to 1e-8, and two MPI ranks equal to one to 1e-8;
+- the elastic-perfectly plastic cylinder (problems/thick_cylinder_plastic_3d.yaml, spacing 0.2)
+  collapses within 1% of the plane-strain limit pressure (2 / sqrt 3) sigma_y ln(b / a)
+  (Hill 1950, ch. V): the limit taken as the first pressure whose increment's secant stiffness
+  dp/du (u the bore's mean radial displacement) falls below 1% of the elastic one.
 
     solid3d_verification.py MESHFREE ROOT
 """
@@ -52,6 +56,22 @@ def nodal_displacement(out):
         return np.array(f[steps[-1]]["displacement"])
 
 
+def check_limit_pressure(out):
+    import csv
+    run("thick_cylinder_plastic_3d", out, ["discretisation.spacing=0.2"])
+    with open(os.path.join(out, "history.csv")) as f:
+        rows = list(csv.DictReader(f))
+    p = [float(r["factor_bore_pressure"]) for r in rows]
+    u = [-float(r["normal_displacement_bore_pressure"]) for r in rows]
+    elastic = p[1] / u[1]
+    limit = next((p[i] for i in range(1, len(p))
+                  if (p[i] - p[i - 1]) / (u[i] - u[i - 1]) < 0.01 * elastic), None)
+    exact = 2.0 / math.sqrt(3.0) * 240.0 * math.log(2.0)
+    check(limit is not None and abs(limit / exact - 1.0) <= 0.01,
+          f"thick cylinder collapses at {limit} MPa against the limit pressure {exact:.3f} "
+          f"({'-' if limit is None else f'{limit / exact - 1.0:+.2%}'}, within 1%)")
+
+
 with tempfile.TemporaryDirectory() as work:
     s = run("patch_test_3d", os.path.join(work, "patch"))["results"]
     check(s["error_energy_relative"] <= 1e-10 and s["error_l2_relative"] <= 1e-6,
@@ -91,6 +111,7 @@ with tempfile.TemporaryDirectory() as work:
           f"CG + GAMG ({mg['solver']['iterations']} iterations) equals MUMPS to {diff:.1e} (<= 1e-8)")
     two = run("thick_cylinder_3d", os.path.join(work, "cyl_2"), ["discretisation.spacing=0.25"],
               ranks=2)
+    check_limit_pressure(os.path.join(work, "limit"))
     diff = abs(nodal_displacement(os.path.join(work, "cyl_2")) - direct).max() / abs(direct).max()
     check(two["mpi_ranks"] == 2 and diff <= 1e-8, f"2 MPI ranks equal 1 to {diff:.1e} (<= 1e-8)")
 sys.exit(1 if failed else 0)

@@ -51,6 +51,9 @@ struct FaceReport {
   bool constraint = false;
   Vec3 force{0.0, 0.0, 0.0};
   double violation_max = 0.0;
+  /// The face's mean displacement along its outward normal, int u^h . n dA / int dA (negative
+  /// where the face moves into the body): the displacement work-conjugate to a pressure.
+  double normal_displacement = 0.0;
 };
 
 /// The report of condition `c` at nodal parameters `d` (every node's) with its value scaled by
