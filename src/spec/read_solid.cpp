@@ -126,6 +126,35 @@ FaceCondition read_face_condition(KeyReader& bc, const geometry::Prism& body, do
   return c;
 }
 
+/// True when some point of the named faces lies in `box` (the faces sampled: 256 points along
+/// each side piece at each of 17 heights, and a 64 x 64 lattice over the ends).
+bool faces_meet_box(const geometry::Prism& body, const std::vector<std::string>& faces,
+                    const Box& box) {
+  const auto named = [&](const std::string& n) {
+    return std::find(faces.begin(), faces.end(), n) != faces.end();
+  };
+  const double tol = 1e-9 * std::max(body.depth, body.section.bounds().size().maxCoeff());
+  for (const geometry::Curve& c : body.section.boundary()) {
+    if (!named(c.name)) continue;
+    for (int i = 0; i <= 256; ++i)
+      for (int k = 0; k <= 16; ++k) {
+        const Vec2 x = c.point(i / 256.0);
+        if (box.contains(Point(x.x(), x.y(), body.z0 + body.depth * k / 16.0), tol)) return true;
+      }
+  }
+  const BoundingBox b = body.section.bounds();
+  for (const bool back : {true, false}) {
+    if (!named(back ? "back" : "front")) continue;
+    for (int i = 0; i <= 64; ++i)
+      for (int j = 0; j <= 64; ++j) {
+        const Vec2 x = b.lo + Vec2(b.size().x() * i / 64.0, b.size().y() * j / 64.0);
+        const Point at(x.x(), x.y(), back ? body.z0 : body.z1());
+        if (body.section.contains(x) && box.contains(at, tol)) return true;
+      }
+  }
+  return false;
+}
+
 void read_boundary(KeyReader& r, const ProblemSpec& p, SolidSpec& s) {
   const geometry::Prism body{p.domain, s.z0, s.depth};
   const double stiffness = p.elasticity().E / s.discretisation.spacing;
@@ -135,6 +164,8 @@ void read_boundary(KeyReader& r, const ProblemSpec& p, SolidSpec& s) {
     for (std::size_t k = 0; k + 1 < s.boundary.size(); ++k)
       if (s.boundary[k].name == c.name)
         bc.error("name", "'" + c.name + "' is used by " + s.boundary[k].key_path + " already");
+    if (c.box && !faces_meet_box(body, c.faces, *c.box))
+      fail(c.key_path, ".box: holds no point of the faces it selects");
     if ((c.value_from_exact || c.traction_from_exact) && !s.exact)
       bc.error(c.constrains ? "displacement" : "traction",
                "'exact' needs an 'exact' section in the problem");

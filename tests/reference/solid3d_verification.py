@@ -13,7 +13,8 @@ problems/thick_cylinder_3d.yaml):
 - the elastic-perfectly plastic cylinder (problems/thick_cylinder_plastic_3d.yaml, spacing 0.2)
   collapses within 1% of the plane-strain limit pressure (2 / sqrt 3) sigma_y ln(b / a)
   (Hill 1950, ch. V): the limit taken as the first pressure whose increment's secant stiffness
-  dp/du (u the bore's mean radial displacement) falls below 1% of the elastic one.
+  dp/du (u the bore's mean radial displacement) falls below 1% of the elastic one;
+- the elastoplastic block (problems/block_uniaxial_3d.yaml) on two ranks equals one to 1e-8.
 
     solid3d_verification.py MESHFREE ROOT
 """
@@ -72,6 +73,22 @@ def check_limit_pressure(out):
           f"({'-' if limit is None else f'{limit / exact - 1.0:+.2%}'}, within 1%)")
 
 
+def check_plastic_ranks(work):
+    """The cyclic uniaxial block (elastoplastic, 40 increments) on 2 ranks equals 1 rank."""
+    import csv
+    curves = []
+    for ranks in (1, 2):
+        out = os.path.join(work, f"block_{ranks}")
+        run("block_uniaxial_3d", out, ["discretisation.spacing=0.5"], ranks=ranks)
+        with open(os.path.join(out, "history.csv")) as f:
+            curves.append([float(r["reaction_end_z"]) for r in csv.DictReader(f)])
+    largest = max(abs(v) for v in curves[0])
+    diff = max(abs(a - b) for a, b in zip(*curves)) / largest
+    check(len(curves[0]) == len(curves[1]) == 41 and diff <= 1e-8,
+          f"elastoplastic block on 2 ranks equals 1 rank to {diff:.1e} of its largest force "
+          f"(<= 1e-8)")
+
+
 with tempfile.TemporaryDirectory() as work:
     s = run("patch_test_3d", os.path.join(work, "patch"))["results"]
     check(s["error_energy_relative"] <= 1e-10 and s["error_l2_relative"] <= 1e-6,
@@ -112,6 +129,7 @@ with tempfile.TemporaryDirectory() as work:
     two = run("thick_cylinder_3d", os.path.join(work, "cyl_2"), ["discretisation.spacing=0.25"],
               ranks=2)
     check_limit_pressure(os.path.join(work, "limit"))
+    check_plastic_ranks(work)
     diff = abs(nodal_displacement(os.path.join(work, "cyl_2")) - direct).max() / abs(direct).max()
     check(two["mpi_ranks"] == 2 and diff <= 1e-8, f"2 MPI ranks equal 1 to {diff:.1e} (<= 1e-8)")
 sys.exit(1 if failed else 0)
