@@ -67,8 +67,8 @@ import make_calculix_plastic_reference as plane_recipe  # noqa: E402  (strip mes
 REPO_ROOT = elastic_recipe.REPO_ROOT
 NAME = "thick_perforated_plate"
 DEFAULT_OUT = os.path.join(REPO_ROOT, "reference", "calculix_3d")
-PLANE_CURVE0 = os.path.join(REPO_ROOT, "reference", "calculix_plastic", "perforated_strip",
-                            "curve_level0.csv")
+PLANE_DIR = os.path.join(REPO_ROOT, "reference", "calculix_plastic", "perforated_strip")
+PLANE_CURVE0 = os.path.join(PLANE_DIR, "curve_level0.csv")
 QUICK_TOL = 1e-6
 E_MOD, NU, SIG_Y, H_LIN = 7000.0, 0.2, 24.3, 224.0
 HALF_T = 2.5                   # half thickness (plate 5 mm), z in [0, HALF_T]
@@ -382,6 +382,21 @@ def thin_slab_check(work):
     return worst
 
 
+def plane_stress_contrast(curve):
+    """The thick plate's force against the converged plane-stress force per
+    unit thickness times the half thickness, at the records both curves
+    hold: (v, relative excess) per common record."""
+    _hdr, plane = read_curve(os.path.join(PLANE_DIR, "curve.csv"))
+    out = []
+    for row in curve[1:]:
+        k = int(np.argmin(np.abs(plane[:, 0] - row[0])))
+        if abs(plane[k, 0] - row[0]) < 1e-12:
+            out.append((row[0], row[1] / (HALF_T * plane[k, 1]) - 1.0))
+    print("  thick plate vs plane stress (converged perforated_strip curve x %g): force "
+          "higher by %s" % (HALF_T, ", ".join("%.2f%% at v = %g" % (100 * d, v) for v, d in out)))
+    return out
+
+
 def full_run(out, work):
     outdir = os.path.join(out, NAME)
     os.makedirs(outdir, exist_ok=True)
@@ -410,6 +425,7 @@ def full_run(out, work):
     print("  increments halved on level %d (ccx %.1fs, %d iterations): %s"
           % (mid, rh["wall"], rh["newton"][2], describe(col, per_inc)))
     thin_slab_check(work)
+    plane_stress_contrast(finest["curve"])
     print("  elastic limit (linear run at v = 1):")
     with open(os.path.join(outdir, "elastic_limit.csv"), "w") as f:
         f.write("level,n,nz,force_at_unit_v,max_vm_ip,x_ip,y_ip,z_ip,max_vm_node,x_node,"
