@@ -102,7 +102,8 @@ IP8 = np.array([(a, b, c) for c in (-G2, G2) for b in (-G2, G2) for a in (-G2, G
 # mesh
 # --------------------------------------------------------------------------
 def hex20_shape(p):
-    """Serendipity shape functions of the 20-node brick at natural point p."""
+    """Serendipity shape functions of the 20-node brick at natural point p
+    ([Zienkiewicz, Taylor & Zhu 2013], node order of CalculiX C3D20)."""
     out = np.empty(20)
     for a, q in enumerate(HEX20_XI):
         f = [1.0 + p[i] * q[i] if q[i] else 1.0 - p[i] * p[i] for i in range(3)]
