@@ -171,20 +171,23 @@ bool is_plain_rectangle(const geometry::Domain& domain,
 } // namespace
 
 fem::Mesh read_fe_mesh(const spec::ProblemSpec& spec) {
-  const spec::DiscretisationSpec& disc = spec.galerkin().discretisation;
+  return plane_fe_mesh(spec.galerkin().discretisation, spec.domain);
+}
+
+fem::Mesh plane_fe_mesh(const spec::DiscretisationSpec& disc, const geometry::Domain& domain) {
   const std::string& e = disc.fem.element;
   const fem::ElementType type = e == "t3"   ? fem::ElementType::T3
                                 : e == "q4" ? fem::ElementType::Q4
                                             : fem::ElementType::Q8;
   fem::Mesh mesh;
-  if (disc.fem.mesh.empty() && is_plain_rectangle(spec.domain, disc.refinement)) {
-    const BoundingBox b = spec.domain.bounds();
+  if (disc.fem.mesh.empty() && is_plain_rectangle(domain, disc.refinement)) {
+    const BoundingBox b = domain.bounds();
     const Vec2 size = b.size();
     const int nx = std::max(1, static_cast<int>(std::lround(size.x() / disc.spacing)));
     const int ny = std::max(1, static_cast<int>(std::lround(size.y() / disc.spacing)));
     mesh = fem::structured_rectangle(b.lo, size, nx, ny, type);
   } else if (disc.fem.mesh.empty()) {
-    mesh = fem::mesh_domain(spec.domain, disc.spacing, disc.refinement, type);
+    mesh = fem::mesh_domain(domain, disc.spacing, disc.refinement, type);
   } else {
     mesh = fem::read_gmsh(disc.fem.mesh);
     if (mesh.type != type)
@@ -192,7 +195,7 @@ fem::Mesh read_fe_mesh(const spec::ProblemSpec& spec) {
            fem::element_name(mesh.type), " elements");
     const double tol = 1e-6 * fem::characteristic_size(mesh);
     for (const Vec2& x : mesh.x)
-      if (!spec.domain.contains(x, tol))
+      if (!domain.contains(x, tol))
         fail("discretisation.fem.mesh: node (", x.x(), ", ", x.y(), ") of ", disc.fem.mesh,
              " lies outside the body the geometry section describes");
   }

@@ -82,10 +82,17 @@ void exact_errors(const spec::ProblemSpec& spec, const SolidModel& m, const std:
 
 std::string describe_solid_method(const spec::ProblemSpec& spec) {
   const spec::DiscretisationSpec& d = spec.solid().discretisation;
+  const geometry::Prism body{spec.domain, spec.solid().z0, spec.solid().depth};
+  const int layers = layer_count(body, d.spacing);
+  if (d.method == spec::Method::Fem)
+    return detail::concat("FE ", d.fem.element == "q8" ? "hex20" : "hex8", " (the plane ",
+                          d.fem.element, " mesh extruded in ", layers, " layers), spacing ",
+                          d.spacing);
   return detail::concat(
       "meshfree RK (", d.shape.basis == kernels::Basis::Quadratic ? "quadratic" : "linear",
       " basis, ", d.shape.support == kernels::SupportShape::Circular ? "spherical" : "box",
-      " supports), 3D, spacing ", d.spacing, ", dilation ", d.dilation.x(), d.vci ? ", VCI" : "");
+      " supports), 3D, spacing ", d.spacing, " (", layers, " layers), dilation ", d.dilation.x(),
+      d.vci ? ", VCI" : "");
 }
 
 SolidElasticResult solve_solid_elastic(const spec::ProblemSpec& spec,
@@ -99,8 +106,9 @@ SolidElasticResult solve_solid_elastic(const spec::ProblemSpec& spec,
   for (const auto& c : m.conditions) R.boundary_points += static_cast<int>(c.points.x.size());
   R.mean_support = static_cast<double>(m.domain_support.index.size()) /
                    std::max<std::size_t>(1, m.domain.x.size());
-  log::info("3D meshfree: ", N, " nodes, ", 3 * N, " DOFs, ", R.domain_points, " domain points, ",
-            R.boundary_points, " boundary points, ", R.mean_support, " nodes per point");
+  log::info(describe_solid_method(spec), ": ", N, " nodes, ", 3 * N, " DOFs, ", R.domain_points,
+            " domain points, ", R.boundary_points, " boundary points, ", R.mean_support,
+            " nodes per point");
   std::unique_ptr<solvers::BlockLinearSystem> system;
   {
     PhaseTimer::Scope scope(R.timer, "assembly");
@@ -128,12 +136,8 @@ SolidElasticResult solve_solid_elastic(const spec::ProblemSpec& spec,
   for (const auto& c : m.conditions)
     R.boundary.push_back(face_report(c, R.parameters, 1.0, session));
   if (spec.solid().exact) exact_errors(spec, m, R.parameters, session, R);
-  R.node_x = m.space->nodes().x;
-  const Csr at_nodes = m.space->support_lists(R.node_x);
-  std::vector<int> all(N);
-  for (int I = 0; I < N; ++I) all[I] = I;
-  const SolidShapeTable t = m.space->shape_table(R.node_x, all, at_nodes, false);
-  for (int I = 0; I < N; ++I) R.node_u.push_back(solid_displacement_at(t, I, R.parameters));
+  R.node_x = m.node_positions();
+  R.node_u = nodal_displacements(m, R.parameters);
   R.memory = solvers::peak_memory(session.comm());
   return R;
 }

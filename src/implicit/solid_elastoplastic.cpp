@@ -68,16 +68,6 @@ void gather_points(const SolidModel& m, const SolidElastoplasticSystem& system,
   }
 }
 
-void nodal_displacements(const SolidModel& m, SolidElastoplasticResult& R) {
-  const int N = m.node_count();
-  R.node_x = m.space->nodes().x;
-  std::vector<int> all(N);
-  for (int I = 0; I < N; ++I) all[I] = I;
-  const SolidShapeTable t =
-      m.space->shape_table(R.node_x, all, m.space->support_lists(R.node_x), false);
-  for (int I = 0; I < N; ++I) R.node_u.push_back(solid_displacement_at(t, I, R.parameters));
-}
-
 } // namespace
 
 SolidElastoplasticResult solve_solid_elastoplastic(const spec::ProblemSpec& spec,
@@ -89,8 +79,8 @@ SolidElastoplasticResult solve_solid_elastoplastic(const spec::ProblemSpec& spec
   R.dofs = 3 * N;
   R.domain_points = static_cast<int>(m.domain.x.size());
   for (const auto& c : m.conditions) R.boundary_points += static_cast<int>(c.points.x.size());
-  log::info("3D meshfree: ", N, " nodes, ", R.dofs, " DOFs, ", R.domain_points, " domain points, ",
-            R.boundary_points, " boundary points");
+  log::info(describe_solid_method(spec), ": ", N, " nodes, ", R.dofs, " DOFs, ", R.domain_points,
+            " domain points, ", R.boundary_points, " boundary points");
   SolidElastoplasticSystem system(spec, m);
   solvers::NonlinearBlockSystem newton(
       session.comm(), N, m.own, m.pattern.offset, m.pattern.column, system.needed_nodes(),
@@ -123,7 +113,8 @@ SolidElastoplasticResult solve_solid_elastoplastic(const spec::ProblemSpec& spec
   PhaseTimer::Scope scope(R.timer, "postprocess");
   R.parameters = newton.gather_on_root(d);
   solvers::broadcast(session.comm(), R.parameters, 0);
-  nodal_displacements(m, R);
+  R.node_x = m.node_positions();
+  R.node_u = nodal_displacements(m, R.parameters);
   gather_points(m, system, session, R);
   R.memory = solvers::peak_memory(session.comm());
   return R;

@@ -5,6 +5,7 @@
 #include "meshfree/solvers/parallel.hpp"
 #include "meshfree/verification/exact_solutions_3d.hpp"
 #include <algorithm>
+#include <numeric>
 
 namespace mf::implicit {
 
@@ -118,20 +119,102 @@ void build_tables(const spec::ProblemSpec& spec, const solvers::PetscSession& se
   }
   m.pattern = coupling_pattern(coupling, N, m.own.begin, m.own.end);
   m.domain_table = m.space->shape_table(m.domain.x, m.domain_mine.rows, m.domain_support, true);
-  std::vector<Vec2> at, nodes;
-  for (int r : m.domain_mine.rows) {
-    m.domain_weight.push_back(m.domain.weight[r]);
-    at.push_back(m.domain.x[r].head<2>());
-  }
-  for (const Vec3& x : m.space->nodes().x) nodes.push_back(x.head<2>());
-  m.domain_groups = PointGroups(m.domain_table.offset, m.domain_table.node, at, nodes);
   for (auto& c : m.conditions) {
     c.table = m.space->shape_table(c.points.x, c.mine.rows, c.support, false);
     c.values = face_values(spec, *c.bc, c.points, c.mine.rows);
   }
 }
 
+/// This rank's rows of brick points as a shape table.
+SolidShapeTable brick_table(const BrickPoints& b, const std::vector<int>& rows) {
+  SolidShapeTable t;
+  for (int r : rows) {
+    for (int k = b.offset[r]; k < b.offset[r + 1]; ++k) {
+      t.node.push_back(b.node[k]);
+      t.phi.push_back(b.phi[k]);
+      if (!b.dphi.empty()) t.dphi.push_back(b.dphi[k]);
+    }
+    t.offset.push_back(static_cast<int>(t.node.size()));
+  }
+  return t;
+}
+
+Csr rows_of(const BrickPoints& b) {
+  Csr c;
+  c.offset = b.offset;
+  c.index = b.node;
+  return c;
+}
+
+/// Finite elements: the bricks' points, the face conditions' points on the bricks' faces, the
+/// rows of this rank and their tables.
+void build_bricks(const spec::ProblemSpec& spec, const solvers::PetscSession& session,
+                  PhaseTimer& timer, SolidModel& m) {
+  const spec::SolidSpec& s = spec.solid();
+  const spec::DiscretisationSpec& d = s.discretisation;
+  {
+    PhaseTimer::Scope scope(timer, "nodes");
+    m.fe = std::make_unique<ExtrudedMesh>(plane_fe_mesh(d, spec.domain), m.body, d.spacing);
+  }
+  const int order = d.fem.order > 0 ? d.fem.order : m.fe->serendipity() ? 3 : 2;
+  BrickPoints body;
+  std::vector<BrickPoints> faces(s.boundary.size());
+  {
+    PhaseTimer::Scope scope(timer, "quadrature");
+    body = m.fe->body_points(order);
+    for (std::size_t b = 0; b < s.boundary.size(); ++b)
+      faces[b] = m.fe->face_points(s.boundary[b].faces, order, s.boundary[b].box);
+  }
+  const int N = m.node_count();
+  m.own = solvers::owned_nodes(N, session.rank(), session.size());
+  PhaseTimer::Scope scope(timer, "shape_functions");
+  m.domain = body.points;
+  m.domain_support = rows_of(body);
+  m.domain_mine = rank_points(m.domain_support, m.own, N, session);
+  std::vector<const Csr*> coupling{&m.domain_support};
+  m.conditions.resize(s.boundary.size());
+  for (std::size_t b = 0; b < s.boundary.size(); ++b) {
+    SolidConditionPoints& c = m.conditions[b];
+    c.bc = &s.boundary[b];
+    MF_REQUIRE(!faces[b].points.x.empty(), c.bc->key_path, ": the bricks have no face there");
+    c.points = faces[b].points;
+    c.support = rows_of(faces[b]);
+    if (c.bc->constrains) coupling.push_back(&c.support);
+    c.mine = rank_points(c.support, m.own, N, session);
+    c.table = brick_table(faces[b], c.mine.rows);
+    c.values = face_values(spec, *c.bc, c.points, c.mine.rows);
+  }
+  m.pattern = coupling_pattern(coupling, N, m.own.begin, m.own.end);
+  m.domain_table = brick_table(body, m.domain_mine.rows);
+}
+
+/// The domain table's rows in columns along z for threaded assembly, and their weights.
+void group_points(SolidModel& m) {
+  std::vector<Vec2> at, nodes;
+  for (int r : m.domain_mine.rows) {
+    m.domain_weight.push_back(m.domain.weight[r]);
+    at.push_back(m.domain.x[r].head<2>());
+  }
+  for (const Vec3& x : m.node_positions()) nodes.push_back(x.head<2>());
+  m.domain_groups = PointGroups(m.domain_table.offset, m.domain_table.node, at, nodes);
+}
+
 } // namespace
+
+std::vector<Vec3> nodal_displacements(const SolidModel& m, const std::vector<double>& d) {
+  const int N = m.node_count();
+  std::vector<Vec3> u(N);
+  if (m.fe) {
+    for (int I = 0; I < N; ++I) u[I] = Vec3(d[3 * I], d[3 * I + 1], d[3 * I + 2]);
+    return u;
+  }
+  const std::vector<Vec3>& x = m.node_positions();
+  std::vector<int> all(N);
+  std::iota(all.begin(), all.end(), 0);
+  const SolidShapeTable t = m.space->shape_table(x, all, m.space->support_lists(x), false);
+  for (int I = 0; I < N; ++I) u[I] = solid_displacement_at(t, I, d);
+  return u;
+}
 
 SolidModel build_solid_model(const spec::ProblemSpec& spec, const solvers::PetscSession& session,
                              PhaseTimer& timer) {
@@ -139,20 +222,26 @@ SolidModel build_solid_model(const spec::ProblemSpec& spec, const solvers::Petsc
   SolidModel m;
   m.body = geometry::Prism{spec.domain, s.z0, s.depth};
   session.collective([&] {
-    {
-      PhaseTimer::Scope scope(timer, "nodes");
-      m.space = std::make_unique<SolidSpace>(prism_nodes(m.body, s.discretisation),
-                                             s.discretisation.shape, s.discretisation.dilation.x());
+    if (s.discretisation.method == spec::Method::Fem) {
+      build_bricks(spec, session, timer, m);
+    } else {
+      {
+        PhaseTimer::Scope scope(timer, "nodes");
+        m.space =
+            std::make_unique<SolidSpace>(prism_nodes(m.body, s.discretisation),
+                                         s.discretisation.shape, s.discretisation.dilation.x());
+      }
+      {
+        PhaseTimer::Scope scope(timer, "quadrature");
+        build_points(spec, m);
+      }
+      m.own = solvers::owned_nodes(m.node_count(), session.rank(), session.size());
+      PhaseTimer::Scope scope(timer, "shape_functions");
+      build_tables(spec, session, m);
     }
-    {
-      PhaseTimer::Scope scope(timer, "quadrature");
-      build_points(spec, m);
-    }
-    m.own = solvers::owned_nodes(m.node_count(), session.rank(), session.size());
-    PhaseTimer::Scope scope(timer, "shape_functions");
-    build_tables(spec, session, m);
+    group_points(m);
   });
-  if (s.discretisation.vci) correct_test_gradients_3d(spec, m, session);
+  if (s.discretisation.vci && !m.fe) correct_test_gradients_3d(spec, m, session);
   return m;
 }
 
@@ -187,10 +276,18 @@ FaceReport face_report(const SolidConditionPoints& c, const std::vector<double>&
 void print_solid_plan(const spec::ProblemSpec& spec, std::ostream& os) {
   const spec::SolidSpec& s = spec.solid();
   const geometry::Prism body{spec.domain, s.z0, s.depth};
-  const SolidNodes nodes = prism_nodes(body, s.discretisation);
-  const double n = static_cast<double>(nodes.x.size());
-  os << "  nodes: " << nodes.x.size() << " (" << layer_count(body, s.discretisation.spacing) + 1
-     << " layers along z), " << 3 * nodes.x.size() << " DOFs\n";
+  const int layers = layer_count(body, s.discretisation.spacing) + 1;
+  double n = 0.0;
+  if (s.discretisation.method == spec::Method::Fem) {
+    const ExtrudedMesh fe(plane_fe_mesh(s.discretisation, spec.domain), body,
+                          s.discretisation.spacing);
+    n = fe.node_count();
+    os << "  bricks: " << fe.brick_count() << " of " << fe.nodes_per_brick() << " nodes, " << n
+       << " nodes (" << layers << " layers along z), " << 3 * n << " DOFs\n";
+  } else {
+    n = static_cast<double>(prism_nodes(body, s.discretisation).x.size());
+    os << "  nodes: " << n << " (" << layers << " layers along z), " << 3 * n << " DOFs\n";
+  }
   for (const auto& bc : s.boundary) {
     double area = 0.0;
     for (double w : prism_face_points(body, s.discretisation, bc.faces, bc.box).weight) area += w;
@@ -207,11 +304,11 @@ solvers::LinearSolverSettings solid_solver_settings(const spec::ProblemSpec& spe
                                                     const SolidModel& m) {
   const spec::SolidSpec& s = spec.solid();
   solvers::LinearSolverSettings L;
-  L.symmetric = !s.discretisation.vci;
+  L.symmetric = !s.discretisation.vci || s.discretisation.method == spec::Method::Fem;
   L.multigrid = s.linear_solver.multigrid_for(3.0 * m.node_count());
   if (L.multigrid)
     for (int I = m.own.begin; I < m.own.end; ++I)
-      for (int c = 0; c < 3; ++c) L.coordinates.push_back(m.space->nodes().x[I](c));
+      for (int c = 0; c < 3; ++c) L.coordinates.push_back(m.node_positions()[I](c));
   return L;
 }
 

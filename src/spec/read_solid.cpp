@@ -182,8 +182,9 @@ void read_solid_discretisation(KeyReader& r, const ProblemSpec& p, const std::st
   s.discretisation = read_discretisation(r, 3, p.domain.bounds(), base_dir, s.linear_solver);
   const DiscretisationSpec& d = s.discretisation;
   const std::string key = "discretisation";
-  if (d.method != Method::Meshfree)
-    fail(key, ".method: fem is available for plane models only; model solid_3d is meshfree");
+  if (d.method == Method::Fem && d.fem.element == "t3")
+    fail(key, ".fem.element: model solid_3d extrudes q4 (into 8-node bricks) or q8 (into 20-node "
+              "bricks), not t3");
   if (d.shape.approximation != kernels::Approximation::ReproducingKernel)
     fail(key, ".approximation: model solid_3d takes rk");
   if (s.depth < d.spacing)

@@ -14,7 +14,10 @@ problems/thick_cylinder_3d.yaml):
   collapses within 1% of the plane-strain limit pressure (2 / sqrt 3) sigma_y ln(b / a)
   (Hill 1950, ch. V): the limit taken as the first pressure whose increment's secant stiffness
   dp/du (u the bore's mean radial displacement) falls below 1% of the elastic one;
-- the elastoplastic block (problems/block_uniaxial_3d.yaml) on two ranks equals one to 1e-8.
+- the elastoplastic block (problems/block_uniaxial_3d.yaml) on two ranks equals one to 1e-8;
+- finite elements (the plane Q4/Q8 mesh extruded into 8- and 20-node bricks): the patch test to
+  1e-10 in energy, and Lame's cylinder in 20-node bricks at its rates less a margin for the
+  pre-asymptotic spread (theory: energy 2, L2 3, Strang & Fix 1973 ch. 3; measured 1.78, 3.02).
 
     solid3d_verification.py MESHFREE ROOT
 """
@@ -73,6 +76,25 @@ def check_limit_pressure(out):
           f"({'-' if limit is None else f'{limit / exact - 1.0:+.2%}'}, within 1%)")
 
 
+def check_bricks(work):
+    for element in ("q4", "q8"):
+        s = run("patch_test_3d", os.path.join(work, f"patch_{element}"),
+                ["discretisation.method=fem", f"discretisation.fem.element={element}"])
+        e = s["results"]["error_energy_relative"]
+        check(e <= 1e-10, f"patch test in bricks extruded from {element}: energy error {e:.1e} "
+                          f"(<= 1e-10), {s['method']}")
+    errors = []
+    for h in (0.25, 0.125):
+        s = run("thick_cylinder_3d", os.path.join(work, f"cyl_fe_{h}"),
+                ["discretisation.method=fem", f"discretisation.spacing={h}"])
+        errors.append((s["results"]["error_energy_relative"], s["results"]["error_l2_relative"]))
+    (e1, l1), (e2, l2) = errors
+    rate_e, rate_l2 = math.log(e1 / e2) / math.log(2.0), math.log(l1 / l2) / math.log(2.0)
+    check(rate_e >= 1.6 and rate_l2 >= 2.7,
+          f"thick cylinder in 20-node bricks: energy {e1:.2e} -> {e2:.2e} (rate {rate_e:.2f}, "
+          f">= 1.6), L2 {l1:.2e} -> {l2:.2e} (rate {rate_l2:.2f}, >= 2.7)")
+
+
 def check_plastic_ranks(work):
     """The cyclic uniaxial block (elastoplastic, 40 increments) on 2 ranks equals 1 rank."""
     import csv
@@ -129,6 +151,7 @@ with tempfile.TemporaryDirectory() as work:
     two = run("thick_cylinder_3d", os.path.join(work, "cyl_2"), ["discretisation.spacing=0.25"],
               ranks=2)
     check_limit_pressure(os.path.join(work, "limit"))
+    check_bricks(work)
     check_plastic_ranks(work)
     diff = abs(nodal_displacement(os.path.join(work, "cyl_2")) - direct).max() / abs(direct).max()
     check(two["mpi_ranks"] == 2 and diff <= 1e-8, f"2 MPI ranks equal 1 to {diff:.1e} (<= 1e-8)")

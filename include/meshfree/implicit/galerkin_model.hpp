@@ -79,6 +79,8 @@ GalerkinModel build_galerkin_model(const spec::ProblemSpec& spec,
 /// element type and the geometry) or a structured mesh of the rectangle; nodes numbered for
 /// locality. Throws mf::Error naming the key.
 fem::Mesh read_fe_mesh(const spec::ProblemSpec& spec);
+/// The same for a discretisation and a plane body (a 3D prism's section).
+fem::Mesh plane_fe_mesh(const spec::DiscretisationSpec& disc, const geometry::Domain& domain);
 
 /// Cells for field output: the elements of a finite-element model, none (points) for meshfree.
 io::GridCells output_cells(const GalerkinModel& m);

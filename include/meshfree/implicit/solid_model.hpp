@@ -9,6 +9,7 @@
 #include "meshfree/implicit/coupling.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/implicit/point_groups.hpp"
+#include "meshfree/implicit/solid_fe.hpp"
 #include "meshfree/implicit/solid_points.hpp"
 #include "meshfree/implicit/solid_space.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
@@ -31,7 +32,8 @@ struct SolidConditionPoints {
 
 struct SolidModel {
   geometry::Prism body;
-  std::unique_ptr<SolidSpace> space;
+  std::unique_ptr<SolidSpace> space; // meshfree nodes and supports, or
+  std::unique_ptr<ExtrudedMesh> fe;  // bricks
   solvers::OwnedRange own;
   SolidPoints domain;
   Csr domain_support;
@@ -41,7 +43,8 @@ struct SolidModel {
   std::vector<SolidConditionPoints> conditions;
   RowPattern pattern;
   PointGroups domain_groups; // the domain table's rows in columns along z for threaded assembly
-  int node_count() const { return space->node_count(); }
+  int node_count() const { return fe ? fe->node_count() : space->node_count(); }
+  const std::vector<Vec3>& node_positions() const { return fe ? fe->nodes() : space->nodes().x; }
 };
 
 /// What a face condition does to the body: the reaction of a held face (the penalty force on
@@ -70,6 +73,9 @@ SolidModel build_solid_model(const spec::ProblemSpec& spec, const solvers::Petsc
 /// What `meshfree check` prints of a 3D body: nodes, layers, integration points, each face
 /// condition's area, and the memory the run is expected to take.
 void print_solid_plan(const spec::ProblemSpec& spec, std::ostream& os);
+
+/// u^h at every node from the nodal parameters of every node (finite elements: the parameters).
+std::vector<Vec3> nodal_displacements(const SolidModel& m, const std::vector<double>& d);
 
 /// How the model's linear systems are solved (direct, or multigrid with the six rigid-body modes
 /// from the owned nodes' coordinates), as spec.solid().linear_solver says.
