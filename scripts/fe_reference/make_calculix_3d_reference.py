@@ -14,8 +14,11 @@ it with the committed curve_level0.csv; prints "quick check: max relative
 difference ..." and exits 1 if any value differs by more than 1e-6 of the
 largest |value| of its column.
 --out DIR (or CALCULIX_REFERENCE_OUT=DIR) writes into DIR instead.
+--checks: only the checks against the committed curve.csv that need no
+rerun of the levels (the gmsh mesh, the plane-stress contrast).
 
-Needs python3 with numpy and `ccx` (Debian calculix-ccx 2.20).  CalculiX
+Needs python3 with numpy, `ccx` (Debian calculix-ccx 2.20) and, for the
+full run and --checks, the `gmsh` command line (4.8).  CalculiX
 runs single-threaded (bit-reproducible); CCX_REF_THREADS=2 uses two threads.
 
 Problem (kgf, mm, kgf/mm^2): the perforated strip of Zienkiewicz, Valliappan
@@ -33,12 +36,17 @@ Method (details and results: reference/calculix_3d/README.md)
   strip (make_calculix_plastic_reference.mesh_strip: n elements along each
   45-degree arc block) extruded in nz equal layers through the half
   thickness into 20-node bricks.  Midside nodes sit at the mapped parameter
-  midpoints, so the hole surface is an exact quadratic arc.
+  midpoints: every node of the hole surface lies on the circle.
 * Levels (n, nz) = (8, 1), (16, 2), (24, 3): C3D20R (reduced 2x2x2
   integration).  The finest level is also run with C3D20 (full 3x3x3
   integration) as a check, the middle level with the increments halved,
   and the coarsest level as a thin slab against the committed plane-stress
   CalculiX curve (a check of the deck: conditions, material, force).
+* An independent mesher: two unstructured gmsh meshes of the eighth
+  (Frontal-Delaunay quadrangles recombined, extruded in layers, second
+  order; the gmsh command line) with C3D20R against the finest level.
+* The thick plate's force against the converged plane-stress force x the
+  half thickness (how far the 3-D answer lies from plane stress).
 * Elastic limit: a linear run at v = 1 per level; the largest von Mises
   stress over the integration points, and over the corner nodes (2x2x2
   values extrapolated trilinearly to the corners, averaged over elements).
@@ -54,6 +62,7 @@ import csv
 import math
 import os
 import shutil
+import subprocess
 import sys
 import tempfile
 import time
@@ -199,6 +208,54 @@ def plate_mesh(n, nz, thickness=HALF_T):
     q = plane_recipe.mesh_strip(n)
     elems, xyz = extrude(q, nz, thickness)
     return HexMesh(xyz, elems, "n=%d nz=%d" % (n, nz), q.h)
+
+
+# gmsh: the eighth meshed without structure (Frontal-Delaunay quads,
+# recombined, extruded in layers), second order without face/volume nodes
+GMSH_GEO = """lh = %(lh)r; lf = %(lf)r;
+Point(1) = {5, 0, 0, lh}; Point(2) = {10, 0, 0, lf}; Point(3) = {10, 18, 0, lf};
+Point(4) = {0, 18, 0, lf}; Point(5) = {0, 5, 0, lh}; Point(6) = {0, 0, 0, lh};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 5};
+Circle(5) = {5, 6, 1};
+Curve Loop(1) = {1, 2, 3, 4, 5};
+Plane Surface(1) = {1};
+Recombine Surface{1};
+Extrude {0, 0, %(t)r} { Surface{1}; Layers{%(nz)d}; Recombine; }
+Mesh.Algorithm = 6; Mesh.RecombinationAlgorithm = 1;
+Mesh.ElementOrder = 2; Mesh.SecondOrderIncomplete = 1;
+Mesh.MshFileVersion = 2.2;
+"""
+# gmsh's 20-node hexahedron (MSH type 17) node for each CalculiX C3D20 node
+GMSH_TO_CCX20 = [0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 13, 9, 16, 18, 19, 17, 10, 12, 14, 15]
+GMSH_CHECKS = [dict(lh=0.2, lf=1.0, nz=2), dict(lh=0.12, lf=0.6, nz=3)]
+
+
+def gmsh_mesh(work, lh, lf, nz):
+    """The eighth meshed by the gmsh command line (sizes lh at the hole, lf
+    at the far corners, nz layers); only its 20-node bricks are kept, with
+    the nodes they use, renumbered."""
+    geo, msh = os.path.join(work, "plate.geo"), os.path.join(work, "plate.msh")
+    with open(geo, "w") as f:
+        f.write(GMSH_GEO % dict(lh=lh, lf=lf, t=HALF_T, nz=nz))
+    p = subprocess.run(["gmsh", geo, "-3", "-o", msh], capture_output=True, text=True)
+    if p.returncode != 0:
+        raise RuntimeError("gmsh failed (rc=%d): %s" % (p.returncode, p.stderr[-2000:]))
+    with open(msh) as f:
+        lines = f.read().split("\n")
+    i = lines.index("$Nodes")
+    nodes = {int(r.split()[0]): [float(v) for v in r.split()[1:4]]
+             for r in lines[i + 2:i + 2 + int(lines[i + 1])]}
+    i = lines.index("$Elements")
+    hexes = []
+    for r in lines[i + 2:i + 2 + int(lines[i + 1])]:
+        v = [int(t) for t in r.split()]
+        if v[1] == 17:
+            conn = v[3 + v[2]:]
+            hexes.append([conn[k] for k in GMSH_TO_CCX20])
+    used = sorted({n for h in hexes for n in h})
+    new = {old: k + 1 for k, old in enumerate(used)}
+    return HexMesh([nodes[n] for n in used], [[new[n] for n in h] for h in hexes],
+                   "gmsh lh=%g lf=%g nz=%d" % (lh, lf, nz), lh)
 
 
 # --------------------------------------------------------------------------
@@ -398,6 +455,23 @@ def plane_stress_contrast(curve):
     return out
 
 
+def gmsh_check(work, curve):
+    """Unstructured gmsh meshes of the eighth (GMSH_CHECKS) with C3D20R
+    against `curve` (the finest level)."""
+    for k, sizes in enumerate(GMSH_CHECKS):
+        mesh = gmsh_mesh(work, **sizes)
+        detj = mesh.min_detj()
+        if detj <= 0:
+            raise RuntimeError("mesh %s has a non-positive Jacobian" % mesh.label)
+        r = solve(mesh, work, "gmsh%d" % k)
+        col, per_inc = differences(curve, r["curve"])
+        print("  gmsh mesh (%s: %d elements, %d nodes, min detJ/(V/8)=%.3f; ccx %.1fs, %d "
+              "iterations) vs the finest level: %s"
+              % (mesh.label, mesh.nelems, mesh.nnodes, detj, r["wall"], r["newton"][2],
+                 describe(col, per_inc)))
+        sys.stdout.flush()
+
+
 def full_run(out, work):
     outdir = os.path.join(out, NAME)
     os.makedirs(outdir, exist_ok=True)
@@ -427,6 +501,7 @@ def full_run(out, work):
           % (mid, rh["wall"], rh["newton"][2], describe(col, per_inc)))
     thin_slab_check(work)
     plane_stress_contrast(finest["curve"])
+    gmsh_check(work, finest["curve"])
     print("  elastic limit (linear run at v = 1):")
     with open(os.path.join(outdir, "elastic_limit.csv"), "w") as f:
         f.write("level,n,nz,force_at_unit_v,max_vm_ip,x_ip,y_ip,z_ip,max_vm_node,x_node,"
@@ -472,6 +547,9 @@ def main():
                     help="remake only the coarsest level and compare with the committed one")
     ap.add_argument("--out", default=None, help="output folder (default reference/calculix_3d, "
                     "or $CALCULIX_REFERENCE_OUT)")
+    ap.add_argument("--checks", action="store_true",
+                    help="only the checks that need no rerun of the levels: the gmsh mesh "
+                    "and the plane-stress contrast against the committed curve.csv")
     args = ap.parse_args()
     out = args.out or os.environ.get("CALCULIX_REFERENCE_OUT")
     tmp_out = None
@@ -485,7 +563,13 @@ def main():
     print("=== %s: E = %g, nu = %g, sigma_y = %g + %g alpha; v = 0 ... %g in %d increments ==="
           % (NAME, E_MOD, NU, SIG_Y, H_LIN, V_END, N_INC))
     with tempfile.TemporaryDirectory(prefix="ccx_3d_") as work:
-        status = quick_run(out, work) if args.quick else full_run(out, work)
+        if args.checks:
+            _hdr, curve = read_curve(os.path.join(DEFAULT_OUT, NAME, "curve.csv"))
+            plane_stress_contrast(curve)
+            gmsh_check(work, curve)
+            status = 0
+        else:
+            status = quick_run(out, work) if args.quick else full_run(out, work)
     if tmp_out:
         shutil.rmtree(tmp_out, ignore_errors=True)
     print("total run time %.1f s" % (time.time() - t_start))
