@@ -27,10 +27,27 @@ ScheduleSpec solid_schedule(const spec::ProblemSpec& spec) {
   return out;
 }
 
-/// The increment's faces, plastic points and largest equivalent plastic strain.
+/// u^h at the gauges: each rank sums its owned nodes' terms (the owned entries of d are always
+/// the current ones), then the ranks add them up.
+std::vector<Vec3> gauge_displacements(const SolidShapeTable& t, const solvers::OwnedRange& own,
+                                      const std::vector<double>& d,
+                                      const solvers::PetscSession& session) {
+  std::vector<double> u(3 * static_cast<std::size_t>(t.rows()), 0.0);
+  for (int g = 0; g < t.rows(); ++g)
+    for (int k = t.offset[g]; k < t.offset[g + 1]; ++k)
+      if (own.owns(t.node[k]))
+        for (int c = 0; c < 3; ++c) u[3 * g + c] += t.phi[k] * d[3 * t.node[k] + c];
+  solvers::sum_everywhere(session.comm(), u.data(), static_cast<int>(u.size()));
+  std::vector<Vec3> out;
+  for (int g = 0; g < t.rows(); ++g) out.emplace_back(u[3 * g], u[3 * g + 1], u[3 * g + 2]);
+  return out;
+}
+
+/// The increment's faces, gauges, plastic points and largest equivalent plastic strain.
 void describe_increment(const SolidModel& m, const SolidElastoplasticSystem& system,
-                        const std::vector<double>& d, const solvers::PetscSession& session,
-                        SolidIncrement& inc) {
+                        const SolidShapeTable& gauges, const std::vector<double>& d,
+                        const solvers::PetscSession& session, SolidIncrement& inc) {
+  inc.gauges = gauge_displacements(gauges, m.own, d, session);
   const std::vector<double>& f = inc.record.factors;
   for (std::size_t c = 0; c < m.conditions.size(); ++c)
     inc.faces.push_back(face_report(m.conditions[c], d, f.empty() ? 0.0 : f[c], session));
@@ -93,7 +110,10 @@ SolidElastoplasticResult solve_solid_elastoplastic(const spec::ProblemSpec& spec
   std::vector<double> d(3 * static_cast<std::size_t>(N), 0.0);
   SolidIncrement unloaded;
   unloaded.record.factors.assign(spec.solid().boundary.size() + 1, 0.0);
-  describe_increment(m, system, d, session, unloaded);
+  std::vector<Vec3> at_gauges;
+  for (const spec::GaugeSpec& g : spec.solid().gauges) at_gauges.push_back(g.at);
+  const SolidShapeTable gauges = solid_shapes_at(m, at_gauges);
+  describe_increment(m, system, gauges, d, session, unloaded);
   R.increments.push_back(unloaded);
   SchedulePosition at;
   const ScheduleOutcome o = run_load_schedule(
@@ -102,7 +122,7 @@ SolidElastoplasticResult solve_solid_elastoplastic(const spec::ProblemSpec& spec
         PhaseTimer::Scope scope(R.timer, "increment_output");
         SolidIncrement inc;
         inc.record = std::move(rec);
-        describe_increment(m, system, d, session, inc);
+        describe_increment(m, system, gauges, d, session, inc);
         R.increments.push_back(std::move(inc));
         return R.increments.back().record;
       },

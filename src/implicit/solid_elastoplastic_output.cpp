@@ -22,6 +22,8 @@ void write_history(const spec::ProblemSpec& spec, const SolidElastoplasticResult
       history.add_column((f.constraint ? "reaction_" : "load_") + f.name + "_" + a);
     history.add_column("normal_displacement_" + f.name);
   }
+  for (const spec::GaugeSpec& g : s.gauges)
+    for (const char* a : kAxes) history.add_column("u" + std::string(a) + "_" + g.name);
   for (const char* c : {"newton_iterations", "linear_iterations", "cutbacks", "plastic_points",
                         "max_plastic_strain"})
     history.add_column(c);
@@ -31,6 +33,7 @@ void write_history(const spec::ProblemSpec& spec, const SolidElastoplasticResult
     row.insert(row.end(), inc.record.factors.begin(), inc.record.factors.end());
     for (const FaceReport& f : inc.faces)
       row.insert(row.end(), {f.force.x(), f.force.y(), f.force.z(), f.normal_displacement});
+    for (const Vec3& u : inc.gauges) row.insert(row.end(), {u.x(), u.y(), u.z()});
     row.insert(row.end(),
                {static_cast<double>(inc.record.newton.iterations),
                 static_cast<double>(inc.record.newton.linear_iterations),

@@ -160,6 +160,21 @@ BrickPoints ExtrudedMesh::body_points(int order) const {
   return out;
 }
 
+BrickPoints ExtrudedMesh::shapes_at(const std::vector<Vec3>& x) const {
+  const fem::PointLocator locator(plane_);
+  BrickPoints out;
+  for (const Vec3& p : x) {
+    int e = -1;
+    Vec2 xi;
+    MF_REQUIRE(locator.locate(p.head<2>(), e, xi), "no element holds the point (", p.x(), ", ",
+               p.y(), ", ", p.z(), ")");
+    const double t = (p.z() - body_.z0) / dz_;
+    const int l = std::clamp(static_cast<int>(std::floor(t)), 0, layers_ - 1);
+    add_point(e, l, Vec3(xi.x(), xi.y(), 2.0 * (t - l) - 1.0), 1.0, -1, false, out);
+  }
+  return out;
+}
+
 BrickPoints ExtrudedMesh::face_points(const std::vector<std::string>& faces, int order,
                                       const std::optional<spec::Box>& box) const {
   const auto named = [&](const std::string& n) {

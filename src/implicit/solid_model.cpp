@@ -245,6 +245,13 @@ SolidModel build_solid_model(const spec::ProblemSpec& spec, const solvers::Petsc
   return m;
 }
 
+SolidShapeTable solid_shapes_at(const SolidModel& m, const std::vector<Vec3>& x) {
+  std::vector<int> rows(x.size());
+  std::iota(rows.begin(), rows.end(), 0);
+  if (m.fe) return brick_table(m.fe->shapes_at(x), rows);
+  return m.space->shape_table(x, rows, m.space->support_lists(x), false);
+}
+
 FaceReport face_report(const SolidConditionPoints& c, const std::vector<double>& d, double factor,
                        const solvers::PetscSession& session) {
   FaceReport rep;

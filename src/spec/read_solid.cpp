@@ -213,6 +213,18 @@ void parse_solid(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
   if (r.has("body_force")) s.body_force = vec3(r, "body_force");
   r.allow("body_force");
   read_boundary(r, p, s);
+  if (auto out = r.optional_map("output")) {
+    if (!plastic && out->has("gauges"))
+      out->error("gauges", "gauges are recorded only by analysis elastoplastic_static");
+    s.gauges = read_gauges(*out, 3);
+    const geometry::Prism body{p.domain, s.z0, s.depth};
+    for (std::size_t k = 0; k < s.gauges.size(); ++k)
+      if (!body.contains(s.gauges[k].at, 1e-9))
+        fail(out->path_of("gauges"), "[", k, "].at: the point (",
+             detail::concat(s.gauges[k].at.x(), ", ", s.gauges[k].at.y(), ", ", s.gauges[k].at.z()),
+             ") is not in the body");
+    out->finish();
+  }
   if (plastic) {
     std::vector<std::string> names;
     for (const FaceCondition& c : s.boundary) names.push_back(c.name);

@@ -3,11 +3,17 @@
 J2 with linear hardening) against the mesh-converged CalculiX C3D20R curve of the same eighth
 (reference/calculix_3d/thick_perforated_plate/curve.csv, made by
 scripts/fe_reference/make_calculix_3d_reference.py): the pull force within 1% of CalculiX's at
-every increment. The problem's increments are 0.005 mm of pull; `--increments N` runs the first N
+every increment; and, since that force is within 0.9% of the plane-stress force times the half
+thickness (reference/calculix_3d/README.md), the 3D effect itself is printed beside it: the
+difference of u_x between the hole's face and its mid-plane (zero in plane stress), asserted
+within the fraction `--through-thickness` of CalculiX's when that is given (meshfree at the
+problem's spacing 0.5 is 14% off in the elastic increments and 28% at first yield; the elastic
+difference converges, 5.4% at spacing 0.35 and 2.9% at 0.25; `--set KEY=VALUE` passes settings
+such as discretisation.spacing). The problem's increments are 0.005 mm of pull; `--increments N` runs the first N
 of them (the suite runs 8, into the net section's yield; the whole curve is 20, about 130 s on
 two threads).
 
-    solid3d_vs_calculix.py MESHFREE ROOT [--increments N]
+    solid3d_vs_calculix.py MESHFREE ROOT [--increments N] [--through-thickness F] [--set K=V ...]
 """
 import argparse
 import csv
@@ -20,6 +26,8 @@ parser = argparse.ArgumentParser()
 parser.add_argument("meshfree")
 parser.add_argument("root")
 parser.add_argument("--increments", type=int, default=20)
+parser.add_argument("--through-thickness", type=float, default=None)
+parser.add_argument("--set", action="append", default=[])
 args = parser.parse_args()
 with open(os.path.join(args.root, "reference", "calculix_3d", "thick_perforated_plate",
                        "curve.csv")) as f:
@@ -32,20 +40,29 @@ with tempfile.TemporaryDirectory() as work:
     pull = float(reference[n]["v"])
     cmd = [args.meshfree, "run", os.path.join(args.root, "problems", "thick_perforated_plate.yaml"),
            "--out", out, "--set", f"steps.0.load_factor={pull!r}", "--set", f"steps.0.increments={n}"]
+    for extra in args.set:
+        cmd += ["--set", extra]
     done = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if done.returncode != 0:
         sys.exit(f"FAIL: {' '.join(cmd)} exited {done.returncode}:\n{done.stdout[-2000:]}")
     with open(os.path.join(out, "history.csv")) as f:
         rows = list(csv.DictReader(f))
-worst = 0.0
-print(" pull (mm)   CalculiX (kgf)   meshfree (kgf)   difference")
+worst = worst_3d = 0.0
+print(" pull (mm)   CalculiX (kgf)   meshfree (kgf)   difference   u_x face - mid-plane: CalculiX, "
+      "meshfree")
 for ref, row in zip(reference[1:n + 1], rows[1:]):
     v, expected, force = float(ref["v"]), float(ref["force_y"]), float(row["reaction_pull_y"])
     if abs(float(row["factor_pull"]) - v) > 1e-12:
         sys.exit(f"FAIL: increment at pull {row['factor_pull']} where CalculiX has {v}")
     worst = max(worst, abs(force / expected - 1.0))
-    print(f"  {v:.3f}      {expected:10.4f}      {force:10.4f}      {force / expected - 1.0:+.3%}")
-ok = len(rows) == n + 1 and worst <= 0.01
-print(f"{'ok' if ok else 'FAIL'}: {len(rows) - 1} increments, largest difference {worst:.3%} "
-      f"(at most 1%)")
+    skew = float(ref["ux_5_0_25"]) - float(ref["ux_5_0_0"])
+    ours = float(row["ux_hole_face"]) - float(row["ux_hole_mid_plane"])
+    worst_3d = max(worst_3d, abs(ours / skew - 1.0))
+    print(f"  {v:.3f}      {expected:10.4f}      {force:10.4f}      {force / expected - 1.0:+.3%}"
+          f"      {skew:.4e}, {ours:.4e} ({ours / skew - 1.0:+.1%})")
+limit = args.through_thickness
+ok = len(rows) == n + 1 and worst <= 0.01 and (limit is None or worst_3d <= limit)
+print(f"{'ok' if ok else 'FAIL'}: {len(rows) - 1} increments, largest force difference {worst:.3%} "
+      f"(at most 1%), largest through-thickness difference {worst_3d:.1%}"
+      + ("" if limit is None else f" (at most {limit:.0%})"))
 sys.exit(0 if ok else 1)

@@ -20,6 +20,7 @@ namespace mf::implicit {
 struct SolidIncrement {
   IncrementRecord record; // step, factors, Newton report, cut-backs, plastic points
   std::vector<FaceReport> faces;
+  std::vector<Vec3> gauges; // u^h at the problem's gauges
 };
 
 struct SolidElastoplasticResult {

@@ -77,6 +77,9 @@ void print_solid_plan(const spec::ProblemSpec& spec, std::ostream& os);
 /// u^h at every node from the nodal parameters of every node (finite elements: the parameters).
 std::vector<Vec3> nodal_displacements(const SolidModel& m, const std::vector<double>& d);
 
+/// The shape functions at points of the body (every node's), on the calling rank.
+SolidShapeTable solid_shapes_at(const SolidModel& m, const std::vector<Vec3>& x);
+
 /// How the model's linear systems are solved (direct, or multigrid with the six rigid-body modes
 /// from the owned nodes' coordinates), as spec.solid().linear_solver says.
 solvers::LinearSolverSettings solid_solver_settings(const spec::ProblemSpec& spec,

@@ -45,6 +45,7 @@ struct SolidSpec {
   std::vector<LoadStep> steps;
   NonlinearSpec nonlinear;
   LinearSolverSpec linear_solver;
+  std::vector<GaugeSpec> gauges; // points whose displacement each increment records
 };
 
 } // namespace mf::spec
