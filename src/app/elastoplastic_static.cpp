@@ -59,7 +59,7 @@ double end_time(const spec::ProblemSpec&) {
 
 RunOutcome run(const RunRequest& q) {
   if (q.spec.is_solid()) { // a 3D body
-    auto r = implicit::solve_solid_elastoplastic(q.spec, q.session);
+    auto r = implicit::solve_solid_elastoplastic(q.spec, q.session, q.out);
     write_and_log(r, q.out, [&](io::OutputDirectory& o) {
       implicit::write_solid_elastoplastic_outputs(q.spec, r, q.session, o);
     });

@@ -3,8 +3,11 @@
 #include "meshfree/implicit/load_stepping.hpp"
 #include "meshfree/implicit/solid_elastic.hpp"
 #include "meshfree/implicit/solid_elastoplastic_system.hpp"
+#include "meshfree/io/results.hpp"
+#include "meshfree/materials/j2_plasticity.hpp"
 #include "meshfree/solvers/nonlinear_system.hpp"
 #include <algorithm>
+#include <memory>
 
 namespace mf::implicit {
 
@@ -16,6 +19,7 @@ ScheduleSpec solid_schedule(const spec::ProblemSpec& spec) {
   ScheduleSpec out;
   out.steps = &s.steps;
   out.nonlinear = s.nonlinear;
+  out.fields_every = s.fields_every;
   for (const spec::FaceCondition& bc : s.boundary) {
     const bool drives = bc.value_from_exact || bc.traction_from_exact ||
                         (bc.constrains      ? !bc.value.cwiseProduct(bc.mask).isZero()
@@ -63,32 +67,83 @@ void describe_increment(const SolidModel& m, const SolidElastoplasticSystem& sys
   inc.record.max_plastic_strain = solvers::max_everywhere(session.comm(), alpha);
 }
 
-/// The Gauss points each counted once, on rank 0.
-void gather_points(const SolidModel& m, const SolidElastoplasticSystem& system,
-                   const solvers::PetscSession& session, SolidElastoplasticResult& R) {
-  std::vector<double> mine;
-  const SolidPointStates& s = system.states();
-  for (std::size_t k = 0; k < s.committed.size(); ++k) {
-    if (!m.domain_mine.counted[k]) continue;
-    const Vec3& x = m.domain.x[m.domain_mine.rows[k]];
-    mine.insert(mine.end(), {x.x(), x.y(), x.z()});
-    for (int c = 0; c < 6; ++c) mine.push_back(s.committed_stress[k](c));
-    mine.push_back(s.committed[k].alpha);
+/// The field series of the run (rank 0 writes): u^h at the nodes (fields.h5) and the stress and
+/// equivalent plastic strain at every Gauss point once (gauss_points.h5), at the increments the
+/// schedule marks for output, at time step + step fraction.
+class SolidSeries {
+public:
+  SolidSeries(const SolidModel& m, const solvers::PetscSession& session, io::OutputDirectory* out)
+      : m_(m), session_(session) {
+    const std::vector<double> points = solvers::gather_on_root(session.comm(), counted_positions());
+    std::vector<double> nodes;
+    for (const Vec3& x : m.node_positions()) nodes.insert(nodes.end(), {x.x(), x.y(), x.z()});
+    fields_ = std::make_unique<io::FieldOutput>(out, "fields", nodes);
+    fields_->vector("displacement", [this](std::vector<double>& v) { v = node_u_; });
+    points_ = std::make_unique<io::FieldOutput>(out, "gauss_points", points);
+    const char* names[6] = {"stress_xx", "stress_yy", "stress_zz",
+                            "stress_yz", "stress_xz", "stress_xy"};
+    for (int c = 0; c < 6; ++c)
+      points_->scalar(names[c], [this, c](std::vector<double>& v) { column(c, v); });
+    points_->scalar("von_mises", [this](std::vector<double>& v) {
+      v.clear();
+      for (std::size_t i = 0; i + 7 <= values_.size(); i += 7) {
+        Vec6 s;
+        for (int c = 0; c < 6; ++c) s(c) = values_[i + c];
+        v.push_back(materials::von_mises_3d(s));
+      }
+    });
+    points_->scalar("plastic_strain", [this](std::vector<double>& v) { column(6, v); });
   }
-  const std::vector<double> all = solvers::gather_on_root(session.comm(), mine);
-  for (std::size_t i = 0; i + 10 <= all.size(); i += 10) {
-    R.point_x.emplace_back(all[i], all[i + 1], all[i + 2]);
-    Vec6 sig;
-    for (int c = 0; c < 6; ++c) sig(c) = all[i + 3 + c];
-    R.point_stress.push_back(sig);
-    R.point_plastic_strain.push_back(all[i + 9]);
+
+  /// Collective: `all` is the whole d on rank 0 (empty elsewhere).
+  void write(double time, const SolidElastoplasticSystem& system, const std::vector<double>& all) {
+    std::vector<double> mine;
+    const SolidPointStates& s = system.states();
+    for (std::size_t k = 0; k < s.committed.size(); ++k) {
+      if (!m_.domain_mine.counted[k]) continue;
+      for (int c = 0; c < 6; ++c) mine.push_back(s.committed_stress[k](c));
+      mine.push_back(s.committed[k].alpha);
+    }
+    values_ = solvers::gather_on_root(session_.comm(), mine);
+    if (session_.rank() != 0) return;
+    node_u_.clear();
+    for (const Vec3& u : nodal_displacements(m_, all))
+      node_u_.insert(node_u_.end(), {u.x(), u.y(), u.z()});
+    fields_->write(time);
+    points_->write(time);
   }
-}
+
+  void close() {
+    fields_->close();
+    points_->close();
+  }
+
+private:
+  std::vector<double> counted_positions() const {
+    std::vector<double> x;
+    for (std::size_t k = 0; k < m_.domain_mine.rows.size(); ++k)
+      if (m_.domain_mine.counted[k]) {
+        const Vec3& p = m_.domain.x[m_.domain_mine.rows[k]];
+        x.insert(x.end(), {p.x(), p.y(), p.z()});
+      }
+    return x;
+  }
+  void column(int c, std::vector<double>& v) const {
+    v.clear();
+    for (std::size_t i = 0; i + 7 <= values_.size(); i += 7) v.push_back(values_[i + c]);
+  }
+
+  const SolidModel& m_;
+  const solvers::PetscSession& session_;
+  std::unique_ptr<io::FieldOutput> fields_, points_;
+  std::vector<double> node_u_, values_;
+};
 
 } // namespace
 
 SolidElastoplasticResult solve_solid_elastoplastic(const spec::ProblemSpec& spec,
-                                                   const solvers::PetscSession& session) {
+                                                   const solvers::PetscSession& session,
+                                                   io::OutputDirectory* out) {
   SolidElastoplasticResult R;
   const SolidModel m = build_solid_model(spec, session, R.timer);
   const int N = m.node_count();
@@ -115,14 +170,19 @@ SolidElastoplasticResult solve_solid_elastoplastic(const spec::ProblemSpec& spec
   const SolidShapeTable gauges = solid_shapes_at(m, at_gauges);
   describe_increment(m, system, gauges, d, session, unloaded);
   R.increments.push_back(unloaded);
+  SolidSeries series(m, session, out);
+  series.write(0.0, system, newton.gather_on_root(d));
   SchedulePosition at;
   const ScheduleOutcome o = run_load_schedule(
       solid_schedule(spec), system, newton, d,
-      [&](IncrementRecord rec, bool) -> const IncrementRecord& {
+      [&](IncrementRecord rec, bool write_fields) -> const IncrementRecord& {
         PhaseTimer::Scope scope(R.timer, "increment_output");
         SolidIncrement inc;
         inc.record = std::move(rec);
         describe_increment(m, system, gauges, d, session, inc);
+        if (write_fields)
+          series.write(inc.record.step + inc.record.step_fraction, system,
+                       newton.gather_on_root(d));
         R.increments.push_back(std::move(inc));
         return R.increments.back().record;
       },
@@ -135,7 +195,7 @@ SolidElastoplasticResult solve_solid_elastoplastic(const spec::ProblemSpec& spec
   solvers::broadcast(session.comm(), R.parameters, 0);
   R.node_x = m.node_positions();
   R.node_u = nodal_displacements(m, R.parameters);
-  gather_points(m, system, session, R);
+  series.close();
   R.memory = solvers::peak_memory(session.comm());
   return R;
 }

@@ -44,35 +44,6 @@ void write_history(const spec::ProblemSpec& spec, const SolidElastoplasticResult
   history.write(out);
 }
 
-void write_fields(const SolidElastoplasticResult& r, io::OutputDirectory& out) {
-  std::vector<double> xyz;
-  for (const Vec3& x : r.node_x) xyz.insert(xyz.end(), {x.x(), x.y(), x.z()});
-  io::FieldOutput fields(&out, "fields", xyz);
-  fields.vector("displacement", [&](std::vector<double>& v) {
-    v.clear();
-    for (const Vec3& u : r.node_u) v.insert(v.end(), {u.x(), u.y(), u.z()});
-  });
-  fields.write(1.0);
-  fields.close();
-  std::vector<double> pxyz;
-  for (const Vec3& x : r.point_x) pxyz.insert(pxyz.end(), {x.x(), x.y(), x.z()});
-  io::FieldOutput points(&out, "gauss_points", pxyz);
-  const char* names[6] = {"stress_xx", "stress_yy", "stress_zz",
-                          "stress_yz", "stress_xz", "stress_xy"};
-  for (int c = 0; c < 6; ++c)
-    points.scalar(names[c], [&r, c](std::vector<double>& v) {
-      v.clear();
-      for (const Vec6& s : r.point_stress) v.push_back(s(c));
-    });
-  points.scalar("von_mises", [&](std::vector<double>& v) {
-    v.clear();
-    for (const Vec6& s : r.point_stress) v.push_back(materials::von_mises_3d(s));
-  });
-  points.scalar("plastic_strain", r.point_plastic_strain);
-  points.write(1.0);
-  points.close();
-}
-
 void write_summary(const spec::ProblemSpec& spec, const SolidElastoplasticResult& r,
                    const solvers::PetscSession& session, io::OutputDirectory& out) {
   io::Summary summary({spec.name, spec.description, spec.units, "elastoplastic_static",
@@ -124,7 +95,6 @@ void write_solid_elastoplastic_outputs(const spec::ProblemSpec& spec,
                                        io::OutputDirectory& out) {
   if (session.rank() != 0) return;
   write_history(spec, r, out);
-  write_fields(r, out);
   write_summary(spec, r, session, out);
 }
 

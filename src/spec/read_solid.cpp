@@ -217,6 +217,10 @@ void parse_solid(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
     if (!plastic && out->has("gauges"))
       out->error("gauges", "gauges are recorded only by analysis elastoplastic_static");
     s.gauges = read_gauges(*out, 3);
+    if (!plastic && out->has("fields_every"))
+      out->error("fields_every", "an elastic run writes one frame; fields_every is for "
+                                 "analysis elastoplastic_static");
+    s.fields_every = out->integer("fields_every", 1, 1, 1000000);
     const geometry::Prism body{p.domain, s.z0, s.depth};
     for (std::size_t k = 0; k < s.gauges.size(); ++k)
       if (!body.contains(s.gauges[k].at, 1e-9))

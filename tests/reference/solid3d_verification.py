@@ -14,7 +14,8 @@ problems/thick_cylinder_3d.yaml):
   collapses within 1% of the plane-strain limit pressure (2 / sqrt 3) sigma_y ln(b / a)
   (Hill 1950, ch. V): the limit taken as the first pressure whose increment's secant stiffness
   dp/du (u the bore's mean radial displacement) falls below 1% of the elastic one;
-- the elastoplastic block (problems/block_uniaxial_3d.yaml) on two ranks equals one to 1e-8;
+- the elastoplastic block (problems/block_uniaxial_3d.yaml) on two ranks equals one to 1e-8, and
+  its field series (every 10th increment) hold one whole grid per time;
 - finite elements (the plane Q4/Q8 mesh extruded into 8- and 20-node bricks): the patch test to
   1e-10 in energy, and Lame's cylinder in 20-node bricks at its rates less a margin for the
   pre-asymptotic spread (theory: energy 2, L2 3, Strang & Fix 1973 ch. 3; measured 1.78, 3.02).
@@ -101,9 +102,15 @@ def check_plastic_ranks(work):
     curves = []
     for ranks in (1, 2):
         out = os.path.join(work, f"block_{ranks}")
-        run("block_uniaxial_3d", out, ["discretisation.spacing=0.5"], ranks=ranks)
+        run("block_uniaxial_3d", out, ["discretisation.spacing=0.5", "output.fields_every=10"],
+            ranks=ranks)
         with open(os.path.join(out, "history.csv")) as f:
             curves.append([float(r["reaction_end_z"]) for r in csv.DictReader(f)])
+    frames = subprocess.run(
+        [sys.executable, os.path.join(ROOT, "tests", "cli", "xdmf_frames.py"), "--check",
+         os.path.join(work, "block_1")], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    check(frames.returncode == 0, "the block's field and Gauss-point series: one grid per time, "
+                                  "none empty (xdmf_frames.py --check)" + frames.stdout[-500:])
     largest = max(abs(v) for v in curves[0])
     diff = max(abs(a - b) for a, b in zip(*curves)) / largest
     check(len(curves[0]) == len(curves[1]) == 41 and diff <= 1e-8,

@@ -31,19 +31,18 @@ struct SolidElastoplasticResult {
   std::vector<SolidIncrement> increments; // [0]: the unloaded state
   std::vector<double> parameters;         // the last converged state, 3 per node
   std::vector<Vec3> node_x, node_u;
-  /// Every Gauss point once (rank 0): position, stress [xx, yy, zz, yz, xz, xy] and equivalent
-  /// plastic strain, at the last converged state.
-  std::vector<Vec3> point_x;
-  std::vector<Vec6> point_stress;
-  std::vector<double> point_plastic_strain;
   solvers::PeakMemory memory;
 };
 
+/// Writes the field series as it goes into `out` (rank 0's folder; null elsewhere, or for no
+/// output): fields.h5/.xmf (u^h at the nodes) and gauss_points.h5/.xmf (stress, von Mises,
+/// equivalent plastic strain) at the unloaded state and every increment the schedule marks
+/// (output.fields_every, and each step's last), at time step + step fraction.
 SolidElastoplasticResult solve_solid_elastoplastic(const spec::ProblemSpec& spec,
-                                                   const solvers::PetscSession& session);
+                                                   const solvers::PetscSession& session,
+                                                   io::OutputDirectory* out = nullptr);
 
-/// summary.json, history.csv (a row per converged increment), fields.h5/.xmf (the nodes) and
-/// gauss_points.h5/.xmf (stress and plastic strain). Rank 0 writes.
+/// summary.json and history.csv (a row per converged increment). Rank 0 writes.
 void write_solid_elastoplastic_outputs(const spec::ProblemSpec& spec,
                                        const SolidElastoplasticResult& r,
                                        const solvers::PetscSession& session,

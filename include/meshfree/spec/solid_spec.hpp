@@ -46,6 +46,7 @@ struct SolidSpec {
   NonlinearSpec nonlinear;
   LinearSolverSpec linear_solver;
   std::vector<GaugeSpec> gauges; // points whose displacement each increment records
+  int fields_every = 1;          // field frames every this many converged increments (and the last)
 };
 
 } // namespace mf::spec
