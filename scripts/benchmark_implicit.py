@@ -20,6 +20,7 @@ shared with nothing else only if you make it so.
 
     scripts/benchmark_implicit.py                       # the full study (about 20 minutes)
     scripts/benchmark_implicit.py --quick --out DIR     # a smoke run: 2 small sizes of each
+    scripts/benchmark_implicit.py --cases box           # a 3D box (model solid_3d) instead
 """
 import argparse
 import csv
@@ -46,18 +47,28 @@ CASES = {
                   sets=["discretisation.refinement=[]", "steps.0.load_factor=0.05",
                         "steps.0.increments=10", "output.gauges=[]"]),
 }
+# A 3D body (model solid_3d), not in the default cases: the box of problems/patch_test_3d.yaml
+# (1 x 0.75 x 0.5, held on one face, the linear field's tractions on the others), meshfree RK with
+# 2 x 2 x 2 Gauss points on cells 0.7 of the spacing, no VCI (a symmetric system, so CG);
+# 0.375 / h^3 nodes of 3 DOFs.
+BOX = dict(problem="patch_test_3d.yaml", analysis="elastic",
+           spacing=lambda dofs: (1.125 / dofs) ** (1.0 / 3.0),
+           sets=lambda h: ["discretisation.quadrature.correction=none",
+                           f"discretisation.quadrature.cell_size={0.7 * h!r}"])
+EXTRA_CASES = {"box": BOX}
 LAYOUTS = {"1x2": (1, 2), "2x1": (2, 1)}
 SETUP = ("nodes", "quadrature", "neighbours", "shape_functions")
 
 
 def run_case(binary, case, dofs, solver, layout, out):
-    c = CASES[case]
+    c = CASES.get(case) or EXTRA_CASES[case]
     ranks, threads = LAYOUTS[layout]
     folder = out / f"{case}_{solver}_{layout}_{int(dofs)}"
     cmd = [str(binary), "run", str(ROOT / "problems" / c["problem"]), "--out", str(folder),
            "--set", f"discretisation.spacing={c['spacing'](dofs)!r}",
            "--set", f"linear_solver.type={solver}"]
-    for s in c["sets"]:
+    sets = c["sets"](c["spacing"](dofs)) if callable(c["sets"]) else c["sets"]
+    for s in sets:
         cmd += ["--set", s]
     env = dict(os.environ, OMP_NUM_THREADS=str(threads))
     if ranks > 1:
@@ -236,9 +247,12 @@ def main():
     ap.add_argument("--strip-max-dofs", type=float, default=1e5,
                     help="the strip's 10 increments of Newton take about 40 linear solves")
     ap.add_argument("--direct-max-dofs", type=float, default=3.2e5)
+    ap.add_argument("--box-max-dofs", type=float, default=2e5,
+                    help="the largest 3D box (case box: about 30 KB a DOF with multigrid)")
     ap.add_argument("--fit-from", type=float, default=1e5, help="smallest DOFs in the exponents' fit")
     ap.add_argument("--layouts", nargs="+", default=list(LAYOUTS), choices=list(LAYOUTS))
-    ap.add_argument("--cases", nargs="+", default=list(CASES), choices=list(CASES))
+    ap.add_argument("--cases", nargs="+", default=list(CASES),
+                    choices=list(CASES) + list(EXTRA_CASES))
     ap.add_argument("--quick", action="store_true", help="2 small sizes of each, for a smoke test")
     ap.add_argument("--first-touch", type=float, nargs="*", default=[1, 4, 8, 12],
                     help="GiB written by the memory probe (none: no probe)")
@@ -252,7 +266,7 @@ def main():
     sizes = [4e3, 1e4] if args.quick else [1e4, 4e4, 1e5, 2e5, 4e5, 1e6, 2.5e6]
     rows = []
     for case in args.cases:
-        top = args.max_dofs if case == "plate" else args.strip_max_dofs
+        top = {"plate": args.max_dofs, "box": args.box_max_dofs}.get(case, args.strip_max_dofs)
         for solver in ("direct", "multigrid"):
             for layout in args.layouts:
                 for dofs in sizes:
