@@ -144,13 +144,7 @@ double ElastoplasticSystem::initial_stress_imbalance_squared() const {
 }
 
 std::vector<int> ElastoplasticSystem::needed_nodes() const {
-  std::vector<int> nodes(m_.domain_table.node);
-  nodes.insert(nodes.end(), m_.pattern.column.begin(), m_.pattern.column.end());
-  for (const ConditionPoints& c : m_.conditions)
-    nodes.insert(nodes.end(), c.table.node.begin(), c.table.node.end());
-  std::sort(nodes.begin(), nodes.end());
-  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-  return nodes;
+  return nodes_read(m_.domain_table.node, m_.pattern, m_.conditions);
 }
 
 void ElastoplasticSystem::update_materials(const std::vector<double>& d) {

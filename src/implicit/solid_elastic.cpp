@@ -80,35 +80,12 @@ void exact_errors(const spec::ProblemSpec& spec, const SolidModel& m, const std:
 
 } // namespace
 
-std::string describe_solid_method(const spec::ProblemSpec& spec) {
-  const spec::DiscretisationSpec& d = spec.solid().discretisation;
-  const geometry::Prism body{spec.domain, spec.solid().z0, spec.solid().depth};
-  const int layers = layer_count(body, d.spacing);
-  if (d.method == spec::Method::Fem)
-    return detail::concat("FE ", d.fem.element == "q8" ? "hex20" : "hex8", " (the plane ",
-                          d.fem.element, " mesh extruded in ", layers, " layers), spacing ",
-                          d.spacing);
-  return detail::concat(
-      "meshfree RK (", d.shape.basis == kernels::Basis::Quadratic ? "quadratic" : "linear",
-      " basis, ", d.shape.support == kernels::SupportShape::Circular ? "spherical" : "box",
-      " supports), 3D, spacing ", d.spacing, " (", layers, " layers), dilation ", d.dilation.x(),
-      d.vci ? ", VCI" : "");
-}
-
 SolidElasticResult solve_solid_elastic(const spec::ProblemSpec& spec,
                                        const solvers::PetscSession& session) {
   SolidElasticResult R;
   const SolidModel m = build_solid_model(spec, session, R.timer);
   const int N = m.node_count();
-  R.nodes = N;
-  R.dofs = 3 * N;
-  R.domain_points = static_cast<int>(m.domain.x.size());
-  for (const auto& c : m.conditions) R.boundary_points += static_cast<int>(c.points.x.size());
-  R.mean_support = static_cast<double>(m.domain_support.index.size()) /
-                   std::max<std::size_t>(1, m.domain.x.size());
-  log::info(describe_solid_method(spec), ": ", N, " nodes, ", 3 * N, " DOFs, ", R.domain_points,
-            " domain points, ", R.boundary_points, " boundary points, ", R.mean_support,
-            " nodes per point");
+  R.counts = count_model(spec, m);
   std::unique_ptr<solvers::BlockLinearSystem> system;
   {
     PhaseTimer::Scope scope(R.timer, "assembly");

@@ -53,16 +53,16 @@ void write_summary(const spec::ProblemSpec& spec, const SolidElasticResult& r,
       {spec.name, spec.description, spec.units, "elastic_static", describe_solid_method(spec)});
   summary.set("mpi_ranks", session.size()).set("openmp_threads", omp_get_max_threads());
   summary.section("counts")
-      .set("nodes", r.nodes)
-      .set("dofs", r.dofs)
-      .set("domain_points", r.domain_points)
-      .set("boundary_points", r.boundary_points)
-      .set("mean_nodes_per_point", r.mean_support)
+      .set("nodes", r.counts.nodes)
+      .set("dofs", r.counts.dofs)
+      .set("domain_points", r.counts.domain_points)
+      .set("boundary_points", r.counts.boundary_points)
+      .set("mean_nodes_per_point", r.counts.mean_support)
       .set("matrix_nonzeros", r.matrix_nonzeros);
   summary.section("memory")
       .set("peak_bytes_largest_rank", r.memory.largest_rank)
       .set("peak_bytes_all_ranks", r.memory.all_ranks)
-      .set("peak_bytes_per_dof", r.memory.all_ranks / std::max(1, r.dofs));
+      .set("peak_bytes_per_dof", r.memory.all_ranks / std::max(1, r.counts.dofs));
   summary.section("solver")
       .set("type", r.solve.solver)
       .set("iterations", r.solve.iterations)

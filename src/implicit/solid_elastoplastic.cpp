@@ -147,12 +147,7 @@ SolidElastoplasticResult solve_solid_elastoplastic(const spec::ProblemSpec& spec
   SolidElastoplasticResult R;
   const SolidModel m = build_solid_model(spec, session, R.timer);
   const int N = m.node_count();
-  R.nodes = N;
-  R.dofs = 3 * N;
-  R.domain_points = static_cast<int>(m.domain.x.size());
-  for (const auto& c : m.conditions) R.boundary_points += static_cast<int>(c.points.x.size());
-  log::info(describe_solid_method(spec), ": ", N, " nodes, ", R.dofs, " DOFs, ", R.domain_points,
-            " domain points, ", R.boundary_points, " boundary points");
+  R.counts = count_model(spec, m);
   SolidElastoplasticSystem system(spec, m);
   solvers::NonlinearBlockSystem newton(
       session.comm(), N, m.own, m.pattern.offset, m.pattern.column, system.needed_nodes(),

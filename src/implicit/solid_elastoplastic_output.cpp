@@ -56,17 +56,17 @@ void write_summary(const spec::ProblemSpec& spec, const SolidElastoplasticResult
     linear += inc.record.newton.linear_iterations;
   }
   summary.section("counts")
-      .set("nodes", r.nodes)
-      .set("dofs", r.dofs)
-      .set("domain_points", r.domain_points)
-      .set("boundary_points", r.boundary_points)
+      .set("nodes", r.counts.nodes)
+      .set("dofs", r.counts.dofs)
+      .set("domain_points", r.counts.domain_points)
+      .set("boundary_points", r.counts.boundary_points)
       .set("increments", static_cast<long>(r.increments.size()) - 1)
       .set("newton_iterations", newton)
       .set("linear_iterations", linear);
   summary.section("memory")
       .set("peak_bytes_largest_rank", r.memory.largest_rank)
       .set("peak_bytes_all_ranks", r.memory.all_ranks)
-      .set("peak_bytes_per_dof", r.memory.all_ranks / std::max(1, r.dofs));
+      .set("peak_bytes_per_dof", r.memory.all_ranks / std::max(1, r.counts.dofs));
   summary.section("solver").set("type", r.solver);
   const SolidIncrement& last = r.increments.back();
   io::Json boundary;

@@ -135,13 +135,7 @@ void SolidElastoplasticSystem::jacobian(const std::vector<double>& d,
 }
 
 std::vector<int> SolidElastoplasticSystem::needed_nodes() const {
-  std::vector<int> nodes(m_.domain_table.node);
-  nodes.insert(nodes.end(), m_.pattern.column.begin(), m_.pattern.column.end());
-  for (const SolidConditionPoints& c : m_.conditions)
-    nodes.insert(nodes.end(), c.table.node.begin(), c.table.node.end());
-  std::sort(nodes.begin(), nodes.end());
-  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-  return nodes;
+  return nodes_read(m_.domain_table.node, m_.pattern, m_.conditions);
 }
 
 void SolidElastoplasticSystem::update_materials(const std::vector<double>& d) {

@@ -252,6 +252,35 @@ SolidShapeTable solid_shapes_at(const SolidModel& m, const std::vector<Vec3>& x)
   return m.space->shape_table(x, rows, m.space->support_lists(x), false);
 }
 
+std::string describe_solid_method(const spec::ProblemSpec& spec) {
+  const spec::DiscretisationSpec& d = spec.solid().discretisation;
+  const geometry::Prism body{spec.domain, spec.solid().z0, spec.solid().depth};
+  const int layers = layer_count(body, d.spacing);
+  if (d.method == spec::Method::Fem)
+    return detail::concat("FE ", d.fem.element == "q8" ? "hex20" : "hex8", " (the plane ",
+                          d.fem.element, " mesh extruded in ", layers, " layers), spacing ",
+                          d.spacing);
+  return detail::concat(
+      "meshfree RK (", d.shape.basis == kernels::Basis::Quadratic ? "quadratic" : "linear",
+      " basis, ", d.shape.support == kernels::SupportShape::Circular ? "spherical" : "box",
+      " supports), 3D, spacing ", d.spacing, " (", layers, " layers), dilation ", d.dilation.x(),
+      d.vci ? ", VCI" : "");
+}
+
+SolidCounts count_model(const spec::ProblemSpec& spec, const SolidModel& m) {
+  SolidCounts c;
+  c.nodes = m.node_count();
+  c.dofs = 3 * c.nodes;
+  c.domain_points = static_cast<int>(m.domain.x.size());
+  for (const auto& b : m.conditions) c.boundary_points += static_cast<int>(b.points.x.size());
+  c.mean_support = static_cast<double>(m.domain_support.index.size()) /
+                   std::max<std::size_t>(1, m.domain.x.size());
+  log::info(describe_solid_method(spec), ": ", c.nodes, " nodes, ", c.dofs, " DOFs, ",
+            c.domain_points, " domain points, ", c.boundary_points, " boundary points, ",
+            c.mean_support, " nodes per point");
+  return c;
+}
+
 FaceReport face_report(const SolidConditionPoints& c, const std::vector<double>& d, double factor,
                        const solvers::PetscSession& session) {
   FaceReport rep;

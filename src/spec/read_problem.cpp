@@ -44,21 +44,27 @@ bool galerkin(Analysis a) {
   return a == Analysis::ElasticStatic || a == Analysis::ElastoplasticStatic;
 }
 
+/// geometry.box: {origin, size} of a 3D body; the geometry map holds nothing else.
+Box read_body_box(KeyReader& g) {
+  KeyReader b = g.map("box");
+  const Point origin = b.has("origin") ? read_point(b, "origin", 3) : Point(0, 0, 0);
+  b.allow("origin");
+  const Point size = read_point(b, "size", 3);
+  if (size.minCoeff() <= 0.0) b.error("size", "expected positive extents");
+  b.finish();
+  g.finish();
+  return Box{origin, origin + size};
+}
+
 /// geometry of a 3D Galerkin body: a box {origin, size}, or a plane body (rectangle or polygon,
 /// with holes) and `extrude: {z0, depth}`; both are prisms along z (geometry::Prism).
 void read_solid_geometry(KeyReader& g, ProblemSpec& p) {
   SolidSpec& solid = p.part.emplace<SolidSpec>();
   if (g.has("box")) {
-    KeyReader b = g.map("box");
-    const Point origin = b.has("origin") ? read_point(b, "origin", 3) : Point(0, 0, 0);
-    b.allow("origin");
-    const Point size = read_point(b, "size", 3);
-    if (size.minCoeff() <= 0.0) b.error("size", "expected positive extents");
-    b.finish();
-    g.finish();
-    p.box = Box{origin, origin + size};
-    p.domain = geometry::Domain::rectangle(origin.head<2>(), size.head<2>());
-    solid.z0 = origin.z();
+    p.box = read_body_box(g);
+    const Point size = p.box->hi - p.box->lo;
+    p.domain = geometry::Domain::rectangle(p.box->lo.head<2>(), size.head<2>());
+    solid.z0 = p.box->lo.z();
     solid.depth = size.z();
     return;
   }
@@ -75,20 +81,12 @@ void read_solid_geometry(KeyReader& g, ProblemSpec& p) {
 /// geometry: a 2D body (rectangle or polygon, with holes) or a 3D box {origin, size}.
 void read_geometry(KeyReader& r, ProblemSpec& p) {
   KeyReader g = r.map("geometry");
-  if (p.dimension == 3 && galerkin(p.analysis)) {
+  if (p.dimension == 3 && galerkin(p.analysis))
     read_solid_geometry(g, p);
-  } else if (p.dimension == 3) {
-    KeyReader b = g.map("box");
-    const Point origin = b.has("origin") ? read_point(b, "origin", 3) : Point(0, 0, 0);
-    b.allow("origin");
-    const Point size = read_point(b, "size", 3);
-    if (size.minCoeff() <= 0.0) b.error("size", "expected positive extents");
-    b.finish();
-    g.finish();
-    p.box = Box{origin, origin + size};
-  } else {
+  else if (p.dimension == 3)
+    p.box = read_body_box(g);
+  else
     p.domain = read_domain(g);
-  }
 }
 
 /// Every scalar under `node` as "path = value" (list items by index), in the file's order.

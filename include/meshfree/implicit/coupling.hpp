@@ -3,6 +3,7 @@
 // point lies in both supports.
 #include "meshfree/implicit/meshfree_space.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -19,6 +20,21 @@ struct RowPattern {
 /// Pattern of rows [begin, end) over the support lists of every point in `lists`.
 RowPattern coupling_pattern(const std::vector<const Csr*>& lists, int node_count, int begin,
                             int end);
+
+/// Every node named by the pattern's columns, the domain table's rows and each condition's table
+/// (`conditions`: items with a `table.node` list), sorted and once: the entries of d that a
+/// residual over these rows reads.
+template <class Conditions>
+std::vector<int> nodes_read(const std::vector<int>& domain_nodes, const RowPattern& pattern,
+                            const Conditions& conditions) {
+  std::vector<int> nodes(domain_nodes);
+  nodes.insert(nodes.end(), pattern.column.begin(), pattern.column.end());
+  for (const auto& c : conditions)
+    nodes.insert(nodes.end(), c.table.node.begin(), c.table.node.end());
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  return nodes;
+}
 
 /// The dofs x dofs blocks (2 or 3 DOFs per node) of the rows [pattern.begin, pattern.end) of a
 /// sparse matrix with a fixed pattern, and the matching right-hand side. Contributions to other

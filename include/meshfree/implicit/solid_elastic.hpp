@@ -16,8 +16,8 @@ namespace mf::implicit {
 
 struct SolidElasticResult {
   PhaseTimer timer;
-  int nodes = 0, dofs = 0, domain_points = 0, boundary_points = 0;
-  double mean_support = 0.0, matrix_nonzeros = 0.0;
+  SolidCounts counts;
+  double matrix_nonzeros = 0.0;
   solvers::SolveReport solve;
   std::vector<double> parameters;   // the nodal parameters, 3 per node (every node)
   std::vector<Vec3> node_x, node_u; // nodes and u^h there
@@ -34,8 +34,5 @@ SolidElasticResult solve_solid_elastic(const spec::ProblemSpec& spec,
 /// parameters, and the exact displacement where there is one). Rank 0 writes.
 void write_solid_elastic_outputs(const spec::ProblemSpec& spec, const SolidElasticResult& r,
                                  const solvers::PetscSession& session, io::OutputDirectory& out);
-
-/// "meshfree RK (linear basis), 3D, spacing 0.5, dilation 2" for logs and the summary.
-std::string describe_solid_method(const spec::ProblemSpec& spec);
 
 } // namespace mf::implicit

@@ -26,7 +26,7 @@ struct SolidIncrement {
 struct SolidElastoplasticResult {
   PhaseTimer timer;
   std::string status = "completed", stop_reason;
-  int nodes = 0, dofs = 0, domain_points = 0, boundary_points = 0;
+  SolidCounts counts;
   std::string solver;
   std::vector<SolidIncrement> increments; // [0]: the unloaded state
   std::vector<double> parameters;         // the last converged state, 3 per node

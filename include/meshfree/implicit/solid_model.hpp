@@ -47,6 +47,18 @@ struct SolidModel {
   const std::vector<Vec3>& node_positions() const { return fe ? fe->nodes() : space->nodes().x; }
 };
 
+/// "meshfree RK (linear basis, spherical supports), 3D, spacing 0.5 (5 layers), dilation 2", or
+/// "FE hex20 (...)", for logs and the summary.
+std::string describe_solid_method(const spec::ProblemSpec& spec);
+
+/// The sizes of a model, for the log and the summary.
+struct SolidCounts {
+  int nodes = 0, dofs = 0, domain_points = 0, boundary_points = 0;
+  double mean_support = 0.0; // nodes per domain point
+};
+/// The model's counts, logged with its method.
+SolidCounts count_model(const spec::ProblemSpec& spec, const SolidModel& m);
+
 /// What a face condition does to the body: the reaction of a held face (the penalty force on
 /// the body) or the load applied on a loaded one, and a held face's largest gap |u^h - ubar|.
 struct FaceReport {
