@@ -333,7 +333,12 @@ void print_solid_plan(const spec::ProblemSpec& spec, std::ostream& os) {
                               : "traction")
        << " on area " << area << "\n";
   }
-  os << "  memory: about " << n * bytes_per::solid_node / 1048576.0 << " MiB\n";
+  const bool multigrid = s.linear_solver.multigrid_for(3.0 * n);
+  os << "  memory: "
+     << describe_bytes(n *
+                       (multigrid ? bytes_per::solid_node_multigrid : bytes_per::solid_node_direct))
+     << " with the " << (multigrid ? "multigrid" : "direct") << " solver, besides "
+     << describe_bytes(bytes_per::program) << " for the program\n";
 }
 
 solvers::LinearSolverSettings solid_solver_settings(const spec::ProblemSpec& spec,

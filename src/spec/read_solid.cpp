@@ -192,7 +192,9 @@ void read_solid_discretisation(KeyReader& r, const ProblemSpec& p, const std::st
   const Vec2 size = p.domain.bounds().size();
   const double nodes =
       (size.x() / d.spacing + 1.0) * (size.y() / d.spacing + 1.0) * (s.depth / d.spacing + 1.0);
-  require_memory(key + ".spacing", "nodes over the 3D body", nodes, bytes_per::solid_node);
+  require_memory(key + ".spacing", "nodes over the 3D body", nodes,
+                 s.linear_solver.multigrid_for(3.0 * nodes) ? bytes_per::solid_node_multigrid
+                                                            : bytes_per::solid_node_direct);
 }
 
 } // namespace

@@ -19,9 +19,12 @@ constexpr double galerkin_node_multigrid = 14000.0;
 /// slot map, material state, output), from the peaks of plate_tension (32 MB over 1,681 nodes and
 /// 14,400 points) and the elastoplastic perforated strip (114 MB, 2,546 nodes, 39,059 points).
 constexpr double galerkin_node_alone = 12000.0;
-/// A node of a 3D Galerkin body: about 120 coupled nodes of 9 values each in the matrix and a
-/// direct factor several times that (measured in README.md, "3D bodies"), with a margin.
-constexpr double solid_node = 1.0e5;
+/// A node of a 3D Galerkin body (3 DOFs) with the direct solver, whose factor grows faster than
+/// the matrix in 3D: 104 KB a DOF measured at the peak of the 88,341-DOF thick plate, 40 KB on
+/// the thin 15,585-DOF cylinder slice (README.md, "3D bodies"); and with the multigrid solver:
+/// 21.5-25.8 KB a DOF measured on the box from 12k to 108k DOFs.
+constexpr double solid_node_direct = 3.3e5;
+constexpr double solid_node_multigrid = 8.0e4;
 constexpr double galerkin_point = 2500.0;
 /// What the program holds before any of these (its libraries: MPI, PETSc, HDF5).
 constexpr double program = 45.0 * 1024.0 * 1024.0;
