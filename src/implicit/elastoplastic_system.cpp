@@ -5,6 +5,7 @@
 #include "meshfree/core/progress.hpp"
 #include "meshfree/core/timer.hpp"
 #include "meshfree/implicit/elasticity.hpp"
+#include "meshfree/implicit/residual_terms.hpp"
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -84,23 +85,7 @@ void ElastoplasticSystem::residual(const std::vector<double>& d, double* r,
   std::vector<double>& penalty = penalty_force_;
   penalty.assign(2 * static_cast<std::size_t>(rows), 0.0);
   penalty_.multiply_add(d, penalty.data());
-  constexpr double eps = std::numeric_limits<double>::epsilon();
-  double internal = 0.0, external = 0.0, floor = 0.0;
-  for (int i = 0; i < 2 * rows; ++i) {
-    double applied = 0.0, load = 0.0;
-    for (std::size_t c = 0; c < loads_.size(); ++c) {
-      applied += factors_[c] * loads_[c][i];
-      if (counts_in_scale_[c]) load += factors_[c] * loads_[c][i];
-    }
-    internal += r[i] * r[i];
-    external += load * load;
-    const double terms = std::abs(r[i]) + std::abs(penalty[i]) + std::abs(applied);
-    floor += eps * terms * eps * terms;
-    r[i] += penalty[i];
-    r[i] -= applied;
-  }
-  sums.scale_squared = internal + external;
-  sums.floor_squared = floor;
+  finish_residual(r, penalty, loads_, factors_, counts_in_scale_, sums);
   residual_seconds_ += seconds_since(t0);
 }
 

@@ -1,6 +1,7 @@
 #include "meshfree/implicit/solid_elastoplastic_system.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/implicit/point_law.hpp"
+#include "meshfree/implicit/residual_terms.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -97,22 +98,7 @@ void SolidElastoplasticSystem::residual(const std::vector<double>& d, double* r,
   // K_pen d apart from f_int: its magnitude sets the round-off floor of the penalty rows.
   std::vector<double> penalty(3 * static_cast<std::size_t>(rows), 0.0);
   penalty_.multiply_add(d, penalty.data());
-  constexpr double eps = std::numeric_limits<double>::epsilon();
-  double internal = 0.0, external = 0.0, floor = 0.0;
-  for (int i = 0; i < 3 * rows; ++i) {
-    double applied = 0.0, load = 0.0;
-    for (std::size_t c = 0; c < loads_.size(); ++c) {
-      applied += factors_[c] * loads_[c][i];
-      if (counts_in_scale_[c]) load += factors_[c] * loads_[c][i];
-    }
-    internal += r[i] * r[i];
-    external += load * load;
-    const double terms = std::abs(r[i]) + std::abs(penalty[i]) + std::abs(applied);
-    floor += eps * terms * eps * terms;
-    r[i] += penalty[i] - applied;
-  }
-  sums.scale_squared = internal + external;
-  sums.floor_squared = floor;
+  finish_residual(r, penalty, loads_, factors_, counts_in_scale_, sums);
 }
 
 void SolidElastoplasticSystem::jacobian(const std::vector<double>& d,

@@ -84,31 +84,20 @@ std::vector<Vec> rigid_modes(const std::vector<double>& x, const std::vector<uns
   double centre[2] = {0.0, 0.0};
   for (std::size_t i = 0; i < n; ++i)
     for (int d = 0; d < 2; ++d) centre[d] += x[2 * i + d] / static_cast<double>(n);
-  std::vector<Vec> kept;
+  std::vector<Vec> modes(3);
   for (int mode = 0; mode < 3; ++mode) {
-    Vec m;
-    check(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(2 * n), &m), "VecCreateSeq");
+    check(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(2 * n), &modes[mode]),
+          "VecCreateSeq");
     PetscScalar* v;
-    check(VecGetArray(m, &v), "VecGetArray");
+    check(VecGetArray(modes[mode], &v), "VecGetArray");
     for (std::size_t i = 0; i < n; ++i) {
       const double rotation[2] = {-(x[2 * i + 1] - centre[1]), x[2 * i] - centre[0]};
-      for (int d = 0; d < 2; ++d)
-        v[2 * i + d] = held[2 * i + d] ? 0.0 : mode < 2 ? double(mode == d) : rotation[d];
+      for (int d = 0; d < 2; ++d) v[2 * i + d] = mode < 2 ? double(mode == d) : rotation[d];
     }
-    check(VecRestoreArray(m, &v), "VecRestoreArray");
-    for (Vec q : kept) {
-      PetscScalar dot = 0.0;
-      check(VecDot(m, q, &dot), "VecDot");
-      check(VecAXPY(m, -dot, q), "VecAXPY");
-    }
-    PetscReal norm = 0.0;
-    check(VecNormalize(m, &norm), "VecNormalize");
-    if (norm > 0.0)
-      kept.push_back(m);
-    else
-      check(VecDestroy(&m), "VecDestroy");
+    check(VecRestoreArray(modes[mode], &v), "VecRestoreArray");
   }
-  return kept;
+  detail::zero_held_rows(modes, std::vector<char>(held.begin(), held.end()));
+  return modes;
 }
 
 void set_near_null_space(Mat A, const std::vector<double>& x,

@@ -237,6 +237,8 @@ std::vector<Vec> rigid_body_modes(MPI_Comm comm, const std::vector<double>& coor
   return modes;
 }
 
+} // namespace
+
 /// Sets the `held` entries of every mode to zero and makes the modes orthonormal again (Gram-
 /// Schmidt, as MatNullSpaceCreate requires); a mode left with nothing (every row held) is
 /// dropped.
@@ -262,8 +264,6 @@ void zero_held_rows(std::vector<Vec>& modes, const std::vector<char>& held) {
   }
   modes = kept;
 }
-
-} // namespace
 
 void set_near_null_space(Mat A, const std::vector<double>& coordinates) {
   MPI_Comm comm;

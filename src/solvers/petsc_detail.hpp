@@ -70,6 +70,10 @@ void set_penalty_band_multigrid(PC pc);
 /// [Vanek, Mandel & Brezina 1996]). Set again whenever A's values change (each Newton tangent).
 void set_near_null_space(Mat A, const std::vector<double>& coordinates);
 
+/// Sets the `held` entries of every mode to zero and makes the modes orthonormal again (Gram-
+/// Schmidt, as MatNullSpaceCreate requires); a mode left with nothing is destroyed and dropped.
+void zero_held_rows(std::vector<Vec>& modes, const std::vector<char>& held);
+
 /// What to try when the multigrid solver does not converge.
 inline constexpr const char* kMultigridHint =
     "try linear_solver.type: direct (MUMPS), or GAMG options after -- (-pc_gamg_threshold)";
