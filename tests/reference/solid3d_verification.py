@@ -16,6 +16,9 @@ problems/thick_cylinder_3d.yaml):
   dp/du (u the bore's mean radial displacement) falls below 1% of the elastic one;
 - the elastoplastic block (problems/block_uniaxial_3d.yaml) on two ranks equals one to 1e-8, and
   its field series (every 10th increment) hold one whole grid per time;
+- the variations a user tries first on the cylinder: the quadratic basis and a refinement box at
+  the bore lower the energy error, box supports run (measured 3.2%, 0.66% and 4.8% against
+  5.4%);
 - finite elements (the plane Q4/Q8 mesh extruded into 8- and 20-node bricks): the patch test to
   1e-10 in energy, and Lame's cylinder in 20-node bricks at its rates less a margin for the
   pre-asymptotic spread (theory: energy 2, L2 3, Strang & Fix 1973 ch. 3; measured 1.78, 3.02).
@@ -75,6 +78,22 @@ def check_limit_pressure(out):
     check(limit is not None and abs(limit / exact - 1.0) <= 0.01,
           f"thick cylinder collapses at {limit} MPa against the limit pressure {exact:.3f} "
           f"({'-' if limit is None else f'{limit / exact - 1.0:+.2%}'}, within 1%)")
+
+
+def check_variations(work, linear):
+    """What a user changes first, at spacing 0.25 against the linear basis's energy error there:
+    the quadratic basis and a refinement box at the bore each lower it; box supports run too."""
+    quadratic = run("thick_cylinder_3d", os.path.join(work, "cyl_quadratic"),
+                    ["discretisation.spacing=0.25", "discretisation.basis=quadratic"])
+    boxes = run("thick_cylinder_3d", os.path.join(work, "cyl_boxes"),
+                ["discretisation.spacing=0.25", "discretisation.support=rectangular"])
+    refined = run("thick_cylinder_3d", os.path.join(work, "cyl_refined"),
+                  ["discretisation.spacing=0.25",
+                   "discretisation.refinement=[{box: [[0, 0], [2, 2]], spacing: 0.125}]"])
+    e_q, e_b, e_r = (x["results"]["error_energy_relative"] for x in (quadratic, boxes, refined))
+    check(e_q < linear and e_r < 0.5 * linear and e_b < 2.0 * linear,
+          f"at spacing 0.25, energy error {linear:.2e} linear: quadratic {e_q:.2e}, box supports "
+          f"{e_b:.2e}, a refinement box of 0.125 at the bore {e_r:.2e}")
 
 
 def check_bricks(work):
@@ -159,6 +178,7 @@ with tempfile.TemporaryDirectory() as work:
               ranks=2)
     check_limit_pressure(os.path.join(work, "limit"))
     check_bricks(work)
+    check_variations(work, errors[1][2])
     check_plastic_ranks(work)
     diff = abs(nodal_displacement(os.path.join(work, "cyl_2")) - direct).max() / abs(direct).max()
     check(two["mpi_ranks"] == 2 and diff <= 1e-8, f"2 MPI ranks equal 1 to {diff:.1e} (<= 1e-8)")
