@@ -41,9 +41,13 @@ def run(problem, out, sets=(), ranks=1):
     cmd = [MESHFREE, "run", os.path.join(PROBLEMS, problem + ".yaml"), "--out", out]
     for s in sets:
         cmd += ["--set", s]
+    env = dict(os.environ)
     if ranks > 1:
         cmd = ["mpirun", "-n", str(ranks)] + cmd
-    done = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        # CI machines run as root, which Open MPI refuses unless told twice.
+        env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+                   OMPI_MCA_rmaps_base_oversubscribe="1", OMP_NUM_THREADS="1")
+    done = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
     if done.returncode != 0:
         sys.exit(f"FAIL: {' '.join(cmd)} exited {done.returncode}:\n{done.stdout[-2000:]}")
     with open(os.path.join(out, "summary.json")) as f:
