@@ -35,23 +35,40 @@ Curve Curve::piece(double t0, double t1) const {
   return c;
 }
 
-double Curve::distance_to(const Vec2& p) const {
-  if (kind == Kind::Segment) {
-    const Vec2 d = b - a;
-    const double t = std::clamp((p - a).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
-    return (p - point(t)).norm();
-  }
-  // The arc sweeps theta1 - theta0 (either sign) from theta0: p's angle, measured from theta0 in
-  // the sweep's sense and wrapped into [0, 2 pi), lies on the arc when it is within the sweep.
+namespace {
+
+/// Whether the direction from an arc's centre to p lies within its sweep: the arc sweeps
+/// theta1 - theta0 (either sign) from theta0, and p's angle, measured from theta0 in the sweep's
+/// sense and wrapped into [0, 2 pi), lies on the arc when it is within the sweep.
+bool within_sweep(const Curve& c, const Vec2& p) {
   const double two_pi = 2.0 * std::acos(-1.0);
-  const double sweep = theta1 - theta0;
-  const Vec2 r = p - center;
+  const double sweep = c.theta1 - c.theta0;
+  const Vec2 r = p - c.center;
   const double phi = std::atan2(r.y(), r.x());
-  const double from = std::fmod(std::fmod((sweep >= 0.0 ? phi - theta0 : theta0 - phi), two_pi) +
-                                    two_pi,
-                                two_pi);
-  if (from <= std::abs(sweep)) return std::abs(r.norm() - radius);
+  const double from = std::fmod(
+      std::fmod((sweep >= 0.0 ? phi - c.theta0 : c.theta0 - phi), two_pi) + two_pi, two_pi);
+  return from <= std::abs(sweep);
+}
+
+/// The parameter of the point of a segment nearest to p.
+double segment_parameter(const Curve& c, const Vec2& p) {
+  const Vec2 d = c.b - c.a;
+  return std::clamp((p - c.a).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+}
+
+} // namespace
+
+double Curve::distance_to(const Vec2& p) const {
+  if (kind == Kind::Segment) return (p - point(segment_parameter(*this, p))).norm();
+  if (within_sweep(*this, p)) return std::abs((p - center).norm() - radius);
   return std::min((p - point(0.0)).norm(), (p - point(1.0)).norm());
+}
+
+Vec2 Curve::closest_point(const Vec2& p) const {
+  if (kind == Kind::Segment) return point(segment_parameter(*this, p));
+  const Vec2 r = p - center;
+  if (within_sweep(*this, p) && r.norm() > 0.0) return center + radius * r / r.norm();
+  return (p - point(0.0)).norm() <= (p - point(1.0)).norm() ? point(0.0) : point(1.0);
 }
 
 Domain Domain::rectangle(const Vec2& origin, const Vec2& size) {

@@ -1,6 +1,7 @@
 #include "meshfree/implicit/solid_elastoplastic.hpp"
 #include "meshfree/core/log.hpp"
 #include "meshfree/implicit/load_stepping.hpp"
+#include "meshfree/implicit/point_law.hpp"
 #include "meshfree/implicit/solid_elastic.hpp"
 #include "meshfree/implicit/solid_elastoplastic_system.hpp"
 #include "meshfree/io/results.hpp"
@@ -145,7 +146,9 @@ SolidElastoplasticResult solve_solid_elastoplastic(const spec::ProblemSpec& spec
                                                    const solvers::PetscSession& session,
                                                    io::OutputDirectory* out) {
   SolidElastoplasticResult R;
-  const SolidModel m = build_solid_model(spec, session, R.timer);
+  R.model = std::make_shared<const SolidModel>(build_solid_model(spec, session, R.timer));
+  const SolidModel& m = *R.model;
+  R.material = solid_material_law(spec);
   const int N = m.node_count();
   R.counts = count_model(spec, m);
   SolidElastoplasticSystem system(spec, m);
@@ -175,6 +178,10 @@ SolidElastoplasticResult solve_solid_elastoplastic(const spec::ProblemSpec& spec
         SolidIncrement inc;
         inc.record = std::move(rec);
         describe_increment(m, system, gauges, d, session, inc);
+        if (spec.solid().record_increment_parameters) {
+          inc.record.parameters = newton.gather_on_root(d);
+          solvers::broadcast(session.comm(), inc.record.parameters, 0);
+        }
         if (write_fields)
           series.write(inc.record.step + inc.record.step_fraction, system,
                        newton.gather_on_root(d));

@@ -26,11 +26,17 @@ struct OwnedRows3 {
 
 } // namespace
 
+materials::J2Parameters solid_material_law(const spec::ProblemSpec& spec) {
+  materials::J2Parameters p = material_parameters(spec, spec.solid().material_index);
+  if (!spec.materials[spec.solid().material_index].plasticity)
+    p.sigma0 = std::numeric_limits<double>::infinity();
+  return p;
+}
+
 SolidElastoplasticSystem::SolidElastoplasticSystem(const spec::ProblemSpec& spec,
                                                    const SolidModel& m)
-    : spec_(spec), m_(m), params_(material_parameters(spec, spec.solid().material_index)),
-      states_(m.domain_table.rows()), penalty_(m.pattern, 3),
-      scatter_(m.domain_table.offset, m.domain_table.node, m.pattern) {
+    : spec_(spec), m_(m), params_(solid_material_law(spec)), states_(m.domain_table.rows()),
+      penalty_(m.pattern, 3), scatter_(m.domain_table.offset, m.domain_table.node, m.pattern) {
   const int rows = m.pattern.rows();
   const spec::SolidSpec& s = spec.solid();
   loads_.assign(s.boundary.size() + 1,

@@ -160,7 +160,7 @@ BrickPoints ExtrudedMesh::body_points(int order) const {
   return out;
 }
 
-BrickPoints ExtrudedMesh::shapes_at(const std::vector<Vec3>& x) const {
+BrickPoints ExtrudedMesh::shapes_at(const std::vector<Vec3>& x, bool gradients) const {
   const fem::PointLocator locator(plane_);
   BrickPoints out;
   for (const Vec3& p : x) {
@@ -170,7 +170,7 @@ BrickPoints ExtrudedMesh::shapes_at(const std::vector<Vec3>& x) const {
                p.y(), ", ", p.z(), ")");
     const double t = (p.z() - body_.z0) / dz_;
     const int l = std::clamp(static_cast<int>(std::floor(t)), 0, layers_ - 1);
-    add_point(e, l, Vec3(xi.x(), xi.y(), 2.0 * (t - l) - 1.0), 1.0, -1, false, out);
+    add_point(e, l, Vec3(xi.x(), xi.y(), 2.0 * (t - l) - 1.0), 1.0, -1, gradients, out);
   }
   return out;
 }

@@ -23,26 +23,6 @@ Vec3 traction(const Vec6& s, const Vec3& n) {
           s(4) * n.x() + s(3) * n.y() + s(2) * n.z()};
 }
 
-std::vector<Vec3> face_values(const spec::ProblemSpec& spec, const spec::FaceCondition& bc,
-                              const SolidPoints& pts, const std::vector<int>& rows) {
-  const materials::IsotropicElastic m = spec.elasticity();
-  const auto& exact = spec.solid().exact;
-  std::vector<Vec3> out;
-  for (int r : rows) {
-    if (bc.constrains)
-      out.push_back(bc.value_from_exact ? verification::exact_displacement_3d(*exact, m, pts.x[r])
-                                        : bc.value);
-    else if (bc.pressure_load)
-      out.push_back(-bc.pressure * pts.normal[r]); // t = -p n, n the outward normal
-    else
-      out.push_back(
-          bc.traction_from_exact
-              ? traction(verification::exact_stress_3d(*exact, m, pts.x[r]), pts.normal[r])
-              : bc.traction);
-  }
-  return out;
-}
-
 /// VCI in 3D (implicit/integration_correction.hpp): grad~ Psi_I = grad Psi_I + xi_I Psi_I with
 /// xi_I = (int_Gamma Psi_I n - sum_g w_g grad Psi_I) / sum_g w_g Psi_I, the boundary integral
 /// over every face of the prism.
@@ -201,6 +181,26 @@ void group_points(SolidModel& m) {
 
 } // namespace
 
+std::vector<Vec3> face_values(const spec::ProblemSpec& spec, const spec::FaceCondition& bc,
+                              const SolidPoints& pts, const std::vector<int>& rows) {
+  const materials::IsotropicElastic m = spec.elasticity();
+  const auto& exact = spec.solid().exact;
+  std::vector<Vec3> out;
+  for (int r : rows) {
+    if (bc.constrains)
+      out.push_back(bc.value_from_exact ? verification::exact_displacement_3d(*exact, m, pts.x[r])
+                                        : bc.value);
+    else if (bc.pressure_load)
+      out.push_back(-bc.pressure * pts.normal[r]); // t = -p n, n the outward normal
+    else
+      out.push_back(
+          bc.traction_from_exact
+              ? traction(verification::exact_stress_3d(*exact, m, pts.x[r]), pts.normal[r])
+              : bc.traction);
+  }
+  return out;
+}
+
 std::vector<Vec3> nodal_displacements(const SolidModel& m, const std::vector<double>& d) {
   const int N = m.node_count();
   std::vector<Vec3> u(N);
@@ -245,11 +245,11 @@ SolidModel build_solid_model(const spec::ProblemSpec& spec, const solvers::Petsc
   return m;
 }
 
-SolidShapeTable solid_shapes_at(const SolidModel& m, const std::vector<Vec3>& x) {
+SolidShapeTable solid_shapes_at(const SolidModel& m, const std::vector<Vec3>& x, bool gradients) {
   std::vector<int> rows(x.size());
   std::iota(rows.begin(), rows.end(), 0);
-  if (m.fe) return brick_table(m.fe->shapes_at(x), rows);
-  return m.space->shape_table(x, rows, m.space->support_lists(x), false);
+  if (m.fe) return brick_table(m.fe->shapes_at(x, gradients), rows);
+  return m.space->shape_table(x, rows, m.space->support_lists(x), gradients);
 }
 
 std::string describe_solid_method(const spec::ProblemSpec& spec) {

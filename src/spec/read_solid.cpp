@@ -205,7 +205,8 @@ void parse_solid(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
   const std::string analysis = plastic ? "elastoplastic_static" : "elastic_static";
   s.material_index = take_material(r, p, analysis);
   const MaterialSpec& m = p.materials[s.material_index];
-  if (plastic && !m.plasticity)
+  // The preload stage of a staged run may be elastic (as a plane one may).
+  if (plastic && !m.plasticity && p.stage.empty())
     material_error(m, "plasticity", "analysis elastoplastic_static needs a plasticity law");
   if (!plastic && m.plasticity)
     material_error(m, "plasticity", "used only by analysis elastoplastic_static");

@@ -84,12 +84,28 @@ std::string joined(const std::vector<std::string>& v) {
 
 /// The materials a Galerkin stage uses: its own and those of its material regions.
 std::vector<int> materials_used(const ProblemSpec& p) {
+  if (p.is_solid()) return {p.solid().material_index};
   auto& galerkin = p.galerkin();
   std::vector<int> used{galerkin.material_index};
   for (const MaterialRegion& r : galerkin.material_regions) used.push_back(r.material);
   std::sort(used.begin(), used.end());
   used.erase(std::unique(used.begin(), used.end()), used.end());
   return used;
+}
+
+/// A 3D preload's displacement conditions are held on all three components (a clamp) or on one
+/// (a roller): a particle layer holds no other combination.
+void check_solid_holds(KeyReader& s, const StageLink& l, const ProblemSpec& from) {
+  if (!from.is_solid()) return;
+  for (const FaceCondition& bc : from.solid().boundary) {
+    const int held = static_cast<int>(bc.mask.sum());
+    if (!bc.constrains || held == 1 || held == 3 ||
+        std::find(l.hold.begin(), l.hold.end(), bc.name) == l.hold.end())
+      continue;
+    s.error("hold", "'" + bc.name + "' holds " + std::to_string(held) +
+                        " of the 3 displacement components; a held condition holds all three (a "
+                        "clamp) or one (a roller): release it, or split it into rollers");
+  }
 }
 
 /// What the next stage can take from a preload, checked against the next stage's analysis.
@@ -112,6 +128,20 @@ void check_transfer(const ProblemSpec& from, const ProblemSpec& to) {
                   " has Poisson's ratio " + detail::concat(nu_pd) + "; the preload's " +
                   detail::concat(mat.nu) + " differs by more than 0.02");
   }
+}
+
+/// What the explicit stage can hold: SPH holds gravity but no uniform body force; the implicit
+/// peridynamic equilibrium solves plane bodies (a 3D body relaxes by ADR, its default there).
+void check_held_loads(KeyReader& s, StageLink& l, const ProblemSpec& to) {
+  if (to.analysis == Analysis::Sph &&
+      std::find(l.hold.begin(), l.hold.end(), "body_force") != l.hold.end())
+    s.error("hold", "SPH holds gravity, not a uniform body force: release 'body_force' (or give "
+                    "the preload 'gravity')");
+  if (to.analysis != Analysis::Peridynamics || to.model_type != ModelType::Solid3D) return;
+  if (l.implicit_equilibrium && l.equilibrium_given)
+    s.error("transfer", "equilibrium: newton solves plane peridynamic bodies; a 3D body relaxes "
+                        "to its equilibrium by adr");
+  l.implicit_equilibrium = false;
 }
 
 StageLink read_link(KeyReader& s, const std::vector<ProblemSpec>& earlier, int k) {
@@ -139,6 +169,7 @@ StageLink read_link(KeyReader& s, const std::vector<ProblemSpec>& earlier, int k
   if (auto t = s.optional_map("transfer")) {
     l.return_to_surface =
         t->choice("outside_yield_surface", {"report", "return"}, "report") == "return";
+    l.equilibrium_given = t->has("equilibrium");
     l.implicit_equilibrium = t->choice("equilibrium", {"newton", "adr"}, "newton") == "newton";
     l.relax_tolerance = t->positive("relax_tolerance", l.relax_tolerance);
     l.relax_max_iterations =
@@ -179,8 +210,13 @@ void check_conditions(KeyReader& s, const StageLink& l, const ProblemSpec& from)
 } // namespace
 
 std::vector<std::string> stage_conditions(const ProblemSpec& p) {
-  auto& galerkin = p.galerkin();
   std::vector<std::string> out;
+  if (p.is_solid()) {
+    for (const auto& bc : p.solid().boundary) out.push_back(bc.name);
+    if (p.solid().body_force.norm() > 0.0) out.push_back("body_force");
+    return out;
+  }
+  auto& galerkin = p.galerkin();
   for (const auto& bc : galerkin.boundary) out.push_back(bc.name);
   if (galerkin.body_force.norm() > 0.0) out.push_back("body_force");
   if (galerkin.gravity.norm() > 0.0) out.push_back("gravity");
@@ -221,7 +257,9 @@ void parse_stages(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
                         "elastic preload is one whose materials have no plasticity) and is an "
                         "explicit analysis (sph or peridynamics)");
       check_conditions(link_reader, link, from);
+      check_solid_holds(link_reader, link, from);
       check_transfer(from, stage);
+      check_held_loads(link_reader, link, stage);
       if (stage.analysis == Analysis::Peridynamics && link.settle_time > 0.0)
         link_reader.error("settle", "a peridynamic stage starts from its own static equilibrium "
                                     "under the held conditions (transfer.relax_tolerance); "

@@ -1,7 +1,7 @@
 // The steps of an explicit stage that do not depend on its particles' kind
 // (stages/explicit_stage.hpp).
 #include "meshfree/stages/explicit_stage.hpp"
-#include "meshfree/implicit/point_law.hpp"
+#include "meshfree/core/error.hpp"
 #include <algorithm>
 #include <limits>
 
@@ -59,19 +59,19 @@ void record_stage(ExplicitStage& st, const std::string& status, const std::strin
   st.timer = timer;
 }
 
-double stored_energy(const spec::ProblemSpec& preload, const PreloadAtParticles& pa,
+double stored_energy(const Preload& preload, const PreloadAtParticles& pa,
                      const std::vector<double>& volume) {
   // sigma : C^-1 sigma = [(s11^2 + s22^2 + s33^2) - 2 nu (s11 s22 + s22 s33 + s33 s11)
   //                       + 2 (1 + nu) (s23^2 + s13^2 + s12^2)] / E  (isotropic compliance).
   double w = 0.0;
   for (std::size_t i = 0; i < pa.image.size(); ++i) {
-    const implicit::PointLaw law = implicit::point_law(preload, pa.image[i].x);
-    const double nu = law.params.nu;
+    const materials::J2Parameters law = preload.elasticity_at(pa.image[i].x);
+    const double nu = law.nu;
     const materials::Vec6& s = pa.final_stress()[i];
     const double normal = s[0] * s[0] + s[1] * s[1] + s[2] * s[2] -
                           2.0 * nu * (s[0] * s[1] + s[1] * s[2] + s[2] * s[0]);
     const double shear = 2.0 * (1.0 + nu) * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
-    w += 0.5 * volume[i] * (normal + shear) / law.params.E;
+    w += 0.5 * volume[i] * (normal + shear) / law.E;
   }
   return w;
 }
@@ -82,8 +82,8 @@ std::vector<Vec3> reference_positions(const particles::ParticleSet& P, int n) {
   return X;
 }
 
-void describe_preload(TransferReport& t, const spec::ProblemSpec& preload,
-                      const PreloadAtParticles& pa, const std::vector<double>& volume) {
+void describe_preload(TransferReport& t, const Preload& preload, const PreloadAtParticles& pa,
+                      const std::vector<double>& volume) {
   const int n = static_cast<int>(pa.final_u().size());
   t.particles = n;
   for (int i = 0; i < n; ++i) {
@@ -91,6 +91,11 @@ void describe_preload(TransferReport& t, const spec::ProblemSpec& preload,
     t.max_u = std::max(t.max_u, pa.final_u()[i].norm());
   }
   t.stored_energy = stored_energy(preload, pa, volume);
+}
+
+std::string vector_text(const Vec3& v, const Preload& preload) {
+  return preload.dimension() == 2 ? detail::concat("(", v.x(), ", ", v.y(), ")")
+                                  : detail::concat("(", v.x(), ", ", v.y(), ", ", v.z(), ")");
 }
 
 } // namespace mf::stages

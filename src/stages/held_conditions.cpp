@@ -13,14 +13,14 @@ namespace {
 /// made it: the preload's part sees the particle at one of them.
 std::vector<std::pair<Vec2, Mirrored>> images(const Vec3& x,
                                               const std::vector<spec::MirrorPlane>& mirror) {
-  std::vector<std::pair<Vec2, Mirrored>> out{{x.head<2>(), Mirrored{x.head<2>(), {}}}};
+  std::vector<std::pair<Vec2, Mirrored>> out{{x.head<2>(), Mirrored{x, {}}}};
   for (const spec::MirrorPlane& m : mirror) {
     if (m.axis > 1) continue;
     const std::size_t n = out.size();
     for (std::size_t k = 0; k < n; ++k) {
       auto [y, how] = out[k];
       y[m.axis] = 2.0 * m.at - y[m.axis];
-      how.x = y;
+      how.x[m.axis] = y[m.axis];
       how.flip[m.axis] = !how.flip[m.axis];
       out.emplace_back(y, how);
     }
@@ -110,7 +110,7 @@ void hold_force(HeldCondition& h, const spec::ProblemSpec& preload,
   const double copies = static_cast<double>(1u << mirrors);
   const double share = copies * length / static_cast<double>(l.particles.size());
   for (std::size_t j = 0; j < l.particles.size(); ++j) {
-    const int k = nearest_point(c.points, l.how[j].x);
+    const int k = nearest_point(c.points, l.how[j].x.head<2>());
     const Vec2 t = k >= 0 ? Vec2(f * traction[k]) : Vec2::Zero();
     h.force.push_back(mirrored(Vec3(share * t.x(), share * t.y(), 0.0), l.how[j]));
   }

@@ -27,17 +27,9 @@ void add_body_load(pd::Loading& loading, const std::string& name, const std::vec
   loading.loads.push_back(l);
 }
 
-/// Force per volume at x of the preload's gravity (rho g) or its uniform body force.
-Vec2 body_force(const spec::ProblemSpec& preload, bool gravity, const Vec2& x) {
-  auto& galerkin = preload.galerkin();
-  if (!gravity) return galerkin.body_force;
-  return preload.materials[implicit::material_at(preload, x)].density * galerkin.gravity;
-}
-
 /// The held conditions as the body's loads and constraints; returns how each acts.
-std::vector<std::string> hold(const std::vector<HeldCondition>& held,
-                              const spec::ProblemSpec& preload, const PreloadAtParticles& pa,
-                              explicit_dynamics::PdSetup& setup) {
+std::vector<std::string> hold(const std::vector<HeldCondition>& held, const Preload& preload,
+                              const PreloadAtParticles& pa, explicit_dynamics::PdSetup& setup) {
   pd::Model& m = setup.model;
   const particles::ParticleSet& P = m.particles;
   std::vector<std::string> how;
@@ -50,8 +42,8 @@ std::vector<std::string> hold(const std::vector<HeldCondition>& held,
         particles.resize(P.size());
         for (int i = 0; i < P.size(); ++i) {
           particles[i] = i;
-          const Vec2 b = h.body_factor * body_force(preload, h.gravity, pa.image[i].x);
-          density.push_back(mirrored(Vec3(b.x(), b.y(), 0.0), pa.image[i]));
+          const Vec3 b = h.body_factor * preload.body_force_at(h.gravity, pa.image[i].x);
+          density.push_back(mirrored(b, pa.image[i]));
           total += density.back() * P.volume[i];
         }
       } else {
@@ -62,24 +54,25 @@ std::vector<std::string> hold(const std::vector<HeldCondition>& held,
       }
       add_body_load(setup.loading, h.name, particles, density);
       how.push_back(detail::concat(h.name, ": constant force on ", particles.size(),
-                                   " particles, total (", total.x(), ", ", total.y(), ")"));
+                                   " particles, total ", vector_text(total, preload)));
       continue;
     }
     pd::Constraint c;
     c.name = h.name;
     c.particles = h.particles;
     if (h.kind == HeldCondition::Kind::Clamp) {
-      c.fixed[0] = c.fixed[1] = true;
+      for (int d = 0; d < preload.dimension(); ++d) c.fixed[d] = true;
     } else {
       c.fixed[h.component] = true;
     }
     for (int i : h.particles) c.held.push_back(pa.final_u()[i]);
     setup.loading.constraints.push_back(c);
-    how.push_back(detail::concat(h.name, ": ",
-                                 h.kind == HeldCondition::Kind::Clamp ? "both components"
-                                 : h.component == 0                   ? "x component"
-                                                                      : "y component",
-                                 " of ", h.particles.size(), " particles held at the preload's u"));
+    const std::string what = h.kind != HeldCondition::Kind::Clamp
+                                 ? "xyz"[h.component] + std::string(" component")
+                             : preload.dimension() == 2 ? "both components"
+                                                        : "all three components";
+    how.push_back(detail::concat(h.name, ": ", what, " of ", h.particles.size(),
+                                 " particles held at the preload's u"));
   }
   return how;
 }
@@ -145,18 +138,17 @@ double norm_of_difference(const std::vector<double>& a, const std::vector<Vec3>&
 
 /// The preload's final state on the whole body with its held conditions; returns the preload at
 /// the particles and where the held conditions begin among the set-up's loads and constraints.
-PreloadAtParticles transfer(const spec::ProblemSpec& preload,
-                            const implicit::ElastoplasticResult& pre, const spec::StageLink& link,
+PreloadAtParticles transfer(const Preload& preload, const spec::StageLink& link,
                             explicit_dynamics::PdSetup& setup, HeldFrom& held_from,
                             TransferReport& t) {
   const auto t0 = std::chrono::steady_clock::now();
   pd::Model& m = setup.model;
   const std::vector<Vec3> X = reference_positions(m.particles, m.particles.size());
-  PreloadAtParticles pa = sample_preload(preload, pre, X, link.mirror, link.key_path);
+  PreloadAtParticles pa = preload.sample(X, link);
   // A held force acts on the surface layer; a held displacement holds the particles within
   // a horizon of its boundary, so that every free particle keeps its whole bond family.
   held_from = {setup.loading.loads.size(), setup.loading.constraints.size()};
-  t.held = hold(held_conditions(preload, pre, link, X, {m.spacing, m.horizon}), preload, pa, setup);
+  t.held = hold(preload.held(link, X, {m.spacing, m.horizon}), preload, pa, setup);
   pd::set_displacement(m, flat(pa.final_u()));
   describe_preload(t, preload, pa, m.particles.volume);
   t.residual_at_uh = pd::residual_ratio(m, setup.state, setup.loading);
@@ -205,8 +197,8 @@ void relax(const spec::StageLink& link, const PreloadAtParticles& pa,
       norm_of_difference(m.particles.u, pa.final_u(), norm_uh) / std::max(norm_uh, 1e-300);
 }
 
-void log_transfer(const spec::ProblemSpec& preload, const TransferReport& t) {
-  log::info("transfer: ", t.particles, " particles from stage ", preload.stage,
+void log_transfer(const Preload& preload, const TransferReport& t) {
+  log::info("transfer: ", t.particles, " particles from stage ", preload.spec().stage,
             ", residual ratio at u^h ", t.residual_at_uh, "; equilibrium by ", t.relax_method,
             " in ", t.relax_iterations, " iterations (from zero: ", t.relax_iterations_from_zero,
             "), |u_PD - u^h| / |u^h| = ", t.pd_vs_galerkin);
@@ -225,8 +217,7 @@ void spread_over_ranks(const spec::ProblemSpec& stage, const distribution::Ranks
 
 } // namespace
 
-ExplicitStage run_pd_stage(const spec::ProblemSpec& preload,
-                           const implicit::ElastoplasticResult& pre, const spec::ProblemSpec& stage,
+ExplicitStage run_pd_stage(const Preload& preload, const spec::ProblemSpec& stage,
                            const spec::StageLink& link, int index,
                            const explicit_dynamics::RunPlace& place) {
   const spec::PdSpec& s = stage.pd();
@@ -242,7 +233,7 @@ ExplicitStage run_pd_stage(const spec::ProblemSpec& preload,
   HeldFrom held_from;
   {
     PhaseTimer::Scope scope(result.timer, "transfer");
-    pa = transfer(preload, pre, link, setup, held_from, st.transfer);
+    pa = transfer(preload, link, setup, held_from, st.transfer);
   }
   {
     PhaseTimer::Scope scope(result.timer, "relaxation");

@@ -7,17 +7,17 @@
 namespace mf::stages {
 
 Mirrored mirror_into(const Vec3& x, const std::vector<spec::MirrorPlane>& mirror,
-                     const Vec2& inside) {
+                     const Vec3& inside) {
   Mirrored m;
   Vec3 y = x;
   for (const spec::MirrorPlane& p : mirror) {
-    const double side = (p.axis < 2 ? inside[p.axis] : 0.0) - p.at;
+    const double side = inside[p.axis] - p.at;
     if ((y[p.axis] - p.at) * side < 0.0) {
       y[p.axis] = 2.0 * p.at - y[p.axis];
       m.flip[p.axis] = !m.flip[p.axis];
     }
   }
-  m.x = Vec2(y.x(), y.y());
+  m.x = y;
   return m;
 }
 
@@ -95,16 +95,17 @@ PreloadAtParticles sample_preload(const spec::ProblemSpec& preload,
     MF_REQUIRE(r.increments[n].parameters.size() == r.state.parameters.size(), key_path,
                ": the preload did not record its increments");
 
-  Vec2 inside = Vec2::Zero();
-  for (const Vec2& p : model.node_positions()) inside += p;
-  inside /= static_cast<double>(model.node_count());
+  Vec2 centre = Vec2::Zero();
+  for (const Vec2& p : model.node_positions()) centre += p;
+  centre /= static_cast<double>(model.node_count());
+  const Vec3 inside(centre.x(), centre.y(), 0.0);
   PreloadAtParticles out;
   std::vector<Mirrored>& image = out.image;
   image.resize(np);
   std::vector<Vec2> points(np);
   for (int p = 0; p < np; ++p) {
     image[p] = mirror_into(x[p], mirror, inside);
-    points[p] = image[p].x;
+    points[p] = image[p].x.head<2>();
   }
   implicit::ShapeTable table;
   try {

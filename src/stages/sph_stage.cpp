@@ -100,7 +100,7 @@ std::string hold_displacement(const HeldCondition& c, sph::Hydro& h,
 
 /// The held conditions on the SPH body: forces, fixed particles, symmetry planes, dashpots with
 /// their static force, gravity.
-Holding hold(const std::vector<HeldCondition>& held, const spec::ProblemSpec& preload,
+Holding hold(const std::vector<HeldCondition>& held, const Preload& preload,
              const spec::StageLink& link, sph::Hydro& h) {
   Holding out;
   for (const HeldCondition& c : held) {
@@ -116,16 +116,17 @@ Holding hold(const std::vector<HeldCondition>& held, const spec::ProblemSpec& pr
       }
       h.conditions.add(std::move(f));
       out.how.push_back(detail::concat(c.name, ": constant force on ", c.particles.size(),
-                                       " particles, total (", total.x(), ", ", total.y(), ")"));
+                                       " particles, total ", vector_text(total, preload)));
       break;
     }
     case HeldCondition::Kind::Body: {
       MF_REQUIRE(c.gravity, link.key_path, ".hold: '", c.name,
                  "': SPH holds gravity, not a "
                  "uniform body force (give the preload 'gravity')");
-      for (int d = 0; d < 2; ++d) h.body.gravity[d] = c.body_factor * preload.galerkin().gravity[d];
-      out.how.push_back(detail::concat(c.name, ": gravity (", h.body.gravity[0], ", ",
-                                       h.body.gravity[1], ") on every particle"));
+      const Vec3 g = c.body_factor * preload.gravity();
+      for (int d = 0; d < 3; ++d) h.body.gravity[d] = g[d];
+      out.how.push_back(
+          detail::concat(c.name, ": gravity ", vector_text(g, preload), " on every particle"));
       break;
     }
     case HeldCondition::Kind::Clamp:
@@ -140,15 +141,13 @@ Holding hold(const std::vector<HeldCondition>& held, const spec::ProblemSpec& pr
 /// The particles whose out-of-balance the transfer balances (sph/support_balance.hpp): every
 /// particle, except those within the kernel's reach of a released condition (a released body
 /// force: all of them), so that a release still acts.
-std::vector<int> balanced_particles(const spec::ProblemSpec& preload,
-                                    const implicit::ElastoplasticResult& pre,
-                                    const spec::StageLink& link, const std::vector<Vec3>& X,
-                                    const sph::Hydro& h, double reach) {
+std::vector<int> balanced_particles(const Preload& preload, const spec::StageLink& link,
+                                    const std::vector<Vec3>& X, const sph::Hydro& h, double reach) {
   const int n = h.particles.owned_count();
   std::vector<char> released(n, 0);
   spec::StageLink off = link;
   off.hold = link.release;
-  for (const HeldCondition& c : held_conditions(preload, pre, off, X, {reach, reach})) {
+  for (const HeldCondition& c : preload.held(off, X, {reach, reach})) {
     if (c.kind == HeldCondition::Kind::Body) return {};
     for (int i : c.particles) released[i] = 1;
   }
@@ -174,20 +173,19 @@ sph::Hydro build_body(const spec::SphSpec& s, PhaseTimer& timer, const io::Outpu
 
 /// The preload's final state on the whole body, held by its held conditions and balanced at rest
 /// (sph::hold_at_rest); returns the preload at the particles.
-PreloadAtParticles transfer(const spec::ProblemSpec& preload,
-                            const implicit::ElastoplasticResult& pre, const spec::StageLink& link,
+PreloadAtParticles transfer(const Preload& preload, const spec::StageLink& link,
                             const spec::SphSpec& s, sph::Hydro& h, TransferReport& t) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<Vec3> X = reference_positions(h.particles, h.particles.owned_count());
-  PreloadAtParticles pa = sample_preload(preload, pre, X, link.mirror, link.key_path);
+  PreloadAtParticles pa = preload.sample(X, link);
   const HoldLayers layers = hold_layers(s, h);
-  const Holding held = hold(held_conditions(preload, pre, link, X, layers), preload, link, h);
+  const Holding held = hold(preload.held(link, X, layers), preload, link, h);
   t.held = held.how;
   const sph::InitialStateReport rep =
       put_increment(h, pa, pa.increments() - 1, link.return_to_surface);
   const sph::RestBalance balance =
       sph::hold_at_rest(h, pa.final_stress(), held.held_boundaries,
-                        balanced_particles(preload, pre, link, X, h, layers.held));
+                        balanced_particles(preload, link, X, h, layers.held));
   t.balanced_residual = balance.before;
   t.out_of_balance = balance.after;
   t.over_surface = rep.over_surface;
@@ -243,9 +241,8 @@ void settle(sph::Hydro& h, const spec::StageLink& link, TransferReport& t) {
   h.external_work = h.damping_work = 0.0;
 }
 
-void log_transfer(const spec::ProblemSpec& preload, const spec::StageLink& link,
-                  const TransferReport& t) {
-  log::info("transfer: ", t.particles, " particles from stage ", preload.stage, ", ",
+void log_transfer(const Preload& preload, const spec::StageLink& link, const TransferReport& t) {
+  log::info("transfer: ", t.particles, " particles from stage ", preload.spec().stage, ", ",
             t.plastic_particles, " plastic, ", t.over_surface,
             " over their yield surface (worst q/Y ", t.worst_yield_ratio,
             "), residual of the SPH sums ", t.balanced_residual, " balanced, out-of-balance ",
@@ -280,9 +277,8 @@ void keep_end_state(ExplicitStage& st, const sph::Hydro& h) {
 
 } // namespace
 
-ExplicitStage run_sph_stage(const spec::ProblemSpec& preload,
-                            const implicit::ElastoplasticResult& pre,
-                            const spec::ProblemSpec& stage, const spec::StageLink& link, int index,
+ExplicitStage run_sph_stage(const Preload& preload, const spec::ProblemSpec& stage,
+                            const spec::StageLink& link, int index,
                             const explicit_dynamics::RunPlace& place) {
   const spec::SphSpec& s = stage.sph();
   ExplicitStage st;
@@ -291,7 +287,7 @@ ExplicitStage run_sph_stage(const spec::ProblemSpec& preload,
   PreloadAtParticles pa;
   {
     PhaseTimer::Scope scope(result.timer, "transfer");
-    pa = transfer(preload, pre, link, s, h, st.transfer);
+    pa = transfer(preload, link, s, h, st.transfer);
   }
   if (link.settle_time > 0.0) {
     PhaseTimer::Scope scope(result.timer, "settle");

@@ -35,6 +35,8 @@ struct Curve {
   Curve piece(double t0, double t1) const;
   /// The distance from p to the nearest point of the curve (its ends included).
   double distance_to(const Vec2& p) const;
+  /// The nearest point of the curve to p (its ends included).
+  Vec2 closest_point(const Vec2& p) const;
 };
 
 class Domain {

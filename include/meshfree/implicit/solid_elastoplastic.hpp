@@ -12,6 +12,7 @@
 #include "meshfree/solvers/parallel.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
 #include "meshfree/spec/problem_spec.hpp"
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,11 @@ struct SolidElastoplasticResult {
   std::vector<double> parameters;         // the last converged state, 3 per node
   std::vector<Vec3> node_x, node_u;
   solvers::PeakMemory memory;
+  // The model the parameters belong to (its nodes' shape functions evaluate u^h anywhere) and
+  // the material's J2 parameters; each increment's parameters are in its record with
+  // SolidSpec::record_increment_parameters.
+  std::shared_ptr<const SolidModel> model;
+  materials::J2Parameters material;
 };
 
 /// Writes the field series as it goes into `out` (rank 0's folder; null elsewhere, or for no

@@ -24,6 +24,10 @@ struct SolidPointStates {
         tangent(n, Mat6::Zero()), plastic(n, 0) {}
 };
 
+/// The J2 parameters of the body's material; a material without plasticity (an elastic preload
+/// stage) gets an infinite yield stress, so that its every update is the elastic one.
+materials::J2Parameters solid_material_law(const spec::ProblemSpec& spec);
+
 class SolidElastoplasticSystem : public IncrementalSystem {
 public:
   /// `spec` and `m` must outlive the system.

@@ -45,8 +45,9 @@ public:
   BrickPoints face_points(const std::vector<std::string>& faces, int order,
                           const std::optional<spec::Box>& box) const;
 
-  /// The shapes (values) at points of the body; throws naming a point no brick holds.
-  BrickPoints shapes_at(const std::vector<Vec3>& x) const;
+  /// The shapes (values, and gradients if asked) at points of the body; throws naming a point
+  /// no brick holds.
+  BrickPoints shapes_at(const std::vector<Vec3>& x, bool gradients = false) const;
 
 private:
   /// The brick of plane element e in layer l: its nodes, and each node's natural coordinates.

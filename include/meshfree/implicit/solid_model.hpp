@@ -86,11 +86,18 @@ SolidModel build_solid_model(const spec::ProblemSpec& spec, const solvers::Petsc
 /// condition's area, and the memory the run is expected to take.
 void print_solid_plan(const spec::ProblemSpec& spec, std::ostream& os);
 
+/// The prescribed displacement or traction (a pressure: -p n) of a face condition at factor 1
+/// at the points `rows` of `pts`.
+std::vector<Vec3> face_values(const spec::ProblemSpec& spec, const spec::FaceCondition& bc,
+                              const SolidPoints& pts, const std::vector<int>& rows);
+
 /// u^h at every node from the nodal parameters of every node (finite elements: the parameters).
 std::vector<Vec3> nodal_displacements(const SolidModel& m, const std::vector<double>& d);
 
-/// The shape functions at points of the body (every node's), on the calling rank.
-SolidShapeTable solid_shapes_at(const SolidModel& m, const std::vector<Vec3>& x);
+/// The shape functions (and their gradients if asked) at points of the body (every node's), on
+/// the calling rank; throws naming a point no node covers.
+SolidShapeTable solid_shapes_at(const SolidModel& m, const std::vector<Vec3>& x,
+                                bool gradients = false);
 
 /// How the model's linear systems are solved (direct, or multigrid with the six rigid-body modes
 /// from the owned nodes' coordinates), as spec.solid().linear_solver says.

@@ -47,6 +47,9 @@ struct SolidSpec {
   LinearSolverSpec linear_solver;
   std::vector<GaugeSpec> gauges; // points whose displacement each increment records
   int fields_every = 1;          // field frames every this many converged increments (and the last)
+  // Set by a staged run, not read from the file: every increment's nodal parameters are kept
+  // (IncrementRecord::parameters), on every rank, so a later stage can evaluate any increment.
+  bool record_increment_parameters = false;
 };
 
 } // namespace mf::spec

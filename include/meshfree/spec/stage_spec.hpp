@@ -27,7 +27,8 @@ struct StageLink {
   // Peridynamics: the body's own equilibrium from u^h, by Newton's method on the linearised bond
   // stiffness (pd::solve_statics) or by adaptive dynamic relaxation (pd::relax), and whether to
   // reach it from u = 0 as well, to count the iterations the preload saves.
-  bool implicit_equilibrium = true;
+  // equilibrium_given: the file chose one (a 3D body relaxes by ADR; newton is refused there).
+  bool implicit_equilibrium = true, equilibrium_given = false;
   double relax_tolerance = 1e-6;
   int relax_max_iterations = 200000;
   bool relax_from_zero = true;

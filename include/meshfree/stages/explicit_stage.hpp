@@ -12,6 +12,7 @@
 #include "meshfree/io/results.hpp"
 #include "meshfree/particles/particle_set.hpp"
 #include "meshfree/spec/problem_spec.hpp"
+#include "meshfree/stages/preload.hpp"
 #include "meshfree/stages/preload_sampling.hpp"
 #include "meshfree/stages/transfer_report.hpp"
 #include <string>
@@ -37,13 +38,11 @@ struct ExplicitStage {
 /// the checkpoint it restarts from (after the preload has been run again and replayed), and the
 /// ranks it is spread over (the transfer is made on the whole body on every rank, then the body
 /// is split as a standalone run's is).
-ExplicitStage run_pd_stage(const spec::ProblemSpec& preload,
-                           const implicit::ElastoplasticResult& pre, const spec::ProblemSpec& stage,
+ExplicitStage run_pd_stage(const Preload& preload, const spec::ProblemSpec& stage,
                            const spec::StageLink& link, int index,
                            const explicit_dynamics::RunPlace& place = {});
-ExplicitStage run_sph_stage(const spec::ProblemSpec& preload,
-                            const implicit::ElastoplasticResult& pre,
-                            const spec::ProblemSpec& stage, const spec::StageLink& link, int index,
+ExplicitStage run_sph_stage(const Preload& preload, const spec::ProblemSpec& stage,
+                            const spec::StageLink& link, int index,
                             const explicit_dynamics::RunPlace& place = {});
 
 /// One history of the rows of the replayed preload (stage `from`) and of the run (stage `index`),
@@ -70,7 +69,7 @@ io::History take_rows(io::History& h);
 /// volume V with the elasticity of the preload's material there: sum V sigma : C^-1 sigma / 2.
 /// The small-strain energy is an integral over the reference body, so the reference volume, not
 /// the preloaded one m / rho.
-double stored_energy(const spec::ProblemSpec& preload, const PreloadAtParticles& pa,
+double stored_energy(const Preload& preload, const PreloadAtParticles& pa,
                      const std::vector<double>& volume);
 
 /// The reference positions of the first n particles of P.
@@ -79,7 +78,10 @@ std::vector<Vec3> reference_positions(const particles::ParticleSet& P, int n);
 /// What the transfer report says of the preload at the particles alone: how many particles, how
 /// many of them plastic, the largest displacement and the stored energy (particles of reference
 /// volume `volume`).
-void describe_preload(TransferReport& t, const spec::ProblemSpec& preload,
-                      const PreloadAtParticles& pa, const std::vector<double>& volume);
+void describe_preload(TransferReport& t, const Preload& preload, const PreloadAtParticles& pa,
+                      const std::vector<double>& volume);
+
+/// "(x, y)" of a plane preload's vector, "(x, y, z)" of a 3D one's, for the log.
+std::string vector_text(const Vec3& v, const Preload& preload);
 
 } // namespace mf::stages

@@ -16,7 +16,7 @@ using materials::Vec6;
 /// How a position maps into the preload's part: the point there and which axes the mirror
 /// reversed.
 struct Mirrored {
-  Vec2 x;
+  Vec3 x;
   bool flip[3] = {false, false, false};
 };
 
@@ -47,7 +47,7 @@ PreloadAtParticles sample_preload(const spec::ProblemSpec& preload,
 /// The image of `x` in the part of the body that `inside` (a point of the preload's part) lies
 /// in, across each mirror plane `x` is on the other side of.
 Mirrored mirror_into(const Vec3& x, const std::vector<spec::MirrorPlane>& mirror,
-                     const Vec2& inside);
+                     const Vec3& inside);
 
 /// Vectors as a flat array, x, y, z of each in turn (the particle set's layout).
 std::vector<double> flat(const std::vector<Vec3>& v);

@@ -135,8 +135,8 @@ Column run_column(double k0, double settle, double end, bool transmitting_sides 
   const implicit::ElastoplasticResult pre =
       implicit::solve_elastoplastic_static(preload, test_session(), nullptr);
   REQUIRE(pre.status == "completed");
-  c.st =
-      stages::run_sph_stage(preload, pre, c.spec.staged().stages[1], c.spec.staged().links[1], 1);
+  c.st = stages::run_sph_stage(stages::PlanePreload(preload, pre), c.spec.staged().stages[1],
+                               c.spec.staged().links[1], 1);
   REQUIRE(c.st.status == "completed");
   return c;
 }

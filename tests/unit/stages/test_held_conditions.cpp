@@ -3,6 +3,7 @@
 // edges, a roller with a value, a traction, a pressure, gravity, whose state is linear) and the
 // laws (elastic, J2 with isotropic and with kinematic hardening). The particles a condition holds
 // are chosen by geometry: the same whatever the preload's spacing.
+#include "held_table_support.hpp"
 #include "meshfree/explicit/pd_setup.hpp"
 #include "meshfree/explicit/sph_setup.hpp"
 #include "meshfree/implicit/elastoplastic_solve.hpp"
@@ -19,37 +20,11 @@
 #include <sstream>
 
 using namespace mf;
+using namespace held_table;
 
 namespace {
 
-// Aluminium with a linear equation of state of the Galerkin body's bulk modulus, so that both
-// stages have one elasticity.
-const double kE = 70.0e9, kNu = 0.3, kRho = 2700.0, kYield = 240.0e6;
-const double kBulk = kE / (3.0 * (1.0 - 2.0 * kNu));
 const double kLength = 0.1, kHeight = 0.05, kSpacing = 0.0025;
-
-enum class Law { Elastic, Isotropic, Kinematic };
-
-/// The material of an SPH stage, or of a peridynamic one (a PMB bond law: nu = 1/4 in plane
-/// strain, Silling 2000).
-std::string material(Law law, bool peridynamic) {
-  std::ostringstream s;
-  s.precision(17);
-  s << "materials:\n  - name: aluminium\n    E: " << kE
-    << "\n    nu: " << (peridynamic ? 0.25 : kNu) << "\n    density: " << kRho << "\n";
-  if (peridynamic) {
-    s << "    bond: {law: pmb}\n";
-    return s.str();
-  }
-  if (law != Law::Elastic) {
-    s << "    plasticity: {yield_stress: " << kYield << ", hardening: {type: linear, H: 2.24e9}";
-    if (law == Law::Kinematic) s << ", kinematic_modulus: 5.0e9";
-    s << "}\n";
-  }
-  s << "    eos: {type: linear_polynomial, rho0: " << kRho << ", c: [0, " << kBulk
-    << ", 0, 0, 0, 0, 0]}\n";
-  return s.str();
-}
 
 /// A held condition of the table: the preload's boundary list on the rectangle
 /// [0, 0.1] x [0, 0.05], every entry of which gives a homogeneous state.
@@ -58,11 +33,6 @@ struct Held {
   std::string boundary; // the preload's `boundary:` entries, strain or stress `load` at factor 1
   std::string gravity;  // the preload's gravity, if any (held too)
 };
-
-/// The strain to reach: half the uniaxial yield strain when elastic, twice it when plastic.
-double strain(Law law) {
-  return (law == Law::Elastic ? 0.5 : 2.0) * kYield / kE;
-}
 
 std::vector<Held> table(Law law) {
   std::ostringstream d, t, p;
@@ -149,43 +119,6 @@ implicit::ElastoplasticResult preload_of(spec::ProblemSpec& preload) {
   return implicit::solve_elastoplastic_static(preload, test_session(), nullptr);
 }
 
-std::size_t column(const io::History& h, const std::string& name) {
-  const auto& c = h.columns();
-  const auto it = std::find(c.begin(), c.end(), name);
-  REQUIRE(it != c.end());
-  return static_cast<std::size_t>(it - c.begin());
-}
-
-/// The particles' reference positions of a stage's end state.
-std::vector<Vec3> positions(const stages::ExplicitStage& st) {
-  std::vector<Vec3> X(st.position.size() / 3);
-  for (std::size_t i = 0; i < X.size(); ++i)
-    X[i] = Vec3(st.position[3 * i], st.position[3 * i + 1], 0.0);
-  return X;
-}
-
-/// Over the explicit stage's rows: the last step, and the largest kinetic energy over the
-/// energy `scale` gives for the row.
-template <class Scale>
-void largest_kinetic(const io::History& H, Scale scale, long& steps, double& ratio) {
-  const std::size_t stage = column(H, "stage"), step = column(H, "step"),
-                    kinetic = column(H, "kinetic_energy");
-  for (const auto& row : H.rows()) {
-    if (row[stage] != 1.0) continue;
-    steps = std::max(steps, static_cast<long>(row[step]));
-    ratio = std::max(ratio, row[kinetic] / scale(row));
-  }
-}
-
-struct Quietness {
-  long steps = 0;
-  double kinetic = 0.0;  // largest kinetic energy over the run / stored strain energy
-  double interior = 0.0; // largest stress change of an interior particle / largest |sigma|
-  double out_of_balance = 0.0;
-  double residual = 0.0;       // the out-of-balance the held conditions leave, before any balancing
-  double plastic_change = 0.0; // largest change of alpha / largest alpha
-};
-
 /// The SPH stage run for 1,000 steps from the transferred state.
 Quietness sph_quietness(const Held& c, Law law) {
   const spec::ProblemSpec spec = spec::parse_problem(YAML::Load(staged(c, law, "sph", 0.0125)));
@@ -199,7 +132,7 @@ Quietness sph_quietness(const Held& c, Law law) {
   event.sph().output.history_interval = 0.0;
   event.sph().output.fields_interval = 0.0;
   const stages::ExplicitStage st =
-      stages::run_sph_stage(preload, pre, event, spec.staged().links[1], 1);
+      stages::run_sph_stage(stages::PlanePreload(preload, pre), event, spec.staged().links[1], 1);
   REQUIRE(st.status == "completed");
   const std::vector<Vec3> X = positions(st);
   const int n = static_cast<int>(X.size());
@@ -228,10 +161,6 @@ Quietness sph_quietness(const Held& c, Law law) {
         std::max(q.interior, (st.stress[i] - pa.final_stress()[i]).cwiseAbs().maxCoeff() / scale);
   }
   return q;
-}
-
-const char* law_name(Law law) {
-  return law == Law::Elastic ? "elastic" : law == Law::Isotropic ? "isotropic" : "kinematic";
 }
 
 } // namespace
@@ -323,7 +252,7 @@ PdQuietness pd_quietness(const Held& c) {
   event.pd().output.history_interval = 0.0;
   event.pd().output.fields_interval = 0.0;
   const stages::ExplicitStage st =
-      stages::run_pd_stage(preload, pre, event, spec.staged().links[1], 1);
+      stages::run_pd_stage(stages::PlanePreload(preload, pre), event, spec.staged().links[1], 1);
   REQUIRE(st.status == "completed");
   const std::vector<Vec3> X = positions(st);
   const int n = static_cast<int>(X.size());
@@ -393,7 +322,7 @@ TEST_CASE("a released condition still acts: the transfer balances only the held 
   event.sph().output.history_interval = 0.0;
   event.sph().output.fields_interval = 0.0;
   const stages::ExplicitStage st =
-      stages::run_sph_stage(preload, pre, event, spec.staged().links[1], 1);
+      stages::run_sph_stage(stages::PlanePreload(preload, pre), event, spec.staged().links[1], 1);
   REQUIRE(st.status == "completed");
   const io::History& H = st.history;
   double kinetic = 0.0;

@@ -123,7 +123,8 @@ Staged run(int steps, const std::string& equilibrium = "newton") {
   s.preload_seconds = elapsed(t0);
   REQUIRE(pre.status == "completed");
   t0 = std::chrono::steady_clock::now();
-  s.st = stages::run_pd_stage(preload, pre, s.spec.staged().stages[1], s.spec.staged().links[1], 1);
+  s.st = stages::run_pd_stage(stages::PlanePreload(preload, pre), s.spec.staged().stages[1],
+                              s.spec.staged().links[1], 1);
   s.stage_seconds = elapsed(t0);
   REQUIRE(s.st.status == "completed");
   return s;

@@ -428,7 +428,8 @@ Quiet quiet_start(const std::string& yaml) {
   event.sph().output.history_interval = 0.0;
   event.sph().output.fields_interval = 0.0;
   Quiet q;
-  q.st = stages::run_sph_stage(preload, pre, event, spec.staged().links[1], 1);
+  q.st =
+      stages::run_sph_stage(stages::PlanePreload(preload, pre), event, spec.staged().links[1], 1);
   REQUIRE(q.st.status == "completed");
   const int n = static_cast<int>(q.st.position.size() / 3);
   std::vector<Vec3> X(n);
@@ -743,7 +744,8 @@ TEST_CASE("the settle of an SPH stage runs under the held loads alone, not the e
     spec::ProblemSpec preload = spec.staged().stages[0];
     const implicit::ElastoplasticResult pre = preload_of(preload);
     REQUIRE(pre.status == "completed");
-    return stages::run_sph_stage(preload, pre, spec.staged().stages[1], spec.staged().links[1], 1);
+    return stages::run_sph_stage(stages::PlanePreload(preload, pre), spec.staged().stages[1],
+                                 spec.staged().links[1], 1);
   };
   const stages::ExplicitStage quiet = run(false), struck = run(true);
   REQUIRE(quiet.transfer.settle_time == 1.0e-4);
