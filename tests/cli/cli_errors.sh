@@ -126,6 +126,15 @@ TWO='materials=[{name: m, E: 1.0e9, nu: 0.3333333333333333, density: 1000, bond:
 REGION=(--set "$TWO" --set 'stages.0.material=m' --set 'stages.1.material=m' --set 'stages.0.material_regions=[{material: soft, box: [[0, 0], [0.5, 0.5]]}]')
 expect_error "materials[1].plasticity: a J2 preload (plastic strain, back stress) cannot start a bond-based peridynamic stage" "$WORK/staged_pd.yaml" "${REGION[@]}"
 expect_error "materials[1].nu: bond-based peridynamics in plane stress has Poisson's ratio" "$WORK/staged_pd.yaml" "${REGION[@]}" --set 'materials.1.plasticity=null' --set 'materials.1.nu=0.25'
+# A 3D preload: what its layers of particles cannot hold is refused before anything runs.
+C="$ROOT/problems/staged_column_blast.yaml"
+expect_error "stages[1].hold: 'base' holds 2 of the 3 displacement components" "$C" --set 'stages.0.boundary.0.displacement={x: 0, y: 0}'
+expect_error "stages[1].hold: SPH holds gravity, not a uniform body force: release 'body_force'" "$C" --set 'stages.0.body_force=[0, 0, -1.0e5]' --set 'stages.1.hold=[base, axial_load, body_force]'
+expect_error "stages[1].hold: stage 'service' has no condition 'grip' (its conditions: base, axial_load)" "$C" --set 'stages.1.hold=[grip]'
+printf 'name: x\nanalysis: staged\nmodel: {type: solid_3d}\nmaterials: [{name: m, E: 1.0e9, nu: 0.25, density: 1000, bond: {law: pmb}}]\ngeometry: {box: {origin: [0, 0, 0], size: [1, 1, 1]}}\nstages:\n  - {name: a, analysis: elastoplastic_static, discretisation: {method: fem, spacing: 0.5}, boundary: [{name: b, faces: back, displacement: {x: 0, y: 0, z: 0}}], steps: [{name: s, load_factor: 1, increments: 1}]}\n  - {name: i, analysis: peridynamics, from: a, hold: [b], discretisation: {spacing: 0.1, horizon: 3}, time: {end: 1.0e-6}}\n' > "$WORK/staged_pd_3d.yaml"
+"$MF" check "$WORK/staged_pd_3d.yaml" > /dev/null
+expect_error "stages[1].transfer: equilibrium: newton solves plane peridynamic bodies" "$WORK/staged_pd_3d.yaml" --set 'stages.1.transfer={equilibrium: newton}'
+expect_error "materials[0].nu: bond-based peridynamics in this model has Poisson's ratio 0.25" "$WORK/staged_pd_3d.yaml" --set 'materials.0.nu=0.3'
 # Slips a reader of YAML lets through, values that overflow, and keys or values that would break
 # the message's line.
 sed 's/{name: steel, E: 2.0e5, nu: 0.1}/{name: steel, E: 2.0e5, nu: 0.1, E: -1}/' "$P" > "$WORK/duplicate.yaml"

@@ -163,4 +163,10 @@ run_staged_both staged-pmma-fast staged_pmma_impact $pmma --set "stages.1.output
   {name: mouth, at: [0.00025, 0.00025]}, {name: right_tip, at: [0.01025, 0.00025]},
   {name: left_tip, at: [-0.01025, 0.00025]}, {name: contact, at: [0.04975, -0.00475]}]"
 same_staged_run "$WORK/staged-pmma-fast-1" "$WORK/staged-pmma-fast-2" 1e-8 0
+# The 3D column: its preload in 20-node bricks, the blast reaching the face at 0.2 ms.
+column="--set stages.1.time.end=3.0e-4"
+run_staged_both staged-column staged_column_blast $column --set stages.1.discretisation.deterministic=true
+same_staged_run "$WORK/staged-column-1" "$WORK/staged-column-2" 1e-12 1
+run_staged_both staged-column-fast staged_column_blast $column
+same_staged_run "$WORK/staged-column-fast-1" "$WORK/staged-column-fast-2" 1e-8 0
 echo "ok: staged runs over 2 ranks"
