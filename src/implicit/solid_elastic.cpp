@@ -1,5 +1,6 @@
 #include "meshfree/implicit/solid_elastic.hpp"
 #include "meshfree/core/log.hpp"
+#include "meshfree/implicit/solid_elastoplastic_system.hpp"
 #include "meshfree/implicit/solid_forms.hpp"
 #include "meshfree/implicit/solid_model.hpp"
 #include "meshfree/verification/exact_solutions_3d.hpp"
@@ -115,6 +116,9 @@ SolidElasticResult solve_solid_elastic(const spec::ProblemSpec& spec,
   if (spec.solid().exact) exact_errors(spec, m, R.parameters, session, R);
   R.node_x = m.node_positions();
   R.node_u = nodal_displacements(m, R.parameters);
+  auto lines = std::make_shared<SolidLineSampler>(spec, m, solid_material_law(spec));
+  if (session.rank() == 0) lines->record(1, R.parameters);
+  R.lines = lines;
   R.memory = solvers::peak_memory(session.comm());
   return R;
 }

@@ -97,6 +97,7 @@ void write_solid_elastic_outputs(const spec::ProblemSpec& spec, const SolidElast
   double umax = 0.0;
   for (const Vec3& u : r.node_u) umax = std::max(umax, u.norm());
   write_history(r, umax, out);
+  if (r.lines) r.lines->write(out);
   write_summary(spec, r, session, umax, out);
 }
 

@@ -170,6 +170,8 @@ SolidElastoplasticResult solve_solid_elastoplastic(const spec::ProblemSpec& spec
   R.increments.push_back(unloaded);
   SolidSeries series(m, session, out);
   series.write(0.0, system, newton.gather_on_root(d));
+  auto lines = std::make_shared<SolidLineSampler>(spec, m, R.material);
+  if (session.rank() == 0 && !spec.solid().lines.empty()) lines->record(0, d);
   SchedulePosition at;
   const ScheduleOutcome o = run_load_schedule(
       solid_schedule(spec), system, newton, d,
@@ -185,6 +187,10 @@ SolidElastoplasticResult solve_solid_elastoplastic(const spec::ProblemSpec& spec
         if (write_fields)
           series.write(inc.record.step + inc.record.step_fraction, system,
                        newton.gather_on_root(d));
+        if (!spec.solid().lines.empty()) { // collective: every rank gathers, rank 0 samples
+          const std::vector<double> all = newton.gather_on_root(d);
+          if (session.rank() == 0) lines->record(static_cast<int>(R.increments.size()), all);
+        }
         R.increments.push_back(std::move(inc));
         return R.increments.back().record;
       },
@@ -197,6 +203,7 @@ SolidElastoplasticResult solve_solid_elastoplastic(const spec::ProblemSpec& spec
   solvers::broadcast(session.comm(), R.parameters, 0);
   R.node_x = m.node_positions();
   R.node_u = nodal_displacements(m, R.parameters);
+  R.lines = lines;
   series.close();
   R.memory = solvers::peak_memory(session.comm());
   return R;

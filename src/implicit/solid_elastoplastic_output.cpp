@@ -95,6 +95,7 @@ void write_solid_elastoplastic_outputs(const spec::ProblemSpec& spec,
                                        io::OutputDirectory& out) {
   if (session.rank() != 0) return;
   write_history(spec, r, out);
+  if (r.lines) r.lines->write(out);
   write_summary(spec, r, session, out);
 }
 

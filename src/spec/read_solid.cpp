@@ -197,6 +197,26 @@ void read_solid_discretisation(KeyReader& r, const ProblemSpec& p, const std::st
                                                             : bytes_per::solid_node_direct);
 }
 
+/// One output.lines entry: a sampled segment with at least one sample point in the body.
+SolidLineSpec read_solid_line(KeyReader& l, const geometry::Prism& body,
+                              const std::vector<SolidLineSpec>& earlier) {
+  SolidLineSpec s;
+  s.name = l.text("name");
+  s.from = vec3(l, "from");
+  s.to = vec3(l, "to");
+  s.points = l.integer("points", 51, 2, 1000000);
+  check_name(l, "name", s.name, false);
+  for (const auto& other : earlier)
+    if (other.name == s.name) l.error("name", "another line is named '" + s.name + "'");
+  bool inside = false;
+  for (int k = 0; k < s.points && !inside; ++k)
+    inside =
+        body.contains(s.from + (s.to - s.from) * (static_cast<double>(k) / (s.points - 1)), 1e-9);
+  if (!inside) l.error("from", "no sample point of the line lies in the body");
+  l.finish();
+  return s;
+}
+
 } // namespace
 
 void parse_solid(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
@@ -230,6 +250,8 @@ void parse_solid(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
         fail(out->path_of("gauges"), "[", k, "].at: the point (",
              detail::concat(s.gauges[k].at.x(), ", ", s.gauges[k].at.y(), ", ", s.gauges[k].at.z()),
              ") is not in the body");
+    for (KeyReader& l : out->map_list("lines"))
+      s.lines.push_back(read_solid_line(l, body, s.lines));
     out->finish();
   }
   if (plastic) {

@@ -54,6 +54,34 @@ def run(problem, out, sets=(), ranks=1):
         return json.load(f)
 
 
+# A radius at 45 degrees at mid-depth, inside the quarter (a line on the symmetry faces samples
+# the penalty-held boundary layer, where the linear basis' stress is poorest).
+RADIAL_LINE = ("output.lines=[{name: radial, from: [0.7071067811865476, 0.7071067811865476, 0.25], "
+               "to: [2.8284271247461903, 2.8284271247461903, 0.25], points: 31}]")
+
+
+def radial_line(out):
+    with open(os.path.join(out, "line_radial.csv")) as f:
+        return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+
+
+def radial_line_error(out):
+    """The largest |sigma - Lame| / p of sigma_rr and sigma_tt along the line (a = 1, b = 5,
+    p = 100: sigma_rr = A - B / r^2, sigma_tt = A + B / r^2, A = p a^2 / (b^2 - a^2),
+    B = A b^2; Timoshenko & Goodier 1970, sec. 28). At 45 degrees sigma_rr and sigma_tt are
+    (sigma_xx + sigma_yy) / 2 + sigma_xy and (sigma_xx + sigma_yy) / 2 - sigma_xy."""
+    p, a, b = 100.0, 1.0, 5.0
+    A = p * a * a / (b * b - a * a)
+    B = A * b * b
+    worst = 0.0
+    for r in radial_line(out):
+        rad = math.hypot(r["x"], r["y"])
+        mean = 0.5 * (r["stress_xx"] + r["stress_yy"])
+        worst = max(worst, abs(mean + r["stress_xy"] - (A - B / rad ** 2)) / p,
+                    abs(mean - r["stress_xy"] - (A + B / rad ** 2)) / p)
+    return worst
+
+
 def check(ok, text):
     global failed
     failed |= not ok
@@ -119,16 +147,29 @@ def check_bricks(work):
           f">= 1.6), L2 {l1:.2e} -> {l2:.2e} (rate {rate_l2:.2f}, >= 2.7)")
 
 
+BLOCK_AXIS = "output.lines=[{name: axis, from: [0.5, 0.5, 0], to: [0.5, 0.5, 2], points: 5}]"
+
+
 def check_plastic_ranks(work):
     """The cyclic uniaxial block (elastoplastic, 40 increments) on 2 ranks equals 1 rank."""
     import csv
     curves = []
     for ranks in (1, 2):
         out = os.path.join(work, f"block_{ranks}")
-        run("block_uniaxial_3d", out, ["discretisation.spacing=0.5", "output.fields_every=10"],
-            ranks=ranks)
+        run("block_uniaxial_3d", out, ["discretisation.spacing=0.5", "output.fields_every=10",
+                                       BLOCK_AXIS], ranks=ranks)
         with open(os.path.join(out, "history.csv")) as f:
             curves.append([float(r["reaction_end_z"]) for r in csv.DictReader(f)])
+    # The axis of the homogeneous block: its sample points carried through the 40 increments of
+    # the cycle (Voce and kinematic hardening) carry the stress the end's reaction gives,
+    # sigma_zz = R_z / (1 mm x 1 mm).
+    with open(os.path.join(work, "block_1", "line_axis.csv")) as f:
+        axis = list(csv.DictReader(f))
+    worst = max(abs(float(r["stress_zz"]) - curves[0][int(float(r["increment"]))])
+                for r in axis) / max(abs(v) for v in curves[0])
+    check(len(axis) == 41 * 5 and worst <= 1e-6,
+          f"output.lines along the block's axis, 41 states x 5 points: sigma_zz equals the "
+          f"reaction per area to {worst:.1e} of the largest (<= 1e-6)")
     frames = subprocess.run(
         [sys.executable, os.path.join(ROOT, "tests", "cli", "xdmf_frames.py"), "--check",
          os.path.join(work, "block_1")], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
@@ -151,10 +192,11 @@ with tempfile.TemporaryDirectory() as work:
     check(s["error_energy_relative"] >= 1e-4,
           f"patch test without VCI fails it: energy error {s['error_energy_relative']:.2e} (>= 1e-4)")
 
-    errors = []
+    errors, line_errors = [], []
     for h in (0.5, 0.25, 0.125):
         summary = run("thick_cylinder_3d", os.path.join(work, f"cyl_{h}"),
-                      [f"discretisation.spacing={h}"])
+                      [f"discretisation.spacing={h}", RADIAL_LINE])
+        line_errors.append(radial_line_error(os.path.join(work, f"cyl_{h}")))
         r = summary["results"]
         errors.append((h, summary["counts"]["dofs"], r["error_energy_relative"],
                        r["error_l2_relative"]))
@@ -168,6 +210,11 @@ with tempfile.TemporaryDirectory() as work:
         rate_l2 = math.log(l1 / l2) / math.log(h1 / h2)
         print(f"     spacing {h1} -> {h2} ({n1} -> {n2} DOFs): energy {e1:.3e} -> {e2:.3e} "
               f"(rate {rate_e:.2f}), L2 {l1:.3e} -> {l2:.3e} (rate {rate_l2:.2f})")
+    rate_line = math.log(line_errors[1] / line_errors[2]) / math.log(2.0)
+    check(line_errors[2] <= 0.03 and rate_line >= 1.5,
+          f"output.lines: sigma_rr and sigma_tt along a radius against Lame, largest error / p "
+          f"{line_errors[0]:.2e}, {line_errors[1]:.2e}, {line_errors[2]:.2e} (<= 0.03 at 0.125, "
+          f"at the bore; rate {rate_line:.2f} >= 1.5)")
     check(rate_e >= 0.9 and rate_l2 >= 1.8,
           f"thick cylinder rates at the finest pair: energy {rate_e:.2f} (>= 0.9), "
           f"L2 {rate_l2:.2f} (>= 1.8)")
@@ -178,8 +225,12 @@ with tempfile.TemporaryDirectory() as work:
     diff = abs(nodal_displacement(os.path.join(work, "cyl_mg")) - direct).max() / abs(direct).max()
     check(mg["solver"]["type"].startswith("cg/gamg") and diff <= 1e-8,
           f"CG + GAMG ({mg['solver']['iterations']} iterations) equals MUMPS to {diff:.1e} (<= 1e-8)")
-    two = run("thick_cylinder_3d", os.path.join(work, "cyl_2"), ["discretisation.spacing=0.25"],
-              ranks=2)
+    two = run("thick_cylinder_3d", os.path.join(work, "cyl_2"),
+              ["discretisation.spacing=0.25", RADIAL_LINE], ranks=2)
+    one_line, two_line = (radial_line(os.path.join(work, d)) for d in ("cyl_0.25", "cyl_2"))
+    check(len(one_line) == len(two_line) == 31 and
+          max(abs(a[k] - b[k]) for a, b in zip(one_line, two_line) for k in a) <= 1e-6,
+          "output.lines on 2 ranks equals 1 rank (31 points, 1e-6 MPa)")
     check_limit_pressure(os.path.join(work, "limit"))
     check_bricks(work)
     check_variations(work, errors[1][2])

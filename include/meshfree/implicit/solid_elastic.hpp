@@ -3,12 +3,14 @@
 // node and solved once; u^h at the nodes, each face condition's reaction or load, and the
 // errors against an exact solution where the problem gives one.
 #include "meshfree/core/timer.hpp"
+#include "meshfree/implicit/solid_lines.hpp"
 #include "meshfree/implicit/solid_model.hpp"
 #include "meshfree/io/output.hpp"
 #include "meshfree/solvers/parallel.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
 #include "meshfree/spec/problem_spec.hpp"
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -25,6 +27,7 @@ struct SolidElasticResult {
   double error_l2 = std::numeric_limits<double>::quiet_NaN();     // relative, with an exact
   double error_energy = std::numeric_limits<double>::quiet_NaN(); // solution
   solvers::PeakMemory memory;
+  std::shared_ptr<const SolidLineSampler> lines; // output.lines (rank 0's rows)
 };
 
 SolidElasticResult solve_solid_elastic(const spec::ProblemSpec& spec,

@@ -7,6 +7,7 @@
 #include "meshfree/core/timer.hpp"
 #include "meshfree/implicit/elastoplastic_result.hpp"
 #include "meshfree/implicit/solid_forms.hpp"
+#include "meshfree/implicit/solid_lines.hpp"
 #include "meshfree/implicit/solid_model.hpp"
 #include "meshfree/io/output.hpp"
 #include "meshfree/solvers/parallel.hpp"
@@ -38,6 +39,7 @@ struct SolidElastoplasticResult {
   // SolidSpec::record_increment_parameters.
   std::shared_ptr<const SolidModel> model;
   materials::J2Parameters material;
+  std::shared_ptr<const SolidLineSampler> lines; // output.lines at every state (rank 0's rows)
 };
 
 /// Writes the field series as it goes into `out` (rank 0's folder; null elsewhere, or for no

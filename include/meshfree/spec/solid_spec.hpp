@@ -32,6 +32,13 @@ struct FaceCondition {
   double pressure = 0.0;
 };
 
+/// A segment of a 3D body sampled at `points` evenly spaced points (output.lines).
+struct SolidLineSpec {
+  std::string name;
+  Vec3 from{0.0, 0.0, 0.0}, to{0.0, 0.0, 0.0};
+  int points = 0;
+};
+
 /// elastic_static or elastoplastic_static with model solid_3d: the front's plane body extruded
 /// from z0 by depth, meshfree nodes (the plane node cloud in layers along z), conditions on
 /// faces, loaded in steps and solved by Newton's method and a linear solver with 3 DOFs a node.
@@ -45,8 +52,9 @@ struct SolidSpec {
   std::vector<LoadStep> steps;
   NonlinearSpec nonlinear;
   LinearSolverSpec linear_solver;
-  std::vector<GaugeSpec> gauges; // points whose displacement each increment records
-  int fields_every = 1;          // field frames every this many converged increments (and the last)
+  std::vector<GaugeSpec> gauges;    // points whose displacement each increment records
+  std::vector<SolidLineSpec> lines; // sampled at the end (elastic) or each increment
+  int fields_every = 1; // field frames every this many converged increments (and the last)
   // Set by a staged run, not read from the file: every increment's nodal parameters are kept
   // (IncrementRecord::parameters), on every rank, so a later stage can evaluate any increment.
   bool record_increment_parameters = false;
