@@ -347,6 +347,8 @@ solvers::LinearSolverSettings solid_solver_settings(const spec::ProblemSpec& spe
   solvers::LinearSolverSettings L;
   L.symmetric = !s.discretisation.vci || s.discretisation.method == spec::Method::Fem;
   L.multigrid = s.linear_solver.multigrid_for(3.0 * m.node_count());
+  if (s.discretisation.method != spec::Method::Fem)
+    L.fine_smoother = solvers::LinearSolverSettings::FineSmoother::sor;
   if (L.multigrid)
     for (int I = m.own.begin; I < m.own.end; ++I)
       for (int c = 0; c < 3; ++c) L.coordinates.push_back(m.node_positions()[I](c));
