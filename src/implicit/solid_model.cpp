@@ -335,8 +335,8 @@ void print_solid_plan(const spec::ProblemSpec& spec, std::ostream& os) {
   }
   const bool multigrid = s.linear_solver.multigrid_for(3.0 * n);
   os << "  memory: "
-     << describe_bytes(n *
-                       (multigrid ? bytes_per::solid_node_multigrid : bytes_per::solid_node_direct))
+     << describe_bytes(n * bytes_per::solid_node(s.discretisation.method == spec::Method::Fem,
+                                                  multigrid))
      << " with the " << (multigrid ? "multigrid" : "direct") << " solver, besides "
      << describe_bytes(bytes_per::program) << " for the program\n";
 }
