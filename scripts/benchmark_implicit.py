@@ -21,7 +21,7 @@ shared with nothing else only if you make it so.
     scripts/benchmark_implicit.py                       # the full study (about 20 minutes)
     scripts/benchmark_implicit.py --quick --out DIR     # a smoke run: 2 small sizes of each
     scripts/benchmark_implicit.py --cases box hex8 hex20 --layouts 1x2 --solvers multigrid
-                                                        # the 3D study (about 25 minutes)
+                                                        # the 3D study (about 12 minutes)
 
 The 3D cases (model solid_3d, on the box of problems/patch_test_3d.yaml): `box`, meshfree RK,
 and `hex8`, `hex20`, the same box in bricks (discretisation.method: fem), from 10^4 to 10^6
