@@ -20,7 +20,17 @@ shared with nothing else only if you make it so.
 
     scripts/benchmark_implicit.py                       # the full study (about 20 minutes)
     scripts/benchmark_implicit.py --quick --out DIR     # a smoke run: 2 small sizes of each
-    scripts/benchmark_implicit.py --cases box           # a 3D box (model solid_3d) instead
+    scripts/benchmark_implicit.py --cases box hex8 hex20 --layouts 1x2 --solvers multigrid
+                                                        # the 3D study (about 12 minutes)
+
+The 3D cases (model solid_3d, on the box of problems/patch_test_3d.yaml): `box`, meshfree RK,
+and `hex8`, `hex20`, the same box in bricks (discretisation.method: fem), from 10^4 to 10^6
+DOFs (--box-max-dofs, --brick-max-dofs). No run starts whose peak memory, predicted from the
+bytes per DOF of the case's last run, exceeds --max-memory-gb; the prediction for the largest
+size left out is printed instead. For each 3D case on multigrid it prints, and writes in
+criteria.csv, whether the CG iterations at the largest size are within 30% of those at the size
+nearest 10^5 and whether the assembly grows no faster than N^1.15 from there (issue 31's
+acceptance for 3D); --check-criteria exits 1 if either fails.
 """
 import argparse
 import csv
@@ -55,7 +65,31 @@ BOX = dict(problem="patch_test_3d.yaml", analysis="elastic",
            spacing=lambda dofs: (1.125 / dofs) ** (1.0 / 3.0),
            sets=lambda h: ["discretisation.quadrature.correction=none",
                            f"discretisation.quadrature.cell_size={0.7 * h!r}"])
-EXTRA_CASES = {"box": BOX}
+
+
+def brick_spacing(dofs, nodes_per_cell):
+    """The spacing for about `dofs` DOFs of bricks on the box: a whole fraction 0.25 / k of
+    its sides (1, 0.75, 0.5), with `nodes_per_cell` nodes per brick's worth of volume (1 for
+    hex8; 4 for hex20: a corner and three edge midpoints)."""
+    raw = (3 * 0.375 * nodes_per_cell / dofs) ** (1.0 / 3.0)
+    return 0.25 / max(1, round(0.25 / raw))
+
+
+def bricks(element, nodes_per_cell):
+    """The box of BOX in 8-node (plane q4 extruded) or 20-node (q8) bricks on a structured mesh
+    of spacing h, 2 x 2 x 2 or 3 x 3 x 3 Gauss points per brick."""
+    return dict(problem="patch_test_3d.yaml", analysis="elastic",
+                spacing=lambda dofs: brick_spacing(dofs, nodes_per_cell),
+                sets=lambda h: ["discretisation.method=fem", f"discretisation.fem.element={element}",
+                                "discretisation.quadrature.correction=none"])
+
+
+EXTRA_CASES = {"box": BOX, "hex8": bricks("q4", 1), "hex20": bricks("q8", 4)}
+SOLID_3D = set(EXTRA_CASES)
+# Issue 31's acceptance for 3D on multigrid: CG iterations at the largest size within this
+# fraction of those near 10^5 DOFs, and the assembly's growth exponent at most this.
+ITERATIONS_WITHIN = 0.30
+ASSEMBLY_EXPONENT_MAX = 1.15
 LAYOUTS = {"1x2": (1, 2), "2x1": (2, 1)}
 SETUP = ("nodes", "quadrature", "neighbours", "shape_functions")
 
@@ -168,6 +202,58 @@ def local_exponents(rows):
     return out
 
 
+def predicted_peak(rows, case, solver, layout, dofs):
+    """The peak memory of a run of `dofs` DOFs at the bytes per DOF of the same case's largest
+    run so far (they fall with size in every case measured, so this over-estimates), or None
+    before its first run."""
+    done = [r for r in rows if (r["case"], r["solver"], r["layout"]) == (case, solver, layout)]
+    return max(done, key=lambda r: r["dofs"])["bytes_per_dof"] * dofs if done else None
+
+
+def criteria(rows, reference_dofs=1e5):
+    """Issue 31's acceptance for each 3D case on multigrid: the CG iterations at the largest
+    size against those at the size nearest `reference_dofs` below it, and the assembly's growth
+    exponent between the two (least squares over the sizes from one to the other)."""
+    out = []
+    keys = sorted({(r["case"], r["layout"]) for r in rows
+                   if r["case"] in SOLID_3D and r["solver"] == "multigrid"})
+    for case, layout in keys:
+        rs = sorted((r for r in rows if (r["case"], r["solver"], r["layout"]) ==
+                     (case, "multigrid", layout)), key=lambda r: r["dofs"])
+        if len(rs) < 2:
+            continue
+        top = rs[-1]
+        ref = min(rs[:-1], key=lambda r: abs(math.log(r["dofs"] / reference_dofs)))
+        ratio = top["iterations_per_solve"] / ref["iterations_per_solve"]
+        exponent = slope([(r["dofs"], r["assembly_s"]) for r in rs if r["dofs"] >= ref["dofs"]])
+        out.append(dict(case=case, layout=layout, dofs_from=ref["dofs"], dofs_to=top["dofs"],
+                        iterations_from=ref["iterations_per_solve"],
+                        iterations_to=top["iterations_per_solve"], iterations_ratio=ratio,
+                        iterations_ok=abs(ratio - 1.0) <= ITERATIONS_WITHIN,
+                        assembly_exponent=exponent,
+                        assembly_ok=exponent <= ASSEMBLY_EXPONENT_MAX,
+                        bytes_per_dof_at_largest=top["bytes_per_dof"]))
+    return out
+
+
+def print_criteria(checks, skipped):
+    print("\n3D on multigrid: iterations at the largest size against those near 10^5, and the "
+          "assembly's exponent:")
+    for c in checks:
+        print(f"  {'PASS' if c['iterations_ok'] else 'FAIL'}: {c['case']} {c['layout']}: "
+              f"{c['iterations_to']:.0f} CG iterations at {c['dofs_to']} DOFs, "
+              f"{c['iterations_from']:.0f} at {c['dofs_from']} (x{c['iterations_ratio']:.2f}; "
+              f"within {ITERATIONS_WITHIN:.0%})")
+        print(f"  {'PASS' if c['assembly_ok'] else 'FAIL'}: {c['case']} {c['layout']}: assembly "
+              f"~ N^{c['assembly_exponent']:.2f} from {c['dofs_from']} to {c['dofs_to']} DOFs "
+              f"(at most {ASSEMBLY_EXPONENT_MAX}); {c['bytes_per_dof_at_largest']:.0f} bytes "
+              f"per DOF at the largest")
+    for k in skipped:
+        print(f"  not run: {k['case']} {k['solver']} {k['layout']} at about {k['dofs']:.3g} DOFs: "
+              f"predicted peak {k['predicted_peak_bytes'] / 1e9:.1f} GB "
+              f"({k['bytes_per_dof']:.0f} bytes per DOF, measured at {k['measured_at_dofs']})")
+
+
 def plot(rows, path):
     try:
         import matplotlib
@@ -247,8 +333,19 @@ def main():
     ap.add_argument("--strip-max-dofs", type=float, default=1e5,
                     help="the strip's 10 increments of Newton take about 40 linear solves")
     ap.add_argument("--direct-max-dofs", type=float, default=3.2e5)
-    ap.add_argument("--box-max-dofs", type=float, default=2e5,
-                    help="the largest 3D box (case box: about 30 KB a DOF with multigrid)")
+    ap.add_argument("--box-max-dofs", type=float, default=1e6,
+                    help="the largest meshfree 3D box (case box: about 21 KB a DOF with "
+                         "multigrid, so --max-memory-gb stops it first)")
+    ap.add_argument("--brick-max-dofs", type=float, default=1e6,
+                    help="the largest box of bricks (cases hex8, hex20)")
+    ap.add_argument("--max-memory-gb", type=float, default=10.0,
+                    help="no run whose peak memory, predicted from the bytes per DOF of its "
+                         "case's last run, exceeds this (the machine is shared)")
+    ap.add_argument("--solvers", nargs="+", default=["direct", "multigrid"],
+                    choices=["direct", "multigrid"])
+    ap.add_argument("--check-criteria", action="store_true",
+                    help="exit 1 if a 3D case on multigrid misses its iterations or assembly "
+                         "criterion")
     ap.add_argument("--fit-from", type=float, default=1e5, help="smallest DOFs in the exponents' fit")
     ap.add_argument("--layouts", nargs="+", default=list(LAYOUTS), choices=list(LAYOUTS))
     ap.add_argument("--cases", nargs="+", default=list(CASES),
@@ -264,18 +361,33 @@ def main():
     out.mkdir(parents=True, exist_ok=True)
 
     sizes = [4e3, 1e4] if args.quick else [1e4, 4e4, 1e5, 2e5, 4e5, 1e6, 2.5e6]
-    rows = []
+    rows, skipped = [], []
+    tops = {"plate": args.max_dofs, "box": args.box_max_dofs, "hex8": args.brick_max_dofs,
+            "hex20": args.brick_max_dofs}
     for case in args.cases:
-        top = {"plate": args.max_dofs, "box": args.box_max_dofs}.get(case, args.strip_max_dofs)
-        for solver in ("direct", "multigrid"):
+        top = tops.get(case, args.strip_max_dofs)
+        for solver in args.solvers:
             for layout in args.layouts:
                 for dofs in sizes:
                     if dofs > top or (solver == "direct" and dofs > args.direct_max_dofs):
+                        continue
+                    guess = predicted_peak(rows, case, solver, layout, dofs)
+                    if guess is not None and guess > args.max_memory_gb * 1e9:
+                        measured = max((r for r in rows if (r["case"], r["solver"], r["layout"])
+                                        == (case, solver, layout)), key=lambda r: r["dofs"])
+                        print(f"{case} {solver} {layout}: about {dofs:.3g} DOFs not run: predicted "
+                              f"peak {guess / 1e9:.1f} GB > --max-memory-gb {args.max_memory_gb:g}",
+                              flush=True)
+                        skipped.append(dict(case=case, solver=solver, layout=layout, dofs=dofs,
+                                            predicted_peak_bytes=guess, bytes_per_dof=guess / dofs,
+                                            measured_at_dofs=measured["dofs"]))
                         continue
                     row = run_case(args.meshfree, case, dofs, solver, layout, out)
                     if row:
                         rows.append(row)
     write_csv(out / "runs.csv", rows)
+    if skipped:
+        write_csv(out / "predicted.csv", skipped)
     if not args.quick and args.first_touch:
         print("\nthis machine's memory (what the largest runs' assembly and set-up pay per byte):")
         write_csv(out / "first_touch.csv", first_touch_rates(args.first_touch))
@@ -291,6 +403,13 @@ def main():
               + f", solve {e['solve']:.2f}, "
               f"total {e['total']:.2f}, memory {e['memory']:.2f}; iterations x{e['iterations_growth']:.2f}")
     plot(rows, out / "benchmark_implicit.png")
+    checks = criteria(rows)
+    if checks or skipped:
+        print_criteria(checks, skipped)
+    if checks:
+        write_csv(out / "criteria.csv", checks)
+    if args.check_criteria and not all(c["iterations_ok"] and c["assembly_ok"] for c in checks):
+        sys.exit(1)
     if args.max_iterations_growth is not None:
         grown = [e for e in fits if e["solver"] == "multigrid"
                  and not e["iterations_growth"] <= args.max_iterations_growth]

@@ -335,8 +335,8 @@ void print_solid_plan(const spec::ProblemSpec& spec, std::ostream& os) {
   }
   const bool multigrid = s.linear_solver.multigrid_for(3.0 * n);
   os << "  memory: "
-     << describe_bytes(n *
-                       (multigrid ? bytes_per::solid_node_multigrid : bytes_per::solid_node_direct))
+     << describe_bytes(n * bytes_per::solid_node(s.discretisation.method == spec::Method::Fem,
+                                                  multigrid))
      << " with the " << (multigrid ? "multigrid" : "direct") << " solver, besides "
      << describe_bytes(bytes_per::program) << " for the program\n";
 }
@@ -347,6 +347,8 @@ solvers::LinearSolverSettings solid_solver_settings(const spec::ProblemSpec& spe
   solvers::LinearSolverSettings L;
   L.symmetric = !s.discretisation.vci || s.discretisation.method == spec::Method::Fem;
   L.multigrid = s.linear_solver.multigrid_for(3.0 * m.node_count());
+  if (s.discretisation.method != spec::Method::Fem)
+    L.fine_smoother = solvers::LinearSolverSettings::FineSmoother::sor;
   if (L.multigrid)
     for (int I = m.own.begin; I < m.own.end; ++I)
       for (int c = 0; c < 3; ++c) L.coordinates.push_back(m.node_positions()[I](c));

@@ -19,6 +19,7 @@ struct PenaltyBand {
   KSP exact = nullptr;    // Cholesky of `held` (LU unless A is known to be symmetric)
   Vec r_held = nullptr, y_held = nullptr, z = nullptr, work = nullptr;
   PetscInt held_count = 0; // over all ranks
+  bool sor_on_finest_level = false;
 };
 
 void destroy_band_parts(PenaltyBand& b) {
@@ -102,6 +103,31 @@ PetscErrorCode pass_failure(PC inner, PC outer) {
   return 0;
 }
 
+/// The finest level's smoother preconditioned by symmetric SOR (set after GAMG's set-up, which
+/// makes the levels), unless the user chose the levels' preconditioner. The Chebyshev smoother
+/// is made anew, so that it estimates its eigenvalue bounds with SOR rather than keep those it
+/// estimated with Jacobi during the set-up; its other settings (steps, transform) stay.
+PetscErrorCode use_sor_on_finest_level(PC multigrid) {
+  const char* prefix = nullptr;
+  PetscCall(PCGetOptionsPrefix(multigrid, &prefix));
+  PetscBool chosen = PETSC_FALSE;
+  PetscCall(PetscOptionsHasName(nullptr, prefix, "-mg_levels_pc_type", &chosen));
+  PetscInt levels = 0;
+  PetscCall(PCMGGetLevels(multigrid, &levels));
+  if (chosen || levels < 2) return 0;
+  KSP smoother;
+  PetscCall(PCMGGetSmoother(multigrid, levels - 1, &smoother));
+  PC sor;
+  PetscCall(KSPGetPC(smoother, &sor));
+  PetscBool is_sor = PETSC_FALSE;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(sor), PCSOR, &is_sor));
+  if (is_sor) return 0;
+  PetscCall(PCSetType(sor, PCSOR));
+  PetscCall(KSPSetType(smoother, KSPRICHARDSON));
+  PetscCall(KSPSetType(smoother, KSPCHEBYSHEV));
+  return KSPSetFromOptions(smoother);
+}
+
 PetscErrorCode band_set_up(PC pc) {
   PenaltyBand* b = nullptr;
   PetscCall(PCShellGetContext(pc, &b));
@@ -125,10 +151,14 @@ PetscErrorCode band_set_up(PC pc) {
     // joining their neighbours' (measured in README.md, "linear systems").
     PetscReal threshold[] = {0.01};
     PetscCall(PCGAMGSetThreshold(b->multigrid, threshold, 1));
+    // The smoothers' eigenvalue bounds estimated by each smoother with its own preconditioner,
+    // not taken from the aggregation's Jacobi-scaled estimate, which would not fit SOR.
+    if (b->sor_on_finest_level) PetscCall(PCGAMGSetUseSAEstEig(b->multigrid, PETSC_FALSE));
     PetscCall(PCSetFromOptions(b->multigrid));
   }
   PetscCall(PCSetOperators(b->multigrid, A, P));
   PetscCall(PCSetUp(b->multigrid));
+  if (b->sor_on_finest_level) PetscCall(use_sor_on_finest_level(b->multigrid));
   return pass_failure(b->multigrid, pc);
 }
 
@@ -188,9 +218,11 @@ PetscErrorCode band_destroy(PC pc) {
 
 } // namespace
 
-void set_penalty_band_multigrid(PC pc) {
+void set_penalty_band_multigrid(PC pc, bool sor_on_finest_level) {
   check(PCSetType(pc, PCSHELL), "PCSetType");
-  check(PCShellSetContext(pc, new PenaltyBand), "PCShellSetContext");
+  auto* band = new PenaltyBand;
+  band->sor_on_finest_level = sor_on_finest_level;
+  check(PCShellSetContext(pc, band), "PCShellSetContext");
   check(PCShellSetName(pc, kPenaltyBandMultigrid), "PCShellSetName");
   check(PCShellSetSetUp(pc, band_set_up), "PCShellSetSetUp");
   check(PCShellSetApply(pc, band_apply), "PCShellSetApply");

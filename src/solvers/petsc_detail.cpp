@@ -396,7 +396,7 @@ void set_multigrid_solver(KSP ksp, Mat A, const LinearSolverSettings& settings) 
         "KSPSetTolerances");
   PC pc;
   check(KSPGetPC(ksp, &pc), "KSPGetPC");
-  set_penalty_band_multigrid(pc);
+  set_penalty_band_multigrid(pc, settings.fine_smoother == LinearSolverSettings::FineSmoother::sor);
   // The Chebyshev smoothers aim at [0.05, 1.5] times the estimated largest eigenvalue of their
   // level (PETSc's default [0.1, 1.1]): on the strip's plastic tangents at 10^5 DOFs the
   // estimate fell short, the smoother amplified the stiffest modes and CG stopped with an

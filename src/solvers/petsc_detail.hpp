@@ -57,8 +57,10 @@ inline constexpr const char* kPenaltyBandMultigrid = "gamg+held-rows";
 /// penalty does not stiffen are left by the Jacobi-scaled smoother and not represented in the
 /// coarse spaces (whose modes are zero there), so the cycle alone converged ever slower as the
 /// penalty grew ([Lee, Wu, Xu & Zikatanov 2007]; the symmetric product as in [Xu 1992]). The
-/// held rows are found anew from the matrix's values at each set-up.
-void set_penalty_band_multigrid(PC pc);
+/// held rows are found anew from the matrix's values at each set-up. `sor_on_finest_level`:
+/// the finest level's Chebyshev smoother preconditioned by symmetric SOR instead of Jacobi
+/// (LinearSolverSettings::fine_smoother), unless -mg_levels_pc_type is given.
+void set_penalty_band_multigrid(PC pc, bool sor_on_finest_level);
 
 /// A's near-null space for GAMG, from A's values: the rigid-body modes of the nodes
 /// (MatNullSpaceCreateRigidBody on `coordinates`, A's block size of them per owned node: the

@@ -175,8 +175,9 @@ void read_boundary(KeyReader& r, const ProblemSpec& p, SolidSpec& s) {
     r.error("boundary", "no displacement condition: the body is free to move as a rigid body");
 }
 
-/// The 3D discretisation: meshfree reproducing kernels; the plane node count times the layers
-/// along z checked against the memory.
+/// The 3D discretisation: meshfree reproducing kernels or bricks; the plane node count times the
+/// layers along z (four times that for 20-node bricks: a corner and three edge midpoints per
+/// lattice point) checked against the memory.
 void read_solid_discretisation(KeyReader& r, const ProblemSpec& p, const std::string& base_dir,
                                SolidSpec& s) {
   s.discretisation = read_discretisation(r, 3, p.domain.bounds(), base_dir, s.linear_solver);
@@ -190,11 +191,12 @@ void read_solid_discretisation(KeyReader& r, const ProblemSpec& p, const std::st
   if (s.depth < d.spacing)
     fail(key, ".spacing: ", d.spacing, " exceeds the body's depth along z (", s.depth, ")");
   const Vec2 size = p.domain.bounds().size();
-  const double nodes =
-      (size.x() / d.spacing + 1.0) * (size.y() / d.spacing + 1.0) * (s.depth / d.spacing + 1.0);
+  const bool bricks = d.method == Method::Fem;
+  const double nodes = (bricks && d.fem.element == "q8" ? 4.0 : 1.0) *
+                       (size.x() / d.spacing + 1.0) * (size.y() / d.spacing + 1.0) *
+                       (s.depth / d.spacing + 1.0);
   require_memory(key + ".spacing", "nodes over the 3D body", nodes,
-                 s.linear_solver.multigrid_for(3.0 * nodes) ? bytes_per::solid_node_multigrid
-                                                            : bytes_per::solid_node_direct);
+                 bytes_per::solid_node(bricks, s.linear_solver.multigrid_for(3.0 * nodes)));
 }
 
 /// One output.lines entry: a sampled segment with at least one sample point in the body.

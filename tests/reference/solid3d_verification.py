@@ -9,7 +9,8 @@ problems/thick_cylinder_3d.yaml):
 - Lame's thick cylinder in plane strain at spacings 0.5, 0.25, 0.125: the linear basis's rates,
   energy >= 0.9 and L2 >= 1.8 from 0.25 to 0.125 (theory 1 and 2: Belytschko, Lu & Gu 1994), the
   bore's pressure resultant p a depth from the face points on the exact arcs (to 1e-8), CG + GAMG with the six
-  rigid-body modes equal to MUMPS to 1e-8, and two MPI ranks equal to one to 1e-8;
+  rigid-body modes equal to MUMPS to 1e-8 in at most 25 iterations (15 with SOR on the finest
+  level, 50 with Jacobi), and two MPI ranks equal to one to 1e-8;
 - the elastic-perfectly plastic cylinder (problems/thick_cylinder_plastic_3d.yaml, spacing 0.2)
   collapses within 1% of the plane-strain limit pressure (2 / sqrt 3) sigma_y ln(b / a)
   (Hill 1950, ch. V): the limit taken as the first pressure whose increment's secant stiffness
@@ -223,8 +224,11 @@ with tempfile.TemporaryDirectory() as work:
     mg = run("thick_cylinder_3d", os.path.join(work, "cyl_mg"),
              ["discretisation.spacing=0.25", "linear_solver.type=multigrid"])
     diff = abs(nodal_displacement(os.path.join(work, "cyl_mg")) - direct).max() / abs(direct).max()
-    check(mg["solver"]["type"].startswith("cg/gamg") and diff <= 1e-8,
-          f"CG + GAMG ({mg['solver']['iterations']} iterations) equals MUMPS to {diff:.1e} (<= 1e-8)")
+    # The finest level's SOR smoother of meshfree bodies: 15 iterations, 50 with Jacobi.
+    check(mg["solver"]["type"].startswith("cg/gamg") and diff <= 1e-8
+          and mg["solver"]["iterations"] <= 25,
+          f"CG + GAMG ({mg['solver']['iterations']} iterations, at most 25) equals MUMPS to "
+          f"{diff:.1e} (<= 1e-8)")
     two = run("thick_cylinder_3d", os.path.join(work, "cyl_2"),
               ["discretisation.spacing=0.25", RADIAL_LINE], ranks=2)
     one_line, two_line = (radial_line(os.path.join(work, d)) for d in ("cyl_0.25", "cyl_2"))

@@ -25,6 +25,16 @@ constexpr double galerkin_node_alone = 12000.0;
 /// 21.5-25.8 KB a DOF measured on the box from 12k to 108k DOFs.
 constexpr double solid_node_direct = 3.3e5;
 constexpr double solid_node_multigrid = 8.0e4;
+/// A node of 8- or 20-node bricks with the multigrid solver: 3.6-4.6 KB a DOF measured on the
+/// hex8 box from 4e4 to 4.5e5 DOFs, 6.3-7.7 KB on the hex20 box to 10^6 (README.md, "3D
+/// bodies"), with a margin.
+constexpr double solid_brick_node_multigrid = 2.4e4;
+/// The bytes per node of a 3D Galerkin body: meshfree or bricks, direct or multigrid.
+constexpr double solid_node(bool bricks, bool multigrid) {
+  return !multigrid ? solid_node_direct
+         : bricks   ? solid_brick_node_multigrid
+                    : solid_node_multigrid;
+}
 constexpr double galerkin_point = 2500.0;
 /// What the program holds before any of these (its libraries: MPI, PETSc, HDF5).
 constexpr double program = 45.0 * 1024.0 * 1024.0;

@@ -72,6 +72,15 @@ struct LinearSolverSettings {
   double relative_tolerance = 1e-12;
   /// multigrid: the dofs-per-node coordinates of each owned node in order (x, y or x, y, z)
   std::vector<double> coordinates;
+  /// multigrid: the preconditioner inside the finest level's Chebyshev smoother. Point Jacobi
+  /// suits finite elements (SOR costs them more time than it saves iterations); the wide
+  /// stencils of 3D meshfree shape functions (a row couples hundreds of nodes) leave errors
+  /// that Chebyshev over Jacobi does not damp, and over symmetric SOR does ([Adams, Brezina,
+  /// Hu & Tuminaro 2003]; measured in README.md). The coarser levels keep Jacobi: their
+  /// matrices have zero rows where an aggregate of held rows has no near-null modes, which SOR
+  /// cannot invert.
+  enum class FineSmoother { jacobi, sor };
+  FineSmoother fine_smoother = FineSmoother::jacobi;
 };
 
 struct SolveReport {

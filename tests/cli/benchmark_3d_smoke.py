@@ -1,0 +1,83 @@
+#!/usr/bin/python3
+"""The 3D paths of the scaling study and of the cost comparison, on small sizes (about 20 s).
+
+- scripts/benchmark_implicit.py --quick on the 3D cases (meshfree box, hex8, hex20) on
+  multigrid under a memory cap of 0.15 GB: hex8 runs both sizes (its second predicted at about
+  0.11 GB) and its CG iterations at the larger stay within 30% of those at the smaller
+  (criteria.csv); the box's and hex20's second sizes (predicted at about 0.29 and 0.21 GB) are not
+  run, and predicted.csv gives for each the bytes per DOF of the case's first run times the size.
+- scripts/thick_plate_cost.py on the first 2 increments, meshfree at spacing 1: the CalculiX
+  level it times is as close to the converged curve as meshfree's run, each code ran twice, and
+  the DOFs are those of the meshes (3 x the nodes of the recipe's n = 2 mesh: 381).
+
+    benchmark_3d_smoke.py MESHFREE ROOT
+"""
+import csv
+import os
+import subprocess
+import sys
+import tempfile
+
+MESHFREE, ROOT = sys.argv[1], sys.argv[2]
+failed = False
+
+
+def check(ok, message):
+    global failed
+    failed |= not ok
+    print(f"{'ok' if ok else 'FAIL'}: {message}", flush=True)
+
+
+def rows_of(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def script(name, args):
+    cmd = [sys.executable, os.path.join(ROOT, "scripts", name), "--meshfree", MESHFREE] + args
+    done = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    print(done.stdout[-3000:])
+    return done.returncode
+
+
+with tempfile.TemporaryDirectory() as work:
+    out = os.path.join(work, "scaling")
+    rc = script("benchmark_implicit.py", ["--out", out, "--quick", "--cases", "box", "hex8", "hex20",
+                                          "--layouts", "1x2", "--solvers", "multigrid",
+                                          "--max-memory-gb", "0.15"])
+    check(rc == 0, f"benchmark_implicit.py on the 3D cases exited {rc}")
+    runs = rows_of(os.path.join(out, "runs.csv"))
+    count = {c: sum(r["case"] == c for r in runs) for c in ("box", "hex8", "hex20")}
+    check(count == {"box": 1, "hex8": 2, "hex20": 1},
+          f"sizes run under the 0.15 GB cap: {count} (box 1, hex8 2, hex20 1)")
+    predicted = {p["case"]: p for p in rows_of(os.path.join(out, "predicted.csv"))}
+    for case in ("box", "hex20"):
+        first = next(r for r in runs if r["case"] == case)
+        p = predicted.get(case)
+        expected = float(first["bytes_per_dof"]) * 1e4
+        check(p is not None and abs(float(p["predicted_peak_bytes"]) / expected - 1) < 1e-5
+              and float(p["predicted_peak_bytes"]) > 0.15e9,
+              f"{case} at 1e4 DOFs not run, predicted at {expected / 1e9:.3f} GB from "
+              f"{float(first['bytes_per_dof']):.0f} bytes per DOF")
+    hex8 = [c for c in rows_of(os.path.join(out, "criteria.csv")) if c["case"] == "hex8"]
+    check(len(hex8) == 1 and abs(float(hex8[0]["iterations_ratio"]) - 1) <= 0.3
+          and hex8[0]["iterations_ok"] == "True",
+          "hex8's CG iterations: " + (f"{hex8[0]['iterations_from']} at {hex8[0]['dofs_from']} "
+                                      f"DOFs, {hex8[0]['iterations_to']} at {hex8[0]['dofs_to']}"
+                                      if hex8 else "no criteria row"))
+
+    out = os.path.join(work, "cost")
+    rc = script("thick_plate_cost.py", ["--out", out, "--increments", "2", "--levels", "2", "3",
+                                        "--set", "discretisation.spacing=1.0"])
+    check(rc == 0, f"thick_plate_cost.py exited {rc}")
+    table = {r["code"]: r for r in rows_of(os.path.join(out, "table.csv"))}
+    mf, ccx = table.get("meshfree"), table.get("CalculiX")
+    check(mf is not None and ccx is not None
+          and float(ccx["force_error"]) <= float(mf["force_error"]) < 0.01,
+          "CalculiX's timed level within meshfree's force error: "
+          + (f"{float(ccx['force_error']):.3%} <= {float(mf['force_error']):.3%}"
+             if mf and ccx else "rows missing"))
+    check(bool(mf and ccx) and ccx["dofs"] == "381" and all(len(r["wall_s"].split()) == 2
+                                                            for r in (mf, ccx)),
+          "CalculiX on n = 2 (381 DOFs), two timed runs of each code")
+sys.exit(1 if failed else 0)
