@@ -26,6 +26,7 @@ problems/thick_cylinder_3d.yaml):
 
     solid3d_verification.py MESHFREE ROOT
 """
+import csv
 import json
 import math
 import os
@@ -98,7 +99,6 @@ def nodal_displacement(out):
 
 
 def check_limit_pressure(out):
-    import csv
     run("thick_cylinder_plastic_3d", out, ["discretisation.spacing=0.2"])
     with open(os.path.join(out, "history.csv")) as f:
         rows = list(csv.DictReader(f))
@@ -153,7 +153,6 @@ BLOCK_AXIS = "output.lines=[{name: axis, from: [0.5, 0.5, 0], to: [0.5, 0.5, 2],
 
 def check_plastic_ranks(work):
     """The cyclic uniaxial block (elastoplastic, 40 increments) on 2 ranks equals 1 rank."""
-    import csv
     curves = []
     for ranks in (1, 2):
         out = os.path.join(work, f"block_{ranks}")
