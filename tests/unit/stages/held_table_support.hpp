@@ -83,6 +83,14 @@ struct Quietness {
   double plastic_change = 0.0; // largest change of alpha / largest alpha
 };
 
+struct PdQuietness {
+  long steps = 0;
+  double kinetic = 0.0;  // largest kinetic / strain energy over the run
+  double interior = 0.0; // largest |u - u^h| of an interior particle / largest |u^h|
+  double pd_vs_uh = 0.0; // |u_PD - u^h| / |u^h| over the body after the relaxation
+  int relax_iterations = 0;
+};
+
 inline const char* law_name(Law law) {
   return law == Law::Elastic ? "elastic" : law == Law::Isotropic ? "isotropic" : "kinematic";
 }

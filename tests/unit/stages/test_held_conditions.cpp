@@ -231,14 +231,6 @@ TEST_CASE("the particles a condition holds do not depend on the preload's spacin
 
 namespace {
 
-struct PdQuietness {
-  long steps = 0;
-  double kinetic = 0.0;  // largest kinetic / strain energy over the run
-  double interior = 0.0; // largest |u - u^h| of an interior particle / largest |u^h|
-  double pd_vs_uh = 0.0; // |u_PD - u^h| / |u^h| over the body after the relaxation
-  int relax_iterations = 0;
-};
-
 /// The peridynamic stage relaxed from u^h under the held conditions, then run for 1,000 steps.
 PdQuietness pd_quietness(const Held& c) {
   const spec::ProblemSpec spec =
