@@ -1,6 +1,7 @@
-// libmeshfree_gmsh.so: meshes a plane body, or its prism with tetrahedra, with gmsh's C++ API (Geuzaine & Remacle 2009; gmsh
-// reference manual, "Gmsh application programming interface") for fem/mesh_generation, which
-// loads it when a mesh is to be made (see include/meshfree/fem/gmsh_mesher.hpp for why).
+// libmeshfree_gmsh.so: meshes a plane body, or its prism with tetrahedra, with gmsh's C++ API
+// (Geuzaine & Remacle 2009; gmsh reference manual, "Gmsh application programming interface") for
+// fem/mesh_generation, which loads it when a mesh is to be made (see
+// include/meshfree/fem/gmsh_mesher.hpp for why).
 #include "meshfree/fem/gmsh_mesher.hpp"
 #include <gmsh.h>
 
@@ -22,7 +23,9 @@ struct Session {
   Session& operator=(const Session&) = delete;
 };
 
-bool volume(const Request& q) { return q.element_type == 4 || q.element_type == 11; }
+bool volume(const Request& q) {
+  return q.element_type == 4 || q.element_type == 11;
+}
 
 /// The body as OpenCASCADE entities: the polygon as a surface, cut by the holes (a hole may
 /// cross the outline, as the quarter models' holes at a corner do), at z = z0; for tetrahedra

@@ -77,14 +77,13 @@ gmsh_mesher::Result run_gmsh(const gmsh_mesher::Request& q, double nodes) {
     log::info("meshed the body: ", r.node_tags.size(), " nodes, ",
               std::accumulate(r.element_counts.begin(), r.element_counts.end(), std::size_t{0}),
               " elements in ",
-              log::duration(std::chrono::duration<double>(std::chrono::steady_clock::now() - began)
-                                .count()));
+              log::duration(
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count()));
   return r;
 }
 
 /// The element types gmsh made must all be `wanted` (`name` in messages).
-void require_type(const gmsh_mesher::Result& r, int wanted, const char* name,
-                  const char* remedy) {
+void require_type(const gmsh_mesher::Result& r, int wanted, const char* name, const char* remedy) {
   if (r.element_types.empty()) fail("discretisation.fem: gmsh made no element of the body");
   for (std::size_t k = 0; k < r.element_types.size(); ++k)
     if (r.element_types[k] != wanted)
@@ -94,8 +93,7 @@ void require_type(const gmsh_mesher::Result& r, int wanted, const char* name,
 
 /// Numbers the nodes in the order the elements first name them (so nodes no element uses are
 /// dropped); `at(i)` receives the coordinates of gmsh's i-th listed node.
-template <class At>
-std::vector<int> number_nodes(const gmsh_mesher::Result& r, At&& at) {
+template <class At> std::vector<int> number_nodes(const gmsh_mesher::Result& r, At&& at) {
   std::unordered_map<std::size_t, std::size_t> position;
   for (std::size_t i = 0; i < r.node_tags.size(); ++i) position[r.node_tags[i]] = i;
   std::unordered_map<std::size_t, int> index;
@@ -136,13 +134,13 @@ TetMesh mesh_prism(const geometry::Domain& domain, double z0, double depth, doub
   q.element_type = quadratic ? 11 : 4;
   q.z0 = z0;
   q.depth = depth;
-  const gmsh_mesher::Result r =
-      run_gmsh(q, domain.area_estimate() * depth / (size * size * size));
+  const gmsh_mesher::Result r = run_gmsh(q, domain.area_estimate() * depth / (size * size * size));
   require_type(r, q.element_type, quadratic ? "tet10" : "tet4", "");
   TetMesh mesh;
   mesh.quadratic = quadratic;
-  mesh.connectivity = number_nodes(
-      r, [&](std::size_t i) { mesh.x.emplace_back(r.xyz[3 * i], r.xyz[3 * i + 1], r.xyz[3 * i + 2]); });
+  mesh.connectivity = number_nodes(r, [&](std::size_t i) {
+    mesh.x.emplace_back(r.xyz[3 * i], r.xyz[3 * i + 1], r.xyz[3 * i + 2]);
+  });
   orient_tetrahedra(mesh, "the gmsh mesh of the body");
   return mesh;
 }

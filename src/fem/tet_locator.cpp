@@ -9,7 +9,9 @@ namespace {
 
 constexpr double kInsideTolerance = 1e-9; // natural coordinates
 
-bool inside(const Vec3& xi, double tol) { return xi.minCoeff() >= -tol && xi.sum() <= 1.0 + tol; }
+bool inside(const Vec3& xi, double tol) {
+  return xi.minCoeff() >= -tol && xi.sum() <= 1.0 + tol;
+}
 
 } // namespace
 

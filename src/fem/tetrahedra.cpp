@@ -27,8 +27,8 @@ void add_orbit4(TetRule& r, double a, double w) {
 /// Adds the orbit of barycentric points (a, a, 1/2 - a, 1/2 - a) (6 points) with weight w each.
 void add_orbit6(TetRule& r, double a, double w) {
   const double b = 0.5 - a;
-  for (const Vec3& p : {Vec3(a, b, b), Vec3(b, a, b), Vec3(b, b, a), Vec3(b, a, a),
-                        Vec3(a, b, a), Vec3(a, a, b)}) {
+  for (const Vec3& p :
+       {Vec3(a, b, b), Vec3(b, a, b), Vec3(b, b, a), Vec3(b, a, a), Vec3(a, b, a), Vec3(a, a, b)}) {
     r.xi.push_back(p);
     r.weight.push_back(w);
   }
@@ -104,9 +104,13 @@ TetRule tet_rule(int degree) {
   return r;
 }
 
-const int* tet_face_corners(int f) { return kFace[f]; }
+const int* tet_face_corners(int f) {
+  return kFace[f];
+}
 
-const int* tet_edge_corners(int k) { return kEdge[k]; }
+const int* tet_edge_corners(int k) {
+  return kEdge[k];
+}
 
 Vec3 on_tet_face(int f, const Vec2& st, Vec3* ds, Vec3* dt) {
   const Vec3* ref = tet_reference_nodes();

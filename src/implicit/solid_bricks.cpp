@@ -181,7 +181,7 @@ ElementPoints ExtrudedMesh::shapes_at(const std::vector<Vec3>& x, bool gradients
 }
 
 ElementPoints ExtrudedMesh::face_points(const std::vector<std::string>& faces, int order,
-                                      const std::optional<spec::Box>& box) const {
+                                        const std::optional<spec::Box>& box) const {
   const auto named = [&](const std::string& n) {
     return std::find(faces.begin(), faces.end(), n) != faces.end();
   };

@@ -17,8 +17,7 @@ double body_size(const geometry::Prism& body) {
 
 TetElements::TetElements(fem::TetMesh mesh, const geometry::Prism& body)
     : mesh_(std::move(mesh)), body_(body), names_(body.face_names()),
-      boundary_(fem::boundary_faces(mesh_)),
-      locator_(std::make_unique<fem::TetLocator>(mesh_)) {
+      boundary_(fem::boundary_faces(mesh_)), locator_(std::make_unique<fem::TetLocator>(mesh_)) {
   const double tol = 1e-6 * body_size(body_);
   for (const fem::TetFace& f : boundary_) {
     const int k = face_of(f, tol);
@@ -110,8 +109,8 @@ ElementPoints TetElements::face_points(const std::vector<std::string>& faces, in
     if (std::find(faces.begin(), faces.end(), names_[boundary_name_[b]]) == faces.end()) continue;
     const fem::TetFace& f = boundary_[b];
     for (std::size_t q = 0; q < rule.xi.size(); ++q)
-      add_point(f.element, fem::on_tet_face(f.local_face, rule.xi[q]), rule.weight[q],
-                f.local_face, false, all);
+      add_point(f.element, fem::on_tet_face(f.local_face, rule.xi[q]), rule.weight[q], f.local_face,
+                false, all);
   }
   return box ? points_in_box(all, *box, 1e-9 * body_size(body_)) : all;
 }
@@ -121,8 +120,8 @@ ElementPoints TetElements::shapes_at(const std::vector<Vec3>& x, bool gradients)
   for (const Vec3& p : x) {
     int e = -1;
     Vec3 xi;
-    MF_REQUIRE(locator_->locate(p, e, xi), "no element holds the point (", p.x(), ", ", p.y(),
-               ", ", p.z(), ")");
+    MF_REQUIRE(locator_->locate(p, e, xi), "no element holds the point (", p.x(), ", ", p.y(), ", ",
+               p.z(), ")");
     add_point(e, xi, 1.0, -1, gradients, out);
   }
   return out;

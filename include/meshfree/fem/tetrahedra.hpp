@@ -1,12 +1,13 @@
 #pragma once
 // Tetrahedra: the 4-node linear and 10-node quadratic isoparametric tetrahedron ([Zienkiewicz,
-// Taylor & Zhu 2013], ch. 6: N = L_i for tet4; L_i (2 L_i - 1) at a corner and 4 L_i L_j at the
-// middle of edge i-j for tet10, L the barycentric coordinates), their quadrature rules, meshes
-// of them and the faces on a mesh's boundary.
+// Taylor & Zhu 2013], the chapter on shape functions: N = L_i for tet4; L_i (2 L_i - 1) at a
+// corner and 4 L_i L_j at the middle of edge i-j for tet10, L the volume coordinates), their
+// quadrature rules, meshes of them and the faces on a mesh's boundary.
 //
 // Reference tetrahedron: corners (0,0,0), (1,0,0), (0,1,0), (0,0,1), natural xi = (L1, L2, L3),
-// L0 = 1 - L1 - L2 - L3. Local node order is gmsh's (types 4 and 11): the corners, then the
-// middles of edges 0-1, 1-2, 2-0, 3-0, 3-2, 3-1.
+// L0 = 1 - L1 - L2 - L3. Local node order is gmsh's (types 4 and 11; the gmsh reference manual,
+// "Node ordering", [Geuzaine & Remacle 2009]): the corners, then the middles of edges 0-1, 1-2,
+// 2-0, 3-0, 3-2, 3-1.
 #include "meshfree/core/types.hpp"
 #include <string>
 #include <vector>

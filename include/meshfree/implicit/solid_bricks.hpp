@@ -4,9 +4,9 @@
 // (Zienkiewicz & Taylor, The Finite Element Method, vol. 1, 6th ed., sec. 6.5). Every point of a
 // brick is given by its plane element's natural (xi, eta), its layer and zeta in [-1, 1]; the
 // brick's shape functions and physical gradients there come in the compressed rows of
-// SolidShapeTable (solid_fe.hpp), so that the 3D meshfree assembly serves the bricks unchanged. The isoparametric
-// brick map equals the extrusion of the plane element's map (the serendipity brick's space holds
-// the Q8 space times linear functions of zeta), so curved Q8 edges on holes carry over.
+// SolidShapeTable (solid_fe.hpp), so that the 3D meshfree assembly serves the bricks unchanged. The
+// isoparametric brick map equals the extrusion of the plane element's map (the serendipity brick's
+// space holds the Q8 space times linear functions of zeta), so curved Q8 edges on holes carry over.
 #include "meshfree/core/types.hpp"
 #include "meshfree/fem/mesh.hpp"
 #include "meshfree/geometry/prism.hpp"

@@ -13,7 +13,9 @@ using namespace mf;
 
 namespace {
 
-double factorial(int n) { return n <= 1 ? 1.0 : n * factorial(n - 1); }
+double factorial(int n) {
+  return n <= 1 ? 1.0 : n * factorial(n - 1);
+}
 
 /// The integral of x^a y^b z^c over the reference tetrahedron: a! b! c! / (a + b + c + 3)!.
 double moment(int a, int b, int c) {
@@ -70,7 +72,8 @@ TEST_CASE("tetrahedron shape functions: nodal values, partition of unity, gradie
     for (int d = 0; d < 3; ++d) {
       fem::tet_shape_functions(quadratic, p + h * Vec3::Unit(d), Np, nullptr);
       fem::tet_shape_functions(quadratic, p - h * Vec3::Unit(d), Nm, nullptr);
-      for (int a = 0; a < n; ++a) REQUIRE(dN[a](d) == Approx((Np[a] - Nm[a]) / (2 * h)).margin(1e-9));
+      for (int a = 0; a < n; ++a)
+        REQUIRE(dN[a](d) == Approx((Np[a] - Nm[a]) / (2 * h)).margin(1e-9));
     }
   }
 }
@@ -112,7 +115,7 @@ TEST_CASE("tetrahedron faces: corners in order and outward normals", "[fem][tet]
     REQUIRE((fem::on_tet_face(f, {0.0, 1.0}) - ref[c[2]]).norm() == 0.0);
     Vec3 ds, dt;
     const Vec3 mid = fem::on_tet_face(f, {1.0 / 3.0, 1.0 / 3.0}, &ds, &dt);
-    REQUIRE(ds.cross(dt).dot(mid - centroid) > 0.0); // away from the inside
+    REQUIRE(ds.cross(dt).dot(mid - centroid) > 0.0);    // away from the inside
     for (int k = 0; k < 3; ++k) REQUIRE(c[k] != 3 - f); // opposite corner 3 - f
   }
 }
@@ -137,14 +140,16 @@ TEST_CASE("gmsh tetrahedra of a box: gmsh's node order, orientation, volume, fac
       }
     }
     for (const Vec3& x : mesh.x)
-      REQUIRE((x.z() >= 0.5 - 1e-12 && x.z() <= 1.0 + 1e-12 && section.contains(x.head<2>(), 1e-12)));
+      REQUIRE(
+          (x.z() >= 0.5 - 1e-12 && x.z() <= 1.0 + 1e-12 && section.contains(x.head<2>(), 1e-12)));
     REQUIRE(mesh_volume(mesh) == Approx(0.375).epsilon(1e-12));
     // The boundary's triangles cover its area 2 (1 x 0.75 + 1 x 0.5 + 0.75 x 0.5) exactly.
     double area = 0.0;
     for (const fem::TetFace& f : fem::boundary_faces(mesh)) {
       const int* c = fem::tet_face_corners(f.local_face);
       const int* n = mesh.element(f.element);
-      area += 0.5 * (mesh.x[n[c[1]]] - mesh.x[n[c[0]]]).cross(mesh.x[n[c[2]]] - mesh.x[n[c[0]]]).norm();
+      area +=
+          0.5 * (mesh.x[n[c[1]]] - mesh.x[n[c[0]]]).cross(mesh.x[n[c[2]]] - mesh.x[n[c[0]]]).norm();
     }
     REQUIRE(area == Approx(2.0 * 0.75 + 2.0 * 0.5 + 2.0 * 0.375).epsilon(1e-12));
   }

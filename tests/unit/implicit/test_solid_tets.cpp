@@ -71,7 +71,8 @@ TEST_CASE("tetrahedra of a prism: face areas, outward normals, a closed boundary
 TEST_CASE("tetrahedra of a prism: shapes at points reproduce linear and quadratic fields",
           "[solid3d][tet][gmsh]") {
   const geometry::Prism body = cylinder_prism();
-  const std::vector<Vec3> at = {{1.7, 0.2, 0.1}, {3.9, 3.9, 0.5}, {0.6, 1.5, 0.25}, {2.0, 2.0, 0.0}};
+  const std::vector<Vec3> at = {
+      {1.7, 0.2, 0.1}, {3.9, 3.9, 0.5}, {0.6, 1.5, 0.25}, {2.0, 2.0, 0.0}};
   for (bool quadratic : {false, true}) {
     CAPTURE(quadratic);
     const implicit::TetElements fe = tets(body, quadratic);
