@@ -1,6 +1,7 @@
-// libmeshfree_gmsh.so: meshes a plane body with gmsh's C++ API (Geuzaine & Remacle 2009; gmsh
-// reference manual, "Gmsh application programming interface") for fem/mesh_generation, which
-// loads it when a mesh is to be made (see include/meshfree/fem/gmsh_mesher.hpp for why).
+// libmeshfree_gmsh.so: meshes a plane body, or its prism with tetrahedra, with gmsh's C++ API
+// (Geuzaine & Remacle 2009; gmsh reference manual, "Gmsh application programming interface") for
+// fem/mesh_generation, which loads it when a mesh is to be made (see
+// include/meshfree/fem/gmsh_mesher.hpp for why).
 #include "meshfree/fem/gmsh_mesher.hpp"
 #include <gmsh.h>
 
@@ -22,23 +23,34 @@ struct Session {
   Session& operator=(const Session&) = delete;
 };
 
-/// The body as one OpenCASCADE surface: the polygon, cut by the holes (a hole may cross the
-/// outline, as the quarter models' holes at a corner do).
-void build_surface(const Request& q) {
+bool volume(const Request& q) {
+  return q.element_type == 4 || q.element_type == 11;
+}
+
+/// The body as OpenCASCADE entities: the polygon as a surface, cut by the holes (a hole may
+/// cross the outline, as the quarter models' holes at a corner do), at z = z0; for tetrahedra
+/// that surface extruded by `depth` along z into a volume.
+void build_body(const Request& q) {
   namespace occ = gmsh::model::occ;
+  const double z = volume(q) ? q.z0 : 0.0;
   const std::size_t n = q.polygon.size() / 2;
   std::vector<int> points, lines;
   for (std::size_t i = 0; i < n; ++i)
-    points.push_back(occ::addPoint(q.polygon[2 * i], q.polygon[2 * i + 1], 0.0));
+    points.push_back(occ::addPoint(q.polygon[2 * i], q.polygon[2 * i + 1], z));
   for (std::size_t i = 0; i < n; ++i) lines.push_back(occ::addLine(points[i], points[(i + 1) % n]));
-  const int surface = occ::addPlaneSurface({occ::addCurveLoop(lines)});
+  gmsh::vectorpair body{{2, occ::addPlaneSurface({occ::addCurveLoop(lines)})}};
   if (!q.holes.empty()) {
     gmsh::vectorpair holes, out;
     std::vector<gmsh::vectorpair> map;
     for (std::size_t h = 0; h + 2 < q.holes.size(); h += 3)
       holes.push_back(
-          {2, occ::addDisk(q.holes[h], q.holes[h + 1], 0.0, q.holes[h + 2], q.holes[h + 2])});
-    occ::cut({{2, surface}}, holes, out, map);
+          {2, occ::addDisk(q.holes[h], q.holes[h + 1], z, q.holes[h + 2], q.holes[h + 2])});
+    occ::cut(body, holes, out, map);
+    body = out;
+  }
+  if (volume(q)) {
+    gmsh::vectorpair out;
+    occ::extrude(body, 0.0, 0.0, q.depth, out);
   }
   occ::synchronize();
 }
@@ -59,6 +71,10 @@ void set_sizes(const Request& q) {
     field::setNumber(f, "YMin", q.boxes[b + 1]);
     field::setNumber(f, "XMax", q.boxes[b + 2]);
     field::setNumber(f, "YMax", q.boxes[b + 3]);
+    if (volume(q)) { // the box through the prism's whole depth
+      field::setNumber(f, "ZMin", q.z0);
+      field::setNumber(f, "ZMax", q.z0 + q.depth);
+    }
     field::setNumber(f, "VIn", q.boxes[b + 4]);
     field::setNumber(f, "VOut", q.size);
     field::setNumber(f, "Thickness", q.size);
@@ -70,21 +86,25 @@ void set_sizes(const Request& q) {
 }
 
 void mesh(const Request& q, Result& r) {
-  build_surface(q);
+  build_body(q);
   set_sizes(q);
   // Frontal-Delaunay (6): gmsh 4.8's quadrilateral algorithm (8) crashes with a size field.
   gmsh::option::setNumber("Mesh.Algorithm", 6);
-  if (q.element_type != 2) {
+  gmsh::option::setNumber("Mesh.Algorithm3D", 1); // Delaunay
+  if (q.element_type == 3 || q.element_type == 16) {
     gmsh::option::setNumber("Mesh.RecombineAll", 1);
     gmsh::option::setNumber("Mesh.RecombinationAlgorithm", 3); // Blossom, full-quad
   }
-  gmsh::model::mesh::generate(2);
-  if (q.element_type == 16) {
-    gmsh::option::setNumber("Mesh.SecondOrderIncomplete", 1); // serendipity: no centre node
+  const int dim = volume(q) ? 3 : 2;
+  gmsh::model::mesh::generate(dim);
+  if (q.element_type == 16 || q.element_type == 11) {
+    // serendipity quadrilaterals: no centre node (the 10-node tetrahedron has none either);
+    // the new nodes of boundary edges and faces lie on the geometry
+    gmsh::option::setNumber("Mesh.SecondOrderIncomplete", 1);
     gmsh::model::mesh::setOrder(2);
   }
   std::vector<std::vector<std::size_t>> tags, nodes;
-  gmsh::model::mesh::getElements(r.element_types, tags, nodes, 2);
+  gmsh::model::mesh::getElements(r.element_types, tags, nodes, dim);
   for (const auto& t : tags) r.element_counts.push_back(t.size());
   if (!nodes.empty()) r.connectivity = nodes[0];
   std::vector<double> parametric;

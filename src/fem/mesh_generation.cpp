@@ -7,6 +7,7 @@
 #include <cmath>
 #include <dlfcn.h>
 #include <filesystem>
+#include <numeric>
 #include <omp.h>
 #include <unordered_map>
 
@@ -43,36 +44,9 @@ gmsh_mesher::Function mesher() {
        " (scripts/setup.sh installs gmsh and builds it; or give discretisation.fem.mesh)");
 }
 
-/// The 2-D elements gmsh made, as a Mesh: nodes numbered in the order the elements first name
-/// them (so nodes no element uses are dropped).
-Mesh collect(const gmsh_mesher::Result& r, ElementType type) {
-  if (r.element_types.empty()) fail("discretisation.fem: gmsh made no element of the body");
-  for (std::size_t k = 0; k < r.element_types.size(); ++k)
-    if (r.element_types[k] != gmsh_element_type(type))
-      fail("discretisation.fem.element: gmsh left ", r.element_counts[k], " elements of gmsh type ",
-           r.element_types[k], " in a ", element_name(type),
-           " mesh of the body; give element t3, or a mesh file");
-  std::unordered_map<std::size_t, std::size_t> position;
-  for (std::size_t i = 0; i < r.node_tags.size(); ++i) position[r.node_tags[i]] = i;
-  Mesh mesh;
-  mesh.type = type;
-  std::unordered_map<std::size_t, int> index;
-  for (std::size_t tag : r.connectivity) {
-    auto [it, added] = index.emplace(tag, mesh.node_count());
-    if (added) {
-      const auto p = position.find(tag);
-      MF_REQUIRE(p != position.end(), "gmsh named a node it did not list: ", tag);
-      mesh.x.emplace_back(r.xyz[3 * p->second], r.xyz[3 * p->second + 1]);
-    }
-    mesh.connectivity.push_back(it->second);
-  }
-  return mesh;
-}
-
-} // namespace
-
-Mesh mesh_domain(const geometry::Domain& domain, double size,
-                 const std::vector<geometry::Refinement>& refinement, ElementType type) {
+/// The request for the body (its outline, holes, refinement boxes and size).
+gmsh_mesher::Request request(const geometry::Domain& domain, double size,
+                             const std::vector<geometry::Refinement>& refinement) {
   MF_REQUIRE(size > 0.0, "mesh size must be positive");
   gmsh_mesher::Request q;
   for (const Vec2& p : domain.vertices()) q.polygon.insert(q.polygon.end(), {p.x(), p.y()});
@@ -82,13 +56,16 @@ Mesh mesh_domain(const geometry::Domain& domain, double size,
     q.boxes.insert(q.boxes.end(),
                    {r.box.lo.x(), r.box.lo.y(), r.box.hi.x(), r.box.hi.y(), r.spacing});
   q.size = size;
-  q.element_type = gmsh_element_type(type);
+  return q;
+}
+
+/// Runs gmsh on the request, `nodes` the expected node count for the log of a large mesh.
+gmsh_mesher::Result run_gmsh(const gmsh_mesher::Request& q, double nodes) {
   const gmsh_mesher::Function mesh_with_gmsh = mesher();
   // gmsh's thread option sets OpenMP's thread count for the whole process: the caller's is
   // restored.
   const int threads = omp_get_max_threads();
   // gmsh tells no share done: a large mesh gets a line before and one after, with its time.
-  const double nodes = domain.area_estimate() / (size * size);
   const bool report = 2.0 * nodes >= log::kProgressUnknowns;
   if (report) log::info("meshing the body with gmsh: about ", std::lround(nodes), " nodes or more");
   const auto began = std::chrono::steady_clock::now();
@@ -96,14 +73,75 @@ Mesh mesh_domain(const geometry::Domain& domain, double size,
   mesh_with_gmsh(q, r);
   omp_set_num_threads(threads);
   if (!r.error.empty()) fail("discretisation.fem: gmsh could not mesh the body: ", r.error);
-  Mesh mesh = collect(r, type);
   if (report)
-    log::info("meshed the body: ", mesh.node_count(), " nodes, ", mesh.connectivity.size(),
+    log::info("meshed the body: ", r.node_tags.size(), " nodes, ",
+              std::accumulate(r.element_counts.begin(), r.element_counts.end(), std::size_t{0}),
               " elements in ",
-              log::duration(std::chrono::duration<double>(std::chrono::steady_clock::now() - began)
-                                .count()));
+              log::duration(
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count()));
+  return r;
+}
+
+/// The element types gmsh made must all be `wanted` (`name` in messages).
+void require_type(const gmsh_mesher::Result& r, int wanted, const char* name, const char* remedy) {
+  if (r.element_types.empty()) fail("discretisation.fem: gmsh made no element of the body");
+  for (std::size_t k = 0; k < r.element_types.size(); ++k)
+    if (r.element_types[k] != wanted)
+      fail("discretisation.fem.element: gmsh left ", r.element_counts[k], " elements of gmsh type ",
+           r.element_types[k], " in a ", name, " mesh of the body", remedy);
+}
+
+/// Numbers the nodes in the order the elements first name them (so nodes no element uses are
+/// dropped); `at(i)` receives the coordinates of gmsh's i-th listed node.
+template <class At> std::vector<int> number_nodes(const gmsh_mesher::Result& r, At&& at) {
+  std::unordered_map<std::size_t, std::size_t> position;
+  for (std::size_t i = 0; i < r.node_tags.size(); ++i) position[r.node_tags[i]] = i;
+  std::unordered_map<std::size_t, int> index;
+  std::vector<int> connectivity;
+  for (std::size_t tag : r.connectivity) {
+    auto [it, added] = index.emplace(tag, static_cast<int>(index.size()));
+    if (added) {
+      const auto p = position.find(tag);
+      MF_REQUIRE(p != position.end(), "gmsh named a node it did not list: ", tag);
+      at(p->second);
+    }
+    connectivity.push_back(it->second);
+  }
+  return connectivity;
+}
+
+} // namespace
+
+Mesh mesh_domain(const geometry::Domain& domain, double size,
+                 const std::vector<geometry::Refinement>& refinement, ElementType type) {
+  gmsh_mesher::Request q = request(domain, size, refinement);
+  q.element_type = gmsh_element_type(type);
+  const gmsh_mesher::Result r = run_gmsh(q, domain.area_estimate() / (size * size));
+  require_type(r, q.element_type, element_name(type), "; give element t3, or a mesh file");
+  Mesh mesh;
+  mesh.type = type;
+  mesh.connectivity =
+      number_nodes(r, [&](std::size_t i) { mesh.x.emplace_back(r.xyz[3 * i], r.xyz[3 * i + 1]); });
   check_mesh(mesh, "the gmsh mesh of the body");
   orient_counter_clockwise(mesh, "the gmsh mesh of the body");
+  return mesh;
+}
+
+TetMesh mesh_prism(const geometry::Domain& domain, double z0, double depth, double size,
+                   const std::vector<geometry::Refinement>& refinement, bool quadratic) {
+  MF_REQUIRE(depth > 0.0, "the prism's depth must be positive");
+  gmsh_mesher::Request q = request(domain, size, refinement);
+  q.element_type = quadratic ? 11 : 4;
+  q.z0 = z0;
+  q.depth = depth;
+  const gmsh_mesher::Result r = run_gmsh(q, domain.area_estimate() * depth / (size * size * size));
+  require_type(r, q.element_type, quadratic ? "tet10" : "tet4", "");
+  TetMesh mesh;
+  mesh.quadratic = quadratic;
+  mesh.connectivity = number_nodes(r, [&](std::size_t i) {
+    mesh.x.emplace_back(r.xyz[3 * i], r.xyz[3 * i + 1], r.xyz[3 * i + 2]);
+  });
+  orient_tetrahedra(mesh, "the gmsh mesh of the body");
   return mesh;
 }
 

@@ -105,8 +105,8 @@ void build_tables(const spec::ProblemSpec& spec, const solvers::PetscSession& se
   }
 }
 
-/// This rank's rows of brick points as a shape table.
-SolidShapeTable brick_table(const BrickPoints& b, const std::vector<int>& rows) {
+/// This rank's rows of element points as a shape table.
+SolidShapeTable element_table(const ElementPoints& b, const std::vector<int>& rows) {
   SolidShapeTable t;
   for (int r : rows) {
     for (int k = b.offset[r]; k < b.offset[r + 1]; ++k) {
@@ -119,26 +119,26 @@ SolidShapeTable brick_table(const BrickPoints& b, const std::vector<int>& rows) 
   return t;
 }
 
-Csr rows_of(const BrickPoints& b) {
+Csr rows_of(const ElementPoints& b) {
   Csr c;
   c.offset = b.offset;
   c.index = b.node;
   return c;
 }
 
-/// Finite elements: the bricks' points, the face conditions' points on the bricks' faces, the
-/// rows of this rank and their tables.
-void build_bricks(const spec::ProblemSpec& spec, const solvers::PetscSession& session,
-                  PhaseTimer& timer, SolidModel& m) {
+/// Finite elements: the elements' points, the face conditions' points on the elements' faces,
+/// the rows of this rank and their tables.
+void build_elements(const spec::ProblemSpec& spec, const solvers::PetscSession& session,
+                    PhaseTimer& timer, SolidModel& m) {
   const spec::SolidSpec& s = spec.solid();
   const spec::DiscretisationSpec& d = s.discretisation;
   {
     PhaseTimer::Scope scope(timer, "nodes");
-    m.fe = std::make_unique<ExtrudedMesh>(plane_fe_mesh(d, spec.domain), m.body, d.spacing);
+    m.fe = make_solid_elements(d, m.body);
   }
-  const int order = d.fem.order > 0 ? d.fem.order : m.fe->serendipity() ? 3 : 2;
-  BrickPoints body;
-  std::vector<BrickPoints> faces(s.boundary.size());
+  const int order = d.fem.order > 0 ? d.fem.order : m.fe->default_order();
+  ElementPoints body;
+  std::vector<ElementPoints> faces(s.boundary.size());
   {
     PhaseTimer::Scope scope(timer, "quadrature");
     body = m.fe->body_points(order);
@@ -156,16 +156,16 @@ void build_bricks(const spec::ProblemSpec& spec, const solvers::PetscSession& se
   for (std::size_t b = 0; b < s.boundary.size(); ++b) {
     SolidConditionPoints& c = m.conditions[b];
     c.bc = &s.boundary[b];
-    MF_REQUIRE(!faces[b].points.x.empty(), c.bc->key_path, ": the bricks have no face there");
+    MF_REQUIRE(!faces[b].points.x.empty(), c.bc->key_path, ": the elements have no face there");
     c.points = faces[b].points;
     c.support = rows_of(faces[b]);
     if (c.bc->constrains) coupling.push_back(&c.support);
     c.mine = rank_points(c.support, m.own, N, session);
-    c.table = brick_table(faces[b], c.mine.rows);
+    c.table = element_table(faces[b], c.mine.rows);
     c.values = face_values(spec, *c.bc, c.points, c.mine.rows);
   }
   m.pattern = coupling_pattern(coupling, N, m.own.begin, m.own.end);
-  m.domain_table = brick_table(body, m.domain_mine.rows);
+  m.domain_table = element_table(body, m.domain_mine.rows);
 }
 
 /// The domain table's rows in columns along z for threaded assembly, and their weights.
@@ -223,7 +223,7 @@ SolidModel build_solid_model(const spec::ProblemSpec& spec, const solvers::Petsc
   m.body = geometry::Prism{spec.domain, s.z0, s.depth};
   session.collective([&] {
     if (s.discretisation.method == spec::Method::Fem) {
-      build_bricks(spec, session, timer, m);
+      build_elements(spec, session, timer, m);
     } else {
       {
         PhaseTimer::Scope scope(timer, "nodes");
@@ -248,7 +248,7 @@ SolidModel build_solid_model(const spec::ProblemSpec& spec, const solvers::Petsc
 SolidShapeTable solid_shapes_at(const SolidModel& m, const std::vector<Vec3>& x, bool gradients) {
   std::vector<int> rows(x.size());
   std::iota(rows.begin(), rows.end(), 0);
-  if (m.fe) return brick_table(m.fe->shapes_at(x, gradients), rows);
+  if (m.fe) return element_table(m.fe->shapes_at(x, gradients), rows);
   return m.space->shape_table(x, rows, m.space->support_lists(x), gradients);
 }
 
@@ -256,6 +256,9 @@ std::string describe_solid_method(const spec::ProblemSpec& spec) {
   const spec::DiscretisationSpec& d = spec.solid().discretisation;
   const geometry::Prism body{spec.domain, spec.solid().z0, spec.solid().depth};
   const int layers = layer_count(body, d.spacing);
+  if (d.method == spec::Method::Fem && (d.fem.element == "tet4" || d.fem.element == "tet10"))
+    return detail::concat("FE ", d.fem.element, " (gmsh's tetrahedra of the prism), spacing ",
+                          d.spacing);
   if (d.method == spec::Method::Fem)
     return detail::concat("FE ", d.fem.element == "q8" ? "hex20" : "hex8", " (the plane ",
                           d.fem.element, " mesh extruded in ", layers, " layers), spacing ",
@@ -315,11 +318,9 @@ void print_solid_plan(const spec::ProblemSpec& spec, std::ostream& os) {
   const int layers = layer_count(body, s.discretisation.spacing) + 1;
   double n = 0.0;
   if (s.discretisation.method == spec::Method::Fem) {
-    const ExtrudedMesh fe(plane_fe_mesh(s.discretisation, spec.domain), body,
-                          s.discretisation.spacing);
-    n = fe.node_count();
-    os << "  bricks: " << fe.brick_count() << " of " << fe.nodes_per_brick() << " nodes, " << n
-       << " nodes (" << layers << " layers along z), " << 3 * n << " DOFs\n";
+    const std::unique_ptr<SolidElements> fe = make_solid_elements(s.discretisation, body);
+    n = fe->node_count();
+    os << "  " << fe->summary() << ", " << 3 * n << " DOFs\n";
   } else {
     n = static_cast<double>(prism_nodes(body, s.discretisation).x.size());
     os << "  nodes: " << n << " (" << layers << " layers along z), " << 3 * n << " DOFs\n";

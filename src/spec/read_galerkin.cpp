@@ -44,10 +44,12 @@ double bytes_per_node(const LinearSolverSpec& solver, double count) {
                                            : bytes_per::galerkin_node;
 }
 
-/// discretisation.fem: the element, an optional gmsh mesh file and the polynomial order.
-void read_fem_options(KeyReader& d, const std::string& base_dir, DiscretisationSpec& s) {
+/// discretisation.fem: the element (in 3D also tetrahedra), an optional gmsh mesh file and the
+/// quadrature order.
+void read_fem_options(KeyReader& d, int dim, const std::string& base_dir, DiscretisationSpec& s) {
   if (auto f = d.optional_map("fem")) {
-    s.fem.element = f->choice("element", {"t3", "q4", "q8"}, "q8");
+    s.fem.element = dim == 3 ? f->choice("element", {"t3", "q4", "q8", "tet4", "tet10"}, "q8")
+                             : f->choice("element", {"t3", "q4", "q8"}, "q8");
     if (f->has("mesh")) {
       const std::string mesh = f->text("mesh");
       s.fem.mesh = !mesh.empty() && mesh.front() == '/' ? mesh : base_dir + mesh;
@@ -157,7 +159,7 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
   DiscretisationSpec s;
   s.method =
       d.choice("method", {"meshfree", "fem"}, "meshfree") == "fem" ? Method::Fem : Method::Meshfree;
-  read_fem_options(d, base_dir, s);
+  read_fem_options(d, dim, base_dir, s);
   double nodes_total = read_spacing(d, bounds, solver, s);
   for (KeyReader& f : d.map_list("refinement"))
     s.refinement.push_back(read_refinement(f, bounds, solver, s, nodes_total));

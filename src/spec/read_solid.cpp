@@ -185,7 +185,16 @@ void read_solid_discretisation(KeyReader& r, const ProblemSpec& p, const std::st
   const std::string key = "discretisation";
   if (d.method == Method::Fem && d.fem.element == "t3")
     fail(key, ".fem.element: model solid_3d extrudes q4 (into 8-node bricks) or q8 (into 20-node "
-              "bricks), not t3");
+              "bricks), or meshes tet4 or tet10, not t3");
+  const bool tets = d.fem.element == "tet4" || d.fem.element == "tet10";
+  if (d.method == Method::Fem && tets && !d.fem.mesh.empty())
+    fail(key, ".fem.mesh: ", d.fem.element,
+         " elements are meshed by gmsh from the geometry; a "
+         "plane mesh file is extruded into bricks (element q4 or q8)");
+  // One point cannot see a quadratic displacement's strains: the stiffness would be singular.
+  if (d.method == Method::Fem && d.fem.element == "tet10" && d.fem.order == 1)
+    fail(key, ".fem.order: 1 (the centroid) leaves tet10 elements without stiffness against "
+              "some displacements; give 2 (4 points, the default) or more");
   if (d.shape.approximation != kernels::Approximation::ReproducingKernel)
     fail(key, ".approximation: model solid_3d takes rk");
   if (s.depth < d.spacing)

@@ -2,7 +2,7 @@
 // The boundary between meshfree and gmsh. gmsh's C++ API brings some 80 shared libraries
 // (OpenCASCADE, FLTK, ...) whose loading would add a fifth of a second to the start of every
 // run, so the meshing lives in a small shared library of its own (libmeshfree_gmsh.so, built
-// from src/tools/gmsh_mesher.cpp), loaded only when a mesh is made. Plain data crosses the
+// from src/fem/gmsh_plugin.cpp), loaded only when a mesh is made. Plain data crosses the
 // boundary, in both directions.
 #include <cstddef>
 #include <string>
@@ -15,13 +15,16 @@ struct Request {
   std::vector<double> holes;   // cx, cy, r of each hole
   std::vector<double> boxes;   // x0, y0, x1, y1, element size of each refinement box
   double size = 0.0;           // element size elsewhere
-  int element_type = 3;        // gmsh's type of the elements wanted: 2 (T3), 3 (Q4), 16 (Q8)
+  // gmsh's type of the elements wanted: 2 (T3), 3 (Q4), 16 (Q8) of the plane body, or 4 (tet4),
+  // 11 (tet10) of the prism that extrudes it from z = z0 by `depth` along z.
+  int element_type = 3;
+  double z0 = 0.0, depth = 0.0;
 };
 
 struct Result {
   std::vector<std::size_t> node_tags;
   std::vector<double> xyz;                 // 3 per node, in node_tags' order
-  std::vector<int> element_types;          // the 2-D element types made
+  std::vector<int> element_types;          // the element types made of the wanted dimension
   std::vector<std::size_t> element_counts; // how many of each
   std::vector<std::size_t> connectivity;   // node tags of the elements of element_types[0]
   std::string error;                       // gmsh's reason when it failed; empty otherwise

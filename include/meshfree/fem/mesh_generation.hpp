@@ -1,8 +1,10 @@
 #pragma once
 // Finite-element meshes made from a problem's own geometry with gmsh's C++ API (Geuzaine &
 // Remacle 2009; gmsh reference manual, "Gmsh application programming interface"): the polygon
-// minus its circular holes as an OpenCASCADE surface, refinement boxes as size fields.
+// minus its circular holes as an OpenCASCADE surface, or that surface extruded along z into a
+// prism meshed with tetrahedra; refinement boxes as size fields.
 #include "meshfree/fem/mesh.hpp"
+#include "meshfree/fem/tetrahedra.hpp"
 #include "meshfree/geometry/domain.hpp"
 #include "meshfree/geometry/node_generation.hpp"
 #include <vector>
@@ -19,5 +21,13 @@ namespace mf::fem {
 /// reason if gmsh cannot mesh the body, or if recombination leaves a triangle.
 Mesh mesh_domain(const geometry::Domain& domain, double size,
                  const std::vector<geometry::Refinement>& refinement, ElementType type);
+
+/// Meshes the prism that extrudes the body from z = z0 by `depth` along z with Delaunay
+/// tetrahedra of size `size` (`refinement[i].spacing` inside the i-th box, through the whole
+/// depth): 4-node, or 10-node ones whose mid-edge nodes on the boundary lie on the geometry (on
+/// the cylinder of a hole). Nodes numbered in the order the elements name them, every element
+/// positively oriented. Error with gmsh's reason if gmsh cannot mesh the body.
+TetMesh mesh_prism(const geometry::Domain& domain, double z0, double depth, double size,
+                   const std::vector<geometry::Refinement>& refinement, bool quadratic);
 
 } // namespace mf::fem

@@ -1,69 +1,62 @@
 #pragma once
-// Finite elements of a prism: the plane body's Q4 or Q8 mesh (the mesh a plane FE run makes of
-// the same geometry) extruded in layers along z into 8-node or 20-node serendipity bricks
-// (Zienkiewicz & Taylor, The Finite Element Method, vol. 1, 6th ed., sec. 6.5). Every point of a
-// brick is given by its plane element's natural (xi, eta), its layer and zeta in [-1, 1]; the
-// brick's shape functions and physical gradients there come in the compressed rows of
-// SolidShapeTable, so that the 3D meshfree assembly serves the bricks unchanged. The isoparametric
-// brick map equals the extrusion of the plane element's map (the serendipity brick's space holds
-// the Q8 space times linear functions of zeta), so curved Q8 edges on holes carry over.
+// Finite elements of a prism behind one interface, so that the 3D model (solid_model) holds
+// bricks (solid_bricks.hpp) or tetrahedra (solid_tets.hpp) alike: every point of an element
+// comes with its nodes' shape values, and physical gradients, in the compressed rows of
+// SolidShapeTable, so that the 3D meshfree assembly, solvers and outputs serve them unchanged.
 #include "meshfree/core/types.hpp"
-#include "meshfree/fem/mesh.hpp"
 #include "meshfree/geometry/prism.hpp"
 #include "meshfree/implicit/solid_points.hpp"
 #include "meshfree/spec/galerkin_spec.hpp"
 #include "meshfree/spec/region_spec.hpp"
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace mf::implicit {
 
-/// Points of the bricks with their shape functions, in compressed rows (nodes increasing).
-struct BrickPoints {
+/// Points of the elements with their shape functions, in compressed rows (nodes increasing).
+struct ElementPoints {
   SolidPoints points; // x, weight (volume or area), normal (face points)
   std::vector<int> offset{0};
   std::vector<int> node;
   std::vector<double> phi;
-  std::vector<Vec3> dphi; // only for body points
+  std::vector<Vec3> dphi; // only for body points and shapes asked with gradients
 };
 
-class ExtrudedMesh {
+class SolidElements {
 public:
-  /// The plane mesh (Q4 or Q8) in round(depth / spacing) layers of the prism.
-  ExtrudedMesh(fem::Mesh plane, const geometry::Prism& body, double spacing);
+  virtual ~SolidElements() = default;
 
-  int node_count() const { return static_cast<int>(x_.size()); }
-  const std::vector<Vec3>& nodes() const { return x_; }
-  int brick_count() const { return plane_.element_count() * layers_; }
-  int nodes_per_brick() const { return serendipity() ? 20 : 8; }
-  bool serendipity() const { return plane_.type == fem::ElementType::Q8; }
+  virtual int node_count() const = 0;
+  virtual const std::vector<Vec3>& nodes() const = 0;
+  virtual int element_count() const = 0;
+  virtual int nodes_per_element() const = 0;
+  /// "hex8", "hex20", "tet4" or "tet10".
+  virtual const char* name() const = 0;
+  /// The elements and nodes for `meshfree check`: "bricks: 40 of 20 nodes, 301 nodes (3 layers
+  /// along z)".
+  virtual std::string summary() const = 0;
+  /// The quadrature order used when discretisation.fem.order is not given.
+  virtual int default_order() const = 0;
 
-  /// Every brick's order^3 Gauss points with shapes and gradients.
-  BrickPoints body_points(int order) const;
-  /// Gauss points (`order` per direction) of the named faces, within `box` when given.
-  BrickPoints face_points(const std::vector<std::string>& faces, int order,
-                          const std::optional<spec::Box>& box) const;
-
+  /// Every element's integration points with shapes and gradients (bricks: order^3 Gauss
+  /// points; tetrahedra: the rule exact to degree `order`).
+  virtual ElementPoints body_points(int order) const = 0;
+  /// Integration points of the named faces, within `box` when given.
+  virtual ElementPoints face_points(const std::vector<std::string>& faces, int order,
+                                    const std::optional<spec::Box>& box) const = 0;
   /// The shapes (values, and gradients if asked) at points of the body; throws naming a point
-  /// no brick holds.
-  BrickPoints shapes_at(const std::vector<Vec3>& x, bool gradients = false) const;
-
-private:
-  /// The brick of plane element e in layer l: its nodes, and each node's natural coordinates.
-  void brick(int e, int l, int* nodes, Vec3* natural) const;
-  /// Appends the point (xi, eta, zeta) of brick (e, l) to `out`, with weight `w` times its
-  /// volume (face: its area) measure and, for a face point, the outward normal.
-  void add_point(int e, int l, const Vec3& xi, double w, int face, bool gradients,
-                 BrickPoints& out) const;
-
-  fem::Mesh plane_;
-  geometry::Prism body_;
-  int layers_ = 1;
-  double dz_ = 1.0;
-  std::vector<int> corner_index_; // plane node -> its vertical mid-edge column (Q8), or -1
-  int corners_ = 0;
-  std::vector<Vec3> x_;
+  /// no element holds.
+  virtual ElementPoints shapes_at(const std::vector<Vec3>& x, bool gradients = false) const = 0;
 };
+
+/// The elements `d.fem.element` asks for on the prism: q4 or q8 extruded into 8- or 20-node
+/// bricks, tet4 or tet10 meshed by gmsh.
+std::unique_ptr<SolidElements> make_solid_elements(const spec::DiscretisationSpec& d,
+                                                   const geometry::Prism& body);
+
+/// The rows of `all` whose points lie within `tol` of `box`.
+ElementPoints points_in_box(const ElementPoints& all, const spec::Box& box, double tol);
 
 } // namespace mf::implicit

@@ -33,7 +33,7 @@ struct SolidConditionPoints {
 struct SolidModel {
   geometry::Prism body;
   std::unique_ptr<SolidSpace> space; // meshfree nodes and supports, or
-  std::unique_ptr<ExtrudedMesh> fe;  // bricks
+  std::unique_ptr<SolidElements> fe; // finite elements: bricks or tetrahedra
   solvers::OwnedRange own;
   SolidPoints domain;
   Csr domain_support;
@@ -48,7 +48,7 @@ struct SolidModel {
 };
 
 /// "meshfree RK (linear basis, spherical supports), 3D, spacing 0.5 (5 layers), dilation 2", or
-/// "FE hex20 (...)", for logs and the summary.
+/// "FE hex20 (...)" or "FE tet10 (...)", for logs and the summary.
 std::string describe_solid_method(const spec::ProblemSpec& spec);
 
 /// The sizes of a model, for the log and the summary.

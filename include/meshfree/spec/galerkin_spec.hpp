@@ -19,10 +19,11 @@ enum class Method { Meshfree, Fem };
 
 /// Finite-element settings (used when the method is fem).
 struct FemSpec {
-  std::string element = "q8"; // t3 | q4 | q8
+  std::string element = "q8"; // t3 | q4 | q8; model solid_3d also tet4 | tet10
   std::string mesh;           // gmsh .msh file (absolute path); empty: a structured mesh of the
                               // rectangle with elements of the discretisation's spacing
-  int order = 0;              // Gauss points per direction (0: the element's default)
+  int order = 0;              // Gauss points per direction; triangles and tetrahedra: the
+                              // degree their rule integrates exactly (0: the element's default)
 };
 
 struct DiscretisationSpec {
