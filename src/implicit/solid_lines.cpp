@@ -23,9 +23,7 @@ SolidLineSampler::SolidLineSampler(const spec::ProblemSpec& spec, const SolidMod
 void SolidLineSampler::record(int state, const std::vector<double>& d) {
   for (Line& l : lines_)
     for (int k = 0; k < static_cast<int>(l.x.size()); ++k) {
-      const materials::J2Result3D r =
-          materials::j2_update_3d(law_, solid_strain_at(l.table, k, d), l.committed[k]);
-      l.committed[k] = r.state;
+      const materials::J2Result3D r = carry_point(l.table, k, d, law_, l.committed[k]);
       const Vec3 u = solid_displacement_at(l.table, k, d);
       const Vec3& x = l.x[k];
       l.rows.push_back({static_cast<double>(state), (x - l.from).norm(), x.x(), x.y(), x.z(), u.x(),

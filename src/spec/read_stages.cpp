@@ -130,19 +130,19 @@ void check_transfer(const ProblemSpec& from, const ProblemSpec& to) {
   }
 }
 
-/// What the explicit stage can hold: SPH holds gravity but no uniform body force; the implicit
+/// What the explicit stage can take: SPH holds gravity but no uniform body force; the implicit
 /// peridynamic equilibrium solves plane bodies (a 3D body relaxes by ADR, its default there).
-void check_held_loads(KeyReader& s, StageLink& l, const ProblemSpec& from, const ProblemSpec& to) {
+void check_explicit_stage(KeyReader& s, const StageLink& l, const ProblemSpec& from,
+                          const ProblemSpec& to) {
   if (to.analysis == Analysis::Sph &&
       std::find(l.hold.begin(), l.hold.end(), "body_force") != l.hold.end())
     s.error("hold", std::string("SPH holds gravity, not a uniform body force: release "
                                 "'body_force'") +
                         (from.is_solid() ? "" : " (or give the preload 'gravity')"));
-  if (to.analysis != Analysis::Peridynamics || to.model_type != ModelType::Solid3D) return;
-  if (l.implicit_equilibrium && l.equilibrium_given)
+  if (to.analysis == Analysis::Peridynamics && to.model_type == ModelType::Solid3D &&
+      l.implicit_equilibrium && l.equilibrium_given)
     s.error("transfer", "equilibrium: newton solves plane peridynamic bodies; a 3D body relaxes "
                         "to its equilibrium by adr");
-  l.implicit_equilibrium = false;
 }
 
 StageLink read_link(KeyReader& s, const std::vector<ProblemSpec>& earlier, int k) {
@@ -260,7 +260,9 @@ void parse_stages(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
       check_conditions(link_reader, link, from);
       check_solid_holds(link_reader, link, from);
       check_transfer(from, stage);
-      check_held_loads(link_reader, link, from, stage);
+      check_explicit_stage(link_reader, link, from, stage);
+      if (stage.analysis == Analysis::Peridynamics && stage.model_type == ModelType::Solid3D)
+        link.implicit_equilibrium = false; // ADR, the 3D default
       if (stage.analysis == Analysis::Peridynamics && link.settle_time > 0.0)
         link_reader.error("settle", "a peridynamic stage starts from its own static equilibrium "
                                     "under the held conditions (transfer.relax_tolerance); "

@@ -9,25 +9,6 @@ namespace mf::stages {
 
 namespace {
 
-/// Every image of a particle across the mirror planes (itself first), with the reflections that
-/// made it: the preload's part sees the particle at one of them.
-std::vector<std::pair<Vec2, Mirrored>> images(const Vec3& x,
-                                              const std::vector<spec::MirrorPlane>& mirror) {
-  std::vector<std::pair<Vec2, Mirrored>> out{{x.head<2>(), Mirrored{x, {}}}};
-  for (const spec::MirrorPlane& m : mirror) {
-    if (m.axis > 1) continue;
-    const std::size_t n = out.size();
-    for (std::size_t k = 0; k < n; ++k) {
-      auto [y, how] = out[k];
-      y[m.axis] = 2.0 * m.at - y[m.axis];
-      how.x[m.axis] = y[m.axis];
-      how.flip[m.axis] = !how.flip[m.axis];
-      out.emplace_back(y, how);
-    }
-  }
-  return out;
-}
-
 /// The ends of the straight pieces (an arc gives none: it lies on no plane or axis line).
 std::vector<Vec2> segment_ends(const std::vector<geometry::Curve>& pieces, bool& all_straight) {
   std::vector<Vec2> ends;
@@ -68,9 +49,9 @@ Layer layer_of(const std::vector<Vec3>& x, const std::vector<geometry::Curve>& p
     double best = depth;
     Mirrored how;
     bool found = false;
-    for (const auto& [y, m] : images(x[i], mirror))
+    for (const Mirrored& m : mirror_images(x[i], mirror, 2))
       for (const geometry::Curve& c : pieces) {
-        const double d = c.distance_to(y);
+        const double d = c.distance_to(m.x.head<2>());
         if (d < best) best = d, how = m, found = true;
       }
     if (!found) continue;

@@ -21,6 +21,15 @@ Mirrored mirror_into(const Vec3& x, const std::vector<spec::MirrorPlane>& mirror
   return m;
 }
 
+std::vector<Mirrored> mirror_into(const std::vector<Vec3>& x,
+                                  const std::vector<spec::MirrorPlane>& mirror,
+                                  const Vec3& inside) {
+  std::vector<Mirrored> out;
+  out.reserve(x.size());
+  for (const Vec3& p : x) out.push_back(mirror_into(p, mirror, inside));
+  return out;
+}
+
 std::vector<double> flat(const std::vector<Vec3>& u) {
   std::vector<double> out(3 * u.size());
   for (std::size_t i = 0; i < u.size(); ++i)
@@ -73,6 +82,8 @@ Vec6 stress_3d(const materials::J2Result2D& r) {
   return s;
 }
 
+} // namespace
+
 materials::J2State mirrored(const materials::J2State& h, const Mirrored& m) {
   materials::J2State out = h;
   out.plastic_strain = mirrored(h.plastic_strain, m);
@@ -80,7 +91,35 @@ materials::J2State mirrored(const materials::J2State& h, const Mirrored& m) {
   return out;
 }
 
-} // namespace
+std::vector<Mirrored> mirror_images(const Vec3& x, const std::vector<spec::MirrorPlane>& mirror,
+                                    int dims) {
+  std::vector<Mirrored> out{Mirrored{x, {}}};
+  for (const spec::MirrorPlane& m : mirror) {
+    if (m.axis >= dims) continue;
+    const std::size_t n = out.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      Mirrored how = out[k];
+      how.x[m.axis] = 2.0 * m.at - how.x[m.axis];
+      how.flip[m.axis] = !how.flip[m.axis];
+      out.push_back(how);
+    }
+  }
+  return out;
+}
+
+PreloadAtParticles unloaded_preload(int N, std::vector<Mirrored> image) {
+  const std::size_t np = image.size();
+  PreloadAtParticles out;
+  out.image = std::move(image);
+  out.pseudo_time.resize(N + 1);
+  for (int n = 0; n <= N; ++n) out.pseudo_time[n] = static_cast<double>(n) / N - 1.0;
+  out.u.assign(N + 1, std::vector<Vec3>(np, Vec3::Zero()));
+  out.stress.assign(N + 1, std::vector<Vec6>(np, Vec6::Zero()));
+  out.alpha.assign(N + 1, std::vector<double>(np, 0.0));
+  out.history.resize(np);
+  out.plastic.assign(np, 0);
+  return out;
+}
 
 PreloadAtParticles sample_preload(const spec::ProblemSpec& preload,
                                   const implicit::ElastoplasticResult& r,
@@ -98,29 +137,17 @@ PreloadAtParticles sample_preload(const spec::ProblemSpec& preload,
   Vec2 centre = Vec2::Zero();
   for (const Vec2& p : model.node_positions()) centre += p;
   centre /= static_cast<double>(model.node_count());
-  const Vec3 inside(centre.x(), centre.y(), 0.0);
-  PreloadAtParticles out;
-  std::vector<Mirrored>& image = out.image;
-  image.resize(np);
+  PreloadAtParticles out =
+      unloaded_preload(N, mirror_into(x, mirror, Vec3(centre.x(), centre.y(), 0.0)));
+  const std::vector<Mirrored>& image = out.image;
   std::vector<Vec2> points(np);
-  for (int p = 0; p < np; ++p) {
-    image[p] = mirror_into(x[p], mirror, inside);
-    points[p] = image[p].x.head<2>();
-  }
+  for (int p = 0; p < np; ++p) points[p] = image[p].x.head<2>();
   implicit::ShapeTable table;
   try {
     table = implicit::shapes_at(model, points, true);
   } catch (const Error& e) {
     fail(key_path, ": a particle lies outside the preload's body (", e.what(), ")");
   }
-
-  out.pseudo_time.resize(N + 1);
-  out.u.assign(N + 1, std::vector<Vec3>(np, Vec3::Zero()));
-  out.stress.assign(N + 1, std::vector<Vec6>(np, Vec6::Zero()));
-  out.alpha.assign(N + 1, std::vector<double>(np, 0.0));
-  out.history.resize(np);
-  out.plastic.assign(np, 0);
-  for (int n = 0; n <= N; ++n) out.pseudo_time[n] = static_cast<double>(n) / N - 1.0;
   const std::vector<double> zero(r.state.parameters.size(), 0.0);
 
 #pragma omp parallel for schedule(dynamic, 64)

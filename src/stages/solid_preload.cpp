@@ -21,44 +21,28 @@ PreloadAtParticles SolidPreload::sample(const std::vector<Vec3>& x,
   Vec3 inside = Vec3::Zero();
   for (const Vec3& p : model.node_positions()) inside += p;
   inside /= static_cast<double>(model.node_count());
-
-  PreloadAtParticles out;
-  out.image.resize(np);
+  PreloadAtParticles out = unloaded_preload(N, mirror_into(x, link.mirror, inside));
   std::vector<Vec3> points(np);
-  for (int p = 0; p < np; ++p) {
-    out.image[p] = mirror_into(x[p], link.mirror, inside);
-    points[p] = out.image[p].x;
-  }
+  for (int p = 0; p < np; ++p) points[p] = out.image[p].x;
   implicit::SolidShapeTable table;
   try {
     table = implicit::solid_shapes_at(model, points, true);
   } catch (const Error& e) {
     fail(link.key_path, ": a particle lies outside the preload's body (", e.what(), ")");
   }
-  out.pseudo_time.resize(N + 1);
-  for (int n = 0; n <= N; ++n) out.pseudo_time[n] = static_cast<double>(n) / N - 1.0;
-  out.u.assign(N + 1, std::vector<Vec3>(np, Vec3::Zero()));
-  out.stress.assign(N + 1, std::vector<Vec6>(np, Vec6::Zero()));
-  out.alpha.assign(N + 1, std::vector<double>(np, 0.0));
-  out.history.resize(np);
-  out.plastic.assign(np, 0);
   const std::vector<double> zero(r_.parameters.size(), 0.0);
 #pragma omp parallel for schedule(dynamic, 64)
   for (int p = 0; p < np; ++p) {
     materials::J2State committed;
     for (int n = 0; n <= N; ++n) {
       const std::vector<double>& d = n == 0 ? zero : r_.increments[n].record.parameters;
-      const materials::J2Result3D res =
-          materials::j2_update_3d(r_.material, implicit::solid_strain_at(table, p, d), committed);
-      committed = res.state;
+      const materials::J2Result3D res = implicit::carry_point(table, p, d, r_.material, committed);
       out.u[n][p] = mirrored(implicit::solid_displacement_at(table, p, d), out.image[p]);
       out.stress[n][p] = mirrored(res.stress, out.image[p]);
       out.alpha[n][p] = res.state.alpha;
       if (n == N) out.plastic[p] = res.plastic;
     }
-    out.history[p] = committed;
-    out.history[p].plastic_strain = mirrored(committed.plastic_strain, out.image[p]);
-    out.history[p].back_stress = mirrored(committed.back_stress, out.image[p]);
+    out.history[p] = mirrored(committed, out.image[p]);
   }
   return out;
 }
@@ -109,21 +93,6 @@ bool nearest_on_faces(const FacesOf& f, const Vec3& p, Vec3& q) {
   return best >= 0.0;
 }
 
-/// Every image of a particle across the mirror planes (itself first).
-std::vector<Mirrored> images(const Vec3& x, const std::vector<spec::MirrorPlane>& mirror) {
-  std::vector<Mirrored> out{Mirrored{x, {}}};
-  for (const spec::MirrorPlane& m : mirror) {
-    const std::size_t n = out.size();
-    for (std::size_t k = 0; k < n; ++k) {
-      Mirrored how = out[k];
-      how.x[m.axis] = 2.0 * m.at - how.x[m.axis];
-      how.flip[m.axis] = !how.flip[m.axis];
-      out.push_back(how);
-    }
-  }
-  return out;
-}
-
 /// The particles within `depth` of the faces (of any of their images): the image nearest, its
 /// distance and the nearest face point.
 struct FaceLayer {
@@ -141,7 +110,7 @@ FaceLayer face_layer(const std::vector<Vec3>& x, const FacesOf& faces,
     Mirrored how;
     Vec3 foot;
     bool found = false;
-    for (const Mirrored& m : images(x[i], mirror)) {
+    for (const Mirrored& m : mirror_images(x[i], mirror, 3)) {
       Vec3 q;
       if (!nearest_on_faces(faces, m.x, q)) continue;
       const double d = (q - m.x).norm();

@@ -8,6 +8,7 @@
 #include "meshfree/core/types.hpp"
 #include "meshfree/implicit/solid_space.hpp"
 #include "meshfree/materials/elastic.hpp"
+#include "meshfree/materials/j2_plasticity.hpp"
 #include <vector>
 
 namespace mf::implicit {
@@ -42,6 +43,18 @@ inline Vec3 solid_displacement_at(const SolidShapeTable& t, int r, const std::ve
     u += t.phi[k] * Vec3(v[0], v[1], v[2]);
   }
   return u;
+}
+
+/// Point r of a table carried to nodal parameters d as a passive material point: the J2 update
+/// of its strain from its committed history, which then becomes the update's.
+inline materials::J2Result3D carry_point(const SolidShapeTable& t, int r,
+                                         const std::vector<double>& d,
+                                         const materials::J2Parameters& law,
+                                         materials::J2State& committed) {
+  const materials::J2Result3D res =
+      materials::j2_update_3d(law, solid_strain_at(t, r, d), committed);
+  committed = res.state;
+  return res;
 }
 
 /// The (3n x 3n, row-major) block of point r with n nodes: K_IJ = B~_I^T wC B_J, wC the

@@ -48,16 +48,29 @@ PreloadAtParticles sample_preload(const spec::ProblemSpec& preload,
 /// in, across each mirror plane `x` is on the other side of.
 Mirrored mirror_into(const Vec3& x, const std::vector<spec::MirrorPlane>& mirror,
                      const Vec3& inside);
+/// The images of every particle.
+std::vector<Mirrored> mirror_into(const std::vector<Vec3>& x,
+                                  const std::vector<spec::MirrorPlane>& mirror, const Vec3& inside);
 
 /// Vectors as a flat array, x, y, z of each in turn (the particle set's layout).
 std::vector<double> flat(const std::vector<Vec3>& v);
 
-/// A vector and a stress of the part, seen from the mirrored image.
+/// Every image of `x` across the mirror planes of the first `dims` axes (x itself first), with
+/// the reflections that made it: the preload's part sees the particle at one of them.
+std::vector<Mirrored> mirror_images(const Vec3& x, const std::vector<spec::MirrorPlane>& mirror,
+                                    int dims);
+
+/// The arrays of a preload of increments 0..N at particles mirrored as `image`, all zero, at
+/// pseudo-times n / N - 1; a sampler fills them.
+PreloadAtParticles unloaded_preload(int N, std::vector<Mirrored> image);
+
 /// The preload at the particles of the given global ids (indices into pa's particles), in that
 /// order: a rank's owned particles after the body was split over ranks.
 PreloadAtParticles select_particles(const PreloadAtParticles& pa, const std::vector<long>& ids);
 
+/// A vector, a stress and a material history of the part, seen from the mirrored image.
 Vec3 mirrored(const Vec3& v, const Mirrored& m);
 Vec6 mirrored(const Vec6& s, const Mirrored& m);
+materials::J2State mirrored(const materials::J2State& h, const Mirrored& m);
 
 } // namespace mf::stages

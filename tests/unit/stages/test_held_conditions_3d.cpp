@@ -382,3 +382,53 @@ TEST_CASE("a 3D preload of a symmetric half is mirrored to the whole body exactl
   CHECK(steps >= 200);
   CHECK(kinetic <= 1e-8);
 }
+
+TEST_CASE("a 3D preload transfers exactly from bricks, meshfree nodes or tetrahedra, onto "
+          "particles whose spacing need not divide the body",
+          "[staged][held][solid3d]") {
+  // The traction case (uniaxial stress sigma_xx = t) from each discretisation that reproduces a
+  // linear field (20-node bricks, meshfree RK with VCI, 10-node tetrahedra), onto SPH lattices of
+  // 5 mm (dividing the block) and 4.5 mm (not): the stress at every particle, and the traction
+  // carried by the held forces, t x 40 mm x 40 mm.
+  const Held c = table(Law::Elastic)[3];
+  REQUIRE(std::string(c.name) == "traction");
+  const double t = strain(Law::Elastic) * kE;
+  for (const char* method : {"q8", "meshfree", "tet10"})
+    for (double spacing : {kSpacing, 0.9 * kSpacing}) {
+      const spec::ProblemSpec spec =
+          spec::parse_problem(YAML::Load(staged(c, Law::Elastic, "sph", 0.02, spacing)));
+      spec::ProblemSpec preload = spec.staged().stages[0];
+      spec::DiscretisationSpec& d = preload.solid().discretisation;
+      if (std::string(method) == "meshfree") {
+        d.method = spec::Method::Meshfree;
+        d.spacing = 0.01;
+        d.vci = true;
+      } else {
+        d.fem.element = method;
+      }
+      preload.solid().steps[0].increments = 1;
+      const implicit::SolidElastoplasticResult pre = preload_of(preload);
+      REQUIRE(pre.status == "completed");
+      const stages::SolidPreload view(preload, pre);
+      const sph::Hydro h = explicit_dynamics::build_sph(spec.staged().stages[1].sph());
+      std::vector<Vec3> X;
+      for (int i = 0; i < h.particles.owned_count(); ++i) X.push_back(h.particles.reference(i));
+      const stages::PreloadAtParticles pa = view.sample(X, spec.staged().links[1]);
+      double s_error = 0.0;
+      for (const materials::Vec6& s : pa.final_stress()) {
+        materials::Vec6 exact = materials::Vec6::Zero();
+        exact[0] = t;
+        s_error = std::max(s_error, (s - exact).cwiseAbs().maxCoeff() / t);
+      }
+      const std::vector<stages::HeldCondition> held =
+          view.held(spec.staged().links[1], X, {spacing, 3.0 * spacing});
+      Vec3 total = Vec3::Zero();
+      for (const Vec3& f : held.back().force) total += f;
+      std::cout << "[held] 3D " << method << " preload, particles " << spacing << ": " << X.size()
+                << " particles, stress within " << s_error << ", force "
+                << total.x() / (t * kWidth * kWidth) << " of t A\n";
+      INFO(method << ", particle spacing " << spacing);
+      CHECK(s_error <= 1e-10);
+      CHECK(std::abs(total.x() / (t * kWidth * kWidth) - 1.0) <= 1e-9);
+    }
+}
