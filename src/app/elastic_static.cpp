@@ -9,9 +9,11 @@ namespace mf::app {
 
 implicit::ElasticResult elastic_static(const spec::ProblemSpec& spec,
                                        const solvers::PetscSession& session,
-                                       io::OutputDirectory* out) {
+                                       io::OutputDirectory* out,
+                                       std::optional<implicit::Adaptation> adaptation) {
   // The display mesh on every rank alike (its nodal average is collective; `out` is rank 0's).
   implicit::ElasticResult r = implicit::solve_elastic_static(spec, session, true);
+  r.adaptation = std::move(adaptation);
   {
     PhaseTimer::Scope scope(r.timer, "output");
     if (out) implicit::write_elastic_outputs(spec, r, session, *out);
@@ -23,7 +25,11 @@ namespace {
 
 RunOutcome run(const RunRequest& q) {
   if (!q.spec.is_solid()) {
-    log_phases(elastic_static(q.spec, q.session, q.out).timer);
+    const implicit::AdaptedProblem p =
+        implicit::adapted_problem(q.spec, [&](const spec::ProblemSpec& s) {
+          return implicit::solve_elastic_static(s, q.session).estimate;
+        });
+    log_phases(elastic_static(p.spec, q.session, q.out, p.adaptation).timer);
     return {};
   }
   auto r = implicit::solve_solid_elastic(q.spec, q.session); // a 3D body

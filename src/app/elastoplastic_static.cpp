@@ -12,9 +12,11 @@ namespace mf::app {
 implicit::ElastoplasticResult elastoplastic_static(const spec::ProblemSpec& spec,
                                                    const solvers::PetscSession& session,
                                                    io::OutputDirectory* out, const std::string& dir,
-                                                   const io::Restart* restart) {
+                                                   const io::Restart* restart,
+                                                   std::optional<implicit::Adaptation> adaptation) {
   implicit::ElastoplasticResult r =
       implicit::solve_elastoplastic_static(spec, session, out, dir, restart);
+  r.adaptation = std::move(adaptation);
   {
     PhaseTimer::Scope scope(r.timer, "output");
     if (out) implicit::write_elastoplastic_outputs(spec, r, session, *out);
@@ -65,7 +67,13 @@ RunOutcome run(const RunRequest& q) {
     });
     return {r.status == "completed" ? 0 : 3, r.status};
   }
-  const auto r = elastoplastic_static(q.spec, q.session, q.out, q.dir, q.restart);
+  // Pilot solves of the schedule in fewer increments, without output, where the cloud adapts.
+  const implicit::AdaptedProblem p =
+      implicit::adapted_problem(q.spec, [&](const spec::ProblemSpec& s) {
+        return implicit::solve_elastoplastic_static(implicit::pilot_spec(s), q.session, nullptr)
+            .estimate;
+      });
+  const auto r = elastoplastic_static(p.spec, q.session, q.out, q.dir, q.restart, p.adaptation);
   log_phases(r.timer);
   return {r.status == "completed" ? 0 : 3, r.status};
 }

@@ -232,4 +232,17 @@ NodeCloud generate_nodes(const Domain& domain, double spacing,
   return cloud;
 }
 
+void grade_spacing(NodeCloud& cloud) {
+  if (cloud.x.empty()) return;
+  const double largest = *std::max_element(cloud.spacing.begin(), cloud.spacing.end());
+  const neighbors::PointGrid grid(cloud.x, largest);
+  const std::vector<double> nominal = cloud.spacing;
+  for (std::size_t i = 0; i < cloud.x.size(); ++i)
+    grid.for_each_within(cloud.x[i], largest * (1.0 + 1e-9), [&](int j) {
+      if (nominal[j] > cloud.spacing[i] &&
+          (cloud.x[i] - cloud.x[j]).norm() <= nominal[j] * (1.0 + 1e-9))
+        cloud.spacing[i] = nominal[j];
+    });
+}
+
 } // namespace mf::geometry

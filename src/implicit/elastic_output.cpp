@@ -1,4 +1,5 @@
 #include "meshfree/implicit/elastic_output.hpp"
+#include "meshfree/implicit/adaptivity_output.hpp"
 #include "meshfree/io/results.hpp"
 #include "meshfree/materials/elastic.hpp"
 #include "meshfree/verification/exact_solutions.hpp"
@@ -148,6 +149,7 @@ void write_summary(const spec::ProblemSpec& spec, const ElasticResult& r,
       .set("boundary", boundary_json(r));
   if (spec.galerkin().exact)
     results.set("error_l2_relative", r.error_l2).set("error_energy_relative", r.error_energy);
+  if (r.adaptation) results.set("adaptivity", adaptation_json(spec, *r.adaptation, r.estimate));
   summary.write(out, r.timer);
 }
 
@@ -165,6 +167,7 @@ void write_elastic_outputs(const spec::ProblemSpec& spec, const ElasticResult& r
   for (const auto& u : r.node_u) umax = std::max(umax, u.norm());
   for (double v : stresses.vm) vmmax = std::max(vmmax, v);
   write_history(r, umax, vmmax, out);
+  if (r.adaptation) write_adaptation(spec, *r.adaptation, r.estimate, out);
   write_summary(spec, r, session, umax, vmmax, out);
 }
 

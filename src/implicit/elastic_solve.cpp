@@ -58,6 +58,17 @@ std::pair<double, double> exact_errors(const spec::ProblemSpec& spec, const Gale
   return {std::sqrt(sums[0] / sums[1]), std::sqrt(sums[2] / sums[3])};
 }
 
+/// The recovery estimate of the solution's stress at this rank's Gauss points.
+ErrorEstimate elastic_estimate(const spec::ProblemSpec& spec, const GalerkinModel& m,
+                               const std::vector<double>& d, const solvers::PetscSession& session) {
+  const PointLaws laws = point_laws(spec, domain_rows(m));
+  std::vector<Vec3> stress(m.domain_table.rows());
+  for (int k = 0; k < m.domain_table.rows(); ++k)
+    stress[k] = laws.elastic_stress(spec.model, k, strain_at(m.domain_table, k, d)).first;
+  const Mat3 C = materials::elastic_matrix(spec.elasticity(), spec.model);
+  return recovery_error(m, stress, C.inverse(), session);
+}
+
 /// u^h and stresses at the nodes and along the sample lines (on the calling rank).
 void sample_fields(const spec::ProblemSpec& spec, const GalerkinModel& m, ElasticResult& R) {
   const auto& d = R.parameters;
@@ -115,6 +126,7 @@ ElasticResult solve_elastic_static(const spec::ProblemSpec& spec,
                                  "check the boundary conditions");
 
   PhaseTimer::Scope scope(R.timer, "postprocess");
+  if (spec.galerkin().discretisation.adapt) R.estimate = elastic_estimate(spec, m, R.parameters, session);
   if (spec.galerkin().exact)
     std::tie(R.error_l2, R.error_energy) = exact_errors(spec, m, R.parameters, session);
   for (const auto& c : m.conditions) {

@@ -1,4 +1,5 @@
 #include "meshfree/implicit/elastoplastic_output.hpp"
+#include "meshfree/implicit/adaptivity_output.hpp"
 #include "meshfree/io/output.hpp"
 #include "meshfree/io/results.hpp"
 #include <algorithm>
@@ -185,6 +186,7 @@ void write_summary(const spec::ProblemSpec& spec, const ElastoplasticResult& r,
         "initial_stress",
         io::Json().set("type", "geostatic").set("out_of_balance", r.initial_out_of_balance));
   results.set("final", final_json(spec, r.increments.back())).set("steps", steps_json(spec, r));
+  if (r.adaptation) results.set("adaptivity", adaptation_json(spec, *r.adaptation, r.estimate));
   summary.section("checkpoints") = r.checkpoints.describe(r.timer.total());
   summary.write(out, r.timer);
 }
@@ -196,6 +198,7 @@ void write_elastoplastic_outputs(const spec::ProblemSpec& spec, const Elastoplas
   if (session.rank() != 0) return;
   write_history(spec, r, out);
   write_lines(r, out);
+  if (r.adaptation) write_adaptation(spec, *r.adaptation, r.estimate, out);
   write_summary(spec, r, session, out);
 }
 

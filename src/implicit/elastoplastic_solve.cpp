@@ -216,6 +216,10 @@ ElastoplasticResult solve_elastoplastic_static(const spec::ProblemSpec& spec,
   R.jacobian_seconds = problem.jacobian_seconds();
   recorder.close();
   keep_converged_state(model, problem, newton, d, session, R);
+  if (spec.galerkin().discretisation.adapt)
+    R.estimate = recovery_error(m, R.state.stress,
+                                materials::elastic_matrix(spec.elasticity(), spec.model).inverse(),
+                                session);
   R.memory = solvers::peak_memory(session.comm());
   return R;
 }

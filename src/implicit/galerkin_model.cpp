@@ -66,9 +66,9 @@ GalerkinModel build_meshfree_model(const spec::ProblemSpec& spec,
   GalerkinModel m;
   {
     PhaseTimer::Scope scope(timer, "nodes");
-    m.space = std::make_unique<MeshfreeSpace>(
-        geometry::generate_nodes(spec.domain, disc.spacing, disc.refinement), disc.shape,
-        disc.dilation);
+    geometry::NodeCloud cloud = geometry::generate_nodes(spec.domain, disc.spacing, disc.refinement);
+    if (disc.adapt) geometry::grade_spacing(cloud);
+    m.space = std::make_unique<MeshfreeSpace>(std::move(cloud), disc.shape, disc.dilation);
   }
   const int N = m.node_count();
   log::info("nodes: ", N, " (", 2 * N, " DOFs), ",

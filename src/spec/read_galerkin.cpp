@@ -36,13 +36,12 @@ LinearSolverSpec read_linear_solver(KeyReader& r) {
   return s;
 }
 
-namespace {
-
-/// Bytes per Galerkin node at a run's peak with the linear solver that `count` nodes get.
 double bytes_per_node(const LinearSolverSpec& solver, double count) {
   return solver.multigrid_for(2.0 * count) ? bytes_per::galerkin_node_multigrid
                                            : bytes_per::galerkin_node;
 }
+
+namespace {
 
 /// discretisation.fem: the element (in 3D also tetrahedra), an optional gmsh mesh file and the
 /// quadrature order.
@@ -167,6 +166,7 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
                  bytes_per_node(solver, nodes_total));
   read_shape_functions(d, dim, s);
   read_quadrature(d, s);
+  s.adapt = read_adapt(d, dim, s, solver);
   d.finish();
   return s;
 }

@@ -249,6 +249,9 @@ void parse_stages(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
     ProblemSpec stage = parse_stage(stage_file(r, s), r, s.path(), name, base_dir);
     // The bounds on an explicit stage's run (time.end, output intervals) are checked on its set-up,
     // after reading: they name the stage's keys by its path.
+    if (stage.is_galerkin() && stage.galerkin().discretisation.adapt)
+      s.error("discretisation.adapt", "a stage's cloud is not adapted; adapt it in a run of its "
+                                      "own and give the stage that run's refinement boxes");
     if (stage.is_pd()) stage.pd().key_prefix = s.path() + ".";
     if (stage.is_sph()) stage.sph().key_prefix = s.path() + ".";
     if (link.from >= 0) {

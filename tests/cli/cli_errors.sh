@@ -153,6 +153,15 @@ expect_error "geometry.rectangle.origin: lies too far from 0 for a body of this 
 expect_error "name: a name of at most 64 characters, got 200" "$P" --set "name=$(printf 'x%.0s' {1..200})"
 printf 'name: "a\0b"\n' > "$WORK/nul.yaml"; grep -v '^name:' "$P" >> "$WORK/nul.yaml"
 expect_error "name: expected a name of letters, digits, '_' or '-', got 'a\\x00b'" "$WORK/nul.yaml"
+# Error-driven refinement: its keys, and where it does not apply.
+expect_error "discretisation.adapt.target: is a relative error: expected a value below 1, got 2" "$P" --set discretisation.adapt.target=2
+expect_error "discretisation.adapt.fraction: is a share of the estimated error: expected (0, 1], got 1.5" "$P" --set discretisation.adapt.fraction=1.5
+expect_error "discretisation.adapt.passes: expected an integer from 1 to 20, got 0" "$P" --set discretisation.adapt.passes=0
+expect_error "discretisation.adapt.max_nodes: nodes of the refined cloud: about" "$P" --set discretisation.adapt.max_nodes=1e12
+expect_error "discretisation.adapt.pace: unknown key" "$P" --set discretisation.adapt.pace=1
+expect_error "discretisation.adapt: error-driven refinement places meshfree nodes: it needs method: meshfree" "$P" --set discretisation.method=fem --set discretisation.adapt.target=0.1
+expect_error "discretisation.adapt: error-driven refinement is made for plane bodies, not for this model" "$ROOT/problems/block_uniaxial_3d.yaml" --set discretisation.adapt.target=0.1
+expect_error "stages[0].discretisation.adapt: a stage's cloud is not adapted" "$ROOT/problems/staged_strip_blast.yaml" --set stages.0.discretisation.adapt.target=0.1
 expect_error "discretisation.refinement[0].box: lies outside the body" "$P" --set 'discretisation.refinement=[{box: [[5, 5], [6, 6]], spacing: 0.02}]'
 # A refinement box reaching far outside the body is clipped to it (node generation walked it whole).
 if timeout 20 "$MF" check "$P" --set 'discretisation.refinement=[{box: [[-1e9, -1e9], [1e9, 1e9]], spacing: 0.02}]' >/dev/null 2>&1; then

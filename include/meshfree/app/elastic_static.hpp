@@ -5,13 +5,16 @@
 #include "meshfree/io/output.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
 #include "meshfree/spec/problem_spec.hpp"
+#include <optional>
 
 namespace mf::app {
 
-/// Builds the model, solves K d = f, and writes the results to `out` (rank 0; null elsewhere).
+/// Builds the model, solves K d = f, and writes the results to `out` (rank 0; null elsewhere),
+/// with the record of the refinement that made the spec's cloud, if it was adapted.
 implicit::ElasticResult elastic_static(const spec::ProblemSpec& spec,
                                        const solvers::PetscSession& session,
-                                       io::OutputDirectory* out);
+                                       io::OutputDirectory* out,
+                                       std::optional<implicit::Adaptation> adaptation = {});
 
 /// What `check` prints of a Galerkin analysis (elastic or elastoplastic): method, nodes or mesh,
 /// integration points, memory, the boundary conditions and the steps.

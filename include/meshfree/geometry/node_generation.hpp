@@ -24,6 +24,13 @@ struct NodeCloud {
 NodeCloud generate_nodes(const Domain& domain, double spacing,
                          const std::vector<Refinement>& refinements);
 
+/// Each node's spacing raised to the largest spacing of a coarser node within that node's own
+/// spacing of it: a node on a finer box's border then reaches as far as its coarser neighbours,
+/// so that a coarser column between two finer boxes, or between a finer box and the boundary,
+/// is not the only one that covers the points beside it. The supports of adapted clouds
+/// (discretisation.adapt), whose boxes lie anywhere, are made from it.
+void grade_spacing(NodeCloud& cloud);
+
 /// A boundary piece cut where it enters or leaves a refinement box, so that each part has one
 /// local spacing.
 std::vector<Curve> split_at_refinements(const Curve& c, const std::vector<Refinement>& refinements);

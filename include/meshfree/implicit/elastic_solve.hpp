@@ -2,6 +2,7 @@
 // Linear elastic static analysis on a Galerkin model (meshfree RK or MLS, or finite elements):
 // one solve of K d = f, errors against an exact solution, and the fields at nodes and lines.
 #include "meshfree/core/timer.hpp"
+#include "meshfree/implicit/adaptivity.hpp"
 #include "meshfree/implicit/display_mesh.hpp"
 #include "meshfree/implicit/galerkin_forms.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
@@ -10,6 +11,7 @@
 #include "meshfree/solvers/petsc_session.hpp"
 #include "meshfree/spec/problem_spec.hpp"
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +41,8 @@ struct ElasticResult {
   solvers::SolveReport solve;
   PhaseTimer timer;
   solvers::PeakMemory memory; // at the end of the solve
+  ErrorEstimate estimate;               // when the cloud is adapted
+  std::optional<Adaptation> adaptation; // the refinement passes before this solve
 };
 
 /// Solves the problem. Every rank returns the global numbers; node and line fields are filled

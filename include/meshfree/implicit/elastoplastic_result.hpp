@@ -3,6 +3,7 @@
 // first yield, and the converged state itself (model, nodal parameters and the history of every
 // Gauss point), from which a later stage can evaluate the solution anywhere in the body.
 #include "meshfree/core/timer.hpp"
+#include "meshfree/implicit/adaptivity.hpp"
 #include "meshfree/implicit/elastic_limit.hpp"
 #include "meshfree/implicit/galerkin_forms.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
@@ -12,6 +13,7 @@
 #include "meshfree/solvers/parallel.hpp"
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -85,6 +87,8 @@ struct ElastoplasticResult {
   PhaseTimer timer;
   solvers::PeakMemory memory;                            // at the end of the solve
   double residual_seconds = 0.0, jacobian_seconds = 0.0; // inside the "newton" phase
+  ErrorEstimate estimate;                 // of the final state, when the cloud is adapted
+  std::optional<Adaptation> adaptation;   // the refinement passes before this solve
 };
 
 } // namespace mf::implicit

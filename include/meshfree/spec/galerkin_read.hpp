@@ -3,6 +3,7 @@
 // discretisation, the linear solver, the load steps and the Newton controls.
 #include "meshfree/spec/key_reader.hpp"
 #include "meshfree/spec/problem_spec.hpp"
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,12 @@ LinearSolverSpec read_linear_solver(KeyReader& r);
 DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox& bounds,
                                        const std::string& base_dir,
                                        const LinearSolverSpec& solver = {});
+/// Bytes per Galerkin node at a run's peak with the linear solver that `count` nodes get.
+double bytes_per_node(const LinearSolverSpec& solver, double count);
+/// discretisation.adapt: {target, fraction, passes, max_nodes, pilot_increments}, refused for a
+/// body of dimension other than 2 or for finite elements; max_nodes checked against the memory.
+std::optional<AdaptSpec> read_adapt(KeyReader& d, int dim, const DiscretisationSpec& s,
+                                    const LinearSolverSpec& solver);
 /// steps: [{name, increments, load_factor, factors: {condition: target}}]; `boundary` names the
 /// conditions in order (the body force is the last factor).
 std::vector<LoadStep> read_steps(KeyReader& r, const std::vector<std::string>& boundary,

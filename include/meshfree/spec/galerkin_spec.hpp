@@ -26,6 +26,17 @@ struct FemSpec {
                               // degree their rule integrates exactly (0: the element's default)
 };
 
+/// Error-driven refinement of a plane meshfree body's nodes (discretisation.adapt): pilot solves
+/// estimate the error (implicit/error_indicator), the nodes carrying the bulk of it get boxes of
+/// half their spacing (implicit/adaptivity), and the analysis runs on the last cloud.
+struct AdaptSpec {
+  double target = 0.02;      // estimated relative energy-norm error at which refinement stops
+  double fraction = 0.5;     // Doerfler's bulk: the nodes marked carry this share of eta^2
+  int passes = 6;            // pilot solves at most (each may refine the cloud once)
+  double max_nodes = 1e5;    // a refinement past this many nodes is not made
+  int pilot_increments = 10; // increments of each load step in an elastoplastic pilot
+};
+
 struct DiscretisationSpec {
   Method method = Method::Meshfree;
   FemSpec fem;
@@ -39,6 +50,7 @@ struct DiscretisationSpec {
   bool cut_arcs = false;   // cells cut by one hole: exact region (quadrature::cell_minus_disc)
   int boundary_order = 3;  // Gauss points per boundary part
   bool vci = false;        // meshfree: variationally consistent test-function gradients
+  std::optional<AdaptSpec> adapt; // meshfree plane bodies: error-driven refinement
 };
 
 struct BoundaryCondition {

@@ -1,0 +1,19 @@
+#pragma once
+// What an adapted run writes of its refinement: results.adaptivity in summary.json, adapt.csv
+// (a row per pilot pass and one for the analysis' own solve) and error_indicator.h5/.xmf (eta_I
+// and the spacing at every node of the last cloud, for ParaView).
+#include "meshfree/implicit/adaptivity.hpp"
+#include "meshfree/io/output.hpp"
+#include "meshfree/io/results.hpp"
+
+namespace mf::implicit {
+
+/// results.adaptivity: the target, why refinement ended, the passes and the final estimate.
+io::Json adaptation_json(const spec::ProblemSpec& spec, const Adaptation& a,
+                         const ErrorEstimate& final_estimate);
+
+/// adapt.csv and the error_indicator series (rank 0).
+void write_adaptation(const spec::ProblemSpec& spec, const Adaptation& a,
+                      const ErrorEstimate& final_estimate, io::OutputDirectory& out);
+
+} // namespace mf::implicit

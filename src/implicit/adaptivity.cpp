@@ -1,0 +1,137 @@
+#include "meshfree/implicit/adaptivity.hpp"
+#include "meshfree/core/log.hpp"
+#include "meshfree/core/timer.hpp"
+#include <algorithm>
+#include <numeric>
+#include <cstdio>
+
+namespace mf::implicit {
+
+std::vector<int> doerfler_marking(const std::vector<double>& eta2, double fraction) {
+  std::vector<int> order(eta2.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return eta2[a] > eta2[b]; });
+  const double whole = std::accumulate(eta2.begin(), eta2.end(), 0.0);
+  if (whole <= 0.0) return {};
+  double sum = 0.0;
+  std::size_t n = 0;
+  while (n < order.size() && sum < fraction * whole) sum += eta2[order[n++]];
+  const double last = eta2[order[n - 1]];
+  while (n < order.size() && eta2[order[n]] >= last * (1.0 - 1e-9)) ++n;
+  order.resize(n);
+  std::sort(order.begin(), order.end());
+  return order;
+}
+
+namespace {
+
+/// The square of half-width `reach` around x with the given node spacing.
+geometry::Refinement box_around(const Vec2& x, double reach, double spacing) {
+  const Vec2 r(reach, reach);
+  return {BoundingBox{x - r, x + r}, spacing};
+}
+
+/// True where the cloud of `boxes` is coarser than h somewhere on the square of half-width
+/// `reach` around x (its corners and the middles of its sides).
+bool coarser_around(const Vec2& x, double reach, double h, double spacing,
+                    const std::vector<geometry::Refinement>& boxes) {
+  for (int j = -1; j <= 1; ++j)
+    for (int i = -1; i <= 1; ++i)
+      if ((i || j) &&
+          geometry::local_spacing(x + reach * Vec2(i, j), spacing, boxes) > h * (1.0 + 1e-9))
+        return true;
+  return false;
+}
+
+/// Adds the boxes that halve the spacing around node I, and the graded box around them.
+void refine_node(const geometry::NodeCloud& cloud, int I, double spacing,
+                 std::vector<geometry::Refinement>& boxes) {
+  const double h = cloud.spacing[I];
+  boxes.push_back(box_around(cloud.x[I], 2.0 * h, 0.5 * h));
+  if (coarser_around(cloud.x[I], 4.0 * h, h, spacing, boxes))
+    boxes.push_back(box_around(cloud.x[I], 4.0 * h, h));
+}
+
+} // namespace
+
+std::vector<geometry::Refinement> refinement_around(const geometry::NodeCloud& cloud,
+                                                    const std::vector<int>& marked,
+                                                    double spacing,
+                                                    const std::vector<geometry::Refinement>& now) {
+  std::vector<geometry::Refinement> boxes = now;
+  for (int I : marked) refine_node(cloud, I, spacing, boxes);
+  return boxes;
+}
+
+spec::ProblemSpec pilot_spec(const spec::ProblemSpec& spec) {
+  spec::ProblemSpec pilot = spec;
+  const int most = spec.galerkin().discretisation.adapt->pilot_increments;
+  for (spec::LoadStep& s : pilot.galerkin().steps) s.increments = std::min(s.increments, most);
+  pilot.galerkin().lines.clear();
+  pilot.galerkin().record_increment_parameters = false;
+  return pilot;
+}
+
+namespace {
+
+int cloud_size(const spec::ProblemSpec& spec, const std::vector<geometry::Refinement>& boxes) {
+  const spec::DiscretisationSpec& d = spec.galerkin().discretisation;
+  return static_cast<int>(geometry::generate_nodes(spec.domain, d.spacing, boxes).x.size());
+}
+
+} // namespace
+
+Adaptation adapt_nodes(const spec::ProblemSpec& spec, const PilotSolve& solve) {
+  const spec::DiscretisationSpec& d = spec.galerkin().discretisation;
+  const spec::AdaptSpec& a = *d.adapt;
+  Adaptation out;
+  out.refinement = d.refinement;
+  spec::ProblemSpec pass_spec = spec;
+  for (int pass = 0;; ++pass) {
+    const auto start = std::chrono::steady_clock::now();
+    pass_spec.galerkin().discretisation.refinement = out.refinement;
+    const ErrorEstimate e = solve(pass_spec);
+    AdaptPass p;
+    p.nodes = static_cast<int>(e.node_eta2.size());
+    p.estimate = e.relative();
+    p.seconds = seconds_since(start);
+    out.nodes = p.nodes;
+    log::info("adapt: pass ", pass + 1, " of at most ", a.passes, ", ", p.nodes,
+              " nodes, estimated error ", p.estimate, " (target ", a.target, "), ",
+              log::duration(p.seconds));
+    out.passes.push_back(p);
+    if (p.estimate <= a.target) {
+      out.ended = "target reached";
+      break;
+    }
+    if (pass + 1 >= a.passes) {
+      out.ended = "passes used";
+      break;
+    }
+    const geometry::NodeCloud cloud =
+        geometry::generate_nodes(spec.domain, d.spacing, out.refinement);
+    const std::vector<int> marked = doerfler_marking(e.node_eta2, a.fraction);
+    std::vector<geometry::Refinement> next = refinement_around(cloud, marked, d.spacing, out.refinement);
+    const int n = cloud_size(spec, next);
+    if (n > a.max_nodes) {
+      out.ended = "max_nodes reached";
+      log::info("adapt: the next cloud would have ", n, " nodes, more than max_nodes");
+      break;
+    }
+    out.passes.back().marked = static_cast<int>(marked.size());
+    out.refinement = std::move(next);
+    { FILE* f = std::fopen("/tmp/boxes.txt", "w"); for (auto& b : out.refinement) std::fprintf(f, "%.17g %.17g %.17g %.17g %.17g\n", b.box.lo.x(), b.box.lo.y(), b.box.hi.x(), b.box.hi.y(), b.spacing); std::fclose(f); }
+    out.nodes = n;
+  }
+  return out;
+}
+
+AdaptedProblem adapted_problem(const spec::ProblemSpec& spec, const PilotSolve& solve) {
+  AdaptedProblem p{spec, std::nullopt};
+  if (!spec.is_galerkin() || !spec.galerkin().discretisation.adapt) return p;
+  p.adaptation = adapt_nodes(spec, solve);
+  p.spec.galerkin().discretisation.refinement = p.adaptation->refinement;
+  return p;
+}
+
+} // namespace mf::implicit

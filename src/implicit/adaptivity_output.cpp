@@ -1,0 +1,58 @@
+#include "meshfree/implicit/adaptivity_output.hpp"
+#include <cmath>
+
+namespace mf::implicit {
+
+io::Json adaptation_json(const spec::ProblemSpec& spec, const Adaptation& a,
+                         const ErrorEstimate& final_estimate) {
+  const spec::AdaptSpec& s = *spec.galerkin().discretisation.adapt;
+  std::vector<double> nodes, estimate, marked, seconds;
+  for (const AdaptPass& p : a.passes) {
+    nodes.push_back(p.nodes);
+    estimate.push_back(p.estimate);
+    marked.push_back(p.marked);
+    seconds.push_back(p.seconds);
+  }
+  io::Json passes;
+  passes.set("nodes", nodes).set("estimate", estimate).set("marked", marked).set("seconds",
+                                                                                    seconds);
+  io::Json j;
+  j.set("target", s.target)
+      .set("fraction", s.fraction)
+      .set("ended", a.ended)
+      .set("refinement_boxes", static_cast<long>(a.refinement.size()))
+      .set("pilot_passes", passes)
+      .set("nodes", a.nodes)
+      .set("final_estimate", final_estimate.relative())
+      .set("target_met", final_estimate.relative() <= s.target);
+  return j;
+}
+
+void write_adaptation(const spec::ProblemSpec& spec, const Adaptation& a,
+                      const ErrorEstimate& final_estimate, io::OutputDirectory& out) {
+  std::vector<std::vector<double>> rows;
+  for (std::size_t k = 0; k < a.passes.size(); ++k) {
+    const AdaptPass& p = a.passes[k];
+    rows.push_back({static_cast<double>(k + 1), 1.0, static_cast<double>(p.nodes), 2.0 * p.nodes,
+                    p.estimate, static_cast<double>(p.marked), p.seconds});
+  }
+  // The analysis' own solve on the last cloud (pilot 0); its time is the run's.
+  rows.push_back({static_cast<double>(a.passes.size() + 1), 0.0, static_cast<double>(a.nodes),
+                  2.0 * a.nodes, final_estimate.relative(), 0.0, 0.0});
+  out.write_csv("adapt.csv", {"pass", "pilot", "nodes", "dofs", "estimate", "marked", "seconds"},
+                rows);
+
+  const spec::DiscretisationSpec& d = spec.galerkin().discretisation;
+  const geometry::NodeCloud cloud = geometry::generate_nodes(spec.domain, d.spacing, d.refinement);
+  io::FieldStep step;
+  std::vector<double> eta(cloud.x.size());
+  for (std::size_t I = 0; I < eta.size() && I < final_estimate.node_eta2.size(); ++I)
+    eta[I] = std::sqrt(final_estimate.node_eta2[I]);
+  step.scalars.emplace_back("error_indicator", std::move(eta));
+  step.scalars.emplace_back("node_spacing", cloud.spacing);
+  io::FieldSeries series(out, "error_indicator", cloud.x);
+  series.add_step(step);
+  series.close();
+}
+
+} // namespace mf::implicit

@@ -1,0 +1,33 @@
+// discretisation.adapt: error-driven refinement of a plane meshfree body's nodes.
+#include "meshfree/core/memory.hpp"
+#include "meshfree/spec/galerkin_read.hpp"
+
+namespace mf::spec {
+
+std::optional<AdaptSpec> read_adapt(KeyReader& d, int dim, const DiscretisationSpec& s,
+                                    const LinearSolverSpec& solver) {
+  auto a = d.optional_map("adapt");
+  if (!a) return std::nullopt;
+  if (dim != 2)
+    d.error("adapt", "error-driven refinement is made for plane bodies, not for this model");
+  if (s.method != Method::Meshfree)
+    d.error("adapt", "error-driven refinement places meshfree nodes: it needs method: meshfree");
+  AdaptSpec r;
+  r.target = a->positive("target", r.target);
+  if (r.target >= 1.0)
+    a->error("target", "is a relative error: expected a value below 1, got " +
+                           std::to_string(r.target));
+  r.fraction = a->positive("fraction", r.fraction);
+  if (r.fraction > 1.0)
+    a->error("fraction", "is a share of the estimated error: expected (0, 1], got " +
+                             std::to_string(r.fraction));
+  r.passes = a->integer("passes", r.passes, 1, 20);
+  r.max_nodes = a->positive("max_nodes", r.max_nodes);
+  require_memory(a->path_of("max_nodes"), "nodes of the refined cloud", r.max_nodes,
+                 bytes_per_node(solver, r.max_nodes));
+  r.pilot_increments = a->integer("pilot_increments", r.pilot_increments, 1, 1000000);
+  a->finish();
+  return r;
+}
+
+} // namespace mf::spec
