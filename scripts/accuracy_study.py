@@ -5,6 +5,10 @@ cut cells at holes), the in-code Q8
 elements (on gmsh meshes of the geometry) and CalculiX (CPS8, the reference recipe's meshes) need to come within 1% and 0.1% of the converged CalculiX
 load-displacement curve, on the perforated strip and Cook's membrane.
 
+Adaptive meshfree (discretisation.adapt, the recovery estimate and Doerfler marking) starts from
+twice the problem's spacing and runs to a sequence of targets of the estimated error instead;
+its wall time includes its pilot solves.
+
 Each problem's own discretisation is scaled by a factor (the spacing and every refinement box's
 spacing together) over a sequence of factors; CalculiX runs the coarser levels of
 scripts/fe_reference/make_calculix_plastic_reference.py (its finest level is the reference, so
@@ -47,6 +51,8 @@ STUDY = {
                           calculix_levels=[6, 12, 24]),
 }
 TARGETS = (1e-2, 1e-3)
+# Targets of the estimated relative energy error of the adaptive runs, coarse to fine.
+ADAPT_TARGETS = [0.08, 0.05, 0.035, 0.025, 0.017, 0.012]
 ENV = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
 
 
@@ -124,6 +130,28 @@ def run_meshfree(binary, problem, method, factor, out):
                 wall_s=wall, error=force_error(problem, xs, ys))
 
 
+def run_adaptive(binary, problem, target, out):
+    spacing, _ = problem_spacings(problem)
+    folder = out / f"{problem}_meshfree_adaptive_{target}"
+    cmd = [str(binary), "run", str(ROOT / "problems" / f"{problem}.yaml"), "--out", str(folder),
+           "--set", f"discretisation.spacing={2 * spacing!r}", "--set", "discretisation.refinement=[]",
+           "--set", f"discretisation.adapt={{target: {target!r}, passes: 10}}"]
+    start = time.perf_counter()
+    p = subprocess.run(cmd, capture_output=True, text=True, env=ENV)
+    wall = time.perf_counter() - start
+    if p.returncode != 0:
+        reason = (p.stderr.strip().splitlines() or ["no message"])[-1]
+        print(f"{problem} meshfree_adaptive target {target}: not run (exit {p.returncode}): {reason}")
+        return None
+    s = json.loads((folder / "summary.json").read_text())
+    c = compare.PROBLEMS[problem]
+    hist = compare.read_csv(str(folder / "history.csv"))
+    xs = [float(h[c["control"][0]]) for h in hist]
+    ys = [float(h[c["responses"][0][1]]) for h in hist]
+    return dict(problem=problem, method="meshfree_adaptive", level=target,
+                dofs=s["counts"]["dofs"], wall_s=wall, error=force_error(problem, xs, ys))
+
+
 def run_calculix(recipe, problem, level, work):
     prob = next(p for p in recipe.PROBLEMS if p["name"] == problem)
     mesh = prob["mesh"](level)
@@ -164,7 +192,7 @@ def main():
     with tempfile.TemporaryDirectory() as work:
         for problem in args.problems:
             study = STUDY[problem]
-            levels = max(len(study["factors"]), len(study["calculix_levels"]))
+            levels = max(len(study["factors"]), len(study["calculix_levels"]), len(ADAPT_TARGETS))
             for k in range(levels):
                 if k < len(study["factors"]):
                     for method in variants(problem):
@@ -173,6 +201,11 @@ def main():
                         if row:
                             rows.append(row)
                             print(row, flush=True)
+                if k < len(ADAPT_TARGETS):
+                    row = run_adaptive(args.meshfree, problem, ADAPT_TARGETS[k], out)
+                    if row:
+                        rows.append(row)
+                        print(row, flush=True)
                 if k < len(study["calculix_levels"]):
                     rows.append(run_calculix(recipe, problem, study["calculix_levels"][k], work))
                     print(rows[-1], flush=True)
@@ -186,7 +219,7 @@ def main():
     for problem in args.problems:
         for target in TARGETS:
             got = {m: reach([r for r in rows if r["problem"] == problem and r["method"] == m], target)
-                   for m in variants(problem) + ["calculix"]}
+                   for m in variants(problem) + ["meshfree_adaptive", "calculix"]}
             ccx = got["calculix"]
             for method, g in got.items():
                 entry = dict(problem=problem, target=target, method=method)

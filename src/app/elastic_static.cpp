@@ -1,4 +1,5 @@
 #include "meshfree/app/elastic_static.hpp"
+#include "meshfree/implicit/adaptive_pilots.hpp"
 #include "meshfree/implicit/elastic_output.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/implicit/galerkin_plan.hpp"
@@ -7,13 +8,13 @@
 
 namespace mf::app {
 
-implicit::ElasticResult elastic_static(const spec::ProblemSpec& spec,
+implicit::ElasticResult elastic_static(const implicit::AdaptedProblem& problem,
                                        const solvers::PetscSession& session,
-                                       io::OutputDirectory* out,
-                                       std::optional<implicit::Adaptation> adaptation) {
+                                       io::OutputDirectory* out) {
+  const spec::ProblemSpec& spec = problem.spec;
   // The display mesh on every rank alike (its nodal average is collective; `out` is rank 0's).
   implicit::ElasticResult r = implicit::solve_elastic_static(spec, session, true);
-  r.adaptation = std::move(adaptation);
+  implicit::record_adaptation(problem, r);
   {
     PhaseTimer::Scope scope(r.timer, "output");
     if (out) implicit::write_elastic_outputs(spec, r, session, *out);
@@ -25,11 +26,8 @@ namespace {
 
 RunOutcome run(const RunRequest& q) {
   if (!q.spec.is_solid()) {
-    const implicit::AdaptedProblem p =
-        implicit::adapted_problem(q.spec, [&](const spec::ProblemSpec& s) {
-          return implicit::solve_elastic_static(s, q.session).estimate;
-        });
-    log_phases(elastic_static(p.spec, q.session, q.out, p.adaptation).timer);
+    log_phases(
+        elastic_static(implicit::adapted_elastic(q.spec, q.session), q.session, q.out).timer);
     return {};
   }
   auto r = implicit::solve_solid_elastic(q.spec, q.session); // a 3D body

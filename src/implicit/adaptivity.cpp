@@ -2,11 +2,12 @@
 #include "meshfree/core/log.hpp"
 #include "meshfree/core/timer.hpp"
 #include <algorithm>
-#include <numeric>
 #include <cstdio>
+#include <numeric>
 
 namespace mf::implicit {
 
+// [Doerfler 1996]: bulk marking, largest first.
 std::vector<int> doerfler_marking(const std::vector<double>& eta2, double fraction) {
   std::vector<int> order(eta2.size());
   std::iota(order.begin(), order.end(), 0);
@@ -55,8 +56,7 @@ void refine_node(const geometry::NodeCloud& cloud, int I, double spacing,
 } // namespace
 
 std::vector<geometry::Refinement> refinement_around(const geometry::NodeCloud& cloud,
-                                                    const std::vector<int>& marked,
-                                                    double spacing,
+                                                    const std::vector<int>& marked, double spacing,
                                                     const std::vector<geometry::Refinement>& now) {
   std::vector<geometry::Refinement> boxes = now;
   for (int I : marked) refine_node(cloud, I, spacing, boxes);
@@ -111,7 +111,8 @@ Adaptation adapt_nodes(const spec::ProblemSpec& spec, const PilotSolve& solve) {
     const geometry::NodeCloud cloud =
         geometry::generate_nodes(spec.domain, d.spacing, out.refinement);
     const std::vector<int> marked = doerfler_marking(e.node_eta2, a.fraction);
-    std::vector<geometry::Refinement> next = refinement_around(cloud, marked, d.spacing, out.refinement);
+    std::vector<geometry::Refinement> next =
+        refinement_around(cloud, marked, d.spacing, out.refinement);
     const int n = cloud_size(spec, next);
     if (n > a.max_nodes) {
       out.ended = "max_nodes reached";
@@ -120,7 +121,13 @@ Adaptation adapt_nodes(const spec::ProblemSpec& spec, const PilotSolve& solve) {
     }
     out.passes.back().marked = static_cast<int>(marked.size());
     out.refinement = std::move(next);
-    { FILE* f = std::fopen("/tmp/boxes.txt", "w"); for (auto& b : out.refinement) std::fprintf(f, "%.17g %.17g %.17g %.17g %.17g\n", b.box.lo.x(), b.box.lo.y(), b.box.hi.x(), b.box.hi.y(), b.spacing); std::fclose(f); }
+    {
+      FILE* f = std::fopen("/tmp/boxes.txt", "w");
+      for (auto& b : out.refinement)
+        std::fprintf(f, "%.17g %.17g %.17g %.17g %.17g\n", b.box.lo.x(), b.box.lo.y(), b.box.hi.x(),
+                     b.box.hi.y(), b.spacing);
+      std::fclose(f);
+    }
     out.nodes = n;
   }
   return out;

@@ -6,16 +6,14 @@ namespace mf::implicit {
 io::Json adaptation_json(const spec::ProblemSpec& spec, const Adaptation& a,
                          const ErrorEstimate& final_estimate) {
   const spec::AdaptSpec& s = *spec.galerkin().discretisation.adapt;
-  std::vector<double> nodes, estimate, marked, seconds;
+  std::vector<double> nodes, estimate, marked;
   for (const AdaptPass& p : a.passes) {
     nodes.push_back(p.nodes);
     estimate.push_back(p.estimate);
     marked.push_back(p.marked);
-    seconds.push_back(p.seconds);
   }
-  io::Json passes;
-  passes.set("nodes", nodes).set("estimate", estimate).set("marked", marked).set("seconds",
-                                                                                    seconds);
+  io::Json passes; // their wall times: adapt.csv, and time_s.adapt_pilots together
+  passes.set("nodes", nodes).set("estimate", estimate).set("marked", marked);
   io::Json j;
   j.set("target", s.target)
       .set("fraction", s.fraction)

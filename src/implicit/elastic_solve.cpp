@@ -126,7 +126,8 @@ ElasticResult solve_elastic_static(const spec::ProblemSpec& spec,
                                  "check the boundary conditions");
 
   PhaseTimer::Scope scope(R.timer, "postprocess");
-  if (spec.galerkin().discretisation.adapt) R.estimate = elastic_estimate(spec, m, R.parameters, session);
+  if (spec.galerkin().discretisation.adapt)
+    R.estimate = elastic_estimate(spec, m, R.parameters, session);
   if (spec.galerkin().exact)
     std::tie(R.error_l2, R.error_energy) = exact_errors(spec, m, R.parameters, session);
   for (const auto& c : m.conditions) {

@@ -217,9 +217,9 @@ ElastoplasticResult solve_elastoplastic_static(const spec::ProblemSpec& spec,
   recorder.close();
   keep_converged_state(model, problem, newton, d, session, R);
   if (spec.galerkin().discretisation.adapt)
-    R.estimate = recovery_error(m, R.state.stress,
-                                materials::elastic_matrix(spec.elasticity(), spec.model).inverse(),
-                                session);
+    R.estimate =
+        recovery_error(m, R.state.stress,
+                       materials::elastic_matrix(spec.elasticity(), spec.model).inverse(), session);
   R.memory = solvers::peak_memory(session.comm());
   return R;
 }

@@ -66,7 +66,8 @@ GalerkinModel build_meshfree_model(const spec::ProblemSpec& spec,
   GalerkinModel m;
   {
     PhaseTimer::Scope scope(timer, "nodes");
-    geometry::NodeCloud cloud = geometry::generate_nodes(spec.domain, disc.spacing, disc.refinement);
+    geometry::NodeCloud cloud =
+        geometry::generate_nodes(spec.domain, disc.spacing, disc.refinement);
     if (disc.adapt) geometry::grade_spacing(cloud);
     m.space = std::make_unique<MeshfreeSpace>(std::move(cloud), disc.shape, disc.dilation);
   }

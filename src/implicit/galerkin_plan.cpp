@@ -1,5 +1,6 @@
 #include "meshfree/implicit/galerkin_plan.hpp"
 #include "meshfree/core/memory.hpp"
+#include "meshfree/core/run_bounds.hpp"
 #include "meshfree/geometry/node_generation.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/implicit/solid_model.hpp"
@@ -33,6 +34,11 @@ void describe_meshfree_nodes(const spec::ProblemSpec& spec, std::ostream& os) {
                        bytes_per::galerkin_point * pts.x.size())
      << " for the discretisation, besides " << describe_bytes(bytes_per::program)
      << " for the program\n";
+  if (const auto& a = d.adapt)
+    os << "  adapt: these nodes refined until the estimated error is at most " << a->target
+       << " (at most " << a->passes << " pilot solves, " << a->max_nodes
+       << " nodes; an elastoplastic pilot takes at most " << a->pilot_increments
+       << " increments a step), then the analysis on the last cloud\n";
 }
 
 } // namespace
@@ -59,6 +65,24 @@ void print_galerkin_plan(const spec::ProblemSpec& spec, std::ostream& os) {
   }
   for (const auto& step : galerkin.steps)
     os << "  step " << step.name << ": " << step.increments << " increments\n";
+}
+
+/// Each increment is a Newton solve over every degree of freedom that writes a field frame, a
+/// Gauss-point frame and a display-mesh frame, about 700 bytes per node together (measured on
+/// plate_plastic_thesis, README.md "Running").
+void require_increment_output(const spec::ProblemSpec& spec, const std::string& folder) {
+  const auto& steps = spec.is_solid() ? spec.solid().steps : spec.galerkin().steps;
+  const double nodes = estimated_nodes(spec);
+  const std::size_t listed = spec.is_galerkin() && spec.galerkin().initial_stress; // "geostatic"
+  double frames = 1.0;
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    frames += steps[k].increments;
+    if (k < listed) continue;
+    const std::string key = "steps[" + std::to_string(k - listed) + "].increments";
+    require_run_time(key, "DOF-increments of the schedule so far", frames * 2.0 * nodes,
+                     work_per_second::galerkin_dof_increments);
+    require_disk(key, "field frames of the schedule so far", frames, 700.0 * nodes, folder);
+  }
 }
 
 } // namespace mf::implicit

@@ -15,8 +15,8 @@ std::optional<AdaptSpec> read_adapt(KeyReader& d, int dim, const DiscretisationS
   AdaptSpec r;
   r.target = a->positive("target", r.target);
   if (r.target >= 1.0)
-    a->error("target", "is a relative error: expected a value below 1, got " +
-                           std::to_string(r.target));
+    a->error("target",
+             "is a relative error: expected a value below 1, got " + std::to_string(r.target));
   r.fraction = a->positive("fraction", r.fraction);
   if (r.fraction > 1.0)
     a->error("fraction", "is a share of the estimated error: expected (0, 1], got " +

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""fields.xmf (and gauss_points.xmf, display_mesh.xmf) are read by an independent XDMF reader (meshio's time-series
+"""fields.xmf (and gauss_points.xmf, display_mesh.xmf, error_indicator.xmf) are read by an independent XDMF reader (meshio's time-series
 reader, which follows the XDMF3 layout ParaView reads): every step, point, cell and field comes
 back with the values in the HDF5 file.
 
@@ -16,11 +16,11 @@ meshfree, problem, overrides = sys.argv[1], sys.argv[2], sys.argv[3:]
 with tempfile.TemporaryDirectory() as out:
     subprocess.run([meshfree, "run", problem, "--out", out] + overrides, check=True,
                    stdout=subprocess.DEVNULL)
-    for stem in ("fields", "gauss_points", "display_mesh"):
+    for stem in ("fields", "gauss_points", "display_mesh", "error_indicator"):
         try:
             h5 = h5py.File(f"{out}/{stem}.h5")
         except FileNotFoundError:
-            assert stem == "gauss_points", f"{stem}.h5 is missing"
+            assert stem in ("gauss_points", "error_indicator"), f"{stem}.h5 is missing"
             continue
         with meshio.xdmf.TimeSeriesReader(f"{out}/{stem}.xmf") as reader, h5:
             points, cells = reader.read_points_cells()

@@ -1,7 +1,7 @@
 #pragma once
 // Error-driven refinement of a plane meshfree body's nodes (discretisation.adapt): pilot solves
 // on the cloud, the recovery estimate of each (implicit/error_indicator), Doerfler's marking
-// (Doerfler 1996) of the nodes that carry the bulk of the estimated error, and boxes of half
+// ([Doerfler 1996]) of the nodes that carry the bulk of the estimated error, and boxes of half
 // their spacing around them (geometry::Refinement, so that node generation, supports and
 // background cells follow as they follow a problem's own refinement boxes). The analysis then
 // runs once on the last cloud.
@@ -39,8 +39,7 @@ std::vector<int> doerfler_marking(const std::vector<double>& eta2, double fracti
 /// node), and around those the node's own spacing two spacings out where the cloud is coarser
 /// there, so that neighbouring spacings differ by a factor of 2 at most.
 std::vector<geometry::Refinement> refinement_around(const geometry::NodeCloud& cloud,
-                                                    const std::vector<int>& marked,
-                                                    double spacing,
+                                                    const std::vector<int>& marked, double spacing,
                                                     const std::vector<geometry::Refinement>& now);
 
 /// Solves the problem on the discretisation of the spec it is given and returns its estimate.
@@ -60,6 +59,14 @@ struct AdaptedProblem {
 
 /// The problem refined by adapt_nodes with `solve` as its pilot, or as it is without adapt.
 AdaptedProblem adapted_problem(const spec::ProblemSpec& spec, const PilotSolve& solve);
+
+/// Keeps the record of the refinement in an analysis' result, and its pilots' wall time as the
+/// phase adapt_pilots.
+template <class Result> void record_adaptation(const AdaptedProblem& p, Result& r) {
+  if (!p.adaptation) return;
+  for (const AdaptPass& pass : p.adaptation->passes) r.timer.add("adapt_pilots", pass.seconds);
+  r.adaptation = p.adaptation;
+}
 
 /// The spec of a pilot solve of an elastoplastic schedule: each step in at most
 /// pilot_increments increments, no checkpoints and no output lines.

@@ -40,7 +40,7 @@ struct ElasticResult {
   DisplayFields display;      // rank 0: u^h and the stresses at display_mesh's vertices
   solvers::SolveReport solve;
   PhaseTimer timer;
-  solvers::PeakMemory memory; // at the end of the solve
+  solvers::PeakMemory memory;           // at the end of the solve
   ErrorEstimate estimate;               // when the cloud is adapted
   std::optional<Adaptation> adaptation; // the refinement passes before this solve
 };

@@ -87,8 +87,8 @@ struct ElastoplasticResult {
   PhaseTimer timer;
   solvers::PeakMemory memory;                            // at the end of the solve
   double residual_seconds = 0.0, jacobian_seconds = 0.0; // inside the "newton" phase
-  ErrorEstimate estimate;                 // of the final state, when the cloud is adapted
-  std::optional<Adaptation> adaptation;   // the refinement passes before this solve
+  ErrorEstimate estimate;               // of the final state, when the cloud is adapted
+  std::optional<Adaptation> adaptation; // the refinement passes before this solve
 };
 
 } // namespace mf::implicit

@@ -1,5 +1,5 @@
 #pragma once
-// A posteriori error of a Galerkin stress field by recovery (Zienkiewicz & Zhu 1987): the
+// A posteriori error of a Galerkin stress field by recovery ([Zienkiewicz & Zhu 1987]): the
 // stress of the solution at the Gauss points against a smoothed stress, the nodal averages
 // (implicit/nodal_average) interpolated by the model's own shape functions, measured in the
 // energy norm of the elastic compliance. Each Gauss point's share goes to the node whose shape

@@ -15,8 +15,8 @@ using namespace mf;
 TEST_CASE("Doerfler marking: the fewest largest values that reach the fraction, ties together",
           "[adaptivity]") {
   using implicit::doerfler_marking;
-  CHECK(doerfler_marking({1, 4, 9, 16}, 0.5) == std::vector<int>{3});        // 16 >= 15
-  CHECK(doerfler_marking({1, 4, 9, 16}, 0.6) == std::vector<int>{2, 3});     // 25 >= 18
+  CHECK(doerfler_marking({1, 4, 9, 16}, 0.5) == std::vector<int>{3});    // 16 >= 15
+  CHECK(doerfler_marking({1, 4, 9, 16}, 0.6) == std::vector<int>{2, 3}); // 25 >= 18
   CHECK(doerfler_marking({1, 4, 9, 16}, 1.0) == std::vector<int>{0, 1, 2, 3});
   CHECK(doerfler_marking({5, 1, 5 * (1 + 1e-12)}, 0.3) == std::vector<int>{0, 2}); // mirror pair
   CHECK(doerfler_marking({0, 0, 0}, 0.5).empty());
@@ -33,10 +33,10 @@ TEST_CASE("recovery estimate: zero where the solution is linear, on a uniform an
        {std::string("[]"), std::string("[{box: [[0.3, 0.3], [0.6, 0.5]], spacing: 0.05}, "
                                        "{box: [[0.7, 0.3], [0.9, 0.5]], spacing: 0.05}]")}) {
     const auto r = implicit::solve_elastic_static(
-        load_problem("patch_test", {"discretisation.quadrature.correction=vci",
-                                    "discretisation.quadrature.order=2", "boundary.0.penalty=1e10",
-                                    "discretisation.refinement=" + boxes,
-                                    "discretisation.adapt.target=0.5"}),
+        load_problem("patch_test",
+                     {"discretisation.quadrature.correction=vci",
+                      "discretisation.quadrature.order=2", "boundary.0.penalty=1e10",
+                      "discretisation.refinement=" + boxes, "discretisation.adapt.target=0.5"}),
         test_session());
     INFO("boxes " << boxes);
     CHECK(r.error_energy < 3e-7);
