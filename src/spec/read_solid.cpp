@@ -8,6 +8,7 @@
 #include "meshfree/spec/spec_read.hpp"
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace mf::spec {
 
@@ -18,13 +19,22 @@ Vec3 vec3(KeyReader& r, const std::string& key) {
   return Vec3(v[0], v[1], v[2]);
 }
 
-/// exact: {solution: linear, u0, gradient} or {solution: thick_cylinder, inner_radius,
-/// outer_radius, pressure}.
+/// exact: {solution: linear, u0, gradient}, {solution: thick_cylinder, inner_radius,
+/// outer_radius, pressure} or {solution: thick_sphere, inner_radius, outer_radius (default
+/// infinite: a cavity in an unbounded body), pressure}.
 std::optional<verification::ExactSolution3D> read_exact_3d(KeyReader& r) {
   auto e = r.optional_map("exact");
   if (!e) return std::nullopt;
   verification::ExactSolution3D out;
-  if (e->choice("solution", {"linear", "thick_cylinder"}, "") == "linear") {
+  const std::string solution = e->choice("solution", {"linear", "thick_cylinder", "thick_sphere"}, "");
+  if (solution == "thick_sphere") {
+    verification::ThickSphere c;
+    c.a = e->positive("inner_radius");
+    c.b = e->positive("outer_radius", std::numeric_limits<double>::infinity());
+    if (!(c.b > c.a)) e->error("outer_radius", "must exceed inner_radius");
+    c.p = e->number("pressure");
+    out = c;
+  } else if (solution == "linear") {
     verification::LinearField3D f;
     f.u0 = vec3(*e, "u0");
     const auto g = e->number_lists("gradient", 3);
@@ -127,7 +137,8 @@ FaceCondition read_face_condition(KeyReader& bc, const geometry::Prism& body, do
 }
 
 /// True when some point of the named faces lies in `box` (the faces sampled: 256 points along
-/// each side piece at each of 17 heights, and a 64 x 64 lattice over the ends).
+/// each side piece at each of 17 heights, a 64 x 64 lattice over the ends, and 65 latitudes of
+/// 128 points over a sphere).
 bool faces_meet_box(const geometry::Prism& body, const std::vector<std::string>& faces,
                     const Box& box) {
   const auto named = [&](const std::string& n) {
@@ -140,6 +151,17 @@ bool faces_meet_box(const geometry::Prism& body, const std::vector<std::string>&
       for (int k = 0; k <= 16; ++k) {
         const Vec2 x = c.point(i / 256.0);
         if (box.contains(Point(x.x(), x.y(), body.z0 + body.depth * k / 16.0), tol)) return true;
+      }
+  }
+  for (const geometry::Sphere& s : body.spheres) {
+    if (!named(s.name)) continue;
+    const double pi = 3.14159265358979323846;
+    for (int i = 0; i <= 64; ++i)
+      for (int j = 0; j < 128; ++j) {
+        const double theta = pi * i / 64.0, phi = pi * j / 64.0;
+        const Vec3 x = s.center + s.radius * Vec3(std::sin(theta) * std::cos(phi),
+                                                  std::sin(theta) * std::sin(phi), std::cos(theta));
+        if (body.contains(x, 1e-9) && box.contains(x, tol)) return true;
       }
   }
   const BoundingBox b = body.section.bounds();
@@ -156,7 +178,7 @@ bool faces_meet_box(const geometry::Prism& body, const std::vector<std::string>&
 }
 
 void read_boundary(KeyReader& r, const ProblemSpec& p, SolidSpec& s) {
-  const geometry::Prism body{p.domain, s.z0, s.depth};
+  const geometry::Prism body = s.body(p.domain);
   const double stiffness = p.elasticity().E / s.discretisation.spacing;
   for (KeyReader& bc : r.map_list("boundary")) {
     s.boundary.push_back(read_face_condition(bc, body, stiffness));
@@ -187,6 +209,10 @@ void read_solid_discretisation(KeyReader& r, const ProblemSpec& p, const std::st
     fail(key, ".fem.element: model solid_3d extrudes q4 (into 8-node bricks) or q8 (into 20-node "
               "bricks), or meshes tet4 or tet10, not t3");
   const bool tets = d.fem.element == "tet4" || d.fem.element == "tet10";
+  if (d.method == Method::Fem && !tets && !s.spheres.empty())
+    fail("geometry.spheres: bricks extrude a plane mesh and cannot follow the sphere '",
+         s.spheres.front().name, "'; give discretisation.fem.element tet4 or tet10, or method "
+         "meshfree");
   if (d.method == Method::Fem && tets && !d.fem.mesh.empty())
     fail(key, ".fem.mesh: ", d.fem.element,
          " elements are meshed by gmsh from the geometry; a "
@@ -255,7 +281,7 @@ void parse_solid(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
       out->error("fields_every", "an elastic run writes one frame; fields_every is for "
                                  "analysis elastoplastic_static");
     s.fields_every = out->integer("fields_every", 1, 1, 1000000);
-    const geometry::Prism body{p.domain, s.z0, s.depth};
+    const geometry::Prism body = s.body(p.domain);
     for (std::size_t k = 0; k < s.gauges.size(); ++k)
       if (!body.contains(s.gauges[k].at, 1e-9))
         fail(out->path_of("gauges"), "[", k, "].at: the point (",

@@ -3,6 +3,7 @@
 // elastic_static or elastoplastic_static): the prism's extent along z, the discretisation,
 // conditions on named faces, the body force, load steps and solver controls. Plain data.
 #include "meshfree/core/types.hpp"
+#include "meshfree/geometry/prism.hpp"
 #include "meshfree/spec/galerkin_spec.hpp"
 #include "meshfree/spec/region_spec.hpp"
 #include "meshfree/verification/exact_solutions_3d.hpp"
@@ -45,6 +46,7 @@ struct SolidLineSpec {
 struct SolidSpec {
   int material_index = 0;
   double z0 = 0.0, depth = 1.0;
+  std::vector<geometry::Sphere> spheres; // spherical holes (geometry.spheres)
   DiscretisationSpec discretisation;
   std::vector<FaceCondition> boundary;
   Vec3 body_force{0.0, 0.0, 0.0}; // force per volume
@@ -58,6 +60,11 @@ struct SolidSpec {
   // Set by a staged run, not read from the file: every increment's nodal parameters are kept
   // (IncrementRecord::parameters), on every rank, so a later stage can evaluate any increment.
   bool record_increment_parameters = false;
+
+  /// The body: `section` extruded from z0 by depth, minus the spheres.
+  geometry::Prism body(const geometry::Domain& section) const {
+    return geometry::Prism{section, z0, depth, spheres};
+  }
 };
 
 } // namespace mf::spec

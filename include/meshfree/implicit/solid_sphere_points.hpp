@@ -1,0 +1,39 @@
+#pragma once
+// Nodes and integration points where spherical holes (geometry::Sphere) cut a prism:
+// - nodes on a sphere's surface in latitude rings about the local spacing apart, each ring's
+//   points at multiples of a quarter turn plus even steps, so that a sphere centred on the
+//   body's planes has nodes on them;
+// - Gauss points of the surface on patches of (z, phi), z along the axis through the poles and
+//   phi the longitude: the area element is r dz dphi (Archimedes' hat-box theorem), so any Gauss
+//   rule integrates the area exactly; patches the body's other boundaries cut are split;
+// - Gauss points of a background cell the sphere touches: the cell split into eight down to the
+//   cut levels, and a finest cell the surface cuts integrated along lines in the axis nearest the
+//   sphere's normal there, each line's part outside the ball found in closed form.
+#include "meshfree/core/types.hpp"
+#include "meshfree/geometry/prism.hpp"
+#include "meshfree/implicit/solid_points.hpp"
+#include "meshfree/quadrature/integration_points.hpp"
+#include <vector>
+
+namespace mf::implicit {
+
+/// Nodes on the part of `s`'s surface that lies in the body, about `spacing` apart.
+std::vector<Vec3> sphere_surface_nodes(const geometry::Prism& body, const geometry::Sphere& s,
+                                       double spacing);
+
+/// Gauss points (`order` a direction) of the part of `s`'s surface in the body, on patches about
+/// `part` long; patches the body's other faces cut split `cut_levels` times. Normals point out of
+/// the body (into the sphere).
+SolidPoints sphere_face_points(const geometry::Prism& body, const geometry::Sphere& s, double part,
+                               int order, int cut_levels);
+
+/// True when some sphere of the body meets the open box (lo, hi).
+bool sphere_touches(const geometry::Prism& body, const Vec3& lo, const Vec3& hi);
+
+/// Appends the Gauss points of the body in the box (lo, hi), a background cell some sphere
+/// touches: split into eight while larger than `sizing` asks, then `cut_levels` times where a
+/// sphere's surface cuts it.
+void sphere_cell_points(const geometry::Prism& body, const Vec3& lo, const Vec3& hi, int order,
+                        int cut_levels, const quadrature::CellSizing& sizing, SolidPoints& out);
+
+} // namespace mf::implicit
