@@ -85,6 +85,43 @@ geometry::Domain end_section(const geometry::Prism& body, double z) {
   return section;
 }
 
+/// True when a sphere's ball meets the side face over the straight piece `c`.
+bool sphere_cuts_side(const geometry::Prism& body, const geometry::Curve& c) {
+  if (c.kind != geometry::Curve::Kind::Segment) return false;
+  return std::any_of(body.spheres.begin(), body.spheres.end(), [&](const geometry::Sphere& s) {
+    const double dz = std::max({body.z0 - s.center.z(), s.center.z() - body.z1(), 0.0});
+    const double d = c.distance_to(s.center.head<2>());
+    return d * d + dz * dz < s.radius * s.radius;
+  });
+}
+
+/// The side face over the straight piece `c`, which spheres cut: the rectangle (arc length along
+/// c) x (depth) minus each sphere's disc in its plane, integrated as a plane body with holes
+/// (exact arcs where the discretisation asks for them); `add(x, weight, normal)` takes each point.
+template <class Add>
+void side_cut_by_spheres(const geometry::Prism& body, const spec::DiscretisationSpec& d,
+                         const geometry::Curve& c, Add&& add) {
+  const double length = c.length();
+  geometry::Domain face = geometry::Domain::rectangle({0.0, 0.0}, {length, body.depth});
+  const Vec2 along = (c.b - c.a) / length;
+  for (const geometry::Sphere& s : body.spheres) {
+    const Vec2 rel = s.center.head<2>() - c.a;
+    const double t = rel.dot(along), off = rel.x() * along.y() - rel.y() * along.x();
+    const double rho2 = s.radius * s.radius - off * off;
+    if (rho2 > 1e-18 * body.size() * body.size())
+      face.add_hole({Vec2(t, s.center.z() - body.z0), std::sqrt(rho2), s.name});
+  }
+  const Vec2 m = c.point(0.5);
+  const double cell = std::min(d.cell_size, sizing_of(d).size_at({m, m}));
+  const quadrature::DomainPoints on =
+      quadrature::domain_points(face, cell, d.boundary_order, d.cut_levels, {}, d.cut_arcs);
+  const Vec2 n = c.outward_normal(0.5);
+  for (std::size_t k = 0; k < on.x.size(); ++k) {
+    const Vec2 xy = c.a + on.x[k].x() * along;
+    add(Vec3(xy.x(), xy.y(), body.z0 + on.x[k].y()), on.weight[k], Vec3(n.x(), n.y(), 0.0));
+  }
+}
+
 /// The plane cell of the quadrature's grid (quadrature::domain_points: cells of about
 /// `cell_size` fitted to the section's bounding box) that holds plane point `x`, numbered `cell`.
 BoundingBox plane_cell(const geometry::Domain& section, double cell_size, int cell,
@@ -188,8 +225,13 @@ SolidPoints prism_face_points(const geometry::Prism& body, const spec::Discretis
     p.normal.push_back(n);
   };
   std::vector<geometry::Curve> sides;
-  for (const geometry::Curve& c : body.section.boundary())
-    if (named(c.name)) sides.push_back(c);
+  for (const geometry::Curve& c : body.section.boundary()) {
+    if (!named(c.name)) continue;
+    if (sphere_cuts_side(body, c))
+      side_cut_by_spheres(body, d, c, add);
+    else
+      sides.push_back(c);
+  }
   if (!sides.empty()) {
     const quadrature::BoundaryPoints edge =
         quadrature::boundary_points(sides, d.cell_size, d.boundary_order, sizing_of(d));

@@ -25,6 +25,41 @@ Vec3 on_sphere(const geometry::Sphere& s, double z, double phi) {
   return s.center + Vec3(rho * std::cos(phi), rho * std::sin(phi), z);
 }
 
+/// A patch the body's other boundaries cut: its z range clipped to the prism's ends (exact:
+/// they are latitudes), then along each Gauss latitude the arcs in the body (found by bisection,
+/// geometry::kept_intervals), each with its own Gauss rule in phi.
+void cut_patch_by_latitudes(const geometry::Prism& body, const geometry::Sphere& s, double z0,
+                            double z1, double phi0, double phi1, const GaussRule& g,
+                            SolidPoints& out) {
+  z0 = std::max(z0, body.z0 - s.center.z());
+  z1 = std::min(z1, body.z1() - s.center.z());
+  if (z1 <= z0) return;
+  const int n = static_cast<int>(g.points.size());
+  for (int i = 0; i < n; ++i) {
+    const double z = 0.5 * (z0 + z1) + 0.5 * g.points[i] * (z1 - z0);
+    geometry::Curve latitude;
+    latitude.kind = geometry::Curve::Kind::Arc;
+    latitude.center = s.center.head<2>();
+    latitude.radius = std::sqrt(std::max(0.0, s.radius * s.radius - z * z));
+    latitude.theta0 = phi0;
+    latitude.theta1 = phi1;
+    const auto in_body = [&](const Vec2& xy) {
+      // a tight tolerance: the arc's ends are found to it
+      return body.contains(Vec3(xy.x(), xy.y(), s.center.z() + z), 1e-14);
+    };
+    for (const auto& [t0, t1] : geometry::kept_intervals(latitude, in_body)) {
+      if (t1 - t0 < 1e-7) continue; // a sliver the tolerance of the body's faces let in
+      const double a = phi0 + t0 * (phi1 - phi0), b = phi0 + t1 * (phi1 - phi0);
+      for (int j = 0; j < n; ++j) {
+        const Vec3 x = on_sphere(s, z, 0.5 * (a + b) + 0.5 * g.points[j] * (b - a));
+        out.x.push_back(x);
+        out.weight.push_back(g.weights[i] * g.weights[j] * 0.25 * s.radius * (z1 - z0) * (b - a));
+        out.normal.push_back((s.center - x) / s.radius);
+      }
+    }
+  }
+}
+
 /// One patch [z0, z1] x [phi0, phi1] of a sphere's surface: its Gauss points in the body, the
 /// patch split into four where the body's other boundaries cut it.
 void surface_patch(const geometry::Prism& body, const geometry::Sphere& s, double z0, double z1,
@@ -48,6 +83,7 @@ void surface_patch(const geometry::Prism& body, const geometry::Sphere& s, doubl
         surface_patch(body, s, za, zb, pa, pb, g, levels - 1, out);
     return;
   }
+  if (inside < total) return cut_patch_by_latitudes(body, s, z0, z1, phi0, phi1, g, out);
   // dA = r dz dphi
   const double jac = 0.25 * s.radius * (z1 - z0) * (phi1 - phi0);
   for (int i = 0; i < n; ++i)
