@@ -63,7 +63,7 @@ void fit_nodes_to_spheres(const geometry::Prism& body, const spec::Discretisatio
   }
   for (const geometry::Sphere& s : body.spheres) {
     const double h = spacing_near(s, d);
-    for (const Vec3& x : sphere_surface_nodes(body, s, h)) {
+    for (const Vec3& x : geometry::sphere_surface_points(body, s, h)) {
       kept.x.push_back(x);
       kept.spacing.push_back(h);
       kept.volume.push_back(0.5 * h * h * h); // half a lattice cell: the body is on one side

@@ -153,24 +153,6 @@ std::pair<double, double> reach(const geometry::Sphere& s, const Vec3& lo, const
 
 } // namespace
 
-std::vector<Vec3> sphere_surface_nodes(const geometry::Prism& body, const geometry::Sphere& s,
-                                       double spacing) {
-  std::vector<Vec3> out;
-  const int rings = ring_count(s.radius, spacing);
-  for (int i = 0; i <= rings; ++i) {
-    const double theta = kPi * i / rings;
-    const double z = s.radius * std::cos(theta);
-    const int count = (i == 0 || i == rings)
-                          ? 1
-                          : longitudes(2.0 * kPi * s.radius * std::sin(theta), spacing);
-    for (int j = 0; j < count; ++j) {
-      const Vec3 x = on_sphere(s, z, 2.0 * kPi * j / count);
-      if (body.contains(x, 1e-9)) out.push_back(x);
-    }
-  }
-  return out;
-}
-
 SolidPoints sphere_face_points(const geometry::Prism& body, const geometry::Sphere& s, double part,
                                int order, int cut_levels) {
   const GaussRule& g = gauss_legendre(order);

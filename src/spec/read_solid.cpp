@@ -254,6 +254,42 @@ SolidLineSpec read_solid_line(KeyReader& l, const geometry::Prism& body,
   return s;
 }
 
+/// One output.faces entry: {name, face | box (flat), spacing (default the discretisation's)},
+/// at least one sample point in the body and at most a million.
+SolidFaceSampleSpec read_face_sample(KeyReader& f, const geometry::Prism& body, double spacing,
+                                     const std::vector<SolidFaceSampleSpec>& earlier) {
+  SolidFaceSampleSpec s;
+  s.name = f.text("name");
+  check_name(f, "name", s.name, false);
+  for (const auto& other : earlier)
+    if (other.name == s.name) f.error("name", "another face sample is named '" + s.name + "'");
+  if (f.has("face") == f.has("box")) f.error("name", "give exactly one of 'face' or 'box'");
+  s.spacing = f.positive("spacing", spacing);
+  if (f.has("face")) {
+    s.face = f.text("face");
+    const std::vector<std::string> known = body.face_names();
+    if (std::find(known.begin(), known.end(), s.face) == known.end()) {
+      std::string list;
+      for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+      f.error("face", "no face is named '" + one_line(s.face) + "' (the body's faces: " + list + ")");
+    }
+  } else {
+    s.box = read_box(f, "box", 3);
+    if ((s.box->hi - s.box->lo).minCoeff() > 1e-12 * body.size())
+      f.error("box", "a face sample's box is flat: give one extent zero (lo and hi equal on one "
+                     "axis)");
+  }
+  if (body.size() / s.spacing > 1000.0)
+    f.error("spacing", detail::concat(s.spacing, ": about a million sample points or more (the "
+                                                 "body's size is ", body.size(), ")"));
+  const std::vector<Vec3> x = s.box ? geometry::plane_sample_points(body, s.box->lo, s.box->hi,
+                                                                    s.spacing)
+                                    : geometry::face_sample_points(body, s.face, s.spacing);
+  if (x.empty()) f.error(s.box ? "box" : "face", "no sample point lies in the body");
+  f.finish();
+  return s;
+}
+
 } // namespace
 
 void parse_solid(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
@@ -289,6 +325,8 @@ void parse_solid(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
              ") is not in the body");
     for (KeyReader& l : out->map_list("lines"))
       s.lines.push_back(read_solid_line(l, body, s.lines));
+    for (KeyReader& f : out->map_list("faces"))
+      s.faces.push_back(read_face_sample(f, body, s.discretisation.spacing, s.faces));
     out->finish();
   }
   if (plastic) {

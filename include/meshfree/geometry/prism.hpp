@@ -42,4 +42,21 @@ struct Prism {
   std::vector<std::string> face_names() const;
 };
 
+/// Points on the part of `s`'s surface in the body, about `spacing` apart: latitude rings about
+/// `spacing` apart in polar angle (an even count, so the equator is one), each ring's points a
+/// multiple of four at even steps from phi = 0, so that a sphere centred on planes x = c_x or
+/// y = c_y or z = c_z has points on them.
+std::vector<Vec3> sphere_surface_points(const Prism& body, const Sphere& s, double spacing);
+
+/// Points of the named face about `spacing` apart: a side face's pieces at round(length /
+/// spacing) intervals times round(depth / spacing) intervals along z, an end's lattice of the
+/// section's bounding box at round(size / spacing) intervals a side kept where it is in the
+/// body, a sphere's rings (sphere_surface_points). Empty for an unknown name.
+std::vector<Vec3> face_sample_points(const Prism& body, const std::string& face, double spacing);
+
+/// Points of the body on the flat box [lo, hi] (one extent zero) at round(extent / spacing)
+/// intervals along its other two axes.
+std::vector<Vec3> plane_sample_points(const Prism& body, const Vec3& lo, const Vec3& hi,
+                                      double spacing);
+
 } // namespace mf::geometry

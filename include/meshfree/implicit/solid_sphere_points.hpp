@@ -1,8 +1,5 @@
 #pragma once
 // Nodes and integration points where spherical holes (geometry::Sphere) cut a prism:
-// - nodes on a sphere's surface in latitude rings about the local spacing apart, each ring's
-//   points at multiples of a quarter turn plus even steps, so that a sphere centred on the
-//   body's planes has nodes on them;
 // - Gauss points of the surface on patches of (z, phi), z along the axis through the poles and
 //   phi the longitude: the area element is r dz dphi (Archimedes' hat-box theorem), so any Gauss
 //   rule integrates the area exactly; patches the body's other boundaries cut are split;
@@ -16,10 +13,6 @@
 #include <vector>
 
 namespace mf::implicit {
-
-/// Nodes on the part of `s`'s surface that lies in the body, about `spacing` apart.
-std::vector<Vec3> sphere_surface_nodes(const geometry::Prism& body, const geometry::Sphere& s,
-                                       double spacing);
 
 /// Gauss points (`order` a direction) of the part of `s`'s surface in the body, on patches about
 /// `part` long; patches the body's other faces cut split `cut_levels` times. Normals point out of
