@@ -303,6 +303,10 @@ void parse_solid(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
     material_error(m, "plasticity", "analysis elastoplastic_static needs a plasticity law");
   if (!plastic && m.plasticity)
     material_error(m, "plasticity", "used only by analysis elastoplastic_static");
+  // the explicit stage's particles fill the body's box: they would fill a spherical hole too
+  if (!p.stage.empty() && !s.spheres.empty())
+    fail("geometry.spheres: a staged run's particles do not leave out spherical holes; run the "
+         "body with spheres as its own elastic_static or elastoplastic_static analysis");
   s.linear_solver = read_linear_solver(r);
   read_solid_discretisation(r, p, base_dir, s);
   s.exact = read_exact_3d(r);
