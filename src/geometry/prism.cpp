@@ -49,17 +49,22 @@ std::vector<Vec3> grid_in_body(const Prism& body, const Vec3& lo, const Vec3& hi
 
 } // namespace
 
+int latitude_rings(double radius, double spacing) {
+  const int n = std::max(2, static_cast<int>(std::lround(kPi * radius / spacing)));
+  return n + n % 2;
+}
+
+int ring_points(double circumference, double spacing) {
+  return 4 * std::max(1, static_cast<int>(std::lround(circumference / (4.0 * spacing))));
+}
+
 std::vector<Vec3> sphere_surface_points(const Prism& body, const Sphere& s, double spacing) {
-  int rings = std::max(2, static_cast<int>(std::lround(kPi * s.radius / spacing)));
-  rings += rings % 2;
+  const int rings = latitude_rings(s.radius, spacing);
   std::vector<Vec3> out;
   for (int i = 0; i <= rings; ++i) {
     const double theta = kPi * i / rings;
     const double rho = s.radius * std::sin(theta), z = s.radius * std::cos(theta);
-    const int count =
-        (i == 0 || i == rings)
-            ? 1
-            : 4 * std::max(1, static_cast<int>(std::lround(2.0 * kPi * rho / (4.0 * spacing))));
+    const int count = (i == 0 || i == rings) ? 1 : ring_points(2.0 * kPi * rho, spacing);
     for (int j = 0; j < count; ++j) {
       const double phi = 2.0 * kPi * j / count;
       const Vec3 x = s.center + Vec3(rho * std::cos(phi), rho * std::sin(phi), z);

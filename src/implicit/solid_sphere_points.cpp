@@ -9,17 +9,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-/// Rings about `spacing` apart in polar angle: an even count, so that the equator is a ring.
-int ring_count(double radius, double spacing) {
-  const int n = std::max(2, static_cast<int>(std::lround(kPi * radius / spacing)));
-  return n + n % 2;
-}
-
-/// Points along a circle of `length`: a multiple of four, at least four.
-int longitudes(double length, double spacing) {
-  return 4 * std::max(1, static_cast<int>(std::lround(length / (4.0 * spacing))));
-}
-
 Vec3 on_sphere(const geometry::Sphere& s, double z, double phi) {
   const double rho = std::sqrt(std::max(0.0, s.radius * s.radius - z * z));
   return s.center + Vec3(rho * std::cos(phi), rho * std::sin(phi), z);
@@ -157,13 +146,13 @@ SolidPoints sphere_face_points(const geometry::Prism& body, const geometry::Sphe
                                int order, int cut_levels) {
   const GaussRule& g = gauss_legendre(order);
   SolidPoints out;
-  const int rings = ring_count(s.radius, part);
+  const int rings = geometry::latitude_rings(s.radius, part);
   for (int i = 0; i < rings; ++i) {
     // bands between rings even in polar angle, integrated in z (where dA = r dz dphi)
     const double z1 = s.radius * std::cos(kPi * i / rings);
     const double z0 = s.radius * std::cos(kPi * (i + 1) / rings);
     const double mid = std::sin(kPi * (i + 0.5) / rings);
-    const int count = longitudes(2.0 * kPi * s.radius * mid, part);
+    const int count = geometry::ring_points(2.0 * kPi * s.radius * mid, part);
     for (int j = 0; j < count; ++j)
       surface_patch(body, s, z0, z1, 2.0 * kPi * j / count, 2.0 * kPi * (j + 1) / count, g,
                     cut_levels, out);

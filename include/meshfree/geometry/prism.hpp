@@ -42,6 +42,12 @@ struct Prism {
   std::vector<std::string> face_names() const;
 };
 
+/// Latitude rings about `spacing` apart in polar angle on a sphere of `radius`: an even count
+/// (at least two), so that the equator is one.
+int latitude_rings(double radius, double spacing);
+/// Points on a circle of `circumference` about `spacing` apart: a multiple of four, at least four.
+int ring_points(double circumference, double spacing);
+
 /// Points on the part of `s`'s surface in the body, about `spacing` apart: latitude rings about
 /// `spacing` apart in polar angle (an even count, so the equator is one), each ring's points a
 /// multiple of four at even steps from phi = 0, so that a sphere centred on planes x = c_x or
