@@ -9,79 +9,116 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-Vec3 on_sphere(const geometry::Sphere& s, double z, double phi) {
-  const double rho = std::sqrt(std::max(0.0, s.radius * s.radius - z * z));
-  return s.center + Vec3(rho * std::cos(phi), rho * std::sin(phi), z);
+/// A sphere in polar coordinates about one of the axes: w along the pole axis from the centre,
+/// phi the longitude from the next axis (x after z, y after x, z after y), so that planes
+/// through the centre normal to an axis are latitudes or meridians at quarter turns.
+struct Polar {
+  const geometry::Sphere& s;
+  int axis = 2;
+  Vec3 at(double w, double phi) const {
+    const double rho = std::sqrt(std::max(0.0, s.radius * s.radius - w * w));
+    return from(w, rho * std::cos(phi), rho * std::sin(phi));
+  }
+  Vec3 from(double w, double u, double v) const {
+    Vec3 x = s.center;
+    x(axis) += w;
+    x((axis + 1) % 3) += u;
+    x((axis + 2) % 3) += v;
+    return x;
+  }
+};
+
+/// One patch [w0, w1] x [phi0, phi1] of the surface; its area element is r dw dphi.
+struct Patch {
+  double w0, w1, phi0, phi1;
+  double w(double u) const { return 0.5 * (w0 + w1) + 0.5 * u * (w1 - w0); }
+  double phi(double v) const { return 0.5 * (phi0 + phi1) + 0.5 * v * (phi1 - phi0); }
+};
+
+/// The pole axis of a sphere's patches: one whose end planes cut the sphere off its centre (the
+/// body's bounding box's faces normal to it), so that those cuts are latitudes; z by default.
+int pole_axis(const geometry::Prism& body, const geometry::Sphere& s) {
+  const BoundingBox b = body.section.bounds();
+  const Vec3 lo(b.lo.x(), b.lo.y(), body.z0), hi(b.hi.x(), b.hi.y(), body.z1());
+  const double tol = 1e-9 * body.size();
+  const auto cuts_off_centre = [&](int a) {
+    for (const double plane : {lo(a), hi(a)}) {
+      const double d = std::abs(plane - s.center(a));
+      if (d > tol && d < s.radius) return true;
+    }
+    return false;
+  };
+  if (cuts_off_centre(2)) return 2;
+  for (int a : {0, 1})
+    if (cuts_off_centre(a)) return a;
+  return 2;
 }
 
-/// A patch the body's other boundaries cut: its z range clipped to the prism's ends (exact:
-/// they are latitudes), then along each Gauss latitude the arcs in the body (found by bisection,
-/// geometry::kept_intervals), each with its own Gauss rule in phi.
-void cut_patch_by_latitudes(const geometry::Prism& body, const geometry::Sphere& s, double z0,
-                            double z1, double phi0, double phi1, const GaussRule& g,
-                            SolidPoints& out) {
-  z0 = std::max(z0, body.z0 - s.center.z());
-  z1 = std::min(z1, body.z1() - s.center.z());
-  if (z1 <= z0) return;
+void add_point(const Polar& p, const Vec3& x, double w, SolidPoints& out) {
+  out.x.push_back(x);
+  out.weight.push_back(w);
+  out.normal.push_back((p.s.center - x) / p.s.radius);
+}
+
+/// A patch the body's other boundaries cut: its w range clipped to the body's bounding box
+/// along the pole axis (exact where those planes are the body's faces: they are latitudes), then
+/// along each Gauss latitude the arcs in the body (found by bisection, geometry::kept_intervals),
+/// each with its own Gauss rule in phi.
+void cut_patch_by_latitudes(const geometry::Prism& body, const Polar& p, Patch q,
+                            const GaussRule& g, SolidPoints& out) {
+  const BoundingBox b = body.section.bounds();
+  const Vec3 lo(b.lo.x(), b.lo.y(), body.z0), hi(b.hi.x(), b.hi.y(), body.z1());
+  q.w0 = std::max(q.w0, lo(p.axis) - p.s.center(p.axis));
+  q.w1 = std::min(q.w1, hi(p.axis) - p.s.center(p.axis));
+  if (q.w1 <= q.w0) return;
   const int n = static_cast<int>(g.points.size());
   for (int i = 0; i < n; ++i) {
-    const double z = 0.5 * (z0 + z1) + 0.5 * g.points[i] * (z1 - z0);
+    const double w = q.w(g.points[i]);
     geometry::Curve latitude;
     latitude.kind = geometry::Curve::Kind::Arc;
-    latitude.center = s.center.head<2>();
-    latitude.radius = std::sqrt(std::max(0.0, s.radius * s.radius - z * z));
-    latitude.theta0 = phi0;
-    latitude.theta1 = phi1;
-    const auto in_body = [&](const Vec2& xy) {
-      // a tight tolerance: the arc's ends are found to it
-      return body.contains(Vec3(xy.x(), xy.y(), s.center.z() + z), 1e-14);
+    latitude.radius = std::sqrt(std::max(0.0, p.s.radius * p.s.radius - w * w));
+    latitude.theta0 = q.phi0;
+    latitude.theta1 = q.phi1;
+    const auto in_body = [&](const Vec2& uv) { // a tight tolerance: the arc's ends are found to it
+      return body.contains(p.from(w, uv.x(), uv.y()), 1e-14);
     };
     for (const auto& [t0, t1] : geometry::kept_intervals(latitude, in_body)) {
       if (t1 - t0 < 1e-7) continue; // a sliver the tolerance of the body's faces let in
-      const double a = phi0 + t0 * (phi1 - phi0), b = phi0 + t1 * (phi1 - phi0);
-      for (int j = 0; j < n; ++j) {
-        const Vec3 x = on_sphere(s, z, 0.5 * (a + b) + 0.5 * g.points[j] * (b - a));
-        out.x.push_back(x);
-        out.weight.push_back(g.weights[i] * g.weights[j] * 0.25 * s.radius * (z1 - z0) * (b - a));
-        out.normal.push_back((s.center - x) / s.radius);
-      }
+      const Patch arc{q.w0, q.w1, q.phi0 + t0 * (q.phi1 - q.phi0), q.phi0 + t1 * (q.phi1 - q.phi0)};
+      for (int j = 0; j < n; ++j)
+        add_point(p, p.at(w, arc.phi(g.points[j])),
+                  g.weights[i] * g.weights[j] * 0.25 * p.s.radius * (arc.w1 - arc.w0) *
+                      (arc.phi1 - arc.phi0),
+                  out);
     }
   }
 }
 
-/// One patch [z0, z1] x [phi0, phi1] of a sphere's surface: its Gauss points in the body, the
-/// patch split into four where the body's other boundaries cut it.
-void surface_patch(const geometry::Prism& body, const geometry::Sphere& s, double z0, double z1,
-                   double phi0, double phi1, const GaussRule& g, int levels, SolidPoints& out) {
+/// A patch's Gauss points in the body, the patch split into four `levels` times where the
+/// body's other boundaries cut it, then integrated along latitudes.
+void surface_patch(const geometry::Prism& body, const Polar& p, const Patch& q, const GaussRule& g,
+                   int levels, SolidPoints& out) {
   const int n = static_cast<int>(g.points.size());
-  const auto at = [&](double u, double v) {
-    return on_sphere(s, 0.5 * (z0 + z1) + 0.5 * u * (z1 - z0),
-                     0.5 * (phi0 + phi1) + 0.5 * v * (phi1 - phi0));
-  };
   int inside = 0, total = 0;
   for (const double u : {-1.0, 1.0})
-    for (const double v : {-1.0, 1.0}) inside += body.contains(at(u, v), 1e-9), ++total;
+    for (const double v : {-1.0, 1.0}) inside += body.contains(p.at(q.w(u), q.phi(v)), 1e-9), ++total;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j)
-      inside += body.contains(at(g.points[i], g.points[j]), 1e-9), ++total;
+      inside += body.contains(p.at(q.w(g.points[i]), q.phi(g.points[j])), 1e-9), ++total;
   if (inside == 0) return;
   if (inside < total && levels > 0) {
-    const double zm = 0.5 * (z0 + z1), pm = 0.5 * (phi0 + phi1);
-    for (const auto& [za, zb] : {std::pair{z0, zm}, std::pair{zm, z1}})
-      for (const auto& [pa, pb] : {std::pair{phi0, pm}, std::pair{pm, phi1}})
-        surface_patch(body, s, za, zb, pa, pb, g, levels - 1, out);
+    const double wm = q.w(0.0), pm = q.phi(0.0);
+    for (const auto& [wa, wb] : {std::pair{q.w0, wm}, std::pair{wm, q.w1}})
+      for (const auto& [pa, pb] : {std::pair{q.phi0, pm}, std::pair{pm, q.phi1}})
+        surface_patch(body, p, {wa, wb, pa, pb}, g, levels - 1, out);
     return;
   }
-  if (inside < total) return cut_patch_by_latitudes(body, s, z0, z1, phi0, phi1, g, out);
-  // dA = r dz dphi
-  const double jac = 0.25 * s.radius * (z1 - z0) * (phi1 - phi0);
+  if (inside < total) return cut_patch_by_latitudes(body, p, q, g, out);
+  const double jac = 0.25 * p.s.radius * (q.w1 - q.w0) * (q.phi1 - q.phi0); // dA = r dw dphi
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
-      const Vec3 x = at(g.points[i], g.points[j]);
-      if (!body.contains(x, 1e-9)) continue;
-      out.x.push_back(x);
-      out.weight.push_back(g.weights[i] * g.weights[j] * jac);
-      out.normal.push_back((s.center - x) / s.radius);
+      const Vec3 x = p.at(q.w(g.points[i]), q.phi(g.points[j]));
+      if (body.contains(x, 1e-9)) add_point(p, x, g.weights[i] * g.weights[j] * jac, out);
     }
 }
 
@@ -145,16 +182,17 @@ std::pair<double, double> reach(const geometry::Sphere& s, const Vec3& lo, const
 SolidPoints sphere_face_points(const geometry::Prism& body, const geometry::Sphere& s, double part,
                                int order, int cut_levels) {
   const GaussRule& g = gauss_legendre(order);
+  const Polar p{s, pole_axis(body, s)};
   SolidPoints out;
   const int rings = geometry::latitude_rings(s.radius, part);
   for (int i = 0; i < rings; ++i) {
-    // bands between rings even in polar angle, integrated in z (where dA = r dz dphi)
-    const double z1 = s.radius * std::cos(kPi * i / rings);
-    const double z0 = s.radius * std::cos(kPi * (i + 1) / rings);
-    const double mid = std::sin(kPi * (i + 0.5) / rings);
-    const int count = geometry::ring_points(2.0 * kPi * s.radius * mid, part);
+    // bands between rings even in polar angle, integrated in w (where dA = r dw dphi)
+    const double w1 = s.radius * std::cos(kPi * i / rings);
+    const double w0 = s.radius * std::cos(kPi * (i + 1) / rings);
+    const int count =
+        geometry::ring_points(2.0 * kPi * s.radius * std::sin(kPi * (i + 0.5) / rings), part);
     for (int j = 0; j < count; ++j)
-      surface_patch(body, s, z0, z1, 2.0 * kPi * j / count, 2.0 * kPi * (j + 1) / count, g,
+      surface_patch(body, p, {w0, w1, 2.0 * kPi * j / count, 2.0 * kPi * (j + 1) / count}, g,
                     cut_levels, out);
   }
   return out;

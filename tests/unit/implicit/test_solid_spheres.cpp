@@ -1,5 +1,6 @@
 // Spherical holes in 3D bodies (implicit/solid_sphere_points, solid_points): the sphere's face
-// points integrate its area exactly (the (z, phi) patches' area element r dz dphi is constant),
+// points integrate its area exactly (the (w, phi) patches' area element r dw dphi is constant,
+// and a plane normal to the pole axis cuts them along a latitude),
 // ends and straight side faces the sphere cuts are plane bodies with exact arcs, the volume of
 // the body converges as the cut cells are split, nodes keep out of the ball and its gap, and
 // gmsh's tetrahedra name the sphere's boundary triangles.
@@ -73,13 +74,21 @@ TEST_CASE("sphere faces: exact areas, normals into the ball, cut faces of the pr
         Approx(2.0 * M_PI * 0.6 * 0.9).epsilon(1e-12));
   CHECK(face_area(capped, discretisation(0.25), "back") ==
         Approx(4.0 - M_PI * (0.36 - 0.09)).epsilon(1e-7));
-  // the same cap cut by the side x = 0: the cut crosses the latitudes, found by bisection along
-  // each; where a latitude's arc in the body stops being whole the integrand has a square-root
-  // kink, so the area is good to 1e-4 only (measured 3.7e-5 with two cut levels)
+  // the same cap cut by the side x = 0 instead: the patches' pole axis turns to x, so the cut is
+  // again a latitude
   const geometry::Prism side{geometry::Domain::rectangle({0.0, 0.0}, {2.0, 2.0}), 0.0, 2.0,
                              {geometry::Sphere{Vec3(0.3, 1.0, 1.0), 0.6, "cap"}}};
   CHECK(face_area(side, discretisation(0.25), "cap") ==
-        Approx(2.0 * M_PI * 0.6 * 0.9).epsilon(1e-4));
+        Approx(2.0 * M_PI * 0.6 * 0.9).epsilon(1e-12));
+  // cut by both the end z = 0 and the side x = 0 off its centre: the side's cut crosses the
+  // latitudes, found by bisection along each; where a latitude's arc in the body stops being
+  // whole the integrand has a square-root kink, so the area is good to 1e-4 only (measured 2.5e-5
+  // with the default two cut levels). The reference: r times the integral over w from -0.3 to r
+  // of the latitude's arc in x >= -0.3, 2 pi - 2 acos(0.3 / rho) where rho = sqrt(r^2 - w^2)
+  // exceeds 0.3 (adaptive quadrature, split at the kink, scipy.integrate.quad).
+  const geometry::Prism corner{geometry::Domain::rectangle({0.0, 0.0}, {2.0, 2.0}), 0.0, 2.0,
+                               {geometry::Sphere{Vec3(0.3, 1.0, 0.3), 0.6, "cap"}}};
+  CHECK(face_area(corner, discretisation(0.25), "cap") == Approx(2.4604095260).epsilon(1e-4));
 }
 
 TEST_CASE("sphere cavity: the body's volume and moments converge as cut cells split",
