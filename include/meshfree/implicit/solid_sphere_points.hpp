@@ -1,8 +1,10 @@
 #pragma once
-// Nodes and integration points where spherical holes (geometry::Sphere) cut a prism:
-// - Gauss points of the surface on patches of (z, phi), z along the axis through the poles and
-//   phi the longitude: the area element is r dz dphi (Archimedes' hat-box theorem), so any Gauss
-//   rule integrates the area exactly; patches the body's other boundaries cut are split;
+// Integration points where spherical holes (geometry::Sphere) cut a prism:
+// - Gauss points of the surface on patches of (w, phi), w along a pole axis and phi the
+//   longitude: the area element is r dw dphi ([Archimedes]: a zone's area is 2 pi r times its
+//   height), so any Gauss rule integrates the area exactly; patches the body's other boundaries
+//   cut are split, then integrated along their Gauss latitudes on the arcs in the body (a plane
+//   normal to the pole axis cuts along a latitude: exact);
 // - Gauss points of a background cell the sphere touches: the cell split into eight down to the
 //   cut levels, and a finest cell the surface cuts integrated along lines in the axis nearest the
 //   sphere's normal there, each line's part outside the ball found in closed form.
@@ -15,8 +17,9 @@
 namespace mf::implicit {
 
 /// Gauss points (`order` a direction) of the part of `s`'s surface in the body, on patches about
-/// `part` long; patches the body's other faces cut split `cut_levels` times. Normals point out of
-/// the body (into the sphere).
+/// `part` long; patches the body's other faces cut split `cut_levels` times. The pole axis is z
+/// unless only the body's faces normal to x or y cut the sphere off its centre. Normals point out
+/// of the body (into the sphere).
 SolidPoints sphere_face_points(const geometry::Prism& body, const geometry::Sphere& s, double part,
                                int order, int cut_levels);
 
