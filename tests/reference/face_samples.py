@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """output.faces of 3D bodies: displacement and stress sampled on a named face or on the body's
-section by a flat box, as passive material points, written as face_<name>.csv per increment.
+section by a flat box, as passive material points, written as face_<name>.csv per increment and
+as a ParaView point series (face_<name>.h5/.xmf: the same values, a step per state).
 
 - the elastoplastic block in uniaxial stress (problems/block_uniaxial_3d.yaml, stretched and
   pushed back in 8 increments): the field is homogeneous, so at every increment every sample of
@@ -81,6 +82,7 @@ def check_block(work):
     check(worst_s <= 1e-8 and worst_other <= 1e-8 and worst_u <= 1e-7,
           f"block: sigma_zz = reaction / area within {worst_s:.1e}, other components "
           f"{worst_other:.1e} (<= 1e-8), u_z within {worst_u:.1e} (<= 1e-7) at every increment")
+    check_point_series(one, "middle")
     plastic = max(r["plastic_strain"] for r in table(os.path.join(one, "face_middle.csv")))
     check(plastic > 0.0, f"block: the samples yield with the body (plastic strain {plastic:.3e})")
     run("block_uniaxial_3d", two, BLOCK, ranks=2)
@@ -94,6 +96,30 @@ def check_block(work):
         diff = max(diff, largest_difference(a, b))
     check(diff <= 1e-8, f"two MPI ranks write the same face samples (within {diff:.1e} of each "
                         f"quantity's largest value)")
+
+
+def check_point_series(out, face):
+    """face_<name>.h5/.xmf, the ParaView point series, holds the CSV's values: a step per state,
+    the displacement as a vector."""
+    import h5py
+    import numpy as np
+    rows = table(os.path.join(out, f"face_{face}.csv"))
+    worst, steps = 0.0, 0
+    with h5py.File(os.path.join(out, f"face_{face}.h5"), "r") as f:
+        xyz = np.array(f["geometry/coordinates"])
+        for name in sorted(k for k in f.keys() if k.startswith("step_")):
+            state = [r for r in rows if r["increment"] == steps]
+            steps += 1
+            u = np.array(f[name]["displacement"])
+            szz = np.array(f[name]["stress_zz"])
+            # the CSV carries 12 significant digits
+            worst = max(worst, max(max(abs(a - b) / max(1.0, abs(b)) for a, b in (
+                (u[k][2], r["uz"]), (szz[k], r["stress_zz"]), (xyz[k][0], r["x"])))
+                for k, r in enumerate(state)))
+    states = len({r["increment"] for r in rows})
+    check(steps == states and worst <= 1e-11 and os.path.exists(os.path.join(out, f"face_{face}.xmf")),
+          f"face_{face}.h5/.xmf: {steps} steps for {states} states, equal to the CSV "
+          f"(largest relative difference {worst:.1e}, <= 1e-11)")
 
 
 def largest_difference(a, b):

@@ -4,7 +4,8 @@
 // point's own history carried through every converged state (as a staged run's particles are),
 // so a line through the plastic zone shows the stress of the same law as the Gauss points,
 // without a projection. Written as line_<name>.csv and face_<name>.csv, a row per sample point
-// and state (a line's rows with their distance s from its start).
+// and state (a line's rows with their distance s from its start), and a face also as a point
+// series for ParaView (face_<name>.h5/.xmf, a step per state).
 #include "meshfree/implicit/solid_model.hpp"
 #include "meshfree/io/output.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
@@ -24,12 +25,13 @@ public:
   /// Carries every sample point to the converged state of nodal parameters `d` (all of them) and
   /// records its row, tagged `state` (the increment; 0 unloaded).
   void record(int state, const std::vector<double>& d);
-  /// line_<name>.csv for each line, face_<name>.csv for each face.
+  /// line_<name>.csv for each line, face_<name>.csv and the point series face_<name>.h5/.xmf
+  /// (ParaView) for each face.
   void write(io::OutputDirectory& out) const;
 
 private:
   struct Line {
-    std::string file; // line_<name>.csv or face_<name>.csv
+    std::string file; // line_<name> or face_<name>
     bool along = true; // rows hold s, the distance from `from`
     Vec3 from;
     std::vector<Vec3> x;
