@@ -55,8 +55,8 @@ void build_body(const Request& q) {
     for (const auto& e : out)
       if (e.first == 3) solids.push_back(e);
     for (std::size_t s = 0; s + 3 < q.spheres.size(); s += 4)
-      balls.push_back({3, occ::addSphere(q.spheres[s], q.spheres[s + 1], q.spheres[s + 2],
-                                         q.spheres[s + 3])});
+      balls.push_back(
+          {3, occ::addSphere(q.spheres[s], q.spheres[s + 1], q.spheres[s + 2], q.spheres[s + 3])});
     if (!balls.empty()) {
       std::vector<gmsh::vectorpair> map;
       occ::cut(solids, balls, cut, map);

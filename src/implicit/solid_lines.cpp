@@ -38,10 +38,22 @@ void SolidLineSampler::record(int state, const std::vector<double>& d) {
       const materials::J2Result3D r = carry_point(l.table, k, d, law_, l.committed[k]);
       const Vec3 u = solid_displacement_at(l.table, k, d);
       const Vec3& x = l.x[k];
-      std::vector<double> row{static_cast<double>(state), (x - l.from).norm(), x.x(), x.y(),
-                              x.z(), u.x(), u.y(), u.z(), r.stress(0), r.stress(1), r.stress(2),
-                              r.stress(3), r.stress(4), r.stress(5),
-                              materials::von_mises_3d(r.stress), r.state.alpha};
+      std::vector<double> row{static_cast<double>(state),
+                              (x - l.from).norm(),
+                              x.x(),
+                              x.y(),
+                              x.z(),
+                              u.x(),
+                              u.y(),
+                              u.z(),
+                              r.stress(0),
+                              r.stress(1),
+                              r.stress(2),
+                              r.stress(3),
+                              r.stress(4),
+                              r.stress(5),
+                              materials::von_mises_3d(r.stress),
+                              r.state.alpha};
       if (!l.along) row.erase(row.begin() + 1);
       l.rows.push_back(std::move(row));
     }
@@ -66,7 +78,8 @@ void write_point_series(io::OutputDirectory& out, const std::string& stem,
     io::FieldStep step;
     step.time = rows[first][0];
     std::vector<double> u;
-    for (std::size_t k = 0; k < n; ++k) u.insert(u.end(), rows[first + k].begin() + 4, rows[first + k].begin() + 7);
+    for (std::size_t k = 0; k < n; ++k)
+      u.insert(u.end(), rows[first + k].begin() + 4, rows[first + k].begin() + 7);
     step.vectors3.emplace_back("displacement", std::move(u));
     for (std::size_t c = 7; c < kColumns.size() - 1; ++c) {
       std::vector<double> v;

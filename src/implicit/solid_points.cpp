@@ -124,8 +124,7 @@ void side_cut_by_spheres(const geometry::Prism& body, const spec::Discretisation
 
 /// The plane cell of the quadrature's grid (quadrature::domain_points: cells of about
 /// `cell_size` fitted to the section's bounding box) that holds plane point `x`, numbered `cell`.
-BoundingBox plane_cell(const geometry::Domain& section, double cell_size, int cell,
-                       const Vec2& x) {
+BoundingBox plane_cell(const geometry::Domain& section, double cell_size, int cell, const Vec2& x) {
   const BoundingBox bb = section.bounds();
   const int nx = std::max(1, static_cast<int>(std::ceil(bb.size().x() / cell_size - 1e-9)));
   const int ny = std::max(1, static_cast<int>(std::ceil(bb.size().y() / cell_size - 1e-9)));
@@ -133,8 +132,8 @@ BoundingBox plane_cell(const geometry::Domain& section, double cell_size, int ce
   const Vec2 lo = bb.lo + Vec2((cell % nx) * h.x(), (cell / nx) * h.y());
   const BoundingBox box{lo, lo + h};
   const double tol = 1e-9 * h.maxCoeff();
-  MF_REQUIRE(x.x() >= box.lo.x() - tol && x.x() <= box.hi.x() + tol &&
-                 x.y() >= box.lo.y() - tol && x.y() <= box.hi.y() + tol,
+  MF_REQUIRE(x.x() >= box.lo.x() - tol && x.x() <= box.hi.x() + tol && x.y() >= box.lo.y() - tol &&
+                 x.y() <= box.hi.y() + tol,
              "the plane quadrature's cell ", cell, " does not hold its point");
   return box;
 }
@@ -155,7 +154,8 @@ SolidPoints volume_points_with_spheres(const geometry::Prism& body,
     const double z0 = body.z0 + l * dz;
     std::vector<char> touched(cells.size(), 0);
     for (std::size_t c = 0; c < cells.size(); ++c) {
-      const Vec3 lo(cells[c].lo.x(), cells[c].lo.y(), z0), hi(cells[c].hi.x(), cells[c].hi.y(), z0 + dz);
+      const Vec3 lo(cells[c].lo.x(), cells[c].lo.y(), z0),
+          hi(cells[c].hi.x(), cells[c].hi.y(), z0 + dz);
       if (cells[c].size().isZero() || !sphere_touches(body, lo, hi)) continue;
       touched[c] = 1;
       sphere_cell_points(body, lo, hi, d.order, d.cut_levels, sizing_of(d), p);
@@ -243,8 +243,9 @@ SolidPoints prism_face_points(const geometry::Prism& body, const spec::Discretis
   for (const bool back : {true, false}) {
     if (!named(back ? "back" : "front")) continue;
     const double z = back ? body.z0 : body.z1();
-    const quadrature::DomainPoints end = quadrature::domain_points(
-        end_section(body, z), d.cell_size, d.boundary_order, d.cut_levels, sizing_of(d), d.cut_arcs);
+    const quadrature::DomainPoints end =
+        quadrature::domain_points(end_section(body, z), d.cell_size, d.boundary_order, d.cut_levels,
+                                  sizing_of(d), d.cut_arcs);
     for (std::size_t k = 0; k < end.x.size(); ++k)
       add(Vec3(end.x[k].x(), end.x[k].y(), z), end.weight[k], Vec3(0.0, 0.0, back ? -1.0 : 1.0));
   }

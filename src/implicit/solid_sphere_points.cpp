@@ -101,7 +101,8 @@ void surface_patch(const geometry::Prism& body, const Polar& p, const Patch& q, 
   const int n = static_cast<int>(g.points.size());
   int inside = 0, total = 0;
   for (const double u : {-1.0, 1.0})
-    for (const double v : {-1.0, 1.0}) inside += body.contains(p.at(q.w(u), q.phi(v)), 1e-9), ++total;
+    for (const double v : {-1.0, 1.0})
+      inside += body.contains(p.at(q.w(u), q.phi(v)), 1e-9), ++total;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j)
       inside += body.contains(p.at(q.w(g.points[i]), q.phi(g.points[j])), 1e-9), ++total;
@@ -199,17 +200,16 @@ SolidPoints sphere_face_points(const geometry::Prism& body, const geometry::Sphe
 }
 
 bool sphere_touches(const geometry::Prism& body, const Vec3& lo, const Vec3& hi) {
-  return std::any_of(body.spheres.begin(), body.spheres.end(), [&](const geometry::Sphere& s) {
-    return reach(s, lo, hi).first < s.radius;
-  });
+  return std::any_of(body.spheres.begin(), body.spheres.end(),
+                     [&](const geometry::Sphere& s) { return reach(s, lo, hi).first < s.radius; });
 }
 
 void sphere_cell_points(const geometry::Prism& body, const Vec3& lo, const Vec3& hi, int order,
                         int cut_levels, const quadrature::CellSizing& sizing, SolidPoints& out) {
   const Vec3 half = 0.5 * (hi - lo), mid = lo + half;
   const BoundingBox plane{lo.head<2>(), hi.head<2>()};
-  const bool coarse = sizing.spacing > 0.0 &&
-                      (hi - lo).maxCoeff() > sizing.size_at(plane) * (1.0 + 1e-9);
+  const bool coarse =
+      sizing.spacing > 0.0 && (hi - lo).maxCoeff() > sizing.size_at(plane) * (1.0 + 1e-9);
   bool cut = false;
   for (const geometry::Sphere& s : body.spheres) {
     const auto [near, far] = reach(s, lo, hi);
@@ -218,8 +218,8 @@ void sphere_cell_points(const geometry::Prism& body, const Vec3& lo, const Vec3&
   }
   if (coarse || (cut && cut_levels > 0)) {
     for (int k = 0; k < 8; ++k) {
-      const Vec3 corner = lo + Vec3((k & 1) * half.x(), ((k >> 1) & 1) * half.y(),
-                                    ((k >> 2) & 1) * half.z());
+      const Vec3 corner =
+          lo + Vec3((k & 1) * half.x(), ((k >> 1) & 1) * half.y(), ((k >> 2) & 1) * half.z());
       sphere_cell_points(body, corner, corner + half, order, cut_levels - (coarse ? 0 : 1), sizing,
                          out);
     }

@@ -26,7 +26,8 @@ std::optional<verification::ExactSolution3D> read_exact_3d(KeyReader& r) {
   auto e = r.optional_map("exact");
   if (!e) return std::nullopt;
   verification::ExactSolution3D out;
-  const std::string solution = e->choice("solution", {"linear", "thick_cylinder", "thick_sphere"}, "");
+  const std::string solution =
+      e->choice("solution", {"linear", "thick_cylinder", "thick_sphere"}, "");
   if (solution == "thick_sphere") {
     verification::ThickSphere c;
     c.a = e->positive("inner_radius");
@@ -211,7 +212,8 @@ void read_solid_discretisation(KeyReader& r, const ProblemSpec& p, const std::st
   const bool tets = d.fem.element == "tet4" || d.fem.element == "tet10";
   if (d.method == Method::Fem && !tets && !s.spheres.empty())
     fail("geometry.spheres: bricks extrude a plane mesh and cannot follow the sphere '",
-         s.spheres.front().name, "'; give discretisation.fem.element tet4 or tet10, or method "
+         s.spheres.front().name,
+         "'; give discretisation.fem.element tet4 or tet10, or method "
          "meshfree");
   if (d.method == Method::Fem && tets && !d.fem.mesh.empty())
     fail(key, ".fem.mesh: ", d.fem.element,
@@ -271,7 +273,8 @@ SolidFaceSampleSpec read_face_sample(KeyReader& f, const geometry::Prism& body, 
     if (std::find(known.begin(), known.end(), s.face) == known.end()) {
       std::string list;
       for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
-      f.error("face", "no face is named '" + one_line(s.face) + "' (the body's faces: " + list + ")");
+      f.error("face",
+              "no face is named '" + one_line(s.face) + "' (the body's faces: " + list + ")");
     }
   } else {
     s.box = read_box(f, "box", 3);
@@ -280,11 +283,13 @@ SolidFaceSampleSpec read_face_sample(KeyReader& f, const geometry::Prism& body, 
                      "axis)");
   }
   if (body.size() / s.spacing > 1000.0)
-    f.error("spacing", detail::concat(s.spacing, ": about a million sample points or more (the "
-                                                 "body's size is ", body.size(), ")"));
-  const std::vector<Vec3> x = s.box ? geometry::plane_sample_points(body, s.box->lo, s.box->hi,
-                                                                    s.spacing)
-                                    : geometry::face_sample_points(body, s.face, s.spacing);
+    f.error("spacing", detail::concat(s.spacing,
+                                      ": about a million sample points or more (the "
+                                      "body's size is ",
+                                      body.size(), ")"));
+  const std::vector<Vec3> x =
+      s.box ? geometry::plane_sample_points(body, s.box->lo, s.box->hi, s.spacing)
+            : geometry::face_sample_points(body, s.face, s.spacing);
   if (x.empty()) f.error(s.box ? "box" : "face", "no sample point lies in the body");
   f.finish();
   return s;

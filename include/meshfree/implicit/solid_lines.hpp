@@ -31,7 +31,7 @@ public:
 
 private:
   struct Line {
-    std::string file; // line_<name> or face_<name>
+    std::string file;  // line_<name> or face_<name>
     bool along = true; // rows hold s, the distance from `from`
     Vec3 from;
     std::vector<Vec3> x;

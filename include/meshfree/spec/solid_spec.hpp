@@ -63,8 +63,8 @@ struct SolidSpec {
   std::vector<LoadStep> steps;
   NonlinearSpec nonlinear;
   LinearSolverSpec linear_solver;
-  std::vector<GaugeSpec> gauges;    // points whose displacement each increment records
-  std::vector<SolidLineSpec> lines; // sampled at the end (elastic) or each increment
+  std::vector<GaugeSpec> gauges;          // points whose displacement each increment records
+  std::vector<SolidLineSpec> lines;       // sampled at the end (elastic) or each increment
   std::vector<SolidFaceSampleSpec> faces; // sampled as the lines are
   int fields_every = 1; // field frames every this many converged increments (and the last)
   // Set by a staged run, not read from the file: every increment's nodal parameters are kept

@@ -17,7 +17,9 @@ namespace {
 
 /// The cube [0, 2.5]^3 minus the ball of radius 1 about its corner (an octant model's cavity).
 geometry::Prism octant_cavity() {
-  return geometry::Prism{geometry::Domain::rectangle({0.0, 0.0}, {2.5, 2.5}), 0.0, 2.5,
+  return geometry::Prism{geometry::Domain::rectangle({0.0, 0.0}, {2.5, 2.5}),
+                         0.0,
+                         2.5,
                          {geometry::Sphere{Vec3::Zero(), 1.0, "cavity"}}};
 }
 
@@ -62,13 +64,16 @@ TEST_CASE("sphere faces: exact areas, normals into the ball, cut faces of the pr
     }
   }
   // a whole sphere inside the body, not centred on a plane of the patches' grid
-  const geometry::Prism inner{geometry::Domain::rectangle({0.0, 0.0}, {2.0, 2.0}), 0.0, 2.0,
+  const geometry::Prism inner{geometry::Domain::rectangle({0.0, 0.0}, {2.0, 2.0}),
+                              0.0,
+                              2.0,
                               {geometry::Sphere{Vec3(0.9, 1.1, 1.05), 0.6, "void"}}};
-  CHECK(face_area(inner, discretisation(0.25), "void") ==
-        Approx(4.0 * M_PI * 0.36).epsilon(1e-13));
+  CHECK(face_area(inner, discretisation(0.25), "void") == Approx(4.0 * M_PI * 0.36).epsilon(1e-13));
   // a sphere the end z = 0 cuts 0.3 below its centre: the cap of height 0.9 remains; the end is
   // a latitude of the patches, clipped exactly (area 2 pi r h)
-  const geometry::Prism capped{geometry::Domain::rectangle({0.0, 0.0}, {2.0, 2.0}), 0.0, 2.0,
+  const geometry::Prism capped{geometry::Domain::rectangle({0.0, 0.0}, {2.0, 2.0}),
+                               0.0,
+                               2.0,
                                {geometry::Sphere{Vec3(1.0, 1.0, 0.3), 0.6, "cap"}}};
   CHECK(face_area(capped, discretisation(0.25), "cap") ==
         Approx(2.0 * M_PI * 0.6 * 0.9).epsilon(1e-12));
@@ -76,7 +81,9 @@ TEST_CASE("sphere faces: exact areas, normals into the ball, cut faces of the pr
         Approx(4.0 - M_PI * (0.36 - 0.09)).epsilon(1e-7));
   // the same cap cut by the side x = 0 instead: the patches' pole axis turns to x, so the cut is
   // again a latitude
-  const geometry::Prism side{geometry::Domain::rectangle({0.0, 0.0}, {2.0, 2.0}), 0.0, 2.0,
+  const geometry::Prism side{geometry::Domain::rectangle({0.0, 0.0}, {2.0, 2.0}),
+                             0.0,
+                             2.0,
                              {geometry::Sphere{Vec3(0.3, 1.0, 1.0), 0.6, "cap"}}};
   CHECK(face_area(side, discretisation(0.25), "cap") ==
         Approx(2.0 * M_PI * 0.6 * 0.9).epsilon(1e-12));
@@ -86,7 +93,9 @@ TEST_CASE("sphere faces: exact areas, normals into the ball, cut faces of the pr
   // with the default two cut levels). The reference: r times the integral over w from -0.3 to r
   // of the latitude's arc in x >= -0.3, 2 pi - 2 acos(0.3 / rho) where rho = sqrt(r^2 - w^2)
   // exceeds 0.3 (adaptive quadrature, split at the kink, scipy.integrate.quad).
-  const geometry::Prism corner{geometry::Domain::rectangle({0.0, 0.0}, {2.0, 2.0}), 0.0, 2.0,
+  const geometry::Prism corner{geometry::Domain::rectangle({0.0, 0.0}, {2.0, 2.0}),
+                               0.0,
+                               2.0,
                                {geometry::Sphere{Vec3(0.3, 1.0, 0.3), 0.6, "cap"}}};
   CHECK(face_area(corner, discretisation(0.25), "cap") == Approx(2.4604095260).epsilon(1e-4));
 }
