@@ -325,6 +325,9 @@ void print_solid_plan(const spec::ProblemSpec& spec, std::ostream& os) {
     n = static_cast<double>(prism_nodes(body, s.discretisation).x.size());
     os << "  nodes: " << n << " (" << layers << " layers along z), " << 3 * n << " DOFs\n";
   }
+  for (const geometry::Sphere& sphere : s.spheres)
+    os << "  sphere " << sphere.name << ": radius " << sphere.radius << " at (" << sphere.center.x()
+       << ", " << sphere.center.y() << ", " << sphere.center.z() << ")\n";
   for (const auto& bc : s.boundary) {
     double area = 0.0;
     for (double w : prism_face_points(body, s.discretisation, bc.faces, bc.box).weight) area += w;
