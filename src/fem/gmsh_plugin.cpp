@@ -29,7 +29,8 @@ bool volume(const Request& q) {
 
 /// The body as OpenCASCADE entities: the polygon as a surface, cut by the holes (a hole may
 /// cross the outline, as the quarter models' holes at a corner do), at z = z0; for tetrahedra
-/// that surface extruded by `depth` along z into a volume.
+/// that surface extruded by `depth` along z into a volume, and the spheres' balls cut from it
+/// (a ball may cross the prism's faces, as an octant model's cavity at a corner does).
 void build_body(const Request& q) {
   namespace occ = gmsh::model::occ;
   const double z = volume(q) ? q.z0 : 0.0;
@@ -49,8 +50,17 @@ void build_body(const Request& q) {
     body = out;
   }
   if (volume(q)) {
-    gmsh::vectorpair out;
+    gmsh::vectorpair out, solids, balls, cut;
     occ::extrude(body, 0.0, 0.0, q.depth, out);
+    for (const auto& e : out)
+      if (e.first == 3) solids.push_back(e);
+    for (std::size_t s = 0; s + 3 < q.spheres.size(); s += 4)
+      balls.push_back(
+          {3, occ::addSphere(q.spheres[s], q.spheres[s + 1], q.spheres[s + 2], q.spheres[s + 3])});
+    if (!balls.empty()) {
+      std::vector<gmsh::vectorpair> map;
+      occ::cut(solids, balls, cut, map);
+    }
   }
   occ::synchronize();
 }

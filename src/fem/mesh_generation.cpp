@@ -127,13 +127,17 @@ Mesh mesh_domain(const geometry::Domain& domain, double size,
   return mesh;
 }
 
-TetMesh mesh_prism(const geometry::Domain& domain, double z0, double depth, double size,
+TetMesh mesh_prism(const geometry::Prism& body, double size,
                    const std::vector<geometry::Refinement>& refinement, bool quadratic) {
+  const geometry::Domain& domain = body.section;
+  const double depth = body.depth;
   MF_REQUIRE(depth > 0.0, "the prism's depth must be positive");
   gmsh_mesher::Request q = request(domain, size, refinement);
   q.element_type = quadratic ? 11 : 4;
-  q.z0 = z0;
+  q.z0 = body.z0;
   q.depth = depth;
+  for (const geometry::Sphere& s : body.spheres)
+    q.spheres.insert(q.spheres.end(), {s.center.x(), s.center.y(), s.center.z(), s.radius});
   const gmsh_mesher::Result r = run_gmsh(q, domain.area_estimate() * depth / (size * size * size));
   require_type(r, q.element_type, quadratic ? "tet10" : "tet4", "");
   TetMesh mesh;
@@ -143,6 +147,11 @@ TetMesh mesh_prism(const geometry::Domain& domain, double z0, double depth, doub
   });
   orient_tetrahedra(mesh, "the gmsh mesh of the body");
   return mesh;
+}
+
+TetMesh mesh_prism(const geometry::Domain& domain, double z0, double depth, double size,
+                   const std::vector<geometry::Refinement>& refinement, bool quadratic) {
+  return mesh_prism(geometry::Prism{domain, z0, depth, {}}, size, refinement, quadratic);
 }
 
 } // namespace mf::fem

@@ -171,7 +171,7 @@ SolidElastoplasticResult solve_solid_elastoplastic(const spec::ProblemSpec& spec
   SolidSeries series(m, session, out);
   series.write(0.0, system, newton.gather_on_root(d));
   auto lines = std::make_shared<SolidLineSampler>(spec, m, R.material);
-  if (session.rank() == 0 && !spec.solid().lines.empty()) lines->record(0, d);
+  if (session.rank() == 0 && spec.solid().samples()) lines->record(0, d);
   SchedulePosition at;
   const ScheduleOutcome o = run_load_schedule(
       solid_schedule(spec), system, newton, d,
@@ -187,7 +187,7 @@ SolidElastoplasticResult solve_solid_elastoplastic(const spec::ProblemSpec& spec
         if (write_fields)
           series.write(inc.record.step + inc.record.step_fraction, system,
                        newton.gather_on_root(d));
-        if (!spec.solid().lines.empty()) { // collective: every rank gathers, rank 0 samples
+        if (spec.solid().samples()) { // collective: every rank gathers, rank 0 samples
           const std::vector<double> all = newton.gather_on_root(d);
           if (session.rank() == 0) lines->record(static_cast<int>(R.increments.size()), all);
         }

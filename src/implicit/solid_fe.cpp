@@ -10,8 +10,7 @@ std::unique_ptr<SolidElements> make_solid_elements(const spec::DiscretisationSpe
                                                    const geometry::Prism& body) {
   const std::string& e = d.fem.element;
   if (e == "tet4" || e == "tet10") {
-    fem::TetMesh mesh =
-        fem::mesh_prism(body.section, body.z0, body.depth, d.spacing, d.refinement, e == "tet10");
+    fem::TetMesh mesh = fem::mesh_prism(body, d.spacing, d.refinement, e == "tet10");
     fem::sort_nodes_for_locality(mesh, fem::characteristic_size(mesh));
     return std::make_unique<TetElements>(std::move(mesh), body);
   }

@@ -220,7 +220,7 @@ SolidModel build_solid_model(const spec::ProblemSpec& spec, const solvers::Petsc
                              PhaseTimer& timer) {
   const spec::SolidSpec& s = spec.solid();
   SolidModel m;
-  m.body = geometry::Prism{spec.domain, s.z0, s.depth};
+  m.body = s.body(spec.domain);
   session.collective([&] {
     if (s.discretisation.method == spec::Method::Fem) {
       build_elements(spec, session, timer, m);
@@ -254,7 +254,7 @@ SolidShapeTable solid_shapes_at(const SolidModel& m, const std::vector<Vec3>& x,
 
 std::string describe_solid_method(const spec::ProblemSpec& spec) {
   const spec::DiscretisationSpec& d = spec.solid().discretisation;
-  const geometry::Prism body{spec.domain, spec.solid().z0, spec.solid().depth};
+  const geometry::Prism body = spec.solid().body(spec.domain);
   const int layers = layer_count(body, d.spacing);
   if (d.method == spec::Method::Fem && (d.fem.element == "tet4" || d.fem.element == "tet10"))
     return detail::concat("FE ", d.fem.element, " (gmsh's tetrahedra of the prism), spacing ",
@@ -314,7 +314,7 @@ FaceReport face_report(const SolidConditionPoints& c, const std::vector<double>&
 
 void print_solid_plan(const spec::ProblemSpec& spec, std::ostream& os) {
   const spec::SolidSpec& s = spec.solid();
-  const geometry::Prism body{spec.domain, s.z0, s.depth};
+  const geometry::Prism body = s.body(spec.domain);
   const int layers = layer_count(body, s.discretisation.spacing) + 1;
   double n = 0.0;
   if (s.discretisation.method == spec::Method::Fem) {
@@ -325,6 +325,9 @@ void print_solid_plan(const spec::ProblemSpec& spec, std::ostream& os) {
     n = static_cast<double>(prism_nodes(body, s.discretisation).x.size());
     os << "  nodes: " << n << " (" << layers << " layers along z), " << 3 * n << " DOFs\n";
   }
+  for (const geometry::Sphere& sphere : s.spheres)
+    os << "  sphere " << sphere.name << ": radius " << sphere.radius << " at (" << sphere.center.x()
+       << ", " << sphere.center.y() << ", " << sphere.center.z() << ")\n";
   for (const auto& bc : s.boundary) {
     double area = 0.0;
     for (double w : prism_face_points(body, s.discretisation, bc.faces, bc.box).weight) area += w;

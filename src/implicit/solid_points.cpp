@@ -1,6 +1,8 @@
 #include "meshfree/implicit/solid_points.hpp"
+#include "meshfree/core/error.hpp"
 #include "meshfree/core/gauss_legendre.hpp"
 #include "meshfree/geometry/node_generation.hpp"
+#include "meshfree/implicit/solid_sphere_points.hpp"
 #include "meshfree/quadrature/integration_points.hpp"
 #include <algorithm>
 #include <cmath>
@@ -30,6 +32,146 @@ bool kept(const std::optional<spec::Box>& box, const Vec3& x, double tol) {
   return !box || box->contains(x, tol);
 }
 
+// Lattice nodes nearer a sphere's surface than this many local spacings are left out (the plane
+// node cloud's gap at its boundary, geometry/node_generation).
+constexpr double kSphereGap = 0.3;
+
+/// The finest node spacing wanted near the sphere: the base spacing, or that of a refinement
+/// box its footprint meets.
+double spacing_near(const geometry::Sphere& s, const spec::DiscretisationSpec& d) {
+  double h = d.spacing;
+  for (const geometry::Refinement& r : d.refinement)
+    if ((s.center.head<2>().cwiseMax(r.box.lo).cwiseMin(r.box.hi) - s.center.head<2>()).norm() <
+        s.radius)
+      h = std::min(h, r.spacing);
+  return h;
+}
+
+/// Lattice nodes of the spheres' balls and of their gaps replaced by nodes on their surfaces.
+void fit_nodes_to_spheres(const geometry::Prism& body, const spec::DiscretisationSpec& d,
+                          SolidNodes& n) {
+  SolidNodes kept;
+  for (std::size_t i = 0; i < n.x.size(); ++i) {
+    const bool clear =
+        std::all_of(body.spheres.begin(), body.spheres.end(), [&](const geometry::Sphere& s) {
+          return s.distance(n.x[i]) >= kSphereGap * n.spacing[i];
+        });
+    if (!clear) continue;
+    kept.x.push_back(n.x[i]);
+    kept.spacing.push_back(n.spacing[i]);
+    kept.volume.push_back(n.volume[i]);
+  }
+  for (const geometry::Sphere& s : body.spheres) {
+    const double h = spacing_near(s, d);
+    for (const Vec3& x : geometry::sphere_surface_points(body, s, h)) {
+      kept.x.push_back(x);
+      kept.spacing.push_back(h);
+      kept.volume.push_back(0.5 * h * h * h); // half a lattice cell: the body is on one side
+    }
+  }
+  n = std::move(kept);
+}
+
+/// The body's section at height z: the plane section minus each sphere's disc there, so that an
+/// end face cut by a sphere is integrated as a plane body with a hole.
+geometry::Domain end_section(const geometry::Prism& body, double z) {
+  geometry::Domain section = body.section;
+  for (const geometry::Sphere& s : body.spheres) {
+    const double h = z - s.center.z();
+    const double rho2 = s.radius * s.radius - h * h;
+    if (rho2 > 1e-18 * body.size() * body.size())
+      section.add_hole({s.center.head<2>(), std::sqrt(rho2), s.name});
+  }
+  return section;
+}
+
+/// True when a sphere's ball meets the side face over the straight piece `c`.
+bool sphere_cuts_side(const geometry::Prism& body, const geometry::Curve& c) {
+  if (c.kind != geometry::Curve::Kind::Segment) return false;
+  return std::any_of(body.spheres.begin(), body.spheres.end(), [&](const geometry::Sphere& s) {
+    const double dz = std::max({body.z0 - s.center.z(), s.center.z() - body.z1(), 0.0});
+    const double d = c.distance_to(s.center.head<2>());
+    return d * d + dz * dz < s.radius * s.radius;
+  });
+}
+
+/// The side face over the straight piece `c`, which spheres cut: the rectangle (arc length along
+/// c) x (depth) minus each sphere's disc in its plane, integrated as a plane body with holes
+/// (exact arcs where the discretisation asks for them); `add(x, weight, normal)` takes each point.
+template <class Add>
+void side_cut_by_spheres(const geometry::Prism& body, const spec::DiscretisationSpec& d,
+                         const geometry::Curve& c, Add&& add) {
+  const double length = c.length();
+  geometry::Domain face = geometry::Domain::rectangle({0.0, 0.0}, {length, body.depth});
+  const Vec2 along = (c.b - c.a) / length;
+  for (const geometry::Sphere& s : body.spheres) {
+    const Vec2 rel = s.center.head<2>() - c.a;
+    const double t = rel.dot(along), off = rel.x() * along.y() - rel.y() * along.x();
+    const double rho2 = s.radius * s.radius - off * off;
+    if (rho2 > 1e-18 * body.size() * body.size())
+      face.add_hole({Vec2(t, s.center.z() - body.z0), std::sqrt(rho2), s.name});
+  }
+  const Vec2 m = c.point(0.5);
+  const double cell = std::min(d.cell_size, sizing_of(d).size_at({m, m}));
+  const quadrature::DomainPoints on =
+      quadrature::domain_points(face, cell, d.boundary_order, d.cut_levels, {}, d.cut_arcs);
+  const Vec2 n = c.outward_normal(0.5);
+  for (std::size_t k = 0; k < on.x.size(); ++k) {
+    const Vec2 xy = c.a + on.x[k].x() * along;
+    add(Vec3(xy.x(), xy.y(), body.z0 + on.x[k].y()), on.weight[k], Vec3(n.x(), n.y(), 0.0));
+  }
+}
+
+/// The plane cell of the quadrature's grid (quadrature::domain_points: cells of about
+/// `cell_size` fitted to the section's bounding box) that holds plane point `x`, numbered `cell`.
+BoundingBox plane_cell(const geometry::Domain& section, double cell_size, int cell, const Vec2& x) {
+  const BoundingBox bb = section.bounds();
+  const int nx = std::max(1, static_cast<int>(std::ceil(bb.size().x() / cell_size - 1e-9)));
+  const int ny = std::max(1, static_cast<int>(std::ceil(bb.size().y() / cell_size - 1e-9)));
+  const Vec2 h(bb.size().x() / nx, bb.size().y() / ny);
+  const Vec2 lo = bb.lo + Vec2((cell % nx) * h.x(), (cell / nx) * h.y());
+  const BoundingBox box{lo, lo + h};
+  const double tol = 1e-9 * h.maxCoeff();
+  MF_REQUIRE(x.x() >= box.lo.x() - tol && x.x() <= box.hi.x() + tol && x.y() >= box.lo.y() - tol &&
+                 x.y() <= box.hi.y() + tol,
+             "the plane quadrature's cell ", cell, " does not hold its point");
+  return box;
+}
+
+/// The volume points of a body with spheres: the plane points times the rule along z where no
+/// sphere touches the cell they came from, and the touched cells integrated anew.
+SolidPoints volume_points_with_spheres(const geometry::Prism& body,
+                                       const spec::DiscretisationSpec& d,
+                                       const quadrature::DomainPoints& plane) {
+  const int layers = layer_count(body, d.cell_size);
+  const double dz = body.depth / layers;
+  const GaussRule& g = gauss_legendre(d.order);
+  std::vector<BoundingBox> cells(plane.cell_count, BoundingBox{Vec2::Zero(), Vec2::Zero()});
+  for (std::size_t k = 0; k < plane.x.size(); ++k)
+    cells[plane.cell[k]] = plane_cell(body.section, d.cell_size, plane.cell[k], plane.x[k]);
+  SolidPoints p;
+  for (int l = 0; l < layers; ++l) {
+    const double z0 = body.z0 + l * dz;
+    std::vector<char> touched(cells.size(), 0);
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      const Vec3 lo(cells[c].lo.x(), cells[c].lo.y(), z0),
+          hi(cells[c].hi.x(), cells[c].hi.y(), z0 + dz);
+      if (cells[c].size().isZero() || !sphere_touches(body, lo, hi)) continue;
+      touched[c] = 1;
+      sphere_cell_points(body, lo, hi, d.order, d.cut_levels, sizing_of(d), p);
+    }
+    for (std::size_t q = 0; q < g.points.size(); ++q) {
+      const double z = z0 + 0.5 * (g.points[q] + 1.0) * dz, wz = 0.5 * dz * g.weights[q];
+      for (std::size_t k = 0; k < plane.x.size(); ++k) {
+        if (touched[plane.cell[k]]) continue;
+        p.x.emplace_back(plane.x[k].x(), plane.x[k].y(), z);
+        p.weight.push_back(plane.weight[k] * wz);
+      }
+    }
+  }
+  return p;
+}
+
 } // namespace
 
 int layer_count(const geometry::Prism& body, double spacing) {
@@ -51,12 +193,14 @@ SolidNodes prism_nodes(const geometry::Prism& body, const spec::DiscretisationSp
       n.volume.push_back(plane.volume[i] * dz * end);
     }
   }
+  if (!body.spheres.empty()) fit_nodes_to_spheres(body, d, n);
   return n;
 }
 
 SolidPoints prism_volume_points(const geometry::Prism& body, const spec::DiscretisationSpec& d) {
   const quadrature::DomainPoints plane = quadrature::domain_points(
       body.section, d.cell_size, d.order, d.cut_levels, sizing_of(d), d.cut_arcs);
+  if (!body.spheres.empty()) return volume_points_with_spheres(body, d, plane);
   SolidPoints p;
   for (const auto& [z, wz] : through_depth(body, d.cell_size, d.order))
     for (std::size_t k = 0; k < plane.x.size(); ++k) {
@@ -75,14 +219,19 @@ SolidPoints prism_face_points(const geometry::Prism& body, const spec::Discretis
   };
   SolidPoints p;
   const auto add = [&](const Vec3& x, double w, const Vec3& n) {
-    if (!kept(box, x, tol)) return;
+    if (!kept(box, x, tol) || !body.outside_spheres(x, 1e-9)) return;
     p.x.push_back(x);
     p.weight.push_back(w);
     p.normal.push_back(n);
   };
   std::vector<geometry::Curve> sides;
-  for (const geometry::Curve& c : body.section.boundary())
-    if (named(c.name)) sides.push_back(c);
+  for (const geometry::Curve& c : body.section.boundary()) {
+    if (!named(c.name)) continue;
+    if (sphere_cuts_side(body, c))
+      side_cut_by_spheres(body, d, c, add);
+    else
+      sides.push_back(c);
+  }
   if (!sides.empty()) {
     const quadrature::BoundaryPoints edge =
         quadrature::boundary_points(sides, d.cell_size, d.boundary_order, sizing_of(d));
@@ -93,11 +242,17 @@ SolidPoints prism_face_points(const geometry::Prism& body, const spec::Discretis
   }
   for (const bool back : {true, false}) {
     if (!named(back ? "back" : "front")) continue;
-    const quadrature::DomainPoints end = quadrature::domain_points(
-        body.section, d.cell_size, d.boundary_order, d.cut_levels, sizing_of(d), d.cut_arcs);
     const double z = back ? body.z0 : body.z1();
+    const quadrature::DomainPoints end =
+        quadrature::domain_points(end_section(body, z), d.cell_size, d.boundary_order, d.cut_levels,
+                                  sizing_of(d), d.cut_arcs);
     for (std::size_t k = 0; k < end.x.size(); ++k)
       add(Vec3(end.x[k].x(), end.x[k].y(), z), end.weight[k], Vec3(0.0, 0.0, back ? -1.0 : 1.0));
+  }
+  for (const geometry::Sphere& s : body.spheres) {
+    if (!named(s.name)) continue;
+    const SolidPoints on = sphere_face_points(body, s, d.cell_size, d.boundary_order, d.cut_levels);
+    for (std::size_t k = 0; k < on.x.size(); ++k) add(on.x[k], on.weight[k], on.normal[k]);
   }
   return p;
 }

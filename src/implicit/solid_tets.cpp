@@ -44,6 +44,8 @@ int TetElements::face_of(const fem::TetFace& f, double tol) const {
   if (all([&](const Vec3& p) { return std::abs(p.z() - body_.z1()) < tol; })) return index("front");
   for (const geometry::Curve& c : body_.section.boundary())
     if (all([&](const Vec3& p) { return c.distance_to(p.head<2>()) < tol; })) return index(c.name);
+  for (const geometry::Sphere& s : body_.spheres)
+    if (all([&](const Vec3& p) { return std::abs(s.distance(p)) < tol; })) return index(s.name);
   return -1;
 }
 

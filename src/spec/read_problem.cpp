@@ -4,6 +4,8 @@
 #include "meshfree/core/input_file.hpp"
 #include "meshfree/spec/analysis_read.hpp"
 #include "meshfree/spec/spec_read.hpp"
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 
 namespace mf::spec {
@@ -56,26 +58,76 @@ Box read_body_box(KeyReader& g) {
   return Box{origin, origin + size};
 }
 
+/// True when some point of the sphere's surface (a 64 x 32 latitude-longitude sample) lies in
+/// the body's interior: the sphere cuts the body.
+bool sphere_cuts(const geometry::Prism& body, const geometry::Sphere& s) {
+  const double pi = 3.14159265358979323846, tol = 1e-9 * body.size();
+  for (int i = 1; i < 32; ++i)
+    for (int j = 0; j < 64; ++j) {
+      const double theta = pi * i / 32.0, phi = 2.0 * pi * j / 64.0;
+      const Vec3 x = s.center + s.radius * Vec3(std::sin(theta) * std::cos(phi),
+                                                std::sin(theta) * std::sin(phi), std::cos(theta));
+      const Vec2 xy = x.head<2>();
+      if (x.z() > body.z0 + tol && x.z() < body.z1() - tol && body.section.contains(xy) &&
+          body.section.distance_to_outline(xy) > tol && body.outside_spheres(x, 1e-9))
+        return true;
+    }
+  return false;
+}
+
+/// geometry.spheres: each a spherical hole {center, radius, name} that cuts the body and meets
+/// no other hole (sphere or cylinder); its name (default sphere<i>) is a face name of its own.
+void read_spheres(std::vector<KeyReader>& list, const geometry::Domain& section, SolidSpec& solid) {
+  for (KeyReader& h : list) {
+    geometry::Sphere s;
+    s.center = read_point(h, "center", 3);
+    s.radius = h.positive("radius");
+    s.name = h.text("name", "sphere" + std::to_string(solid.spheres.size()));
+    check_name(h, "name", s.name, false);
+    h.finish();
+    const geometry::Prism body = solid.body(section);
+    const std::vector<std::string> names = body.face_names();
+    if (std::find(names.begin(), names.end(), s.name) != names.end())
+      h.error("name", "'" + s.name + "' already names a face of the body");
+    for (const geometry::Sphere& o : solid.spheres)
+      if ((o.center - s.center).norm() < o.radius + s.radius)
+        h.error("radius", detail::concat(s.radius, ": the sphere '", s.name,
+                                         "' overlaps the sphere '", o.name, "'"));
+    for (const geometry::Circle& c : section.holes())
+      if ((c.center - s.center.head<2>()).norm() < c.radius + s.radius &&
+          s.center.z() + s.radius > solid.z0 && s.center.z() - s.radius < solid.z0 + solid.depth)
+        h.error("radius", detail::concat(s.radius, ": the sphere '", s.name,
+                                         "' overlaps the cylindrical hole '", c.name, "'"));
+    if (!sphere_cuts(body, s))
+      h.error("center", detail::concat("[", s.center.x(), ", ", s.center.y(), ", ", s.center.z(),
+                                       "]: the sphere '", s.name, "' does not cut the body"));
+    solid.spheres.push_back(s);
+  }
+}
+
 /// geometry of a 3D Galerkin body: a box {origin, size}, or a plane body (rectangle or polygon,
-/// with holes) and `extrude: {z0, depth}`; both are prisms along z (geometry::Prism).
+/// with holes) and `extrude: {z0, depth}`; both are prisms along z (geometry::Prism), minus the
+/// `spheres: [{center, radius, name}]` (read_spheres).
 void read_solid_geometry(KeyReader& g, ProblemSpec& p) {
   SolidSpec& solid = p.part.emplace<SolidSpec>();
+  std::vector<KeyReader> spheres = g.map_list("spheres");
   if (g.has("box")) {
     p.box = read_body_box(g);
     const Point size = p.box->hi - p.box->lo;
     p.domain = geometry::Domain::rectangle(p.box->lo.head<2>(), size.head<2>());
     solid.z0 = p.box->lo.z();
     solid.depth = size.z();
-    return;
+  } else {
+    KeyReader e = g.map("extrude");
+    solid.z0 = e.number("z0", 0.0);
+    solid.depth = e.positive("depth");
+    e.finish();
+    p.domain = read_domain(g);
+    const BoundingBox b = p.domain.bounds();
+    p.box =
+        Box{Point(b.lo.x(), b.lo.y(), solid.z0), Point(b.hi.x(), b.hi.y(), solid.z0 + solid.depth)};
   }
-  KeyReader e = g.map("extrude");
-  solid.z0 = e.number("z0", 0.0);
-  solid.depth = e.positive("depth");
-  e.finish();
-  p.domain = read_domain(g);
-  const BoundingBox b = p.domain.bounds();
-  p.box =
-      Box{Point(b.lo.x(), b.lo.y(), solid.z0), Point(b.hi.x(), b.hi.y(), solid.z0 + solid.depth)};
+  read_spheres(spheres, p.domain, solid);
 }
 
 /// geometry: a 2D body (rectangle or polygon, with holes) or a 3D box {origin, size}.

@@ -8,6 +8,7 @@
 #include "meshfree/spec/spec_read.hpp"
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace mf::spec {
 
@@ -18,13 +19,23 @@ Vec3 vec3(KeyReader& r, const std::string& key) {
   return Vec3(v[0], v[1], v[2]);
 }
 
-/// exact: {solution: linear, u0, gradient} or {solution: thick_cylinder, inner_radius,
-/// outer_radius, pressure}.
+/// exact: {solution: linear, u0, gradient}, {solution: thick_cylinder, inner_radius,
+/// outer_radius, pressure} or {solution: thick_sphere, inner_radius, outer_radius (default
+/// infinite: a cavity in an unbounded body), pressure}.
 std::optional<verification::ExactSolution3D> read_exact_3d(KeyReader& r) {
   auto e = r.optional_map("exact");
   if (!e) return std::nullopt;
   verification::ExactSolution3D out;
-  if (e->choice("solution", {"linear", "thick_cylinder"}, "") == "linear") {
+  const std::string solution =
+      e->choice("solution", {"linear", "thick_cylinder", "thick_sphere"}, "");
+  if (solution == "thick_sphere") {
+    verification::ThickSphere c;
+    c.a = e->positive("inner_radius");
+    c.b = e->positive("outer_radius", std::numeric_limits<double>::infinity());
+    if (!(c.b > c.a)) e->error("outer_radius", "must exceed inner_radius");
+    c.p = e->number("pressure");
+    out = c;
+  } else if (solution == "linear") {
     verification::LinearField3D f;
     f.u0 = vec3(*e, "u0");
     const auto g = e->number_lists("gradient", 3);
@@ -127,7 +138,8 @@ FaceCondition read_face_condition(KeyReader& bc, const geometry::Prism& body, do
 }
 
 /// True when some point of the named faces lies in `box` (the faces sampled: 256 points along
-/// each side piece at each of 17 heights, and a 64 x 64 lattice over the ends).
+/// each side piece at each of 17 heights, a 64 x 64 lattice over the ends, and 65 latitudes of
+/// 128 points over a sphere).
 bool faces_meet_box(const geometry::Prism& body, const std::vector<std::string>& faces,
                     const Box& box) {
   const auto named = [&](const std::string& n) {
@@ -140,6 +152,17 @@ bool faces_meet_box(const geometry::Prism& body, const std::vector<std::string>&
       for (int k = 0; k <= 16; ++k) {
         const Vec2 x = c.point(i / 256.0);
         if (box.contains(Point(x.x(), x.y(), body.z0 + body.depth * k / 16.0), tol)) return true;
+      }
+  }
+  for (const geometry::Sphere& s : body.spheres) {
+    if (!named(s.name)) continue;
+    const double pi = 3.14159265358979323846;
+    for (int i = 0; i <= 64; ++i)
+      for (int j = 0; j < 128; ++j) {
+        const double theta = pi * i / 64.0, phi = pi * j / 64.0;
+        const Vec3 x = s.center + s.radius * Vec3(std::sin(theta) * std::cos(phi),
+                                                  std::sin(theta) * std::sin(phi), std::cos(theta));
+        if (body.contains(x, 1e-9) && box.contains(x, tol)) return true;
       }
   }
   const BoundingBox b = body.section.bounds();
@@ -156,7 +179,7 @@ bool faces_meet_box(const geometry::Prism& body, const std::vector<std::string>&
 }
 
 void read_boundary(KeyReader& r, const ProblemSpec& p, SolidSpec& s) {
-  const geometry::Prism body{p.domain, s.z0, s.depth};
+  const geometry::Prism body = s.body(p.domain);
   const double stiffness = p.elasticity().E / s.discretisation.spacing;
   for (KeyReader& bc : r.map_list("boundary")) {
     s.boundary.push_back(read_face_condition(bc, body, stiffness));
@@ -187,6 +210,11 @@ void read_solid_discretisation(KeyReader& r, const ProblemSpec& p, const std::st
     fail(key, ".fem.element: model solid_3d extrudes q4 (into 8-node bricks) or q8 (into 20-node "
               "bricks), or meshes tet4 or tet10, not t3");
   const bool tets = d.fem.element == "tet4" || d.fem.element == "tet10";
+  if (d.method == Method::Fem && !tets && !s.spheres.empty())
+    fail("geometry.spheres: bricks extrude a plane mesh and cannot follow the sphere '",
+         s.spheres.front().name,
+         "'; give discretisation.fem.element tet4 or tet10, or method "
+         "meshfree");
   if (d.method == Method::Fem && tets && !d.fem.mesh.empty())
     fail(key, ".fem.mesh: ", d.fem.element,
          " elements are meshed by gmsh from the geometry; a "
@@ -228,6 +256,45 @@ SolidLineSpec read_solid_line(KeyReader& l, const geometry::Prism& body,
   return s;
 }
 
+/// One output.faces entry: {name, face | box (flat), spacing (default the discretisation's)},
+/// at least one sample point in the body and at most a million.
+SolidFaceSampleSpec read_face_sample(KeyReader& f, const geometry::Prism& body, double spacing,
+                                     const std::vector<SolidFaceSampleSpec>& earlier) {
+  SolidFaceSampleSpec s;
+  s.name = f.text("name");
+  check_name(f, "name", s.name, false);
+  for (const auto& other : earlier)
+    if (other.name == s.name) f.error("name", "another face sample is named '" + s.name + "'");
+  if (f.has("face") == f.has("box")) f.error("name", "give exactly one of 'face' or 'box'");
+  s.spacing = f.positive("spacing", spacing);
+  if (f.has("face")) {
+    s.face = f.text("face");
+    const std::vector<std::string> known = body.face_names();
+    if (std::find(known.begin(), known.end(), s.face) == known.end()) {
+      std::string list;
+      for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+      f.error("face",
+              "no face is named '" + one_line(s.face) + "' (the body's faces: " + list + ")");
+    }
+  } else {
+    s.box = read_box(f, "box", 3);
+    if ((s.box->hi - s.box->lo).minCoeff() > 1e-12 * body.size())
+      f.error("box", "a face sample's box is flat: give one extent zero (lo and hi equal on one "
+                     "axis)");
+  }
+  if (body.size() / s.spacing > 1000.0)
+    f.error("spacing", detail::concat(s.spacing,
+                                      ": about a million sample points or more (the "
+                                      "body's size is ",
+                                      body.size(), ")"));
+  const std::vector<Vec3> x =
+      s.box ? geometry::plane_sample_points(body, s.box->lo, s.box->hi, s.spacing)
+            : geometry::face_sample_points(body, s.face, s.spacing);
+  if (x.empty()) f.error(s.box ? "box" : "face", "no sample point lies in the body");
+  f.finish();
+  return s;
+}
+
 } // namespace
 
 void parse_solid(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
@@ -241,6 +308,10 @@ void parse_solid(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
     material_error(m, "plasticity", "analysis elastoplastic_static needs a plasticity law");
   if (!plastic && m.plasticity)
     material_error(m, "plasticity", "used only by analysis elastoplastic_static");
+  // the explicit stage's particles fill the body's box: they would fill a spherical hole too
+  if (!p.stage.empty() && !s.spheres.empty())
+    fail("geometry.spheres: a staged run's particles do not leave out spherical holes; run the "
+         "body with spheres as its own elastic_static or elastoplastic_static analysis");
   s.linear_solver = read_linear_solver(r);
   read_solid_discretisation(r, p, base_dir, s);
   s.exact = read_exact_3d(r);
@@ -255,7 +326,7 @@ void parse_solid(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
       out->error("fields_every", "an elastic run writes one frame; fields_every is for "
                                  "analysis elastoplastic_static");
     s.fields_every = out->integer("fields_every", 1, 1, 1000000);
-    const geometry::Prism body{p.domain, s.z0, s.depth};
+    const geometry::Prism body = s.body(p.domain);
     for (std::size_t k = 0; k < s.gauges.size(); ++k)
       if (!body.contains(s.gauges[k].at, 1e-9))
         fail(out->path_of("gauges"), "[", k, "].at: the point (",
@@ -263,6 +334,8 @@ void parse_solid(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
              ") is not in the body");
     for (KeyReader& l : out->map_list("lines"))
       s.lines.push_back(read_solid_line(l, body, s.lines));
+    for (KeyReader& f : out->map_list("faces"))
+      s.faces.push_back(read_face_sample(f, body, s.discretisation.spacing, s.faces));
     out->finish();
   }
   if (plastic) {

@@ -86,6 +86,21 @@ expect_error "discretisation.fem.mesh: tet4 elements are meshed by gmsh from the
 expect_error "discretisation.fem.order: 1 (the centroid) leaves tet10 elements without stiffness" "$T" --set discretisation.method=fem --set discretisation.fem.element=tet10 --set discretisation.fem.order=1
 expect_error "stages[0].discretisation.fem.element: expected one of [t3, q4, q8, tet4, tet10], got 'tet'" "$ROOT/problems/staged_column_blast.yaml" --set stages.0.discretisation.fem.element=tet
 expect_error "discretisation.fem.element: expected one of [t3, q4, q8], got 'tet4'" "$Q" --set discretisation.method=fem --set discretisation.fem.element=tet4
+# Spherical holes in 3D bodies and face samples: a sphere outside the body, one overlapping
+# another hole, a bad radius, a name taken; bricks, which cannot follow a sphere; face samples
+# naming no face, or a box that is not flat or misses the body.
+C="$ROOT/problems/sphere_cavity_3d.yaml"
+expect_error "geometry.spheres[0].center: [5, 5, 5]: the sphere 'cavity' does not cut the body" "$C" --set 'geometry.spheres.0.center=[5, 5, 5]'
+expect_error "geometry.spheres[0].radius: expected a positive number, got 0" "$C" --set geometry.spheres.0.radius=0
+expect_error "geometry.spheres[1].radius: 0.8: the sphere 'other' overlaps the sphere 'cavity'" "$C" --set 'geometry.spheres=[{center: [0, 0, 0], radius: 1, name: cavity}, {center: [1, 1, 1], radius: 0.8, name: other}]'
+expect_error "geometry.spheres[0].radius: 0.5: the sphere 'ball' overlaps the cylindrical hole 'bore'" "$T" --set 'geometry.spheres=[{center: [1.2, 0.5, 0.25], radius: 0.5, name: ball}]'
+expect_error "geometry.spheres[0].name: 'left' already names a face of the body" "$C" --set geometry.spheres.0.name=left
+expect_error "geometry.spheres: bricks extrude a plane mesh and cannot follow the sphere 'cavity'" "$C" --set discretisation.method=fem
+expect_error "output.faces[0].face: no face is named 'roof' (the body's faces: bottom, right, top, left, back, front, cavity)" "$C" --set 'output.faces=[{name: f, face: roof}]'
+expect_error "output.faces[0].box: a face sample's box is flat: give one extent zero" "$C" --set 'output.faces=[{name: f, box: [[0, 0, 0], [1, 1, 1]]}]'
+expect_error "output.faces[0].box: no sample point lies in the body" "$C" --set 'output.faces=[{name: f, box: [[5, 5, 1], [6, 6, 1]]}]'
+expect_error "output.faces[0].name: give exactly one of 'face' or 'box'" "$C" --set 'output.faces=[{name: f}]'
+expect_error "geometry.spheres: unknown key" "$P" --set 'geometry.spheres=[{center: [0, 0, 0], radius: 1}]'
 printf 'name: x\nanalysis: elastic_static\n' > "$WORK/incomplete.yaml"
 expect_error "model: required value is missing" "$WORK/incomplete.yaml"
 B="$ROOT/problems/pd_slab_blast.yaml"

@@ -19,6 +19,7 @@ struct Request {
   // 11 (tet10) of the prism that extrudes it from z = z0 by `depth` along z.
   int element_type = 3;
   double z0 = 0.0, depth = 0.0;
+  std::vector<double> spheres; // cx, cy, cz, r of each spherical hole cut from the prism
 };
 
 struct Result {

@@ -2,11 +2,12 @@
 // Finite-element meshes made from a problem's own geometry with gmsh's C++ API (Geuzaine &
 // Remacle 2009; gmsh reference manual, "Gmsh application programming interface"): the polygon
 // minus its circular holes as an OpenCASCADE surface, or that surface extruded along z into a
-// prism meshed with tetrahedra; refinement boxes as size fields.
+// prism, minus spherical holes, meshed with tetrahedra; refinement boxes as size fields.
 #include "meshfree/fem/mesh.hpp"
 #include "meshfree/fem/tetrahedra.hpp"
 #include "meshfree/geometry/domain.hpp"
 #include "meshfree/geometry/node_generation.hpp"
+#include "meshfree/geometry/prism.hpp"
 #include <vector>
 
 namespace mf::fem {
@@ -22,11 +23,15 @@ namespace mf::fem {
 Mesh mesh_domain(const geometry::Domain& domain, double size,
                  const std::vector<geometry::Refinement>& refinement, ElementType type);
 
-/// Meshes the prism that extrudes the body from z = z0 by `depth` along z with Delaunay
-/// tetrahedra of size `size` (`refinement[i].spacing` inside the i-th box, through the whole
-/// depth): 4-node, or 10-node ones whose mid-edge nodes on the boundary lie on the geometry (on
-/// the cylinder of a hole). Nodes numbered in the order the elements name them, every element
-/// positively oriented. Error with gmsh's reason if gmsh cannot mesh the body.
+/// Meshes the prism (its section extruded from z0 by its depth along z, minus its spheres'
+/// balls: OpenCASCADE's boolean cut) with Delaunay tetrahedra of size `size`
+/// (`refinement[i].spacing` inside the i-th box, through the whole depth): 4-node, or 10-node
+/// ones whose mid-edge nodes on the boundary lie on the geometry (on the cylinder of a hole, on
+/// a sphere). Nodes numbered in the order the elements name them, every element positively
+/// oriented. Error with gmsh's reason if gmsh cannot mesh the body.
+TetMesh mesh_prism(const geometry::Prism& body, double size,
+                   const std::vector<geometry::Refinement>& refinement, bool quadratic);
+/// The prism without spheres: `domain` extruded from z0 by `depth`.
 TetMesh mesh_prism(const geometry::Domain& domain, double z0, double depth, double size,
                    const std::vector<geometry::Refinement>& refinement, bool quadratic);
 

@@ -3,6 +3,7 @@
 // elastic_static or elastoplastic_static): the prism's extent along z, the discretisation,
 // conditions on named faces, the body force, load steps and solver controls. Plain data.
 #include "meshfree/core/types.hpp"
+#include "meshfree/geometry/prism.hpp"
 #include "meshfree/spec/galerkin_spec.hpp"
 #include "meshfree/spec/region_spec.hpp"
 #include "meshfree/verification/exact_solutions_3d.hpp"
@@ -39,12 +40,22 @@ struct SolidLineSpec {
   int points = 0;
 };
 
+/// Points of a named face, or of the body's section by a flat box (one extent zero), about
+/// `spacing` apart (output.faces; geometry::face_sample_points, plane_sample_points).
+struct SolidFaceSampleSpec {
+  std::string name;
+  std::string face;       // a face's name, or empty for
+  std::optional<Box> box; // a flat box
+  double spacing = 0.0;
+};
+
 /// elastic_static or elastoplastic_static with model solid_3d: the front's plane body extruded
 /// from z0 by depth, meshfree nodes (the plane node cloud in layers along z), conditions on
 /// faces, loaded in steps and solved by Newton's method and a linear solver with 3 DOFs a node.
 struct SolidSpec {
   int material_index = 0;
   double z0 = 0.0, depth = 1.0;
+  std::vector<geometry::Sphere> spheres; // spherical holes (geometry.spheres)
   DiscretisationSpec discretisation;
   std::vector<FaceCondition> boundary;
   Vec3 body_force{0.0, 0.0, 0.0}; // force per volume
@@ -52,12 +63,19 @@ struct SolidSpec {
   std::vector<LoadStep> steps;
   NonlinearSpec nonlinear;
   LinearSolverSpec linear_solver;
-  std::vector<GaugeSpec> gauges;    // points whose displacement each increment records
-  std::vector<SolidLineSpec> lines; // sampled at the end (elastic) or each increment
+  std::vector<GaugeSpec> gauges;          // points whose displacement each increment records
+  std::vector<SolidLineSpec> lines;       // sampled at the end (elastic) or each increment
+  std::vector<SolidFaceSampleSpec> faces; // sampled as the lines are
   int fields_every = 1; // field frames every this many converged increments (and the last)
   // Set by a staged run, not read from the file: every increment's nodal parameters are kept
   // (IncrementRecord::parameters), on every rank, so a later stage can evaluate any increment.
   bool record_increment_parameters = false;
+
+  bool samples() const { return !lines.empty() || !faces.empty(); }
+  /// The body: `section` extruded from z0 by depth, minus the spheres.
+  geometry::Prism body(const geometry::Domain& section) const {
+    return geometry::Prism{section, z0, depth, spheres};
+  }
 };
 
 } // namespace mf::spec

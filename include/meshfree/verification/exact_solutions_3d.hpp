@@ -22,7 +22,19 @@ struct ThickCylinder {
   double a = 1.0, b = 2.0, p = 1.0;
 };
 
-using ExactSolution3D = std::variant<LinearField3D, ThickCylinder>;
+/// A hollow sphere about the origin, inner radius a, outer radius b (infinite: a cavity in an
+/// unbounded body), internal pressure p ([Lame 1852]; [Timoshenko & Goodier 1970] sec. 137,
+/// a hollow sphere submitted to uniform internal pressure):
+///   sigma_rr = A (1 - b^3 / r^3),  sigma_tt = sigma_pp = A (1 + b^3 / (2 r^3)),
+///   A = p a^3 / (b^3 - a^3),
+///   u_r = A / E ((1 - 2 nu) r + (1 + nu) b^3 / (2 r^2)),
+/// and for b -> infinity: sigma_rr = -p a^3 / r^3, sigma_tt = p a^3 / (2 r^3),
+/// u_r = p a^3 / (4 G r^2).
+struct ThickSphere {
+  double a = 1.0, b = 2.0, p = 1.0;
+};
+
+using ExactSolution3D = std::variant<LinearField3D, ThickCylinder, ThickSphere>;
 
 Vec3 exact_displacement_3d(const ExactSolution3D& s, const materials::IsotropicElastic& m,
                            const Vec3& x);
