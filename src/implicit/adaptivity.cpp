@@ -2,8 +2,8 @@
 #include "meshfree/core/log.hpp"
 #include "meshfree/core/timer.hpp"
 #include <algorithm>
-#include <cstdio>
 #include <numeric>
+#include <utility>
 
 namespace mf::implicit {
 
@@ -79,6 +79,24 @@ int cloud_size(const spec::ProblemSpec& spec, const std::vector<geometry::Refine
   return static_cast<int>(geometry::generate_nodes(spec.domain, d.spacing, boxes).x.size());
 }
 
+/// One pilot solve on the cloud of `boxes`, logged.
+std::pair<AdaptPass, ErrorEstimate> pilot(spec::ProblemSpec& pass_spec, int pass,
+                                          const std::vector<geometry::Refinement>& boxes,
+                                          const PilotSolve& solve) {
+  const spec::AdaptSpec& a = *pass_spec.galerkin().discretisation.adapt;
+  const auto start = std::chrono::steady_clock::now();
+  pass_spec.galerkin().discretisation.refinement = boxes;
+  ErrorEstimate e = solve(pass_spec);
+  AdaptPass p;
+  p.nodes = static_cast<int>(e.node_eta2.size());
+  p.estimate = e.relative();
+  p.seconds = seconds_since(start);
+  log::info("adapt: pass ", pass + 1, " of at most ", a.passes, ", ", p.nodes,
+            " nodes, estimated error ", p.estimate, " (target ", a.target, "), ",
+            log::duration(p.seconds));
+  return {p, std::move(e)};
+}
+
 } // namespace
 
 Adaptation adapt_nodes(const spec::ProblemSpec& spec, const PilotSolve& solve) {
@@ -87,48 +105,29 @@ Adaptation adapt_nodes(const spec::ProblemSpec& spec, const PilotSolve& solve) {
   Adaptation out;
   out.refinement = d.refinement;
   spec::ProblemSpec pass_spec = spec;
-  for (int pass = 0;; ++pass) {
-    const auto start = std::chrono::steady_clock::now();
-    pass_spec.galerkin().discretisation.refinement = out.refinement;
-    const ErrorEstimate e = solve(pass_spec);
-    AdaptPass p;
-    p.nodes = static_cast<int>(e.node_eta2.size());
-    p.estimate = e.relative();
-    p.seconds = seconds_since(start);
-    out.nodes = p.nodes;
-    log::info("adapt: pass ", pass + 1, " of at most ", a.passes, ", ", p.nodes,
-              " nodes, estimated error ", p.estimate, " (target ", a.target, "), ",
-              log::duration(p.seconds));
+  for (int pass = 0; out.ended.empty(); ++pass) {
+    const auto [p, e] = pilot(pass_spec, pass, out.refinement, solve);
     out.passes.push_back(p);
+    out.nodes = p.nodes;
     if (p.estimate <= a.target) {
       out.ended = "target reached";
-      break;
-    }
-    if (pass + 1 >= a.passes) {
+    } else if (pass + 1 >= a.passes) {
       out.ended = "passes used";
-      break;
+    } else {
+      const std::vector<int> marked = doerfler_marking(e.node_eta2, a.fraction);
+      std::vector<geometry::Refinement> next =
+          refinement_around(geometry::generate_nodes(spec.domain, d.spacing, out.refinement),
+                            marked, d.spacing, out.refinement);
+      const int n = cloud_size(spec, next);
+      if (n > a.max_nodes) {
+        out.ended = "max_nodes reached";
+        log::info("adapt: the next cloud would have ", n, " nodes, more than max_nodes");
+      } else {
+        out.passes.back().marked = static_cast<int>(marked.size());
+        out.refinement = std::move(next);
+        out.nodes = n;
+      }
     }
-    const geometry::NodeCloud cloud =
-        geometry::generate_nodes(spec.domain, d.spacing, out.refinement);
-    const std::vector<int> marked = doerfler_marking(e.node_eta2, a.fraction);
-    std::vector<geometry::Refinement> next =
-        refinement_around(cloud, marked, d.spacing, out.refinement);
-    const int n = cloud_size(spec, next);
-    if (n > a.max_nodes) {
-      out.ended = "max_nodes reached";
-      log::info("adapt: the next cloud would have ", n, " nodes, more than max_nodes");
-      break;
-    }
-    out.passes.back().marked = static_cast<int>(marked.size());
-    out.refinement = std::move(next);
-    {
-      FILE* f = std::fopen("/tmp/boxes.txt", "w");
-      for (auto& b : out.refinement)
-        std::fprintf(f, "%.17g %.17g %.17g %.17g %.17g\n", b.box.lo.x(), b.box.lo.y(), b.box.hi.x(),
-                     b.box.hi.y(), b.spacing);
-      std::fclose(f);
-    }
-    out.nodes = n;
   }
   return out;
 }
