@@ -94,6 +94,12 @@ OMP_NUM_THREADS=2 restart_case staged_pmma staged_pmma_impact 2.5e-5 \
 # An implicit elastoplastic run (cyclic load steps, J2 with hardening) with a checkpoint after
 # every converged increment: the Gauss points' histories, the nodal parameters, the schedule.
 restart_case implicit_cyclic bar_uniaxial_cyclic 1 --set output.checkpoint_every=1
+# An adapted cloud: the restart refines it again by the same pilots (the estimates do not depend
+# on the run's history) and goes on from the checkpoint of the analysis on the last cloud.
+restart_case implicit_adapted cook_membrane 1 --set output.checkpoint_every=1 \
+  --set discretisation.spacing=4 --set discretisation.adapt.target=0.01 \
+  --set discretisation.adapt.passes=3 --set discretisation.adapt.pilot_increments=2 \
+  --set steps.0.increments=8
 # Peridynamics spread over two MPI ranks (blast loads, broken bonds across the ranks' border),
 # SPH over two ranks, and the implicit run over two ranks (its PETSc solves distributed).
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1

@@ -1,6 +1,6 @@
 #pragma once
 // What an adapted run writes of its refinement: results.adaptivity in summary.json, adapt.csv
-// (a row per pilot pass and one for the analysis' own solve) and error_indicator.h5/.xmf (eta_I
+// (a row per pilot pass and one for the analysis' own solve: nodes, estimate, nodes marked) and error_indicator.h5/.xmf (eta_I
 // and the spacing at every node of the last cloud, for ParaView).
 #include "meshfree/implicit/adaptivity.hpp"
 #include "meshfree/io/output.hpp"
