@@ -103,6 +103,31 @@ def variants(problem):
     return [m for m in VARIANTS if m != "meshfree_arcs" or problem in WITH_HOLES]
 
 
+def timed_run(cmd, label):
+    """Runs meshfree; its wall time, or None where it did not run (too coarse a discretisation
+    for a method: a point its supports do not cover), the study going on with the levels that
+    run."""
+    start = time.perf_counter()
+    p = subprocess.run(cmd, capture_output=True, text=True, env=ENV)
+    wall = time.perf_counter() - start
+    if p.returncode != 0:
+        reason = (p.stderr.strip().splitlines() or ["no message"])[-1]
+        print(f"{label}: not run (exit {p.returncode}): {reason}")
+        return None
+    return wall
+
+
+def curve_row(problem, method, level, folder, wall):
+    """The study's row of a run: its DOFs, wall time and force-curve error."""
+    s = json.loads((folder / "summary.json").read_text())
+    c = compare.PROBLEMS[problem]
+    hist = compare.read_csv(str(folder / "history.csv"))
+    xs = [float(h[c["control"][0]]) for h in hist]
+    ys = [float(h[c["responses"][0][1]]) for h in hist]
+    return dict(problem=problem, method=method, level=level, dofs=s["counts"]["dofs"],
+                wall_s=wall, error=force_error(problem, xs, ys))
+
+
 def run_meshfree(binary, problem, method, factor, out):
     spacing, boxes = problem_spacings(problem)
     folder = out / f"{problem}_{method}_{factor}"
@@ -112,22 +137,8 @@ def run_meshfree(binary, problem, method, factor, out):
            "--set", f"discretisation.refinement={refinement}"]
     for s in VARIANTS[method]:
         cmd += ["--set", s]
-    start = time.perf_counter()
-    p = subprocess.run(cmd, capture_output=True, text=True, env=ENV)
-    wall = time.perf_counter() - start
-    if p.returncode != 0:
-        # Too coarse a discretisation for a method (a point its supports do not cover): the
-        # study goes on with the levels that run.
-        reason = (p.stderr.strip().splitlines() or ["no message"])[-1]
-        print(f"{problem} {method} factor {factor}: not run (exit {p.returncode}): {reason}")
-        return None
-    s = json.loads((folder / "summary.json").read_text())
-    c = compare.PROBLEMS[problem]
-    hist = compare.read_csv(str(folder / "history.csv"))
-    xs = [float(h[c["control"][0]]) for h in hist]
-    ys = [float(h[c["responses"][0][1]]) for h in hist]
-    return dict(problem=problem, method=method, level=factor, dofs=s["counts"]["dofs"],
-                wall_s=wall, error=force_error(problem, xs, ys))
+    wall = timed_run(cmd, f"{problem} {method} factor {factor}")
+    return None if wall is None else curve_row(problem, method, factor, folder, wall)
 
 
 def run_adaptive(binary, problem, target, out):
@@ -136,20 +147,8 @@ def run_adaptive(binary, problem, target, out):
     cmd = [str(binary), "run", str(ROOT / "problems" / f"{problem}.yaml"), "--out", str(folder),
            "--set", f"discretisation.spacing={2 * spacing!r}", "--set", "discretisation.refinement=[]",
            "--set", f"discretisation.adapt={{target: {target!r}, passes: 10}}"]
-    start = time.perf_counter()
-    p = subprocess.run(cmd, capture_output=True, text=True, env=ENV)
-    wall = time.perf_counter() - start
-    if p.returncode != 0:
-        reason = (p.stderr.strip().splitlines() or ["no message"])[-1]
-        print(f"{problem} meshfree_adaptive target {target}: not run (exit {p.returncode}): {reason}")
-        return None
-    s = json.loads((folder / "summary.json").read_text())
-    c = compare.PROBLEMS[problem]
-    hist = compare.read_csv(str(folder / "history.csv"))
-    xs = [float(h[c["control"][0]]) for h in hist]
-    ys = [float(h[c["responses"][0][1]]) for h in hist]
-    return dict(problem=problem, method="meshfree_adaptive", level=target,
-                dofs=s["counts"]["dofs"], wall_s=wall, error=force_error(problem, xs, ys))
+    wall = timed_run(cmd, f"{problem} meshfree_adaptive target {target}")
+    return None if wall is None else curve_row(problem, "meshfree_adaptive", target, folder, wall)
 
 
 def run_calculix(recipe, problem, level, work):
