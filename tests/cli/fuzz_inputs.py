@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Mutated problem files against `meshfree check`: every mutant is accepted (exit 0) or refused
-cleanly (exit 2 with one line on stderr, "meshfree: ...", of at most 400 characters), within 20
-seconds, never with a crash, a hang or another exit code.
+cleanly (exit 2 with one line on stderr, "meshfree: ...", of at most 400 characters), within 60
+seconds (check builds the set-up a run builds, and a mutated size that is still valid can make it
+large: tens of millions of bonds), never with a crash, a hang or another exit code.
 
 The mutants are drawn from every problems/*.yaml with a seed that changes every day (the UTC date,
 20261127 on 27 November 2026) unless --seed is given; the seed is printed first, so that a failure
@@ -86,10 +87,10 @@ def status(rc):
 
 def check(meshfree, path, workdir):
     try:
-        p = subprocess.run([meshfree, "check", str(path)], capture_output=True, timeout=20,
+        p = subprocess.run([meshfree, "check", str(path)], capture_output=True, timeout=60,
                            cwd=workdir, env=one_rank_env(workdir))
     except subprocess.TimeoutExpired:
-        return "hung (over 20 s)", b"", b""
+        return "hung (over 60 s)", b"", b""
     err_lines = p.stderr.decode(errors="replace").strip().split("\n") if p.stderr.strip() else []
     # Unit-sanity warnings (a mutated number may be implausible) come before the refusal line.
     err_lines = [l for l in err_lines if not l.startswith("[meshfree] warning: ")]
@@ -144,7 +145,7 @@ def coarser(text, meshfree, path, workdir):
     coarse = SPACING.sub(lambda m: m.group(1) + repr(2 * float(m.group(2))), text)
     path.write_text(coarse)
     try:
-        p = subprocess.run([meshfree, "check", str(path)], capture_output=True, timeout=20,
+        p = subprocess.run([meshfree, "check", str(path)], capture_output=True, timeout=60,
                            cwd=workdir, env=one_rank_env(workdir))
     finally:
         path.unlink(missing_ok=True)

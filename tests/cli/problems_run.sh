@@ -24,9 +24,11 @@ for p in "$ROOT"/problems/*.yaml; do
   fi
   runs=("$name")
   # Every plane implicit problem also runs with finite elements, on a mesh gmsh makes from its
-  # own geometry where it gives no mesh file (3D bodies are meshfree only).
+  # own geometry where it gives no mesh file (3D bodies, and clouds adapted by their error,
+  # are meshfree only).
   grep -qE '^analysis: (elastic_static|elastoplastic_static)' "$p" &&
-    ! grep -qE '^model: \{type: solid_3d' "$p" && runs+=("$name:fem")
+    ! grep -qE '^model: \{type: solid_3d' "$p" && ! grep -qE '^  adapt:' "$p" &&
+    runs+=("$name:fem")
   for run in "${runs[@]}"; do
     out="$WORK/${run/:/_}"
     method=()

@@ -20,9 +20,10 @@ as a ParaView point series (face_<name>.h5/.xmf: the same values, a step per sta
 import csv
 import math
 import os
-import subprocess
 import sys
 import tempfile
+
+from meshfree_run import run_meshfree
 
 MESHFREE, ROOT = sys.argv[1], sys.argv[2]
 failed = False
@@ -35,17 +36,7 @@ def check(ok, text):
 
 
 def run(problem, out, sets=(), ranks=1):
-    cmd = [MESHFREE, "run", os.path.join(ROOT, "problems", problem + ".yaml"), "--out", out]
-    for s in sets:
-        cmd += ["--set", s]
-    env = dict(os.environ)
-    if ranks > 1:
-        cmd = ["mpirun", "-n", str(ranks)] + cmd
-        env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-                   OMPI_MCA_rmaps_base_oversubscribe="1", OMP_NUM_THREADS="1")
-    done = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
-    if done.returncode != 0:
-        sys.exit(f"FAIL: {' '.join(cmd)} exited {done.returncode}:\n{done.stdout[-2000:]}")
+    run_meshfree(MESHFREE, os.path.join(ROOT, "problems", problem + ".yaml"), out, sets, ranks)
 
 
 def table(path):

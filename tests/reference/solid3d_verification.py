@@ -34,12 +34,13 @@ problems/thick_cylinder_3d.yaml):
     solid3d_verification.py MESHFREE ROOT
 """
 import csv
-import json
 import math
 import os
 import subprocess
 import sys
 import tempfile
+
+from meshfree_run import run_meshfree
 
 MESHFREE, ROOT = sys.argv[1], sys.argv[2]
 PROBLEMS = os.path.join(ROOT, "problems")
@@ -47,20 +48,7 @@ failed = False
 
 
 def run(problem, out, sets=(), ranks=1):
-    cmd = [MESHFREE, "run", os.path.join(PROBLEMS, problem + ".yaml"), "--out", out]
-    for s in sets:
-        cmd += ["--set", s]
-    env = dict(os.environ)
-    if ranks > 1:
-        cmd = ["mpirun", "-n", str(ranks)] + cmd
-        # CI machines run as root, which Open MPI refuses unless told twice.
-        env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-                   OMPI_MCA_rmaps_base_oversubscribe="1", OMP_NUM_THREADS="1")
-    done = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
-    if done.returncode != 0:
-        sys.exit(f"FAIL: {' '.join(cmd)} exited {done.returncode}:\n{done.stdout[-2000:]}")
-    with open(os.path.join(out, "summary.json")) as f:
-        return json.load(f)
+    return run_meshfree(MESHFREE, os.path.join(PROBLEMS, problem + ".yaml"), out, sets, ranks)
 
 
 # A radius at 45 degrees at mid-depth, inside the quarter (a line on the symmetry faces samples

@@ -30,12 +30,12 @@ u_r = p a^3 / (4 G r^2), sigma_rr = -p a^3 / r^3, sigma_tt = p a^3 / (2 r^3).
     sphere_cavity_verification.py MESHFREE ROOT [--plastic]
 """
 import csv
-import json
 import math
 import os
-import subprocess
 import sys
 import tempfile
+
+from meshfree_run import run_meshfree
 
 MESHFREE, ROOT = sys.argv[1], sys.argv[2]
 PLASTIC = "--plastic" in sys.argv[3:]
@@ -57,19 +57,7 @@ def check(ok, text):
 
 
 def run(out, sets=(), ranks=1):
-    cmd = [MESHFREE, "run", PROBLEM, "--out", out, "--set", DIAGONAL]
-    for s in sets:
-        cmd += ["--set", s]
-    env = dict(os.environ)
-    if ranks > 1:
-        cmd = ["mpirun", "-n", str(ranks)] + cmd
-        env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-                   OMPI_MCA_rmaps_base_oversubscribe="1", OMP_NUM_THREADS="1")
-    done = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
-    if done.returncode != 0:
-        sys.exit(f"FAIL: {' '.join(cmd)} exited {done.returncode}:\n{done.stdout[-2000:]}")
-    with open(os.path.join(out, "summary.json")) as f:
-        summary = json.load(f)
+    summary = run_meshfree(MESHFREE, PROBLEM, out, [DIAGONAL] + list(sets), ranks)
     with open(os.path.join(out, "line_diagonal.csv")) as f:
         rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
     return summary, rows
