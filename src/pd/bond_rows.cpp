@@ -1,26 +1,18 @@
-// The bond rows of pd/bond_rows.hpp. One row kernel, written once as plain loops, is compiled
-// for each instruction set through GCC's target attribute and reached through one function
-// pointer per call. This file is compiled without contraction (no FMA) and without errno for
-// sqrt (CMakeLists.txt), so that every target computes each bond with the same IEEE operations
-// as the scalar loop.
+// The bond rows of pd/bond_rows.hpp: which instruction set the processor has, the scalar rows
+// (each bond in one pass), and the choice, once per call, between them and the packed rows
+// (pd/bond_rows_packed.cpp).
 #include "meshfree/pd/bond_rows.hpp"
 #include "meshfree/core/error.hpp"
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <cstddef>
 #include <limits>
 
 #if defined(__x86_64__) && defined(__GNUC__)
-#include <immintrin.h>
 #define MF_PD_X86 1
-#define MF_TARGET_AVX2 __attribute__((target("avx2")))
-#define MF_TARGET_AVX512                                                                           \
-  __attribute__((target("avx2,avx512f,avx512vl,avx512bw,avx512dq,avx512cd,prefer-vector-width=512")))
 #else
 #define MF_PD_X86 0
 #endif
-#define MF_ALWAYS_INLINE __attribute__((always_inline)) inline
 
 namespace mf::pd {
 
@@ -64,337 +56,155 @@ void set_simd_target(SimdTarget t) {
 namespace rows {
 namespace {
 
-/// Bonds per block, a multiple of every target's lanes (16 of 32 bits with AVX-512): the
-/// packed pass runs a fixed count, with no scalar remainder.
-constexpr int kBlock = 16;
+constexpr double kNone = -std::numeric_limits<double>::infinity();
 
-/// What the packed pass reads for a block: the bonds' own arrays, past the row's end into the
-/// next rows where they hold a whole block (the extra bonds are computed and not summed), else
-/// a copy of the row's last bonds padded with its last bond. Plastic stretches past the row,
-/// which another thread may be writing, are not read.
-struct BlockInput {
-  const int* partner;
-  const std::uint32_t* cls;
-  const double* plastic;
-};
-
-/// What the packed pass leaves for each bond of a block.
-struct Block {
-  alignas(64) double fi[3][kBlock]; // force density on i, c w_ij g (y_j - y_i)
-  alignas(64) double fj[3][kBlock]; // half layout: its reaction's magnitude on j, c w_ji g (...)
-  alignas(64) double wi[kBlock];    // energy: c w_ij w / 2 (w the bond's energy density)
-  alignas(64) double wj[kBlock];    // half layout: c w_ji w / 2
-  alignas(64) double ej[kBlock];    // half layout: V_j c w_ji w / 2
-  alignas(64) double candidate[kBlock]; // alpha rule: s00 - alpha s
-  alignas(64) double plastic[kBlock];   // micro-plastic: the plastic stretch after the bond
-  alignas(64) int breaks[kBlock];
-  // The block's inputs as columns: partners' positions, class constants, the partners' s0.
-  alignas(64) double yj[3][kBlock];
-  alignas(64) double length[kBlock];
-  alignas(64) double inv_length[kBlock];
-  alignas(64) double cw[kBlock];
-  alignas(64) double cw_partner[kBlock];
-  alignas(64) double s0j[kBlock];
-};
-
-/// The partners' positions and the classes' constants of a block as columns, bond by bond.
-template <bool Alpha>
-MF_ALWAYS_INLINE void columns(const Arrays& a, const BlockInput& in, Block& b) {
-  for (int l = 0; l < kBlock; ++l) {
-    const int j = in.partner[l];
-    const BondClass& c = a.classes[in.cls[l]];
-    for (int d = 0; d < 3; ++d) b.yj[d][l] = a.y[3 * j + d];
-    b.length[l] = c.length, b.inv_length[l] = c.inv_length;
-    b.cw[l] = c.cw, b.cw_partner[l] = c.cw_partner;
-    if constexpr (Alpha) b.s0j[l] = a.s0[j];
-  }
-}
-
-#if MF_PD_X86
-static_assert(offsetof(BondClass, inv_length) == offsetof(BondClass, length) + 8 &&
-                  offsetof(BondClass, cw) == offsetof(BondClass, length) + 16 &&
-                  offsetof(BondClass, cw_partner) == offsetof(BondClass, length) + 24,
-              "the four constants read per bond lie side by side");
-
-/// Four rows of four doubles as four columns.
-MF_TARGET_AVX2 MF_ALWAYS_INLINE void transpose(__m256d r[4]) {
-  const __m256d t0 = _mm256_unpacklo_pd(r[0], r[1]), t1 = _mm256_unpackhi_pd(r[0], r[1]);
-  const __m256d t2 = _mm256_unpacklo_pd(r[2], r[3]), t3 = _mm256_unpackhi_pd(r[2], r[3]);
-  r[0] = _mm256_permute2f128_pd(t0, t2, 0x20), r[1] = _mm256_permute2f128_pd(t1, t3, 0x20);
-  r[2] = _mm256_permute2f128_pd(t0, t2, 0x31), r[3] = _mm256_permute2f128_pd(t1, t3, 0x31);
-}
-
-/// columns() with one load of four doubles per bond for the position (past the last position
-/// the fourth masked off) and one for the class constants, turned into columns four bonds at a
-/// time. The arrays are read into locals once: a vector store might alias any.
-template <bool Alpha> MF_TARGET_AVX2 void columns_avx2(const Arrays& a, const BlockInput& in, Block& b) {
-  const __m256i xyz = _mm256_set_epi64x(0, -1, -1, -1);
-  const double* const y = a.y;
-  const double* const s0 = a.s0;
-  const BondClass* const classes = a.classes;
-  const int* const partner = in.partner;
-  const std::uint32_t* const cls = in.cls;
-  const int last = a.points - 1;
-  for (int l = 0; l < kBlock; l += 4) {
-    __m256d p[4], c[4];
-    for (int q = 0; q < 4; ++q) {
-      const int j = partner[l + q];
-      p[q] = j < last ? _mm256_loadu_pd(y + 3 * j) : _mm256_maskload_pd(y + 3 * j, xyz);
-      c[q] = _mm256_loadu_pd(&classes[cls[l + q]].length);
-      if constexpr (Alpha) b.s0j[l + q] = s0[j];
+/// One bond's scalar force factors. With the stretch s = |y_j - y_i| / |xi| - 1 and the plastic
+/// stretch s_p (Macek & Silling 2007: |s - s_p| <= s_Y, the return is exact), the force density
+/// on i is c w_ij (s - s_p) (y_j - y_i) / |y_j - y_i| (Silling & Askari 2005, eq. 3 and 6;
+/// LAMMPS pair_peri_pmb.cpp, PairPeriPMB::compute, computes dr = r - r0 the same way); the class
+/// holds c w_ij and 1 / |xi|, so that the bond costs a square root and one division.
+template <bool Plastic> struct Bond {
+  double s, e, inv_r; // stretch, elastic stretch s - s_p, 1 / r
+  Bond(const BondClass& c, double r2, double* plastic_stretch) {
+    const double r = std::sqrt(r2);
+    inv_r = r > 0.0 ? 1.0 / r : 0.0;
+    s = (r - c.length) * c.inv_length; // r - |xi| is exact near |xi| (Sterbenz)
+    e = s;
+    if constexpr (Plastic) {
+      double sp = *plastic_stretch;
+      const double elastic = s - sp;
+      if (elastic > c.yield)
+        sp = s - c.yield;
+      else if (elastic < -c.yield)
+        sp = s + c.yield;
+      *plastic_stretch = sp;
+      e = s - sp;
     }
-    transpose(p);
-    transpose(c);
-    for (int d = 0; d < 3; ++d) _mm256_store_pd(b.yj[d] + l, p[d]);
-    _mm256_store_pd(b.length + l, c[0]), _mm256_store_pd(b.inv_length + l, c[1]);
-    _mm256_store_pd(b.cw + l, c[2]), _mm256_store_pd(b.cw_partner + l, c[3]);
   }
-}
-#endif
-
-/// The padded copy of a row's last bonds.
-struct Padded {
-  alignas(64) int partner[kBlock];
-  alignas(64) std::uint32_t cls[kBlock];
-  alignas(64) double plastic[kBlock];
 };
-
-/// The input of the block of bonds k0 .. k0 + len - 1.
-template <bool Plastic>
-MF_ALWAYS_INLINE BlockInput block_input(const Arrays& a, long k0, int len, Padded& pad) {
-  if (len == kBlock || (!Plastic && k0 + kBlock <= a.offset[a.owned]))
-    return {a.partner + k0, a.cls + k0, Plastic ? a.plastic + k0 : nullptr};
-  for (int l = 0; l < kBlock; ++l) {
-    const long k = k0 + std::min(l, len - 1);
-    pad.partner[l] = a.partner[k], pad.cls[l] = a.cls[k];
-    if constexpr (Plastic) pad.plastic[l] = a.plastic[k];
-  }
-  return {pad.partner, pad.cls, pad.plastic};
-}
 
 /// The critical stretch of a bond: the law's, or with the LAMMPS rule min(s0_i, s0_j) of the
-/// previous evaluation (pair_peri_pmb.cpp, PairPeriPMB::compute) where the law breaks. `c`
-/// holds the law's constants.
+/// previous evaluation (pair_peri_pmb.cpp, PairPeriPMB::compute) where the law breaks.
 template <bool Alpha>
-MF_ALWAYS_INLINE double critical(const BondClass& c, double s0_j, double s0_i) {
-  if constexpr (Alpha) { // std::max(std::min(s0_i, s0_j), floor) on values, not references
-    const double floor = c.alpha_floor;
-    const double lower = s0_j < s0_i ? s0_j : s0_i;
-    return lower < floor ? floor : lower;
-  }
+inline double critical(const BondClass& c, const Arrays& a, double s0_i, int j) {
+  if constexpr (Alpha)
+    return std::max(std::min(s0_i, a.s0[j]), c.alpha_floor);
   else
     return c.limit;
 }
 
-/// The packed pass over a block of bonds of the row of the particle at yi.
-/// With the stretch s = |y_j - y_i| / |xi| - 1 and the plastic stretch s_p (Macek & Silling
-/// 2007: |s - s_p| <= s_Y, the return is exact), the force density on i is
-/// c w_ij (s - s_p) (y_j - y_i) / |y_j - y_i| (Silling & Askari 2005, eq. 3 and 6; LAMMPS
-/// pair_peri_pmb.cpp, PairPeriPMB::compute, computes dr = r - r0 the same way); the class holds
-/// c w_ij and 1 / |xi|, so that the bond costs a square root and one division. A broken bond is
-/// computed too (no branch), and left out by the sums.
-/// OneLaw: every class has the law constants of a.law, read once instead of per bond.
-template <bool Half, bool Plastic, bool Alpha, bool Energy, bool OneLaw>
-MF_ALWAYS_INLINE void evaluate(const Arrays& a, const double* yi, double s0_i, const BlockInput& in,
-                               Block& b) {
-  const double x0 = yi[0], x1 = yi[1], x2 = yi[2];
-  const double* const plastic = in.plastic;
-  const double* const volume = a.volume;
-  const int* const partner = in.partner;
-  for (int l = 0; l < kBlock; ++l) {
-    const BondClass& law = OneLaw ? *a.law : a.classes[in.cls[l]];
-    const double dx = b.yj[0][l] - x0, dy = b.yj[1][l] - x1, dz = b.yj[2][l] - x2;
-    const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
-    const double inv_r = r > 0.0 ? 1.0 / r : 0.0;
-    const double s = (r - b.length[l]) * b.inv_length[l]; // r - |xi| exact near |xi| (Sterbenz)
-    double e = s;
-    if constexpr (Plastic) {
-      const double before = plastic[l], elastic = s - before;
-      const double sp = elastic > law.yield    ? s - law.yield
-                        : elastic < -law.yield ? s + law.yield
-                                               : before;
-      b.plastic[l] = sp;
-      e = s - sp;
-    }
-    // Each layout's own order of the products (half: c w (e / r); full: (c w e) / r), which
-    // the scalar loop of that layout has.
-    const double g = e * inv_r;
-    const double gi = Half ? b.cw[l] * g : b.cw[l] * e * inv_r;
-    b.fi[0][l] = gi * dx, b.fi[1][l] = gi * dy, b.fi[2][l] = gi * dz;
-    if constexpr (Half) {
-      const double gj = b.cw_partner[l] * g;
-      b.fj[0][l] = gj * dx, b.fj[1][l] = gj * dy, b.fj[2][l] = gj * dz;
-    }
-    if constexpr (Energy) {
-      // w = c (s - s_p)^2 |xi| / 2 per bond, half of it to each end.
-      const double half_w = 0.25 * e * e * b.length[l];
-      b.wi[l] = b.cw[l] * half_w;
-      if constexpr (Half)
-        b.wj[l] = b.cw_partner[l] * half_w,
-        b.ej[l] = volume[partner[l]] * b.cw_partner[l] * half_w;
-    }
-    // LAMMPS: s0 follows the most compressed intact bond, s00 - alpha s.
-    if constexpr (Alpha) b.candidate[l] = law.s00 - law.alpha * s;
-    b.breaks[l] = s > critical<Alpha>(law, b.s0j[l], s0_i);
-  }
-}
-
-/// Micro-plastic: the plastic stretches of the intact bonds of a block, after it.
-MF_ALWAYS_INLINE void store_plastic(const Arrays& a, long k0, int len, const Block& b) {
-  for (int l = 0; l < len; ++l)
-    if (a.intact[k0 + l]) a.plastic[k0 + l] = b.plastic[l];
-}
-
-/// The running sums of one row.
-struct RowSums {
-  double f[3] = {0.0, 0.0, 0.0};
-  double w = 0.0;
-  double s0 = -std::numeric_limits<double>::infinity();
-};
-
-/// Half layout: the sums of a block in bond order; reactions on owned partners to `out`. The
-/// arrays are read into locals once: a store of a byte (a broken bond) might alias any.
+/// Half layout, scalar: each stored pair once, the reaction to an owned partner.
 template <bool Plastic, bool Alpha, bool Energy>
-MF_ALWAYS_INLINE void add_half(const Arrays& a, long k0, int len, const Block& b, const Output& out,
-                               RowSums& row, Sums& sums) {
-  unsigned char* const intact = a.intact + k0;
-  const int* const partner = a.partner + k0;
-  const int owned = a.owned, base = out.base;
-  double* const f = out.f;
-  double* const w = out.w;
-  double* const s0n = out.s0n;
-  for (int l = 0; l < len; ++l) {
-    if (!intact[l]) continue;
-    for (int d = 0; d < 3; ++d) row.f[d] += b.fi[d][l];
-    const int j = partner[l];
-    const bool j_owned = j < owned;
-    const std::ptrdiff_t jb = j - base;
-    if (j_owned)
-      for (int d = 0; d < 3; ++d) f[3 * jb + d] -= b.fj[d][l];
-    if constexpr (Energy) {
-      row.w += b.wi[l];
-      if (j_owned) {
-        sums.energy += b.ej[l];
-        if (w) w[jb] += b.wj[l];
-      }
-    }
-    if constexpr (Alpha) {
-      row.s0 = std::max(row.s0, b.candidate[l]);
-      if (j_owned) s0n[jb] = std::max(s0n[jb], b.candidate[l]);
-    }
-    if (b.breaks[l]) {
-      intact[l] = 0;
-      sums.broken += j_owned ? 2 : 1;
-    }
-  }
-}
-
-/// Full layout: the sums of a block in bond order.
-template <bool Plastic, bool Alpha, bool Energy>
-MF_ALWAYS_INLINE void add_full(const Arrays& a, long k0, int len, const Block& b, RowSums& row,
-                               Sums& sums) {
-  unsigned char* const intact = a.intact + k0;
-  for (int l = 0; l < len; ++l) {
-    if (!intact[l]) continue;
-    for (int d = 0; d < 3; ++d) row.f[d] += b.fi[d][l];
-    if constexpr (Energy) row.w += b.wi[l];
-    if constexpr (Alpha) row.s0 = std::max(row.s0, b.candidate[l]);
-    if (b.breaks[l]) {
-      intact[l] = 0;
-      ++sums.broken;
-    }
-  }
-}
-
-/// Rows [lo, hi) of either layout, in blocks of kBlock bonds; Packed: the columns made with
-/// AVX2.
-template <bool Packed, bool Half, bool Plastic, bool Alpha, bool Energy>
-MF_ALWAYS_INLINE Sums run_rows(const Arrays& a, int lo, int hi, const Output& out) {
-  Block b;
-  Padded pad;
+Sums half_rows(const Arrays& a, int lo, int hi, const Output& out) {
   Sums sums;
+  double* const f = out.f;
   for (int i = lo; i < hi; ++i) {
+    const double xi = a.y[3 * i], yi = a.y[3 * i + 1], zi = a.y[3 * i + 2];
     const double s0_i = Alpha ? a.s0[i] : 0.0;
-    RowSums row;
-    for (long k0 = a.offset[i]; k0 < a.offset[i + 1]; k0 += kBlock) {
-      const int len = static_cast<int>(std::min<long>(kBlock, a.offset[i + 1] - k0));
-      const BlockInput in = block_input<Plastic>(a, k0, len, pad);
-#if MF_PD_X86
-      if constexpr (Packed)
-        columns_avx2<Alpha>(a, in, b);
-      else
-#endif
-        columns<Alpha>(a, in, b);
-      if (a.law)
-        evaluate<Half, Plastic, Alpha, Energy, true>(a, &a.y[3 * i], s0_i, in, b);
-      else
-        evaluate<Half, Plastic, Alpha, Energy, false>(a, &a.y[3 * i], s0_i, in, b);
-      if constexpr (Plastic) store_plastic(a, k0, len, b);
-      if constexpr (Half)
-        add_half<Plastic, Alpha, Energy>(a, k0, len, b, out, row, sums);
-      else
-        add_full<Plastic, Alpha, Energy>(a, k0, len, b, row, sums);
+    double fx = 0.0, fy = 0.0, fz = 0.0, wi = 0.0, s0_next = kNone;
+    for (long k = a.offset[i]; k < a.offset[i + 1]; ++k) {
+      if (!a.intact[k]) continue;
+      const int j = a.partner[k];
+      const BondClass& c = a.classes[a.cls[k]];
+      const double dx = a.y[3 * j] - xi, dy = a.y[3 * j + 1] - yi, dz = a.y[3 * j + 2] - zi;
+      const Bond<Plastic> bond(c, dx * dx + dy * dy + dz * dz, Plastic ? &a.plastic[k] : nullptr);
+      const double g = bond.e * bond.inv_r;
+      const double gi = c.cw * g, gj = c.cw_partner * g;
+      fx += gi * dx, fy += gi * dy, fz += gi * dz;
+      const bool j_owned = j < a.owned;
+      const std::ptrdiff_t jb = j - out.base;
+      if (j_owned) f[3 * jb] -= gj * dx, f[3 * jb + 1] -= gj * dy, f[3 * jb + 2] -= gj * dz;
+      if constexpr (Energy) {
+        // w = c (s - s_p)^2 |xi| / 2 per bond, half of it to each end.
+        const double half_w = 0.25 * bond.e * bond.e * c.length;
+        wi += c.cw * half_w;
+        if (j_owned) {
+          sums.energy += a.volume[j] * c.cw_partner * half_w;
+          if (out.w) out.w[jb] += c.cw_partner * half_w;
+        }
+      }
+      if constexpr (Alpha) {
+        // LAMMPS: s0 follows the most compressed intact bond, s00 - alpha s.
+        const double candidate = c.s00 - c.alpha * bond.s;
+        s0_next = std::max(s0_next, candidate);
+        if (j_owned) out.s0n[jb] = std::max(out.s0n[jb], candidate);
+      }
+      if (bond.s > critical<Alpha>(c, a, s0_i, j)) {
+        a.intact[k] = 0;
+        sums.broken += j_owned ? 2 : 1;
+      }
     }
     const std::ptrdiff_t ib = i - out.base;
-    if constexpr (Half) {
-      for (int d = 0; d < 3; ++d) out.f[3 * ib + d] += row.f[d];
-      if constexpr (Energy) {
-        sums.energy += a.volume[i] * row.w;
-        if (out.w) out.w[ib] += row.w;
-      }
-      if constexpr (Alpha) out.s0n[ib] = std::max(out.s0n[ib], row.s0);
-    } else {
-      for (int d = 0; d < 3; ++d) out.f[3 * ib + d] = row.f[d];
-      if constexpr (Energy) out.w[ib] = row.w;
-      if constexpr (Alpha) out.s0n[ib] = row.s0;
+    f[3 * ib] += fx, f[3 * ib + 1] += fy, f[3 * ib + 2] += fz;
+    if constexpr (Energy) {
+      sums.energy += a.volume[i] * wi;
+      if (out.w) out.w[ib] += wi;
     }
+    if constexpr (Alpha) out.s0n[ib] = std::max(out.s0n[ib], s0_next);
+  }
+  return sums;
+}
+
+/// Full layout, scalar: each row its own sums, in the order of its partners.
+template <bool Plastic, bool Alpha, bool Energy>
+Sums full_rows(const Arrays& a, int lo, int hi, const Output& out) {
+  Sums sums;
+  for (int i = lo; i < hi; ++i) {
+    const double xi = a.y[3 * i], yi = a.y[3 * i + 1], zi = a.y[3 * i + 2];
+    const double s0_i = Alpha ? a.s0[i] : 0.0;
+    double fx = 0.0, fy = 0.0, fz = 0.0, wi = 0.0, s0_next = kNone;
+    for (long k = a.offset[i]; k < a.offset[i + 1]; ++k) {
+      if (!a.intact[k]) continue;
+      const int j = a.partner[k];
+      const BondClass& c = a.classes[a.cls[k]];
+      const double dx = a.y[3 * j] - xi, dy = a.y[3 * j + 1] - yi, dz = a.y[3 * j + 2] - zi;
+      const Bond<Plastic> bond(c, dx * dx + dy * dy + dz * dz, Plastic ? &a.plastic[k] : nullptr);
+      const double gi = c.cw * bond.e * bond.inv_r;
+      fx += gi * dx, fy += gi * dy, fz += gi * dz;
+      if constexpr (Energy) wi += c.cw * (0.25 * bond.e * bond.e * c.length);
+      if constexpr (Alpha) s0_next = std::max(s0_next, c.s00 - c.alpha * bond.s);
+      if (bond.s > critical<Alpha>(c, a, s0_i, j)) {
+        a.intact[k] = 0;
+        ++sums.broken;
+      }
+    }
+    out.f[3 * i] = fx, out.f[3 * i + 1] = fy, out.f[3 * i + 2] = fz;
+    if constexpr (Energy) out.w[i] = wi;
+    if constexpr (Alpha) out.s0n[i] = s0_next;
   }
   return sums;
 }
 
 using RowsFn = Sums (*)(const Arrays&, int, int, const Output&);
 
-template <bool H, bool P, bool A, bool E>
-Sums rows_baseline(const Arrays& a, int lo, int hi, const Output& out) {
-  return run_rows<false, H, P, A, E>(a, lo, hi, out);
-}
-#if MF_PD_X86
-template <bool H, bool P, bool A, bool E>
-MF_TARGET_AVX2 Sums rows_avx2(const Arrays& a, int lo, int hi, const Output& out) {
-  return run_rows<true, H, P, A, E>(a, lo, hi, out);
-}
-template <bool H, bool P, bool A, bool E>
-MF_TARGET_AVX512 Sums rows_avx512(const Arrays& a, int lo, int hi, const Output& out) {
-  return run_rows<true, H, P, A, E>(a, lo, hi, out);
-}
-#endif
-
-template <bool H, bool P, bool A, bool E> RowsFn of_target(SimdTarget t) {
-#if MF_PD_X86
-  if (t == SimdTarget::Avx512) return &rows_avx512<H, P, A, E>;
-  if (t == SimdTarget::Avx2) return &rows_avx2<H, P, A, E>;
-#endif
-  return &rows_baseline<H, P, A, E>;
+template <bool H, bool P, bool A, bool E> RowsFn scalar_rows() {
+  return H ? &half_rows<P, A, E> : &full_rows<P, A, E>;
 }
 
-template <bool H, bool P, bool A> RowsFn of_energy(Terms terms, SimdTarget t) {
-  return terms.energy ? of_target<H, P, A, true>(t) : of_target<H, P, A, false>(t);
+template <bool H, bool P, bool A> RowsFn of_energy(Terms terms) {
+  return terms.energy ? scalar_rows<H, P, A, true>() : scalar_rows<H, P, A, false>();
 }
 
-template <bool H> RowsFn of_terms(Terms terms, SimdTarget t) {
+template <bool H> RowsFn of_terms(Terms terms) {
   if (terms.plastic)
-    return terms.alpha ? of_energy<H, true, true>(terms, t) : of_energy<H, true, false>(terms, t);
-  return terms.alpha ? of_energy<H, false, true>(terms, t) : of_energy<H, false, false>(terms, t);
+    return terms.alpha ? of_energy<H, true, true>(terms) : of_energy<H, true, false>(terms);
+  return terms.alpha ? of_energy<H, false, true>(terms) : of_energy<H, false, false>(terms);
 }
 
 } // namespace
 
 Sums half(const Arrays& a, Terms terms, SimdTarget target, int lo, int hi, const Output& out) {
-  return of_terms<true>(terms, target)(a, lo, hi, out);
+#if MF_PD_X86
+  if (target != SimdTarget::Baseline) return packed(a, terms, true, target, lo, hi, out);
+#endif
+  return of_terms<true>(terms)(a, lo, hi, out);
 }
 
 Sums full(const Arrays& a, Terms terms, SimdTarget target, int lo, int hi, const Output& out) {
-  return of_terms<false>(terms, target)(a, lo, hi, out);
+#if MF_PD_X86
+  if (target != SimdTarget::Baseline) return packed(a, terms, false, target, lo, hi, out);
+#endif
+  return of_terms<false>(terms)(a, lo, hi, out);
 }
 
 } // namespace rows

@@ -1,10 +1,9 @@
 #pragma once
 // The rows of the bond-force loop (pd/forces.hpp): what a thread runs over its range of rows,
-// compiled once per instruction set (SimdTarget) and chosen once per call. Each row is taken in
-// blocks of bonds: first every bond's stretch, force factors and breaking test in packed
-// arithmetic (the partners' positions and the classes' constants loaded lane by lane), then the
-// sums over the block in bond order, so that every target gives the scalar loop's numbers bit
-// for bit.
+// for an instruction set (SimdTarget) chosen once per call: scalar rows, each bond in one pass
+// (bond_rows.cpp), or packed rows (AVX2, AVX-512: bond_rows_packed.cpp), each row in blocks of
+// bonds whose stretches and force factors are computed several lanes at a time and then summed
+// in bond order. Both give the same numbers bit for bit.
 #include "meshfree/pd/model.hpp"
 #include <cstdint>
 #include <vector>
@@ -65,6 +64,10 @@ struct Sums {
 Sums half(const Arrays& a, Terms terms, SimdTarget target, int lo, int hi, const Output& out);
 /// Full layout, rows [lo, hi): each row its own sums, written to `out` (base 0).
 Sums full(const Arrays& a, Terms terms, SimdTarget target, int lo, int hi, const Output& out);
+
+/// The packed rows of either layout for the AVX2 or AVX-512 target (x86-64 only).
+Sums packed(const Arrays& a, Terms terms, bool half, SimdTarget target, int lo, int hi,
+            const Output& out);
 
 } // namespace rows
 } // namespace mf::pd
