@@ -176,6 +176,7 @@ ForceReport bond_forces(const Model& m, BondState& s, const std::vector<double>&
                              : full_loop(a, terms, target, force.data(), density, s0_trial);
   if (alpha) {
     // A particle with no intact bond keeps its s0; ghosts get theirs from their owners.
+#pragma omp parallel for schedule(static)
     for (int i = 0; i < n; ++i)
       if (s.s0.trial[i] == kNone) s.s0.trial[i] = s.s0.committed[i];
     s.s0.commit();
