@@ -17,7 +17,9 @@ enum class SimdTarget { Baseline, Avx2, Avx512 };
 const char* simd_target_name(SimdTarget t);
 /// The targets this processor runs, narrowest first (the baseline always).
 std::vector<SimdTarget> simd_targets();
-/// The target bond_forces uses: the widest this processor runs, unless set.
+/// The target bond_forces uses unless set: AVX2 where the processor has it, else the baseline.
+SimdTarget preferred_simd_target();
+/// The target bond_forces uses.
 SimdTarget simd_target();
 /// Makes bond_forces use `t` (one this processor runs; for comparisons and timings).
 void set_simd_target(SimdTarget t);
