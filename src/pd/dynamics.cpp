@@ -58,7 +58,9 @@ StepReport accelerate(Model& m, BondState& s, const Loading& loading, const Inte
   m.halo.exchange(q.u, 3); // the ghosts' positions, as their owners moved them
   const int n = q.owned_count();
   std::vector<double> y(q.X.size());
-  for (std::size_t k = 0; k < y.size(); ++k) y[k] = q.X[k] + q.u[k];
+  const std::ptrdiff_t size = static_cast<std::ptrdiff_t>(y.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t k = 0; k < size; ++k) y[k] = q.X[k] + q.u[k];
   std::vector<double> f;
   std::vector<unsigned char> intact_before;
   if (x.fracture) intact_before = s.intact;
@@ -124,6 +126,7 @@ StepReport advance(Model& m, BondState& s, const Loading& loading, const Interac
     if (imp.law == Impactor::Law::Kinematic) kinematic_contact(q, imp, dt, m.halo.ranks());
   }
   std::vector<double> du(size);
+#pragma omp parallel for schedule(static)
   for (std::size_t k = 0; k < size; ++k) du[k] = q.u[k] - u_old[k];
   // Work of the body loads over the step: the trapezoidal rule on b . du.
   const double work =

@@ -5,8 +5,9 @@
 // direction (Silling & Askari 2005, eq. 3 discretised). The loop is chosen once per call by the
 // bond layout (BondLayout: each pair once with Newton's third law and per-thread buffers, or full
 // rows summed in global-id order) and by the kind of law (elastic or micro-plastic, with or
-// without the LAMMPS alpha rule, with or without energies): no per-bond law lookup, no virtual
-// call; the per-bond constants come from the bond's class.
+// without the LAMMPS alpha rule, with or without energies) and the instruction set
+// (pd/bond_rows.hpp: scalar, AVX2 or AVX-512 rows, the same numbers bit for bit): no per-bond
+// law lookup, no virtual call; the per-bond constants come from the bond's class.
 #include "meshfree/pd/model.hpp"
 #include <vector>
 

@@ -31,13 +31,14 @@ enum class VolumeCorrection { None, Linear, Exact };
 /// class index. Classes are deduplicated by exact equality of (law, length, weight,
 /// weight_partner); the folded constants follow from those and the law (fold_laws).
 struct BondClass {
+  // The four the force loop reads for every bond first, side by side (pd/bond_rows.cpp).
+  double length = 0.0;               // |xi|
+  double inv_length = 0.0;           // 1 / |xi|
+  double cw = 0.0, cw_partner = 0.0; // folded from the law: c w_ij, c w_ji
   int law = 0;
-  double length = 0.0;         // |xi|
-  double inv_length = 0.0;     // 1 / |xi|
   double weight = 0.0;         // w_ij = V_j times the volume and surface corrections
   double weight_partner = 0.0; // w_ji = V_i times the same corrections
   // Folded from the law:
-  double cw = 0.0, cw_partner = 0.0; // c w_ij, c w_ji
   double limit = 0.0;                // critical stretch; +inf where the law never breaks
   double alpha_floor = 0.0;          // LAMMPS rule: the limit is max(min(s0_i, s0_j), alpha_floor)
   double s00 = 0.0;                  // LAMMPS rule: s0 candidate s00 - alpha s

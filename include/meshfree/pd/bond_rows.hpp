@@ -1,0 +1,75 @@
+#pragma once
+// The rows of the bond-force loop (pd/forces.hpp): what a thread runs over its range of rows,
+// for an instruction set (SimdTarget) chosen once per call: scalar rows, each bond in one pass
+// (bond_rows.cpp), or packed rows (AVX2, AVX-512: bond_rows_packed.cpp), each row in blocks of
+// bonds whose stretches and force factors are computed several lanes at a time and then summed
+// in bond order. Both give the same numbers bit for bit.
+#include "meshfree/pd/model.hpp"
+#include <cstdint>
+#include <vector>
+
+namespace mf::pd {
+
+/// The instruction sets the bond loop is compiled for: x86-64's baseline (SSE2, two lanes), AVX2
+/// (four) and AVX-512 (eight; x86-64-v4). Other processors have the baseline only.
+enum class SimdTarget { Baseline, Avx2, Avx512 };
+
+const char* simd_target_name(SimdTarget t);
+/// The targets this processor runs, narrowest first (the baseline always).
+std::vector<SimdTarget> simd_targets();
+/// The target bond_forces uses unless set: AVX2 where the processor has it, else the baseline.
+SimdTarget preferred_simd_target();
+/// The target bond_forces uses.
+SimdTarget simd_target();
+/// Makes bond_forces use `t` (one this processor runs; for comparisons and timings).
+void set_simd_target(SimdTarget t);
+
+namespace rows {
+
+/// What the loops read and write, as raw arrays.
+struct Arrays {
+  const double* y;
+  const long* offset;
+  const int* partner;
+  const std::uint32_t* cls;
+  const BondClass* classes;
+  unsigned char* intact;
+  double* plastic;
+  const double* s0; // committed s0 of the LAMMPS rule
+  const double* volume;
+  int owned;
+  int points;           // positions in y (owned and ghosts)
+  const BondClass* law; // the law constants of every class where they are all equal, else null
+};
+
+/// Where rows write force, energy density and trial s0, element 0 at row `base` (the half
+/// layout's threads past the first write buffers of their own from their first row on).
+struct Output {
+  double* f;
+  double* w;
+  double* s0n;
+  int base;
+};
+
+/// Which law terms the bonds have: micro-plastic, the LAMMPS alpha rule, energies asked for.
+struct Terms {
+  bool plastic = false, alpha = false, energy = false;
+};
+
+struct Sums {
+  long broken = 0;     // directed bonds broken
+  double energy = 0.0; // sum of V W over the rows' particles (half layout only)
+};
+
+/// Half layout, rows [lo, hi): each stored pair once, the reaction on an owned partner added to
+/// `out` (Newton's third law). Adds to `out`.
+Sums half(const Arrays& a, Terms terms, SimdTarget target, int lo, int hi, const Output& out);
+/// Full layout, rows [lo, hi): each row its own sums, written to `out` (base 0).
+Sums full(const Arrays& a, Terms terms, SimdTarget target, int lo, int hi, const Output& out);
+
+/// The packed rows of either layout for the AVX2 or AVX-512 target (x86-64 only).
+Sums packed(const Arrays& a, Terms terms, bool half, SimdTarget target, int lo, int hi,
+            const Output& out);
+
+} // namespace rows
+} // namespace mf::pd
