@@ -74,11 +74,6 @@ spec::ProblemSpec pilot_spec(const spec::ProblemSpec& spec) {
 
 namespace {
 
-int cloud_size(const spec::ProblemSpec& spec, const std::vector<geometry::Refinement>& boxes) {
-  const spec::DiscretisationSpec& d = spec.galerkin().discretisation;
-  return static_cast<int>(geometry::generate_nodes(spec.domain, d.spacing, boxes).x.size());
-}
-
 /// One pilot solve on the cloud of `boxes`, logged.
 std::pair<AdaptPass, ErrorEstimate> pilot(spec::ProblemSpec& pass_spec, int pass,
                                           const std::vector<geometry::Refinement>& boxes,
@@ -104,6 +99,9 @@ Adaptation adapt_nodes(const spec::ProblemSpec& spec, const PilotSolve& solve) {
   const spec::AdaptSpec& a = *d.adapt;
   Adaptation out;
   out.refinement = d.refinement;
+  // The cloud of out.refinement, as the pilot's model has it (nominal spacings): the nodes
+  // marked are its indices.
+  geometry::NodeCloud cloud = geometry::generate_nodes(spec.domain, d.spacing, out.refinement);
   spec::ProblemSpec pass_spec = spec;
   for (int pass = 0; out.ended.empty(); ++pass) {
     const auto [p, e] = pilot(pass_spec, pass, out.refinement, solve);
@@ -116,15 +114,16 @@ Adaptation adapt_nodes(const spec::ProblemSpec& spec, const PilotSolve& solve) {
     } else {
       const std::vector<int> marked = doerfler_marking(e.node_eta2, a.fraction);
       std::vector<geometry::Refinement> next =
-          refinement_around(geometry::generate_nodes(spec.domain, d.spacing, out.refinement),
-                            marked, d.spacing, out.refinement);
-      const int n = cloud_size(spec, next);
+          refinement_around(cloud, marked, d.spacing, out.refinement);
+      geometry::NodeCloud finer = geometry::generate_nodes(spec.domain, d.spacing, next);
+      const int n = static_cast<int>(finer.x.size());
       if (n > a.max_nodes) {
         out.ended = "max_nodes reached";
         log::info("adapt: the next cloud would have ", n, " nodes, more than max_nodes");
       } else {
         out.passes.back().marked = static_cast<int>(marked.size());
         out.refinement = std::move(next);
+        cloud = std::move(finer);
         out.nodes = n;
       }
     }

@@ -18,9 +18,12 @@ namespace mf::pd {
 
 const char* simd_target_name(SimdTarget t) {
   switch (t) {
-  case SimdTarget::Avx2: return "avx2";
-  case SimdTarget::Avx512: return "avx512";
-  default: return "baseline";
+  case SimdTarget::Avx2:
+    return "avx2";
+  case SimdTarget::Avx512:
+    return "avx512";
+  default:
+    return "baseline";
   }
 }
 
@@ -45,7 +48,7 @@ namespace {
 SimdTarget preferred() {
   const std::vector<SimdTarget> t = simd_targets();
   return std::find(t.begin(), t.end(), SimdTarget::Avx2) != t.end() ? SimdTarget::Avx2
-                                                                     : SimdTarget::Baseline;
+                                                                    : SimdTarget::Baseline;
 }
 
 std::atomic<int>& chosen() {
@@ -55,9 +58,13 @@ std::atomic<int>& chosen() {
 
 } // namespace
 
-SimdTarget preferred_simd_target() { return preferred(); }
+SimdTarget preferred_simd_target() {
+  return preferred();
+}
 
-SimdTarget simd_target() { return static_cast<SimdTarget>(chosen().load()); }
+SimdTarget simd_target() {
+  return static_cast<SimdTarget>(chosen().load());
+}
 
 void set_simd_target(SimdTarget t) {
   const std::vector<SimdTarget> ok = simd_targets();
@@ -96,6 +103,21 @@ template <bool Plastic> struct Bond {
   }
 };
 
+/// Bond k of a row whose particle is at (xi, yi, zi), towards partner j: y_j - y_i and the
+/// bond's force factors, as both scalar layouts take them.
+template <bool Plastic> struct Stretched {
+  double dx, dy, dz;
+  Bond<Plastic> bond;
+};
+
+template <bool Plastic>
+inline Stretched<Plastic> stretched(const Arrays& a, const BondClass& c, long k, int j, double xi,
+                                    double yi, double zi) {
+  const double dx = a.y[3 * j] - xi, dy = a.y[3 * j + 1] - yi, dz = a.y[3 * j + 2] - zi;
+  return {dx, dy, dz,
+          Bond<Plastic>(c, dx * dx + dy * dy + dz * dz, Plastic ? &a.plastic[k] : nullptr)};
+}
+
 /// The critical stretch of a bond: the law's, or with the LAMMPS rule min(s0_i, s0_j) of the
 /// previous evaluation (pair_peri_pmb.cpp, PairPeriPMB::compute) where the law breaks.
 template <bool Alpha>
@@ -119,8 +141,7 @@ Sums half_rows(const Arrays& a, int lo, int hi, const Output& out) {
       if (!a.intact[k]) continue;
       const int j = a.partner[k];
       const BondClass& c = a.classes[a.cls[k]];
-      const double dx = a.y[3 * j] - xi, dy = a.y[3 * j + 1] - yi, dz = a.y[3 * j + 2] - zi;
-      const Bond<Plastic> bond(c, dx * dx + dy * dy + dz * dz, Plastic ? &a.plastic[k] : nullptr);
+      const auto [dx, dy, dz, bond] = stretched<Plastic>(a, c, k, j, xi, yi, zi);
       const double g = bond.e * bond.inv_r;
       const double gi = c.cw * g, gj = c.cw_partner * g;
       fx += gi * dx, fy += gi * dy, fz += gi * dz;
@@ -170,8 +191,7 @@ Sums full_rows(const Arrays& a, int lo, int hi, const Output& out) {
       if (!a.intact[k]) continue;
       const int j = a.partner[k];
       const BondClass& c = a.classes[a.cls[k]];
-      const double dx = a.y[3 * j] - xi, dy = a.y[3 * j + 1] - yi, dz = a.y[3 * j + 2] - zi;
-      const Bond<Plastic> bond(c, dx * dx + dy * dy + dz * dz, Plastic ? &a.plastic[k] : nullptr);
+      const auto [dx, dy, dz, bond] = stretched<Plastic>(a, c, k, j, xi, yi, zi);
       const double gi = c.cw * bond.e * bond.inv_r;
       fx += gi * dx, fy += gi * dy, fz += gi * dz;
       if constexpr (Energy) wi += c.cw * (0.25 * bond.e * bond.e * c.length);

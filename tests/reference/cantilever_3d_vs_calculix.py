@@ -16,9 +16,10 @@ import argparse
 import csv
 import math
 import os
-import subprocess
 import sys
 import tempfile
+
+from meshfree_run import calculix_3d_curve, run_meshfree
 
 parser = argparse.ArgumentParser()
 parser.add_argument("meshfree")
@@ -29,25 +30,16 @@ parser.add_argument("--within", type=float, default=0.015)
 parser.add_argument("--rate", type=float, default=1.0)
 parser.add_argument("--set", action="append", default=[])
 args = parser.parse_args()
-with open(os.path.join(args.root, "reference", "calculix_3d", "cantilever_plastic",
-                       "curve.csv")) as f:
-    reference = list(csv.DictReader(f))
 n = args.increments
-if not 1 <= n < len(reference):
-    sys.exit(f"--increments: 1 to {len(reference) - 1}, got {n}")
+reference = calculix_3d_curve(args.root, "cantilever_plastic", n)
 
 
 def largest_difference(work, spacing):
     out = os.path.join(work, f"cantilever_{spacing}")
     v = float(reference[n]["v"])
-    cmd = [args.meshfree, "run", os.path.join(args.root, "problems", "cantilever_plastic_3d.yaml"),
-           "--out", out, "--set", f"steps.0.load_factor={v!r}", "--set",
-           f"steps.0.increments={n}", "--set", f"discretisation.spacing={spacing!r}"]
-    for extra in args.set:
-        cmd += ["--set", extra]
-    done = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    if done.returncode != 0:
-        sys.exit(f"FAIL: {' '.join(cmd)} exited {done.returncode}:\n{done.stdout[-2000:]}")
+    run_meshfree(args.meshfree, os.path.join(args.root, "problems", "cantilever_plastic_3d.yaml"),
+                 out, [f"steps.0.load_factor={v!r}", f"steps.0.increments={n}",
+                       f"discretisation.spacing={spacing!r}"] + args.set)
     with open(os.path.join(out, "history.csv")) as f:
         rows = list(csv.DictReader(f))
     if len(rows) != n + 1:

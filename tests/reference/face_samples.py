@@ -23,16 +23,10 @@ import os
 import sys
 import tempfile
 
-from meshfree_run import run_meshfree
+from meshfree_run import Checks, run_meshfree
 
 MESHFREE, ROOT = sys.argv[1], sys.argv[2]
-failed = False
-
-
-def check(ok, text):
-    global failed
-    failed |= not ok
-    print(f"{'ok' if ok else 'FAIL'}: {text}")
+check = Checks()
 
 
 def run(problem, out, sets=(), ranks=1):
@@ -164,4 +158,4 @@ with tempfile.TemporaryDirectory() as work:
     check_block(work)
     check_cavity(work)
     check_cavity_tet10(work)
-sys.exit(1 if failed else 0)
+sys.exit(1 if check.failed else 0)

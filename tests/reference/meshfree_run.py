@@ -21,3 +21,25 @@ def run_meshfree(meshfree, problem_file, out, sets=(), ranks=1):
         sys.exit(f"FAIL: {' '.join(cmd)} exited {done.returncode}:\n{done.stdout[-2000:]}")
     with open(os.path.join(out, "summary.json")) as f:
         return json.load(f)
+
+
+class Checks:
+    """A script's checks: each printed as ok or FAIL, and whether any failed, for its exit."""
+
+    def __init__(self):
+        self.failed = False
+
+    def __call__(self, ok, text):
+        self.failed |= not ok
+        print(f"{'ok' if ok else 'FAIL'}: {text}", flush=True)
+
+
+def calculix_3d_curve(root, name, increments):
+    """The rows of reference/calculix_3d/NAME/curve.csv (row 0 the unloaded state), the script
+    stopping where it has fewer than `increments` past it."""
+    import csv
+    with open(os.path.join(root, "reference", "calculix_3d", name, "curve.csv")) as f:
+        reference = list(csv.DictReader(f))
+    if not 1 <= increments < len(reference):
+        sys.exit(f"--increments: 1 to {len(reference) - 1}, got {increments}")
+    return reference

@@ -40,11 +40,10 @@ import subprocess
 import sys
 import tempfile
 
-from meshfree_run import run_meshfree
+from meshfree_run import Checks, run_meshfree
 
 MESHFREE, ROOT = sys.argv[1], sys.argv[2]
 PROBLEMS = os.path.join(ROOT, "problems")
-failed = False
 
 
 def run(problem, out, sets=(), ranks=1):
@@ -79,10 +78,7 @@ def radial_line_error(out):
     return worst
 
 
-def check(ok, text):
-    global failed
-    failed |= not ok
-    print(f"{'ok' if ok else 'FAIL'}: {text}")
+check = Checks()
 
 
 def nodal_displacement(out):
@@ -284,4 +280,4 @@ with tempfile.TemporaryDirectory() as work:
     check_plastic_ranks(work)
     diff = abs(nodal_displacement(os.path.join(work, "cyl_2")) - direct).max() / abs(direct).max()
     check(two["mpi_ranks"] == 2 and diff <= 1e-8, f"2 MPI ranks equal 1 to {diff:.1e} (<= 1e-8)")
-sys.exit(1 if failed else 0)
+sys.exit(1 if check.failed else 0)

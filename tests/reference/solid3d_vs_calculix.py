@@ -18,9 +18,10 @@ two threads).
 import argparse
 import csv
 import os
-import subprocess
 import sys
 import tempfile
+
+from meshfree_run import calculix_3d_curve, run_meshfree
 
 parser = argparse.ArgumentParser()
 parser.add_argument("meshfree")
@@ -29,22 +30,13 @@ parser.add_argument("--increments", type=int, default=20)
 parser.add_argument("--through-thickness", type=float, default=None)
 parser.add_argument("--set", action="append", default=[])
 args = parser.parse_args()
-with open(os.path.join(args.root, "reference", "calculix_3d", "thick_perforated_plate",
-                       "curve.csv")) as f:
-    reference = list(csv.DictReader(f))
 n = args.increments
-if not 1 <= n < len(reference):
-    sys.exit(f"--increments: 1 to {len(reference) - 1}, got {n}")
+reference = calculix_3d_curve(args.root, "thick_perforated_plate", n)
 with tempfile.TemporaryDirectory() as work:
     out = os.path.join(work, "plate")
     pull = float(reference[n]["v"])
-    cmd = [args.meshfree, "run", os.path.join(args.root, "problems", "thick_perforated_plate.yaml"),
-           "--out", out, "--set", f"steps.0.load_factor={pull!r}", "--set", f"steps.0.increments={n}"]
-    for extra in args.set:
-        cmd += ["--set", extra]
-    done = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    if done.returncode != 0:
-        sys.exit(f"FAIL: {' '.join(cmd)} exited {done.returncode}:\n{done.stdout[-2000:]}")
+    run_meshfree(args.meshfree, os.path.join(args.root, "problems", "thick_perforated_plate.yaml"),
+                 out, [f"steps.0.load_factor={pull!r}", f"steps.0.increments={n}"] + args.set)
     with open(os.path.join(out, "history.csv")) as f:
         rows = list(csv.DictReader(f))
 worst = worst_3d = 0.0

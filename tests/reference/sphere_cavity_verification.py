@@ -35,7 +35,7 @@ import os
 import sys
 import tempfile
 
-from meshfree_run import run_meshfree
+from meshfree_run import Checks, run_meshfree
 
 MESHFREE, ROOT = sys.argv[1], sys.argv[2]
 PLASTIC = "--plastic" in sys.argv[3:]
@@ -47,13 +47,7 @@ D = 1.0 / math.sqrt(3.0)
 # the diagonal from the cavity's wall (r = 1) to r = 2.4, inside the cube
 DIAGONAL = ("output.lines=[{name: diagonal, from: [%r, %r, %r], to: [%r, %r, %r], points: %d}]"
             % (D, D, D, 2.4 * D, 2.4 * D, 2.4 * D, 15 if PLASTIC else 8))
-failed = False
-
-
-def check(ok, text):
-    global failed
-    failed |= not ok
-    print(f"{'ok' if ok else 'FAIL'}: {text}")
+check = Checks()
 
 
 def run(out, sets=(), ranks=1):
@@ -174,4 +168,4 @@ with tempfile.TemporaryDirectory() as work:
         one = check_meshfree(work)
         check_ranks(work, one)
         check_tet10(work)
-sys.exit(1 if failed else 0)
+sys.exit(1 if check.failed else 0)

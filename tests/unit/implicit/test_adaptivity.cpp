@@ -154,3 +154,38 @@ TEST_CASE("graded supports: a column left between two boxes no longer leaves poi
     CHECK((first - points[r]).norm() < 1e-11);
   }
 }
+
+TEST_CASE("the refinement stops where the user bounds it: a pass count, a node count; a spacing "
+          "that does not divide the body refines as one that does",
+          "[adaptivity]") {
+  const auto& session = test_session();
+  const auto adapt = [&](const std::vector<std::string>& o) {
+    return implicit::adapt_nodes(load_problem("plate_hole_kirsch", o),
+                                 [&](const spec::ProblemSpec& s) {
+                                   return implicit::solve_elastic_static(s, session).estimate;
+                                 });
+  };
+  const std::string from = "discretisation.spacing=0.5",
+                    target = "discretisation.adapt.target=0.015";
+  SECTION("one pass: the cloud as it is") {
+    const implicit::Adaptation a = adapt({from, target, "discretisation.adapt.passes=1"});
+    CHECK(a.ended == "passes used");
+    CHECK(a.passes.size() == 1);
+    CHECK(a.refinement.empty());
+    CHECK(a.nodes == a.passes.front().nodes);
+  }
+  SECTION("max_nodes: the last refinement within it is kept") {
+    const implicit::Adaptation a = adapt({from, target, "discretisation.adapt.max_nodes=400"});
+    CHECK(a.ended == "max_nodes reached");
+    CHECK(a.nodes <= 400);
+    CHECK(a.passes.back().estimate > 0.015);
+    CHECK(a.passes.back().marked == 0);
+  }
+  SECTION("h = 0.45 (5 / 0.45 = 11.1 intervals): the target reached") {
+    const implicit::Adaptation a =
+        adapt({"discretisation.spacing=0.45", target, "discretisation.adapt.passes=8"});
+    CHECK(a.ended == "target reached");
+    CHECK(a.passes.back().estimate <= 0.015);
+    CHECK(a.nodes < 1000);
+  }
+}
