@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Regenerate the CalculiX finite-element references for six elastoplastic
+"""Regenerate the CalculiX finite-element references for seven elastoplastic
 plane-stress problems (load-displacement curves, elastic limits).
 
 Run from the repository root:
@@ -8,7 +8,8 @@ Run from the repository root:
     /usr/bin/python3 scripts/fe_reference/make_calculix_plastic_reference.py --quick
 
 Full run: all mesh levels and checks, writes reference/calculix_plastic/
-(about 40 min on 2 cores, cook_membrane 10 min of it; --quick under 1 min).
+(about 46 min on 2 cores, cook_membrane 10 min and cook_membrane_force 6 min
+of it; --quick under 1 min).
 --quick: remakes only the coarsest level of every problem in a temporary
 folder and compares it with the committed curve_level0.csv files; prints
 "quick check: max relative difference ..." and exits 1 if any value differs
@@ -42,6 +43,9 @@ cook_membrane            Cook's membrane, the quadrilateral (0,0), (48,44),
                          (48,60), (0,44), material of beam_voce_bending;
                          left edge x = 0 clamped, right edge x = 48 uy = v,
                          v to 2 mm.
+cook_membrane_force      the same panel, its right edge loaded by a uniform
+                         shear traction of resultant F (consistent nodal
+                         forces, *CLOAD), F to 3000 N.
 
 Method (details and results: reference/calculix_plastic/README.md)
 ------
@@ -494,6 +498,28 @@ def _on(v, w):
     return abs(v - w) < 1e-9
 
 
+COOK_FORCE = 3000.0    # N per unit thickness: the end shear of cook_membrane_force
+
+
+def edge_force_loads(mesh, pred, total, thickness):
+    """{node id: force} of a uniform traction whose resultant over the edges selected by pred is
+    `total` per unit thickness: each quadratic edge's share (its length over the whole) goes
+    1/6, 1/6, 2/3 to its corners and midside, the consistent loads of a uniform traction on a
+    straight 3-node edge [Zienkiewicz, Taylor & Zhu 2013]; times the slab thickness."""
+    edges = []
+    for e, fnum in mesh.faces_where(pred):
+        conn = mesh.elems[e - 1]
+        a, b, m = conn[fnum - 1], conn[fnum % 4], conn[4 + fnum - 1]
+        edges.append((a, b, m, float(np.hypot(*(mesh.xy[a - 1] - mesh.xy[b - 1])))))
+    length = sum(e[3] for e in edges)
+    loads = {}
+    for a, b, m, le in edges:
+        share = total * thickness * le / length
+        for nid, part in ((a, 1 / 6), (b, 1 / 6), (m, 2 / 3)):
+            loads[nid] = loads.get(nid, 0.0) + share * part
+    return loads
+
+
 PROBLEMS = [
     dict(name="plate_plastic_thesis", units="N, mm, MPa", E=200000.0, nu=0.1, sig_y=310.0,
          hardening=("perfect",), min_dim=1.0, mesh=mesh_plate_thesis, levels=[20, 40, 80],
@@ -547,6 +573,19 @@ PROBLEMS = [
          monitors=[("ux_48_60", (48.0, 60.0), 0), ("ux_48_44", (48.0, 44.0), 0),
                    ("uy_24_52", (24.0, 52.0), 1)],
          report_yielded_area=True, ortho_check_finest=True),
+    # The classic form of Cook's membrane: the free end loaded by a uniform shear traction of
+    # resultant F, driven to F = 3000 N, where the tangent stiffness of the tip has fallen to a
+    # tenth of its elastic value (the knee of the displacement-driven curve).
+    dict(name="cook_membrane_force", units="N, mm, MPa", E=206900.0, nu=0.29, sig_y=450.0,
+         hardening=("voce", 450.0, 715.0, 16.93, 129.24), alpha_max=10.0, min_dim=16.0,
+         mesh=mesh_cook, levels=[6, 12, 24, 48],
+         fixed=[("CLAMP", lambda x, y: _on(x, 0.0), (1, 2))],
+         load=dict(kind="edge_force", faces=lambda x, y: _on(x, 48.0), dof=2,
+                   steps=[(COOK_FORCE, 30)]),
+         force=("force_clamp", "CLAMP"), load_col="F",
+         monitors=[("uy_48_60", (48.0, 60.0), 1), ("ux_48_60", (48.0, 60.0), 0),
+                   ("uy_48_44", (48.0, 44.0), 1)],
+         report_yielded_area=True),
 ]
 
 
@@ -625,7 +664,7 @@ def write_deck(path, prob, mesh, mode="plastic", thickness=None, inc_factor=1):
         if load["kind"] == "displacement":
             f.write("*NSET, NSET=DRIVE\n")
             write_list(f, mesh.nodes_where(load["nodes"]))
-        else:
+        elif load["kind"] == "traction":
             faces = mesh.faces_where(load["faces"])
             for fnum in sorted({fc for _e, fc in faces}):
                 f.write("*ELSET, ELSET=LOADF%d\n" % fnum)
@@ -668,6 +707,11 @@ def write_deck(path, prob, mesh, mode="plastic", thickness=None, inc_factor=1):
             if load["kind"] == "displacement":
                 f.write("*BOUNDARY\nDRIVE, %d, %d, %r\n"
                         % (load["dof"], load["dof"], load["sign"] * value))
+            elif load["kind"] == "edge_force":
+                f.write("** uniform shear traction of resultant %r per unit thickness, as "
+                        "consistent nodal forces on the slab\n*CLOAD\n" % value)
+                for nid, fn in sorted(edge_force_loads(mesh, load["faces"], value, t).items()):
+                    f.write("%d, %d, %.12e\n" % (nid, load["dof"], fn))   # ccx reads 20 characters
             else:
                 f.write("** uniform traction %r in the outward normal direction = "
                         "negative pressure\n*DLOAD\n" % value)

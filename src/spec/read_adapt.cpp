@@ -6,27 +6,36 @@ namespace mf::spec {
 
 std::optional<AdaptSpec> read_adapt(KeyReader& d, int dim, const DiscretisationSpec& s,
                                     const LinearSolverSpec& solver) {
-  auto a = d.optional_map("adapt");
-  if (!a) return std::nullopt;
+  if (!d.has("adapt")) return std::nullopt;
+  // `adapt: off` runs the file's own cloud, so that a file that adapts can be run uniform, or by
+  // finite elements, with --set discretisation.adapt=off; `adapt: on` takes every default.
+  const YAML::Node given = d.raw("adapt");
+  const std::string word = given.IsScalar() ? given.Scalar() : "";
+  if (word == "off" || word == "false") return std::nullopt;
+  const bool defaults = word == "on" || word == "true";
+  if (given.IsScalar() && !defaults)
+    d.error("adapt", "expected on, off or a map of keys, got " + one_line(word));
   if (dim != 2)
     d.error("adapt", "error-driven refinement is made for plane bodies, not for this model");
   if (s.method != Method::Meshfree)
     d.error("adapt", "error-driven refinement places meshfree nodes: it needs method: meshfree");
   AdaptSpec r;
-  r.target = a->positive("target", r.target);
+  if (defaults) return r;
+  KeyReader a = d.map("adapt");
+  r.target = a.positive("target", r.target);
   if (r.target >= 1.0)
-    a->error("target",
+    a.error("target",
              "is a relative error: expected a value below 1, got " + std::to_string(r.target));
-  r.fraction = a->positive("fraction", r.fraction);
+  r.fraction = a.positive("fraction", r.fraction);
   if (r.fraction > 1.0)
-    a->error("fraction", "is a share of the estimated error: expected (0, 1], got " +
+    a.error("fraction", "is a share of the estimated error: expected (0, 1], got " +
                              std::to_string(r.fraction));
-  r.passes = a->integer("passes", r.passes, 1, 20);
-  r.max_nodes = a->positive("max_nodes", r.max_nodes);
-  require_memory(a->path_of("max_nodes"), "nodes of the refined cloud", r.max_nodes,
+  r.passes = a.integer("passes", r.passes, 1, 20);
+  r.max_nodes = a.positive("max_nodes", r.max_nodes);
+  require_memory(a.path_of("max_nodes"), "nodes of the refined cloud", r.max_nodes,
                  bytes_per_node(solver, r.max_nodes));
-  r.pilot_increments = a->integer("pilot_increments", r.pilot_increments, 1, 1000000);
-  a->finish();
+  r.pilot_increments = a.integer("pilot_increments", r.pilot_increments, 1, 1000000);
+  a.finish();
   return r;
 }
 

@@ -174,6 +174,7 @@ expect_error "discretisation.adapt.fraction: is a share of the estimated error: 
 expect_error "discretisation.adapt.passes: expected an integer from 1 to 20, got 0" "$P" --set discretisation.adapt.passes=0
 expect_error "discretisation.adapt.max_nodes: nodes of the refined cloud: about" "$P" --set discretisation.adapt.max_nodes=1e12
 expect_error "discretisation.adapt.pace: unknown key" "$P" --set discretisation.adapt.pace=1
+expect_error "discretisation.adapt: expected on, off or a map of keys, got 3" "$P" --set discretisation.adapt=3
 expect_error "discretisation.adapt: error-driven refinement places meshfree nodes: it needs method: meshfree" "$P" --set discretisation.method=fem --set discretisation.adapt.target=0.1
 expect_error "discretisation.adapt: error-driven refinement is made for plane bodies, not for this model" "$ROOT/problems/block_uniaxial_3d.yaml" --set discretisation.adapt.target=0.1
 expect_error "stages[0].discretisation.adapt: a stage's cloud is not adapted" "$ROOT/problems/staged_strip_blast.yaml" --set stages.0.discretisation.adapt.target=0.1

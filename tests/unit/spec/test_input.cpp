@@ -152,3 +152,33 @@ TEST_CASE("a Voce law that softens is refused unless the file says it means it",
   root["materials"][0]["plasticity"]["hardening"]["softening"] = "true";
   CHECK_NOTHROW(spec::parse_problem(root));
 }
+
+TEST_CASE("discretisation.adapt as a switch: off runs the file's cloud, on every default",
+          "[input]") {
+  auto adapt_of = [](const std::string& assignment) {
+    YAML::Node root = YAML::Load(kGood);
+    spec::apply_override(root, assignment);
+    return spec::parse_problem(root).galerkin().discretisation.adapt;
+  };
+  for (const char* off : {"discretisation.adapt=off", "discretisation.adapt=false"})
+    CHECK_FALSE(adapt_of(off).has_value());
+  const spec::AdaptSpec defaults;
+  for (const char* on : {"discretisation.adapt=on", "discretisation.adapt=true"}) {
+    const auto a = adapt_of(on);
+    REQUIRE(a.has_value());
+    CHECK(a->target == defaults.target);
+    CHECK(a->passes == defaults.passes);
+  }
+  CHECK(adapt_of("discretisation.adapt={target: 0.05}")->target == 0.05);
+  CHECK(error_of("discretisation.adapt=sometimes") ==
+        "discretisation.adapt: expected on, off or a map of keys, got sometimes");
+  // Off is allowed where adaptation is not: a finite-element run of a file that adapts.
+  YAML::Node root = YAML::Load(kGood);
+  spec::apply_override(root, "discretisation.method=fem");
+  spec::apply_override(root, "discretisation.adapt=off");
+  CHECK_NOTHROW(spec::parse_problem(root));
+  spec::apply_override(root, "discretisation.adapt=on");
+  CHECK_THROWS_WITH(spec::parse_problem(root),
+                    Catch::StartsWith("discretisation.adapt: error-driven refinement places "
+                                      "meshfree nodes"));
+}
