@@ -25,11 +25,11 @@ std::optional<AdaptSpec> read_adapt(KeyReader& d, int dim, const DiscretisationS
   r.target = a.positive("target", r.target);
   if (r.target >= 1.0)
     a.error("target",
-             "is a relative error: expected a value below 1, got " + std::to_string(r.target));
+            "is a relative error: expected a value below 1, got " + std::to_string(r.target));
   r.fraction = a.positive("fraction", r.fraction);
   if (r.fraction > 1.0)
     a.error("fraction", "is a share of the estimated error: expected (0, 1], got " +
-                             std::to_string(r.fraction));
+                            std::to_string(r.fraction));
   r.passes = a.integer("passes", r.passes, 1, 20);
   r.max_nodes = a.positive("max_nodes", r.max_nodes);
   require_memory(a.path_of("max_nodes"), "nodes of the refined cloud", r.max_nodes,
