@@ -1,7 +1,27 @@
 #include "meshfree/implicit/adaptivity_output.hpp"
 #include <cmath>
+#include <sstream>
 
 namespace mf::implicit {
+
+namespace {
+/// The last cloud's boxes as a YAML flow list that `discretisation.refinement` takes: a
+/// finite-element run given them (--set "discretisation.refinement=$(cat FILE)") meshes the
+/// body graded by the same estimate. The nodes follow them too, but the adapted cloud's graded
+/// supports (geometry::grade_spacing) come only with `adapt`.
+std::string refinement_yaml(const std::vector<geometry::Refinement>& boxes) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "# discretisation.refinement of the adapted cloud, the problem's own boxes first\n[";
+  for (std::size_t k = 0; k < boxes.size(); ++k) {
+    const geometry::Refinement& r = boxes[k];
+    s << (k ? ",\n " : "") << "{box: [[" << r.box.lo.x() << ", " << r.box.lo.y() << "], ["
+      << r.box.hi.x() << ", " << r.box.hi.y() << "]], spacing: " << r.spacing << "}";
+  }
+  s << "]\n";
+  return s.str();
+}
+} // namespace
 
 io::Json adaptation_json(const spec::ProblemSpec& spec, const Adaptation& a,
                          const ErrorEstimate& final_estimate) {
@@ -39,6 +59,7 @@ void write_adaptation(const spec::ProblemSpec& spec, const Adaptation& a,
   rows.push_back({static_cast<double>(a.passes.size() + 1), 0.0, static_cast<double>(a.nodes),
                   2.0 * a.nodes, final_estimate.relative(), 0.0});
   out.write_csv("adapt.csv", {"pass", "pilot", "nodes", "dofs", "estimate", "marked"}, rows);
+  out.write_text("adapted_refinement.yaml", refinement_yaml(a.refinement));
 
   const spec::DiscretisationSpec& d = spec.galerkin().discretisation;
   const geometry::NodeCloud cloud = geometry::generate_nodes(spec.domain, d.spacing, d.refinement);

@@ -25,13 +25,20 @@ for p in "$ROOT"/problems/*.yaml; do
   runs=("$name")
   # Every plane implicit problem also runs with finite elements, on a mesh gmsh makes from its
   # own geometry where it gives no mesh file (3D bodies are meshfree only; a file that adapts
-  # its cloud runs its uniform spacing).
+  # its cloud gives the finite elements the adapted cloud's boxes as gmsh's size field).
   grep -qE '^analysis: (elastic_static|elastoplastic_static)' "$p" &&
     ! grep -qE '^model: \{type: solid_3d' "$p" && runs+=("$name:fem")
   for run in "${runs[@]}"; do
     out="$WORK/${run/:/_}"
     method=()
     [ "$run" != "$name" ] && method=(--set discretisation.method=fem --set discretisation.adapt=off)
+    boxes="$WORK/$name/adapted_refinement.yaml"
+    if [ "$run" != "$name" ] && [ -f "$boxes" ]; then
+      want="$(sed -n 's/.*"refinement_boxes": \([0-9]*\).*/\1/p' "$WORK/$name/summary.json")"
+      [ "$(grep -c '{box:' "$boxes")" = "$want" ] ||
+        { echo "FAIL: $name: adapted_refinement.yaml does not hold its $want boxes"; exit 1; }
+      method+=(--set "discretisation.refinement=$(cat "$boxes")")
+    fi
     "$MF" run "$p" --out "$out" "${extra[@]}" "${method[@]}" > "$out.log" ||
       { tail -5 "$out.log"; echo "FAIL: $run exited with an error"; exit 1; }
     for f in summary.json history.csv fields.h5 fields.xmf; do

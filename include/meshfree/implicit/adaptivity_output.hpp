@@ -12,7 +12,8 @@ namespace mf::implicit {
 io::Json adaptation_json(const spec::ProblemSpec& spec, const Adaptation& a,
                          const ErrorEstimate& final_estimate);
 
-/// adapt.csv and the error_indicator series (rank 0).
+/// adapt.csv, adapted_refinement.yaml (the last cloud's boxes) and the error_indicator series
+/// (rank 0).
 void write_adaptation(const spec::ProblemSpec& spec, const Adaptation& a,
                       const ErrorEstimate& final_estimate, io::OutputDirectory& out);
 
