@@ -5,8 +5,9 @@ cut cells at holes), the in-code Q8
 elements (on gmsh meshes of the geometry) and CalculiX (CPS8, the reference recipe's meshes) need to come within 1% and 0.1% of the converged CalculiX
 load-displacement curve, on the perforated strip and Cook's membrane.
 
-Adaptive meshfree (discretisation.adapt, the recovery estimate and Doerfler marking) starts from
-twice the problem's spacing and runs to a sequence of targets of the estimated error instead;
+Adaptive meshfree (discretisation.adapt, the recovery estimate and Doerfler marking; on 3 x 3
+points, and with the correction on 2 x 2) starts from twice the problem's spacing and runs to a
+sequence of targets of the estimated error instead;
 its wall time includes its pilot solves. Q8 is run adapted too, for fairness: on a gmsh mesh
 whose size field is each adapted cloud's refinement boxes (its adapted_refinement.yaml), so that
 the same estimate grades both; its wall time does not include the meshfree pilots.
@@ -95,7 +96,8 @@ def problem_spacings(problem):
 # variationally consistent correction on 2 x 2 points, meshfree with the cells a hole cuts
 # integrated on their exact region (problems with holes only), and Q8.
 VARIANTS = {
-    "meshfree": ["discretisation.method=meshfree"],
+    "meshfree": ["discretisation.method=meshfree", "discretisation.quadrature.order=3",
+                 "discretisation.quadrature.correction=none"],
     "meshfree_vci": ["discretisation.method=meshfree", "discretisation.quadrature.order=2",
                      "discretisation.quadrature.correction=vci"],
     "meshfree_arcs": ["discretisation.method=meshfree",
@@ -149,14 +151,22 @@ def run_meshfree(binary, problem, method, factor, out):
     return None if wall is None else curve_row(problem, method, factor, folder, wall)
 
 
-def run_adaptive(binary, problem, target, out):
+def run_adaptive(binary, problem, target, out, base="meshfree"):
+    """Adaptive meshfree on the quadrature of the variant `base` (meshfree or meshfree_vci)."""
     spacing, _ = problem_spacings(problem)
-    folder = out / f"{problem}_meshfree_adaptive_{target}"
+    method = base + "_adaptive"
+    folder = out / f"{problem}_{method}_{target}"
     cmd = [str(binary), "run", str(ROOT / "problems" / f"{problem}.yaml"), "--out", str(folder),
            "--set", f"discretisation.spacing={2 * spacing!r}", "--set", "discretisation.refinement=[]",
            "--set", f"discretisation.adapt={{target: {target!r}, passes: 10}}"]
-    wall = timed_run(cmd, f"{problem} meshfree_adaptive target {target}")
-    return None if wall is None else curve_row(problem, "meshfree_adaptive", target, folder, wall)
+    for s in VARIANTS[base]:
+        cmd += ["--set", s]
+    wall = timed_run(cmd, f"{problem} {method} target {target}")
+    return None if wall is None else curve_row(problem, method, target, folder, wall)
+
+
+def run_vci_adaptive(binary, problem, target, out):
+    return run_adaptive(binary, problem, target, out, base="meshfree_vci")
 
 
 def run_fem_adapted(binary, problem, target, out):
@@ -232,7 +242,7 @@ def main():
                             rows.append(row)
                             print(row, flush=True)
                 if k < len(ADAPT_TARGETS):
-                    for run_one in (run_adaptive, run_fem_adapted):
+                    for run_one in (run_adaptive, run_vci_adaptive, run_fem_adapted):
                         row = run_one(args.meshfree, problem, ADAPT_TARGETS[k], out)
                         if row:
                             rows.append(row)
@@ -250,7 +260,8 @@ def main():
     for problem in args.problems:
         for target in TARGETS:
             got = {m: reach([r for r in rows if r["problem"] == problem and r["method"] == m], target)
-                   for m in variants(problem) + ["meshfree_adaptive", "fem_adapted", "calculix"]}
+                   for m in variants(problem) + ["meshfree_adaptive", "meshfree_vci_adaptive",
+                                                 "fem_adapted", "calculix"]}
             ccx = got["calculix"]
             for method, g in got.items():
                 entry = dict(problem=problem, target=target, method=method)
@@ -261,7 +272,7 @@ def main():
                     entry.update(dofs=round(g[0]), wall_s=round(g[1], 3),
                                  ratio_to_calculix=round(ratio, 3) if ccx else "", note=g[2])
                 summary.append(entry)
-                print(f"  {problem:16s} {target:6.0e} {method:13s}: "
+                print(f"  {problem:19s} {target:6.0e} {method:21s}: "
                       + ("not reached over the runs" if g is None else
                          f"{g[2]} {g[0]:.0f} DOFs, {g[1]:.2f} s"
                          + (f", x{g[1] / ccx[1]:.2f} CalculiX's time" if ccx else "")))
