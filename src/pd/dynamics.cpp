@@ -1,4 +1,5 @@
 #include "meshfree/pd/dynamics.hpp"
+#include <algorithm>
 #include <cmath>
 
 namespace mf::pd {
@@ -48,20 +49,51 @@ void Loading::keep_velocities(particles::ParticleSet& q, double t) const {
     }
 }
 
-StepReport accelerate(Model& m, BondState& s, const Loading& loading, bool with_energy) {
-  return accelerate(m, s, loading, Interactions{}, with_energy);
+namespace {
+
+/// The arrays a step works in, kept from one step to the next so that a step neither allocates
+/// nor zeroes them.
+struct StepArrays {
+  std::vector<double> y, u_old, du, f;
+};
+
+StepArrays& step_arrays() {
+  thread_local StepArrays w;
+  return w;
 }
 
-StepReport accelerate(Model& m, BondState& s, const Loading& loading, const Interactions& x,
-                      bool with_energy) {
-  particles::ParticleSet& q = m.particles;
-  m.halo.exchange(q.u, 3); // the ghosts' positions, as their owners moved them
-  const int n = q.owned_count();
-  std::vector<double> y(q.X.size());
-  const std::ptrdiff_t size = static_cast<std::ptrdiff_t>(y.size());
+/// y = X + u over the components [lo, hi) (no parallel region when there are none).
+void positions(const particles::ParticleSet& q, std::size_t lo, std::size_t hi,
+               std::vector<double>& y) {
+  if (lo >= hi) return;
+  const std::ptrdiff_t first = static_cast<std::ptrdiff_t>(lo), end = static_cast<std::ptrdiff_t>(hi);
 #pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t k = 0; k < size; ++k) y[k] = q.X[k] + q.u[k];
-  std::vector<double> f;
+  for (std::ptrdiff_t k = first; k < end; ++k) y[k] = q.X[k] + q.u[k];
+}
+
+/// The velocity components the constraints fix, in the order Loading::for_each_fixed visits them.
+std::vector<double> fixed_velocities(const Loading& loading, const particles::ParticleSet& q) {
+  std::vector<double> v;
+  loading.for_each_fixed(q.time, [&](std::size_t k, const Constraint&, double) { v.push_back(q.v[k]); });
+  return v;
+}
+
+/// The second half kick of a velocity-Verlet step, v += h a with h = dt / 2, when `on`.
+struct Kick {
+  bool on = false;
+  double h = 0.0;
+};
+
+/// The forces at the positions y (owned particles and ghosts, ghosts' displacements exchanged)
+/// and the accelerations they give; with a kick, the velocities take it in the same pass (one
+/// parallel loop instead of two: each loop costs the wake-up of the sleeping threads). A
+/// constrained component has zero acceleration, so its velocity is v + h 0, as a kick after the
+/// accelerations gives it.
+StepReport forces(Model& m, BondState& s, const Loading& loading, const Interactions& x,
+                  bool with_energy, const std::vector<double>& y, Kick kick) {
+  particles::ParticleSet& q = m.particles;
+  const int n = q.owned_count();
+  std::vector<double>& f = step_arrays().f;
   std::vector<unsigned char> intact_before;
   if (x.fracture) intact_before = s.intact;
   const ForceReport fr = bond_forces(m, s, y, f, with_energy);
@@ -75,10 +107,21 @@ StepReport accelerate(Model& m, BondState& s, const Loading& loading, const Inte
         penalty_contact(q, y, imp, f, m.halo.ranks());
         contact_energy += imp.contact_energy;
       }
+  const std::vector<double> held = kick.on ? fixed_velocities(loading, q) : std::vector<double>{};
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i)
-    for (int d = 0; d < 3; ++d) q.a[3 * i + d] = f[3 * i + d] / q.density[i];
+    for (int d = 0; d < 3; ++d) {
+      const std::size_t k = 3 * static_cast<std::size_t>(i) + d;
+      q.a[k] = f[k] / q.density[i];
+      if (kick.on) q.v[k] += kick.h * q.a[k];
+    }
   loading.impose(q, q.time, 0.0, nullptr);
+  if (kick.on) {
+    std::size_t e = 0;
+    loading.for_each_fixed(q.time, [&](std::size_t k, const Constraint&, double) {
+      q.v[k] = held[e++] + kick.h * q.a[k];
+    });
+  }
   const distribution::Ranks& ranks = m.halo.ranks();
   StepReport r;
   r.broken = ranks.sum(fr.broken);
@@ -87,6 +130,22 @@ StepReport accelerate(Model& m, BondState& s, const Loading& loading, const Inte
   if (r.broken > 0 && x.fracture)
     r.fracture_energy = ranks.sum(x.fracture->broken(m, s, intact_before, y));
   return r;
+}
+
+} // namespace
+
+StepReport accelerate(Model& m, BondState& s, const Loading& loading, bool with_energy) {
+  return accelerate(m, s, loading, Interactions{}, with_energy);
+}
+
+StepReport accelerate(Model& m, BondState& s, const Loading& loading, const Interactions& x,
+                      bool with_energy) {
+  particles::ParticleSet& q = m.particles;
+  m.halo.exchange(q.u, 3); // the ghosts' positions, as their owners moved them
+  std::vector<double>& y = step_arrays().y;
+  y.resize(q.X.size());
+  positions(q, 0, y.size(), y);
+  return forces(m, s, loading, x, with_energy, y, Kick{});
 }
 
 StepReport advance(Model& m, BondState& s, const Loading& loading, std::vector<Impactor>& impactors,
@@ -102,13 +161,21 @@ StepReport advance(Model& m, BondState& s, const Loading& loading, const Interac
   std::vector<Impactor> none;
   std::vector<Impactor>& impactors = x.impactors ? *x.impactors : none;
   const std::size_t size = 3 * static_cast<std::size_t>(q.owned_count());
-  std::vector<double> u_old = q.u;
-  // Half kick and drift.
+  StepArrays& w = step_arrays();
+  w.u_old.resize(q.u.size());
+  w.y.resize(q.X.size());
+  std::vector<double>& u_old = w.u_old;
+  std::vector<double>& y = w.y;
+  // Half kick and drift, and the positions they give (those of components that a constraint, a
+  // kinematic impactor or the halo moves next are refreshed below).
 #pragma omp parallel for schedule(static)
   for (std::size_t k = 0; k < size; ++k) {
+    u_old[k] = q.u[k];
     q.v[k] += 0.5 * dt * q.a[k];
     q.u[k] += dt * q.v[k];
+    y[k] = q.X[k] + q.u[k];
   }
+  std::copy(q.u.begin() + size, q.u.end(), u_old.begin() + size);
   const double t_old = q.time;
   q.time += dt;
   ++q.step;
@@ -116,6 +183,7 @@ StepReport advance(Model& m, BondState& s, const Loading& loading, const Interac
   // Impactors: a free penalty impactor takes its half kick from the last contact force; each
   // moving one drifts; kinematic ones then push the particles out.
   std::vector<Eigen::Vector3d> start(impactors.size()), force_before(impactors.size());
+  bool pushed = false;
   for (std::size_t k = 0; k < impactors.size(); ++k) {
     Impactor& imp = impactors[k];
     start[k] = imp.position;
@@ -123,20 +191,30 @@ StepReport advance(Model& m, BondState& s, const Loading& loading, const Interac
     if (imp.law == Impactor::Law::Penalty && imp.free())
       imp.velocity += 0.5 * dt * imp.contact_force / imp.mass;
     if (!imp.fixed) imp.position += dt * imp.velocity;
-    if (imp.law == Impactor::Law::Kinematic) kinematic_contact(q, imp, dt, m.halo.ranks());
+    if (imp.law == Impactor::Law::Kinematic) {
+      kinematic_contact(q, imp, dt, m.halo.ranks());
+      pushed = true;
+    }
   }
-  std::vector<double> du(size);
+  // Work of the body loads over the step (the trapezoidal rule on b . du) and of the bonds broken
+  // before it: both need the displacement increments, and there are none without loads or the
+  // fracture account.
+  double work = 0.0, fracture_work = 0.0;
+  if (!loading.loads.empty() || x.fracture) {
+    std::vector<double>& du = w.du;
+    du.resize(size);
 #pragma omp parallel for schedule(static)
-  for (std::size_t k = 0; k < size; ++k) du[k] = q.u[k] - u_old[k];
-  // Work of the body loads over the step: the trapezoidal rule on b . du.
-  const double work =
-      0.5 * (loading.power(du, q.volume, t_old) + loading.power(du, q.volume, q.time));
-  const double fracture_work =
-      x.fracture ? m.halo.ranks().sum(x.fracture->work_over_step(du)) : 0.0;
+    for (std::size_t k = 0; k < size; ++k) du[k] = q.u[k] - u_old[k];
+    work = 0.5 * (loading.power(du, q.volume, t_old) + loading.power(du, q.volume, q.time));
+    if (x.fracture) fracture_work = m.halo.ranks().sum(x.fracture->work_over_step(du));
+  }
+  m.halo.exchange(q.u, 3); // the ghosts' positions, as their owners moved them
+  positions(q, pushed ? 0 : size, y.size(), y);
+  loading.for_each_fixed(q.time, [&](std::size_t k, const Constraint&, double) {
+    y[k] = q.X[k] + q.u[k];
+  });
   // New accelerations and the second half kick.
-  StepReport r = accelerate(m, s, loading, x, with_energy);
-#pragma omp parallel for schedule(static)
-  for (std::size_t k = 0; k < size; ++k) q.v[k] += 0.5 * dt * q.a[k];
+  StepReport r = forces(m, s, loading, x, with_energy, y, Kick{true, 0.5 * dt});
   for (std::size_t k = 0; k < impactors.size(); ++k) {
     Impactor& imp = impactors[k];
     if (imp.law != Impactor::Law::Penalty) continue;

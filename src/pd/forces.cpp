@@ -42,62 +42,77 @@ rows::Output thread_output(int t, int lo, int owned, bool alpha, double* force, 
   return o;
 }
 
-/// Adds the buffers of threads 1.. to the outputs, in thread order (a work-sharing loop of the
-/// enclosing parallel region).
-void add_thread_outputs(const std::vector<int>& first_row, const std::vector<rows::Output>& out,
-                        int owned, bool alpha, double* force, double* density, double* s0_trial) {
-  const int T = static_cast<int>(out.size());
-#pragma omp for schedule(static)
-  for (int i = 0; i < owned; ++i)
-    for (int q = 1; q < T && first_row[q] <= i; ++q) {
-      const std::ptrdiff_t iq = i - first_row[q];
-      for (int d = 0; d < 3; ++d) force[3 * i + d] += out[q].f[3 * iq + d];
-      if (density) density[i] += out[q].w[iq];
-      if (alpha) s0_trial[i] = std::max(s0_trial[i], out[q].s0n[iq]);
-    }
+/// What a force evaluation writes besides the rows' outputs: with the LAMMPS rule, a particle
+/// no intact bond gave a trial s0 keeps its committed one (ghosts get theirs from their owners).
+struct Ends {
+  int points = 0;                  // owned and ghosts
+  const double* s0_committed = nullptr; // null without the LAMMPS rule
+};
+
+/// The last pass of an evaluation, a work-sharing loop over every point of the enclosing
+/// parallel region, after all rows: the buffers of threads 1.. added to the outputs in thread
+/// order (owned particles; none with one thread), then the s0 fallback. Each point is finished by
+/// one thread, so the pass needs no barrier of its own (nowait: the region's end is one).
+void finish_points(const std::vector<int>& first_row, const std::vector<rows::Output>& out, int T,
+                   int owned, const Ends& ends, double* force, double* density, double* s0_trial) {
+  const double* const s0 = ends.s0_committed;
+  if (T == 1 && !s0) return;
+#pragma omp for schedule(static) nowait
+  for (int i = 0; i < ends.points; ++i) {
+    if (i < owned)
+      for (int q = 1; q < T && first_row[q] <= i; ++q) {
+        const std::ptrdiff_t iq = i - first_row[q];
+        for (int d = 0; d < 3; ++d) force[3 * i + d] += out[q].f[3 * iq + d];
+        if (density) density[i] += out[q].w[iq];
+        if (s0) s0_trial[i] = std::max(s0_trial[i], out[q].s0n[iq]);
+      }
+    if (s0 && s0_trial[i] == kNone) s0_trial[i] = s0[i];
+  }
 }
 
 /// Half layout: each stored pair evaluated once, Newton's third law. Thread t takes a range of
 /// rows with an equal share of the bonds; its reactions on partners land in its own buffer over
 /// [first row, owned) (thread 0 writes the outputs directly), and the buffers are added in thread
-/// order afterwards. An owned-ghost pair gives its force to the owned particle only.
-ForceReport half_loop(const Arrays& a, rows::Terms terms, SimdTarget target, double* force,
-                      double* density, double* s0_trial) {
+/// order afterwards. An owned-ghost pair gives its force to the owned particle only. One parallel
+/// region with one barrier (between the rows and the sums): every thread finds the split itself,
+/// since a thread that waits at a barrier sleeps, and waking it costs more than the split.
+ForceReport half_loop(const Arrays& a, rows::Terms terms, SimdTarget target, const Ends& ends,
+                      double* force, double* density, double* s0_trial) {
   const int owned = a.owned;
   long broken = 0;
   double energy = 0.0;
-  std::vector<int> first_row;
-  std::vector<rows::Output> outputs;
+  std::vector<rows::Output> outputs(std::max(1, omp_get_max_threads()));
 #pragma omp parallel reduction(+ : broken, energy)
   {
     const int T = omp_get_num_threads(), t = omp_get_thread_num();
-#pragma omp single
-    {
-      first_row = rows_of_threads(a, T);
-      outputs.resize(T);
-    }
+    const std::vector<int> first_row = rows_of_threads(a, T);
     const int lo = first_row[t], hi = first_row[t + 1];
     outputs[t] = thread_output(t, lo, owned, terms.alpha, force, density, s0_trial);
     const rows::Sums sums = rows::half(a, terms, target, lo, hi, outputs[t]);
     broken += sums.broken;
     energy += sums.energy;
 #pragma omp barrier
-    if (T > 1) add_thread_outputs(first_row, outputs, owned, terms.alpha, force, density, s0_trial);
+    finish_points(first_row, outputs, T, owned, ends, force, density, s0_trial);
   }
   return {broken, energy};
 }
 
 /// Full layout: each owned particle sums its own row, in the order of its partners' global ids;
 /// rows are independent, so the sums do not depend on the threads or the ranks.
-ForceReport full_loop(const Arrays& a, rows::Terms terms, SimdTarget target, double* force,
-                      double* density, double* s0_trial) {
+ForceReport full_loop(const Arrays& a, rows::Terms terms, SimdTarget target, const Ends& ends,
+                      double* force, double* density, double* s0_trial) {
   constexpr int kRows = 512; // rows handed to a thread at a time
   const rows::Output out{force, density, s0_trial, 0};
   const int chunks = (a.owned + kRows - 1) / kRows;
   long broken = 0;
-#pragma omp parallel for schedule(dynamic, 1) reduction(+ : broken)
-  for (int q = 0; q < chunks; ++q)
-    broken += rows::full(a, terms, target, q * kRows, std::min(a.owned, (q + 1) * kRows), out).broken;
+#pragma omp parallel reduction(+ : broken)
+  {
+#pragma omp for schedule(dynamic, 1)
+    for (int q = 0; q < chunks; ++q)
+      broken +=
+          rows::full(a, terms, target, q * kRows, std::min(a.owned, (q + 1) * kRows), out).broken;
+    finish_points({}, {}, 1, a.owned, ends, force, density, s0_trial);
+  }
   // The total in particle order, whatever the threads.
   double energy = 0.0;
   if (terms.energy)
@@ -172,15 +187,11 @@ ForceReport bond_forces(const Model& m, BondState& s, const std::vector<double>&
                  one_law(classes, b.classes.size())};
   const rows::Terms terms{plastic, alpha, with_energy};
   const SimdTarget target = simd_target();
-  const ForceReport r = half ? half_loop(a, terms, target, force.data(), density, s0_trial)
-                             : full_loop(a, terms, target, force.data(), density, s0_trial);
-  if (alpha) {
-    // A particle with no intact bond keeps its s0; ghosts get theirs from their owners.
-#pragma omp parallel for schedule(static)
-    for (int i = 0; i < n; ++i)
-      if (s.s0.trial[i] == kNone) s.s0.trial[i] = s.s0.committed[i];
-    s.s0.commit();
-  }
+  const Ends ends{n, alpha ? s.s0.committed.data() : nullptr};
+  const ForceReport r =
+      half ? half_loop(a, terms, target, ends, force.data(), density, s0_trial)
+           : full_loop(a, terms, target, ends, force.data(), density, s0_trial);
+  if (alpha) s.s0.commit();
   return r;
 }
 
