@@ -17,6 +17,10 @@ meshfree's results.bond_bytes_per_bond (steady and at the peak while building), 
 rank memory allocation' over its bonds.
 
     scripts/pd_benchmark.py [--sizes 22 43 65 100] [--threads 1 2] [--repeats 2] [--out DIR]
+                            [--baseline OTHER/meshfree]
+
+--baseline runs a second build of meshfree (an older one, say) right after each meshfree run,
+in the same interleaving, and reports its rate beside: old and new measured in one session.
 
 Writes benchmark.csv in --out and prints the table with the ratios, the growth exponent of the
 step time with the bond count (1 for a loop linear in the bonds) and the two-thread speed-ups.
@@ -97,6 +101,7 @@ def main():
     ap.add_argument("--threads", type=int, nargs="+", default=[1, 2])
     ap.add_argument("--repeats", type=int, default=2)
     ap.add_argument("--no-lammps", action="store_true")
+    ap.add_argument("--baseline", help="a second meshfree binary run interleaved with the first")
     ap.add_argument("--out", default=str(ROOT / "out" / "pd_benchmark"))
     args = ap.parse_args()
     out = Path(args.out)
@@ -111,12 +116,16 @@ def main():
         problem.write_text(PROBLEM.format(n=n, steps=steps, L=L, a=SPACING, half=L / 2, E=YOUNG,
                                           end=steps * DT, dt=DT))
         for threads in args.threads:
-            best, lbest = None, None
+            best, lbest, bbest = None, None, None
             for _ in range(args.repeats):
                 s = run_once(args.meshfree, problem, out / f"run_{n}_{threads}", threads)
                 rate = s["results"]["bond_evaluations_per_second"]
                 if best is None or rate > best[0]:
                     best = (rate, s)
+                if args.baseline:
+                    b = run_once(args.baseline, problem, out / f"baseline_{n}_{threads}", threads)
+                    brate = b["results"]["bond_evaluations_per_second"]
+                    bbest = brate if bbest is None else max(bbest, brate)
                 if lmp:
                     lb = run_lammps(lmp, tmp, n, steps, threads)
                     if lbest is None or lb[1] < lbest[1]:
@@ -129,6 +138,9 @@ def main():
                    "threads": threads, "step_seconds": bonds * steps / rate,
                    "bond_evaluations_per_second": rate, "per_core": rate / threads,
                    "bytes_steady": by["steady"], "bytes_peak": by["peak"]}
+            if bbest:
+                row["baseline_rate"] = bbest
+                row["ratio_baseline"] = rate / bbest
             if lbest:
                 if lbest[0] != bonds:
                     raise SystemExit(f"{n}^3: meshfree has {bonds} bonds, LAMMPS {lbest[0]}")
@@ -137,16 +149,22 @@ def main():
                 row["lammps_bytes"] = lbest[3]
                 row["ratio_loop"] = rate / row["lammps_loop_rate"]
                 row["ratio_pair"] = rate / row["lammps_pair_rate"]
+                if bbest:
+                    row["baseline_ratio_loop"] = bbest / row["lammps_loop_rate"]
             rows.append(row)
             lmp_text = (f" | LAMMPS loop {row['lammps_loop_rate']:.3g}/s, pair {row['lammps_pair_rate']:.3g}/s,"
                         f" {row['lammps_bytes']:.1f} B/bond -> ratio loop {row['ratio_loop']:.2f},"
                         f" pair {row['ratio_pair']:.2f}") if lbest else ""
+            base_text = (f" | baseline {bbest:.3g}/s (new / baseline {rate / bbest:.2f}"
+                         + (f", baseline / LAMMPS loop {row['baseline_ratio_loop']:.2f}" if lbest else "")
+                         + ")") if bbest else ""
             print(f"{row['particles']:7d} particles, {bonds:9d} bonds, {threads} thread(s), {steps} steps: "
                   f"{rate:.3g} bond evaluations/s ({rate / threads:.3g} per core), "
-                  f"{by['steady']:.2f} B/bond steady, {by['peak']:.2f} peak{lmp_text}", flush=True)
+                  f"{by['steady']:.2f} B/bond steady, {by['peak']:.2f} peak{lmp_text}{base_text}", flush=True)
     fields = ["particles", "bonds", "steps", "threads", "step_seconds", "bond_evaluations_per_second",
               "per_core", "bytes_steady", "bytes_peak", "lammps_loop_rate", "lammps_pair_rate",
-              "lammps_bytes", "ratio_loop", "ratio_pair"]
+              "lammps_bytes", "ratio_loop", "ratio_pair", "baseline_rate", "ratio_baseline",
+              "baseline_ratio_loop"]
     with open(out / "benchmark.csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=fields)
         w.writeheader()
@@ -161,7 +179,9 @@ def main():
     for r in rows:
         if r["threads"] > 1 and r["particles"] in one:
             print(f"{r['particles']} particles: {r['threads']} threads "
-                  f"{r['bond_evaluations_per_second'] / one[r['particles']]['bond_evaluations_per_second']:.2f}x one")
+                  f"{r['bond_evaluations_per_second'] / one[r['particles']]['bond_evaluations_per_second']:.2f}x one"
+                  + (f" (baseline {r['baseline_rate'] / one[r['particles']]['baseline_rate']:.2f}x)"
+                     if "baseline_rate" in r and "baseline_rate" in one[r["particles"]] else ""))
     shutil.rmtree(tmp, ignore_errors=True)
     print(f"wrote {out / 'benchmark.csv'}")
 

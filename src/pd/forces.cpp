@@ -1,5 +1,6 @@
 #include "meshfree/pd/forces.hpp"
 #include "meshfree/pd/bond_rows.hpp"
+#include "meshfree/pd/spin_barrier.hpp"
 #include "meshfree/core/error.hpp"
 #include <algorithm>
 #include <cmath>
@@ -42,67 +43,50 @@ rows::Output thread_output(int t, int lo, int owned, bool alpha, double* force, 
   return o;
 }
 
-/// Adds the buffers of threads 1.. to the outputs, in thread order (a work-sharing loop of the
-/// enclosing parallel region).
-void add_thread_outputs(const std::vector<int>& first_row, const std::vector<rows::Output>& out,
-                        int owned, bool alpha, double* force, double* density, double* s0_trial) {
-  const int T = static_cast<int>(out.size());
-#pragma omp for schedule(static)
-  for (int i = 0; i < owned; ++i)
-    for (int q = 1; q < T && first_row[q] <= i; ++q) {
-      const std::ptrdiff_t iq = i - first_row[q];
-      for (int d = 0; d < 3; ++d) force[3 * i + d] += out[q].f[3 * iq + d];
-      if (density) density[i] += out[q].w[iq];
-      if (alpha) s0_trial[i] = std::max(s0_trial[i], out[q].s0n[iq]);
-    }
-}
-
-/// Half layout: each stored pair evaluated once, Newton's third law. Thread t takes a range of
-/// rows with an equal share of the bonds; its reactions on partners land in its own buffer over
-/// [first row, owned) (thread 0 writes the outputs directly), and the buffers are added in thread
-/// order afterwards. An owned-ghost pair gives its force to the owned particle only.
-ForceReport half_loop(const Arrays& a, rows::Terms terms, SimdTarget target, double* force,
-                      double* density, double* s0_trial) {
-  const int owned = a.owned;
-  long broken = 0;
-  double energy = 0.0;
-  std::vector<int> first_row;
-  std::vector<rows::Output> outputs;
-#pragma omp parallel reduction(+ : broken, energy)
-  {
-    const int T = omp_get_num_threads(), t = omp_get_thread_num();
-#pragma omp single
-    {
-      first_row = rows_of_threads(a, T);
-      outputs.resize(T);
-    }
-    const int lo = first_row[t], hi = first_row[t + 1];
-    outputs[t] = thread_output(t, lo, owned, terms.alpha, force, density, s0_trial);
-    const rows::Sums sums = rows::half(a, terms, target, lo, hi, outputs[t]);
-    broken += sums.broken;
-    energy += sums.energy;
-#pragma omp barrier
-    if (T > 1) add_thread_outputs(first_row, outputs, owned, terms.alpha, force, density, s0_trial);
+/// The last pass of an evaluation, a work-sharing loop over every point of the enclosing
+/// parallel region, after all rows: the buffers of threads 1.. added to the outputs in thread
+/// order (owned particles; none with one thread), then, with the LAMMPS rule (s0 not null), the
+/// s0 of a particle no intact bond gave a trial one kept (ghosts get theirs from their owners).
+/// Each point is finished by one thread: no barrier of its own (nowait).
+void finish_points(const std::vector<int>& first_row, const std::vector<rows::Output>& out, int T,
+                   int owned, int points, const double* s0, double* force, double* density,
+                   double* s0_trial) {
+  if (T == 1 && !s0) return;
+#pragma omp for schedule(static) nowait
+  for (int i = 0; i < points; ++i) {
+    if (i < owned)
+      for (int q = 1; q < T && first_row[q] <= i; ++q) {
+        const std::ptrdiff_t iq = i - first_row[q];
+        for (int d = 0; d < 3; ++d) force[3 * i + d] += out[q].f[3 * iq + d];
+        if (density) density[i] += out[q].w[iq];
+        if (s0) s0_trial[i] = std::max(s0_trial[i], out[q].s0n[iq]);
+      }
+    if (s0 && s0_trial[i] == kNone) s0_trial[i] = s0[i];
   }
-  return {broken, energy};
 }
 
-/// Full layout: each owned particle sums its own row, in the order of its partners' global ids;
-/// rows are independent, so the sums do not depend on the threads or the ranks.
-ForceReport full_loop(const Arrays& a, rows::Terms terms, SimdTarget target, double* force,
-                      double* density, double* s0_trial) {
+/// Half layout, a thread's rows: each stored pair evaluated once, Newton's third law. Thread t
+/// takes a range of rows with an equal share of the bonds; its reactions on partners land in its
+/// own buffer over [first row, owned) (thread 0 writes the outputs directly), added in thread
+/// order by finish_points. An owned-ghost pair gives its force to the owned particle only.
+rows::Sums half_rows(const Arrays& a, rows::Terms terms, SimdTarget target, int T, int t,
+                     rows::Output& out, double* force, double* density, double* s0_trial) {
+  const std::vector<int> first_row = rows_of_threads(a, T);
+  out = thread_output(t, first_row[t], a.owned, terms.alpha, force, density, s0_trial);
+  return rows::half(a, terms, target, first_row[t], first_row[t + 1], out);
+}
+
+/// Full layout, a thread's rows: each owned particle sums its own row, in the order of its
+/// partners' global ids; rows are independent, so the sums do not depend on the threads or the
+/// ranks. Chunks of rows are handed out in turn (nowait: the caller waits for all).
+long full_rows(const Arrays& a, rows::Terms terms, SimdTarget target, const rows::Output& out) {
   constexpr int kRows = 512; // rows handed to a thread at a time
-  const rows::Output out{force, density, s0_trial, 0};
   const int chunks = (a.owned + kRows - 1) / kRows;
   long broken = 0;
-#pragma omp parallel for schedule(dynamic, 1) reduction(+ : broken)
+#pragma omp for schedule(dynamic, 1) nowait
   for (int q = 0; q < chunks; ++q)
     broken += rows::full(a, terms, target, q * kRows, std::min(a.owned, (q + 1) * kRows), out).broken;
-  // The total in particle order, whatever the threads.
-  double energy = 0.0;
-  if (terms.energy)
-    for (int i = 0; i < a.owned; ++i) energy += a.volume[i] * density[i];
-  return {broken, energy};
+  return broken;
 }
 
 /// The class whose law constants every class shares, or null.
@@ -127,29 +111,31 @@ bool same_laws(const std::vector<materials::BondLaw>& a, const std::vector<mater
 
 } // namespace
 
-ForceReport bond_forces(const Model& m, BondState& s, const std::vector<double>& y,
-                        std::vector<double>& force, bool with_energy,
-                        std::vector<double>* energy_density) {
-  const int n = m.particles.size();
+BondForcePass::BondForcePass(const Model& m, BondState& s, const std::vector<double>& y,
+                             std::vector<double>& force, bool with_energy,
+                             std::vector<double>* energy_density)
+    : s_(s), a_{}, points_(m.particles.size()) {
+  const int n = points_;
   const Bonds& b = m.bonds;
-  const bool half = b.layout == BondLayout::Half;
+  half_ = b.layout == BondLayout::Half;
   const bool plastic = !s.plastic.empty();
   const bool alpha = !s.s0.empty();
   force.assign(3 * static_cast<std::size_t>(n), 0.0);
+  force_ = force.data();
   // Full rows write every particle's energy density: a scratch array when none is asked for.
   thread_local std::vector<double> scratch;
-  double* density = nullptr;
+  density_ = nullptr;
   if (energy_density) {
     energy_density->assign(n, 0.0);
-    density = energy_density->data();
-  } else if (!half) {
+    density_ = energy_density->data();
+  } else if (!half_) {
     scratch.resize(n);
-    density = scratch.data();
+    density_ = scratch.data();
   }
-  double* s0_trial = nullptr;
+  s0_trial_ = nullptr;
   if (alpha) {
     std::fill(s.s0.trial.begin(), s.s0.trial.end(), kNone);
-    s0_trial = s.s0.trial.data();
+    s0_trial_ = s.s0.trial.data();
   }
   const BondClass* classes = b.classes.data();
   if (!same_laws(m.laws, b.folded)) {
@@ -158,30 +144,67 @@ ForceReport bond_forces(const Model& m, BondState& s, const std::vector<double>&
     fold_laws(refolded, m.laws);
     classes = refolded.data();
   }
-  const Arrays a{y.data(),
-                 b.offset.data(),
-                 b.partner.data(),
-                 b.cls.data(),
-                 classes,
-                 s.intact.data(),
-                 plastic ? s.plastic.data() : nullptr,
-                 alpha ? s.s0.committed.data() : nullptr,
-                 m.particles.volume.data(),
-                 m.particles.owned_count(),
-                 static_cast<int>(y.size() / 3),
-                 one_law(classes, b.classes.size())};
-  const rows::Terms terms{plastic, alpha, with_energy};
-  const SimdTarget target = simd_target();
-  const ForceReport r = half ? half_loop(a, terms, target, force.data(), density, s0_trial)
-                             : full_loop(a, terms, target, force.data(), density, s0_trial);
-  if (alpha) {
-    // A particle with no intact bond keeps its s0; ghosts get theirs from their owners.
-#pragma omp parallel for schedule(static)
-    for (int i = 0; i < n; ++i)
-      if (s.s0.trial[i] == kNone) s.s0.trial[i] = s.s0.committed[i];
-    s.s0.commit();
+  a_ = Arrays{y.data(),
+              b.offset.data(),
+              b.partner.data(),
+              b.cls.data(),
+              classes,
+              s.intact.data(),
+              plastic ? s.plastic.data() : nullptr,
+              alpha ? s.s0.committed.data() : nullptr,
+              m.particles.volume.data(),
+              m.particles.owned_count(),
+              static_cast<int>(y.size() / 3),
+              one_law(classes, b.classes.size())};
+  terms_ = rows::Terms{plastic, alpha, with_energy};
+  target_ = simd_target();
+  const int threads = std::max(omp_get_max_threads(), omp_get_num_threads());
+  outputs_.resize(threads);
+  broken_.assign(threads, 0);
+  energy_.assign(threads, 0.0);
+}
+
+void BondForcePass::rows() {
+  const int T = omp_get_num_threads(), t = omp_get_thread_num();
+  if (half_) {
+    const rows::Sums sums =
+        half_rows(a_, terms_, target_, T, t, outputs_[t], force_, density_, s0_trial_);
+    broken_[t] = sums.broken;
+    energy_[t] = sums.energy;
+  } else {
+    broken_[t] = full_rows(a_, terms_, target_, {force_, density_, s0_trial_, 0});
   }
+}
+
+void BondForcePass::finish() {
+  const int T = omp_get_num_threads();
+  const std::vector<int> first_row = half_ ? rows_of_threads(a_, T) : std::vector<int>{};
+  finish_points(first_row, outputs_, half_ ? T : 1, a_.owned, points_, a_.s0, force_, density_,
+                s0_trial_);
+}
+
+ForceReport BondForcePass::report() {
+  ForceReport r;
+  for (std::size_t t = 0; t < broken_.size(); ++t) r.broken += broken_[t], r.strain_energy += energy_[t];
+  // Full layout: the total in particle order, whatever the threads.
+  if (!half_ && terms_.energy)
+    for (int i = 0; i < a_.owned; ++i) r.strain_energy += a_.volume[i] * density_[i];
+  if (terms_.alpha) s_.s0.commit();
   return r;
+}
+
+ForceReport bond_forces(const Model& m, BondState& s, const std::vector<double>& y,
+                        std::vector<double>& force, bool with_energy,
+                        std::vector<double>* energy_density) {
+  BondForcePass pass(m, s, y, force, with_energy, energy_density);
+  SpinBarrier barrier;
+#pragma omp parallel
+  {
+    pass.rows();
+    barrier.wait();
+    pass.finish();
+  }
+  return pass.report();
 }
 
 } // namespace mf::pd
