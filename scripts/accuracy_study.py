@@ -72,7 +72,7 @@ def load_recipe():
     return module
 
 
-def force_error(problem, xs, ys):
+def response_error(problem, xs, ys):
     """Largest |ours - reference| / max |reference| over the reference's records."""
     c = compare.PROBLEMS[problem]
     ref = compare.read_csv(str(ROOT / "reference" / "calculix_plastic" / problem / "curve.csv"))
@@ -128,41 +128,41 @@ def timed_run(cmd, label):
 
 
 def curve_row(problem, method, level, folder, wall):
-    """The study's row of a run: its DOFs, wall time and force-curve error."""
+    """The study's row of a run: its DOFs, wall time and the error of its compared response."""
     s = json.loads((folder / "summary.json").read_text())
     c = compare.PROBLEMS[problem]
     hist = compare.read_csv(str(folder / "history.csv"))
     xs = [float(h[c["control"][0]]) for h in hist]
     ys = [float(h[c["responses"][0][1]]) for h in hist]
     return dict(problem=problem, method=method, level=level, dofs=s["counts"]["dofs"],
-                wall_s=wall, error=force_error(problem, xs, ys))
+                wall_s=wall, error=response_error(problem, xs, ys))
+
+
+def run_case(binary, problem, method, level, out, sets):
+    """Runs the problem file with the `--set` assignments `sets`; its study row, or None."""
+    folder = out / f"{problem}_{method}_{level}"
+    cmd = [str(binary), "run", str(ROOT / "problems" / f"{problem}.yaml"), "--out", str(folder)]
+    for a in sets:
+        cmd += ["--set", a]
+    wall = timed_run(cmd, f"{problem} {method} {level}")
+    return None if wall is None else curve_row(problem, method, level, folder, wall)
 
 
 def run_meshfree(binary, problem, method, factor, out):
+    """A uniform run of the variant `method` at `factor` times the problem's spacings."""
     spacing, boxes = problem_spacings(problem)
-    folder = out / f"{problem}_{method}_{factor}"
     refinement = "[" + ", ".join(f"{{box: {b}, spacing: {s * factor!r}}}" for b, s in boxes) + "]"
-    cmd = [str(binary), "run", str(ROOT / "problems" / f"{problem}.yaml"), "--out", str(folder),
-           "--set", f"discretisation.spacing={spacing * factor!r}",
-           "--set", f"discretisation.refinement={refinement}"]
-    for s in VARIANTS[method] + UNIFORM:
-        cmd += ["--set", s]
-    wall = timed_run(cmd, f"{problem} {method} factor {factor}")
-    return None if wall is None else curve_row(problem, method, factor, folder, wall)
+    sets = [f"discretisation.spacing={spacing * factor!r}",
+            f"discretisation.refinement={refinement}"] + VARIANTS[method] + UNIFORM
+    return run_case(binary, problem, method, factor, out, sets)
 
 
 def run_adaptive(binary, problem, target, out, base="meshfree"):
     """Adaptive meshfree on the quadrature of the variant `base` (meshfree or meshfree_vci)."""
     spacing, _ = problem_spacings(problem)
-    method = base + "_adaptive"
-    folder = out / f"{problem}_{method}_{target}"
-    cmd = [str(binary), "run", str(ROOT / "problems" / f"{problem}.yaml"), "--out", str(folder),
-           "--set", f"discretisation.spacing={2 * spacing!r}", "--set", "discretisation.refinement=[]",
-           "--set", f"discretisation.adapt={{target: {target!r}, passes: 10}}"]
-    for s in VARIANTS[base]:
-        cmd += ["--set", s]
-    wall = timed_run(cmd, f"{problem} {method} target {target}")
-    return None if wall is None else curve_row(problem, method, target, folder, wall)
+    sets = [f"discretisation.spacing={2 * spacing!r}", "discretisation.refinement=[]",
+            f"discretisation.adapt={{target: {target!r}, passes: 10}}"] + VARIANTS[base]
+    return run_case(binary, problem, base + "_adaptive", target, out, sets)
 
 
 def run_vci_adaptive(binary, problem, target, out):
@@ -176,14 +176,9 @@ def run_fem_adapted(binary, problem, target, out):
     boxes = out / f"{problem}_meshfree_adaptive_{target}" / "adapted_refinement.yaml"
     if not boxes.is_file():
         return None
-    folder = out / f"{problem}_fem_adapted_{target}"
-    cmd = [str(binary), "run", str(ROOT / "problems" / f"{problem}.yaml"), "--out", str(folder),
-           "--set", f"discretisation.spacing={2 * spacing!r}",
-           "--set", f"discretisation.refinement={boxes.read_text()}"]
-    for s in VARIANTS["fem"] + UNIFORM:
-        cmd += ["--set", s]
-    wall = timed_run(cmd, f"{problem} fem_adapted target {target}")
-    return None if wall is None else curve_row(problem, "fem_adapted", target, folder, wall)
+    sets = [f"discretisation.spacing={2 * spacing!r}",
+            f"discretisation.refinement={boxes.read_text()}"] + VARIANTS["fem"] + UNIFORM
+    return run_case(binary, problem, "fem_adapted", target, out, sets)
 
 
 def run_calculix(recipe, problem, level, work):
@@ -197,7 +192,7 @@ def run_calculix(recipe, problem, level, work):
     column = recipe.curve_columns(prob)[1:].index(compare.PROBLEMS[problem]["responses"][0][2])
     return dict(problem=problem, method="calculix", level=level, dofs=2 * mesh.nnodes,
                 wall_s=wall,
-                error=force_error(problem, list(curve[:, 0]), list(curve[:, column])))
+                error=response_error(problem, list(curve[:, 0]), list(curve[:, column])))
 
 
 def reach(runs, target):

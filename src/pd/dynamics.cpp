@@ -89,6 +89,12 @@ void increments(const particles::ParticleSet& q, const std::vector<double>& u_ol
   for (std::size_t k = 0; k < size; ++k) du[k] = q.u[k] - u_old[k];
 }
 
+/// The body loads' work over a step from t_old to q.time: the trapezoidal rule on b . du.
+double load_work(const Loading& loading, const particles::ParticleSet& q,
+                 const std::vector<double>& du, double t_old) {
+  return 0.5 * (loading.power(du, q.volume, t_old) + loading.power(du, q.volume, q.time));
+}
+
 /// The second half kick of a velocity-Verlet step, v += h a with h = dt / 2, when `on`.
 struct Kick {
   bool on = false;
@@ -237,7 +243,7 @@ StepReport advance_in_one_region(Model& m, BondState& s, const Loading& loading,
     }
     if (serial) {
       if (need_du) {
-        work = 0.5 * (loading.power(w.du, q.volume, t_old) + loading.power(w.du, q.volume, q.time));
+        work = load_work(loading, q, w.du, t_old);
         if (x.fracture) fracture_work = x.fracture->work_over_step(w.du);
       }
       fixed_positions(loading, q, w.y);
@@ -333,7 +339,7 @@ StepReport advance(Model& m, BondState& s, const Loading& loading, const Interac
     w.du.resize(size);
 #pragma omp parallel
     increments(q, u_old, w.du);
-    work = 0.5 * (loading.power(w.du, q.volume, t_old) + loading.power(w.du, q.volume, q.time));
+    work = load_work(loading, q, w.du, t_old);
     if (x.fracture) fracture_work = m.halo.ranks().sum(x.fracture->work_over_step(w.du));
   }
   m.halo.exchange(q.u, 3); // the ghosts' positions, as their owners moved them

@@ -4,6 +4,24 @@
 
 namespace mf::spec {
 
+namespace {
+/// The keys of an `adapt` map into r (absent keys keep r's defaults).
+void read_adapt_keys(KeyReader& a, AdaptSpec& r) {
+  r.target = a.positive("target", r.target);
+  if (r.target >= 1.0)
+    a.error("target",
+            "is a relative error: expected a value below 1, got " + std::to_string(r.target));
+  r.fraction = a.positive("fraction", r.fraction);
+  if (r.fraction > 1.0)
+    a.error("fraction", "is a share of the estimated error: expected (0, 1], got " +
+                            std::to_string(r.fraction));
+  r.passes = a.integer("passes", r.passes, 1, 20);
+  r.max_nodes = a.positive("max_nodes", r.max_nodes);
+  r.pilot_increments = a.integer("pilot_increments", r.pilot_increments, 1, 1000000);
+  a.finish();
+}
+} // namespace
+
 std::optional<AdaptSpec> read_adapt(KeyReader& d, int dim, const DiscretisationSpec& s,
                                     const LinearSolverSpec& solver) {
   if (!d.has("adapt")) return std::nullopt;
@@ -20,22 +38,12 @@ std::optional<AdaptSpec> read_adapt(KeyReader& d, int dim, const DiscretisationS
   if (s.method != Method::Meshfree)
     d.error("adapt", "error-driven refinement places meshfree nodes: it needs method: meshfree");
   AdaptSpec r;
-  if (defaults) return r;
-  KeyReader a = d.map("adapt");
-  r.target = a.positive("target", r.target);
-  if (r.target >= 1.0)
-    a.error("target",
-            "is a relative error: expected a value below 1, got " + std::to_string(r.target));
-  r.fraction = a.positive("fraction", r.fraction);
-  if (r.fraction > 1.0)
-    a.error("fraction", "is a share of the estimated error: expected (0, 1], got " +
-                            std::to_string(r.fraction));
-  r.passes = a.integer("passes", r.passes, 1, 20);
-  r.max_nodes = a.positive("max_nodes", r.max_nodes);
-  require_memory(a.path_of("max_nodes"), "nodes of the refined cloud", r.max_nodes,
+  if (!defaults) {
+    KeyReader a = d.map("adapt");
+    read_adapt_keys(a, r);
+  }
+  require_memory(d.path_of("adapt") + ".max_nodes", "nodes of the refined cloud", r.max_nodes,
                  bytes_per_node(solver, r.max_nodes));
-  r.pilot_increments = a.integer("pilot_increments", r.pilot_increments, 1, 1000000);
-  a.finish();
   return r;
 }
 

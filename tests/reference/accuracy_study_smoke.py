@@ -1,0 +1,36 @@
+#!/usr/bin/python3
+"""scripts/accuracy_study.py on its first level of the force-driven Cook's membrane: every method
+gives a row (Q8 on the adapted cloud's boxes too), and CalculiX's error is the tip deflection's,
+the coarsest recipe mesh against the finest, as the committed curves give it.
+
+    accuracy_study_smoke.py MESHFREE OUT
+"""
+import csv
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+meshfree, out = sys.argv[1], Path(sys.argv[2])
+subprocess.run([sys.executable, str(ROOT / "scripts" / "accuracy_study.py"), "--meshfree", meshfree,
+                "--problems", "cook_membrane_force", "--levels", "1", "--out", str(out)],
+               check=True)
+with open(out / "runs.csv", newline="") as f:
+    rows = {r["method"]: r for r in csv.DictReader(f)}
+methods = {"meshfree", "meshfree_vci", "fem", "meshfree_adaptive", "meshfree_vci_adaptive",
+           "fem_adapted", "calculix"}
+if set(rows) != methods:
+    sys.exit(f"FAIL: methods {sorted(rows)}, expected {sorted(methods)}")
+ref_dir = ROOT / "reference" / "calculix_plastic" / "cook_membrane_force"
+with open(ref_dir / "curve.csv", newline="") as f:
+    fine = [float(r["uy_48_60"]) for r in csv.DictReader(f)]
+with open(ref_dir / "curve_level0.csv", newline="") as f:
+    coarse = [float(r["uy_48_60"]) for r in csv.DictReader(f)]
+expected = max(abs(a - b) for a, b in zip(coarse, fine)) / max(abs(v) for v in fine)
+got = float(rows["calculix"]["error"])
+if abs(got - expected) > 1e-6 * expected:
+    sys.exit(f"FAIL: CalculiX's error {got:.6e}, the committed curves give {expected:.6e}")
+for m in methods:
+    if not 0 < float(rows[m]["error"]) < 0.1:
+        sys.exit(f"FAIL: {m}: error {rows[m]['error']} outside (0, 0.1) on the first level")
+print(f"ok: 7 methods; CalculiX's tip error {got:.4e} as the committed curves give it")
