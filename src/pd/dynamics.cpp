@@ -118,7 +118,8 @@ void accelerations(particles::ParticleSet& q, const std::vector<double>& f, Kick
 void positions(const particles::ParticleSet& q, std::size_t lo, std::size_t hi,
                std::vector<double>& y) {
   if (lo >= hi) return;
-  const std::ptrdiff_t first = static_cast<std::ptrdiff_t>(lo), end = static_cast<std::ptrdiff_t>(hi);
+  const std::ptrdiff_t first = static_cast<std::ptrdiff_t>(lo),
+                       end = static_cast<std::ptrdiff_t>(hi);
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t k = first; k < end; ++k) y[k] = q.X[k] + q.u[k];
 }
@@ -126,15 +127,15 @@ void positions(const particles::ParticleSet& q, std::size_t lo, std::size_t hi,
 /// y = X + u of the components the constraints fix (their u was just imposed).
 void fixed_positions(const Loading& loading, const particles::ParticleSet& q,
                      std::vector<double>& y) {
-  loading.for_each_fixed(q.time, [&](std::size_t k, const Constraint&, double) {
-    y[k] = q.X[k] + q.u[k];
-  });
+  loading.for_each_fixed(q.time,
+                         [&](std::size_t k, const Constraint&, double) { y[k] = q.X[k] + q.u[k]; });
 }
 
 /// The velocity components the constraints fix, in the order Loading::for_each_fixed visits them.
 std::vector<double> fixed_velocities(const Loading& loading, const particles::ParticleSet& q) {
   std::vector<double> v;
-  loading.for_each_fixed(q.time, [&](std::size_t k, const Constraint&, double) { v.push_back(q.v[k]); });
+  loading.for_each_fixed(q.time,
+                         [&](std::size_t k, const Constraint&, double) { v.push_back(q.v[k]); });
   return v;
 }
 
@@ -160,8 +161,8 @@ double add_interactions(Model& m, const Loading& loading, const Interactions& x,
 /// the report, summed over the ranks.
 StepReport conclude(Model& m, BondState& s, const Loading& loading, const Interactions& x,
                     const ForceReport& fr, double contact_energy, bool with_energy, Kick kick,
-                    const std::vector<double>& held, const std::vector<unsigned char>& intact_before,
-                    const std::vector<double>& y) {
+                    const std::vector<double>& held,
+                    const std::vector<unsigned char>& intact_before, const std::vector<double>& y) {
   particles::ParticleSet& q = m.particles;
   loading.impose(q, q.time, 0.0, nullptr);
   if (kick.on) {
@@ -263,8 +264,8 @@ StepReport advance_in_one_region(Model& m, BondState& s, const Loading& loading,
     barrier.wait();
     accelerations(q, w.f, kick);
   }
-  StepReport r = conclude(m, s, loading, x, fr, contact_energy, with_energy, kick, held,
-                          intact_before, w.y);
+  StepReport r =
+      conclude(m, s, loading, x, fr, contact_energy, with_energy, kick, held, intact_before, w.y);
   loading.keep_velocities(q, q.time);
   r.external_work = work;
   r.fracture_work = fracture_work;

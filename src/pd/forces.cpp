@@ -1,7 +1,7 @@
 #include "meshfree/pd/forces.hpp"
+#include "meshfree/core/error.hpp"
 #include "meshfree/pd/bond_rows.hpp"
 #include "meshfree/pd/spin_barrier.hpp"
-#include "meshfree/core/error.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -85,7 +85,8 @@ long full_rows(const Arrays& a, rows::Terms terms, SimdTarget target, const rows
   long broken = 0;
 #pragma omp for schedule(dynamic, 1) nowait
   for (int q = 0; q < chunks; ++q)
-    broken += rows::full(a, terms, target, q * kRows, std::min(a.owned, (q + 1) * kRows), out).broken;
+    broken +=
+        rows::full(a, terms, target, q * kRows, std::min(a.owned, (q + 1) * kRows), out).broken;
   return broken;
 }
 
@@ -185,7 +186,8 @@ void BondForcePass::finish() {
 
 ForceReport BondForcePass::report() {
   ForceReport r;
-  for (std::size_t t = 0; t < broken_.size(); ++t) r.broken += broken_[t], r.strain_energy += energy_[t];
+  for (std::size_t t = 0; t < broken_.size(); ++t)
+    r.broken += broken_[t], r.strain_energy += energy_[t];
   // Full layout: the total in particle order, whatever the threads.
   if (!half_ && terms_.energy)
     for (int i = 0; i < a_.owned; ++i) r.strain_energy += a_.volume[i] * density_[i];

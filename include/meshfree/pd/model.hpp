@@ -39,9 +39,9 @@ struct BondClass {
   double weight = 0.0;         // w_ij = V_j times the volume and surface corrections
   double weight_partner = 0.0; // w_ji = V_i times the same corrections
   // Folded from the law:
-  double limit = 0.0;                // critical stretch; +inf where the law never breaks
-  double alpha_floor = 0.0;          // LAMMPS rule: the limit is max(min(s0_i, s0_j), alpha_floor)
-  double s00 = 0.0;                  // LAMMPS rule: s0 candidate s00 - alpha s
+  double limit = 0.0;       // critical stretch; +inf where the law never breaks
+  double alpha_floor = 0.0; // LAMMPS rule: the limit is max(min(s0_i, s0_j), alpha_floor)
+  double s00 = 0.0;         // LAMMPS rule: s0 candidate s00 - alpha s
   double alpha = 0.0;
   double yield = 0.0; // micro-plastic yield stretch; +inf for an elastic law
 };

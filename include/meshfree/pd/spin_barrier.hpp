@@ -60,9 +60,8 @@ private:
   /// Spins until the generation moves on (true) or `seconds` have passed (false).
   bool spin(unsigned generation, double seconds) const {
     using Clock = std::chrono::steady_clock;
-    const Clock::time_point end =
-        Clock::now() +
-        std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+    const Clock::time_point end = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                                     std::chrono::duration<double>(seconds));
     for (int k = 1;; ++k) {
       if (generation_.load(std::memory_order_acquire) != generation) return true;
       pause();
