@@ -7,6 +7,7 @@ for the elastoplastic problems, writes one PNG per problem, and prints the large
     scripts/compare.py --check 0.02             # exit 1 if a curve differs from CalculiX by more
     scripts/compare.py --check-first-yield 0.01 # ... or a first-yield load, where it is defined
     scripts/compare.py --meshfree-dir DIR ...   # use finished runs instead of running them
+    scripts/compare.py --list                   # the problems it compares, one a line
 
 The difference at a recorded point is |ours - CalculiX| divided by the largest |value| of the
 CalculiX curve (so that points near zero do not blow it up); ours is interpolated linearly to
@@ -240,7 +241,11 @@ def main():
                     help="fail if any curve differs from CalculiX by more than this fraction")
     ap.add_argument("--check-first-yield", type=float, default=None,
                     help="fail if a first-yield load differs from CalculiX by more than this")
+    ap.add_argument("--list", action="store_true", help="print the problems it compares and stop")
     args = ap.parse_args()
+    if args.list:
+        print("\n".join(PROBLEMS))
+        return
     problems = args.problems or list(PROBLEMS)
     unknown = [p for p in problems if p not in PROBLEMS]
     if unknown:

@@ -5,7 +5,7 @@ import convergence_study
 
 from verification.page import Section, image, table
 
-# tests/CMakeLists.txt: reference.elastoplastic_curves_match_calculix and scripts.convergence_study.
+# The suite's checks: tests/cli/problems_run.sh (its compare.py call) and scripts.convergence_study.
 CURVE_CHECK, FIRST_YIELD_CHECK = 0.02, 0.01
 MIN_ENERGY_RATE, MIN_L2_RATE = 0.9, 1.8
 

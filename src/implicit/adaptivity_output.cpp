@@ -12,7 +12,9 @@ namespace {
 std::string refinement_yaml(const std::vector<geometry::Refinement>& boxes) {
   std::ostringstream s;
   s.precision(17);
-  s << "# discretisation.refinement of the adapted cloud, the problem's own boxes first\n[";
+  s << "# discretisation.refinement of the adapted cloud, the problem's own boxes first: a\n"
+       "# finite-element mesh graded as the cloud; a meshfree cloud of them has the supports of\n"
+       "# the adapted one (graded across each change of spacing) only with discretisation.adapt\n[";
   for (std::size_t k = 0; k < boxes.size(); ++k) {
     const geometry::Refinement& r = boxes[k];
     s << (k ? ",\n " : "") << "{box: [[" << r.box.lo.x() << ", " << r.box.lo.y() << "], ["
