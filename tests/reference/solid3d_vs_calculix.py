@@ -10,10 +10,12 @@ within the fraction `--through-thickness` of CalculiX's when that is given (mesh
 problem's spacing 0.5 is 14% off in the elastic increments and 28% at first yield; the elastic
 difference converges, 5.4% at spacing 0.35 and 2.9% at 0.25; `--set KEY=VALUE` passes settings
 such as discretisation.spacing). The problem's increments are 0.005 mm of pull; `--increments N` runs the first N
-of them (the suite runs 8, into the net section's yield; the whole curve is 20, about 130 s on
+of them (the suite: the bricks and tetrahedra 8, into the net section's yield; meshfree the
+whole curve, 20, on the problem's own run in tests/cli/problems_run.sh, about 130 s on
 two threads).
 
     solid3d_vs_calculix.py MESHFREE ROOT [--increments N] [--through-thickness F] [--set K=V ...]
+    solid3d_vs_calculix.py MESHFREE ROOT --run-dir DIR   # a finished run of the problem as it is
 """
 import argparse
 import csv
@@ -29,16 +31,27 @@ parser.add_argument("root")
 parser.add_argument("--increments", type=int, default=20)
 parser.add_argument("--through-thickness", type=float, default=None)
 parser.add_argument("--set", action="append", default=[])
+parser.add_argument("--run-dir", help="the history of this finished run instead of a run")
 args = parser.parse_args()
 n = args.increments
 reference = calculix_3d_curve(args.root, "thick_perforated_plate", n)
-with tempfile.TemporaryDirectory() as work:
-    out = os.path.join(work, "plate")
-    pull = float(reference[n]["v"])
-    run_meshfree(args.meshfree, os.path.join(args.root, "problems", "thick_perforated_plate.yaml"),
-                 out, [f"steps.0.load_factor={pull!r}", f"steps.0.increments={n}"] + args.set)
-    with open(os.path.join(out, "history.csv")) as f:
-        rows = list(csv.DictReader(f))
+
+
+def history(folder):
+    with open(os.path.join(folder, "history.csv")) as f:
+        return list(csv.DictReader(f))
+
+
+if args.run_dir:
+    rows = history(args.run_dir)
+else:
+    with tempfile.TemporaryDirectory() as work:
+        out = os.path.join(work, "plate")
+        pull = float(reference[n]["v"])
+        run_meshfree(args.meshfree,
+                     os.path.join(args.root, "problems", "thick_perforated_plate.yaml"), out,
+                     [f"steps.0.load_factor={pull!r}", f"steps.0.increments={n}"] + args.set)
+        rows = history(out)
 worst = worst_3d = 0.0
 print(" pull (mm)   CalculiX (kgf)   meshfree (kgf)   difference   u_x face - mid-plane: CalculiX, "
       "meshfree")
