@@ -60,13 +60,13 @@ void correct_test_gradients(const spec::ProblemSpec& spec, GalerkinModel& m,
   // Every rank stops, naming the highest such node of any rank.
   bare = static_cast<int>(solvers::max_everywhere(session.comm(), static_cast<double>(bare)));
   // A node whose shape function does not integrate to a positive amount has no point in its
-  // support, or a support much smaller than its neighbours' (a spacing that jumps; adapted
+  // support, or a support much smaller than its neighbours' (a spacing that jumps: adapted
   // clouds grade their supports, geometry::grade_spacing).
   if (bare >= 0) {
     const geometry::NodeCloud& c = m.space->nodes();
-    MF_REQUIRE(false, "VCI: the shape function of node ", bare, " at (", c.x[bare].x(), ", ",
-               c.x[bare].y(), "), spacing ", c.spacing[bare],
-               ", does not integrate to a positive amount over the body's integration points");
+    fail("VCI: the shape function of node ", bare, " at (", c.x[bare].x(), ", ", c.x[bare].y(),
+         "), spacing ", c.spacing[bare],
+         ", does not integrate to a positive amount over the body's integration points");
   }
   t.test_dphi.resize(t.dphi.size());
   for (std::size_t j = 0; j < t.dphi.size(); ++j) {

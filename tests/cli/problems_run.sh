@@ -9,6 +9,8 @@
 set -eu
 MF="$1"; ROOT="$2"; SHARD="${3:-1/1}"
 K="${SHARD%/*}"; N="${SHARD#*/}"
+[[ "$SHARD" =~ ^[1-9][0-9]*/[1-9][0-9]*$ ]] && [ "$K" -le "$N" ] ||
+  { echo "problems_run.sh: expected K/N with 1 <= K <= N, got '$SHARD'"; exit 2; }
 WORK="$(mktemp -d)"; trap 'rm -rf "$WORK"' EXIT
 compared="$(/usr/bin/python3 "$ROOT/scripts/compare.py" --list)"
 index=0
