@@ -4,6 +4,7 @@
 //   meshfree check PROBLEM.yaml [--set key.path=value ...]
 #include "meshfree/app/analysis.hpp"
 #include "meshfree/core/log.hpp"
+#include "meshfree/core/process_setup.hpp"
 #include "meshfree/io/checkpoint.hpp"
 #include "meshfree/solvers/parallel.hpp"
 #include "meshfree/spec/key_reader.hpp"
@@ -14,13 +15,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <limits>
-#include <malloc.h>
 #include <omp.h>
 #include <optional>
-#include <unistd.h>
 
 namespace {
 
@@ -277,39 +274,9 @@ int run_in(Command& c, mf::solvers::PetscSession& session) {
 
 } // namespace
 
-/// Whether a debugger or tracer is attached (/proc/self/status names its process).
-bool traced() {
-  std::ifstream status("/proc/self/status");
-  std::string line;
-  while (std::getline(status, line))
-    if (line.rfind("TracerPid:", 0) == 0) return std::atoi(line.c_str() + 10) != 0;
-  return false;
-}
-
-/// OpenMP threads that wait at the end of a loop sleep instead of spinning, unless the user chose
-/// a policy: with another job on one of the cores a spinning team waits for its slowest thread
-/// at every loop, a sleeping one gives the core away. libgomp reads OMP_WAIT_POLICY when it is
-/// loaded, before main, so the program runs itself again once with the policy set (on failure it
-/// goes on with the default). Not under a debugger or tracer, which would lose the process.
-void wait_passively(char** argv) {
-  if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT") || traced()) return;
-  setenv("OMP_WAIT_POLICY", "passive", 1);
-  execv("/proc/self/exe", argv);
-}
-
-/// Freed memory stays with the process instead of going back to the system. glibc serves large
-/// blocks by mmap and unmaps them on free, so every large vector (a shape table, a solver's work
-/// space) is paged in afresh, and the first touch of a page is what costs on virtual machines,
-/// more for memory the host has taken back than for memory just freed; keeping it makes large
-/// assemblies faster at the same peak memory (measured in README.md, "Running").
-void keep_freed_memory() {
-  mallopt(M_MMAP_MAX, 0);
-  mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());
-}
-
 int main(int argc, char** argv) {
-  wait_passively(argv);
-  keep_freed_memory();
+  mf::wait_passively(argv);
+  mf::keep_freed_memory();
   // A write past a file-size limit (ulimit -f) fails with EFBIG and is reported as a failed
   // write, with its summary, instead of killing the run with nothing said.
   std::signal(SIGXFSZ, SIG_IGN);

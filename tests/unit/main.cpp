@@ -1,6 +1,7 @@
 // Catch2 runner inside a PETSc session, so that tests can solve through PETSc.
 #define CATCH_CONFIG_RUNNER
 #include "meshfree/core/log.hpp"
+#include "meshfree/core/process_setup.hpp"
 #include "meshfree/solvers/petsc_session.hpp"
 #include "test_support.hpp"
 #include <catch2/catch.hpp>
@@ -14,6 +15,8 @@ const mf::solvers::PetscSession& test_session() {
 }
 
 int main(int argc, char** argv) {
+  mf::wait_passively(argv);
+  mf::keep_freed_memory();
   int pargc = 1;
   char** pargv = argv;
   mf::solvers::PetscSession session(&pargc, &pargv);

@@ -1,0 +1,23 @@
+#pragma once
+// How a program of this project sets up its process before anything else runs: the OpenMP
+// threads' wait, and what glibc does with freed memory. The program and the unit tests both start
+// with them, so that a test measures the code as a run executes it.
+
+namespace mf {
+
+/// OpenMP threads that wait at the end of a loop sleep instead of spinning, unless the user chose
+/// a policy: with another job on one of the cores a spinning team waits for its slowest thread
+/// at every loop, a sleeping one gives the core away (README.md, "Running", has the measured
+/// cost). libgomp reads OMP_WAIT_POLICY when it is loaded, before main, so the program runs
+/// itself again once with the policy set (on failure it goes on with the default). Not under a
+/// debugger or tracer, which would lose the process. Call it first in main.
+void wait_passively(char** argv);
+
+/// Freed memory stays with the process instead of going back to the system. glibc serves large
+/// blocks by mmap and unmaps them on free, so every large vector (a shape table, a solver's work
+/// space) is paged in afresh, and the first touch of a page is what costs on virtual machines,
+/// more for memory the host has taken back than for memory just freed; keeping it makes large
+/// assemblies faster at the same peak memory (measured in README.md, "Running").
+void keep_freed_memory();
+
+} // namespace mf
