@@ -1,92 +1,26 @@
 #include "meshfree/sph/pair_sums.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/kernels/sph_kernel.hpp"
+#include "meshfree/sph/live_pairs.hpp"
 #include <algorithm>
 #include <cmath>
 #include <omp.h>
 #include <vector>
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#define MF_SPH_AVX2 1
+#else
+#define MF_SPH_AVX2 0
+#endif
+
+// Every step of a row is inlined into the row ranges below, which are compiled once for the
+// baseline and once for AVX2 (the same source, so four lanes where the baseline packs two; no
+// contraction and no reassociation, so the same numbers bit for bit).
+#define MF_ROW_STEP __attribute__((always_inline)) inline
 
 namespace mf::sph {
 
 namespace {
-/// The pairs of a row that interact now (r < 2 h_ij, r > 0) and their terms, one array per
-/// quantity so that the pair arithmetic runs as packed loops: the partner's values are gathered
-/// once, every term is computed pass by pass over the row, and the sums read the results.
-struct LivePairs {
-  std::vector<int> j;
-  std::vector<double> x[3], r2, h, g; // x_i - x_j, r^2, h_ij, grad_i W_ij / r_ij
-  std::vector<double> v[3];           // v_i - v_j
-  std::vector<double> m, vol;         // m_j, m_j / rho_j
-  std::vector<double> c, rho;         // c_j, rho_j
-  std::vector<double> q;              // p_i / rho_i^2 + p_j / rho_j^2 + Pi_ij
-  std::vector<double> T[6];           // S_i / rho_i^2 + S_j / rho_j^2 (+ artificial stress)
-  std::vector<double> gv[3];          // the pair's kernel gradient
-  std::vector<double> gi[3], gj[3];   // C_i g x_ij and C_j g x_ij (with the correction)
-  std::vector<double> f[3];           // q gv - T gv: the momentum term per m_i m_j
-  std::vector<double> vg, w;          // v_ij . gv and q v_ij . gv - v_ij . T gv
-  std::vector<double> push;           // inter-material penalty force / r (0: none)
-  void reserve(std::size_t n) {
-    if (j.size() >= n) return;
-    j.resize(n);
-    for (std::vector<double>* a : {&r2, &h, &g, &m, &vol, &c, &rho, &q, &vg, &w, &push})
-      a->resize(n);
-    for (int d = 0; d < 3; ++d)
-      for (std::vector<double>* a : {&x[d], &v[d], &gv[d], &gi[d], &gj[d], &f[d]}) a->resize(n);
-    for (std::vector<double>& a : T) a.resize(n);
-  }
-};
-
-/// grad W / r for pairs [0, count) of `live` with the kernel's dimension fixed at compile time,
-/// so that the loop has no branch the compiler cannot turn into a select.
-template <int Dim> void kernel_slopes(kernels::SphKernel kernel, LivePairs& live, int count) {
-  const double *r2 = live.r2.data(), *h = live.h.data();
-  double* g = live.g.data();
-  if (kernel == kernels::SphKernel::CubicSpline)
-    for (int t = 0; t < count; ++t) {
-      const double rr = std::sqrt(r2[t]);
-      g[t] = kernels::cubic_spline_slope_over_r(Dim, rr, h[t]);
-    }
-  else
-    for (int t = 0; t < count; ++t) {
-      const double rr = std::sqrt(r2[t]);
-      g[t] = kernels::wendland_c2_slope_over_r(Dim, rr, h[t]);
-    }
-}
-
-/// The interacting pairs of row i of `list`, in the row's order; returns their count. The test and
-/// the gradient are pair_gradient's, so every rate loop sums the same terms in the same order as
-/// one walking the list with pair_gradient. Dim: the model's dimension; the coordinates beyond
-/// it are zero for every particle, so their terms (exact zeros) are left out.
-template <int Dim>
-int live_pairs(const Hydro& s, const neighbors::PairList& list, const Rates& r, int i,
-               LivePairs& live) {
-  const long begin = list.offset[i], end = list.offset[i + 1];
-  live.reserve(static_cast<std::size_t>(end - begin));
-  const double* xh = r.xh.data();
-  const double xi[3] = {xh[4 * i], xh[4 * i + 1], xh[4 * i + 2]}, hi = xh[4 * i + 3];
-  int count = 0;
-  // Without a branch: every pair is written at the next free slot, which advances only for an
-  // interacting pair (about half of the list is the skin, in no predictable pattern).
-  for (long k = begin; k < end; ++k) {
-    const int j = list.partner[k];
-    const double* xj = &xh[4 * static_cast<std::size_t>(j)];
-    const double d0 = xi[0] - xj[0];
-    const double d1 = Dim > 1 ? xi[1] - xj[1] : 0.0;
-    const double d2 = Dim > 2 ? xi[2] - xj[2] : 0.0;
-    double r2 = d0 * d0;
-    if constexpr (Dim > 1) r2 += d1 * d1;
-    if constexpr (Dim > 2) r2 += d2 * d2;
-    const double hij = 0.5 * (hi + xj[3]);
-    live.j[count] = j;
-    live.x[0][count] = d0;
-    if constexpr (Dim > 1) live.x[1][count] = d1;
-    if constexpr (Dim > 2) live.x[2][count] = d2;
-    live.r2[count] = r2, live.h[count] = hij;
-    count += !(r2 >= 4.0 * hij * hij) & (r2 != 0.0);
-  }
-  kernel_slopes<Dim>(s.settings.kernel, live, count);
-  return count;
-}
 
 /// The values of a row's own particle i that every pair of the row reads, gathered once per row.
 struct RowParticle {
@@ -98,7 +32,7 @@ struct RowParticle {
   int material;
 };
 
-template <bool Solids> RowParticle row_particle(const Hydro& s, const Rates& r, int i) {
+template <bool Solids> MF_ROW_STEP RowParticle row_particle(const Hydro& s, const Rates& r, int i) {
   const std::size_t k = static_cast<std::size_t>(i);
   const double* q = &r.records[Record::size * k];
   RowParticle o;
@@ -128,7 +62,7 @@ template <int Dim> constexpr bool stress_component_acts(int c) {
 /// The partners' values of pairs [0, count), gathered into the row's arrays: v_ij, m_j, V_j,
 /// c_j, rho_j, p_j / rho_j^2 and, for solids, T = S_i / rho_i^2 + S_j / rho_j^2.
 template <int Dim, bool Solids>
-void gather_partners(const Rates& r, const RowParticle& o, LivePairs& live, int count) {
+MF_ROW_STEP void gather_partners(const Rates& r, const RowParticle& o, LivePairs& live, int count) {
   for (int t = 0; t < count; ++t) {
     const double* q = &r.records[Record::size * static_cast<std::size_t>(live.j[t])];
     for (int d = 0; d < Dim; ++d) live.v[d][t] = o.v[d] - q[Record::v + d];
@@ -148,7 +82,7 @@ void gather_partners(const Rates& r, const RowParticle& o, LivePairs& live, int 
 /// for approaching pairs (v_ij.x_ij < 0), else 0; q = p_i / rho_i^2 + p_j / rho_j^2 + Pi_ij.
 /// Pi is evaluated as h v.x (beta h v.x - alpha c_ij D) / (D^2 rho_ij), one division a pair.
 template <int Dim>
-void viscosities(const Settings& S, const RowParticle& o, LivePairs& live, int count) {
+MF_ROW_STEP void viscosities(const Settings& S, const RowParticle& o, LivePairs& live, int count) {
   const double phi2 = S.phi * S.phi, alpha = S.alpha, beta = S.beta;
 #pragma GCC ivdep
   for (int t = 0; t < count; ++t) {
@@ -166,7 +100,7 @@ void viscosities(const Settings& S, const RowParticle& o, LivePairs& live, int c
 /// The pair's kernel gradient over the model's Dim axes: g x_ij, or g A x_ij for the 3x3 correction
 /// A (row-major); components beyond Dim are zero, as are the terms left out.
 template <int Dim>
-inline void gradient_along(const double* A, double g, const double xij[3], double out[3]) {
+MF_ROW_STEP void gradient_along(const double* A, double g, const double xij[3], double out[3]) {
   for (int a = 0; a < 3; ++a) {
     if (a >= Dim) {
       out[a] = 0.0;
@@ -184,7 +118,8 @@ inline void gradient_along(const double* A, double g, const double xij[3], doubl
 /// (C_i + C_j)/2 g x_ij, which stays antisymmetric in i and j so that momentum is still conserved
 /// exactly, and each end's own C g x_ij for the velocity gradient.
 template <int Dim>
-void kernel_gradients(const Rates& r, const RowParticle& o, LivePairs& live, int count) {
+MF_ROW_STEP void kernel_gradients(const Rates& r, const RowParticle& o, LivePairs& live,
+                                  int count) {
   if (!o.C) {
 #pragma GCC ivdep
     for (int t = 0; t < count; ++t)
@@ -207,8 +142,8 @@ void kernel_gradients(const Rates& r, const RowParticle& o, LivePairs& live, int
 /// Gray, Monaghan & Swift's (2001) artificial stress added to T: f^n (R_i + R_j) with
 /// f = W(r) / W(dp), dp the pair's mean initial spacing.
 template <int Dim>
-void artificial_stress(const Hydro& s, const Rates& r, const RowParticle& o, LivePairs& live,
-                       int count) {
+MF_ROW_STEP void artificial_stress(const Hydro& s, const Rates& r, const RowParticle& o,
+                                   LivePairs& live, int count) {
   const Settings& S = s.settings;
   for (int t = 0; t < count; ++t) {
     const std::size_t j = static_cast<std::size_t>(live.j[t]);
@@ -227,7 +162,7 @@ void artificial_stress(const Hydro& s, const Rates& r, const RowParticle& o, Liv
 /// and w = q v_ij . gv - v_ij . T gv (de_i = m_j w / 2). Each is symmetric in i and j or changes
 /// sign with x_ij, so one evaluation serves both ends. Components beyond Dim are zero: the
 /// motion and the shear stresses out of the model's plane or line are.
-template <int Dim, bool Solids> void pair_terms(LivePairs& live, int count) {
+template <int Dim, bool Solids> MF_ROW_STEP void pair_terms(LivePairs& live, int count) {
   constexpr int voigt[3][3] = {{0, 5, 4}, {5, 1, 3}, {4, 3, 2}};
 #pragma GCC ivdep
   for (int t = 0; t < count; ++t) {
@@ -255,7 +190,8 @@ template <int Dim, bool Solids> void pair_terms(LivePairs& live, int count) {
 /// The inter-material penalty of pairs [0, count) (Settings::Penalty): a repulsion
 /// P a^(dim-1) ((r0/r)^n1 - (r0/r)^n2) along x_ij for r < r0 = distance * a between particles
 /// of different materials, a the pair's mean spacing; push = that force / r, or 0.
-void penalties(const Hydro& s, const Rates& r, const RowParticle& o, LivePairs& live, int count) {
+MF_ROW_STEP void penalties(const Hydro& s, const Rates& r, const RowParticle& o, LivePairs& live,
+                           int count) {
   const Settings::Penalty& pen = s.settings.penalty;
   for (int t = 0; t < count; ++t) {
     const std::size_t j = static_cast<std::size_t>(live.j[t]);
@@ -272,9 +208,9 @@ void penalties(const Hydro& s, const Rates& r, const RowParticle& o, LivePairs& 
 
 /// Row i's interacting pairs and all their terms, pass by pass.
 template <int Dim, bool Solids>
-int row_terms(const Hydro& s, const Rates& r, const neighbors::PairList& list, const RowParticle& o,
-              LivePairs& live) {
-  const int count = live_pairs<Dim>(s, list, r, o.i, live);
+MF_ROW_STEP int row_terms(const Hydro& s, const Rates& r, const neighbors::PairList& list,
+                          const RowParticle& o, LivePairs& live, SimdTarget target) {
+  const int count = select_live_pairs(Dim, list, r.xh.data(), o.i, s.settings.kernel, live, target);
   gather_partners<Dim, Solids>(r, o, live, count);
   viscosities<Dim>(s.settings, o, live, count);
   kernel_gradients<Dim>(r, o, live, count);
@@ -289,8 +225,8 @@ int row_terms(const Hydro& s, const Rates& r, const neighbors::PairList& list, c
 /// chains of additions instead of one, in packed registers) and the two sums added at the end,
 /// an order fixed by the row alone.
 template <int Dim, bool Solids>
-void row_sums(const Settings& S, const RowParticle& o, const LivePairs& live, int count,
-              double a[3], double& drho, double& de, double L[9]) {
+MF_ROW_STEP void row_sums(const Settings& S, const RowParticle& o, const LivePairs& live, int count,
+                          double a[3], double& drho, double& de, double L[9]) {
   constexpr int width = 2 + Dim + (Solids ? Dim * Dim : 0);
   double sum[2][width] = {};
   const std::vector<double>* gi = o.C ? live.gi : live.gv;
@@ -324,7 +260,7 @@ void row_sums(const Settings& S, const RowParticle& o, const LivePairs& live, in
 /// antisymmetric parts of L. L is zero beyond the model's Dim axes and so are the shear stresses
 /// out of its plane or line, so the rotation terms over the other axes (exact zeros) are left out.
 template <int Dim>
-void jaumann_rate(const double L[9], const double s6[6], double G, double out[6]) {
+MF_ROW_STEP void jaumann_rate(const double L[9], const double s6[6], double G, double out[6]) {
   double D[3][3], W[3][3];
   const double Sm[3][3] = {{s6[0], s6[5], s6[4]}, {s6[5], s6[1], s6[3]}, {s6[4], s6[3], s6[2]}};
   for (int a = 0; a < 3; ++a)
@@ -347,7 +283,7 @@ void jaumann_rate(const double L[9], const double s6[6], double G, double out[6]
 
 /// Adds gravity and damping (a += g - c v) to an owned particle's acceleration and stores it,
 /// or 0 for a fixed particle.
-inline void store_acceleration(const Hydro& s, Rates& r, int i, double acc[3]) {
+MF_ROW_STEP void store_acceleration(const Hydro& s, Rates& r, int i, double acc[3]) {
   if (s.fields.fixed[i]) {
     for (int d = 0; d < 3; ++d) r.dv[3 * i + d] = 0.0;
     return;
@@ -362,7 +298,8 @@ inline void store_acceleration(const Hydro& s, Rates& r, int i, double acc[3]) {
 
 /// The velocity gradient and Jaumann rate of owned particle i from its summed L; particles
 /// without strength keep zeros.
-template <int Dim> void store_stress_rate(const Hydro& s, Rates& r, int i, const double L[9]) {
+template <int Dim>
+MF_ROW_STEP void store_stress_rate(const Hydro& s, Rates& r, int i, const double L[9]) {
   double* grad = &r.grad_v[9 * static_cast<std::size_t>(i)];
   double* dS = &r.dS[6 * static_cast<std::size_t>(i)];
   if (r.shear[i] < 0.0) {
@@ -374,34 +311,12 @@ template <int Dim> void store_stress_rate(const Hydro& s, Rates& r, int i, const
   jaumann_rate<Dim>(L, &s.fields.S[6 * static_cast<std::size_t>(i)], r.shear[i], dS);
 }
 
-/// Deterministic sums (settings.deterministic): every owned particle sums its whole row in the
-/// row's order (increasing global id, mirror images after), so its rates do not depend on the
-/// threads or the ranks; each pair is evaluated from both ends.
-template <int Dim, bool Solids> void full_rows(const Hydro& s, Rates& r) {
-  const int n = s.particles.owned_count();
-#pragma omp parallel
-  {
-    LivePairs live;
-#pragma omp for schedule(dynamic, 64)
-    for (int i = 0; i < n; ++i) {
-      const RowParticle o = row_particle<Solids>(s, r, i);
-      const int count = row_terms<Dim, Solids>(s, r, s.neighbours.pairs, o, live);
-      double a[3] = {0.0, 0.0, 0.0}, drho = 0.0, de = 0.0;
-      double L[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-      row_sums<Dim, Solids>(s.settings, o, live, count, a, drho, de, L);
-      store_acceleration(s, r, i, a);
-      r.drho[i] = drho;
-      r.de[i] = de;
-      if constexpr (Solids) store_stress_rate<Dim>(s, r, i, L);
-    }
-  }
-}
-
 /// The partners' side of row i's pairs (x_ji = -x_ij, v_ji = -v_ij: f changes sign, v.gv and w do
 /// not), added at j - base of the thread's outputs; ghosts (j >= n) are left to their owners.
 template <int Dim, bool Solids>
-void partner_sums(const Settings& S, const RowParticle& o, const LivePairs& live, int count, int n,
-                  int base, double* acc, double* drho, double* de, double* L) {
+MF_ROW_STEP void partner_sums(const Settings& S, const RowParticle& o, const LivePairs& live,
+                              int count, int n, int base, double* acc, double* drho, double* de,
+                              double* L) {
   const double mi = o.mass, vol_i = o.volume;
   const std::vector<double>* gj = o.C ? live.gj : live.gv;
   for (int t = 0; t < count; ++t) {
@@ -419,6 +334,107 @@ void partner_sums(const Settings& S, const RowParticle& o, const LivePairs& live
   }
 }
 
+/// Rows [lo, hi) of the whole list, each summed into its own outputs.
+template <int Dim, bool Solids>
+MF_ROW_STEP void whole_rows_body(const Hydro& s, Rates& r, int lo, int hi, LivePairs& live,
+                                 SimdTarget target) {
+  for (int i = lo; i < hi; ++i) {
+    const RowParticle o = row_particle<Solids>(s, r, i);
+    const int count = row_terms<Dim, Solids>(s, r, s.neighbours.pairs, o, live, target);
+    double a[3] = {0.0, 0.0, 0.0}, drho = 0.0, de = 0.0;
+    double L[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    row_sums<Dim, Solids>(s.settings, o, live, count, a, drho, de, L);
+    store_acceleration(s, r, i, a);
+    r.drho[i] = drho;
+    r.de[i] = de;
+    if constexpr (Solids) store_stress_rate<Dim>(s, r, i, L);
+  }
+}
+
+/// Where a thread's half rows put their sums: r's own arrays (base 0) or the thread's buffer
+/// over [base, owned).
+struct HalfOutputs {
+  double *acc, *drho, *de, *L;
+  int base;
+};
+
+/// Rows [lo, hi) of the half list: each row's own sums, and its partners' side into `out`.
+template <int Dim, bool Solids>
+MF_ROW_STEP void half_rows_body(const Hydro& s, const Rates& r, int lo, int hi, LivePairs& live,
+                                const HalfOutputs& out, SimdTarget target) {
+  const int n = s.particles.owned_count();
+  for (int i = lo; i < hi; ++i) {
+    const RowParticle o = row_particle<Solids>(s, r, i);
+    const int count = row_terms<Dim, Solids>(s, r, s.neighbours.half_pairs, o, live, target);
+    double ai[3] = {0.0, 0.0, 0.0}, drho_i = 0.0, de_i = 0.0;
+    double Li[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    row_sums<Dim, Solids>(s.settings, o, live, count, ai, drho_i, de_i, Li);
+    partner_sums<Dim, Solids>(s.settings, o, live, count, n, out.base, out.acc, out.drho, out.de,
+                              out.L);
+    const std::size_t ib = static_cast<std::size_t>(i - out.base);
+    for (int d = 0; d < 3; ++d) out.acc[3 * ib + d] += ai[d];
+    out.drho[ib] += drho_i;
+    out.de[ib] += de_i;
+    if constexpr (Solids)
+      for (int c = 0; c < 9; ++c) out.L[9 * ib + c] += Li[c];
+  }
+}
+
+/// The row ranges compiled for each target: the baseline, and AVX2 where the compiler and the
+/// processor have it (SimdTarget::Avx512 takes these too). The AVX2 ones clear the vector
+/// registers' upper halves before the baseline code runs again (left dirty, every later SSE
+/// instruction of the process waits on them).
+template <int Dim, bool Solids> struct RowRanges {
+  static void whole(const Hydro& s, Rates& r, int lo, int hi, LivePairs& live) {
+    whole_rows_body<Dim, Solids>(s, r, lo, hi, live, SimdTarget::Baseline);
+  }
+  static void half(const Hydro& s, const Rates& r, int lo, int hi, LivePairs& live,
+                   const HalfOutputs& out) {
+    half_rows_body<Dim, Solids>(s, r, lo, hi, live, out, SimdTarget::Baseline);
+  }
+#if MF_SPH_AVX2
+  __attribute__((target("avx2"))) static void whole_avx2(const Hydro& s, Rates& r, int lo, int hi,
+                                                         LivePairs& live) {
+    whole_rows_body<Dim, Solids>(s, r, lo, hi, live, SimdTarget::Avx2);
+    _mm256_zeroupper();
+  }
+  __attribute__((target("avx2"))) static void half_avx2(const Hydro& s, const Rates& r, int lo,
+                                                        int hi, LivePairs& live,
+                                                        const HalfOutputs& out) {
+    half_rows_body<Dim, Solids>(s, r, lo, hi, live, out, SimdTarget::Avx2);
+    _mm256_zeroupper();
+  }
+#endif
+  static void whole_for(SimdTarget t, const Hydro& s, Rates& r, int lo, int hi, LivePairs& live) {
+#if MF_SPH_AVX2
+    if (t != SimdTarget::Baseline) return whole_avx2(s, r, lo, hi, live);
+#endif
+    whole(s, r, lo, hi, live);
+  }
+  static void half_for(SimdTarget t, const Hydro& s, const Rates& r, int lo, int hi,
+                       LivePairs& live, const HalfOutputs& out) {
+#if MF_SPH_AVX2
+    if (t != SimdTarget::Baseline) return half_avx2(s, r, lo, hi, live, out);
+#endif
+    half(s, r, lo, hi, live, out);
+  }
+};
+
+/// Deterministic sums (settings.deterministic): every owned particle sums its whole row in the
+/// row's order (increasing global id, mirror images after), so its rates do not depend on the
+/// threads or the ranks; each pair is evaluated from both ends. Rows are dealt out 64 at a time.
+template <int Dim, bool Solids> void full_rows(const Hydro& s, Rates& r, SimdTarget target) {
+  const int n = s.particles.owned_count();
+  const int chunks = (n + 63) / 64;
+#pragma omp parallel
+  {
+    LivePairs live;
+#pragma omp for schedule(dynamic, 1)
+    for (int c = 0; c < chunks; ++c)
+      RowRanges<Dim, Solids>::whole_for(target, s, r, 64 * c, std::min(n, 64 * c + 64), live);
+  }
+}
+
 /// Each pair once, Newton's third law (the default): the half list holds partner j > i only, and
 /// the pair's terms go to both ends. Thread t takes rows [first_row[t], first_row[t + 1]) with an
 /// equal share of the pairs; its reactions on partners land in its own buffer over
@@ -426,7 +442,7 @@ void partner_sums(const Settings& S, const RowParticle& o, const LivePairs& live
 /// thread order afterwards. A pair with a ghost (another rank's particle, a mirror image) gives
 /// its terms to the owned particle only; the ghost's owner sums its own side. The sums run in an
 /// order that depends on the threads and ranks.
-template <int Dim, bool Solids> void half_rows(const Hydro& s, Rates& r) {
+template <int Dim, bool Solids> void half_rows(const Hydro& s, Rates& r, SimdTarget target) {
   const int n = s.particles.owned_count();
   const neighbors::PairList& half = s.neighbours.half_pairs;
   const long total = half.offset[n];
@@ -462,20 +478,7 @@ template <int Dim, bool Solids> void half_rows(const Hydro& s, Rates& r) {
       buffers[t] = own.data();
     }
     LivePairs live;
-    for (int i = lo; i < hi; ++i) {
-      const RowParticle o = row_particle<Solids>(s, r, i);
-      const int count = row_terms<Dim, Solids>(s, r, half, o, live);
-      double ai[3] = {0.0, 0.0, 0.0}, drho_i = 0.0, de_i = 0.0;
-      double Li[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-      row_sums<Dim, Solids>(s.settings, o, live, count, ai, drho_i, de_i, Li);
-      partner_sums<Dim, Solids>(s.settings, o, live, count, n, base, acc, drho, de, L);
-      const std::size_t ib = static_cast<std::size_t>(i - base);
-      for (int d = 0; d < 3; ++d) acc[3 * ib + d] += ai[d];
-      drho[ib] += drho_i;
-      de[ib] += de_i;
-      if constexpr (Solids)
-        for (int c = 0; c < 9; ++c) L[9 * ib + c] += Li[c];
-    }
+    RowRanges<Dim, Solids>::half_for(target, s, r, lo, hi, live, {acc, drho, de, L, base});
 #pragma omp barrier
 #pragma omp for schedule(static)
     for (int i = 0; i < n; ++i) {
@@ -508,19 +511,20 @@ void sum_pairs(const Hydro& s, Rates& r, bool solids) {
     fail("SPH: the half neighbour list is not built for these particles (refresh_neighbours "
          "builds it)");
   const bool half = !s.settings.deterministic;
+  const SimdTarget target = simd_target();
   switch (2 * (s.dim - 1) + (solids ? 1 : 0)) {
   case 0:
-    return half ? half_rows<1, false>(s, r) : full_rows<1, false>(s, r);
+    return half ? half_rows<1, false>(s, r, target) : full_rows<1, false>(s, r, target);
   case 1:
-    return half ? half_rows<1, true>(s, r) : full_rows<1, true>(s, r);
+    return half ? half_rows<1, true>(s, r, target) : full_rows<1, true>(s, r, target);
   case 2:
-    return half ? half_rows<2, false>(s, r) : full_rows<2, false>(s, r);
+    return half ? half_rows<2, false>(s, r, target) : full_rows<2, false>(s, r, target);
   case 3:
-    return half ? half_rows<2, true>(s, r) : full_rows<2, true>(s, r);
+    return half ? half_rows<2, true>(s, r, target) : full_rows<2, true>(s, r, target);
   case 4:
-    return half ? half_rows<3, false>(s, r) : full_rows<3, false>(s, r);
+    return half ? half_rows<3, false>(s, r, target) : full_rows<3, false>(s, r, target);
   default:
-    return half ? half_rows<3, true>(s, r) : full_rows<3, true>(s, r);
+    return half ? half_rows<3, true>(s, r, target) : full_rows<3, true>(s, r, target);
   }
 }
 

@@ -4,25 +4,12 @@
 // (bond_rows.cpp), or packed rows (AVX2, AVX-512: bond_rows_packed.cpp), each row in blocks of
 // bonds whose stretches and force factors are computed several lanes at a time and then summed
 // in bond order. Both give the same numbers bit for bit.
+#include "meshfree/core/simd_target.hpp"
 #include "meshfree/pd/model.hpp"
 #include <cstdint>
 #include <vector>
 
 namespace mf::pd {
-
-/// The instruction sets the bond loop is compiled for: x86-64's baseline (SSE2, two lanes), AVX2
-/// (four) and AVX-512 (eight; x86-64-v4). Other processors have the baseline only.
-enum class SimdTarget { Baseline, Avx2, Avx512 };
-
-const char* simd_target_name(SimdTarget t);
-/// The targets this processor runs, narrowest first (the baseline always).
-std::vector<SimdTarget> simd_targets();
-/// The target bond_forces uses unless set: AVX2 where the processor has it, else the baseline.
-SimdTarget preferred_simd_target();
-/// The target bond_forces uses.
-SimdTarget simd_target();
-/// Makes bond_forces use `t` (one this processor runs; for comparisons and timings).
-void set_simd_target(SimdTarget t);
 
 namespace rows {
 

@@ -78,9 +78,9 @@ struct Evaluation {
 };
 
 /// Three evaluations (the s0 of one sets the limits of the next) at growing deformations.
-Evaluation evaluate(const pd::Model& m, pd::SimdTarget target, int threads, bool energy,
+Evaluation evaluate(const pd::Model& m, SimdTarget target, int threads, bool energy,
                     const std::vector<pd::PreCrack>& cracks) {
-  pd::set_simd_target(target);
+  mf::set_simd_target(target);
   const int before = omp_get_max_threads();
   omp_set_num_threads(threads);
   Evaluation e;
@@ -93,7 +93,7 @@ Evaluation evaluate(const pd::Model& m, pd::SimdTarget target, int threads, bool
     e.energy.push_back(r.strain_energy), e.broken.push_back(r.broken);
   }
   omp_set_num_threads(before);
-  pd::set_simd_target(pd::preferred_simd_target());
+  mf::set_simd_target(mf::preferred_simd_target());
   return e;
 }
 
@@ -114,10 +114,10 @@ std::pair<int, std::size_t> ragged_rows(const pd::Model& m) {
 
 TEST_CASE("the packed bond rows equal the scalar rows bit for bit on every instruction set",
           "[pd][bonds][simd]") {
-  const std::vector<pd::SimdTarget> targets = pd::simd_targets();
-  REQUIRE(targets.front() == pd::SimdTarget::Baseline);
+  const std::vector<SimdTarget> targets = mf::simd_targets();
+  REQUIRE(targets.front() == SimdTarget::Baseline);
   std::cout << "bond rows compared on:";
-  for (pd::SimdTarget t : targets) std::cout << ' ' << pd::simd_target_name(t);
+  for (SimdTarget t : targets) std::cout << ' ' << mf::simd_target_name(t);
   std::cout << '\n';
   materials::BondLaw pmb, lammps, plastic;
   pmb.c = lammps.c = plastic.c = kC;
@@ -143,16 +143,16 @@ TEST_CASE("the packed bond rows equal the scalar rows bit for bit on every instr
         for (int threads : {1, 2})
           for (bool energy : {false, true}) {
             const Evaluation scalar =
-                evaluate(m, pd::SimdTarget::Baseline, threads, energy, {crack});
+                evaluate(m, SimdTarget::Baseline, threads, energy, {crack});
             long cut = 0;
             for (unsigned char b : pd::initial_state(m, {crack}).intact) cut += b == 0;
             CHECK(cut > 0);
             CHECK(scalar.broken[0] + scalar.broken[1] + scalar.broken[2] > 0);
             CHECK(scalar.broken[2] < m.bonds.directed / 2);
-            for (pd::SimdTarget t : targets) {
+            for (SimdTarget t : targets) {
               INFO(l.name << (deterministic ? ", full rows" : ", half rows")
                           << (plane ? ", plane" : ", 3D") << ", " << threads << " thread(s)"
-                          << (energy ? ", energies" : "") << ", " << pd::simd_target_name(t));
+                          << (energy ? ", energies" : "") << ", " << mf::simd_target_name(t));
               const Evaluation packed = evaluate(m, t, threads, energy, {crack});
               CHECK(packed.force == scalar.force);
               CHECK(packed.density == scalar.density);
@@ -168,13 +168,13 @@ TEST_CASE("the packed bond rows equal the scalar rows bit for bit on every instr
 
 TEST_CASE("the bond loop's instruction set is AVX2 where the processor has it, and can be set",
           "[pd][bonds][simd]") {
-  const std::vector<pd::SimdTarget> targets = pd::simd_targets();
+  const std::vector<SimdTarget> targets = mf::simd_targets();
   const bool avx2 =
-      std::find(targets.begin(), targets.end(), pd::SimdTarget::Avx2) != targets.end();
-  CHECK(pd::simd_target() == (avx2 ? pd::SimdTarget::Avx2 : pd::SimdTarget::Baseline));
-  for (pd::SimdTarget t : targets) {
-    pd::set_simd_target(t);
-    CHECK(pd::simd_target() == t);
+      std::find(targets.begin(), targets.end(), SimdTarget::Avx2) != targets.end();
+  CHECK(mf::simd_target() == (avx2 ? SimdTarget::Avx2 : SimdTarget::Baseline));
+  for (SimdTarget t : targets) {
+    mf::set_simd_target(t);
+    CHECK(mf::simd_target() == t);
   }
-  pd::set_simd_target(pd::preferred_simd_target());
+  mf::set_simd_target(mf::preferred_simd_target());
 }

@@ -2,10 +2,13 @@
 // both ends (Newton's third law, the default) and every particle's whole row in global-id order
 // (settings.deterministic). Every pair term is exercised: two materials, one without strength,
 // the kernel-gradient correction, the artificial stress, the inter-material penalty, a symmetry
-// plane's mirror images, a fixed particle, gravity and damping, on 1, 2 and 3 threads.
+// plane's mirror images, a fixed particle, gravity and damping, on 1, 2 and 3 threads. The
+// live-pair selection, packed for AVX2, keeps what the scalar one keeps, bit for bit.
+#include "meshfree/core/simd_target.hpp"
 #include "meshfree/materials/equation_of_state.hpp"
 #include "meshfree/materials/strength.hpp"
 #include "meshfree/sph/hydro.hpp"
+#include "meshfree/sph/live_pairs.hpp"
 #include "meshfree/sph/neighbours.hpp"
 #include "meshfree/sph/rates.hpp"
 #include "meshfree/sph/state.hpp"
@@ -126,4 +129,105 @@ TEST_CASE("SPH: each pair once (Newton's third law) gives the rates of the whole
     }
     omp_set_num_threads(threads);
   }
+}
+
+TEST_CASE("SPH: the live-pair selection keeps the same pairs with the same values on every "
+          "instruction set, and the rates are equal bit for bit",
+          "[sph][rates][simd]") {
+  const std::vector<SimdTarget> targets = simd_targets();
+  REQUIRE(targets.front() == SimdTarget::Baseline);
+  // A row of every length from 0 to 11 (the packed selection takes four pairs at a time), with
+  // a partner at the row's own place (r = 0, left out) and in 1D one exactly at 2 h_ij (left out):
+  // particle 0 at the origin with h = 0.5, partners along x at 0, 1 (= 2 h_ij) and inside.
+  std::vector<double> xh;
+  const double along[] = {0.3, 0.0, 1.0, -0.7, 0.999, 1.5, 0.1, -1.0, 0.25, 2.0, -0.5};
+  xh.insert(xh.end(), {0.0, 0.0, 0.0, 0.5});
+  for (double a : along) xh.insert(xh.end(), {a, 0.25 * a, -0.5 * a, 0.5});
+  for (int length = 0; length <= 11; ++length) {
+    neighbors::PairList list;
+    for (int k = 1; k <= length; ++k) list.partner.push_back(k);
+    list.offset = {0, static_cast<long>(length)};
+    for (const int dim : {1, 2, 3})
+      for (const kernels::SphKernel kernel :
+           {kernels::SphKernel::CubicSpline, kernels::SphKernel::WendlandC2}) {
+        sph::LivePairs scalar;
+        const int count =
+            sph::select_live_pairs(dim, list, xh.data(), 0, kernel, scalar, SimdTarget::Baseline);
+        int expected = 0;
+        for (int k = 0; k < length; ++k) {
+          const double a = along[k];
+          double r2 = a * a;
+          if (dim > 1) r2 += 0.0625 * a * a;
+          if (dim > 2) r2 += 0.25 * a * a;
+          expected += r2 != 0.0 && r2 < 1.0;
+        }
+        CHECK(count == expected);
+        for (SimdTarget t : targets) {
+          INFO(length << " pairs, " << dim << "D, kernel " << static_cast<int>(kernel) << ", "
+                      << simd_target_name(t));
+          sph::LivePairs packed;
+          REQUIRE(sph::select_live_pairs(dim, list, xh.data(), 0, kernel, packed, t) == count);
+          for (int k = 0; k < count; ++k) {
+            CHECK(packed.j[k] == scalar.j[k]);
+            CHECK(packed.r2[k] == scalar.r2[k]);
+            CHECK(packed.h[k] == scalar.h[k]);
+            CHECK(packed.g[k] == scalar.g[k]);
+            for (int d = 0; d < dim; ++d) CHECK(packed.x[d][k] == scalar.x[d][k]);
+          }
+        }
+      }
+  }
+  // Every pair term (sph/pair_sums.hpp) through both layouts and both kernels, on each target.
+  for (const int dim : {1, 2, 3})
+    for (const bool deterministic : {true, false}) {
+      sph::Hydro s = mixed_block(dim, dim == 1 ? 40 : dim == 2 ? 16 : 8);
+      s.settings.deterministic = deterministic;
+      s.settings.kernel =
+          dim == 2 ? kernels::SphKernel::WendlandC2 : kernels::SphKernel::CubicSpline;
+      sph::refresh_neighbours(s);
+      set_simd_target(SimdTarget::Baseline);
+      sph::Rates base;
+      sph::compute_rates(s, base);
+      for (SimdTarget t : targets) {
+        INFO(dim << "D, " << (deterministic ? "whole rows, " : "each pair once, ")
+                 << (dim == 2 ? "Wendland C2, " : "cubic spline, ") << simd_target_name(t));
+        set_simd_target(t);
+        sph::Rates other;
+        sph::compute_rates(s, other);
+        CHECK(other.dv == base.dv);
+        CHECK(other.drho == base.drho);
+        CHECK(other.de == base.de);
+        CHECK(other.dS == base.dS);
+        CHECK(other.grad_v == base.grad_v);
+      }
+      set_simd_target(preferred_simd_target());
+    }
+}
+
+TEST_CASE("SPH benchmark: the rates' cost with the live-pair selection of each instruction set",
+          "[.][benchmark][sph]") {
+  const std::vector<SimdTarget> targets = simd_targets();
+  for (const int dim : {2, 3})
+    for (const bool deterministic : {false, true}) {
+      sph::Hydro s = mixed_block(dim, dim == 2 ? 120 : 24);
+      s.settings.deterministic = deterministic;
+      sph::refresh_neighbours(s);
+      std::vector<double> best(targets.size(), 1e300);
+      for (int round = 0; round < 9; ++round)
+        for (std::size_t k = 0; k < targets.size(); ++k) {
+          set_simd_target(targets[k]);
+          sph::Rates r;
+          const double t0 = omp_get_wtime();
+          sph::compute_rates(s, r);
+          best[k] = std::min(best[k], omp_get_wtime() - t0);
+        }
+      set_simd_target(preferred_simd_target());
+      std::printf("  %dD, %s, %d particles, %d thread(s):", dim,
+                  deterministic ? "whole rows" : "each pair once", s.particles.owned_count(),
+                  omp_get_max_threads());
+      for (std::size_t k = 0; k < targets.size(); ++k)
+        std::printf(" %s %.2f ms (%.2fx)", simd_target_name(targets[k]), 1e3 * best[k],
+                    best[0] / best[k]);
+      std::printf("\n");
+    }
 }
