@@ -1,6 +1,6 @@
-// The bond rows of pd/bond_rows.hpp: which instruction set the processor has, the scalar rows
-// (each bond in one pass), and the choice, once per call, between them and the packed rows
-// (pd/bond_rows_packed.cpp).
+// The bond rows of pd/bond_rows.hpp: the scalar rows (each bond in one pass), and the choice, once
+// per call, between them and the packed rows (pd/bond_rows_packed.cpp) for the instruction set
+// of core/simd_target.hpp.
 #include "meshfree/pd/bond_rows.hpp"
 #include "meshfree/core/error.hpp"
 #include <algorithm>

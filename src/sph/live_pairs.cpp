@@ -141,9 +141,10 @@ __attribute__((target("avx2"))) int select_avx2(const int* partner, long begin, 
     store_kept(&live.h[count], hij, wide);
     count += __builtin_popcount(static_cast<unsigned>(mask));
   }
-  // The upper halves of the vector registers cleared before the baseline code runs again
-  // (GCC leaves it out here): left dirty, every later SSE instruction of the process waits on
-  // them, and the SPH tunnel's steps took twice as long.
+  // The upper halves of the vector registers cleared before the baseline code runs again, said
+  // here rather than left to the compiler: GCC 12 once called the scalar tail without it, and
+  // with them left dirty every later SSE instruction of the process waited on them (the SPH
+  // tunnel's steps took twice as long).
   _mm256_zeroupper();
   count = select_scalar<Dim>(partner, k, end, xh, xi, hi, live, count);
   slopes<Dim>(kernel, live, count);

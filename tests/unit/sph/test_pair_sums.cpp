@@ -17,6 +17,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <omp.h>
 #include <vector>
 
@@ -139,10 +140,10 @@ TEST_CASE("SPH: the live-pair selection keeps the same pairs with the same value
   // A row of every length from 0 to 11 (the packed selection takes four pairs at a time), with
   // a partner at the row's own place (r = 0, left out) and in 1D one exactly at 2 h_ij (left out):
   // particle 0 at the origin with h = 0.5, partners along x at 0, 1 (= 2 h_ij) and inside.
-  std::vector<double> xh;
   const double along[] = {0.3, 0.0, 1.0, -0.7, 0.999, 1.5, 0.1, -1.0, 0.25, 2.0, -0.5};
-  xh.insert(xh.end(), {0.0, 0.0, 0.0, 0.5});
-  for (double a : along) xh.insert(xh.end(), {a, 0.25 * a, -0.5 * a, 0.5});
+  std::cout << "live pairs compared on:";
+  for (SimdTarget t : targets) std::cout << ' ' << simd_target_name(t);
+  std::cout << '\n';
   for (int length = 0; length <= 11; ++length) {
     neighbors::PairList list;
     for (int k = 1; k <= length; ++k) list.partner.push_back(k);
@@ -150,6 +151,10 @@ TEST_CASE("SPH: the live-pair selection keeps the same pairs with the same value
     for (const int dim : {1, 2, 3})
       for (const kernels::SphKernel kernel :
            {kernels::SphKernel::CubicSpline, kernels::SphKernel::WendlandC2}) {
+        // Coordinates beyond the model's dimension are zero, as for every particle of a body.
+        std::vector<double> xh{0.0, 0.0, 0.0, 0.5};
+        for (double a : along)
+          xh.insert(xh.end(), {a, dim > 1 ? 0.25 * a : 0.0, dim > 2 ? -0.5 * a : 0.0, 0.5});
         sph::LivePairs scalar;
         const int count =
             sph::select_live_pairs(dim, list, xh.data(), 0, kernel, scalar, SimdTarget::Baseline);
@@ -176,6 +181,34 @@ TEST_CASE("SPH: the live-pair selection keeps the same pairs with the same value
           }
         }
       }
+  }
+  // A row of 64 pairs whose k-th block of four keeps the lanes of the bits of k: every kept-lane
+  // pattern the packed selection can meet, once each.
+  {
+    std::vector<double> xh{0.0, 0.0, 0.0, 0.5};
+    neighbors::PairList list;
+    for (int k = 0; k < 64; ++k) {
+      const double a = (k / 4 >> (k % 4)) & 1 ? 0.3 + 0.01 * k : 1.5 + 0.01 * k;
+      xh.insert(xh.end(), {a, 0.0, 0.0, 0.5});
+      list.partner.push_back(k + 1);
+    }
+    list.offset = {0, 64};
+    sph::LivePairs scalar;
+    const int count = sph::select_live_pairs(1, list, xh.data(), 0, kernels::SphKernel::CubicSpline,
+                                             scalar, SimdTarget::Baseline);
+    CHECK(count == 32);
+    for (SimdTarget t : targets) {
+      INFO("every kept-lane pattern, " << simd_target_name(t));
+      sph::LivePairs packed;
+      REQUIRE(sph::select_live_pairs(1, list, xh.data(), 0, kernels::SphKernel::CubicSpline, packed,
+                                     t) == count);
+      for (int k = 0; k < count; ++k) {
+        CHECK(packed.j[k] == scalar.j[k]);
+        CHECK(packed.x[0][k] == scalar.x[0][k]);
+        CHECK(packed.r2[k] == scalar.r2[k]);
+        CHECK(packed.g[k] == scalar.g[k]);
+      }
+    }
   }
   // Every pair term (sph/pair_sums.hpp) through both layouts and both kernels, on each target.
   for (const int dim : {1, 2, 3})
