@@ -134,11 +134,29 @@ def main():
     ap.add_argument("--sizes", default="1e4,1e5,1e6")
     ap.add_argument("--steps", type=int, default=10, help="steps per block run")
     ap.add_argument("--threads", default="1,2")
-    ap.add_argument("--ranks", default="2", help="MPI ranks x 1 thread for the new binary")
+    ap.add_argument("--ranks", default="2",
+                    help="MPI ranks x 1 thread for the new binary (at least 2; '' for none)")
     ap.add_argument("--old-pair-limit", type=float, default=3e8)
     ap.add_argument("--skip-problems", action="store_true")
     ap.add_argument("--skip-blocks", action="store_true")
     args = ap.parse_args()
+
+    def counts(key, text, least, allow_empty=False):
+        """A comma-separated list of whole numbers (1e4 too) of at least `least`, or exit 2."""
+        try:
+            values = [int(float(v)) for v in text.split(",") if v.strip()]
+        except ValueError:
+            values = []
+        if (not values and not allow_empty) or any(v < least for v in values):
+            ap.error(f"{key}: {text!r} is not a list of whole numbers of at least {least}")
+        return values
+
+    threads = counts("--threads", args.threads, 1)
+    sizes = counts("--sizes", args.sizes, 100)
+    rank_counts = counts("--ranks", args.ranks, 2, allow_empty=True)
+    if args.repeats < 1 or not 0.0 < args.fraction <= 1.0 or args.steps < 1:
+        ap.error(f"--repeats {args.repeats}, --fraction {args.fraction}, --steps {args.steps}: "
+                 "need at least 1 repeat, a fraction in (0, 1] and at least 1 step")
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     lines = []
@@ -169,8 +187,6 @@ def main():
         lines.append("")
 
     if not args.skip_blocks:
-        threads = [int(t) for t in args.threads.split(",")]
-        sizes = [int(float(n)) for n in args.sizes.split(",")]
         lines += ["## 2D gas blocks (best of %d interleaved runs, %d steps)" % (args.repeats,
                                                                               args.steps), "",
                   "| case | particles | threads | binary | particle-steps/s | pair evals/s "
@@ -219,7 +235,7 @@ def main():
                         one = best(res["new"])
                 # The new binary spread over MPI ranks, one thread each; the speed-up is against
                 # its own one-rank, one-thread run.
-                for ranks in [int(r) for r in args.ranks.split(",") if r]:
+                for ranks in rank_counts:
                     r = best([run(args.new, problem, out / "block_ranks", 1, sets, ranks)
                               for _ in range(args.repeats)])
                     evals = live * 2 * r["steps"] / r["stepping_s"] / ranks
