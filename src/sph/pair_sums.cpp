@@ -334,20 +334,34 @@ MF_ROW_STEP void partner_sums(const Settings& S, const RowParticle& o, const Liv
   }
 }
 
+/// A row's own particle, its interacting pairs with their terms, and its own sums over them.
+struct Row {
+  RowParticle o;
+  int count = 0;
+  double a[3] = {0.0, 0.0, 0.0}, drho = 0.0, de = 0.0;
+  double L[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+};
+
+template <int Dim, bool Solids>
+MF_ROW_STEP Row row_of(const Hydro& s, const Rates& r, const neighbors::PairList& list, int i,
+                       LivePairs& live, SimdTarget target) {
+  Row w;
+  w.o = row_particle<Solids>(s, r, i);
+  w.count = row_terms<Dim, Solids>(s, r, list, w.o, live, target);
+  row_sums<Dim, Solids>(s.settings, w.o, live, w.count, w.a, w.drho, w.de, w.L);
+  return w;
+}
+
 /// Rows [lo, hi) of the whole list, each summed into its own outputs.
 template <int Dim, bool Solids>
 MF_ROW_STEP void whole_rows_body(const Hydro& s, Rates& r, int lo, int hi, LivePairs& live,
                                  SimdTarget target) {
   for (int i = lo; i < hi; ++i) {
-    const RowParticle o = row_particle<Solids>(s, r, i);
-    const int count = row_terms<Dim, Solids>(s, r, s.neighbours.pairs, o, live, target);
-    double a[3] = {0.0, 0.0, 0.0}, drho = 0.0, de = 0.0;
-    double L[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    row_sums<Dim, Solids>(s.settings, o, live, count, a, drho, de, L);
-    store_acceleration(s, r, i, a);
-    r.drho[i] = drho;
-    r.de[i] = de;
-    if constexpr (Solids) store_stress_rate<Dim>(s, r, i, L);
+    Row w = row_of<Dim, Solids>(s, r, s.neighbours.pairs, i, live, target);
+    store_acceleration(s, r, i, w.a);
+    r.drho[i] = w.drho;
+    r.de[i] = w.de;
+    if constexpr (Solids) store_stress_rate<Dim>(s, r, i, w.L);
   }
 }
 
@@ -364,34 +378,23 @@ MF_ROW_STEP void half_rows_body(const Hydro& s, const Rates& r, int lo, int hi, 
                                 const HalfOutputs& out, SimdTarget target) {
   const int n = s.particles.owned_count();
   for (int i = lo; i < hi; ++i) {
-    const RowParticle o = row_particle<Solids>(s, r, i);
-    const int count = row_terms<Dim, Solids>(s, r, s.neighbours.half_pairs, o, live, target);
-    double ai[3] = {0.0, 0.0, 0.0}, drho_i = 0.0, de_i = 0.0;
-    double Li[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    row_sums<Dim, Solids>(s.settings, o, live, count, ai, drho_i, de_i, Li);
-    partner_sums<Dim, Solids>(s.settings, o, live, count, n, out.base, out.acc, out.drho, out.de,
-                              out.L);
+    const Row w = row_of<Dim, Solids>(s, r, s.neighbours.half_pairs, i, live, target);
+    partner_sums<Dim, Solids>(s.settings, w.o, live, w.count, n, out.base, out.acc, out.drho,
+                              out.de, out.L);
     const std::size_t ib = static_cast<std::size_t>(i - out.base);
-    for (int d = 0; d < 3; ++d) out.acc[3 * ib + d] += ai[d];
-    out.drho[ib] += drho_i;
-    out.de[ib] += de_i;
+    for (int d = 0; d < 3; ++d) out.acc[3 * ib + d] += w.a[d];
+    out.drho[ib] += w.drho;
+    out.de[ib] += w.de;
     if constexpr (Solids)
-      for (int c = 0; c < 9; ++c) out.L[9 * ib + c] += Li[c];
+      for (int c = 0; c < 9; ++c) out.L[9 * ib + c] += w.L[c];
   }
 }
 
-/// The row ranges compiled for each target: the baseline, and AVX2 where the compiler and the
-/// processor have it (SimdTarget::Avx512 takes these too). The AVX2 ones clear the vector
+/// The row ranges on a target: compiled for the baseline, and for AVX2 where the compiler and
+/// the processor have it (SimdTarget::Avx512 takes these too). The AVX2 ones clear the vector
 /// registers' upper halves before the baseline code runs again (left dirty, every later SSE
 /// instruction of the process waits on them).
 template <int Dim, bool Solids> struct RowRanges {
-  static void whole(const Hydro& s, Rates& r, int lo, int hi, LivePairs& live) {
-    whole_rows_body<Dim, Solids>(s, r, lo, hi, live, SimdTarget::Baseline);
-  }
-  static void half(const Hydro& s, const Rates& r, int lo, int hi, LivePairs& live,
-                   const HalfOutputs& out) {
-    half_rows_body<Dim, Solids>(s, r, lo, hi, live, out, SimdTarget::Baseline);
-  }
 #if MF_SPH_AVX2
   __attribute__((target("avx2"))) static void whole_avx2(const Hydro& s, Rates& r, int lo, int hi,
                                                          LivePairs& live) {
@@ -405,18 +408,18 @@ template <int Dim, bool Solids> struct RowRanges {
     _mm256_zeroupper();
   }
 #endif
-  static void whole_for(SimdTarget t, const Hydro& s, Rates& r, int lo, int hi, LivePairs& live) {
+  static void whole(SimdTarget t, const Hydro& s, Rates& r, int lo, int hi, LivePairs& live) {
 #if MF_SPH_AVX2
     if (t != SimdTarget::Baseline) return whole_avx2(s, r, lo, hi, live);
 #endif
-    whole(s, r, lo, hi, live);
+    whole_rows_body<Dim, Solids>(s, r, lo, hi, live, SimdTarget::Baseline);
   }
-  static void half_for(SimdTarget t, const Hydro& s, const Rates& r, int lo, int hi,
-                       LivePairs& live, const HalfOutputs& out) {
+  static void half(SimdTarget t, const Hydro& s, const Rates& r, int lo, int hi, LivePairs& live,
+                   const HalfOutputs& out) {
 #if MF_SPH_AVX2
     if (t != SimdTarget::Baseline) return half_avx2(s, r, lo, hi, live, out);
 #endif
-    half(s, r, lo, hi, live, out);
+    half_rows_body<Dim, Solids>(s, r, lo, hi, live, out, SimdTarget::Baseline);
   }
 };
 
@@ -431,7 +434,7 @@ template <int Dim, bool Solids> void full_rows(const Hydro& s, Rates& r, SimdTar
     LivePairs live;
 #pragma omp for schedule(dynamic, 1)
     for (int c = 0; c < chunks; ++c)
-      RowRanges<Dim, Solids>::whole_for(target, s, r, 64 * c, std::min(n, 64 * c + 64), live);
+      RowRanges<Dim, Solids>::whole(target, s, r, 64 * c, std::min(n, 64 * c + 64), live);
   }
 }
 
@@ -478,7 +481,7 @@ template <int Dim, bool Solids> void half_rows(const Hydro& s, Rates& r, SimdTar
       buffers[t] = own.data();
     }
     LivePairs live;
-    RowRanges<Dim, Solids>::half_for(target, s, r, lo, hi, live, {acc, drho, de, L, base});
+    RowRanges<Dim, Solids>::half(target, s, r, lo, hi, live, {acc, drho, de, L, base});
 #pragma omp barrier
 #pragma omp for schedule(static)
     for (int i = 0; i < n; ++i) {

@@ -34,7 +34,7 @@ parser.add_argument("--set", action="append", default=[])
 parser.add_argument("--run-dir", help="the history of this finished run instead of a run")
 args = parser.parse_args()
 if args.run_dir and args.set:
-    sys.exit("--set changes a run this script makes; --run-dir is a finished one")
+    parser.error("--set changes a run this script makes; --run-dir is a finished one")
 n = args.increments
 reference = calculix_3d_curve(args.root, "thick_perforated_plate", n)
 

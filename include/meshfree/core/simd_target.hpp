@@ -1,8 +1,8 @@
 #pragma once
 // The instruction sets the particle loops are compiled for, which of them this processor runs,
 // and the one the loops use, chosen once for the program: the peridynamic bond rows
-// (pd/bond_rows.hpp) and the SPH live-pair selection (sph/live_pairs.hpp) give the same numbers
-// bit for bit under every target, so a run's results do not depend on the processor.
+// (pd/bond_rows.hpp) and the SPH pair rows (sph/live_pairs.hpp, sph/pair_sums.hpp) give the same
+// numbers bit for bit under every target, so a run's results do not depend on the processor.
 #include <vector>
 
 namespace mf {

@@ -210,31 +210,39 @@ TEST_CASE("SPH: the live-pair selection keeps the same pairs with the same value
       }
     }
   }
-  // Every pair term (sph/pair_sums.hpp) through both layouts and both kernels, on each target.
+  // Every pair term (sph/pair_sums.hpp) through both layouts and both kernels, on each target,
+  // with a solid (the strength terms) and with gases alone (the rows without them).
   for (const int dim : {1, 2, 3})
-    for (const bool deterministic : {true, false}) {
-      sph::Hydro s = mixed_block(dim, dim == 1 ? 40 : dim == 2 ? 16 : 8);
-      s.settings.deterministic = deterministic;
-      s.settings.kernel =
-          dim == 2 ? kernels::SphKernel::WendlandC2 : kernels::SphKernel::CubicSpline;
-      sph::refresh_neighbours(s);
-      set_simd_target(SimdTarget::Baseline);
-      sph::Rates base;
-      sph::compute_rates(s, base);
-      for (SimdTarget t : targets) {
-        INFO(dim << "D, " << (deterministic ? "whole rows, " : "each pair once, ")
-                 << (dim == 2 ? "Wendland C2, " : "cubic spline, ") << simd_target_name(t));
-        set_simd_target(t);
-        sph::Rates other;
-        sph::compute_rates(s, other);
-        CHECK(other.dv == base.dv);
-        CHECK(other.drho == base.drho);
-        CHECK(other.de == base.de);
-        CHECK(other.dS == base.dS);
-        CHECK(other.grad_v == base.grad_v);
+    for (const bool deterministic : {true, false})
+      for (const bool gases : {false, true}) {
+        sph::Hydro s = mixed_block(dim, dim == 1 ? 40 : dim == 2 ? 16 : 8);
+        if (gases) {
+          s.materials[0] = s.materials[1];
+          sph::update_state(s);
+        }
+        REQUIRE(s.any_solid() == !gases);
+        s.settings.deterministic = deterministic;
+        s.settings.kernel =
+            dim == 2 ? kernels::SphKernel::WendlandC2 : kernels::SphKernel::CubicSpline;
+        sph::refresh_neighbours(s);
+        set_simd_target(SimdTarget::Baseline);
+        sph::Rates base;
+        sph::compute_rates(s, base);
+        for (SimdTarget t : targets) {
+          INFO(dim << "D, " << (deterministic ? "whole rows, " : "each pair once, ")
+                   << (dim == 2 ? "Wendland C2, " : "cubic spline, ")
+                   << (gases ? "gases, " : "a solid, ") << simd_target_name(t));
+          set_simd_target(t);
+          sph::Rates other;
+          sph::compute_rates(s, other);
+          CHECK(other.dv == base.dv);
+          CHECK(other.drho == base.drho);
+          CHECK(other.de == base.de);
+          CHECK(other.dS == base.dS);
+          CHECK(other.grad_v == base.grad_v);
+        }
+        set_simd_target(preferred_simd_target());
       }
-      set_simd_target(preferred_simd_target());
-    }
 }
 
 TEST_CASE("SPH benchmark: the rates' cost with the live-pair selection of each instruction set",
