@@ -8,7 +8,8 @@ load-displacement curve, on the perforated strip and Cook's membrane.
 Adaptive meshfree (discretisation.adapt, the recovery estimate and Doerfler marking; on 3 x 3
 points, and with the correction on 2 x 2) starts from twice the problem's spacing and runs to a
 sequence of targets of the estimated error instead;
-its wall time includes its pilot solves. Q8 is run adapted too, for fairness: on a gmsh mesh
+its wall time includes its pilot solves. With the correction it is also run refined during the
+analysis (`adapt.every: 5`, the state carried to each new cloud; no pilots). Q8 is run adapted too, for fairness: on a gmsh mesh
 whose size field is each adapted cloud's refinement boxes (its adapted_refinement.yaml), so that
 the same estimate grades both; its wall time does not include the meshfree pilots.
 
@@ -28,6 +29,7 @@ node); it solves the expanded one-element-thick slab of C3D20 bricks, which its 
 
     scripts/accuracy_study.py [--out out/accuracy_study] [--problems perforated_strip cook_membrane
                                                          cook_membrane_force] [--levels N]
+                           [--methods METHOD ...]
 """
 import argparse
 import csv
@@ -169,6 +171,16 @@ def run_vci_adaptive(binary, problem, target, out):
     return run_adaptive(binary, problem, target, out, base="meshfree_vci")
 
 
+def run_vci_every(binary, problem, target, out):
+    """Adaptive meshfree with the correction, refined after every 5 increments of the analysis
+    itself (the committed state carried to each new cloud) instead of by pilot solves."""
+    spacing, _ = problem_spacings(problem)
+    sets = [f"discretisation.spacing={2 * spacing!r}", "discretisation.refinement=[]",
+            f"discretisation.adapt={{target: {target!r}, passes: 10, every: 5}}"]
+    return run_case(binary, problem, "meshfree_vci_every", target, out,
+                    sets + VARIANTS["meshfree_vci"])
+
+
 def run_fem_adapted(binary, problem, target, out):
     """Q8 on a gmsh mesh whose size field is the adapted meshfree cloud's boxes (the same
     estimate, the same start spacing), after run_adaptive with the same target."""
@@ -210,6 +222,13 @@ def reach(runs, target):
     return None
 
 
+# The adaptive runs, in the order they run at each level (Q8 graded by the boxes of the
+# meshfree_adaptive run of the same target).
+ADAPTIVE = {"meshfree_adaptive": run_adaptive, "meshfree_vci_adaptive": run_vci_adaptive,
+            "meshfree_vci_every": run_vci_every, "fem_adapted": run_fem_adapted}
+METHODS = list(VARIANTS) + list(ADAPTIVE) + ["calculix"]
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -218,7 +237,10 @@ def main():
     ap.add_argument("--problems", nargs="+", default=list(STUDY), choices=list(STUDY))
     ap.add_argument("--levels", type=int, default=None,
                     help="only the first LEVELS of each sequence (a smoke run)")
+    ap.add_argument("--methods", nargs="+", default=None, choices=METHODS,
+                    help="only these methods (CalculiX is run whenever it is named)")
     args = ap.parse_args()
+    wanted = set(args.methods or METHODS)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     recipe = load_recipe()
@@ -230,19 +252,21 @@ def main():
             levels = min(levels, args.levels or levels)
             for k in range(levels):
                 if k < len(study["factors"]):
-                    for method in variants(problem):
+                    for method in [m for m in variants(problem) if m in wanted]:
                         row = run_meshfree(args.meshfree, problem, method, study["factors"][k],
                                            out)
                         if row:
                             rows.append(row)
                             print(row, flush=True)
                 if k < len(ADAPT_TARGETS):
-                    for run_one in (run_adaptive, run_vci_adaptive, run_fem_adapted):
+                    for method, run_one in ADAPTIVE.items():
+                        if method not in wanted:
+                            continue
                         row = run_one(args.meshfree, problem, ADAPT_TARGETS[k], out)
                         if row:
                             rows.append(row)
                             print(row, flush=True)
-                if k < len(study["calculix_levels"]):
+                if k < len(study["calculix_levels"]) and "calculix" in wanted:
                     rows.append(run_calculix(recipe, problem, study["calculix_levels"][k], work))
                     print(rows[-1], flush=True)
     with open(out / "runs.csv", "w", newline="") as f:
@@ -255,9 +279,8 @@ def main():
     for problem in args.problems:
         for target in TARGETS:
             got = {m: reach([r for r in rows if r["problem"] == problem and r["method"] == m], target)
-                   for m in variants(problem) + ["meshfree_adaptive", "meshfree_vci_adaptive",
-                                                 "fem_adapted", "calculix"]}
-            ccx = got["calculix"]
+                   for m in variants(problem) + list(ADAPTIVE) + ["calculix"] if m in wanted}
+            ccx = got.get("calculix")
             for method, g in got.items():
                 entry = dict(problem=problem, target=target, method=method)
                 if g is None:

@@ -94,6 +94,20 @@ std::pair<AdaptPass, ErrorEstimate> pilot(spec::ProblemSpec& pass_spec, int pass
 
 } // namespace
 
+NextCloud next_cloud(const spec::ProblemSpec& spec, const geometry::NodeCloud& cloud,
+                     const std::vector<geometry::Refinement>& now, const ErrorEstimate& e) {
+  const spec::DiscretisationSpec& d = spec.galerkin().discretisation;
+  NextCloud next;
+  next.marked = doerfler_marking(e.node_eta2, d.adapt->fraction);
+  next.refinement = refinement_around(cloud, next.marked, d.spacing, now);
+  next.cloud = geometry::generate_nodes(spec.domain, d.spacing, next.refinement);
+  const int n = static_cast<int>(next.cloud.x.size());
+  next.allowed = n <= d.adapt->max_nodes;
+  if (!next.allowed)
+    log::info("adapt: the next cloud would have ", n, " nodes, more than max_nodes");
+  return next;
+}
+
 Adaptation adapt_nodes(const spec::ProblemSpec& spec, const PilotSolve& solve) {
   const spec::DiscretisationSpec& d = spec.galerkin().discretisation;
   const spec::AdaptSpec& a = *d.adapt;
@@ -112,19 +126,14 @@ Adaptation adapt_nodes(const spec::ProblemSpec& spec, const PilotSolve& solve) {
     } else if (pass + 1 >= a.passes) {
       out.ended = "passes used";
     } else {
-      const std::vector<int> marked = doerfler_marking(e.node_eta2, a.fraction);
-      std::vector<geometry::Refinement> next =
-          refinement_around(cloud, marked, d.spacing, out.refinement);
-      geometry::NodeCloud finer = geometry::generate_nodes(spec.domain, d.spacing, next);
-      const int n = static_cast<int>(finer.x.size());
-      if (n > a.max_nodes) {
+      NextCloud next = next_cloud(spec, cloud, out.refinement, e);
+      if (!next.allowed) {
         out.ended = "max_nodes reached";
-        log::info("adapt: the next cloud would have ", n, " nodes, more than max_nodes");
       } else {
-        out.passes.back().marked = static_cast<int>(marked.size());
-        out.refinement = std::move(next);
-        cloud = std::move(finer);
-        out.nodes = n;
+        out.passes.back().marked = static_cast<int>(next.marked.size());
+        out.refinement = std::move(next.refinement);
+        out.nodes = static_cast<int>(next.cloud.x.size());
+        cloud = std::move(next.cloud);
       }
     }
   }
@@ -133,7 +142,8 @@ Adaptation adapt_nodes(const spec::ProblemSpec& spec, const PilotSolve& solve) {
 
 AdaptedProblem adapted_problem(const spec::ProblemSpec& spec, const PilotSolve& solve) {
   AdaptedProblem p{spec, std::nullopt};
-  if (!spec.is_galerkin() || !spec.galerkin().discretisation.adapt) return p;
+  const auto& adapt = spec.is_galerkin() ? spec.galerkin().discretisation.adapt : std::nullopt;
+  if (!adapt || adapt->every > 0) return p; // no pilots, or none before the analysis
   p.adaptation = adapt_nodes(spec, solve);
   p.spec.galerkin().discretisation.refinement = p.adaptation->refinement;
   return p;

@@ -28,20 +28,23 @@ std::string refinement_yaml(const std::vector<geometry::Refinement>& boxes) {
 io::Json adaptation_json(const spec::ProblemSpec& spec, const Adaptation& a,
                          const ErrorEstimate& final_estimate) {
   const spec::AdaptSpec& s = *spec.galerkin().discretisation.adapt;
-  std::vector<double> nodes, estimate, marked;
+  std::vector<double> nodes, estimate, marked, increment;
   for (const AdaptPass& p : a.passes) {
     nodes.push_back(p.nodes);
     estimate.push_back(p.estimate);
     marked.push_back(p.marked);
+    increment.push_back(p.increment);
   }
-  io::Json passes; // their wall times: adapt.csv, and time_s.adapt_pilots together
+  // Their wall times: the log, and time_s.adapt_pilots (or time_s.adapt) together.
+  io::Json passes;
   passes.set("nodes", nodes).set("estimate", estimate).set("marked", marked);
+  if (s.every > 0) passes.set("after_increment", increment);
   io::Json j;
-  j.set("target", s.target)
-      .set("fraction", s.fraction)
-      .set("ended", a.ended)
+  j.set("target", s.target).set("fraction", s.fraction);
+  if (s.every > 0) j.set("every", s.every);
+  j.set("ended", a.ended)
       .set("refinement_boxes", static_cast<long>(a.refinement.size()))
-      .set("pilot_passes", passes)
+      .set(s.every > 0 ? "passes" : "pilot_passes", passes)
       .set("nodes", a.nodes)
       .set("final_estimate", final_estimate.relative())
       .set("target_met", final_estimate.relative() <= s.target);
@@ -49,22 +52,26 @@ io::Json adaptation_json(const spec::ProblemSpec& spec, const Adaptation& a,
 }
 
 void write_adaptation(const spec::ProblemSpec& spec, const Adaptation& a,
-                      const ErrorEstimate& final_estimate, io::OutputDirectory& out) {
+                      const ErrorEstimate& final_estimate, long increments,
+                      io::OutputDirectory& out) {
+  const bool pilots = spec.galerkin().discretisation.adapt->every == 0;
   std::vector<std::vector<double>> rows;
   for (std::size_t k = 0; k < a.passes.size(); ++k) {
     const AdaptPass& p = a.passes[k];
-    rows.push_back({static_cast<double>(k + 1), 1.0, static_cast<double>(p.nodes), 2.0 * p.nodes,
-                    p.estimate, static_cast<double>(p.marked)});
+    rows.push_back({static_cast<double>(k + 1), pilots ? 1.0 : 0.0, static_cast<double>(p.nodes),
+                    2.0 * p.nodes, p.estimate, static_cast<double>(p.marked),
+                    static_cast<double>(p.increment)});
   }
-  // The analysis' own solve on the last cloud (pilot 0). The wall times are the log's and
-  // time_s.adapt_pilots: the file holds results only, the same on a restart.
+  // The analysis' final state on the last cloud (pilot 0). The wall times are the log's and
+  // time_s: the file holds results only.
   rows.push_back({static_cast<double>(a.passes.size() + 1), 0.0, static_cast<double>(a.nodes),
-                  2.0 * a.nodes, final_estimate.relative(), 0.0});
-  out.write_csv("adapt.csv", {"pass", "pilot", "nodes", "dofs", "estimate", "marked"}, rows);
+                  2.0 * a.nodes, final_estimate.relative(), 0.0, static_cast<double>(increments)});
+  out.write_csv("adapt.csv", {"pass", "pilot", "nodes", "dofs", "estimate", "marked", "increment"},
+                rows);
   out.write_text("adapted_refinement.yaml", refinement_yaml(a.refinement));
 
   const spec::DiscretisationSpec& d = spec.galerkin().discretisation;
-  const geometry::NodeCloud cloud = geometry::generate_nodes(spec.domain, d.spacing, d.refinement);
+  const geometry::NodeCloud cloud = geometry::generate_nodes(spec.domain, d.spacing, a.refinement);
   io::FieldStep step;
   std::vector<double> eta(cloud.x.size());
   for (std::size_t I = 0; I < eta.size() && I < final_estimate.node_eta2.size(); ++I)

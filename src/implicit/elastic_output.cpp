@@ -167,7 +167,7 @@ void write_elastic_outputs(const spec::ProblemSpec& spec, const ElasticResult& r
   for (const auto& u : r.node_u) umax = std::max(umax, u.norm());
   for (double v : stresses.vm) vmmax = std::max(vmmax, v);
   write_history(r, umax, vmmax, out);
-  if (r.adaptation) write_adaptation(spec, *r.adaptation, r.estimate, out);
+  if (r.adaptation) write_adaptation(spec, *r.adaptation, r.estimate, 0, out);
   write_summary(spec, r, session, umax, vmmax, out);
 }
 

@@ -198,7 +198,9 @@ void write_elastoplastic_outputs(const spec::ProblemSpec& spec, const Elastoplas
   if (session.rank() != 0) return;
   write_history(spec, r, out);
   write_lines(r, out);
-  if (r.adaptation) write_adaptation(spec, *r.adaptation, r.estimate, out);
+  if (r.adaptation)
+    write_adaptation(spec, *r.adaptation, r.estimate, static_cast<long>(r.increments.size()) - 1,
+                     out);
   write_summary(spec, r, session, out);
 }
 

@@ -1,13 +1,16 @@
 #include "meshfree/implicit/elastoplastic_solve.hpp"
 #include "meshfree/core/log.hpp"
 #include "meshfree/distribution/ranks.hpp"
+#include "meshfree/implicit/adaptivity.hpp"
 #include "meshfree/implicit/elastic_limit.hpp"
 #include "meshfree/implicit/elastoplastic_system.hpp"
 #include "meshfree/implicit/increment_recorder.hpp"
 #include "meshfree/implicit/load_stepping.hpp"
+#include "meshfree/implicit/state_transfer.hpp"
 #include "meshfree/solvers/nonlinear_system.hpp"
 #include "meshfree/solvers/parallel.hpp"
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <memory>
 #include <type_traits>
@@ -23,6 +26,7 @@ void count_model(const GalerkinModel& m, const solvers::PetscSession& session,
   R.dofs = 2 * R.nodes;
   R.domain_points = static_cast<int>(m.domain.x.size());
   R.cells = m.domain.cell_count;
+  R.boundary_points = 0;
   for (const auto& c : m.conditions) R.boundary_points += static_cast<int>(c.points.x.size());
   R.matrix_nonzeros =
       solvers::sum_everywhere(session.comm(), 4.0 * static_cast<double>(m.pattern.column.size()));
@@ -145,6 +149,159 @@ void keep_converged_state(const std::shared_ptr<const GalerkinModel>& model,
   R.state.model = model;
 }
 
+/// One discretisation of the body as the solve uses it: the spec of its cloud, the model, the
+/// system and Newton on it. Lives where it was made (Newton calls the system).
+struct Discretised {
+  spec::ProblemSpec spec;
+  std::shared_ptr<const GalerkinModel> model;
+  std::unique_ptr<ElastoplasticSystem> problem;
+  std::unique_ptr<solvers::NonlinearBlockSystem> newton;
+};
+
+/// The model, system and Newton of `spec`, counted into R.
+std::unique_ptr<Discretised> discretise(const spec::ProblemSpec& spec,
+                                        const solvers::PetscSession& session, PhaseTimer& timer,
+                                        ElastoplasticResult& R) {
+  auto now = std::make_unique<Discretised>();
+  now->spec = spec;
+  now->model =
+      std::make_shared<const GalerkinModel>(build_galerkin_model(now->spec, session, timer));
+  const GalerkinModel& m = *now->model;
+  count_model(m, session, R);
+  now->problem = std::make_unique<ElastoplasticSystem>(now->spec, m);
+  ElastoplasticSystem& problem = *now->problem;
+  now->newton = std::make_unique<solvers::NonlinearBlockSystem>(
+      session.comm(), R.nodes, m.own, m.pattern.offset, m.pattern.column, problem.needed_nodes(),
+      [&problem](const std::vector<double>& d, double* r, auto& s) { problem.residual(d, r, s); },
+      [&problem](const std::vector<double>& d, solvers::BlockValueArrays values) {
+        problem.jacobian(d, values);
+      },
+      linear_solver_settings(now->spec, m));
+  return now;
+}
+
+/// The recovery estimate of the committed stress of a discretisation.
+ErrorEstimate committed_estimate(const Discretised& now, const solvers::PetscSession& session) {
+  const spec::ProblemSpec& spec = now.spec;
+  return recovery_error(*now.model, now.problem->states().committed_stress,
+                        materials::elastic_matrix(spec.elasticity(), spec.model).inverse(),
+                        session);
+}
+
+/// Refinement between increments (discretisation.adapt.every): after every `every` increments
+/// the estimate of the committed stress; above the target, the marked nodes' cloud, the state
+/// carried to it and equilibrium restored there at the same load factors.
+class Refiner {
+public:
+  Refiner(const spec::ProblemSpec& spec, const solvers::PetscSession& session)
+      : session_(session), adapt_(spec.galerkin().discretisation.adapt) {
+    if (!adapt_ || adapt_->every <= 0) return;
+    record_.refinement = spec.galerkin().discretisation.refinement;
+    cloud_ = geometry::generate_nodes(spec.domain, spec.galerkin().discretisation.spacing,
+                                      record_.refinement);
+  }
+  bool active() const { return adapt_ && adapt_->every > 0; }
+  /// After `done` converged increments: whether an estimate is due.
+  bool due(long done) const {
+    return active() && record_.ended.empty() && done % adapt_->every == 0;
+  }
+
+  /// The estimate on `now` after increment `done`, and when it asks for one, the refined
+  /// discretisation with the state carried to it and in equilibrium (d too); null when the
+  /// cloud stays (also when no equilibrium was found on the refined one: refinement then ends).
+  std::unique_ptr<Discretised> refine(const Discretised& now, long done, std::vector<double>& d,
+                                      ElastoplasticResult& R) {
+    const auto start = std::chrono::steady_clock::now();
+    const ErrorEstimate e = committed_estimate(now, session_);
+    AdaptPass pass;
+    pass.nodes = now.model->node_count();
+    pass.estimate = e.relative();
+    pass.increment = static_cast<int>(done);
+    std::unique_ptr<Discretised> next;
+    const int refinements = static_cast<int>(record_.passes.size()) - unrefined_;
+    if (pass.estimate > adapt_->target) {
+      if (refinements + 1 >= adapt_->passes) {
+        record_.ended = "passes used";
+      } else {
+        NextCloud cloud = next_cloud(now.spec, cloud_, record_.refinement, e);
+        if (!cloud.allowed) {
+          record_.ended = "max_nodes reached";
+        } else {
+          const int marked = static_cast<int>(cloud.marked.size());
+          next = carried(now, std::move(cloud), d, R);
+          if (next) pass.marked = marked;
+        }
+      }
+    }
+    if (!next) ++unrefined_;
+    pass.seconds = seconds_since(start);
+    log::info("adapt: after increment ", done, ", ", pass.nodes, " nodes, estimated error ",
+              pass.estimate, " (target ", adapt_->target, ")",
+              next ? detail::concat(": refined to ", next->model->node_count(), " nodes")
+                   : std::string(record_.ended.empty() ? "" : ": " + record_.ended),
+              ", ", log::duration(pass.seconds));
+    record_.passes.push_back(pass);
+    R.timer.add("adapt", pass.seconds);
+    return next;
+  }
+
+  /// The record of the refinement at the end of the schedule, with the final estimate.
+  Adaptation finish(const Discretised& now, const ErrorEstimate& final_estimate) {
+    record_.nodes = now.model->node_count();
+    if (record_.ended.empty())
+      record_.ended =
+          final_estimate.relative() <= adapt_->target ? "target reached" : "increments ended";
+    return record_;
+  }
+
+private:
+  /// The discretisation of `cloud` with the state of `now` carried to it and in equilibrium.
+  std::unique_ptr<Discretised> carried(const Discretised& now, NextCloud cloud,
+                                       std::vector<double>& d, ElastoplasticResult& R) {
+    spec::ProblemSpec spec = now.spec;
+    spec.galerkin().discretisation.refinement = cloud.refinement;
+    PhaseTimer build; // inside the adapt phase
+    std::unique_ptr<Discretised> next = discretise(spec, session_, build, R);
+    const std::vector<double> all = now.newton->gather_on_root(d);
+    std::vector<double> everywhere = all;
+    solvers::broadcast(session_.comm(), everywhere, 0);
+    CarriedState c =
+        carry_state(*now.model, now.problem->states(), everywhere, *next->model, session_);
+    next->problem->set_factors(now.problem->factors());
+    next->problem->start_from(std::move(c.history), c.d);
+    solvers::NewtonSettings settings;
+    settings.tolerance = spec.galerkin().nonlinear.tolerance;
+    settings.max_iterations = spec.galerkin().nonlinear.max_iterations;
+    const solvers::NewtonReport rep = next->newton->solve(c.d, settings);
+    if (!rep.converged) {
+      // The analysis goes on on the cloud it has: its state is the last converged one.
+      log::warn("adapt: the state carried to the refined cloud of ", next->model->node_count(),
+                " nodes found no equilibrium at the load of the last converged increment (",
+                rep.reason, rep.failure.empty() ? "" : ": " + rep.failure,
+                "); the analysis goes on on the cloud of ", now.model->node_count(),
+                " nodes, without further refinement");
+      record_.ended = "no equilibrium on the refined cloud";
+      count_model(*now.model, session_, R);
+      return nullptr;
+    }
+    next->problem->commit();
+    log::info("adapt: state carried to ", next->model->node_count(), " nodes (", c.copied,
+              " points kept, ", c.interpolated, " interpolated), |R|/|F| ",
+              rep.residual.front() / std::max(rep.scale.front(), 1e-300), ", equilibrium in ",
+              rep.iterations, " Newton iterations");
+    d = std::move(c.d);
+    record_.refinement = std::move(cloud.refinement);
+    cloud_ = std::move(cloud.cloud);
+    return next;
+  }
+
+  const solvers::PetscSession& session_;
+  const std::optional<spec::AdaptSpec>& adapt_;
+  Adaptation record_;
+  geometry::NodeCloud cloud_; // the present cloud, as its boxes make it (nominal spacings)
+  int unrefined_ = 0;         // estimates that left the cloud as it was
+};
+
 } // namespace
 
 ElastoplasticResult solve_elastoplastic_static(const spec::ProblemSpec& spec,
@@ -153,33 +310,21 @@ ElastoplasticResult solve_elastoplastic_static(const spec::ProblemSpec& spec,
                                                const io::Restart* restart) {
   MF_REQUIRE(!spec.galerkin().steps.empty(), "an elastoplastic analysis needs steps");
   ElastoplasticResult R;
-  const auto model =
-      std::make_shared<const GalerkinModel>(build_galerkin_model(spec, session, R.timer));
-  const GalerkinModel& m = *model;
+  std::unique_ptr<Discretised> now = discretise(spec, session, R.timer, R);
   R.method = describe_method(spec.galerkin().discretisation, spec.domain);
-  count_model(m, session, R);
-  find_elastic_limit(spec, m, session, R);
-
-  ElastoplasticSystem problem(spec, m);
-  solvers::NonlinearBlockSystem newton(
-      session.comm(), R.nodes, m.own, m.pattern.offset, m.pattern.column, problem.needed_nodes(),
-      [&](const std::vector<double>& d, double* r, auto& s) { problem.residual(d, r, s); },
-      [&](const std::vector<double>& d, solvers::BlockValueArrays values) {
-        problem.jacobian(d, values);
-      },
-      linear_solver_settings(spec, m));
-  R.solver = newton.description();
+  find_elastic_limit(spec, *now->model, session, R);
+  R.solver = now->newton->description();
   log::info("Newton: ", R.solver, ", tolerance |R| <= ", spec.galerkin().nonlinear.tolerance,
             " |F|");
 
-  IncrementRecorder recorder(spec, m, session, session.rank() == 0 ? out : nullptr);
+  IncrementRecorder recorder(now->spec, *now->model, session, session.rank() == 0 ? out : nullptr);
   std::vector<double> d(2 * static_cast<std::size_t>(R.nodes), 0.0);
   SchedulePosition at;
-  const auto state = checkpoint_state(R, d, problem, at);
+  const auto state = checkpoint_state(R, d, *now->problem, at);
   if (restart)
     resume(*restart, spec, session, state, recorder, R, at);
   else
-    record_unloaded_state(spec, d, problem, newton, recorder, R);
+    record_unloaded_state(spec, d, *now->problem, *now->newton, recorder, R);
   // The checkpoints' clock counts converged increments.
   io::Checkpoints checkpoints(dir, distribution::Ranks::of(session.comm()),
                               spec.galerkin().checkpoint, spec.settings, restart);
@@ -193,33 +338,43 @@ ElastoplasticResult solve_elastoplastic_static(const spec::ProblemSpec& spec,
       state(save);
     });
   };
-  const ScheduleOutcome o = run_load_schedule(
-      schedule_of(spec), problem, newton, d,
-      [&](IncrementRecord rec, bool write_fields) -> const IncrementRecord& {
-        PhaseTimer::Scope scope(R.timer, "increment_output");
-        recorder.record(std::move(rec), d, problem.states(), newton, write_fields, R);
-        if (spec.galerkin().initial_stress && R.increments.size() == 2) {
-          const double f = std::sqrt(
-              solvers::sum_everywhere(session.comm(), problem.initial_stress_imbalance_squared()));
-          const solvers::NewtonReport& n = R.increments[1].newton;
-          R.initial_out_of_balance = f / std::max(n.scale.back(), 1e-300);
-        }
-        return R.increments.back();
-      },
-      at, keep);
+  const auto done = [&](IncrementRecord rec, bool write_fields) -> const IncrementRecord& {
+    PhaseTimer::Scope scope(R.timer, "increment_output");
+    recorder.record(std::move(rec), d, now->problem->states(), *now->newton, write_fields, R);
+    if (spec.galerkin().initial_stress && R.increments.size() == 2) {
+      const double f = std::sqrt(solvers::sum_everywhere(
+          session.comm(), now->problem->initial_stress_imbalance_squared()));
+      const solvers::NewtonReport& n = R.increments[1].newton;
+      R.initial_out_of_balance = f / std::max(n.scale.back(), 1e-300);
+    }
+    return R.increments.back();
+  };
+  Refiner refiner(spec, session);
+  const auto pause = [&] { return refiner.due(static_cast<long>(R.increments.size()) - 1); };
+  ScheduleOutcome o;
+  for (;;) {
+    const ScheduleOutcome part = run_load_schedule(schedule_of(now->spec), *now->problem,
+                                                   *now->newton, d, done, at, keep, pause);
+    o.status = part.status, o.stop_reason = part.stop_reason;
+    o.newton_seconds += part.newton_seconds;
+    if (!part.paused) break;
+    std::unique_ptr<Discretised> next =
+        refiner.refine(*now, static_cast<long>(R.increments.size()) - 1, d, R);
+    if (!next) continue;
+    recorder.move_to(next->spec, *next->model);
+    now = std::move(next);
+  }
   R.checkpoints = checkpoints.counts();
   if (spec.galerkin().initial_stress && R.increments.size() > 1) log_initial_stress(R);
   R.status = o.status;
   R.stop_reason = o.stop_reason;
   R.timer.add("newton", o.newton_seconds);
-  R.residual_seconds = problem.residual_seconds();
-  R.jacobian_seconds = problem.jacobian_seconds();
+  R.residual_seconds = now->problem->residual_seconds();
+  R.jacobian_seconds = now->problem->jacobian_seconds();
   recorder.close();
-  keep_converged_state(model, problem, newton, d, session, R);
-  if (spec.galerkin().discretisation.adapt)
-    R.estimate =
-        recovery_error(m, R.state.stress,
-                       materials::elastic_matrix(spec.elasticity(), spec.model).inverse(), session);
+  keep_converged_state(now->model, *now->problem, *now->newton, d, session, R);
+  if (spec.galerkin().discretisation.adapt) R.estimate = committed_estimate(*now, session);
+  if (refiner.active()) R.adaptation = refiner.finish(*now, R.estimate);
   R.memory = solvers::peak_memory(session.comm());
   return R;
 }

@@ -73,6 +73,17 @@ void ElastoplasticSystem::commit() {
   states_.committed_stress_zz = states_.stress_zz;
 }
 
+void ElastoplasticSystem::start_from(std::vector<materials::J2State> history,
+                                     const std::vector<double>& d) {
+  MF_REQUIRE(history.size() == states_.committed.size(),
+             "ElastoplasticSystem: a carried history must have one state a point");
+  states_.committed = std::move(history);
+  states_valid_ = false;
+  update_materials(d);
+  states_.committed_stress = states_.stress;
+  states_.committed_stress_zz = states_.stress_zz;
+}
+
 void ElastoplasticSystem::residual(const std::vector<double>& d, double* r,
                                    solvers::ResidualSums& sums) {
   const auto t0 = Clock::now();

@@ -19,6 +19,20 @@ struct IncrementRecorder::GaussOutput {
 
   GaussOutput(const GalerkinModel& m, const solvers::PetscSession& session,
               io::OutputDirectory* out) {
+    series = std::make_unique<io::FieldOutput>(out, "gauss_points", counted_points(m, session));
+    const char* names[] = {"stress_xx", "stress_yy",      "stress_xy", "stress_zz",
+                           "von_mises", "plastic_strain", "plastic"};
+    for (int f = 0; f < 7; ++f) series->scalar(names[f], values[f]);
+  }
+
+  /// The steps from now on are on the points of model m.
+  void move_to(const GalerkinModel& m, const solvers::PetscSession& session) {
+    series->regrid(counted_points(m, session));
+  }
+
+  /// The counted points of m (counted_rows, this rank's table rows), gathered on rank 0.
+  std::vector<Vec2> counted_points(const GalerkinModel& m, const solvers::PetscSession& session) {
+    counted_rows.clear();
     std::vector<double> x;
     for (int k = 0; k < m.domain_table.rows(); ++k)
       if (m.domain_mine.counted[k]) {
@@ -30,10 +44,7 @@ struct IncrementRecorder::GaussOutput {
     const std::vector<double> all = solvers::gather_on_root(session.comm(), x);
     std::vector<Vec2> points(all.size() / 2);
     for (std::size_t i = 0; i < points.size(); ++i) points[i] = Vec2(all[2 * i], all[2 * i + 1]);
-    series = std::make_unique<io::FieldOutput>(out, "gauss_points", points);
-    const char* names[] = {"stress_xx", "stress_yy",      "stress_xy", "stress_zz",
-                           "von_mises", "plastic_strain", "plastic"};
-    for (int f = 0; f < 7; ++f) series->scalar(names[f], values[f]);
+    return points;
   }
 
   void write(double time, const PointStates& st, const solvers::PetscSession& session) {
@@ -58,7 +69,26 @@ struct IncrementRecorder::GaussOutput {
 
 IncrementRecorder::IncrementRecorder(const spec::ProblemSpec& spec, const GalerkinModel& m,
                                      const solvers::PetscSession& session, io::OutputDirectory* out)
-    : spec_(spec), m_(m), session_(session) {
+    : spec_(&spec), m_(&m), session_(session), writes_(out != nullptr) {
+  const bool root = session.rank() == 0;
+  make_tables(spec, m);
+  session.collective([&] {
+    if (root)
+      fields_ =
+          std::make_unique<io::FieldOutput>(out, "fields", m.node_positions(), output_cells(m));
+  });
+  display_ = std::make_unique<DisplaySeries>(root ? out : nullptr, display_mesh_);
+  if (!fields_) fields_ = std::make_unique<io::FieldOutput>(nullptr, "fields", std::vector<Vec2>{});
+  fields_->vector2("displacement", [this](std::vector<Vec2>& v) { v = node_u_; });
+  fields_->vector2("nodal_parameters", [this](std::vector<Vec2>& v) { v = node_parameters_; });
+  const char* names[] = {"stress_xx", "stress_yy",      "stress_xy",       "stress_zz",
+                         "von_mises", "plastic_strain", "plastic_fraction"};
+  for (int f = 0; f < 7; ++f) fields_->scalar(names[f], node_values_[f]);
+  gauss_ = std::make_unique<GaussOutput>(m, session, root ? out : nullptr);
+}
+
+void IncrementRecorder::make_tables(const spec::ProblemSpec& spec, const GalerkinModel& m) {
+  const solvers::PetscSession& session = session_;
   const bool root = session.rank() == 0;
   session.collective([&] {
     if (!root) return;
@@ -66,6 +96,8 @@ IncrementRecorder::IncrementRecorder(const spec::ProblemSpec& spec, const Galerk
     std::vector<Vec2> mx;
     for (const auto& mon : spec.galerkin().gauges) mx.push_back(mon.at.head<2>());
     if (!mx.empty()) monitor_table_ = shapes_at(m, mx, false);
+    line_tables_.clear();
+    line_points_.clear();
     for (const auto& line : spec.galerkin().lines) {
       std::vector<Vec2> x;
       for (int k = 0; k < line.points; ++k) {
@@ -76,17 +108,8 @@ IncrementRecorder::IncrementRecorder(const spec::ProblemSpec& spec, const Galerk
       line_tables_.push_back(shapes_at(m, x, false));
       line_points_.emplace_back(&line, std::move(x));
     }
-    fields_ = std::make_unique<io::FieldOutput>(out, "fields", m.node_positions(), output_cells(m));
-    if (out) display_mesh_ = display_mesh(spec, m);
+    if (writes_) display_mesh_ = display_mesh(spec, m);
   });
-  display_ = std::make_unique<DisplaySeries>(root ? out : nullptr, display_mesh_);
-  if (!fields_) fields_ = std::make_unique<io::FieldOutput>(nullptr, "fields", std::vector<Vec2>{});
-  fields_->vector2("displacement", [this](std::vector<Vec2>& v) { v = node_u_; });
-  fields_->vector2("nodal_parameters", [this](std::vector<Vec2>& v) { v = node_parameters_; });
-  const char* names[] = {"stress_xx", "stress_yy",      "stress_xy",       "stress_zz",
-                         "von_mises", "plastic_strain", "plastic_fraction"};
-  for (int f = 0; f < 7; ++f) fields_->scalar(names[f], node_values_[f]);
-  gauss_ = std::make_unique<GaussOutput>(m, session, root ? out : nullptr);
   if (has_gravity(spec)) {
     // The body force over the body at factor 1: sum of w b over the counted points.
     double f[2] = {0.0, 0.0};
@@ -102,13 +125,24 @@ IncrementRecorder::IncrementRecorder(const spec::ProblemSpec& spec, const Galerk
   }
 }
 
+void IncrementRecorder::move_to(const spec::ProblemSpec& spec, const GalerkinModel& m) {
+  spec_ = &spec;
+  m_ = &m;
+  make_tables(spec, m);
+  if (session_.rank() == 0) {
+    fields_->regrid(m.node_positions(), output_cells(m));
+    display_->regrid(display_mesh_);
+  }
+  gauss_->move_to(m, session_);
+}
+
 IncrementRecorder::~IncrementRecorder() = default;
 
 void IncrementRecorder::record(IncrementRecord rec, const std::vector<double>& d,
                                const PointStates& st, const solvers::NonlinearBlockSystem& newton,
                                bool write_fields, ElastoplasticResult& R) {
-  const GalerkinModel& m = m_;
-  const spec::ProblemSpec& spec = spec_;
+  const GalerkinModel& m = *m_;
+  const spec::ProblemSpec& spec = *spec_;
   const solvers::PetscSession& session = session_;
   const bool root = session.rank() == 0;
   if (R.lines.size() != line_points_.size())

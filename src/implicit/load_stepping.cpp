@@ -70,6 +70,7 @@ struct ScheduleRun {
   const IncrementDone& done;
   SchedulePosition& at;
   const PositionKept& kept;
+  const PauseAsked& pause;
   solvers::NewtonSettings settings;
   Clock::time_point began;
   double total = 0.0, done_at_start = 0.0;
@@ -166,6 +167,11 @@ void run_step(ScheduleRun& run) {
     at.tau = to;
     at.current = f;
     record_increment(run, s, f, rep, last, nominal);
+    const bool finished = last && s + 1 == run.spec.steps->size();
+    if (!finished && run.pause && run.pause()) {
+      run.o.paused = true;
+      return;
+    }
   }
 }
 
@@ -174,8 +180,9 @@ void run_step(ScheduleRun& run) {
 ScheduleOutcome run_load_schedule(const ScheduleSpec& schedule, IncrementalSystem& problem,
                                   solvers::NonlinearBlockSystem& newton, std::vector<double>& d,
                                   const IncrementDone& done, SchedulePosition& at,
-                                  const PositionKept& kept) {
-  ScheduleRun run{schedule, problem, newton, d, done, at, kept, {}, Clock::now(), 0.0, 0.0, {}};
+                                  const PositionKept& kept, const PauseAsked& pause) {
+  ScheduleRun run{schedule, problem, newton,       d,   done, at, kept,
+                  pause,    {},      Clock::now(), 0.0, 0.0,  {}};
   const int steps = static_cast<int>(schedule.steps->size());
   if (at.current.empty()) at.current.assign(schedule.factors(), 0.0);
   if (at.start.empty()) at.start = at.current;
@@ -185,7 +192,7 @@ ScheduleOutcome run_load_schedule(const ScheduleSpec& schedule, IncrementalSyste
   run.done_at_start = at.step < steps ? increments_done(schedule, at.step, at.tau) : run.total;
   while (at.step < steps && run.o.status == "completed") {
     run_step(run);
-    if (run.o.status != "completed") break;
+    if (run.o.status != "completed" || run.o.paused) break;
     // The next step starts where this one ended.
     ++at.step;
     at.tau = at.dtau = 0.0;

@@ -182,34 +182,51 @@ void FieldSeries::open(const std::vector<double>& xyz, const GridCells& cells) {
     }
   }
   h5_temp_ = h5_temp;
-  const std::string& h5 = h5_;
   create_file();
+  write_grid("/geometry", xyz, cells);
+}
+
+void FieldSeries::write_grid(const std::string& group, const std::vector<double>& xyz,
+                             const GridCells& cells) {
+  const std::string& h5 = h5_;
+  const PointSlice* slice = slice_.spread() ? &slice_ : nullptr;
   const hid_t file = file_;
   const std::size_t n = points_, total = slice ? slice->total : n;
-  write_dataset(file, "/geometry/coordinates", xyz, n, 3, slice);
+  write_dataset(file, group + "/coordinates", xyz, n, 3, slice);
   std::ostringstream g;
   if (cells.nodes_per_cell == 0) { // Polyvertex: point i is vertex i
     const std::size_t first = slice ? slice->offset : 0;
     std::vector<int> vertex(n);
     for (std::size_t i = 0; i < n; ++i) vertex[i] = static_cast<int>(first + i);
-    write_int_dataset(file, "/geometry/vertices", vertex, n, 1, slice);
+    write_int_dataset(file, group + "/vertices", vertex, n, 1, slice);
     g << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << total
       << "\" NodesPerElement=\"1\">"
       << "<DataItem Dimensions=\"" << total
-      << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5
-      << ":/geometry/vertices</DataItem></Topology>\n";
+      << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5 << ":" << group
+      << "/vertices</DataItem></Topology>\n";
   } else {
     MF_REQUIRE(!slice, stem_, ".h5: cells are written by one rank");
     const std::size_t ne = cells.connectivity.size() / cells.nodes_per_cell;
-    write_int_dataset(file, "/geometry/cells", cells.connectivity, ne, cells.nodes_per_cell);
+    write_int_dataset(file, group + "/cells", cells.connectivity, ne, cells.nodes_per_cell);
     g << "    <Topology TopologyType=\"" << cells.xdmf_type << "\" NumberOfElements=\"" << ne
       << "\">"
       << "<DataItem Dimensions=\"" << ne << " " << cells.nodes_per_cell
-      << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5
-      << ":/geometry/cells</DataItem></Topology>\n";
+      << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5 << ":" << group
+      << "/cells</DataItem></Topology>\n";
   }
   topology_ = g.str();
-  reference_ = data_item(h5, "/geometry/coordinates", total, 3);
+  reference_ = data_item(h5, group + "/coordinates", total, 3);
+}
+
+void FieldSeries::regrid(const std::vector<Vec2>& points, const GridCells& cells) {
+  MF_REQUIRE(file_ >= 0, stem_, ".h5: the series is closed");
+  MF_REQUIRE(!slice_.spread(), stem_, ".h5: a series spread over ranks keeps its points");
+  points_ = points.size();
+  std::vector<double> xyz(3 * points_, 0.0);
+  for (std::size_t i = 0; i < points_; ++i)
+    xyz[3 * i] = points[i].x(), xyz[3 * i + 1] = points[i].y();
+  ++grids_;
+  write_grid("/geometry_" + std::to_string(grids_), xyz, cells);
 }
 
 void FieldSeries::create_file() {
@@ -397,7 +414,7 @@ void copy_steps(hid_t to, const std::string& from) {
       },
       &names);
   for (const std::string& name : names) {
-    if (name != "geometry" && name.rfind("step_", 0) != 0) continue;
+    if (name.rfind("geometry", 0) != 0 && name.rfind("step_", 0) != 0) continue;
     if (name == "geometry" && H5Lexists(to, name.c_str(), H5P_DEFAULT) > 0) continue;
     errno = 0;
     if (H5Ocopy(source, name.c_str(), to, name.c_str(), H5P_DEFAULT, H5P_DEFAULT) < 0) {

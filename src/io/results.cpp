@@ -1,6 +1,6 @@
 #include "meshfree/io/results.hpp"
-#include "meshfree/io/state_file.hpp"
 #include "meshfree/core/error.hpp"
+#include "meshfree/io/state_file.hpp"
 #include <algorithm>
 #include <cmath>
 
@@ -174,6 +174,11 @@ void FieldOutput::write(double t) {
     MF_ASSERT(step.vectors.back().second.size() == points_);
   }
   series_->add_step(step);
+}
+
+void FieldOutput::regrid(const std::vector<Vec2>& points, const GridCells& cells) {
+  points_ = points.size();
+  if (series_) series_->regrid(points, cells);
 }
 
 void FieldOutput::close() {

@@ -17,6 +17,11 @@ void read_adapt_keys(KeyReader& a, AdaptSpec& r) {
                             std::to_string(r.fraction));
   r.passes = a.integer("passes", r.passes, 1, 20);
   r.max_nodes = a.positive("max_nodes", r.max_nodes);
+  r.every = a.integer("every", r.every, 0, 1000000);
+  if (r.every > 0 && a.has("pilot_increments"))
+    a.error("pilot_increments", "there are no pilot solves when the cloud is refined during the "
+                                "analysis (every: " +
+                                    std::to_string(r.every) + ")");
   r.pilot_increments = a.integer("pilot_increments", r.pilot_increments, 1, 1000000);
   a.finish();
 }

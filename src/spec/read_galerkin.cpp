@@ -519,6 +519,11 @@ void read_checkpoint_output(KeyReader& out, ProblemSpec& p, bool plastic) {
       !std::isfinite(galerkin.checkpoint.wall_interval))
     out.error("checkpoint_wall_interval", "expected seconds of wall time, 0 for none, got " +
                                               detail::concat(galerkin.checkpoint.wall_interval));
+  const auto& adapt = galerkin.discretisation.adapt;
+  for (const char* key : {"checkpoint_every", "checkpoint_wall_interval"})
+    if (adapt && adapt->every > 0 && out.has(key) && out.number(key, 0.0) != 0.0)
+      out.error(key, "a run whose cloud is refined during the analysis "
+                     "(discretisation.adapt.every) writes no checkpoints: 0 or leave it out");
 }
 
 /// One output.lines entry: a sampled segment with at least one sample point in the body.
@@ -563,6 +568,11 @@ void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
   galerkin.linear_solver = read_linear_solver(r);
   galerkin.discretisation =
       read_discretisation(r, 2, p.domain.bounds(), base_dir, galerkin.linear_solver);
+  const auto& adapt = galerkin.discretisation.adapt;
+  if (!plastic && adapt && adapt->every > 0)
+    r.error("discretisation.adapt.every",
+            "refines between the increments of elastoplastic_static; an elastic_static solve "
+            "has none (leave 'every' out: pilot solves refine its cloud)");
   galerkin.exact = read_exact(r);
   if (r.has("body_force")) galerkin.body_force = r.vec2("body_force");
   r.allow("body_force");
@@ -571,6 +581,8 @@ void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
   read_boundary(r, p);
   read_plastic_controls(r, p, plastic);
   read_output(r, p, plastic);
+  // A checkpoint holds the state on one cloud; a run that changes its cloud writes none.
+  if (adapt && adapt->every > 0) galerkin.checkpoint = CheckpointPolicy{0.0, 0.0};
 }
 
 } // namespace mf::spec

@@ -178,6 +178,12 @@ expect_error "discretisation.adapt: expected on, off or a map of keys, got 3" "$
 expect_error "discretisation.adapt: error-driven refinement places meshfree nodes: it needs method: meshfree" "$P" --set discretisation.method=fem --set discretisation.adapt.target=0.1
 expect_error "discretisation.adapt: error-driven refinement is made for plane bodies, not for this model" "$ROOT/problems/block_uniaxial_3d.yaml" --set discretisation.adapt.target=0.1
 expect_error "stages[0].discretisation.adapt: a stage's cloud is not adapted" "$ROOT/problems/staged_strip_blast.yaml" --set stages.0.discretisation.adapt.target=0.1
+# Refinement between increments: only where there are increments, without pilots or checkpoints.
+expect_error "discretisation.adapt.every: refines between the increments of elastoplastic_static; an elastic_static solve has none" "$P" --set discretisation.adapt.every=2
+expect_error "discretisation.adapt.every: expected an integer from 0 to 1000000, got -1" "$ROOT/problems/cook_membrane.yaml" --set discretisation.adapt.every=-1
+expect_error "discretisation.adapt.pilot_increments: there are no pilot solves when the cloud is refined during the analysis (every: 2)" "$ROOT/problems/cook_membrane.yaml" --set "discretisation.adapt={every: 2, pilot_increments: 3}"
+expect_error "output.checkpoint_every: a run whose cloud is refined during the analysis (discretisation.adapt.every) writes no checkpoints: 0 or leave it out" "$ROOT/problems/cook_membrane.yaml" --set discretisation.adapt.every=2 --set output.checkpoint_every=1
+expect_error "stages[0].discretisation.adapt: a stage's cloud is not adapted" "$ROOT/problems/staged_strip_blast.yaml" --set stages.0.discretisation.adapt.every=2
 expect_error "discretisation.refinement[0].box: lies outside the body" "$P" --set 'discretisation.refinement=[{box: [[5, 5], [6, 6]], spacing: 0.02}]'
 # A refinement box reaching far outside the body is clipped to it (node generation walked it whole).
 if timeout 20 "$MF" check "$P" --set 'discretisation.refinement=[{box: [[-1e9, -1e9], [1e9, 1e9]], spacing: 0.02}]' >/dev/null 2>&1; then

@@ -21,6 +21,7 @@ struct AdaptPass {
   double estimate = 0.0; // relative, ErrorEstimate::relative
   int marked = 0;
   double seconds = 0.0;
+  int increment = 0; // refined during the analysis: after this increment (0: a pilot)
 };
 
 struct Adaptation {
@@ -42,6 +43,18 @@ std::vector<geometry::Refinement> refinement_around(const geometry::NodeCloud& c
                                                     const std::vector<int>& marked, double spacing,
                                                     const std::vector<geometry::Refinement>& now);
 
+/// The cloud after an estimate e on `cloud` (made of the boxes `now`): Doerfler's marking of its
+/// nodes and the boxes around them added to `now`; not allowed when it has more than max_nodes
+/// nodes (logged).
+struct NextCloud {
+  std::vector<int> marked;
+  std::vector<geometry::Refinement> refinement;
+  geometry::NodeCloud cloud;
+  bool allowed = true;
+};
+NextCloud next_cloud(const spec::ProblemSpec& spec, const geometry::NodeCloud& cloud,
+                     const std::vector<geometry::Refinement>& now, const ErrorEstimate& e);
+
 /// Solves the problem on the discretisation of the spec it is given and returns its estimate.
 using PilotSolve = std::function<ErrorEstimate(const spec::ProblemSpec&)>;
 
@@ -57,7 +70,8 @@ struct AdaptedProblem {
   std::optional<Adaptation> adaptation;
 };
 
-/// The problem refined by adapt_nodes with `solve` as its pilot, or as it is without adapt.
+/// The problem refined by adapt_nodes with `solve` as its pilot, or as it is without adapt or
+/// when its cloud is refined during the analysis (adapt.every).
 AdaptedProblem adapted_problem(const spec::ProblemSpec& spec, const PilotSolve& solve);
 
 /// Keeps the record of the refinement in an analysis' result, and its pilots' wall time as the

@@ -58,6 +58,8 @@ public:
   /// `out` null: nothing is written (ranks other than 0).
   DisplaySeries(io::OutputDirectory* out, const DisplayMesh& mesh);
   void write(double time, DisplayFields fields);
+  /// The writes from now on are on another mesh (an adapted cloud's).
+  void regrid(const DisplayMesh& mesh) { output_.regrid(mesh.x, mesh.cells); }
   io::FieldOutput& output() { return output_; }
   void close() { output_.close(); }
 

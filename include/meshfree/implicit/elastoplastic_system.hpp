@@ -57,6 +57,11 @@ public:
   /// its yield surface and round-off would choose between the elastic and the plastic tangent.
   void commit() override;
 
+  /// Starts from a history carried here from another model of the body (a refined cloud): it
+  /// becomes the committed history, and the response to d on it (the return map checked at
+  /// every point) its committed stress and the first tangent.
+  void start_from(std::vector<materials::J2State> history, const std::vector<double>& d);
+
   /// R(d) on the owned rows and this rank's share of the force scale |F|^2 (internal forces,
   /// tractions and body force; not the penalty right-hand sides) and of the round-off floor of
   /// |R|^2 (eps times the magnitudes of each row's internal, penalty and applied forces).

@@ -32,6 +32,11 @@ public:
               const solvers::NonlinearBlockSystem& newton, bool write_fields,
               ElastoplasticResult& r);
 
+  /// The increments from now on are on another model of the same body (a cloud refined during
+  /// the analysis, with `spec` its discretisation): the shape tables are made anew and the field
+  /// series go on on its points. `spec` and `m` must outlive the recorder. Collective.
+  void move_to(const spec::ProblemSpec& spec, const GalerkinModel& m);
+
   /// Closes the field series.
   void close();
 
@@ -42,9 +47,13 @@ public:
 
 private:
   struct GaussOutput;
-  const spec::ProblemSpec& spec_;
-  const GalerkinModel& m_;
+  /// The shape tables at the nodes, monitors and line points and the display mesh (rank 0), and
+  /// the body load, of model m. Collective.
+  void make_tables(const spec::ProblemSpec& spec, const GalerkinModel& m);
+  const spec::ProblemSpec* spec_;
+  const GalerkinModel* m_;
   const solvers::PetscSession& session_;
+  bool writes_; // the fields are written (rank 0 with an output directory)
   ShapeTable node_table_, monitor_table_;
   std::vector<std::pair<const spec::LineSpec*, std::vector<Vec2>>> line_points_;
   std::vector<ShapeTable> line_tables_;

@@ -165,6 +165,9 @@ public:
   FieldSeries(const FieldSeries&) = delete;
   FieldSeries& operator=(const FieldSeries&) = delete;
   void add_step(const FieldStep& step);
+  /// The steps from now on are on other points (and cells): an adapted cloud. The new grid is
+  /// written as /geometry_<k>, and each step's grid in the .xmf names its own. One rank's series.
+  void regrid(const std::vector<Vec2>& points, const GridCells& cells = {});
   /// Writes the .xmf; a series that was split is merged into one file first.
   void close();
   int steps() const { return steps_; }
@@ -187,6 +190,8 @@ public:
 private:
   static std::string parts_in(const std::string& parts, const std::string& folder);
   void open(const std::vector<double>& xyz, const GridCells& cells);
+  /// Writes the points (and cells) as `group` and makes them the grid of the next steps.
+  void write_grid(const std::string& group, const std::vector<double>& xyz, const GridCells& cells);
   void create_file();
   void close_file();
   /// Closes the file, moves it to `keep_as` (drops it when empty) and opens a new one. Collective.
@@ -204,6 +209,7 @@ private:
   bool broken_ = false;
   std::size_t points_ = 0;
   int steps_ = 0;
+  int grids_ = 0;         // grids written after the first (regrid)
   std::string topology_;  // the XDMF topology of every step
   std::string reference_; // the XDMF data item of the series' points
   std::string xml_;

@@ -104,6 +104,9 @@ public:
   /// Points of a plane, with the cells of a mesh if any.
   FieldOutput(OutputDirectory* out, const std::string& stem, const std::vector<Vec2>& points,
               const GridCells& cells = {});
+  // The fills of arrays refer to this object: it stays where it was made.
+  FieldOutput(const FieldOutput&) = delete;
+  FieldOutput& operator=(const FieldOutput&) = delete;
   /// One value per point.
   void scalar(std::string name, Fill fill);
   /// Three values per point.
@@ -124,6 +127,9 @@ public:
   }
   std::size_t points() const { return points_; }
   bool active() const { return series_ != nullptr; }
+  /// The steps from now on are on other points (FieldSeries::regrid); the fields' fills then
+  /// give values for these.
+  void regrid(const std::vector<Vec2>& points, const GridCells& cells = {});
   /// Every registered field at time t.
   void write(double t);
   /// See FieldSeries::split and FieldSeries::for_each_state (nothing without a series).
@@ -137,8 +143,10 @@ public:
 
 private:
   template <class T> Fill copy_of(const std::vector<T>& a, std::size_t per) const {
-    const std::size_t n = per * points_;
-    return [&a, n](std::vector<double>& out) { out.assign(a.begin(), a.begin() + n); };
+    // The count is read at each write: regrid() changes it.
+    return [&a, per, this](std::vector<double>& out) {
+      out.assign(a.begin(), a.begin() + per * points_);
+    };
   }
   std::unique_ptr<FieldSeries> series_;
   std::size_t points_ = 0;

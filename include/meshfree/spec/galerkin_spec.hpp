@@ -35,6 +35,9 @@ struct AdaptSpec {
   int passes = 6;            // pilot solves at most (each may refine the cloud once)
   double max_nodes = 1e5;    // a refinement past this many nodes is not made
   int pilot_increments = 10; // increments of each load step in an elastoplastic pilot
+  // Refine during an elastoplastic analysis after every `every` converged increments, the
+  // committed state carried to the new cloud, instead of by pilot solves before it (0: pilots).
+  int every = 0;
 };
 
 struct DiscretisationSpec {
