@@ -268,31 +268,84 @@ private:
     CarriedState c =
         carry_state(*now.model, now.problem->states(), everywhere, *next->model, session_);
     next->problem->set_factors(now.problem->factors());
-    next->problem->start_from(std::move(c.history), c.d);
-    solvers::NewtonSettings settings;
-    settings.tolerance = spec.galerkin().nonlinear.tolerance;
-    settings.max_iterations = spec.galerkin().nonlinear.max_iterations;
-    const solvers::NewtonReport rep = next->newton->solve(c.d, settings);
-    if (!rep.converged) {
+    next->problem->start_from(std::move(c.history));
+    const Balance b = rebalance(*next, c.d);
+    if (!b.found) {
       // The analysis goes on on the cloud it has: its state is the last converged one.
       log::warn("adapt: the state carried to the refined cloud of ", next->model->node_count(),
-                " nodes found no equilibrium at the load of the last converged increment (",
-                rep.reason, rep.failure.empty() ? "" : ": " + rep.failure,
+                " nodes found no equilibrium at the load of the last converged increment (", b.why,
                 "); the analysis goes on on the cloud of ", now.model->node_count(),
                 " nodes, without further refinement");
       record_.ended = "no equilibrium on the refined cloud";
       count_model(*now.model, session_, R);
       return nullptr;
     }
-    next->problem->commit();
     log::info("adapt: state carried to ", next->model->node_count(), " nodes (", c.copied,
-              " points kept, ", c.interpolated, " interpolated), |R|/|F| ",
-              rep.residual.front() / std::max(rep.scale.front(), 1e-300), ", equilibrium in ",
-              rep.iterations, " Newton iterations");
+              " points kept, ", c.interpolated, " interpolated), equilibrium in ", b.iterations,
+              " Newton iterations",
+              b.steps > 1 ? detail::concat(" over ", b.steps, " steps") : std::string());
     d = std::move(c.d);
     record_.refinement = std::move(cloud.refinement);
     cloud_ = std::move(cloud.cloud);
     return next;
+  }
+
+  struct Balance {
+    bool found = false;
+    int iterations = 0, steps = 0;
+    std::string why; // when not found
+  };
+
+  /// Equilibrium of the carried state on `next` at the load of the last increment, from d:
+  /// Newton; where that fails, the carried state's out-of-balance taken away in steps of a
+  /// quarter, each committed (a failed step halved, down to 1/64, and doubled again after an
+  /// easy one), so that plastic flow follows the way back to balance. The state and d end in
+  /// equilibrium when found.
+  Balance rebalance(Discretised& next, std::vector<double>& d) const {
+    const spec::NonlinearSpec& n = next.spec.galerkin().nonlinear;
+    solvers::NewtonSettings settings;
+    settings.tolerance = n.tolerance;
+    settings.max_iterations = n.max_iterations;
+    Balance b;
+    const auto solve = [&] {
+      std::vector<double> trial = d;
+      const solvers::NewtonReport rep = next.newton->solve(trial, settings);
+      b.iterations += rep.iterations;
+      if (!rep.converged) {
+        b.why = rep.reason + (rep.failure.empty() ? "" : ": " + rep.failure);
+        return false;
+      }
+      d = std::move(trial);
+      next.problem->commit();
+      ++b.steps;
+      return true;
+    };
+    b.found = solve();
+    if (b.found) return b;
+    std::vector<double> r0(2 * static_cast<std::size_t>(next.model->pattern.rows()));
+    long failed = 0;
+    try {
+      solvers::ResidualSums sums;
+      next.problem->residual(d, r0.data(), sums);
+    } catch (const Error&) {
+      failed = 1;
+    }
+    if (solvers::sum_everywhere(session_.comm(), failed) > 0) return b;
+    double done = 0.0, step = 0.25;
+    while (!b.found && step >= 1.0 / 64.0) {
+      const double to = std::min(1.0, done + step);
+      next.problem->hold_imbalance(r0, 1.0 - to);
+      const int before = b.iterations;
+      if (!solve()) {
+        step *= 0.5;
+        continue;
+      }
+      done = to;
+      b.found = done >= 1.0;
+      if (b.iterations - before <= 6) step = std::min(0.25, 2.0 * step); // an easy step
+    }
+    next.problem->hold_imbalance({}, 0.0);
+    return b;
   }
 
   const solvers::PetscSession& session_;

@@ -73,15 +73,12 @@ void ElastoplasticSystem::commit() {
   states_.committed_stress_zz = states_.stress_zz;
 }
 
-void ElastoplasticSystem::start_from(std::vector<materials::J2State> history,
-                                     const std::vector<double>& d) {
+void ElastoplasticSystem::start_from(std::vector<materials::J2State> history) {
   MF_REQUIRE(history.size() == states_.committed.size(),
              "ElastoplasticSystem: a carried history must have one state a point");
   states_.committed = std::move(history);
+  states_.trial = states_.committed;
   states_valid_ = false;
-  update_materials(d);
-  states_.committed_stress = states_.stress;
-  states_.committed_stress_zz = states_.stress_zz;
 }
 
 void ElastoplasticSystem::residual(const std::vector<double>& d, double* r,
@@ -97,6 +94,8 @@ void ElastoplasticSystem::residual(const std::vector<double>& d, double* r,
   penalty.assign(2 * static_cast<std::size_t>(rows), 0.0);
   penalty_.multiply_add(d, penalty.data());
   finish_residual(r, penalty, loads_, factors_, counts_in_scale_, sums);
+  if (share_ != 0.0)
+    for (std::size_t i = 0; i < imbalance_.size(); ++i) r[i] -= share_ * imbalance_[i];
   residual_seconds_ += seconds_since(t0);
 }
 

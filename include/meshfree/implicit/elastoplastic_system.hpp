@@ -58,9 +58,15 @@ public:
   void commit() override;
 
   /// Starts from a history carried here from another model of the body (a refined cloud): it
-  /// becomes the committed history, and the response to d on it (the return map checked at
-  /// every point) its committed stress and the first tangent.
-  void start_from(std::vector<materials::J2State> history, const std::vector<double>& d);
+  /// becomes the committed history; the next residual returns the map from it at every point.
+  void start_from(std::vector<materials::J2State> history);
+
+  /// Residuals from now on are R(d) - share r0 (r0 on the owned rows, as residual() gives
+  /// them): the out-of-balance r0 of a carried state taken away in steps (share 1 to 0).
+  void hold_imbalance(std::vector<double> r0, double share) {
+    imbalance_ = std::move(r0);
+    share_ = share;
+  }
 
   /// R(d) on the owned rows and this rank's share of the force scale |F|^2 (internal forces,
   /// tractions and body force; not the penalty right-hand sides) and of the round-off floor of
@@ -113,6 +119,8 @@ private:
   std::vector<double> factors_;
   std::vector<double> states_d_;
   bool states_valid_ = false;
+  std::vector<double> imbalance_; // see hold_imbalance
+  double share_ = 0.0;
   double residual_seconds_ = 0.0, jacobian_seconds_ = 0.0;
 };
 
