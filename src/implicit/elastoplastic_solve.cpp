@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <type_traits>
 
 namespace mf::implicit {
@@ -180,68 +181,79 @@ std::unique_ptr<Discretised> discretise(const spec::ProblemSpec& spec,
   return now;
 }
 
-/// The recovery estimate of the committed stress of a discretisation.
-ErrorEstimate committed_estimate(const Discretised& now, const solvers::PetscSession& session) {
+/// The recovery estimate of a stress at the points of a discretisation (its committed or its
+/// trial stress).
+ErrorEstimate estimate_of(const Discretised& now, const std::vector<Vec3>& stress,
+                          const solvers::PetscSession& session) {
   const spec::ProblemSpec& spec = now.spec;
-  return recovery_error(*now.model, now.problem->states().committed_stress,
+  return recovery_error(*now.model, stress,
                         materials::elastic_matrix(spec.elasticity(), spec.model).inverse(),
                         session);
 }
 
-/// Refinement between increments (discretisation.adapt.every): after every `every` increments
-/// the estimate of the committed stress; above the target, the marked nodes' cloud, the state
-/// carried to it and equilibrium restored there at the same load factors.
+/// Refinement during the analysis (discretisation.adapt.every): every `every`-th increment, once
+/// converged and before it is committed, is estimated; above the target, the marked nodes' cloud
+/// is built, the state at the increment's start carried to it and balanced there at the load of
+/// that start, and the increment is solved again on it (and estimated again).
 class Refiner {
 public:
   Refiner(const spec::ProblemSpec& spec, const solvers::PetscSession& session)
       : session_(session), adapt_(spec.galerkin().discretisation.adapt) {
-    if (!adapt_ || adapt_->every <= 0) return;
+    if (!active()) return;
     record_.refinement = spec.galerkin().discretisation.refinement;
     cloud_ = geometry::generate_nodes(spec.domain, spec.galerkin().discretisation.spacing,
                                       record_.refinement);
   }
   bool active() const { return adapt_ && adapt_->every > 0; }
-  /// After `done` converged increments: whether an estimate is due.
-  bool due(long done) const {
-    return active() && record_.ended.empty() && done % adapt_->every == 0;
-  }
 
-  /// The estimate on `now` after increment `done`, and when it asks for one, the refined
-  /// discretisation with the state carried to it and in equilibrium (d too); null when the
-  /// cloud stays (also when no equilibrium was found on the refined one: refinement then ends).
-  std::unique_ptr<Discretised> refine(const Discretised& now, long done, std::vector<double>& d,
-                                      ElastoplasticResult& R) {
-    const auto start = std::chrono::steady_clock::now();
-    const ErrorEstimate e = committed_estimate(now, session_);
+  /// Increment k (counted from 1), converged on `now`: true when it is to be solved again on a
+  /// refined cloud (then refine() builds it), after its trial stress was estimated (every
+  /// `every`-th increment while refinement has not ended).
+  bool review(const Discretised& now, long k, ElastoplasticResult& R) {
+    if (!active() || !record_.ended.empty() || k % adapt_->every != 0) return false;
+    const auto began = std::chrono::steady_clock::now();
+    const ErrorEstimate e = estimate_of(now, now.problem->states().stress, session_);
     AdaptPass pass;
     pass.nodes = now.model->node_count();
     pass.estimate = e.relative();
-    pass.increment = static_cast<int>(done);
-    std::unique_ptr<Discretised> next;
+    pass.increment = static_cast<int>(k);
     const int refinements = static_cast<int>(record_.passes.size()) - unrefined_;
-    if (pass.estimate > adapt_->target) {
-      if (refinements + 1 >= adapt_->passes) {
-        record_.ended = "passes used";
-      } else {
-        NextCloud cloud = next_cloud(now.spec, cloud_, record_.refinement, e);
-        if (!cloud.allowed) {
-          record_.ended = "max_nodes reached";
-        } else {
-          const int marked = static_cast<int>(cloud.marked.size());
-          next = carried(now, std::move(cloud), d, R);
-          if (next) pass.marked = marked;
-        }
-      }
+    if (pass.estimate > adapt_->target && refinements + 1 >= adapt_->passes)
+      record_.ended = "passes used";
+    if (pass.estimate > adapt_->target && record_.ended.empty()) {
+      pending_ = next_cloud(now.spec, cloud_, record_.refinement, e);
+      if (!pending_->allowed) record_.ended = "max_nodes reached", pending_.reset();
     }
-    if (!next) ++unrefined_;
-    pass.seconds = seconds_since(start);
-    log::info("adapt: after increment ", done, ", ", pass.nodes, " nodes, estimated error ",
-              pass.estimate, " (target ", adapt_->target, ")",
-              next ? detail::concat(": refined to ", next->model->node_count(), " nodes")
-                   : std::string(record_.ended.empty() ? "" : ": " + record_.ended),
-              ", ", log::duration(pass.seconds));
+    if (!pending_) ++unrefined_;
+    pass.seconds = seconds_since(began);
+    log::info("adapt: increment ", k, " on ", pass.nodes, " nodes, estimated error ", pass.estimate,
+              " (target ", adapt_->target, ")",
+              pending_ ? detail::concat(": ", pending_->marked.size(), " nodes marked")
+                       : std::string(record_.ended.empty() ? "" : ": " + record_.ended));
     record_.passes.push_back(pass);
     R.timer.add("adapt", pass.seconds);
+    return pending_.has_value();
+  }
+
+  /// The discretisation review() asked for, with the state at the increment's start on `now`
+  /// (d, the committed history, the load factors `start`) carried to it and in equilibrium (d
+  /// too); null when no equilibrium was found there (refinement then ends, logged).
+  std::unique_ptr<Discretised> refine(const Discretised& now, std::vector<double>& d,
+                                      const std::vector<double>& start, ElastoplasticResult& R) {
+    MF_REQUIRE(pending_, "adapt: no refinement was asked for");
+    const auto began = std::chrono::steady_clock::now();
+    NextCloud cloud = std::move(*pending_);
+    pending_.reset();
+    const int marked = static_cast<int>(cloud.marked.size());
+    std::unique_ptr<Discretised> next = carried(now, std::move(cloud), d, start, R);
+    AdaptPass& pass = record_.passes.back();
+    if (next)
+      pass.marked = marked;
+    else
+      ++unrefined_;
+    const double seconds = seconds_since(began);
+    pass.seconds += seconds;
+    R.timer.add("adapt", seconds);
     return next;
   }
 
@@ -257,7 +269,8 @@ public:
 private:
   /// The discretisation of `cloud` with the state of `now` carried to it and in equilibrium.
   std::unique_ptr<Discretised> carried(const Discretised& now, NextCloud cloud,
-                                       std::vector<double>& d, ElastoplasticResult& R) {
+                                       std::vector<double>& d, const std::vector<double>& start,
+                                       ElastoplasticResult& R) {
     spec::ProblemSpec spec = now.spec;
     spec.galerkin().discretisation.refinement = cloud.refinement;
     PhaseTimer build; // inside the adapt phase
@@ -267,13 +280,13 @@ private:
     solvers::broadcast(session_.comm(), everywhere, 0);
     CarriedState c =
         carry_state(*now.model, now.problem->states(), everywhere, *next->model, session_);
-    next->problem->set_factors(now.problem->factors());
+    next->problem->set_factors(start);
     next->problem->start_from(std::move(c.history));
     const Balance b = rebalance(*next, c.d);
     if (!b.found) {
       // The analysis goes on on the cloud it has: its state is the last converged one.
       log::warn("adapt: the state carried to the refined cloud of ", next->model->node_count(),
-                " nodes found no equilibrium at the load of the last converged increment (", b.why,
+                " nodes found no equilibrium at the load of the increment's start (", b.why,
                 "); the analysis goes on on the cloud of ", now.model->node_count(),
                 " nodes, without further refinement");
       record_.ended = "no equilibrium on the refined cloud";
@@ -281,7 +294,7 @@ private:
       return nullptr;
     }
     log::info("adapt: state carried to ", next->model->node_count(), " nodes (", c.copied,
-              " points kept, ", c.interpolated, " interpolated), equilibrium in ", b.iterations,
+              " points kept, ", c.nearest, " from their nearest), equilibrium in ", b.iterations,
               " Newton iterations",
               b.steps > 1 ? detail::concat(" over ", b.steps, " steps") : std::string());
     d = std::move(c.d);
@@ -296,7 +309,7 @@ private:
     std::string why; // when not found
   };
 
-  /// Equilibrium of the carried state on `next` at the load of the last increment, from d:
+  /// Equilibrium of the carried state on `next` at the load it is set to, from d:
   /// Newton; where that fails, the carried state's out-of-balance taken away in steps of a
   /// quarter, each committed (a failed step halved, down to 1/64, and doubled again after an
   /// easy one), so that plastic flow follows the way back to balance. The state and d end in
@@ -322,6 +335,8 @@ private:
     };
     b.found = solve();
     if (b.found) return b;
+    log::info("adapt: no equilibrium of the carried state at once (", b.why,
+              "); its out-of-balance is taken away in steps");
     std::vector<double> r0(2 * static_cast<std::size_t>(next.model->pattern.rows()));
     long failed = 0;
     try {
@@ -342,6 +357,8 @@ private:
       }
       done = to;
       b.found = done >= 1.0;
+      log::info("adapt: ", done, " of the carried state's out-of-balance taken away, ",
+                b.iterations, " Newton iterations so far");
       if (b.iterations - before <= 6) step = std::min(0.25, 2.0 * step); // an easy step
     }
     next.problem->hold_imbalance({}, 0.0);
@@ -351,8 +368,9 @@ private:
   const solvers::PetscSession& session_;
   const std::optional<spec::AdaptSpec>& adapt_;
   Adaptation record_;
-  geometry::NodeCloud cloud_; // the present cloud, as its boxes make it (nominal spacings)
-  int unrefined_ = 0;         // estimates that left the cloud as it was
+  geometry::NodeCloud cloud_;        // the present cloud, as its boxes make it (nominal spacings)
+  int unrefined_ = 0;                // estimates that left the cloud as it was
+  std::optional<NextCloud> pending_; // asked for by review()
 };
 
 } // namespace
@@ -403,16 +421,18 @@ ElastoplasticResult solve_elastoplastic_static(const spec::ProblemSpec& spec,
     return R.increments.back();
   };
   Refiner refiner(spec, session);
-  const auto pause = [&] { return refiner.due(static_cast<long>(R.increments.size()) - 1); };
+  const auto review = [&] {
+    return refiner.review(*now, static_cast<long>(R.increments.size()), R);
+  };
   ScheduleOutcome o;
   for (;;) {
     const ScheduleOutcome part = run_load_schedule(schedule_of(now->spec), *now->problem,
-                                                   *now->newton, d, done, at, keep, pause);
+                                                   *now->newton, d, done, at, keep, review);
     o.status = part.status, o.stop_reason = part.stop_reason;
     o.newton_seconds += part.newton_seconds;
     if (!part.paused) break;
-    std::unique_ptr<Discretised> next =
-        refiner.refine(*now, static_cast<long>(R.increments.size()) - 1, d, R);
+    // The increment under way is solved again, on the refined cloud where there is one.
+    std::unique_ptr<Discretised> next = refiner.refine(*now, d, at.current, R);
     if (!next) continue;
     recorder.move_to(next->spec, *next->model);
     now = std::move(next);
@@ -426,7 +446,8 @@ ElastoplasticResult solve_elastoplastic_static(const spec::ProblemSpec& spec,
   R.jacobian_seconds = now->problem->jacobian_seconds();
   recorder.close();
   keep_converged_state(now->model, *now->problem, *now->newton, d, session, R);
-  if (spec.galerkin().discretisation.adapt) R.estimate = committed_estimate(*now, session);
+  if (spec.galerkin().discretisation.adapt)
+    R.estimate = estimate_of(*now, now->problem->states().committed_stress, session);
   if (refiner.active()) R.adaptation = refiner.finish(*now, R.estimate);
   R.memory = solvers::peak_memory(session.comm());
   return R;

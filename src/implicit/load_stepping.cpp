@@ -70,7 +70,7 @@ struct ScheduleRun {
   const IncrementDone& done;
   SchedulePosition& at;
   const PositionKept& kept;
-  const PauseAsked& pause;
+  const ReviewIncrement& review;
   solvers::NewtonSettings settings;
   Clock::time_point began;
   double total = 0.0, done_at_start = 0.0;
@@ -162,16 +162,15 @@ void run_step(ScheduleRun& run) {
       if (!cut_back(run, step, to, rep)) break;
       continue;
     }
+    if (run.review && run.review()) {
+      run.o.paused = true;
+      return;
+    }
     run.d = std::move(trial);
     run.problem.commit();
     at.tau = to;
     at.current = f;
     record_increment(run, s, f, rep, last, nominal);
-    const bool finished = last && s + 1 == run.spec.steps->size();
-    if (!finished && run.pause && run.pause()) {
-      run.o.paused = true;
-      return;
-    }
   }
 }
 
@@ -180,9 +179,9 @@ void run_step(ScheduleRun& run) {
 ScheduleOutcome run_load_schedule(const ScheduleSpec& schedule, IncrementalSystem& problem,
                                   solvers::NonlinearBlockSystem& newton, std::vector<double>& d,
                                   const IncrementDone& done, SchedulePosition& at,
-                                  const PositionKept& kept, const PauseAsked& pause) {
+                                  const PositionKept& kept, const ReviewIncrement& review) {
   ScheduleRun run{schedule, problem, newton,       d,   done, at, kept,
-                  pause,    {},      Clock::now(), 0.0, 0.0,  {}};
+                  review,   {},      Clock::now(), 0.0, 0.0,  {}};
   const int steps = static_cast<int>(schedule.steps->size());
   if (at.current.empty()) at.current.assign(schedule.factors(), 0.0);
   if (at.start.empty()) at.start = at.current;

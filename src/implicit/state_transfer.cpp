@@ -22,7 +22,7 @@ void pack(const materials::J2State& s, double* v) {
 materials::J2State unpack(const double* v) {
   materials::J2State s;
   for (int c = 0; c < 6; ++c) s.plastic_strain(c) = v[c], s.back_stress(c) = v[6 + c];
-  s.alpha = std::max(v[12], 0.0);
+  s.alpha = v[12];
   return s;
 }
 
@@ -37,32 +37,62 @@ std::vector<double> every_history(const GalerkinModel& from, const PointStates& 
   return all;
 }
 
-/// The nodal averages of the history (weights phi_I(x_g)^2 w_g), on every rank.
-std::vector<double> nodal_history(const GalerkinModel& from, const PointStates& st,
-                                  const solvers::PetscSession& session) {
-  const ShapeTable& t = from.domain_table;
-  const int nodes = from.node_count();
-  std::vector<double> sum(kValues * static_cast<std::size_t>(nodes) + nodes, 0.0);
-  double* weight = sum.data() + kValues * static_cast<std::size_t>(nodes);
-  double v[kValues];
-  for (int k = 0; k < t.rows(); ++k) {
-    if (!from.domain_mine.counted[k]) continue;
-    pack(st.committed[k], v);
-    const double w = from.domain.weight[from.domain_mine.rows[k]];
-    for (int q = t.offset[k]; q < t.offset[k + 1]; ++q) {
-      const int I = t.node[q];
-      const double c = t.phi[q] * t.phi[q] * w;
-      for (int j = 0; j < kValues; ++j) sum[kValues * I + j] += c * v[j];
-      weight[I] += c;
-    }
+/// The nearest of a set of points to x (the lowest index among equally near ones), found in a
+/// grid of buckets about one point a bucket, searched ring by ring.
+class NearestPoint {
+public:
+  explicit NearestPoint(const std::vector<Vec2>& x) : x_(x) {
+    lo_ = hi_ = x.empty() ? Vec2::Zero() : x.front();
+    for (const Vec2& p : x) lo_ = lo_.cwiseMin(p), hi_ = hi_.cwiseMax(p);
+    const Vec2 size = (hi_ - lo_).cwiseMax(1e-300);
+    size_ = std::max(std::sqrt(size.x() * size.y() / std::max<std::size_t>(x.size(), 1)),
+                     1e-9 * size.maxCoeff());
+    nx_ = static_cast<int>(size.x() / size_) + 1;
+    ny_ = static_cast<int>(size.y() / size_) + 1;
+    first_.assign(static_cast<std::size_t>(nx_) * ny_ + 1, 0);
+    for (const Vec2& p : x) ++first_[bucket(p) + 1];
+    for (std::size_t b = 1; b < first_.size(); ++b) first_[b] += first_[b - 1];
+    points_.resize(x.size());
+    std::vector<int> fill(first_.begin(), first_.end() - 1);
+    for (std::size_t i = 0; i < x.size(); ++i) points_[fill[bucket(x[i])]++] = static_cast<int>(i);
   }
-  solvers::sum_everywhere(session.comm(), sum.data(), static_cast<int>(sum.size()));
-  for (int I = 0; I < nodes; ++I)
-    for (int j = 0; j < kValues; ++j)
-      sum[kValues * I + j] = weight[I] > 0.0 ? sum[kValues * I + j] / weight[I] : 0.0;
-  sum.resize(kValues * static_cast<std::size_t>(nodes));
-  return sum;
-}
+
+  int find(const Vec2& p) const {
+    const int ci = std::clamp(static_cast<int>((p.x() - lo_.x()) / size_), 0, nx_ - 1);
+    const int cj = std::clamp(static_cast<int>((p.y() - lo_.y()) / size_), 0, ny_ - 1);
+    int best = -1;
+    double best_d2 = std::numeric_limits<double>::infinity();
+    for (int ring = 0; ring <= std::max(nx_, ny_); ++ring) {
+      // Every point outside the rings searched is at least `ring` buckets' widths away.
+      const double reach = (ring - 1) * size_;
+      if (best >= 0 && reach > 0.0 && reach * reach > best_d2) break;
+      for (int j = cj - ring; j <= cj + ring; ++j)
+        for (int i = ci - ring; i <= ci + ring; ++i) {
+          if (std::max(std::abs(i - ci), std::abs(j - cj)) != ring) continue;
+          if (i < 0 || j < 0 || i >= nx_ || j >= ny_) continue;
+          const std::size_t b = static_cast<std::size_t>(j) * nx_ + i;
+          for (int k = first_[b]; k < first_[b + 1]; ++k) {
+            const int q = points_[k];
+            const double d2 = (x_[q] - p).squaredNorm();
+            if (d2 < best_d2 || (d2 == best_d2 && q < best)) best_d2 = d2, best = q;
+          }
+        }
+    }
+    return best;
+  }
+
+private:
+  std::size_t bucket(const Vec2& p) const {
+    const int i = std::clamp(static_cast<int>((p.x() - lo_.x()) / size_), 0, nx_ - 1);
+    const int j = std::clamp(static_cast<int>((p.y() - lo_.y()) / size_), 0, ny_ - 1);
+    return static_cast<std::size_t>(j) * nx_ + i;
+  }
+  const std::vector<Vec2>& x_;
+  Vec2 lo_, hi_;
+  double size_ = 1.0;
+  int nx_ = 1, ny_ = 1;
+  std::vector<int> first_, points_;
+};
 
 /// Finds the points of one set at the places of another's: their coordinates rounded to a
 /// billionth of the body's size, so that a point made by the same arithmetic is found.
@@ -126,33 +156,23 @@ CarriedState carry_state(const GalerkinModel& from, const PointStates& st,
                          const solvers::PetscSession& session) {
   CarriedState c;
   const std::vector<double> old = every_history(from, st, session);
-  const std::vector<double> nodal = nodal_history(from, st, session);
   const PointIndex places(from.domain.x);
+  const NearestPoint nearest(from.domain.x);
   const int rows = to.domain_table.rows();
   c.history.resize(rows);
-  std::vector<Vec2> between; // the new points at no old point's place
-  std::vector<int> between_rows;
   for (int k = 0; k < rows; ++k) {
     const Vec2& x = to.domain.x[to.domain_mine.rows[k]];
-    const int r = places.find(x);
+    int r = places.find(x);
     if (r >= 0) {
-      c.history[k] = unpack(old.data() + kValues * static_cast<std::size_t>(r));
       c.copied += to.domain_mine.counted[k];
     } else {
-      between.push_back(x);
-      between_rows.push_back(k);
-      c.interpolated += to.domain_mine.counted[k];
+      r = nearest.find(x);
+      c.nearest += to.domain_mine.counted[k];
     }
-  }
-  const ShapeTable t = shapes_at(from, between, false);
-  for (int i = 0; i < t.rows(); ++i) {
-    double v[kValues] = {};
-    for (int q = t.offset[i]; q < t.offset[i + 1]; ++q)
-      for (int j = 0; j < kValues; ++j) v[j] += t.phi[q] * nodal[kValues * t.node[q] + j];
-    c.history[between_rows[i]] = unpack(v);
+    c.history[k] = unpack(old.data() + kValues * static_cast<std::size_t>(r));
   }
   c.copied = solvers::sum_everywhere(session.comm(), c.copied);
-  c.interpolated = solvers::sum_everywhere(session.comm(), c.interpolated);
+  c.nearest = solvers::sum_everywhere(session.comm(), c.nearest);
 
   c.d = interpolating_parameters(from, d, to);
   return c;

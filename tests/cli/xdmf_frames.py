@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Every frame of every explicit and staged problem in problems/ is whole in ParaView. Each runs
+"""Every frame of every explicit and staged problem in problems/ is whole in ParaView, and of an
+implicit run whose cloud is refined between increments (its series change their points). Each runs
 briefly, its field interval half its end time (a periodic field step falls on the end, where the
 run also writes its final state), and each .xmf it writes must have:
 
@@ -172,6 +173,29 @@ def explicit_problems(root):
     return names
 
 
+# Cook's membrane on a coarse cloud refined twice at the second of its four increments.
+REFINED = ("cook_membrane", ["--set", "discretisation.spacing=4", "--set",
+                             "discretisation.adapt={target: 0.01, passes: 3, every: 2}",
+                             "--set", "steps.0.increments=4"])
+
+
+def refined_run(meshfree, root, work):
+    """The implicit series of a run refined between increments: whole, and on more points at the
+    end than at the start."""
+    name, sets = REFINED
+    out = os.path.join(work, name + "_refined")
+    run = subprocess.run([meshfree, "run", os.path.join(root, "problems", name + ".yaml"),
+                          "--out", out] + sets, capture_output=True, text=True)
+    assert run.returncode == 0, f"{name}: exit {run.returncode}\n{run.stderr[-2000:]}"
+    print(name, "refined between increments")
+    series = check_folder(out, [])
+    for xmf, frames in series:
+        if os.path.basename(xmf) in ("fields.xmf", "gauss_points.xmf", "display_mesh.xmf"):
+            assert frames[-1]["points"] > frames[0]["points"], \
+                f"{xmf}: the same points before and after refinement"
+    return series
+
+
 def main():
     if sys.argv[1] == "--check":
         folder = sys.argv[2]
@@ -196,6 +220,8 @@ def main():
             print(name)
             # A staged run's explicit stage writes fields.xmf; its implicit preload, a prefix.
             series += check_folder(out, ["fields"])
+        if not sys.argv[3:]:
+            series += refined_run(meshfree, root, work)
         if pvpython:
             paraview_check(pvpython, series, work)
 

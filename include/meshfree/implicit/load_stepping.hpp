@@ -18,7 +18,7 @@ struct ScheduleOutcome {
   std::string status = "completed"; // or "stopped": an increment failed after every cut-back
   std::string stop_reason;
   double newton_seconds = 0.0; // in Newton solves
-  bool paused = false;         // returned after an increment at `pause`'s request
+  bool paused = false;         // an increment discarded at `review`'s request
 };
 
 /// Where the schedule is between two increments: what a checkpoint keeps of it.
@@ -56,16 +56,19 @@ using IncrementDone = std::function<const IncrementRecord&(IncrementRecord rec, 
 /// true after the schedule's last increment.
 using PositionKept = std::function<void(bool finished)>;
 
-/// Asked after each converged increment but the schedule's last: true returns there, paused, so
-/// that the caller may change the discretisation and go on from `at`.
-using PauseAsked = std::function<bool()>;
+/// Asked after each increment's Newton converged, before it is committed: true discards the
+/// increment and returns, paused, at the position before it, so that the caller may change the
+/// discretisation (the state at the increment's start) and go on from `at`, which solves the
+/// increment again.
+using ReviewIncrement = std::function<bool()>;
 
 /// Runs the schedule's steps from `at` (the unloaded state: a default position) and the state in
 /// `d`; `d` ends at the last converged state and `at` at its position.
 ScheduleOutcome run_load_schedule(const ScheduleSpec& schedule, IncrementalSystem& problem,
                                   solvers::NonlinearBlockSystem& newton, std::vector<double>& d,
                                   const IncrementDone& done, SchedulePosition& at,
-                                  const PositionKept& kept = {}, const PauseAsked& pause = {});
+                                  const PositionKept& kept = {},
+                                  const ReviewIncrement& review = {});
 
 /// "pull 0.002, tension 308": the factors of the conditions that drive the body.
 std::string factors_text(const ScheduleSpec& schedule, const std::vector<double>& f);

@@ -66,15 +66,15 @@ TEST_CASE("a bar in uniaxial stress follows the closed-form cyclic response", "[
 
 TEST_CASE("a bar refined between increments keeps the closed-form cyclic response",
           "[elastoplastic][adaptivity]") {
-  // The cloud is refined after increments 5 and 10 (a target no estimate meets), in the first
-  // plastic loading and before the reverse yielding: the plastic strain, back stress and
-  // hardening carried to the new points must keep the homogeneous state, or the reaction leaves
-  // the closed form at the reversal (the Bauschinger effect depends on the back stress). With
+  // Increment 5, in the first plastic loading, is refined twice and solved again each time (a
+  // target no estimate meets), from the plastic state at its start carried to the new cloud: the
+  // plastic strain, back stress and hardening carried to the new points must keep the
+  // homogeneous state, or the reaction leaves the closed form, at the reversal most (the
+  // Bauschinger effect depends on the back stress). With
   // the variationally consistent correction every point holds the homogeneous state (the patch
   // test is passed), so what arrives on the new cloud is that state: without it the points
   // scatter about it by up to 3e-3 (the quadrature error), a pattern of the old cloud that the
-  // new one does not share, and the reaction leaves the closed form by 8e-4 after the reversal
-  // (measured).
+  // new one does not share.
   std::vector<int> clouds;
   const double error =
       bar_error({"discretisation.adapt={target: 1.0e-12, passes: 3, every: 5}",
