@@ -274,7 +274,17 @@ private:
     spec::ProblemSpec spec = now.spec;
     spec.galerkin().discretisation.refinement = cloud.refinement;
     PhaseTimer build; // inside the adapt phase
-    std::unique_ptr<Discretised> next = discretise(spec, session_, build, R);
+    std::unique_ptr<Discretised> next;
+    try { // the model's errors reach every rank
+      next = discretise(spec, session_, build, R);
+    } catch (const Error& e) {
+      log::warn("adapt: the refined cloud cannot be used (", e.what(),
+                "); the analysis goes on on the cloud of ", now.model->node_count(),
+                " nodes, without further refinement");
+      record_.ended = "refined cloud not usable";
+      count_model(*now.model, session_, R);
+      return nullptr;
+    }
     const std::vector<double> all = now.newton->gather_on_root(d);
     std::vector<double> everywhere = all;
     solvers::broadcast(session_.comm(), everywhere, 0);
