@@ -153,7 +153,15 @@ void keep_converged_state(const std::shared_ptr<const GalerkinModel>& model,
 /// One discretisation of the body as the solve uses it: the spec of its cloud, the model, the
 /// system and Newton on it. Lives where it was made (Newton calls the system).
 struct Discretised {
-  spec::ProblemSpec spec;
+  /// A model with the spec it was built from: its conditions point into that spec, so the
+  /// model handed out (ElastoplasticState::model) keeps the spec alive with it.
+  struct SpecAndModel {
+    spec::ProblemSpec spec;
+    GalerkinModel model;
+  };
+  explicit Discretised(std::shared_ptr<SpecAndModel> both)
+      : spec(both->spec), model(both, &both->model) {}
+  const spec::ProblemSpec& spec;
   std::shared_ptr<const GalerkinModel> model;
   std::unique_ptr<ElastoplasticSystem> problem;
   std::unique_ptr<solvers::NonlinearBlockSystem> newton;
@@ -163,10 +171,10 @@ struct Discretised {
 std::unique_ptr<Discretised> discretise(const spec::ProblemSpec& spec,
                                         const solvers::PetscSession& session, PhaseTimer& timer,
                                         ElastoplasticResult& R) {
-  auto now = std::make_unique<Discretised>();
-  now->spec = spec;
-  now->model =
-      std::make_shared<const GalerkinModel>(build_galerkin_model(now->spec, session, timer));
+  auto both = std::make_shared<Discretised::SpecAndModel>();
+  both->spec = spec;
+  both->model = build_galerkin_model(both->spec, session, timer);
+  auto now = std::make_unique<Discretised>(both);
   const GalerkinModel& m = *now->model;
   count_model(m, session, R);
   now->problem = std::make_unique<ElastoplasticSystem>(now->spec, m);

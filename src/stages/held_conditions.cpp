@@ -121,7 +121,8 @@ std::vector<HeldCondition> held_conditions(const spec::ProblemSpec& preload,
                      [&](const implicit::ConditionPoints& p) { return p.bc->name == name; });
     MF_REQUIRE(c != model.conditions.end(), link.key_path, ".hold: no condition '", name, "'");
     const spec::BoundaryCondition& bc = *c->bc;
-    const double f = factor[static_cast<std::size_t>(&bc - preload.galerkin().boundary.data())];
+    // The model's conditions are the spec's boundary conditions in their order.
+    const double f = factor[static_cast<std::size_t>(c - model.conditions.begin())];
     const std::vector<geometry::Curve> pieces =
         spec::select_boundary(preload.domain, bc.on, bc.key_path);
     bool straight = true;
