@@ -38,7 +38,7 @@ io::Json adaptation_json(const spec::ProblemSpec& spec, const Adaptation& a,
   // Their wall times: the log, and time_s.adapt_pilots (or time_s.adapt) together.
   io::Json passes;
   passes.set("nodes", nodes).set("estimate", estimate).set("marked", marked);
-  if (s.every > 0) passes.set("after_increment", increment);
+  if (s.every > 0) passes.set("increment", increment); // the increment estimated
   io::Json j;
   j.set("target", s.target).set("fraction", s.fraction);
   if (s.every > 0) j.set("every", s.every);

@@ -163,6 +163,8 @@ void run_step(ScheduleRun& run) {
       continue;
     }
     if (run.review && run.review()) {
+      // Solved again on another discretisation: its cut-backs start afresh, at this size.
+      at.cuts = 0;
       run.o.paused = true;
       return;
     }

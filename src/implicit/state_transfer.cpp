@@ -1,10 +1,12 @@
 #include "meshfree/implicit/state_transfer.hpp"
 #include "meshfree/implicit/elasticity.hpp"
+#include "meshfree/implicit/point_law.hpp"
 #include "meshfree/solvers/parallel.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <utility>
 
 namespace mf::implicit {
@@ -133,7 +135,7 @@ std::vector<double> interpolating_parameters(const GalerkinModel& from,
     const Vec2 u = displacement_at(old_at, I, d);
     target[2 * I] = u.x(), target[2 * I + 1] = u.y();
   }
-  std::vector<double> p = target, gap(target.size());
+  std::vector<double> p = target, best = target, gap(target.size());
   double largest = std::numeric_limits<double>::infinity();
   for (int sweep = 0; sweep < 50; ++sweep) {
     double now = 0.0;
@@ -144,20 +146,50 @@ std::vector<double> interpolating_parameters(const GalerkinModel& from,
     }
     if (!(now < 0.5 * largest)) break;
     largest = now;
+    best = p;
     for (std::size_t i = 0; i < p.size(); ++i) p[i] += gap[i];
   }
-  return p;
+  return best;
 }
+
+/// The nearest point of the same material (material regions): a history is never carried across
+/// an interface.
+class NearestInMaterial {
+public:
+  NearestInMaterial(const spec::ProblemSpec& spec, const std::vector<Vec2>& x) : spec_(spec) {
+    for (std::size_t r = 0; r < x.size(); ++r) {
+      Points& p = of_[material_at(spec, x[r])];
+      p.x.push_back(x[r]);
+      p.index.push_back(static_cast<int>(r));
+    }
+    for (auto& [material, p] : of_) p.search = std::make_unique<NearestPoint>(p.x);
+  }
+  /// The index of the nearest point of x's material (of any, where none has it).
+  int find(const Vec2& x) const {
+    auto it = of_.find(material_at(spec_, x));
+    if (it == of_.end()) it = of_.begin();
+    return it->second.index[it->second.search->find(x)];
+  }
+
+private:
+  struct Points {
+    std::vector<Vec2> x;
+    std::vector<int> index;
+    std::unique_ptr<NearestPoint> search;
+  };
+  const spec::ProblemSpec& spec_;
+  std::map<int, Points> of_;
+};
 
 } // namespace
 
-CarriedState carry_state(const GalerkinModel& from, const PointStates& st,
-                         const std::vector<double>& d, const GalerkinModel& to,
-                         const solvers::PetscSession& session) {
+CarriedState carry_state(const spec::ProblemSpec& spec, const GalerkinModel& from,
+                         const PointStates& st, const std::vector<double>& d,
+                         const GalerkinModel& to, const solvers::PetscSession& session) {
   CarriedState c;
   const std::vector<double> old = every_history(from, st, session);
   const PointIndex places(from.domain.x);
-  const NearestPoint nearest(from.domain.x);
+  const NearestInMaterial nearest(spec, from.domain.x);
   const int rows = to.domain_table.rows();
   c.history.resize(rows);
   for (int k = 0; k < rows; ++k) {

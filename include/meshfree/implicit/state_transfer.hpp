@@ -5,7 +5,8 @@
 // the new one):
 // - a Gauss point of the new model at the place of one of the old model keeps that point's
 //   history (the cells away from the refinement are the old ones);
-// - any other point takes the whole history of the nearest old point: plastic strain, back
+// - any other point takes the whole history of the nearest old point of its material (material
+//   regions: never across an interface): plastic strain, back
 //   stress and equivalent plastic strain of one material point together, none averaged (an
 //   average over a support diffuses a plastic zone's edge; measured on Cook's membrane near its
 //   limit load, the tip deflection 0.19% off where the nearest point's state gives 0.066%);
@@ -28,9 +29,10 @@ struct CarriedState {
 };
 
 /// Carries the committed history of `st` (this rank's rows of `from`) and the nodal parameters
-/// `d` of `from` (all of them, on every rank) to the model `to` of the same body. Collective.
-CarriedState carry_state(const GalerkinModel& from, const PointStates& st,
-                         const std::vector<double>& d, const GalerkinModel& to,
-                         const solvers::PetscSession& session);
+/// `d` of `from` (all of them, on every rank) to the model `to` of the same body (`spec`: its
+/// materials; a point takes its nearest old point of its own material). Collective.
+CarriedState carry_state(const spec::ProblemSpec& spec, const GalerkinModel& from,
+                         const PointStates& st, const std::vector<double>& d,
+                         const GalerkinModel& to, const solvers::PetscSession& session);
 
 } // namespace mf::implicit

@@ -3,6 +3,7 @@
 // bit, and every other new point the whole history of its nearest old point.
 #include "meshfree/implicit/elasticity.hpp"
 #include "meshfree/implicit/galerkin_model.hpp"
+#include "meshfree/implicit/point_law.hpp"
 #include "meshfree/implicit/state_transfer.hpp"
 #include "test_support.hpp"
 #include <catch2/catch.hpp>
@@ -18,13 +19,14 @@ struct Clouds {
   implicit::GalerkinModel from, to;
 };
 
-/// The bar of the cyclic test on its own cloud and with a box of half its spacing.
-Clouds clouds() {
+/// The bar of the cyclic test on its own cloud and with a box of half its spacing (`extra`
+/// settings on both).
+Clouds clouds(std::vector<std::string> extra = {}) {
   PhaseTimer timer;
-  Clouds c{load_problem("bar_uniaxial_cyclic"),
-           load_problem("bar_uniaxial_cyclic",
-                        {"discretisation.refinement=[{box: [[0.2, 0.6], [0.7, 1.3]], "
-                         "spacing: 0.05}]"}),
+  std::vector<std::string> refined = extra;
+  refined.push_back("discretisation.refinement=[{box: [[0.2, 0.6], [0.7, 1.3]], spacing: 0.05}]");
+  Clouds c{load_problem("bar_uniaxial_cyclic", extra),
+           load_problem("bar_uniaxial_cyclic", refined),
            {},
            {}};
   c.from = implicit::build_galerkin_model(c.coarse, test_session(), timer);
@@ -71,7 +73,7 @@ TEST_CASE("carried state: uniform history and linear displacement exact on the r
   uniform.alpha = 2.5e-3;
   for (auto& h : st.committed) h = uniform;
   const implicit::CarriedState carried =
-      implicit::carry_state(c.from, st, parameters_of_linear(c.from), c.to, test_session());
+      implicit::carry_state(c.fine, c.from, st, parameters_of_linear(c.from), c.to, test_session());
   REQUIRE(carried.history.size() == static_cast<std::size_t>(c.to.domain_table.rows()));
   CHECK(carried.copied > 0);
   CHECK(carried.nearest > 0);
@@ -102,7 +104,7 @@ TEST_CASE("carried state: points at old places keep their history bit for bit, t
   for (int k = 0; k < c.from.domain_table.rows(); ++k)
     st.committed[k] = history_at(c.from.domain.x[c.from.domain_mine.rows[k]]);
   const implicit::CarriedState carried =
-      implicit::carry_state(c.from, st, parameters_of_linear(c.from), c.to, test_session());
+      implicit::carry_state(c.fine, c.from, st, parameters_of_linear(c.from), c.to, test_session());
   const std::vector<Vec2>& old = c.from.domain.x;
   long kept = 0, near = 0;
   for (int k = 0; k < c.to.domain_table.rows(); ++k) {
@@ -124,4 +126,38 @@ TEST_CASE("carried state: points at old places keep their history bit for bit, t
   CHECK(kept == carried.copied);
   CHECK(near == carried.nearest);
   CHECK(near > 0);
+}
+
+TEST_CASE("carried state: a point takes the history of its nearest old point of its own material",
+          "[adaptivity][transfer]") {
+  // An elastic region over the bar's upper part, its interface y = 0.98 inside the refined box:
+  // new points just below it are nearer to old points above it, of the other material.
+  Clouds c =
+      clouds({"materials=[{name: steel, E: 2.0e5, nu: 0.3, plasticity: {yield_stress: 250}}, "
+              "{name: glass, E: 7.0e4, nu: 0.2}]",
+              "material=steel", "material_regions=[{material: glass, box: [[0, 0.98], [1, 2]]}]"});
+  implicit::PointStates st(c.from.domain_table.rows());
+  for (int k = 0; k < c.from.domain_table.rows(); ++k)
+    st.committed[k] = history_at(c.from.domain.x[c.from.domain_mine.rows[k]]);
+  const implicit::CarriedState carried =
+      implicit::carry_state(c.fine, c.from, st, parameters_of_linear(c.from), c.to, test_session());
+  const std::vector<Vec2>& old = c.from.domain.x;
+  long across = 0; // points whose nearest old point of any material is of the other one
+  for (int k = 0; k < c.to.domain_table.rows(); ++k) {
+    const Vec2 x = c.to.domain.x[c.to.domain_mine.rows[k]];
+    const int material = implicit::material_at(c.fine, x);
+    std::size_t r = old.size(), any = 0;
+    for (std::size_t q = 0; q < old.size(); ++q) {
+      if ((old[q] - x).squaredNorm() < (old[any] - x).squaredNorm()) any = q;
+      if (implicit::material_at(c.fine, old[q]) != material) continue;
+      if (r == old.size() || (old[q] - x).squaredNorm() < (old[r] - x).squaredNorm()) r = q;
+    }
+    REQUIRE(r < old.size());
+    across += implicit::material_at(c.fine, old[any]) != material;
+    const materials::J2State exact = history_at(old[r]);
+    CHECK(carried.history[k].plastic_strain == exact.plastic_strain);
+    CHECK(carried.history[k].alpha == exact.alpha);
+  }
+  INFO("new points nearest to an old point of the other material: " << across);
+  CHECK(across > 0);
 }
