@@ -406,6 +406,39 @@ private:
   std::optional<NextCloud> pending_; // asked for by review()
 };
 
+/// The load schedule on `now`, each increment reviewed by `refiner` and solved again on the
+/// refined discretisation it asks for (which `now` and the recorder then move to); R gets the
+/// Newton solves' residual and tangent seconds over all of them.
+ScheduleOutcome run_refining(std::unique_ptr<Discretised>& now, Refiner& refiner,
+                             IncrementRecorder& recorder, std::vector<double>& d,
+                             const IncrementDone& done, SchedulePosition& at,
+                             const PositionKept& keep, ElastoplasticResult& R) {
+  const auto review = [&] {
+    return refiner.review(*now, static_cast<long>(R.increments.size()), R);
+  };
+  NewtonParts newton_parts;
+  ScheduleClock clock;
+  ScheduleOutcome o;
+  for (;;) {
+    const ScheduleOutcome part = run_load_schedule(schedule_of(now->spec), *now->problem,
+                                                   *now->newton, d, done, at, keep, review, &clock);
+    o.status = part.status, o.stop_reason = part.stop_reason;
+    o.newton_seconds += part.newton_seconds;
+    if (!part.paused) break;
+    // The increment under way is solved again, on the refined cloud where there is one.
+    std::unique_ptr<Discretised> next = refiner.refine(*now, d, at.current, R);
+    if (!next) continue;
+    recorder.move_to(next->spec, *next->model);
+    newton_parts.leave(*now->problem);
+    newton_parts.take_up(*next->problem);
+    now = std::move(next);
+  }
+  newton_parts.leave(*now->problem);
+  R.residual_seconds = newton_parts.residual;
+  R.jacobian_seconds = newton_parts.jacobian;
+  return o;
+}
+
 } // namespace
 
 ElastoplasticResult solve_elastoplastic_static(const spec::ProblemSpec& spec,
@@ -458,33 +491,12 @@ ElastoplasticResult solve_elastoplastic_static(const spec::ProblemSpec& spec,
   // (the input refuses checkpoints with adapt.every).
   MF_REQUIRE(!refiner.active() || !spec.galerkin().checkpoint.any(),
              "adapt.every: no checkpoints are written when the cloud changes");
-  const auto review = [&] {
-    return refiner.review(*now, static_cast<long>(R.increments.size()), R);
-  };
-  NewtonParts newton_parts;
-  ScheduleOutcome o;
-  for (;;) {
-    const ScheduleOutcome part = run_load_schedule(schedule_of(now->spec), *now->problem,
-                                                   *now->newton, d, done, at, keep, review);
-    o.status = part.status, o.stop_reason = part.stop_reason;
-    o.newton_seconds += part.newton_seconds;
-    if (!part.paused) break;
-    // The increment under way is solved again, on the refined cloud where there is one.
-    std::unique_ptr<Discretised> next = refiner.refine(*now, d, at.current, R);
-    if (!next) continue;
-    recorder.move_to(next->spec, *next->model);
-    newton_parts.leave(*now->problem);
-    newton_parts.take_up(*next->problem);
-    now = std::move(next);
-  }
+  const ScheduleOutcome o = run_refining(now, refiner, recorder, d, done, at, keep, R);
   R.checkpoints = checkpoints.counts();
   if (spec.galerkin().initial_stress && R.increments.size() > 1) log_initial_stress(R);
   R.status = o.status;
   R.stop_reason = o.stop_reason;
   R.timer.add("newton", o.newton_seconds);
-  newton_parts.leave(*now->problem);
-  R.residual_seconds = newton_parts.residual;
-  R.jacobian_seconds = newton_parts.jacobian;
   recorder.close();
   keep_converged_state(now->model, *now->problem, *now->newton, d, session, R);
   if (spec.galerkin().discretisation.adapt)

@@ -181,7 +181,8 @@ void run_step(ScheduleRun& run) {
 ScheduleOutcome run_load_schedule(const ScheduleSpec& schedule, IncrementalSystem& problem,
                                   solvers::NonlinearBlockSystem& newton, std::vector<double>& d,
                                   const IncrementDone& done, SchedulePosition& at,
-                                  const PositionKept& kept, const ReviewIncrement& review) {
+                                  const PositionKept& kept, const ReviewIncrement& review,
+                                  ScheduleClock* clock) {
   ScheduleRun run{schedule, problem, newton,       d,   done, at, kept,
                   review,   {},      Clock::now(), 0.0, 0.0,  {}};
   const int steps = static_cast<int>(schedule.steps->size());
@@ -191,6 +192,11 @@ ScheduleOutcome run_load_schedule(const ScheduleSpec& schedule, IncrementalSyste
   run.settings.max_iterations = schedule.nonlinear.max_iterations;
   run.total = increments_total(schedule);
   run.done_at_start = at.step < steps ? increments_done(schedule, at.step, at.tau) : run.total;
+  if (clock) {
+    if (clock->done_at_start < 0.0) clock->done_at_start = run.done_at_start;
+    run.began = clock->began;
+    run.done_at_start = clock->done_at_start;
+  }
   while (at.step < steps && run.o.status == "completed") {
     run_step(run);
     if (run.o.status != "completed" || run.o.paused) break;

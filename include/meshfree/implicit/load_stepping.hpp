@@ -7,6 +7,7 @@
 #include "meshfree/implicit/incremental_system.hpp"
 #include "meshfree/solvers/nonlinear_system.hpp"
 #include "meshfree/spec/problem_spec.hpp"
+#include <chrono>
 #include <functional>
 #include <string>
 #include <vector>
@@ -62,13 +63,22 @@ using PositionKept = std::function<void(bool finished)>;
 /// increment again.
 using ReviewIncrement = std::function<bool()>;
 
+/// The clock of the progress lines: when the schedule began in this process and how many
+/// increments were done then (negative: not yet known), kept across the calls of a schedule that
+/// pauses.
+struct ScheduleClock {
+  std::chrono::steady_clock::time_point began = std::chrono::steady_clock::now();
+  double done_at_start = -1.0;
+};
+
 /// Runs the schedule's steps from `at` (the unloaded state: a default position) and the state in
-/// `d`; `d` ends at the last converged state and `at` at its position.
+/// `d`; `d` ends at the last converged state and `at` at its position. `clock` (when given)
+/// carries the progress lines' clock from one call to the next.
 ScheduleOutcome run_load_schedule(const ScheduleSpec& schedule, IncrementalSystem& problem,
                                   solvers::NonlinearBlockSystem& newton, std::vector<double>& d,
                                   const IncrementDone& done, SchedulePosition& at,
-                                  const PositionKept& kept = {},
-                                  const ReviewIncrement& review = {});
+                                  const PositionKept& kept = {}, const ReviewIncrement& review = {},
+                                  ScheduleClock* clock = nullptr);
 
 /// "pull 0.002, tension 308": the factors of the conditions that drive the body.
 std::string factors_text(const ScheduleSpec& schedule, const std::vector<double>& f);
