@@ -60,6 +60,15 @@ materials::J2State history_at(const Vec2& x) {
   return s;
 }
 
+/// The history history_at of every point of the coarse cloud carried to the fine one.
+implicit::CarriedState carried_history(const Clouds& c) {
+  implicit::PointStates st(c.from.domain_table.rows());
+  for (int k = 0; k < c.from.domain_table.rows(); ++k)
+    st.committed[k] = history_at(c.from.domain.x[c.from.domain_mine.rows[k]]);
+  return implicit::carry_state(c.fine, c.from, st, parameters_of_linear(c.from), c.to,
+                               test_session());
+}
+
 } // namespace
 
 TEST_CASE("carried state: uniform history and linear displacement exact on the refined cloud",
@@ -100,11 +109,7 @@ TEST_CASE("carried state: points at old places keep their history bit for bit, t
           "their nearest old point's",
           "[adaptivity][transfer]") {
   Clouds c = clouds();
-  implicit::PointStates st(c.from.domain_table.rows());
-  for (int k = 0; k < c.from.domain_table.rows(); ++k)
-    st.committed[k] = history_at(c.from.domain.x[c.from.domain_mine.rows[k]]);
-  const implicit::CarriedState carried =
-      implicit::carry_state(c.fine, c.from, st, parameters_of_linear(c.from), c.to, test_session());
+  const implicit::CarriedState carried = carried_history(c);
   const std::vector<Vec2>& old = c.from.domain.x;
   long kept = 0, near = 0;
   for (int k = 0; k < c.to.domain_table.rows(); ++k) {
@@ -136,11 +141,7 @@ TEST_CASE("carried state: a point takes the history of its nearest old point of 
       clouds({"materials=[{name: steel, E: 2.0e5, nu: 0.3, plasticity: {yield_stress: 250}}, "
               "{name: glass, E: 7.0e4, nu: 0.2}]",
               "material=steel", "material_regions=[{material: glass, box: [[0, 0.98], [1, 2]]}]"});
-  implicit::PointStates st(c.from.domain_table.rows());
-  for (int k = 0; k < c.from.domain_table.rows(); ++k)
-    st.committed[k] = history_at(c.from.domain.x[c.from.domain_mine.rows[k]]);
-  const implicit::CarriedState carried =
-      implicit::carry_state(c.fine, c.from, st, parameters_of_linear(c.from), c.to, test_session());
+  const implicit::CarriedState carried = carried_history(c);
   const std::vector<Vec2>& old = c.from.domain.x;
   long across = 0; // points whose nearest old point of any material is of the other one
   for (int k = 0; k < c.to.domain_table.rows(); ++k) {
