@@ -277,6 +277,7 @@ int run_in(Command& c, mf::solvers::PetscSession& session) {
 int main(int argc, char** argv) {
   mf::wait_passively(argv);
   mf::keep_freed_memory();
+  mf::single_process_mpi();
   // A write past a file-size limit (ulimit -f) fails with EFBIG and is reported as a failed
   // write, with its summary, instead of killing the run with nothing said.
   std::signal(SIGXFSZ, SIG_IGN);

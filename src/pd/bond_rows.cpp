@@ -55,7 +55,7 @@ template <bool Plastic> struct Stretched {
 template <bool Plastic>
 inline Stretched<Plastic> stretched(const Arrays& a, const BondClass& c, long k, int j, double xi,
                                     double yi, double zi) {
-  const double dx = a.y[3 * j] - xi, dy = a.y[3 * j + 1] - yi, dz = a.y[3 * j + 2] - zi;
+  const double dx = a.y[4 * j] - xi, dy = a.y[4 * j + 1] - yi, dz = a.y[4 * j + 2] - zi;
   return {dx, dy, dz,
           Bond<Plastic>(c, dx * dx + dy * dy + dz * dz, Plastic ? &a.plastic[k] : nullptr)};
 }
@@ -76,7 +76,7 @@ Sums half_rows(const Arrays& a, int lo, int hi, const Output& out) {
   Sums sums;
   double* const f = out.f;
   for (int i = lo; i < hi; ++i) {
-    const double xi = a.y[3 * i], yi = a.y[3 * i + 1], zi = a.y[3 * i + 2];
+    const double xi = a.y[4 * i], yi = a.y[4 * i + 1], zi = a.y[4 * i + 2];
     const double s0_i = Alpha ? a.s0[i] : 0.0;
     double fx = 0.0, fy = 0.0, fz = 0.0, wi = 0.0, s0_next = kNone;
     for (long k = a.offset[i]; k < a.offset[i + 1]; ++k) {
@@ -89,7 +89,7 @@ Sums half_rows(const Arrays& a, int lo, int hi, const Output& out) {
       fx += gi * dx, fy += gi * dy, fz += gi * dz;
       const bool j_owned = j < a.owned;
       const std::ptrdiff_t jb = j - out.base;
-      if (j_owned) f[3 * jb] -= gj * dx, f[3 * jb + 1] -= gj * dy, f[3 * jb + 2] -= gj * dz;
+      if (j_owned) f[4 * jb] -= gj * dx, f[4 * jb + 1] -= gj * dy, f[4 * jb + 2] -= gj * dz;
       if constexpr (Energy) {
         // w = c (s - s_p)^2 |xi| / 2 per bond, half of it to each end.
         const double half_w = 0.25 * bond.e * bond.e * c.length;
@@ -111,7 +111,7 @@ Sums half_rows(const Arrays& a, int lo, int hi, const Output& out) {
       }
     }
     const std::ptrdiff_t ib = i - out.base;
-    f[3 * ib] += fx, f[3 * ib + 1] += fy, f[3 * ib + 2] += fz;
+    f[4 * ib] += fx, f[4 * ib + 1] += fy, f[4 * ib + 2] += fz;
     if constexpr (Energy) {
       sums.energy += a.volume[i] * wi;
       if (out.w) out.w[ib] += wi;
@@ -126,7 +126,7 @@ template <bool Plastic, bool Alpha, bool Energy>
 Sums full_rows(const Arrays& a, int lo, int hi, const Output& out) {
   Sums sums;
   for (int i = lo; i < hi; ++i) {
-    const double xi = a.y[3 * i], yi = a.y[3 * i + 1], zi = a.y[3 * i + 2];
+    const double xi = a.y[4 * i], yi = a.y[4 * i + 1], zi = a.y[4 * i + 2];
     const double s0_i = Alpha ? a.s0[i] : 0.0;
     double fx = 0.0, fy = 0.0, fz = 0.0, wi = 0.0, s0_next = kNone;
     for (long k = a.offset[i]; k < a.offset[i + 1]; ++k) {

@@ -4,6 +4,7 @@
 #include "meshfree/pd/spin_barrier.hpp"
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <omp.h>
 
@@ -28,36 +29,44 @@ std::vector<int> rows_of_threads(const Arrays& a, int T) {
   return first_row;
 }
 
-/// Where a thread of the half loop writes force, energy density and trial s0: thread 0 to the
-/// outputs, another thread to its own zeroed buffers over [lo, owned), element 0 at row `base`.
-rows::Output thread_output(int t, int lo, int owned, bool alpha, double* force, double* density,
+/// `v` holding n zeros from a 32-byte boundary: the first of them.
+double* aligned_zeros(std::vector<double>& v, std::size_t n) {
+  v.assign(n + 3, 0.0);
+  const std::size_t misaligned = reinterpret_cast<std::uintptr_t>(v.data()) % 32;
+  return v.data() + (misaligned ? (32 - misaligned) / sizeof(double) : 0);
+}
+
+/// Where a thread of the half loop writes force, energy density and trial s0: forces to a zeroed
+/// buffer of its own over [lo, owned), four doubles a point, element 0 at row `base` = lo;
+/// energy density and trial s0 to the outputs (thread 0) or to zeroed buffers of its own.
+rows::Output thread_output(int t, int lo, int owned, bool alpha, double* density,
                            double* s0_trial) {
-  if (t == 0) return {force, density, s0_trial, 0};
   thread_local std::vector<double> own_f, own_w, own_s;
   const std::size_t len = static_cast<std::size_t>(owned - lo);
-  rows::Output o{nullptr, density, s0_trial, lo};
-  own_f.assign(3 * len, 0.0);
-  o.f = own_f.data();
+  rows::Output o{aligned_zeros(own_f, 4 * len), density, s0_trial, lo};
+  if (t == 0) return o;
   if (density) own_w.assign(len, 0.0), o.w = own_w.data();
   if (alpha) own_s.assign(len, kNone), o.s0n = own_s.data();
   return o;
 }
 
 /// The last pass of an evaluation, a work-sharing loop over every point of the enclosing
-/// parallel region, after all rows: the buffers of threads 1.. added to the outputs in thread
-/// order (owned particles; none with one thread), then, with the LAMMPS rule (s0 not null), the
-/// s0 of a particle no intact bond gave a trial one kept (ghosts get theirs from their owners).
-/// Each point is finished by one thread: no barrier of its own (nowait).
+/// parallel region, after all rows: the half layout's buffers added to the outputs in thread
+/// order (owned particles; `T` threads, 0 for the full layout, which has none), then, with the
+/// LAMMPS rule (s0 not null), the s0 of a particle no intact bond gave a trial one kept (ghosts
+/// get theirs from their owners). Each point is finished by one thread: no barrier of its own
+/// (nowait).
 void finish_points(const std::vector<int>& first_row, const std::vector<rows::Output>& out, int T,
                    int owned, int points, const double* s0, double* force, double* density,
                    double* s0_trial) {
-  if (T == 1 && !s0) return;
+  if (T == 0 && !s0) return;
 #pragma omp for schedule(static) nowait
   for (int i = 0; i < points; ++i) {
     if (i < owned)
-      for (int q = 1; q < T && first_row[q] <= i; ++q) {
+      for (int q = 0; q < T && first_row[q] <= i; ++q) {
         const std::ptrdiff_t iq = i - first_row[q];
-        for (int d = 0; d < 3; ++d) force[3 * i + d] += out[q].f[3 * iq + d];
+        for (int d = 0; d < 3; ++d) force[3 * i + d] += out[q].f[4 * iq + d];
+        if (q == 0) continue; // its energy density and s0 are in the outputs
         if (density) density[i] += out[q].w[iq];
         if (s0) s0_trial[i] = std::max(s0_trial[i], out[q].s0n[iq]);
       }
@@ -66,13 +75,13 @@ void finish_points(const std::vector<int>& first_row, const std::vector<rows::Ou
 }
 
 /// Half layout, a thread's rows: each stored pair evaluated once, Newton's third law. Thread t
-/// takes a range of rows with an equal share of the bonds; its reactions on partners land in its
-/// own buffer over [first row, owned) (thread 0 writes the outputs directly), added in thread
-/// order by finish_points. An owned-ghost pair gives its force to the owned particle only.
+/// takes a range of rows with an equal share of the bonds; its forces, reactions on partners
+/// included, land in its own buffer over [first row, owned), added in thread order by
+/// finish_points. An owned-ghost pair gives its force to the owned particle only.
 rows::Sums half_rows(const Arrays& a, rows::Terms terms, SimdTarget target, int T, int t,
-                     rows::Output& out, double* force, double* density, double* s0_trial) {
+                     rows::Output& out, double* density, double* s0_trial) {
   const std::vector<int> first_row = rows_of_threads(a, T);
-  out = thread_output(t, first_row[t], a.owned, terms.alpha, force, density, s0_trial);
+  out = thread_output(t, first_row[t], a.owned, terms.alpha, density, s0_trial);
   return rows::half(a, terms, target, first_row[t], first_row[t + 1], out);
 }
 
@@ -88,6 +97,17 @@ long full_rows(const Arrays& a, rows::Terms terms, SimdTarget target, const rows
     broken +=
         rows::full(a, terms, target, q * kRows, std::min(a.owned, (q + 1) * kRows), out).broken;
   return broken;
+}
+
+/// The positions y (three doubles a point) as the rows read them: four a point, the fourth 0,
+/// from a 32-byte boundary.
+const double* padded_positions(const std::vector<double>& y) {
+  thread_local std::vector<double> padded;
+  const std::size_t points = y.size() / 3;
+  double* const p = aligned_zeros(padded, 4 * points);
+  for (std::size_t i = 0; i < points; ++i)
+    for (int d = 0; d < 3; ++d) p[4 * i + d] = y[3 * i + d];
+  return p;
 }
 
 /// The class whose law constants every class shares, or null.
@@ -145,7 +165,7 @@ BondForcePass::BondForcePass(const Model& m, BondState& s, const std::vector<dou
     fold_laws(refolded, m.laws);
     classes = refolded.data();
   }
-  a_ = Arrays{y.data(),
+  a_ = Arrays{padded_positions(y),
               b.offset.data(),
               b.partner.data(),
               b.cls.data(),
@@ -168,8 +188,7 @@ BondForcePass::BondForcePass(const Model& m, BondState& s, const std::vector<dou
 void BondForcePass::rows() {
   const int T = omp_get_num_threads(), t = omp_get_thread_num();
   if (half_) {
-    const rows::Sums sums =
-        half_rows(a_, terms_, target_, T, t, outputs_[t], force_, density_, s0_trial_);
+    const rows::Sums sums = half_rows(a_, terms_, target_, T, t, outputs_[t], density_, s0_trial_);
     broken_[t] = sums.broken;
     energy_[t] = sums.energy;
   } else {
@@ -180,7 +199,7 @@ void BondForcePass::rows() {
 void BondForcePass::finish() {
   const int T = omp_get_num_threads();
   const std::vector<int> first_row = half_ ? rows_of_threads(a_, T) : std::vector<int>{};
-  finish_points(first_row, outputs_, half_ ? T : 1, a_.owned, points_, a_.s0, force_, density_,
+  finish_points(first_row, outputs_, half_ ? T : 0, a_.owned, points_, a_.s0, force_, density_,
                 s0_trial_);
 }
 

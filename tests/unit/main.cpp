@@ -17,6 +17,7 @@ const mf::solvers::PetscSession& test_session() {
 int main(int argc, char** argv) {
   mf::wait_passively(argv);
   mf::keep_freed_memory();
+  mf::single_process_mpi();
   int pargc = 1;
   char** pargv = argv;
   mf::solvers::PetscSession session(&pargc, &pargv);

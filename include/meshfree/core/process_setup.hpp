@@ -1,7 +1,8 @@
 #pragma once
 // How a program of this project sets up its process before anything else runs: the OpenMP
-// threads' wait, and what glibc does with freed memory. The program and the unit tests both start
-// with them, so that a test measures the code as a run executes it.
+// threads' wait, what glibc does with freed memory, and what Open MPI starts for a single process.
+// The program and the unit tests both start with them, so that a test measures the code as a run
+// executes it.
 
 namespace mf {
 
@@ -19,5 +20,14 @@ void wait_passively(char** argv);
 /// more for memory the host has taken back than for memory just freed; keeping it makes large
 /// assemblies faster at the same peak memory (measured in README.md, "Running").
 void keep_freed_memory();
+
+/// A program started without mpirun is one MPI process: Open MPI is told so, unless the user set
+/// these parameters, so that it starts no runtime daemon for it (ess_singleton_isolated) and opens
+/// only the transport to itself (pml ob1, btl self), no network library: the Omni-Path library
+/// Debian's Open MPI loads for its psm2 component sleeps in its initialiser on a machine without
+/// that network, and starting the daemon costs about as much again (README.md, "Running", has
+/// the measured start-up). Under mpirun, srun or another launcher nothing changes. Call it before
+/// MPI is initialised.
+void single_process_mpi();
 
 } // namespace mf

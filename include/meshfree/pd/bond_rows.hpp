@@ -1,8 +1,8 @@
 #pragma once
 // The rows of the bond-force loop (pd/forces.hpp): what a thread runs over its range of rows,
 // for an instruction set (SimdTarget) chosen once per call: scalar rows, each bond in one pass
-// (bond_rows.cpp), or packed rows (AVX2, AVX-512: bond_rows_packed.cpp), each row in blocks of
-// bonds whose stretches and force factors are computed several lanes at a time and then summed
+// (bond_rows.cpp), or packed rows (AVX2, AVX-512: bond_rows_packed.cpp), each row in groups of
+// four bonds whose stretches and force factors are computed four lanes at a time and then summed
 // in bond order. Both give the same numbers bit for bit.
 #include "meshfree/core/simd_target.hpp"
 #include "meshfree/pd/model.hpp"
@@ -15,7 +15,8 @@ namespace rows {
 
 /// What the loops read and write, as raw arrays.
 struct Arrays {
-  const double* y;
+  const double* y; // positions, four doubles a point (x, y, z, 0) from a 32-byte boundary
+                   // (owned and ghosts): a point is one load of a packed register
   const long* offset;
   const int* partner;
   const std::uint32_t* cls;
@@ -32,7 +33,8 @@ struct Arrays {
 /// Where rows write force, energy density and trial s0, element 0 at row `base` (the half
 /// layout's threads past the first write buffers of their own from their first row on).
 struct Output {
-  double* f;
+  double* f; // half layout: four doubles a point (x, y, z, unused) from a 32-byte boundary, so
+             // that a reaction on a partner is one packed load and store; full layout: three
   double* w;
   double* s0n;
   int base;
