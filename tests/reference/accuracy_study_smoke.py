@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """scripts/accuracy_study.py on its first level of the force-driven Cook's membrane: every method
-gives a row (Q8 on the adapted cloud's boxes, and the cloud refined between increments, too), and CalculiX's error is the tip deflection's,
+gives a row (Q8 on the adapted cloud's boxes, and the cloud refined between increments from
+twice the file's spacing and from the file's own cloud, too), and CalculiX's error is the tip deflection's,
 the coarsest recipe mesh against the finest, as the committed curves give it.
 
     accuracy_study_smoke.py MESHFREE OUT
@@ -18,7 +19,7 @@ subprocess.run([sys.executable, str(ROOT / "scripts" / "accuracy_study.py"), "--
 with open(out / "runs.csv", newline="") as f:
     rows = {r["method"]: r for r in csv.DictReader(f)}
 methods = {"meshfree", "meshfree_vci", "fem", "meshfree_adaptive", "meshfree_vci_adaptive",
-           "meshfree_vci_every", "fem_adapted", "calculix"}
+           "meshfree_vci_every", "meshfree_vci_every_file", "fem_adapted", "calculix"}
 if set(rows) != methods:
     sys.exit(f"FAIL: methods {sorted(rows)}, expected {sorted(methods)}")
 ref_dir = ROOT / "reference" / "calculix_plastic" / "cook_membrane_force"
