@@ -309,10 +309,10 @@ def report(rows, problems, wanted, out):
             got = {m: reach([r for r in rows if r["problem"] == problem and r["method"] == m], target)
                    for m in variants(problem) + list(ADAPTIVE) + ["calculix"] if m in wanted}
             ccx, bound = got.get("calculix"), ""
-            if "calculix" in got and ccx is None:
+            ccx_runs = [r for r in rows if r["problem"] == problem and r["method"] == "calculix"]
+            if ccx is None and ccx_runs:
                 # Not reached over CalculiX's levels: it needs more than its finest run's time.
-                finest = max((r for r in rows if r["problem"] == problem
-                              and r["method"] == "calculix"), key=lambda r: r["dofs"])
+                finest = max(ccx_runs, key=lambda r: r["dofs"])
                 ccx, bound = (finest["dofs"], finest["wall_s"], "beyond"), "<"
             for method, g in got.items():
                 entry = dict(problem=problem, target=target, method=method)

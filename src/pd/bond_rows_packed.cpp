@@ -190,69 +190,50 @@ MF_ALWAYS_INLINE bool four_intact(const unsigned char* intact, long k) {
   return flags == 0x01010101u;
 }
 
-/// add() for a whole group of intact bonds that do not break, whose partners are all owned in the
-/// half layout: the same operations in the same order, without a test per bond.
-template <bool Half, bool Plastic, bool Alpha, bool Energy>
-MF_TARGET_AVX2 MF_ALWAYS_INLINE void add_four(const Targets t, const Group& g, const Factors& b,
-                                              RowSums& row, Sums& sums) {
-  if constexpr (Plastic) _mm256_storeu_pd(t.plastic + g.k[0], _mm256_load_pd(b.plastic));
-  for (int q = 0; q < 4; ++q) {
-    row.f = _mm256_add_pd(row.f, _mm256_mul_pd(_mm256_broadcast_sd(&b.gi[q]), g.d[q]));
-    const std::ptrdiff_t jb = g.j[q] - t.base;
-    if constexpr (Half) {
+/// The sums of intact bond q of a group: its force to the row's, its reaction to an owned
+/// partner's (half layout), its energies and s0 candidate.
+template <bool Half, bool Alpha, bool Energy>
+MF_TARGET_AVX2 MF_ALWAYS_INLINE void add_bond(const Targets t, const Group& g, const Factors& b,
+                                              int q, bool j_owned, RowSums& row, Sums& sums) {
+  row.f = _mm256_add_pd(row.f, _mm256_mul_pd(_mm256_broadcast_sd(&b.gi[q]), g.d[q]));
+  const std::ptrdiff_t jb = g.j[q] - t.base;
+  if constexpr (Half)
+    if (j_owned) {
       double* const fj = t.f + 4 * jb;
       const __m256d reaction = _mm256_mul_pd(_mm256_broadcast_sd(&b.gj[q]), g.d[q]);
       _mm256_store_pd(fj, _mm256_sub_pd(_mm256_load_pd(fj), reaction));
     }
-    if constexpr (Energy) {
-      row.w += b.wi[q];
-      if constexpr (Half) {
-        sums.energy += b.ej[q];
-        if (t.w) t.w[jb] += b.wj[q];
-      }
+  if constexpr (Energy) {
+    row.w += b.wi[q];
+    if (j_owned) {
+      sums.energy += b.ej[q];
+      if (t.w) t.w[jb] += b.wj[q];
     }
-    if constexpr (Alpha) {
-      row.s0 = std::max(row.s0, b.candidate[q]);
-      if constexpr (Half) t.s0n[jb] = std::max(t.s0n[jb], b.candidate[q]);
-    }
+  }
+  if constexpr (Alpha) {
+    row.s0 = std::max(row.s0, b.candidate[q]);
+    if (j_owned) t.s0n[jb] = std::max(t.s0n[jb], b.candidate[q]);
   }
 }
 
-/// The first `len` bonds of a group in order: the intact ones add to the row's sums and, in the
-/// half layout, to their owned partners' (reactions); the ones past their limit break.
+/// The first `len` bonds of a group in order: the intact ones add to the sums (add_bond), the
+/// ones past their limit break. A whole group of intact bonds none of which breaks, with owned
+/// partners in the half layout, is taken without a test per bond.
 template <bool Half, bool Plastic, bool Alpha, bool Energy>
 MF_TARGET_AVX2 MF_ALWAYS_INLINE void add(const Targets t, const Group& g, int len, const Factors& b,
                                          RowSums& row, Sums& sums) {
   if (len == 4 && !b.breaks && four_intact(t.intact, g.k[0]) &&
       (!Half || std::max(std::max(g.j[0], g.j[1]), std::max(g.j[2], g.j[3])) < t.owned)) {
-    add_four<Half, Plastic, Alpha, Energy>(t, g, b, row, sums);
+    if constexpr (Plastic) _mm256_storeu_pd(t.plastic + g.k[0], _mm256_load_pd(b.plastic));
+    for (int q = 0; q < 4; ++q) add_bond<Half, Alpha, Energy>(t, g, b, q, Half, row, sums);
     return;
   }
   for (int q = 0; q < len; ++q) {
     const long k = g.k[q];
     if (!t.intact[k]) continue;
     if constexpr (Plastic) t.plastic[k] = b.plastic[q];
-    row.f = _mm256_add_pd(row.f, _mm256_mul_pd(_mm256_broadcast_sd(&b.gi[q]), g.d[q]));
-    const int j = g.j[q];
-    const bool j_owned = Half && j < t.owned;
-    const std::ptrdiff_t jb = j - t.base;
-    if constexpr (Half)
-      if (j_owned) {
-        double* const fj = t.f + 4 * jb;
-        const __m256d reaction = _mm256_mul_pd(_mm256_broadcast_sd(&b.gj[q]), g.d[q]);
-        _mm256_store_pd(fj, _mm256_sub_pd(_mm256_load_pd(fj), reaction));
-      }
-    if constexpr (Energy) {
-      row.w += b.wi[q];
-      if (j_owned) {
-        sums.energy += b.ej[q];
-        if (t.w) t.w[jb] += b.wj[q];
-      }
-    }
-    if constexpr (Alpha) {
-      row.s0 = std::max(row.s0, b.candidate[q]);
-      if (j_owned) t.s0n[jb] = std::max(t.s0n[jb], b.candidate[q]);
-    }
+    const bool j_owned = Half && g.j[q] < t.owned;
+    add_bond<Half, Alpha, Energy>(t, g, b, q, j_owned, row, sums);
     if (b.breaks >> q & 1) {
       t.intact[k] = 0;
       sums.broken += j_owned ? 2 : 1;
