@@ -15,6 +15,7 @@ struct IterationTotals {
   int cutbacks = 0;
   long linear = 0;
   int linear_max = 0;
+  long tangents = 0;
 };
 
 IterationTotals iteration_totals(const ElastoplasticResult& r) {
@@ -23,6 +24,7 @@ IterationTotals iteration_totals(const ElastoplasticResult& r) {
     t.newton += inc.newton.iterations;
     t.cutbacks += inc.cutbacks;
     t.linear += inc.newton.linear_iterations;
+    t.tangents += inc.newton.tangents;
     t.linear_max = std::max(t.linear_max, inc.newton.linear_iterations_max);
   }
   return t;
@@ -92,6 +94,8 @@ void describe_run(const spec::ProblemSpec& spec, const ElastoplasticResult& r,
   summary.section("solver")
       .set("type", r.solver)
       .set("tolerance", spec.galerkin().nonlinear.tolerance)
+      .set("keep_tangent", spec.galerkin().nonlinear.keep_tangent)
+      .set("tangents", totals.tangents)
       .set("linear_iterations", totals.linear)
       .set("linear_iterations_max_per_solve", totals.linear_max);
   double newton_s = 0.0;

@@ -352,6 +352,7 @@ private:
     solvers::NewtonSettings settings;
     settings.tolerance = n.tolerance;
     settings.max_iterations = n.max_iterations;
+    settings.keep_tangent = n.keep_tangent;
     Balance b;
     const auto solve = [&] {
       std::vector<double> trial = d;

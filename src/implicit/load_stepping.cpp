@@ -190,6 +190,7 @@ ScheduleOutcome run_load_schedule(const ScheduleSpec& schedule, IncrementalSyste
   if (at.start.empty()) at.start = at.current;
   run.settings.tolerance = schedule.nonlinear.tolerance;
   run.settings.max_iterations = schedule.nonlinear.max_iterations;
+  run.settings.keep_tangent = schedule.nonlinear.keep_tangent;
   run.total = increments_total(schedule);
   run.done_at_start = at.step < steps ? increments_done(schedule, at.step, at.tau) : run.total;
   if (clock) {

@@ -50,10 +50,11 @@ void write_summary(const spec::ProblemSpec& spec, const SolidElastoplasticResult
                        describe_solid_method(spec)});
   summary.set_status(r.status, r.stop_reason);
   summary.set("mpi_ranks", session.size()).set("openmp_threads", omp_get_max_threads());
-  long newton = 0, linear = 0;
+  long newton = 0, linear = 0, tangents = 0;
   for (const SolidIncrement& inc : r.increments) {
     newton += inc.record.newton.iterations;
     linear += inc.record.newton.linear_iterations;
+    tangents += inc.record.newton.tangents;
   }
   summary.section("counts")
       .set("nodes", r.counts.nodes)
@@ -67,7 +68,10 @@ void write_summary(const spec::ProblemSpec& spec, const SolidElastoplasticResult
       .set("peak_bytes_largest_rank", r.memory.largest_rank)
       .set("peak_bytes_all_ranks", r.memory.all_ranks)
       .set("peak_bytes_per_dof", r.memory.all_ranks / std::max(1, r.counts.dofs));
-  summary.section("solver").set("type", r.solver);
+  summary.section("solver")
+      .set("type", r.solver)
+      .set("keep_tangent", spec.solid().nonlinear.keep_tangent)
+      .set("tangents", tangents);
   const SolidIncrement& last = r.increments.back();
   io::Json boundary;
   for (const FaceReport& f : last.faces) {

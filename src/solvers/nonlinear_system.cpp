@@ -1,5 +1,6 @@
 #include "meshfree/solvers/nonlinear_system.hpp"
 #include "petsc_detail.hpp"
+#include <algorithm>
 #include <cmath>
 #include <petscsnes.h>
 
@@ -28,6 +29,10 @@ struct NonlinearBlockSystem::Impl {
   bool floor_reached = false; // the previous iterate of this solve was within its floor
   double tolerance = 1e-8;
   int max_iterations = 20;
+  double keep_tangent = 0.0;  // NewtonSettings::keep_tangent of the solve under way
+  bool have_tangent = false;  // J holds a factorised tangent of this system
+  bool new_tangent = true;    // the next Jacobian evaluation builds one
+  bool kept_last = false;     // the last iteration's correction came from a kept tangent
   bool multigrid = false; // the default linear solver is multigrid (for the failure's hint)
   std::vector<double> coordinates; // the owned nodes' positions, for multigrid's near-null space
   NewtonReport report;
@@ -77,6 +82,12 @@ PetscErrorCode form_function(SNES snes, Vec X, Vec F, void* ctx) {
 
 PetscErrorCode form_jacobian(SNES snes, Vec X, Mat, Mat P, void* ctx) {
   auto& s = *static_cast<NonlinearBlockSystem::Impl*>(ctx);
+  // A kept tangent: P is left as it is, so PETSc sees an unchanged operator and keeps its
+  // factors (PCSetUp does nothing for an operator whose state has not changed).
+  s.kept_last = s.keep_tangent > 0.0 && s.have_tangent && !s.new_tangent;
+  if (s.kept_last) return 0;
+  s.have_tangent = false;
+  ++s.report.tangents;
   s.pull_values(X);
   std::string failure;
   try {
@@ -87,6 +98,8 @@ PetscErrorCode form_jacobian(SNES snes, Vec X, Mat, Mat P, void* ctx) {
     failure = e.what();
   }
   if (s.any_failed(failure)) PetscCall(SNESSetJacobianDomainError(snes));
+  else s.have_tangent = true;
+  s.new_tangent = false;
   return 0;
 }
 
@@ -104,10 +117,14 @@ PetscErrorCode form_jacobian(SNES snes, Vec X, Mat, Mat P, void* ctx) {
 /// The Newton corrections that round-off produces there need not be small next to d either, so
 /// the step alone cannot say when to stop; the older stagnation rule stays for the other
 /// cases: a correction below 1e-8 of d (SNES's own step tolerance) with |R| within 1e3 of the
-/// tolerance.
+/// tolerance, from a new tangent only (a kept tangent's corrections shrink with |R| but only
+/// linearly, so a small one says nothing of how close equilibrium is).
 PetscErrorCode converged(SNES, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm,
                          SNESConvergedReason* reason, void* ctx) {
   auto& s = *static_cast<NonlinearBlockSystem::Impl*>(ctx);
+  // Modified Newton: a new tangent after an iteration that contracted |R| too little (fnorm is
+  // the same on every rank, so all decide alike).
+  if (it > 0 && fnorm > s.keep_tangent * s.report.residual.back()) s.new_tangent = true;
   s.report.residual.push_back(fnorm);
   s.report.scale.push_back(s.scale);
   *reason = SNES_CONVERGED_ITERATING;
@@ -118,7 +135,8 @@ PetscErrorCode converged(SNES, PetscInt it, PetscReal xnorm, PetscReal snorm, Pe
     *reason = SNES_DIVERGED_FNORM_NAN;
   else if (fnorm <= s.tolerance * s.scale || floor_twice)
     *reason = SNES_CONVERGED_FNORM_ABS;
-  else if (it > 0 && snorm <= 1e-8 * xnorm && fnorm <= 1e3 * s.tolerance * s.scale)
+  else if (it > 0 && !s.kept_last && snorm <= 1e-8 * xnorm &&
+           fnorm <= 1e3 * s.tolerance * s.scale)
     *reason = SNES_CONVERGED_SNORM_RELATIVE;
   else if (it >= s.max_iterations)
     *reason = SNES_DIVERGED_MAX_IT;
@@ -200,16 +218,36 @@ NonlinearBlockSystem::~NonlinearBlockSystem() {
   if (s.r) VecDestroy(&s.r);
 }
 
-NewtonReport NonlinearBlockSystem::solve(std::vector<double>& d, const NewtonSettings& settings) {
-  Impl& s = *impl_;
-  MF_REQUIRE(d.size() == s.d.size(), "NonlinearBlockSystem::solve: wrong vector length");
-  s.tolerance = settings.tolerance;
-  s.max_iterations = settings.max_iterations;
+namespace {
+
+/// Why SNES stopped, with what the linear solver says of a failed linear solve.
+std::string stop_reason(NonlinearBlockSystem::Impl& s, KSP ksp, SNESConvergedReason reason) {
+  std::string why = SNESConvergedReasons[reason];
+  const std::string stalled =
+      reason == SNES_DIVERGED_LINEAR_SOLVE ? detail::stagnation_note(ksp) : "";
+  if (!stalled.empty()) why += " (linear solve stopped: " + stalled + ")";
+  if (reason == SNES_DIVERGED_LINEAR_SOLVE && s.multigrid) {
+    why += std::string(" (") + detail::kMultigridHint + ")";
+  } else if (reason == SNES_DIVERGED_LINEAR_SOLVE) {
+    PC pc;
+    check(KSPGetPC(ksp, &pc), "KSPGetPC");
+    PCFailedReason pcr = PC_NOERROR;
+    PCGetFailedReasonRank(pc, &pcr);
+    int code = static_cast<int>(pcr);
+    MPI_Allreduce(MPI_IN_PLACE, &code, 1, MPI_INT, MPI_MAX, s.comm);
+    if (code != PC_NOERROR)
+      why += std::string(" (") + PCFailedReasons[code] +
+             (code == PC_FACTOR_NUMERIC_ZEROPIVOT || code == PC_FACTOR_OTHER
+                  ? ": the tangent is singular, as at a limit load under load control)"
+                  : ")");
+  }
+  return why;
+}
+
+/// One SNES solve from the owned entries of d, with s.keep_tangent as set.
+NewtonReport attempt(NonlinearBlockSystem::Impl& s, const std::vector<double>& d) {
+  if (s.keep_tangent <= 0.0) s.new_tangent = true;
   s.report = NewtonReport{};
-  // Maximum iterations as a SNES setting too, so that SNES itself stops there.
-  check(SNESSetTolerances(s.snes, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT,
-                          settings.max_iterations, PETSC_DEFAULT),
-        "SNESSetTolerances");
   PetscScalar* xv;
   check(VecGetArray(s.x, &xv), "VecGetArray");
   std::copy(d.begin() + s.dofs * s.owned.begin, d.begin() + s.dofs * s.owned.end, xv);
@@ -223,35 +261,46 @@ NewtonReport NonlinearBlockSystem::solve(std::vector<double>& d, const NewtonSet
 
   SNESConvergedReason reason;
   check(SNESGetConvergedReason(s.snes, &reason), "SNESGetConvergedReason");
+  if (reason <= 0) s.new_tangent = true; // the next solve starts from a tangent of its own
   PetscInt its = 0, lits = 0;
   check(SNESGetIterationNumber(s.snes, &its), "SNESGetIterationNumber");
   check(SNESGetLinearSolveIterations(s.snes, &lits), "SNESGetLinearSolveIterations");
   s.report.converged = reason > 0;
   s.report.iterations = static_cast<int>(its);
   s.report.linear_iterations = static_cast<int>(lits);
-  s.report.reason = SNESConvergedReasons[reason];
-  const std::string stalled =
-      reason == SNES_DIVERGED_LINEAR_SOLVE ? detail::stagnation_note(ksp) : "";
-  if (!stalled.empty()) s.report.reason += " (linear solve stopped: " + stalled + ")";
-  if (reason == SNES_DIVERGED_LINEAR_SOLVE && s.multigrid) {
-    s.report.reason += std::string(" (") + detail::kMultigridHint + ")";
-  } else if (reason == SNES_DIVERGED_LINEAR_SOLVE) {
-    PC pc;
-    check(KSPGetPC(ksp, &pc), "KSPGetPC");
-    PCFailedReason pcr = PC_NOERROR;
-    PCGetFailedReasonRank(pc, &pcr);
-    int code = static_cast<int>(pcr);
-    MPI_Allreduce(MPI_IN_PLACE, &code, 1, MPI_INT, MPI_MAX, s.comm);
-    if (code != PC_NOERROR)
-      s.report.reason += std::string(" (") + PCFailedReasons[code] +
-                         (code == PC_FACTOR_NUMERIC_ZEROPIVOT || code == PC_FACTOR_OTHER
-                              ? ": the tangent is singular, as at a limit load under load control)"
-                              : ")");
+  s.report.reason = stop_reason(s, ksp, reason);
+  return s.report;
+}
+
+} // namespace
+
+NewtonReport NonlinearBlockSystem::solve(std::vector<double>& d, const NewtonSettings& settings) {
+  Impl& s = *impl_;
+  MF_REQUIRE(d.size() == s.d.size(), "NonlinearBlockSystem::solve: wrong vector length");
+  s.tolerance = settings.tolerance;
+  s.max_iterations = settings.max_iterations;
+  // Maximum iterations as a SNES setting too, so that SNES itself stops there.
+  check(SNESSetTolerances(s.snes, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT,
+                          settings.max_iterations, PETSC_DEFAULT),
+        "SNESSetTolerances");
+  s.keep_tangent = settings.keep_tangent;
+  NewtonReport rep = attempt(s, d);
+  // Kept tangents that did not reach equilibrium (their iterations contract |R| linearly, and
+  // a perfectly plastic plateau can use up the iterations allowed): the same start again with
+  // Newton's method, before the caller cuts the increment back.
+  if (!rep.converged && rep.tangents < rep.iterations) { // some iteration kept a tangent
+    s.keep_tangent = 0.0;
+    const NewtonReport kept = rep;
+    rep = attempt(s, d);
+    rep.iterations += kept.iterations;
+    rep.linear_iterations += kept.linear_iterations;
+    rep.linear_iterations_max = std::max(rep.linear_iterations_max, kept.linear_iterations_max);
+    rep.tangents += kept.tangents;
   }
   s.pull_values(s.x);
   for (std::size_t k = 0; k < s.ghost_index.size(); ++k)
     d[s.ghost_index[k]] = s.d[s.ghost_index[k]];
-  return s.report;
+  return rep;
 }
 
 std::vector<double> NonlinearBlockSystem::gather_on_root(const std::vector<double>& d) const {

@@ -341,6 +341,11 @@ NonlinearSpec read_nonlinear(KeyReader& r) {
                                 detail::concat(s.tolerance));
     s.max_iterations = n->integer("max_iterations", s.max_iterations, 1, 200);
     s.max_cutbacks = n->integer("max_cutbacks", s.max_cutbacks, 0, 30);
+    s.keep_tangent = n->number("keep_tangent", s.keep_tangent);
+    if (!(s.keep_tangent >= 0.0 && s.keep_tangent < 1.0))
+      n->error("keep_tangent", "expected a contraction from 0 (a new tangent every iteration) "
+                               "up to but not including 1, got " +
+                                   detail::concat(s.keep_tangent));
     n->finish();
   }
   return s;

@@ -55,6 +55,8 @@ expect_error "discretisation.quadrature.order: expected an integer from 2 to 10,
 Q="$ROOT/problems/plate_plastic_thesis.yaml"
 expect_error "materials[0].plasticity.yield_stress: expected a positive number, got -310" "$Q" --set materials.0.plasticity.yield_stress=-310
 expect_error "materials[0].plasticity.hardening.type: expected one of" "$Q" --set 'materials.0.plasticity.hardening={type: cubic}'
+expect_error "nonlinear.keep_tangent: expected a contraction from 0 (a new tangent every iteration) up to but not including 1, got 1" "$Q" --set nonlinear.keep_tangent=1
+expect_error "nonlinear.keep_tangent: expected a number, got yes" "$Q" --set nonlinear.keep_tangent=yes
 expect_error "materials[0].plasticity.hardening: 'linear' needs parameters" "$Q" --set materials.0.plasticity.hardening=linear
 expect_error "materials[0].plasticity.hardening.H: expected a number >= 0, got -5" "$Q" --set 'materials.0.plasticity.hardening={type: linear, H: -5}'
 expect_error "materials[0].plasticity.yield_stress: the swift law sets the initial yield stress itself" "$Q" --set 'materials.0.plasticity.hardening={type: swift, K: 500, eps0: 0.01, n: 0.2}'

@@ -18,6 +18,11 @@ struct NewtonSettings {
   /// residual reports (penalty terms put it above tolerance * |F|; see the source).
   double tolerance = 1e-8;
   int max_iterations = 20;
+  /// Modified Newton: the factorised tangent is kept, from iteration to iteration and from one
+  /// solve to the next, while each iteration brings |R| to at most this fraction of the one
+  /// before; an iteration that does not builds and factorises a new one for the next. 0: a new
+  /// tangent at every iteration (Newton's method).
+  double keep_tangent = 0.0;
 };
 
 struct NewtonReport {
@@ -25,6 +30,8 @@ struct NewtonReport {
   int iterations = 0;
   int linear_iterations = 0;
   int linear_iterations_max = 0; // the most of one Newton iteration's linear solve
+  int tangents = 0; // the tangents built and factorised (Newton: one an iteration, and one for a
+                    // last correction too small to count as one)
   std::string reason;           // SNES converged reason, e.g. CONVERGED_FNORM_ABS
   std::string failure;          // what went wrong in a residual or Jacobian evaluation, if anything
   std::vector<double> residual; // |R| at the start and after each iteration

@@ -107,6 +107,7 @@ struct NonlinearSpec {
   double tolerance = 1e-8; // |R| <= tolerance * |F|
   int max_iterations = 20;
   int max_cutbacks = 8; // an increment is halved at most this many times in a row
+  double keep_tangent = 0.0; // solvers::NewtonSettings::keep_tangent (0: Newton's method)
 };
 
 /// The linear solver of the implicit analyses (`linear_solver:`): a direct factorisation below
