@@ -3,6 +3,7 @@
 #include "meshfree/implicit/point_law.hpp"
 #include "meshfree/neighbors/point_grid.hpp"
 #include "meshfree/solvers/parallel.hpp"
+#include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -13,12 +14,14 @@ namespace mf::implicit {
 
 namespace {
 
-/// The values of a J2 history: plastic strain, back stress, equivalent plastic strain.
-constexpr int kValues = 13;
+/// The values a point carries: its J2 history (plastic strain, back stress, equivalent plastic
+/// strain) and its strain [xx, yy, xy] on its own cloud.
+constexpr int kValues = 16;
 
-void pack(const materials::J2State& s, double* v) {
+void pack(const materials::J2State& s, const Vec3& strain, double* v) {
   for (int c = 0; c < 6; ++c) v[c] = s.plastic_strain(c), v[6 + c] = s.back_stress(c);
   v[12] = s.alpha;
+  for (int c = 0; c < 3; ++c) v[13 + c] = strain(c);
 }
 
 materials::J2State unpack(const double* v) {
@@ -28,47 +31,47 @@ materials::J2State unpack(const double* v) {
   return s;
 }
 
-/// The history of every point of `from`, on every rank (each point counted by one rank).
+Vec3 unpack_strain(const double* v) { return {v[13], v[14], v[15]}; }
+
+/// What every point of `from` carries, on every rank (each point counted by one rank).
 std::vector<double> every_history(const GalerkinModel& from, const PointStates& st,
+                                  const std::vector<double>& d,
                                   const solvers::PetscSession& session) {
   std::vector<double> all(kValues * from.domain.x.size(), 0.0);
   for (int k = 0; k < from.domain_table.rows(); ++k)
     if (from.domain_mine.counted[k])
-      pack(st.committed[k], all.data() + kValues * from.domain_mine.rows[k]);
+      pack(st.committed[k], strain_at(from.domain_table, k, d),
+           all.data() + kValues * from.domain_mine.rows[k]);
   solvers::sum_everywhere(session.comm(), all.data(), static_cast<int>(all.size()));
   return all;
 }
 
-/// Nodal parameters of `to` whose u^h equals u^h of `from` (parameters d) at the nodes of `to`,
-/// found by the fixed-point sweeps d <- d + (u_from(x_I) - u_to(x_I)) from u_from's values; the
-/// sweeps stop when they no longer reduce the largest difference (RK shape functions do not
-/// interpolate, so the values alone would leave u^h an interpolation error away).
+/// Nodal parameters of `to` whose u^h equals u^h of `from` (parameters d) at the nodes of `to`:
+/// the sparse system of the new shape functions' values at the nodes (RK shape functions do not
+/// interpolate) solved by LU, its two right-hand sides the old u^h's components there.
 std::vector<double> interpolating_parameters(const GalerkinModel& from,
                                              const std::vector<double>& d,
                                              const GalerkinModel& to) {
   const std::vector<Vec2>& x = to.node_positions();
   const ShapeTable old_at = shapes_at(from, x, false);
   const ShapeTable new_at = shapes_at(to, x, false);
-  std::vector<double> target(2 * x.size());
-  for (int I = 0; I < old_at.rows(); ++I) {
-    const Vec2 u = displacement_at(old_at, I, d);
-    target[2 * I] = u.x(), target[2 * I + 1] = u.y();
-  }
-  std::vector<double> p = target, best = target, gap(target.size());
-  double largest = std::numeric_limits<double>::infinity();
-  for (int sweep = 0; sweep < 50; ++sweep) {
-    double now = 0.0;
-    for (int I = 0; I < new_at.rows(); ++I) {
-      const Vec2 u = displacement_at(new_at, I, p);
-      gap[2 * I] = target[2 * I] - u.x(), gap[2 * I + 1] = target[2 * I + 1] - u.y();
-      now = std::max({now, std::abs(gap[2 * I]), std::abs(gap[2 * I + 1])});
-    }
-    if (!(now < 0.5 * largest)) break;
-    largest = now;
-    best = p;
-    for (std::size_t i = 0; i < p.size(); ++i) p[i] += gap[i];
-  }
-  return best;
+  const int n = static_cast<int>(x.size());
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(new_at.phi.size());
+  for (int I = 0; I < n; ++I)
+    for (int q = new_at.offset[I]; q < new_at.offset[I + 1]; ++q)
+      entries.emplace_back(I, new_at.node[q], new_at.phi[q]);
+  Eigen::SparseMatrix<double> values(n, n);
+  values.setFromTriplets(entries.begin(), entries.end());
+  Eigen::MatrixX2d target(n, 2);
+  for (int I = 0; I < n; ++I) target.row(I) = displacement_at(old_at, I, d).transpose();
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(values);
+  MF_REQUIRE(lu.info() == Eigen::Success,
+             "state transfer: the new cloud's shape functions at its nodes are singular");
+  const Eigen::MatrixX2d p = lu.solve(target);
+  std::vector<double> out(2 * static_cast<std::size_t>(n));
+  for (int I = 0; I < n; ++I) out[2 * I] = p(I, 0), out[2 * I + 1] = p(I, 1);
+  return out;
 }
 
 /// The nearest old point of a point's own material (material regions: a history is never
@@ -124,21 +127,37 @@ CarriedState carry_state(const spec::ProblemSpec& spec, const GalerkinModel& fro
                          const PointStates& st, const std::vector<double>& d,
                          const GalerkinModel& to, const solvers::PetscSession& session) {
   CarriedState c;
-  const std::vector<double> old = every_history(from, st, session);
+  c.d = interpolating_parameters(from, d, to);
+  const std::vector<double> old = every_history(from, st, d, session);
   const NearestInMaterial nearest(spec, from.domain.x);
   const int rows = to.domain_table.rows();
   c.history.resize(rows);
+  c.old_strain.resize(rows);
   for (int k = 0; k < rows; ++k) {
     const Vec2& x = to.domain.x[to.domain_mine.rows[k]];
     const int r = nearest.find(x);
     (nearest.at_place(r, x) ? c.copied : c.nearest) += to.domain_mine.counted[k];
-    c.history[k] = unpack(old.data() + kValues * static_cast<std::size_t>(r));
+    const double* v = old.data() + kValues * static_cast<std::size_t>(r);
+    c.history[k] = unpack(v);
+    c.old_strain[k] = unpack_strain(v);
   }
   c.copied = solvers::sum_everywhere(session.comm(), c.copied);
   c.nearest = solvers::sum_everywhere(session.comm(), c.nearest);
-
-  c.d = interpolating_parameters(from, d, to);
   return c;
+}
+
+std::vector<materials::J2State> history_keeping_stress(const CarriedState& c,
+                                                       const GalerkinModel& to,
+                                                       const std::vector<double>& d) {
+  std::vector<materials::J2State> h = c.history;
+  for (std::size_t k = 0; k < h.size(); ++k) {
+    if (h[k].alpha <= 0.0) continue; // never yielded: its stress is that of the new strain
+    const Vec3 shift = strain_at(to.domain_table, static_cast<int>(k), d) - c.old_strain[k];
+    h[k].plastic_strain(0) += shift(0);
+    h[k].plastic_strain(1) += shift(1);
+    h[k].plastic_strain(5) += shift(2);
+  }
+  return h;
 }
 
 } // namespace mf::implicit
