@@ -31,7 +31,9 @@ materials::J2State unpack(const double* v) {
   return s;
 }
 
-Vec3 unpack_strain(const double* v) { return {v[13], v[14], v[15]}; }
+Vec3 unpack_strain(const double* v) {
+  return {v[13], v[14], v[15]};
+}
 
 /// What every point of `from` carries, on every rank (each point counted by one rank).
 std::vector<double> every_history(const GalerkinModel& from, const PointStates& st,

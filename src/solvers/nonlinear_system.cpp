@@ -29,11 +29,11 @@ struct NonlinearBlockSystem::Impl {
   bool floor_reached = false; // the previous iterate of this solve was within its floor
   double tolerance = 1e-8;
   int max_iterations = 20;
-  double keep_tangent = 0.0;  // NewtonSettings::keep_tangent of the solve under way
-  bool have_tangent = false;  // J holds a factorised tangent of this system
-  bool new_tangent = true;    // the next Jacobian evaluation builds one
-  bool kept_last = false;     // the last iteration's correction came from a kept tangent
-  bool multigrid = false; // the default linear solver is multigrid (for the failure's hint)
+  double keep_tangent = 0.0; // NewtonSettings::keep_tangent of the solve under way
+  bool have_tangent = false; // J holds a factorised tangent of this system
+  bool new_tangent = true;   // the next Jacobian evaluation builds one
+  bool kept_last = false;    // the last iteration's correction came from a kept tangent
+  bool multigrid = false;    // the default linear solver is multigrid (for the failure's hint)
   std::vector<double> coordinates; // the owned nodes' positions, for multigrid's near-null space
   NewtonReport report;
 
@@ -97,8 +97,10 @@ PetscErrorCode form_jacobian(SNES snes, Vec X, Mat, Mat P, void* ctx) {
   } catch (const std::exception& e) {
     failure = e.what();
   }
-  if (s.any_failed(failure)) PetscCall(SNESSetJacobianDomainError(snes));
-  else s.have_tangent = true;
+  if (s.any_failed(failure))
+    PetscCall(SNESSetJacobianDomainError(snes));
+  else
+    s.have_tangent = true;
   s.new_tangent = false;
   return 0;
 }
@@ -135,8 +137,7 @@ PetscErrorCode converged(SNES, PetscInt it, PetscReal xnorm, PetscReal snorm, Pe
     *reason = SNES_DIVERGED_FNORM_NAN;
   else if (fnorm <= s.tolerance * s.scale || floor_twice)
     *reason = SNES_CONVERGED_FNORM_ABS;
-  else if (it > 0 && !s.kept_last && snorm <= 1e-8 * xnorm &&
-           fnorm <= 1e3 * s.tolerance * s.scale)
+  else if (it > 0 && !s.kept_last && snorm <= 1e-8 * xnorm && fnorm <= 1e3 * s.tolerance * s.scale)
     *reason = SNES_CONVERGED_SNORM_RELATIVE;
   else if (it >= s.max_iterations)
     *reason = SNES_DIVERGED_MAX_IT;

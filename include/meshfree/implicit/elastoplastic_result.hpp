@@ -42,6 +42,7 @@ struct IncrementRecord {
     visit("newton.converged", newton.converged), visit("newton.iterations", newton.iterations);
     visit("newton.linear_iterations", newton.linear_iterations);
     visit("newton.linear_iterations_max", newton.linear_iterations_max);
+    visit("newton.tangents", newton.tangents);
     visit("newton.reason", newton.reason), visit("newton.failure", newton.failure);
     visit("newton.residual", newton.residual), visit("newton.scale", newton.scale);
     visit("cutbacks", cutbacks), visit("max_plastic_strain", max_plastic_strain);

@@ -30,10 +30,11 @@ struct NewtonReport {
   int iterations = 0;
   int linear_iterations = 0;
   int linear_iterations_max = 0; // the most of one Newton iteration's linear solve
-  int tangents = 0; // the tangents built and factorised (Newton: one an iteration, and one for a
-                    // last correction too small to count as one)
-  std::string reason;           // SNES converged reason, e.g. CONVERGED_FNORM_ABS
-  std::string failure;          // what went wrong in a residual or Jacobian evaluation, if anything
+  std::string reason;            // SNES converged reason, e.g. CONVERGED_FNORM_ABS
+  std::string failure; // what went wrong in a residual or Jacobian evaluation, if anything
+  /// The tangents built and factorised (Newton's method: one an iteration, and one more for a last
+  /// correction too small to count as an iteration).
+  int tangents = 0;
   std::vector<double> residual; // |R| at the start and after each iteration
   std::vector<double> scale;    // the force scale |F| at the same points
 };

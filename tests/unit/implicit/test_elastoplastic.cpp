@@ -9,8 +9,8 @@
 #include "meshfree/solvers/parallel.hpp"
 #include "test_support.hpp"
 #include "uniaxial_response.hpp"
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <iostream>
 

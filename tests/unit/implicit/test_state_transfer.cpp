@@ -209,8 +209,8 @@ TEST_CASE("carried state: a yielded point keeps its old point's elastic strain o
     CHECK(moved[k].plastic_strain(2) == was.plastic_strain(2));
   }
   INFO("largest change of the elastic strain " << worst << ", of the plastic strain " << shifted
-                                                << "; points yielded " << yielded << ", elastic "
-                                                << elastic);
+                                               << "; points yielded " << yielded << ", elastic "
+                                               << elastic);
   CHECK(yielded > 0);
   CHECK(elastic > 0);
   CHECK(worst < 1e-15);
