@@ -301,12 +301,8 @@ private:
     try { // the model's errors reach every rank
       next = discretise(spec, session_, build, R);
     } catch (const Error& e) {
-      log::warn("adapt: the refined cloud cannot be used (", e.what(),
-                "); the analysis goes on on the cloud of ", now.model->node_count(),
-                " nodes, without further refinement");
-      record_.ended = "refined cloud not usable";
-      count_model(*now.model, session_, R);
-      return nullptr;
+      return stay(now, detail::concat("the refined cloud cannot be used (", e.what(), ")"),
+                  "refined cloud not usable", R);
     }
     const std::vector<double> all = now.newton->gather_on_root(d);
     std::vector<double> everywhere = all;
@@ -316,37 +312,21 @@ private:
       c = carry_state(now.spec, *now.model, now.problem->states(), everywhere, *next->model,
                       session_);
     } catch (const Error& e) {
-      log::warn("adapt: the state cannot be carried to the refined cloud (", e.what(),
-                "); the analysis goes on on the cloud of ", now.model->node_count(),
-                " nodes, without further refinement");
-      record_.ended = "refined cloud not usable";
-      count_model(*now.model, session_, R);
-      return nullptr;
+      return stay(now,
+                  detail::concat("the state cannot be carried to the refined cloud (", e.what(),
+                                 ")"),
+                  "refined cloud not usable", R);
     }
     next->problem->set_factors(start);
-    next->problem->start_from(history_keeping_stress(c, *next->model, c.d));
-    Balance b = rebalance(*next, c.d);
-    // Equilibrium closes the gaps the fitted u^h leaves at the penalty-held boundaries, and the
-    // strain that closes them moves the carried stress; carried again on the balanced u^h, the
-    // stress of the yielded points is the old one there, and mostly its own out-of-balance is
-    // left (the strip pulled to its limit and refined at v = 0.098 from 188 to 270 nodes: the
-    // force at v = 0.1 5.8% low with the stress of the fitted u^h's strain, 1.3% so).
-    for (int pass = 0; pass < 2 && b.found; ++pass) {
-      next->problem->start_from(history_keeping_stress(c, *next->model, c.d));
-      const Balance again = rebalance(*next, c.d);
-      b.found = again.found, b.why = again.why;
-      b.iterations += again.iterations;
-    }
-    if (!b.found) {
-      // The analysis goes on on the cloud it has: its state is the last converged one.
-      log::warn("adapt: the state carried to the refined cloud of ", next->model->node_count(),
-                " nodes found no equilibrium at the load of the increment's start (", b.why,
-                "); the analysis goes on on the cloud of ", now.model->node_count(),
-                " nodes, without further refinement");
-      record_.ended = "no equilibrium on the refined cloud";
-      count_model(*now.model, session_, R);
-      return nullptr;
-    }
+    const Balance b = carried_balance(*next, c);
+    if (!b.found) // the state of `now` is the last converged one
+      return stay(now,
+                  detail::concat("the state carried to the refined cloud of ",
+                                 next->model->node_count(),
+                                 " nodes found no equilibrium at the load of the increment's "
+                                 "start (",
+                                 b.why, ")"),
+                  "no equilibrium on the refined cloud", R);
     log::info("adapt: state carried to ", next->model->node_count(), " nodes (", c.copied,
               " points kept, ", c.nearest, " from their nearest), equilibrium in ", b.iterations,
               " Newton iterations",
@@ -355,6 +335,16 @@ private:
     record_.refinement = std::move(cloud.refinement);
     cloud_ = std::move(cloud.cloud);
     return next;
+  }
+
+  /// Says why the analysis goes on on the cloud of `now`, which ends the refinement.
+  std::unique_ptr<Discretised> stay(const Discretised& now, const std::string& why,
+                                    const char* ended, ElastoplasticResult& R) {
+    log::warn("adapt: ", why, "; the analysis goes on on the cloud of ", now.model->node_count(),
+              " nodes, without further refinement");
+    record_.ended = ended;
+    count_model(*now.model, session_, R);
+    return nullptr;
   }
 
   struct Balance {
@@ -417,6 +407,24 @@ private:
       if (b.iterations - before <= 6) step = std::min(0.25, 2.0 * step); // an easy step
     }
     next.problem->hold_imbalance({}, 0.0);
+    return b;
+  }
+
+  /// Equilibrium of the state c carried to `next` (its parameters c.d balanced in place).
+  /// Equilibrium closes the gaps the fitted u^h leaves at the penalty-held boundaries, and the
+  /// strain that closes them moves the carried stress; carried again on the balanced u^h, the
+  /// stress of the yielded points is the old one there, and mostly its own out-of-balance is
+  /// left (the strip pulled to its limit and refined at v = 0.098 from 188 to 270 nodes: the
+  /// force at v = 0.1 5.8% low with the stress of the fitted u^h's strain, 1.3% so).
+  Balance carried_balance(Discretised& next, CarriedState& c) const {
+    next.problem->start_from(history_keeping_stress(c, *next.model, c.d));
+    Balance b = rebalance(next, c.d);
+    for (int pass = 0; pass < 2 && b.found; ++pass) {
+      next.problem->start_from(history_keeping_stress(c, *next.model, c.d));
+      const Balance again = rebalance(next, c.d);
+      b.found = again.found, b.why = again.why;
+      b.iterations += again.iterations;
+    }
     return b;
   }
 
