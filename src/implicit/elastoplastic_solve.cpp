@@ -312,10 +312,9 @@ private:
       c = carry_state(now.spec, *now.model, now.problem->states(), everywhere, *next->model,
                       session_);
     } catch (const Error& e) {
-      return stay(now,
-                  detail::concat("the state cannot be carried to the refined cloud (", e.what(),
-                                 ")"),
-                  "refined cloud not usable", R);
+      return stay(
+          now, detail::concat("the state cannot be carried to the refined cloud (", e.what(), ")"),
+          "refined cloud not usable", R);
     }
     next->problem->set_factors(start);
     const Balance b = carried_balance(*next, c);
@@ -417,13 +416,13 @@ private:
   /// left (the strip pulled to its limit and refined at v = 0.098 from 188 to 270 nodes: the
   /// force at v = 0.1 5.8% low with the stress of the fitted u^h's strain, 1.3% so).
   Balance carried_balance(Discretised& next, CarriedState& c) const {
-    next.problem->start_from(history_keeping_stress(c, *next.model, c.d));
-    Balance b = rebalance(next, c.d);
-    for (int pass = 0; pass < 2 && b.found; ++pass) {
+    Balance b;
+    for (int pass = 0; pass < 3 && (pass == 0 || b.found); ++pass) {
       next.problem->start_from(history_keeping_stress(c, *next.model, c.d));
-      const Balance again = rebalance(next, c.d);
-      b.found = again.found, b.why = again.why;
-      b.iterations += again.iterations;
+      const Balance r = rebalance(next, c.d);
+      b.found = r.found, b.why = r.why;
+      b.iterations += r.iterations;
+      if (pass == 0) b.steps = r.steps; // the out-of-balance's steps, taken on the first pass
     }
     return b;
   }

@@ -6,7 +6,6 @@
 #include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <map>
 #include <utility>
 
@@ -155,9 +154,7 @@ std::vector<materials::J2State> history_keeping_stress(const CarriedState& c,
   for (std::size_t k = 0; k < h.size(); ++k) {
     if (h[k].alpha <= 0.0) continue; // never yielded: its stress is that of the new strain
     const Vec3 shift = strain_at(to.domain_table, static_cast<int>(k), d) - c.old_strain[k];
-    h[k].plastic_strain(0) += shift(0);
-    h[k].plastic_strain(1) += shift(1);
-    h[k].plastic_strain(5) += shift(2);
+    for (int a = 0; a < 3; ++a) h[k].plastic_strain(materials::kPlane[a]) += shift(a);
   }
   return h;
 }

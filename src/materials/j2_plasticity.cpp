@@ -168,8 +168,6 @@ Vec6 embed(const Vec3& e, double ezz) {
   return s;
 }
 
-constexpr int kPlane[3] = {0, 1, 5}; // 3D Voigt indices of xx, yy, xy
-
 J2Result2D reduce(const J2Result3D& r3, double ezz) {
   J2Result2D r;
   for (int a = 0; a < 3; ++a) {

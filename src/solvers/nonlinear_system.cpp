@@ -30,8 +30,7 @@ struct NonlinearBlockSystem::Impl {
   double tolerance = 1e-8;
   int max_iterations = 20;
   double keep_tangent = 0.0; // NewtonSettings::keep_tangent of the solve under way
-  bool have_tangent = false; // J holds a factorised tangent of this system
-  bool new_tangent = true;   // the next Jacobian evaluation builds one
+  bool new_tangent = true;   // the next Jacobian evaluation builds one (J holds none yet)
   bool kept_last = false;    // the last iteration's correction came from a kept tangent
   bool multigrid = false;    // the default linear solver is multigrid (for the failure's hint)
   std::vector<double> coordinates; // the owned nodes' positions, for multigrid's near-null space
@@ -84,9 +83,8 @@ PetscErrorCode form_jacobian(SNES snes, Vec X, Mat, Mat P, void* ctx) {
   auto& s = *static_cast<NonlinearBlockSystem::Impl*>(ctx);
   // A kept tangent: P is left as it is, so PETSc sees an unchanged operator and keeps its
   // factors (PCSetUp does nothing for an operator whose state has not changed).
-  s.kept_last = s.keep_tangent > 0.0 && s.have_tangent && !s.new_tangent;
+  s.kept_last = s.keep_tangent > 0.0 && !s.new_tangent;
   if (s.kept_last) return 0;
-  s.have_tangent = false;
   ++s.report.tangents;
   s.pull_values(X);
   std::string failure;
@@ -97,11 +95,9 @@ PetscErrorCode form_jacobian(SNES snes, Vec X, Mat, Mat P, void* ctx) {
   } catch (const std::exception& e) {
     failure = e.what();
   }
-  if (s.any_failed(failure))
-    PetscCall(SNESSetJacobianDomainError(snes));
-  else
-    s.have_tangent = true;
-  s.new_tangent = false;
+  const bool failed = s.any_failed(failure);
+  if (failed) PetscCall(SNESSetJacobianDomainError(snes));
+  s.new_tangent = failed; // a tangent that failed is not kept
   return 0;
 }
 

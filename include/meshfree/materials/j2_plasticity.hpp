@@ -19,6 +19,9 @@
 
 namespace mf::materials {
 
+/// The 3D Voigt indices of a plane state's [xx, yy, xy].
+constexpr int kPlane[3] = {0, 1, 5};
+
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 
