@@ -90,6 +90,21 @@ for case in "$Q --set steps.0.increments=40" "$T --set time.end=2e-5 --set outpu
   else bad "exit $rc, '$msg'" "ulimit -f 8: $case"; fi
 done
 
+# Runs side by side: a run started without mpirun keeps no MPI session folder (each such process
+# named the same /tmp/ompi.<host>.<uid>/jf.0/1/0, and one ending removed it while another made it).
+# With TMPDIR a file no such folder can be made, and the run still works; eight runs at once end 0.
+if TMPDIR="$P" timeout 120 "$MF" run "$P" --out "$WORK/tmpdir_file" >/dev/null 2>"$WORK/err"; then
+  echo "ok: a run with TMPDIR a file works (no MPI session folder)"
+else bad "exit $?, '$(tail -3 "$WORK/err")'" "TMPDIR=$P"; fi
+pids=()
+for i in 1 2 3 4 5 6 7 8; do
+  timeout 120 "$MF" run "$P" --out "$WORK/side_$i" >/dev/null 2>"$WORK/side_$i.err" & pids+=($!)
+done
+failed=0
+for pid in "${pids[@]}"; do wait "$pid" || failed=$((failed+1)); done
+[ $failed -eq 0 ] && echo "ok: eight runs started at once all end 0" ||
+  bad "$failed of 8 failed: '$(cat "$WORK"/side_*.err | grep -v '^\[meshfree\]' | head -3)'" "runs side by side"
+
 # Silent or faked outcomes.
 outcome run 1 "run failed: the motion became non-finite" "$C" --set 'boundary.1.traction=[0, 0, -1e300]' --set time.end=0.05 &&
   grep -q "the load 'end_shear' is" <<<"$msg" && grep -q '"status": "failed"' "$WORK/out/failed/summary.json" ||

@@ -26,8 +26,11 @@ void keep_freed_memory();
 /// only the transport to itself (pml ob1, btl self), no network library: the Omni-Path library
 /// Debian's Open MPI loads for its psm2 component sleeps in its initialiser on a machine without
 /// that network, and starting the daemon costs about as much again (README.md, "Running", has
-/// the measured start-up). Under mpirun, srun or another launcher nothing changes. Call it before
-/// MPI is initialised.
+/// the measured start-up). Nor does it make a session directory (orte_create_session_dirs): every
+/// isolated process names its own /tmp/ompi.<host>.<uid>/jf.0/1/0, so of two runs started at once
+/// one could remove that folder as it ended while the other was making it, and the other failed
+/// to start; with only the transport to itself a process keeps nothing there. Under mpirun, srun
+/// or another launcher nothing changes. Call it before MPI is initialised.
 void single_process_mpi();
 
 } // namespace mf

@@ -11,7 +11,7 @@
 namespace {
 
 const char* const kParameters[] = {"OMPI_MCA_ess_singleton_isolated", "OMPI_MCA_pml",
-                                   "OMPI_MCA_btl"};
+                                   "OMPI_MCA_btl", "OMPI_MCA_orte_create_session_dirs"};
 const char* const kLaunchers[] = {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE",
                                   "SLURM_PROCID"};
 
@@ -50,6 +50,7 @@ TEST_CASE("a process no launcher started tells Open MPI it is alone, a launched 
     CHECK(get("OMPI_MCA_ess_singleton_isolated") == "1");
     CHECK(get("OMPI_MCA_pml") == "ob1");
     CHECK(get("OMPI_MCA_btl") == "self");
+    CHECK(get("OMPI_MCA_orte_create_session_dirs") == "0");
   }
   SECTION("started by a launcher") {
     for (const char* launcher : kLaunchers) {
