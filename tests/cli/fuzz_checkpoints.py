@@ -75,7 +75,7 @@ def generation(folder):
 def make_checkpoint(meshfree, base, folder, extra=(), ranks=1):
     """A run killed once its second checkpoint is in place."""
     cmd = [meshfree, "run", base.problem, "--out", str(folder)] + base.sets + list(extra)
-    env = one_rank_env(folder.parent)
+    env = one_rank_env()
     if ranks > 1:
         cmd = ["mpirun", "-np", str(ranks)] + cmd
         env = dict(os.environ, OMP_NUM_THREADS="1", OMPI_MCA_rmaps_base_oversubscribe="1",
@@ -342,18 +342,14 @@ def listing(folder):
 
 
 def restart(meshfree, base, folder):
-    """A restart from `folder`; Open MPI's session folder is beside it."""
-    scratch = Path(str(folder) + ".mpi")
-    scratch.mkdir(exist_ok=True)
+    """A restart from `folder`."""
     args = [meshfree, "run", base.problem, "--restart", str(folder)] + base.sets + \
         ["--set", "time.end=%r" % base.end]
     try:
-        p = subprocess.run(args, capture_output=True, timeout=60, env=one_rank_env(scratch))
+        p = subprocess.run(args, capture_output=True, timeout=60, env=one_rank_env())
         return p.returncode, p.stderr.decode(errors="replace")
     except subprocess.TimeoutExpired as e:
         return "timeout", (e.stderr or b"").decode(errors="replace")
-    finally:
-        shutil.rmtree(scratch, ignore_errors=True)
 
 
 def finite_history(folder):
@@ -417,7 +413,7 @@ def prepare(meshfree, source, work):
         with h5py.File(state_files(b.own)[0], "r") as f:
             t = float(f["meta.time"][0])
         out = subprocess.run([meshfree, "check", b.problem] + b.sets, capture_output=True,
-                             env=one_rank_env(work)).stdout.decode()
+                             env=one_rank_env()).stdout.decode()
         b.end = t + 3 * float(FIRST_STEP.search(out).group(1))  # three steps or so
         ref = work / (b.name + ".reference")
         shutil.copytree(b.own / "checkpoint", ref / "checkpoint", symlinks=True)

@@ -88,7 +88,7 @@ def status(rc):
 def check(meshfree, path, workdir):
     try:
         p = subprocess.run([meshfree, "check", str(path)], capture_output=True, timeout=60,
-                           cwd=workdir, env=one_rank_env(workdir))
+                           cwd=workdir, env=one_rank_env())
     except subprocess.TimeoutExpired:
         return "hung (over 60 s)", b"", b""
     err_lines = p.stderr.decode(errors="replace").strip().split("\n") if p.stderr.strip() else []
@@ -146,7 +146,7 @@ def coarser(text, meshfree, path, workdir):
     path.write_text(coarse)
     try:
         p = subprocess.run([meshfree, "check", str(path)], capture_output=True, timeout=60,
-                           cwd=workdir, env=one_rank_env(workdir))
+                           cwd=workdir, env=one_rank_env())
     finally:
         path.unlink(missing_ok=True)
     return coarse if p.returncode == 0 and b": valid" in p.stdout else text
@@ -156,7 +156,7 @@ def judge_run(meshfree, path, out, workdir, end, valid):
     try:
         p = subprocess.run([meshfree, "run", str(path), "--out", str(out), "--set",
                             "time.end=%g" % end], capture_output=True, timeout=60,
-                           cwd=workdir, env=one_rank_env(workdir))
+                           cwd=workdir, env=one_rank_env())
     except subprocess.TimeoutExpired:
         return "timeout", b"", b""
     if p.returncode == 0:
@@ -212,7 +212,7 @@ def main():
 
     def run(job):
         n, base, path, text = job
-        case = work / ("case%d" % n)  # its working folder, Open MPI's session folder inside
+        case = work / ("case%d" % n)  # its working folder
         try:
             case.mkdir()
             path.write_text(text, errors="replace")

@@ -31,19 +31,15 @@ def parse(ap):
     return a
 
 
-def one_rank_env(scratch):
+def one_rank_env():
     """The environment of a case: one rank, one thread, and none of the start-up work that a
     one-rank process does not need, which is most of a short case's cost (measured in README.md,
     "Running"). meshfree runs itself again to set OMP_WAIT_POLICY=passive unless it is set, so it
     is set here (the same policy, one program load less); OpenBLAS starts no threads that spin in
-    sched_yield; Open MPI starts no orted for a singleton (ess_singleton_isolated) and probes no
-    network transports (pml ob1, btl self). What meshfree computes is the same. Open MPI keeps a
-    session folder that isolated singletons share and each removes at its end, so that one
-    starting beside another fails in MPI_Init: each case has its own under `scratch`, a folder
-    of the case's own."""
+    sched_yield. What meshfree computes is the same. (A process started without mpirun already
+    tells Open MPI it is alone: no orted, no network transports, no session folder.)"""
     return dict(os.environ, OMP_NUM_THREADS="1", OMP_WAIT_POLICY="passive",
-                OPENBLAS_NUM_THREADS="1", OMPI_MCA_ess_singleton_isolated="1",
-                OMPI_MCA_pml="ob1", OMPI_MCA_btl="self", OMPI_MCA_orte_tmpdir_base=str(scratch))
+                OPENBLAS_NUM_THREADS="1")
 
 
 def fnv(data):
