@@ -154,8 +154,8 @@ double length_along(const geometry::Curve& c, const Vec2& p, const Vec2& q) {
   return c.radius * std::abs(std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b)));
 }
 
-/// An axis-aligned rectangle without holes whose refinement boxes (if any) miss it: meshed by a
-/// structured grid of square-ish elements rather than by gmsh.
+} // namespace
+
 bool is_plain_rectangle(const geometry::Domain& domain,
                         const std::vector<geometry::Refinement>& refinement) {
   const BoundingBox b = domain.bounds();
@@ -168,8 +168,6 @@ bool is_plain_rectangle(const geometry::Domain& domain,
       return false;
   return true;
 }
-
-} // namespace
 
 fem::Mesh read_fe_mesh(const spec::ProblemSpec& spec) {
   return plane_fe_mesh(spec.galerkin().discretisation, spec.domain);

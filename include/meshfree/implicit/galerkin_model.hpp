@@ -75,6 +75,11 @@ struct GalerkinModel {
 GalerkinModel build_galerkin_model(const spec::ProblemSpec& spec,
                                    const solvers::PetscSession& session, PhaseTimer& timer);
 
+/// True for an axis-aligned rectangle without holes whose refinement boxes (if any) miss it:
+/// meshed by a structured grid of square-ish elements rather than by gmsh.
+bool is_plain_rectangle(const geometry::Domain& domain,
+                        const std::vector<geometry::Refinement>& refinement);
+
 /// The finite-element mesh a fem discretisation asks for: the gmsh file (checked against the
 /// element type and the geometry) or a structured mesh of the rectangle; nodes numbered for
 /// locality. Throws mf::Error naming the key.
