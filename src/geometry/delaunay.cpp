@@ -146,18 +146,18 @@ private:
   long flip_budget_ = 0;
 };
 
-/// True where the point p of the edge a-b is in the body, or inside a hole with a and b on its
-/// circle (a chord of it) by no more than the chord's sagitta.
+/// True where the point p of the edge a-b is in the body, or, a and b on a hole's circle (a
+/// chord of it), no nearer its centre than the chord's midpoint.
 bool in_body_or_chord(const Domain& domain, const Vec2& a, const Vec2& b, const Vec2& p,
                       double tol) {
   if (domain.contains(p)) return true;
   if (!domain.within_outline(p)) return false;
-  const double sagitta_factor = (b - a).squaredNorm() / 8.0;
   for (const Circle& h : domain.holes()) {
     const bool chord = std::abs((a - h.center).norm() - h.radius) <= tol &&
                        std::abs((b - h.center).norm() - h.radius) <= tol;
-    if (chord && (p - h.center).norm() >= h.radius - 1.01 * sagitta_factor / h.radius - tol)
-      return true;
+    const double midpoint =
+        std::sqrt(std::max(0.0, h.radius * h.radius - 0.25 * (b - a).squaredNorm()));
+    if (chord && (p - h.center).norm() >= midpoint - tol) return true;
   }
   return false;
 }

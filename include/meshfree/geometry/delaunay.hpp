@@ -23,9 +23,9 @@ std::vector<Triangle> delaunay(const std::vector<Vec2>& x);
 /// The triangles of delaunay(x) whose centroid lies in `domain`, for points x of the body that
 /// include points along all of its boundary (a meshfree cloud's nodes). Along a hole their edges
 /// are chords of its circle; elsewhere they follow the boundary. Empty where some kept triangle
-/// leaves the body other than by a chord of a hole between two points on its circle (its edges
-/// sampled at a quarter, a half and three quarters): points too sparse along the boundary for
-/// their triangulation to follow it.
+/// leaves the body other than along a chord of a hole between two points on its circle (its
+/// edges sampled at a quarter, a half and three quarters): points too sparse along the boundary
+/// for their triangulation to follow it.
 std::vector<Triangle> body_triangles(const Domain& domain, const std::vector<Vec2>& x);
 
 } // namespace mf::geometry
