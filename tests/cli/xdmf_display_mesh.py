@@ -4,14 +4,16 @@ stresses and the equivalent plastic strain at their vertices.
 
 - On fields the discretisation reproduces, the vertex values are the exact ones: the linear
   patch test (elastic; meshfree with VCI, whose Galerkin solution is the linear field to
-  round-off, on the node lattice's grid and on gmsh's triangles around a refinement box, and
-  finite elements T3, Q4, Q8), where u = u0 + G x and the stress is C sym(G)
+  round-off, on the node lattice's grid and on the graded cloud's own triangles around a
+  refinement box, and finite elements T3, Q4, Q8), where u = u0 + G x and the stress is C sym(G)
   everywhere; and the bar in uniaxial stress stretched into the plastic range (elastoplastic),
   whose state is homogeneous (meshfree with VCI: the Gauss points agree to 2e-10 of the stress,
   against 1e-3 without): at every vertex of every frame the stresses and plastic strain
   are those of the Gauss points, all equal, and u^h is linear in x and y.
 - A finite-element display mesh carries the nodal values themselves; a meshfree one of a body
-  with a hole (the perforated strip) covers it, at about the node count.
+  with a hole (the perforated strip) covers it, through the nodes. A hole with three nodes on it
+  is too coarse for the nodes' triangles to follow: gmsh meshes that body, and says so; with
+  more nodes on it the nodes' triangles are used again.
 - Every .xmf of each run is whole (tests/cli/xdmf_frames.py's checks: one grid per time, times
   increasing, no empty grid, every DataItem's dimensions those of its HDF5 dataset); the display
   mesh is a grid of triangles whose times are those of fields.xmf.
@@ -142,6 +144,38 @@ def holed_body(meshfree, root, work):
     return out
 
 
+def sparse_hole(meshfree, root, work, spacing):
+    """The unit square with a hole of radius 0.2 in its middle: at spacing 0.5 three nodes lie on
+    the hole, the nodes' triangles would cut across it and gmsh meshes the body; at 0.25 the
+    nodes' own triangles follow it. Either covers the body up to chords of the hole."""
+    out = os.path.join(work, f"sparse_hole_{spacing}")
+    args = ["--set", f"discretisation.spacing={spacing}",
+            "--set", "geometry.holes=[{center: [0.5, 0.5], radius: 0.2, name: hole}]"]
+    r = subprocess.run([meshfree, "run", os.path.join(root, "problems", "patch_test.yaml"),
+                        "--out", out] + args, capture_output=True, text=True)
+    assert r.returncode == 0, f"sparse hole {spacing}: exit {r.returncode}\n{r.stderr[-2000:]}"
+    by_gmsh = "the nodes' triangles do not follow the boundary; gmsh meshes it" in r.stdout
+    time, x, tri, arrays = frames_of(out)[-1]
+    check_triangles(x, tri, None)
+    p = x[tri][:, :, :2]
+    covered = 0.5 * np.sum((p[:, 1, 0] - p[:, 0, 0]) * (p[:, 2, 1] - p[:, 0, 1])
+                           - (p[:, 2, 0] - p[:, 0, 0]) * (p[:, 1, 1] - p[:, 0, 1]))
+    area = 1.0 - np.pi * 0.04
+    r_min = np.min(np.hypot(x[:, 0] - 0.5, x[:, 1] - 0.5))
+    with h5py.File(os.path.join(out, "fields.h5"), "r") as f:
+        nodes = len(f["geometry/coordinates"])
+    who = "gmsh's" if by_gmsh else "the nodes'"
+    print(f"hole of radius 0.2 at spacing {spacing}: {who} triangles, {len(x)} vertices for {nodes} nodes, covering {covered / area:.4f} of the "
+          f"body")
+    assert by_gmsh == (spacing == 0.5), f"spacing {spacing}: gmsh used: {by_gmsh}"
+    assert by_gmsh or len(x) == nodes
+    # The chords of a hole cut into it: at most the hole's area less that of the inscribed
+    # triangle (three points on the circle).
+    assert 1.0 <= covered / area <= 1.0 + (np.pi - 3 * np.sqrt(3) / 4) * 0.04 / area, covered
+    assert r_min >= 0.2 - 1e-9, r_min
+    return out
+
+
 def uniaxial_bar(meshfree, root, work, label, sets):
     """Stretched to 1% (10 increments, about 8 of them plastic); every second one written."""
     out = os.path.join(work, "bar_" + label)
@@ -203,7 +237,7 @@ def main():
     with tempfile.TemporaryDirectory() as work:
         vci = "discretisation.quadrature.correction=vci"
         outs = [patch_test(meshfree, root, work, "meshfree VCI", [vci])]
-        # A refinement box: gmsh's triangles, their vertices off the node lattice.
+        # A refinement box: the graded cloud's own triangles.
         outs.append(patch_test(meshfree, root, work, "meshfree VCI refined", [
             vci, "discretisation.refinement=[{box: [[0.3, 0.3], [0.6, 0.6]], spacing: 0.05}]"]))
         for element in ("t3", "q4", "q8"):
@@ -215,6 +249,7 @@ def main():
         outs.append(uniaxial_bar(meshfree, root, work, "fem q8",
                                  ["discretisation.method=fem", "discretisation.fem.element=q8"]))
         outs.append(holed_body(meshfree, root, work))
+        outs += [sparse_hole(meshfree, root, work, spacing) for spacing in (0.5, 0.25)]
         series = []
         for out in outs:
             series += xdmf_frames.check_folder(out, [])
