@@ -57,9 +57,10 @@ public:
     flip_budget_ = 100L * n;
   }
 
-  /// Inserts point i; false when the flips did not end.
+  /// Inserts point i; false when the walk to it or the flips did not end.
   bool insert(int i) {
     const int t = locate(p_[i]);
+    if (t < 0) return false;
     split(t, i);
     return legalise();
   }
@@ -67,8 +68,8 @@ public:
   const std::vector<Triangle>& vertices() const { return v_; }
 
 private:
-  /// A triangle containing x: a walk from the last one made, across an edge x lies beyond;
-  /// should it not end, every triangle tried in turn.
+  /// A triangle containing x, by a walk from the last one made across an edge x lies beyond
+  /// (it ends in a Delaunay triangulation); -1 should it not end.
   int locate(const Vec2& x) const {
     int t = static_cast<int>(v_.size()) - 1;
     for (std::size_t steps = 0; steps < 4 * v_.size() + 16; ++steps) {
@@ -78,13 +79,7 @@ private:
       if (across < 0) return t;
       t = nb_[t][across];
     }
-    for (int s = 0; s < static_cast<int>(v_.size()); ++s) {
-      bool inside = true;
-      for (int e = 0; e < 3; ++e)
-        inside = inside && orient(p_[v_[s][(e + 1) % 3]], p_[v_[s][(e + 2) % 3]], x) >= 0.0;
-      if (inside) return s;
-    }
-    return 0; // not reached: the outer triangle holds every point
+    return -1;
   }
 
   /// Replaces the neighbour `from` of triangle t (if any) by `to`.

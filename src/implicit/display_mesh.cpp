@@ -44,9 +44,7 @@ ShapeTable identity_table(int n) {
 /// 0.6 s run), else, where those do not follow its boundary, gmsh's triangles.
 std::pair<std::vector<Vec2>, std::vector<int>> meshfree_triangles(const spec::ProblemSpec& spec,
                                                                   const GalerkinModel& m) {
-  spec::ProblemSpec t3 = spec;
-  spec::DiscretisationSpec& disc = t3.galerkin().discretisation;
-  if (!is_plain_rectangle(spec.domain, disc.refinement)) {
+  if (!is_plain_rectangle(spec.domain, spec.galerkin().discretisation.refinement)) {
     const std::vector<Vec2>& nodes = m.node_positions();
     const std::vector<geometry::Triangle> tri = geometry::body_triangles(spec.domain, nodes);
     if (!tri.empty()) {
@@ -58,6 +56,8 @@ std::pair<std::vector<Vec2>, std::vector<int>> meshfree_triangles(const spec::Pr
     }
     log::info("display mesh: the nodes' triangles do not follow the boundary; gmsh meshes it");
   }
+  spec::ProblemSpec t3 = spec;
+  spec::DiscretisationSpec& disc = t3.galerkin().discretisation;
   disc.fem.element = "t3";
   disc.fem.mesh.clear();
   fem::Mesh mesh = read_fe_mesh(t3);

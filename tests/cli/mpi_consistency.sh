@@ -81,3 +81,18 @@ for name in plate_plastic_thesis perforated_strip; do
     done
   done
 done
+# The display mesh (the nodes' triangles of the holed strip, made on rank 0) is the same on two
+# ranks: its vertices and triangles exactly, its displacement to 1e-6.
+/usr/bin/python3 - "$WORK/perforated_strip-meshfree-1" "$WORK/perforated_strip-meshfree-2" <<'EOF'
+import sys, h5py, numpy as np
+a, b = (h5py.File(f + "/display_mesh.h5", "r") for f in sys.argv[1:])
+assert np.array_equal(a["geometry/coordinates"][...], b["geometry/coordinates"][...])
+assert np.array_equal(a["geometry/cells"][...], b["geometry/cells"][...])
+steps = sorted(k for k in a if k.startswith("step_"))
+assert steps == sorted(k for k in b if k.startswith("step_")) and steps
+for k in steps:
+    u, v = a[k + "/displacement"][...], b[k + "/displacement"][...]
+    assert np.max(np.abs(u - v)) <= 1e-6 * np.max(np.abs(u)), k
+print(f"display mesh on 1 and 2 ranks: {len(a['geometry/coordinates'])} vertices, the same "
+      f"triangles, {len(steps)} frames")
+EOF

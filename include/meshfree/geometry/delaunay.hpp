@@ -16,8 +16,8 @@ using Triangle = std::array<int, 3>;
 /// 1985). Degenerate inputs (a lattice's four points on one circle, three on one line) are
 /// resolved by moving each point by a billionth of the set's size in a fixed pseudo-random
 /// direction for the tests only, so that the result is one triangulation of the points as given;
-/// triangles of no area (collinear points) are left out. Empty if the flips do not end (not
-/// seen: a bound of 100 flips a point).
+/// triangles of no area (collinear points) are left out. Empty if the walk to a point or the
+/// flips do not end (not seen: bounds of four walk steps a triangle and 100 flips a point).
 std::vector<Triangle> delaunay(const std::vector<Vec2>& x);
 
 /// The triangles of delaunay(x) whose centroid lies in `domain`, for points x of the body that
