@@ -71,6 +71,9 @@ void ElastoplasticSystem::commit() {
   states_.committed = states_.trial;
   states_.committed_stress = states_.stress;
   states_.committed_stress_zz = states_.stress_zz;
+  states_.committed_tangent = states_.tangent;
+  states_.committed_plastic = states_.plastic;
+  committed_d_ = states_valid_ ? states_d_ : std::vector<double>{};
 }
 
 void ElastoplasticSystem::start_from(std::vector<materials::J2State> history) {
@@ -79,6 +82,7 @@ void ElastoplasticSystem::start_from(std::vector<materials::J2State> history) {
   states_.committed = std::move(history);
   states_.trial = states_.committed;
   states_valid_ = false;
+  committed_d_.clear();
 }
 
 void ElastoplasticSystem::residual(const std::vector<double>& d, double* r,
@@ -144,6 +148,16 @@ std::vector<int> ElastoplasticSystem::needed_nodes() const {
 
 void ElastoplasticSystem::update_materials(const std::vector<double>& d) {
   if (states_valid_ && d == states_d_) return;
+  if (d == committed_d_) {
+    states_.trial = states_.committed;
+    states_.stress = states_.committed_stress;
+    states_.stress_zz = states_.committed_stress_zz;
+    states_.tangent = states_.committed_tangent;
+    states_.plastic = states_.committed_plastic;
+    states_d_ = d;
+    states_valid_ = true;
+    return;
+  }
   const ShapeTable& t = m_.domain_table;
   const int n = t.rows();
   int failed = n;

@@ -2,6 +2,7 @@
 #include "meshfree/core/error.hpp"
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace mf::materials {
 
@@ -35,49 +36,41 @@ Vec6 engineering(const Vec6& t) {
   return e;
 }
 
-struct Yield {
-  double operator()(const PerfectPlastic&) const { return s0; }
-  double operator()(const LinearHardening& h) const { return s0 + h.H * a; }
-  double operator()(const VoceHardening& h) const {
-    return s0 + h.H * a + (h.sigma_inf - s0) * (1.0 - std::exp(-h.delta * a));
+/// The uniaxial yield stress sigma_y(alpha) and its slope, together (Voce: one exponential).
+struct YieldCurve {
+  using Point = std::pair<double, double>;
+  Point operator()(const PerfectPlastic&) const { return {s0, 0.0}; }
+  Point operator()(const LinearHardening& h) const { return {s0 + h.H * a, h.H}; }
+  Point operator()(const VoceHardening& h) const {
+    const double decay = std::exp(-h.delta * a);
+    return {s0 + h.H * a + (h.sigma_inf - s0) * (1.0 - decay),
+            h.H + (h.sigma_inf - s0) * h.delta * decay};
   }
-  double operator()(const SwiftHardening& h) const { return h.K * std::pow(h.eps0 + a, h.n); }
-  double operator()(const TableHardening& h) const {
+  Point operator()(const SwiftHardening& h) const {
+    return {h.K * std::pow(h.eps0 + a, h.n), h.n * h.K * std::pow(h.eps0 + a, h.n - 1.0)};
+  }
+  Point operator()(const TableHardening& h) const {
     const std::size_t n = h.alpha.size();
     std::size_t k = std::upper_bound(h.alpha.begin(), h.alpha.end(), a) - h.alpha.begin();
     k = std::clamp<std::size_t>(k, 1, n - 1);
     const double slope = (h.sigma[k] - h.sigma[k - 1]) / (h.alpha[k] - h.alpha[k - 1]);
-    return h.sigma[k - 1] + slope * (a - h.alpha[k - 1]);
+    return {h.sigma[k - 1] + slope * (a - h.alpha[k - 1]), slope};
   }
   double s0, a;
 };
 
-struct Slope {
-  double operator()(const PerfectPlastic&) const { return 0.0; }
-  double operator()(const LinearHardening& h) const { return h.H; }
-  double operator()(const VoceHardening& h) const {
-    return h.H + (h.sigma_inf - s0) * h.delta * std::exp(-h.delta * a);
-  }
-  double operator()(const SwiftHardening& h) const {
-    return h.n * h.K * std::pow(h.eps0 + a, h.n - 1.0);
-  }
-  double operator()(const TableHardening& h) const {
-    const std::size_t n = h.alpha.size();
-    std::size_t k = std::upper_bound(h.alpha.begin(), h.alpha.end(), a) - h.alpha.begin();
-    k = std::clamp<std::size_t>(k, 1, n - 1);
-    return (h.sigma[k] - h.sigma[k - 1]) / (h.alpha[k] - h.alpha[k - 1]);
-  }
-  double s0, a;
-};
+std::pair<double, double> yield_curve(const J2Parameters& p, double alpha) {
+  return std::visit(YieldCurve{p.sigma0, alpha}, p.hardening);
+}
 
 } // namespace
 
 double yield_stress(const J2Parameters& p, double alpha) {
-  return std::visit(Yield{p.sigma0, alpha}, p.hardening);
+  return yield_curve(p, alpha).first;
 }
 
 double yield_slope(const J2Parameters& p, double alpha) {
-  return std::visit(Slope{p.sigma0, alpha}, p.hardening);
+  return yield_curve(p, alpha).second;
 }
 
 double von_mises_3d(const Vec6& s) {
@@ -102,9 +95,10 @@ J2Return j2_radial_return(const J2Parameters& p, const Vec6& s_trial, const Vec6
   double dgamma = 0.0;
   for (int it = 0;; ++it) {
     const double a = alpha + kSqrt23 * dgamma;
-    const double g = xi_norm - 2.0 * mu * dgamma - 2.0 / 3.0 * p.H_kinematic * dgamma -
-                     kSqrt23 * yield_stress(p, a);
-    const double dg = -2.0 * mu * (1.0 + (yield_slope(p, a) + p.H_kinematic) / (3.0 * mu));
+    const auto [sy, slope] = yield_curve(p, a);
+    const double g =
+        xi_norm - 2.0 * mu * dgamma - 2.0 / 3.0 * p.H_kinematic * dgamma - kSqrt23 * sy;
+    const double dg = -2.0 * mu * (1.0 + (slope + p.H_kinematic) / (3.0 * mu));
     const double step = -g / dg;
     dgamma += step;
     if (std::abs(step) <= 1e-15 * std::max(dgamma, 1e-300) || std::abs(g) <= 1e-13 * xi_norm) break;
@@ -188,31 +182,124 @@ J2Result2D j2_update_plane_strain(const J2Parameters& p, const Vec3& strain,
   return reduce(j2_update_3d(p, embed(strain, 0.0), committed), 0.0);
 }
 
+namespace {
+
+/// The plane-stress return in the eigenbasis shared by the projection P (s : s = sigma^T P sigma,
+/// P = [2 -1 0; -1 2 0; 0 0 6] / 3) and the plane-stress elasticity C: the vectors (1, 1, 0) / sqrt
+/// 2, (1, -1, 0) / sqrt 2 and (0, 0, 1), with eigenvalues p = (1/3, 1, 2) of P and c = (E / (1 -
+/// nu), 2 mu, mu) of C (engineering shear).
+struct PlaneStressBasis {
+  Vec3 p, c;
+  explicit PlaneStressBasis(const J2Parameters& m) {
+    const double mu = m.E / (2.0 * (1.0 + m.nu));
+    p = Vec3(1.0 / 3.0, 1.0, 2.0);
+    c = Vec3(m.E / (1.0 - m.nu), 2.0 * mu, mu);
+  }
+  static Vec3 to(const Vec3& v) { // components on the eigenvectors
+    return Vec3((v(0) + v(1)) / std::sqrt(2.0), (v(0) - v(1)) / std::sqrt(2.0), v(2));
+  }
+  static Mat3 from_diagonal(const Vec3& d) { // Q diag(d) Q^T
+    Mat3 m = Mat3::Zero();
+    m(0, 0) = m(1, 1) = 0.5 * (d(0) + d(1));
+    m(0, 1) = m(1, 0) = 0.5 * (d(0) - d(1));
+    m(2, 2) = d(2);
+    return m;
+  }
+};
+
+const Mat3& projection() {
+  static const Mat3 P = (Mat3() << 2.0, -1.0, 0.0, -1.0, 2.0, 0.0, 0.0, 0.0, 6.0).finished() / 3.0;
+  return P;
+}
+
+} // namespace
+
 J2Result2D j2_update_plane_stress(const J2Parameters& p, const Vec3& strain,
                                   const J2State& committed) {
-  // Start from the elastic plane-stress guess for eps_zz (plastic flow is isochoric).
+  // The plane-stress projected return ([Simo & Taylor 1986]; [de Souza Neto, Peric & Owen 2008]
+  // ch. 9), with linear kinematic hardening: eta = sigma - b is the stress relative to the plane
+  // stress b whose deviator is the back stress beta, and with lambda = dgamma / |dev eta| the
+  // backward-Euler step is
+  //   sigma = C (eps - eps_p,n - lambda P eta),   b = b_n + (2/3) Hk lambda eta,
+  //   eta_i = eta_trial,i / (1 + lambda (c_i p_i + (2/3) Hk))   (in the eigenbasis),
+  //   F(lambda) = xi2 / 2 - sigma_y(alpha_n + sqrt(2/3) lambda sqrt(xi2))^2 / 3 = 0,
+  // xi2 = eta^T P eta = |dev eta|^2; the same solution as the 3D return with sigma_zz = 0.
+  const PlaneStressBasis e(p);
+  const Mat3& P = projection();
   const Vec6& ep = committed.plastic_strain;
-  double ezz = ep(2) - p.nu / (1.0 - p.nu) * ((strain(0) - ep(0)) + (strain(1) - ep(1)));
-  J2Result3D r3;
-  const double scale = std::max(p.sigma0, yield_stress(p, committed.alpha));
-  // Newton on eps_zz: quadratic until sigma_zz reaches the round-off of the 3D return (about
-  // 1e-15 of the stress, times the conditioning of the plastic tangent); it stops there, or when
-  // the correction no longer changes eps_zz.
-  const double strain_size = std::max(strain.cwiseAbs().maxCoeff(), std::abs(ezz));
+  const Vec6& beta = committed.back_stress;
+  const Vec3 elastic_strain(strain(0) - ep(0), strain(1) - ep(1), strain(2) - ep(5));
+  const Mat3 C = PlaneStressBasis::from_diagonal(e.c);
+  const Vec3 sigma_trial = C * elastic_strain;
+  const Vec3 b_n(beta(0) - beta(2), beta(1) - beta(2), beta(5));
+  const Vec3 eta_trial = sigma_trial - b_n;
+  const double xi2_trial = eta_trial.dot(P * eta_trial);
+
+  J2Result2D r;
+  r.state = committed;
+  r.stress = sigma_trial;
+  r.tangent = C;
+  r.strain_zz = ep(2) - p.nu / p.E * (sigma_trial(0) + sigma_trial(1));
+  if (std::sqrt(xi2_trial) - kSqrt23 * yield_stress(p, committed.alpha) <= 0.0 || xi2_trial == 0.0)
+    return r;
+
+  // Newton on F(lambda) from the elastic end; F decreases from F(0) > 0.
+  const Vec3 t = PlaneStressBasis::to(eta_trial);
+  const Vec3 w2 = e.p.cwiseProduct(t.cwiseProduct(t)); // p_i eta_trial,i^2
+  const Vec3 rate = (e.c.cwiseProduct(e.p).array() + 2.0 / 3.0 * p.H_kinematic).matrix();
+  double lambda = 0.0, xi2 = xi2_trial, alpha = committed.alpha;
   for (int it = 0;; ++it) {
-    r3 = j2_update_3d(p, embed(strain, ezz), committed);
-    if (std::abs(r3.stress(2)) <= 1e-12 * scale) break;
-    const double step = r3.stress(2) / r3.tangent(2, 2);
-    if (std::abs(step) <= 1e-15 * strain_size && std::abs(r3.stress(2)) <= 1e-8 * scale) break;
+    const Vec3 d = (1.0 + lambda * rate.array()).matrix();
+    xi2 = (w2.array() / d.array().square()).sum();
+    const double dxi2 = (-2.0 * w2.array() * rate.array() / d.array().cube()).sum();
+    const double xi = std::sqrt(xi2);
+    alpha = committed.alpha + kSqrt23 * lambda * xi;
+    const auto [sy, slope] = yield_curve(p, alpha);
+    const double F = 0.5 * xi2 - sy * sy / 3.0;
+    const double dalpha = kSqrt23 * (xi + lambda * dxi2 / (2.0 * xi));
+    const double dF = 0.5 * dxi2 - 2.0 / 3.0 * sy * slope * dalpha;
+    const double step = -F / dF;
+    lambda = std::max(lambda + step, 0.0);
+    if (std::abs(step) <= 1e-15 * std::max(lambda, 1e-300) || std::abs(F) <= 1e-13 * xi2_trial)
+      break;
     if (it == 50)
-      fail("plane-stress return did not converge in 50 iterations (sigma_zz = ", r3.stress(2), ")");
-    ezz -= step;
+      fail("plane-stress return did not converge in 50 iterations (residual ", F,
+           ", trial |dev eta|^2 ", xi2_trial, ")");
   }
-  J2Result2D r = reduce(r3, ezz);
-  // Static condensation of sigma_zz = 0: d eps_zz = -C_zp d eps_p / C_zz.
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b)
-      r.tangent(a, b) -= r3.tangent(kPlane[a], 2) * r3.tangent(2, kPlane[b]) / r3.tangent(2, 2);
+  const Vec3 d = (1.0 + lambda * rate.array()).matrix();
+  xi2 = (w2.array() / d.array().square()).sum();
+  const double xi = std::sqrt(xi2);
+  alpha = committed.alpha + kSqrt23 * lambda * xi;
+  const double k = 1.0 + 2.0 / 3.0 * p.H_kinematic * lambda;
+  const Vec3 eta = PlaneStressBasis::from_diagonal((1.0 / d.array()).matrix()) * eta_trial;
+  const Vec3 dep = lambda * (P * eta); // plastic strain increment, engineering shear
+  r.plastic = true;
+  r.stress = sigma_trial - C * dep;
+  r.strain_zz = ep(2) - lambda * (eta(0) + eta(1)) / 3.0 - p.nu / p.E * (r.stress(0) + r.stress(1));
+  r.state.alpha = alpha;
+  r.state.plastic_strain(0) += dep(0);
+  r.state.plastic_strain(1) += dep(1);
+  r.state.plastic_strain(2) -= lambda * (eta(0) + eta(1)) / 3.0;
+  r.state.plastic_strain(5) += dep(2);
+  // beta += (2/3) Hk lambda dev(eta), dev(eta) of the plane stress eta (eta_zz = 0).
+  const double kin = 2.0 / 3.0 * p.H_kinematic * lambda;
+  r.state.back_stress(0) += kin * (2.0 * eta(0) - eta(1)) / 3.0;
+  r.state.back_stress(1) += kin * (2.0 * eta(1) - eta(0)) / 3.0;
+  r.state.back_stress(2) -= kin * (eta(0) + eta(1)) / 3.0;
+  r.state.back_stress(5) += kin * eta(2);
+
+  // Consistent tangent: Xi = [C^-1 + (lambda / k) P]^-1 and
+  // D = Xi - (Xi P eta)(Xi P eta)^T / (k^2 B / A + (2/3) Hk k xi2 + eta^T P Xi P eta), with
+  // A = 1 - (2/3)^(3/2) sigma_y sigma_y' lambda / xi and B = (2/3)^(3/2) sigma_y sigma_y' xi
+  // (the linearised consistency condition; Hk = 0 gives the book's beta_bar = B / A).
+  const Vec3 xi_diag = (e.c.array() / (1.0 + lambda / k * e.c.array() * e.p.array())).matrix();
+  const Mat3 Xi = PlaneStressBasis::from_diagonal(xi_diag);
+  const Vec3 n = Xi * (P * eta);
+  const auto [sy, slope] = yield_curve(p, alpha);
+  const double hs = std::pow(2.0 / 3.0, 1.5) * sy * slope;
+  const double A = 1.0 - hs * lambda / xi, B = hs * xi;
+  const double denominator = k * k * B / A + 2.0 / 3.0 * p.H_kinematic * k * xi2 + eta.dot(P * n);
+  r.tangent = Xi - n * n.transpose() / denominator;
   return r;
 }
 

@@ -30,10 +30,13 @@ struct PointStates {
   std::vector<double> stress_zz;           // trial
   std::vector<Mat3> tangent;               // trial, algorithmic
   std::vector<char> plastic;               // trial
+  std::vector<Mat3> committed_tangent;     // the tangent of the converged increment
+  std::vector<char> committed_plastic;     // and whether each point was yielding in it
 
   explicit PointStates(std::size_t n)
       : committed(n), trial(n), committed_stress(n, Vec3::Zero()), committed_stress_zz(n, 0.0),
-        stress(n, Vec3::Zero()), stress_zz(n, 0.0), tangent(n, Mat3::Zero()), plastic(n, 0) {}
+        stress(n, Vec3::Zero()), stress_zz(n, 0.0), tangent(n, Mat3::Zero()), plastic(n, 0),
+        committed_tangent(n, Mat3::Zero()), committed_plastic(n, 0) {}
 };
 
 class ElastoplasticSystem : public IncrementalSystem {
@@ -54,7 +57,9 @@ public:
   /// response at the converged d stays valid: its stress is what the new history gives there
   /// too, and its tangent, the consistent tangent of the converged increment, is the predictor
   /// for the next one. Recomputed from the new history, every plastic point would sit exactly on
-  /// its yield surface and round-off would choose between the elastic and the plastic tangent.
+  /// its yield surface and round-off would choose between the elastic and the plastic tangent;
+  /// so the response is kept, and taken back whenever d returns to the converged d (a solve
+  /// repeated from the increment's start).
   void commit() override;
 
   /// Starts from a history carried here from another model of the body (a refined cloud): it
@@ -99,12 +104,16 @@ public:
       states_.trial = states_.committed;
       states_.stress = states_.committed_stress;
       states_.stress_zz = states_.committed_stress_zz;
+      states_.committed_tangent = states_.tangent;
+      states_.committed_plastic = states_.plastic;
+      committed_d_ = states_valid_ ? states_d_ : std::vector<double>{};
     }
   }
 
 private:
   /// Return mapping at every point from the committed history and the strain of d. Skipped when
-  /// d is the one the trial states already belong to (SNES asks for R and then J at one point).
+  /// d is the one the trial states already belong to (SNES asks for R and then J at one point),
+  /// and the committed response taken back when d is the converged d of the last increment.
   void update_materials(const std::vector<double>& d);
 
   const spec::ProblemSpec& spec_;
@@ -119,7 +128,8 @@ private:
   std::vector<double> factors_;
   std::vector<double> states_d_;
   bool states_valid_ = false;
-  std::vector<double> imbalance_; // see hold_imbalance
+  std::vector<double> committed_d_; // the d of the committed response; empty if not known
+  std::vector<double> imbalance_;   // see hold_imbalance
   double share_ = 0.0;
   double residual_seconds_ = 0.0, jacobian_seconds_ = 0.0;
 };

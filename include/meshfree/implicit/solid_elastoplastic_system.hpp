@@ -19,9 +19,12 @@ struct SolidPointStates {
   std::vector<Vec6> committed_stress, stress; // stress of the committed history, and trial
   std::vector<Mat6> tangent;                  // trial, algorithmic
   std::vector<char> plastic;                  // trial
+  std::vector<Mat6> committed_tangent;        // the tangent of the converged increment
+  std::vector<char> committed_plastic;        // and whether each point was yielding in it
   explicit SolidPointStates(std::size_t n)
       : committed(n), trial(n), committed_stress(n, Vec6::Zero()), stress(n, Vec6::Zero()),
-        tangent(n, Mat6::Zero()), plastic(n, 0) {}
+        tangent(n, Mat6::Zero()), plastic(n, 0), committed_tangent(n, Mat6::Zero()),
+        committed_plastic(n, 0) {}
 };
 
 /// The J2 parameters of the body's material; a material without plasticity (an elastic preload
@@ -35,7 +38,8 @@ public:
   void set_factors(const std::vector<double>& f) override { factors_ = f; }
   const std::vector<double>& factors() const { return factors_; }
   /// The trial history and stress become the committed ones; the tangent of the converged
-  /// increment stays as the predictor of the next (as in ElastoplasticSystem::commit).
+  /// increment stays as the predictor of the next, and is taken back whenever d returns to the
+  /// converged d (as in ElastoplasticSystem::commit).
   void commit() override;
   const SolidPointStates& states() const { return states_; }
   /// R(d) on the owned rows, and this rank's shares of |F|^2 and of the round-off floor of |R|^2.
@@ -58,6 +62,7 @@ private:
   std::vector<char> counts_in_scale_;      // tractions and body force, not penalty right-hand sides
   std::vector<double> factors_, states_d_;
   bool states_valid_ = false;
+  std::vector<double> committed_d_; // the d of the committed response; empty if not known
 };
 
 } // namespace mf::implicit

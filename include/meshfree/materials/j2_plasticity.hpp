@@ -7,10 +7,12 @@
 //    Taylor 1985), with a local Newton iteration on the consistency parameter for nonlinear
 //    isotropic hardening.
 //  - Plane strain: the 3D update with eps_zz = 0.
-//  - Plane stress: the 3D update with a Newton iteration on eps_zz until sigma_zz = 0, and the
-//    tangent condensed exactly: C_ps = C_pp - C_pz C_zp / C_zz (the "strain iteration" form of
-//    the plane-stress return; it is the same backward-Euler solution as Simo & Taylor's
-//    projected return, and it carries kinematic hardening without approximation).
+//  - Plane stress: the projected return (Simo & Taylor 1986; de Souza Neto, Peric & Owen 2008,
+//    ch. 9) with linear kinematic hardening: one scalar Newton iteration on the plastic
+//    multiplier in the eigenbasis shared by the projection onto the deviator and the
+//    plane-stress elasticity, and its consistent tangent. It is the 3D backward-Euler step with
+//    sigma_zz = 0 (the tests hold it to the 3D update at its eps_zz), with one scalar iteration
+//    where iterating the 3D update on eps_zz nests one inside another.
 //
 // Voigt order 3D [xx, yy, zz, yz, xz, xy], 2D [xx, yy, xy]; engineering shear strains.
 #include "meshfree/core/types.hpp"

@@ -1,6 +1,7 @@
 // J2 plasticity as pure functions: the algorithmic tangent against a finite-difference tangent of
 // the stress update, the returned stress on the yield surface, plane stress keeping szz = 0, and
-// uniaxial and shear paths against their closed-form answers, for every hardening law.
+// uniaxial and shear paths against their closed-form answers, for every hardening law; the
+// plane-stress return against the 3D return at its eps_zz.
 #include "meshfree/materials/j2_plasticity.hpp"
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -147,6 +148,46 @@ TEST_CASE("a plastic step returns the stress to the yield surface", "[materials]
     const double f2 = von_mises_3d(xi2) - yield_stress(law.p, ps.state.alpha);
     CHECK(std::abs(f2) <= 1e-10 * yield_stress(law.p, ps.state.alpha));
     CHECK(std::abs(ps.stress_zz) <= 1e-10 * law.p.sigma0);
+  }
+}
+
+TEST_CASE("the plane-stress return is the 3D return at its eps_zz, along a path that reverses",
+          "[materials]") {
+  // The projected plane-stress return and the 3D radial return are two algorithms for the same
+  // backward-Euler step: the 3D update at the plane-stress eps_zz must give sigma_zz = 0, the same
+  // in-plane stress and the same history, and its tangent condensed on sigma_zz = 0 the same
+  // plane-stress tangent. The path loads, turns and reverses, with increments large and small.
+  const std::vector<Vec3> path = {{2e-3, -0.5e-3, 1e-3},     {4e-3, -1e-3, 3e-3},
+                                  {4.1e-3, -0.9e-3, 3.2e-3}, {1e-3, 2e-3, 4e-3},
+                                  {-3e-3, 1e-3, -2e-3},      {-6e-3, -4e-3, 1e-3}};
+  for (const Law& law : laws()) {
+    J2State ps, s3;
+    int plastic_steps = 0;
+    for (const Vec3& e : path) {
+      const J2Result2D r = j2_update_plane_stress(law.p, e, ps);
+      Vec6 e3;
+      e3 << e(0), e(1), r.strain_zz, 0.0, 0.0, e(2);
+      const J2Result3D q = j2_update_3d(law.p, e3, s3);
+      const double scale = yield_stress(law.p, q.state.alpha);
+      INFO(law.name << " at " << e.transpose() << ": sigma_zz " << q.stress(2));
+      CHECK(std::abs(q.stress(2)) <= 1e-9 * scale);
+      for (int a = 0; a < 3; ++a)
+        CHECK(std::abs(r.stress(a) - q.stress(kPlane[a])) <= 1e-9 * scale);
+      CHECK(r.plastic == q.plastic);
+      CHECK(std::abs(r.state.alpha - q.state.alpha) <= 1e-12);
+      CHECK((r.state.plastic_strain - q.state.plastic_strain).cwiseAbs().maxCoeff() <= 1e-12);
+      CHECK((r.state.back_stress - q.state.back_stress).cwiseAbs().maxCoeff() <= 1e-9 * scale);
+      Mat3 condensed;
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+          condensed(a, b) = q.tangent(kPlane[a], kPlane[b]) -
+                            q.tangent(kPlane[a], 2) * q.tangent(2, kPlane[b]) / q.tangent(2, 2);
+      CHECK((r.tangent - condensed).cwiseAbs().maxCoeff() <= 1e-9 * law.p.E);
+      plastic_steps += r.plastic;
+      ps = r.state;
+      s3 = q.state;
+    }
+    CHECK(plastic_steps >= 3);
   }
 }
 
