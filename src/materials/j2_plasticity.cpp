@@ -212,6 +212,58 @@ const Mat3& projection() {
   return P;
 }
 
+/// xi2(lambda) = |dev eta|^2 = sum_i p_i eta_trial,i^2 / d_i^2 with d_i = 1 + lambda (c_i p_i +
+/// (2/3) Hk), in the eigenbasis, and its derivative.
+struct ProjectedTrial {
+  Vec3 w2;   // p_i eta_trial,i^2
+  Vec3 rate; // c_i p_i + (2/3) Hk
+  Vec3 d(double lambda) const { return (1.0 + lambda * rate.array()).matrix(); }
+  double xi2(double lambda) const { return (w2.array() / d(lambda).array().square()).sum(); }
+  double dxi2(double lambda) const {
+    return (-2.0 * w2.array() * rate.array() / d(lambda).array().cube()).sum();
+  }
+};
+
+/// The lambda of F(lambda) = xi2 / 2 - sigma_y(alpha_n + sqrt(2/3) lambda sqrt(xi2))^2 / 3 = 0,
+/// by Newton from the elastic end (F decreases from F(0) > 0).
+double plastic_multiplier(const J2Parameters& p, const ProjectedTrial& t, double alpha_n) {
+  const double xi2_trial = t.xi2(0.0);
+  double lambda = 0.0;
+  for (int it = 0;; ++it) {
+    const double xi2 = t.xi2(lambda), dxi2 = t.dxi2(lambda), xi = std::sqrt(xi2);
+    const auto [sy, slope] = yield_curve(p, alpha_n + kSqrt23 * lambda * xi);
+    const double F = 0.5 * xi2 - sy * sy / 3.0;
+    const double dalpha = kSqrt23 * (xi + lambda * dxi2 / (2.0 * xi));
+    const double step = -F / (0.5 * dxi2 - 2.0 / 3.0 * sy * slope * dalpha);
+    lambda = std::max(lambda + step, 0.0);
+    if (std::abs(step) <= 1e-15 * std::max(lambda, 1e-300) || std::abs(F) <= 1e-13 * xi2_trial)
+      return lambda;
+    if (it == 50)
+      fail("plane-stress return did not converge in 50 iterations (residual ", F,
+           ", trial |dev eta|^2 ", xi2_trial, ")");
+  }
+}
+
+/// The consistent tangent of the projected return: Xi = [C^-1 + (lambda / k) P]^-1 and
+/// D = Xi - (Xi P eta)(Xi P eta)^T / (k^2 B / A + (2/3) Hk k xi2 + eta^T P Xi P eta), with
+/// k = 1 + (2/3) Hk lambda, A = 1 - (2/3)^(3/2) sigma_y sigma_y' lambda / xi and
+/// B = (2/3)^(3/2) sigma_y sigma_y' xi (the linearised consistency condition; Hk = 0 gives the
+/// book's beta_bar = B / A).
+Mat3 projected_tangent(const J2Parameters& p, const PlaneStressBasis& e, const Vec3& eta,
+                       double lambda, double alpha) {
+  const Mat3& P = projection();
+  const double k = 1.0 + 2.0 / 3.0 * p.H_kinematic * lambda;
+  const double xi2 = eta.dot(P * eta), xi = std::sqrt(xi2);
+  const Vec3 xi_diag = (e.c.array() / (1.0 + lambda / k * e.c.array() * e.p.array())).matrix();
+  const Mat3 Xi = PlaneStressBasis::from_diagonal(xi_diag);
+  const Vec3 n = Xi * (P * eta);
+  const auto [sy, slope] = yield_curve(p, alpha);
+  const double hs = std::pow(2.0 / 3.0, 1.5) * sy * slope;
+  const double A = 1.0 - hs * lambda / xi, B = hs * xi;
+  const double denominator = k * k * B / A + 2.0 / 3.0 * p.H_kinematic * k * xi2 + eta.dot(P * n);
+  return Xi - n * n.transpose() / denominator;
+}
+
 } // namespace
 
 J2Result2D j2_update_plane_stress(const J2Parameters& p, const Vec3& strain,
@@ -222,8 +274,8 @@ J2Result2D j2_update_plane_stress(const J2Parameters& p, const Vec3& strain,
   // backward-Euler step is
   //   sigma = C (eps - eps_p,n - lambda P eta),   b = b_n + (2/3) Hk lambda eta,
   //   eta_i = eta_trial,i / (1 + lambda (c_i p_i + (2/3) Hk))   (in the eigenbasis),
-  //   F(lambda) = xi2 / 2 - sigma_y(alpha_n + sqrt(2/3) lambda sqrt(xi2))^2 / 3 = 0,
-  // xi2 = eta^T P eta = |dev eta|^2; the same solution as the 3D return with sigma_zz = 0.
+  // lambda from F(lambda) = 0 (plastic_multiplier); the same solution as the 3D return with
+  // sigma_zz = 0.
   const PlaneStressBasis e(p);
   const Mat3& P = projection();
   const Vec6& ep = committed.plastic_strain;
@@ -243,43 +295,23 @@ J2Result2D j2_update_plane_stress(const J2Parameters& p, const Vec3& strain,
   if (std::sqrt(xi2_trial) - kSqrt23 * yield_stress(p, committed.alpha) <= 0.0 || xi2_trial == 0.0)
     return r;
 
-  // Newton on F(lambda) from the elastic end; F decreases from F(0) > 0.
   const Vec3 t = PlaneStressBasis::to(eta_trial);
-  const Vec3 w2 = e.p.cwiseProduct(t.cwiseProduct(t)); // p_i eta_trial,i^2
-  const Vec3 rate = (e.c.cwiseProduct(e.p).array() + 2.0 / 3.0 * p.H_kinematic).matrix();
-  double lambda = 0.0, xi2 = xi2_trial, alpha = committed.alpha;
-  for (int it = 0;; ++it) {
-    const Vec3 d = (1.0 + lambda * rate.array()).matrix();
-    xi2 = (w2.array() / d.array().square()).sum();
-    const double dxi2 = (-2.0 * w2.array() * rate.array() / d.array().cube()).sum();
-    const double xi = std::sqrt(xi2);
-    alpha = committed.alpha + kSqrt23 * lambda * xi;
-    const auto [sy, slope] = yield_curve(p, alpha);
-    const double F = 0.5 * xi2 - sy * sy / 3.0;
-    const double dalpha = kSqrt23 * (xi + lambda * dxi2 / (2.0 * xi));
-    const double dF = 0.5 * dxi2 - 2.0 / 3.0 * sy * slope * dalpha;
-    const double step = -F / dF;
-    lambda = std::max(lambda + step, 0.0);
-    if (std::abs(step) <= 1e-15 * std::max(lambda, 1e-300) || std::abs(F) <= 1e-13 * xi2_trial)
-      break;
-    if (it == 50)
-      fail("plane-stress return did not converge in 50 iterations (residual ", F,
-           ", trial |dev eta|^2 ", xi2_trial, ")");
-  }
-  const Vec3 d = (1.0 + lambda * rate.array()).matrix();
-  xi2 = (w2.array() / d.array().square()).sum();
-  const double xi = std::sqrt(xi2);
-  alpha = committed.alpha + kSqrt23 * lambda * xi;
-  const double k = 1.0 + 2.0 / 3.0 * p.H_kinematic * lambda;
-  const Vec3 eta = PlaneStressBasis::from_diagonal((1.0 / d.array()).matrix()) * eta_trial;
+  const ProjectedTrial trial{e.p.cwiseProduct(t.cwiseProduct(t)),
+                             (e.c.cwiseProduct(e.p).array() + 2.0 / 3.0 * p.H_kinematic).matrix()};
+  const double lambda = plastic_multiplier(p, trial, committed.alpha);
+  const double alpha = committed.alpha + kSqrt23 * lambda * std::sqrt(trial.xi2(lambda));
+  const Vec3 eta =
+      PlaneStressBasis::from_diagonal((1.0 / trial.d(lambda).array()).matrix()) * eta_trial;
   const Vec3 dep = lambda * (P * eta); // plastic strain increment, engineering shear
+  const double dep_zz = -lambda * (eta(0) + eta(1)) / 3.0;
   r.plastic = true;
   r.stress = sigma_trial - C * dep;
-  r.strain_zz = ep(2) - lambda * (eta(0) + eta(1)) / 3.0 - p.nu / p.E * (r.stress(0) + r.stress(1));
+  r.strain_zz = ep(2) + dep_zz - p.nu / p.E * (r.stress(0) + r.stress(1));
+  r.tangent = projected_tangent(p, e, eta, lambda, alpha);
   r.state.alpha = alpha;
   r.state.plastic_strain(0) += dep(0);
   r.state.plastic_strain(1) += dep(1);
-  r.state.plastic_strain(2) -= lambda * (eta(0) + eta(1)) / 3.0;
+  r.state.plastic_strain(2) += dep_zz;
   r.state.plastic_strain(5) += dep(2);
   // beta += (2/3) Hk lambda dev(eta), dev(eta) of the plane stress eta (eta_zz = 0).
   const double kin = 2.0 / 3.0 * p.H_kinematic * lambda;
@@ -287,19 +319,6 @@ J2Result2D j2_update_plane_stress(const J2Parameters& p, const Vec3& strain,
   r.state.back_stress(1) += kin * (2.0 * eta(1) - eta(0)) / 3.0;
   r.state.back_stress(2) -= kin * (eta(0) + eta(1)) / 3.0;
   r.state.back_stress(5) += kin * eta(2);
-
-  // Consistent tangent: Xi = [C^-1 + (lambda / k) P]^-1 and
-  // D = Xi - (Xi P eta)(Xi P eta)^T / (k^2 B / A + (2/3) Hk k xi2 + eta^T P Xi P eta), with
-  // A = 1 - (2/3)^(3/2) sigma_y sigma_y' lambda / xi and B = (2/3)^(3/2) sigma_y sigma_y' xi
-  // (the linearised consistency condition; Hk = 0 gives the book's beta_bar = B / A).
-  const Vec3 xi_diag = (e.c.array() / (1.0 + lambda / k * e.c.array() * e.p.array())).matrix();
-  const Mat3 Xi = PlaneStressBasis::from_diagonal(xi_diag);
-  const Vec3 n = Xi * (P * eta);
-  const auto [sy, slope] = yield_curve(p, alpha);
-  const double hs = std::pow(2.0 / 3.0, 1.5) * sy * slope;
-  const double A = 1.0 - hs * lambda / xi, B = hs * xi;
-  const double denominator = k * k * B / A + 2.0 / 3.0 * p.H_kinematic * k * xi2 + eta.dot(P * n);
-  r.tangent = Xi - n * n.transpose() / denominator;
   return r;
 }
 
