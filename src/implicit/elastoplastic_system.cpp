@@ -68,11 +68,7 @@ ElastoplasticSystem::ElastoplasticSystem(const spec::ProblemSpec& spec, const Ga
 }
 
 void ElastoplasticSystem::commit() {
-  states_.committed = states_.trial;
-  states_.committed_stress = states_.stress;
-  states_.committed_stress_zz = states_.stress_zz;
-  states_.committed_tangent = states_.tangent;
-  states_.committed_plastic = states_.plastic;
+  states_.commit();
   committed_d_ = states_valid_ ? states_d_ : std::vector<double>{};
 }
 
@@ -149,11 +145,7 @@ std::vector<int> ElastoplasticSystem::needed_nodes() const {
 void ElastoplasticSystem::update_materials(const std::vector<double>& d) {
   if (states_valid_ && d == states_d_) return;
   if (d == committed_d_) {
-    states_.trial = states_.committed;
-    states_.stress = states_.committed_stress;
-    states_.stress_zz = states_.committed_stress_zz;
-    states_.tangent = states_.committed_tangent;
-    states_.plastic = states_.committed_plastic;
+    states_.take_back();
     states_d_ = d;
     states_valid_ = true;
     return;

@@ -83,10 +83,7 @@ SolidElastoplasticSystem::SolidElastoplasticSystem(const spec::ProblemSpec& spec
 }
 
 void SolidElastoplasticSystem::commit() {
-  states_.committed = states_.trial;
-  states_.committed_stress = states_.stress;
-  states_.committed_tangent = states_.tangent;
-  states_.committed_plastic = states_.plastic;
+  states_.commit();
   committed_d_ = states_valid_ ? states_d_ : std::vector<double>{};
 }
 
@@ -136,10 +133,7 @@ std::vector<int> SolidElastoplasticSystem::needed_nodes() const {
 void SolidElastoplasticSystem::update_materials(const std::vector<double>& d) {
   if (states_valid_ && d == states_d_) return;
   if (d == committed_d_) { // the response of the converged increment (see commit)
-    states_.trial = states_.committed;
-    states_.stress = states_.committed_stress;
-    states_.tangent = states_.committed_tangent;
-    states_.plastic = states_.committed_plastic;
+    states_.take_back();
     states_d_ = d;
     states_valid_ = true;
     return;

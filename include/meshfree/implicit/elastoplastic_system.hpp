@@ -37,6 +37,17 @@ struct PointStates {
       : committed(n), trial(n), committed_stress(n, Vec3::Zero()), committed_stress_zz(n, 0.0),
         stress(n, Vec3::Zero()), stress_zz(n, 0.0), tangent(n, Mat3::Zero()), plastic(n, 0),
         committed_tangent(n, Mat3::Zero()), committed_plastic(n, 0) {}
+
+  /// The trial response becomes the committed one.
+  void commit() {
+    committed = trial, committed_stress = stress, committed_stress_zz = stress_zz;
+    committed_tangent = tangent, committed_plastic = plastic;
+  }
+  /// The committed response becomes the trial one again.
+  void take_back() {
+    trial = committed, stress = committed_stress, stress_zz = committed_stress_zz;
+    tangent = committed_tangent, plastic = committed_plastic;
+  }
 };
 
 class ElastoplasticSystem : public IncrementalSystem {

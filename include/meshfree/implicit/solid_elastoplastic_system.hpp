@@ -25,6 +25,17 @@ struct SolidPointStates {
       : committed(n), trial(n), committed_stress(n, Vec6::Zero()), stress(n, Vec6::Zero()),
         tangent(n, Mat6::Zero()), plastic(n, 0), committed_tangent(n, Mat6::Zero()),
         committed_plastic(n, 0) {}
+
+  /// The trial response becomes the committed one.
+  void commit() {
+    committed = trial, committed_stress = stress;
+    committed_tangent = tangent, committed_plastic = plastic;
+  }
+  /// The committed response becomes the trial one again.
+  void take_back() {
+    trial = committed, stress = committed_stress;
+    tangent = committed_tangent, plastic = committed_plastic;
+  }
 };
 
 /// The J2 parameters of the body's material; a material without plasticity (an elastic preload
