@@ -1,5 +1,6 @@
 #include "meshfree/materials/j2_plasticity.hpp"
 #include "meshfree/core/error.hpp"
+#include "meshfree/materials/elastic.hpp"
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -9,6 +10,7 @@ namespace mf::materials {
 namespace {
 
 const double kSqrt23 = std::sqrt(2.0 / 3.0);
+const double kSqrt23Cubed = kSqrt23 * kSqrt23 * kSqrt23; // (2/3)^(3/2)
 
 /// m = [1 1 1 0 0 0]
 Vec6 unit_trace() {
@@ -258,7 +260,7 @@ Mat3 projected_tangent(const J2Parameters& p, const PlaneStressBasis& e, const V
   const Mat3 Xi = PlaneStressBasis::from_diagonal(xi_diag);
   const Vec3 n = Xi * (P * eta);
   const auto [sy, slope] = yield_curve(p, alpha);
-  const double hs = std::pow(2.0 / 3.0, 1.5) * sy * slope;
+  const double hs = kSqrt23Cubed * sy * slope;
   const double A = 1.0 - hs * lambda / xi, B = hs * xi;
   const double denominator = k * k * B / A + 2.0 / 3.0 * p.H_kinematic * k * xi2 + eta.dot(P * n);
   return Xi - n * n.transpose() / denominator;
@@ -281,7 +283,7 @@ J2Result2D j2_update_plane_stress(const J2Parameters& p, const Vec3& strain,
   const Vec6& ep = committed.plastic_strain;
   const Vec6& beta = committed.back_stress;
   const Vec3 elastic_strain(strain(0) - ep(0), strain(1) - ep(1), strain(2) - ep(5));
-  const Mat3 C = PlaneStressBasis::from_diagonal(e.c);
+  const Mat3 C = elastic_matrix({p.E, p.nu}, PlaneModel::PlaneStress);
   const Vec3 sigma_trial = C * elastic_strain;
   const Vec3 b_n(beta(0) - beta(2), beta(1) - beta(2), beta(5));
   const Vec3 eta_trial = sigma_trial - b_n;

@@ -112,11 +112,9 @@ public:
     visit("plastic", states_.plastic), visit("factors", factors_);
     visit("states_d", states_d_), visit("states_valid", states_valid_);
     if constexpr (std::decay_t<Visit>::loads) {
-      states_.trial = states_.committed;
-      states_.stress = states_.committed_stress;
-      states_.stress_zz = states_.committed_stress_zz;
       states_.committed_tangent = states_.tangent;
       states_.committed_plastic = states_.plastic;
+      states_.take_back();
       committed_d_ = states_valid_ ? states_d_ : std::vector<double>{};
     }
   }
