@@ -7,6 +7,29 @@
 
 namespace mf::spec {
 
+namespace {
+
+/// A table whose yield stress falls somewhere softens the material: like a Voce law's, taken only
+/// when the hardening map says softening: true. Its last segment may not fall even then: the
+/// yield stress goes on along it past the last point and would reach zero.
+void check_table_softening(KeyReader& h, const materials::TableHardening& t) {
+  const std::size_t n = t.alpha.size();
+  const bool softening = h.choice("softening", {"false", "true"}, "false") == "true";
+  for (std::size_t k = 1; k < n; ++k)
+    if (t.sigma[k] < t.sigma[k - 1] && !softening)
+      h.error("points", detail::concat("the yield stress falls from ", t.sigma[k - 1], " to ",
+                                       t.sigma[k], " at equivalent plastic strain ", t.alpha[k],
+                                       ": a softening law; give softening: true if that is meant"));
+  const double slope = (t.sigma[n - 1] - t.sigma[n - 2]) / (t.alpha[n - 1] - t.alpha[n - 2]);
+  if (slope < 0.0)
+    h.error("points", detail::concat("the last segment falls, and the yield stress goes on along "
+                                     "it past the last point (zero at equivalent plastic strain ",
+                                     t.alpha[n - 1] - t.sigma[n - 1] / slope,
+                                     "); end the table with a segment that does not fall"));
+}
+
+} // namespace
+
 void read_hardening(KeyReader& p, materials::J2Parameters& j) {
   const bool has_yield = p.has("yield_stress");
   std::string type = "perfect";
@@ -76,6 +99,7 @@ void read_hardening(KeyReader& p, materials::J2Parameters& j) {
       if (!(t.sigma[k] > 0.0))
         h->error("points", "yield stresses must be positive, got " + detail::concat(t.sigma[k]));
     }
+    check_table_softening(*h, t);
     j.sigma0 = t.sigma.front();
     j.hardening = t;
   }

@@ -153,6 +153,37 @@ TEST_CASE("a Voce law that softens is refused unless the file says it means it",
   CHECK_NOTHROW(spec::parse_problem(root));
 }
 
+TEST_CASE("a hardening table that falls needs softening: true, and never ends falling", "[input]") {
+  YAML::Node root = YAML::Load(kGood);
+  root["analysis"] = "elastoplastic_static";
+  root["steps"] = YAML::Load("[{name: pull, load_factor: 1, increments: 2}]");
+  const auto with_points = [&](const std::string& points, const char* softening) {
+    root["materials"][0]["plasticity"] = YAML::Load("{hardening: {type: table, points: " + points +
+                                                    ", softening: " + softening + "}}");
+  };
+  const char* prefix = "materials[0].plasticity.hardening.points: ";
+  with_points("[[0, 250], [0.01, 200], [0.1, 260]]", "false");
+  CHECK_THROWS_WITH(spec::parse_problem(root),
+                    Catch::Contains(std::string(prefix) +
+                                    "the yield stress falls from 250 to 200 at equivalent plastic "
+                                    "strain 0.01: a softening law; give softening: true"));
+  with_points("[[0, 250], [0.01, 200], [0.1, 260]]", "true");
+  CHECK_NOTHROW(spec::parse_problem(root));
+  // 300 at 0.005 to 100 at 0.01: on along that slope, zero at 0.01 + 100 / 40000.
+  for (const char* softening : {"false", "true"}) {
+    with_points("[[0, 300], [0.005, 300], [0.01, 100]]", softening);
+    CHECK_THROWS_WITH(
+        spec::parse_problem(root),
+        Catch::Contains(std::string(prefix) + (softening[0] == 't' ? "the last segment falls"
+                                                                   : "the yield stress falls")));
+  }
+  with_points("[[0, 300], [0.005, 300], [0.01, 100]]", "true");
+  CHECK_THROWS_WITH(spec::parse_problem(root),
+                    Catch::Contains("(zero at equivalent plastic strain 0.0125)"));
+  with_points("[[0, 300], [0.005, 300], [0.01, 100], [0.02, 100]]", "true");
+  CHECK_NOTHROW(spec::parse_problem(root));
+}
+
 TEST_CASE("discretisation.adapt as a switch: off runs the file's cloud, on every default",
           "[input]") {
   auto adapt_of = [](const std::string& assignment) {
