@@ -627,14 +627,16 @@ def scaled_steps(prob, factor):
     return [(v, n * factor) for v, n in prob["load"]["steps"]]
 
 
-def write_deck(path, prob, mesh, mode="plastic", thickness=None, inc_factor=1):
+def write_deck(path, prob, mesh, mode="plastic", thickness=None, inc_factor=1,
+               controls=(CONTROL_RN, CONTROL_CN)):
     """mode 'plastic': the load path of the problem, recorded at equal steps
     (inc_factor = 2 halves the record spacing and the largest increment).
     mode 'elastic': linear isotropic material (no *PLASTIC), one increment
     at unit load factor (q = 1 or v = 1), stresses at the integration points.
     mode 'ortho': as 'elastic' but with the plane-stress stiffness written
     as an orthotropic law (the elastic recipe's treatment), for the
-    thin-slab cross-check."""
+    thin-slab cross-check.  `controls`: the Newton tolerances of a plastic
+    run's *CONTROLS (R_N, C_N); the reference's own by default."""
     t = slab_thickness(prob) if thickness is None else thickness
     load = prob["load"]
     E, nu = prob["E"], prob["nu"]
@@ -701,7 +703,7 @@ def write_deck(path, prob, mesh, mode="plastic", thickness=None, inc_factor=1):
             f.write("*STEP, INC=100000\n")
             if mode == "plastic":
                 f.write("*STATIC\n%.12g, 1.0, %.12g, %.12g\n" % (dt, dt * MIN_INC, dt))
-                f.write("*CONTROLS, PARAMETERS=FIELD\n%g, %g\n" % (CONTROL_RN, CONTROL_CN))
+                f.write("*CONTROLS, PARAMETERS=FIELD\n%g, %g\n" % controls)
             else:
                 f.write("*STATIC\n")
             if load["kind"] == "displacement":
@@ -837,7 +839,8 @@ def newton_stats(path):
     return n, cut, tot
 
 
-def solve(prob, mesh, workdir, tag, mode="plastic", thickness=None, inc_factor=1):
+def solve(prob, mesh, workdir, tag, mode="plastic", thickness=None, inc_factor=1,
+          controls=(CONTROL_RN, CONTROL_CN)):
     """Write the deck, run ccx, return the recorded values:
     curve [(load, force per unit thickness, monitors...)] for every increment
     (mode plastic), or the unit-load state (elastic / ortho) with the
@@ -846,7 +849,7 @@ def solve(prob, mesh, workdir, tag, mode="plastic", thickness=None, inc_factor=1
     deck = os.path.join(workdir, job + ".inp")
     t = slab_thickness(prob) if thickness is None else thickness
     t0 = time.time()
-    write_deck(deck, prob, mesh, mode, t, inc_factor)
+    write_deck(deck, prob, mesh, mode, t, inc_factor, controls)
     elastic_recipe.run_ccx(workdir, job)
     wall = time.time() - t0
     dat = parse_dat(os.path.join(workdir, job + ".dat"))
