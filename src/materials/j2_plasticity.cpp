@@ -226,23 +226,26 @@ struct ProjectedTrial {
   }
 };
 
-/// The lambda of F(lambda) = xi2 / 2 - sigma_y(alpha_n + sqrt(2/3) lambda sqrt(xi2))^2 / 3 = 0,
-/// by Newton from the elastic end (F decreases from F(0) > 0).
+/// The lambda of the consistency condition xi = sqrt(2/3) sigma_y(alpha_n + sqrt(2/3) lambda xi),
+/// xi = |dev eta|, by Newton on H(lambda) = 1 / xi - 1 / (sqrt(2/3) sigma_y) from the elastic end
+/// (H(0) < 0). 1 / xi is linear in lambda where one mode carries the trial stress (one step for a
+/// perfectly plastic law), so far roots are reached in a few steps, where Newton on xi^2 / 2 -
+/// sigma_y^2 / 3 from lambda = 0 lengthens its steps by only half each time.
 double plastic_multiplier(const J2Parameters& p, const ProjectedTrial& t, double alpha_n) {
-  const double xi2_trial = t.xi2(0.0);
   double lambda = 0.0;
   for (int it = 0;; ++it) {
-    const double xi2 = t.xi2(lambda), dxi2 = t.dxi2(lambda), xi = std::sqrt(xi2);
+    const double xi2 = t.xi2(lambda), xi = std::sqrt(xi2), dxi = t.dxi2(lambda) / (2.0 * xi);
     const auto [sy, slope] = yield_curve(p, alpha_n + kSqrt23 * lambda * xi);
-    const double F = 0.5 * xi2 - sy * sy / 3.0;
-    const double dalpha = kSqrt23 * (xi + lambda * dxi2 / (2.0 * xi));
-    const double step = -F / (0.5 * dxi2 - 2.0 / 3.0 * sy * slope * dalpha);
+    const double H = 1.0 / xi - 1.0 / (kSqrt23 * sy);
+    const double dalpha = kSqrt23 * (xi + lambda * dxi);
+    const double step = -H / (-dxi / xi2 + slope * dalpha / (kSqrt23 * sy * sy));
     lambda = std::max(lambda + step, 0.0);
-    if (std::abs(step) <= 1e-15 * std::max(lambda, 1e-300) || std::abs(F) <= 1e-13 * xi2_trial)
+    if (std::abs(step) <= 1e-15 * std::max(lambda, 1e-300) || std::abs(H) * xi <= 1e-15)
       return lambda;
     if (it == 50)
-      fail("plane-stress return did not converge in 50 iterations (residual ", F,
-           ", trial |dev eta|^2 ", xi2_trial, ")");
+      fail("plane-stress return did not converge in 50 iterations (1 - xi / (sqrt(2/3) "
+           "sigma_y) = ",
+           H * xi, ", trial |dev eta|^2 ", t.xi2(0.0), ")");
   }
 }
 
@@ -276,8 +279,8 @@ J2Result2D j2_update_plane_stress(const J2Parameters& p, const Vec3& strain,
   // backward-Euler step is
   //   sigma = C (eps - eps_p,n - lambda P eta),   b = b_n + (2/3) Hk lambda eta,
   //   eta_i = eta_trial,i / (1 + lambda (c_i p_i + (2/3) Hk))   (in the eigenbasis),
-  // lambda from F(lambda) = 0 (plastic_multiplier); the same solution as the 3D return with
-  // sigma_zz = 0.
+  // lambda from the consistency condition (plastic_multiplier); the same solution as the 3D return
+  // with sigma_zz = 0.
   const PlaneStressBasis e(p);
   const Mat3& P = projection();
   const Vec6& ep = committed.plastic_strain;

@@ -193,10 +193,11 @@ TEST_CASE("the plane-stress return is the 3D return at its eps_zz, along a path 
 }
 
 TEST_CASE(
-    "the plane-stress return holds from small strains to strains of 10 and nearly incompressible",
+    "the plane-stress return holds from small strains to strains of 1e5 and nearly incompressible",
     "[materials]") {
-  // One step from the virgin state to random strains of growing size (up to 8,000 times the
-  // yield strain): the scalar iteration converges and agrees with the 3D return at its eps_zz.
+  // One step from the virgin state to random strains of growing size (up to 8e7 times the yield
+  // strain, as a first Newton iterate far from equilibrium can ask for): the scalar iteration
+  // converges and agrees with the 3D return at its eps_zz.
   std::vector<Law> all = laws();
   J2Parameters incompressible = all[2].p;
   incompressible.nu = 0.4999;
@@ -204,7 +205,7 @@ TEST_CASE(
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (const Law& law : all)
-    for (double size : {1e-3, 1e-2, 0.1, 1.0, 10.0})
+    for (double size : {1e-3, 1e-2, 0.1, 1.0, 10.0, 1e3, 1e5})
       for (int i = 0; i < 40; ++i) {
         const Vec3 e = size * Vec3(u(rng), u(rng), u(rng));
         const J2Result2D r = j2_update_plane_stress(law.p, e, J2State{});
