@@ -291,6 +291,8 @@ J2Result2D j2_update_plane_stress(const J2Parameters& p, const Vec3& strain,
   const Vec3 b_n(beta(0) - beta(2), beta(1) - beta(2), beta(5));
   const Vec3 eta_trial = sigma_trial - b_n;
   const double xi2_trial = eta_trial.dot(P * eta_trial);
+  if (!std::isfinite(xi2_trial))
+    fail("plane-stress return: the trial stress is not finite (strain ", strain.transpose(), ")");
 
   J2Result2D r;
   r.state = committed;

@@ -1,4 +1,5 @@
 #include "meshfree/solvers/nonlinear_system.hpp"
+#include "meshfree/core/error.hpp"
 #include "petsc_detail.hpp"
 #include <algorithm>
 #include <cmath>
@@ -27,6 +28,7 @@ struct NonlinearBlockSystem::Impl {
   double scale = 0.0;         // force scale of the last residual evaluation
   double floor = 0.0;         // round-off floor of |R| at the last residual evaluation
   bool floor_reached = false; // the previous iterate of this solve was within its floor
+  bool accepted = false;      // the convergence test (converged()) accepted the last iterate
   double tolerance = 1e-8;
   int max_iterations = 20;
   double keep_tangent = 0.0; // NewtonSettings::keep_tangent of the solve under way
@@ -137,6 +139,7 @@ PetscErrorCode converged(SNES, PetscInt it, PetscReal xnorm, PetscReal snorm, Pe
     *reason = SNES_CONVERGED_SNORM_RELATIVE;
   else if (it >= s.max_iterations)
     *reason = SNES_DIVERGED_MAX_IT;
+  s.accepted = *reason > 0;
   return 0;
 }
 
@@ -241,6 +244,18 @@ std::string stop_reason(NonlinearBlockSystem::Impl& s, KSP ksp, SNESConvergedRea
   return why;
 }
 
+/// Sets the line search's record of the last step's length to zero. SNES keeps it from the
+/// previous solve, and the critical-point line search compares the first step's dot(F, Y) with
+/// atol times it: after a solve that diverged to an infinite step, the next one would stop at its
+/// start as converged.
+void forget_last_step(SNES snes) {
+  SNESLineSearch ls;
+  check(SNESGetLineSearch(snes, &ls), "SNESGetLineSearch");
+  PetscReal xnorm, fnorm, ynorm;
+  check(SNESLineSearchGetNorms(ls, &xnorm, &fnorm, &ynorm), "SNESLineSearchGetNorms");
+  check(SNESLineSearchSetNorms(ls, xnorm, fnorm, 0.0), "SNESLineSearchSetNorms");
+}
+
 /// One SNES solve from the owned entries of d, with s.keep_tangent as set.
 NewtonReport attempt(NonlinearBlockSystem::Impl& s, const std::vector<double>& d) {
   if (s.keep_tangent <= 0.0) s.new_tangent = true;
@@ -253,11 +268,17 @@ NewtonReport attempt(NonlinearBlockSystem::Impl& s, const std::vector<double>& d
   KSP ksp;
   check(SNESGetKSP(s.snes, &ksp), "SNESGetKSP");
   detail::take_longest_solve(ksp);
+  forget_last_step(s.snes);
+  s.accepted = false;
   check(SNESSolve(s.snes, nullptr, s.x), "SNESSolve");
   s.report.linear_iterations_max = detail::take_longest_solve(ksp);
 
   SNESConvergedReason reason;
   check(SNESGetConvergedReason(s.snes, &reason), "SNESGetConvergedReason");
+  // The critical-point line search ends a solve as converged by itself where dot(F, Y) is below
+  // atol |Y|; only the force test above says that equilibrium is reached.
+  const bool unaccepted = reason > 0 && !s.accepted;
+  if (unaccepted) reason = SNES_DIVERGED_LINE_SEARCH;
   if (reason <= 0) s.new_tangent = true; // the next solve starts from a tangent of its own
   PetscInt its = 0, lits = 0;
   check(SNESGetIterationNumber(s.snes, &its), "SNESGetIterationNumber");
@@ -266,6 +287,10 @@ NewtonReport attempt(NonlinearBlockSystem::Impl& s, const std::vector<double>& d
   s.report.iterations = static_cast<int>(its);
   s.report.linear_iterations = static_cast<int>(lits);
   s.report.reason = stop_reason(s, ksp, reason);
+  if (unaccepted)
+    s.report.reason =
+        mf::detail::concat("the line search stopped at |R| = ", s.report.residual.back(),
+                           ", above the tolerance of |F| = ", s.report.scale.back());
   return s.report;
 }
 
