@@ -182,8 +182,9 @@ def run_vci_adaptive(binary, problem, target, out):
 # at |R| <= 1e-5 |F|: a kept tangent contracts |R| linearly, so that each decade below costs
 # iterations, and the study's errors are the same to four digits at 1e-8. CalculiX is run to the
 # same relative tolerance (its *CONTROLS), where it takes the same time as at 1e-8.
-KEPT_TANGENT = ["nonlinear.keep_tangent=0.5", "nonlinear.tolerance=1e-5"]
-CALCULIX_CONTROLS = (1e-5, 1e-5)
+NEWTON_TOLERANCE = 1e-5
+KEPT_TANGENT = ["nonlinear.keep_tangent=0.5", f"nonlinear.tolerance={NEWTON_TOLERANCE!r}"]
+CALCULIX_CONTROLS = (NEWTON_TOLERANCE, NEWTON_TOLERANCE)
 
 
 def run_vci_every(binary, problem, target, out):
