@@ -78,16 +78,23 @@ struct ScheduleRun {
 };
 
 /// Halves the increment towards `to` after Newton failed there; after the last allowed
-/// cut-back, stops the schedule instead and returns false.
+/// cut-back, stops the schedule instead and returns false. The increment never falls below
+/// 2^-max_cutbacks of its nominal size: near a limit load every tiny increment converges and
+/// the next one fails, so a bound on the halvings in a row alone would creep on towards the
+/// limit by ever smaller increments, each costing a failed Newton solve.
 bool cut_back(ScheduleRun& run, const spec::LoadStep& step, double to,
               const solvers::NewtonReport& rep) {
   SchedulePosition& at = run.at;
   const std::string why = rep.reason + (rep.failure.empty() ? "" : ": " + rep.failure);
-  if (at.cuts >= run.spec.nonlinear.max_cutbacks) {
+  const int most = run.spec.nonlinear.max_cutbacks;
+  const double smallest = std::ldexp(1.0 / step.increments, -most);
+  if (at.cuts >= most || 0.5 * at.dtau < smallest * (1.0 - 1e-9)) {
     run.o.status = "stopped";
     run.o.stop_reason = detail::concat(
         "step '", step.name, "': the increment to ", to, " of the step did not converge (", why,
-        ") after ", at.cuts, " cut-backs; the last converged state has factors ",
+        ") at ", at.dtau * step.increments, " of the nominal increment, after ", at.cuts,
+        " cut-backs in a row (an increment is cut to 2^-", most,
+        " of nominal at most); the last converged state has factors ",
         factors_text(run.spec, at.current),
         ". Under load control this is how a limit load shows: the body cannot carry more; "
         "prescribe a displacement to follow it further.");

@@ -106,7 +106,7 @@ struct LoadStep {
 struct NonlinearSpec {
   double tolerance = 1e-8; // |R| <= tolerance * |F|
   int max_iterations = 20;
-  int max_cutbacks = 8; // an increment is halved at most this many times in a row
+  int max_cutbacks = 8; // an increment is halved to at most 2^-max_cutbacks of its nominal size
   double keep_tangent = 0.0; // solvers::NewtonSettings::keep_tangent (0: Newton's method)
 };
 

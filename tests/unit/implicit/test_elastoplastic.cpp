@@ -205,6 +205,15 @@ TEST_CASE("a load beyond the limit load stops the run with the reason and keeps 
   for (const auto& inc : r.increments) CHECK(inc.newton.converged);
   CHECK(r.increments.back().factors[1] > 300.0);
   CHECK(r.increments.back().factors[1] < 313.0);
+  // No increment is cut below 2^-4 of the step's nominal 1/4: the run does not creep on towards
+  // the limit by ever smaller increments that each converge.
+  double before = 0.0;
+  for (const auto& inc : r.increments) {
+    if (inc.step != 1) continue;
+    CHECK(inc.step_fraction - before >= (0.25 / 16.0) * (1.0 - 1e-9));
+    before = inc.step_fraction;
+  }
+  CHECK_THAT(r.stop_reason, Catch::Contains("0.0625 of the nominal increment"));
 }
 
 TEST_CASE("the converged state returned by the solver is the closed-form homogeneous state",
@@ -336,8 +345,9 @@ namespace {
 /// The material response at d1 (a uniform stretch `e` along the last axis, into the plastic
 /// range), then again at d1 after it was committed and d2 = 0.999 d1 (elastic unloading) visited,
 /// as a solve repeated from the increment's start asks for it: it must be the committed one,
-/// tangent and all. Recomputed from the committed history, every point would lie on its yield surface with dgamma = 0 and give
-/// another tangent (theta = 1), elastic or plastic as round-off decides.
+/// tangent and all. Recomputed from the committed history, every point would lie on its yield
+/// surface with dgamma = 0 and give another tangent (theta = 1), elastic or plastic as round-off
+/// decides.
 template <class System, class Model>
 void check_committed_response(const spec::ProblemSpec& spec, const Model& m, int dim, double e) {
   System s(spec, m);

@@ -15,7 +15,7 @@ namespace {
 geometry::Prism cylinder_prism() {
   geometry::Domain d = geometry::Domain::rectangle({0.0, 0.0}, {4.0, 4.0});
   d.add_hole({{0.0, 0.0}, 1.0, "bore"});
-  return geometry::Prism{d, 0.0, 0.5};
+  return geometry::Prism{d, 0.0, 0.5, {}};
 }
 
 implicit::TetElements tets(const geometry::Prism& body, bool quadratic) {
