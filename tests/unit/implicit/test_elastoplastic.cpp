@@ -95,7 +95,7 @@ TEST_CASE("a bar refined between increments keeps the closed-form cyclic respons
 }
 
 TEST_CASE("Newton with the consistent tangent converges quadratically in plastic increments",
-          "[elastoplastic]") {
+          "[elastoplastic][long]") {
   // The Voce cantilever in steady plastic flow. Penalties 1e4 E/h (not 1e6) lower the round-off
   // floor that penalty terms put under |R| (alpha |u| eps_machine), so that three iterates lie
   // well above it.

@@ -348,7 +348,7 @@ double pulse_speed(PdDimension dim, int nx, int ny, int nz, double dx, bool surf
 
 } // namespace
 
-TEST_CASE("a long pulse travels at the dilatational speed of the continuum", "[pd]") {
+TEST_CASE("a long pulse travels at the dilatational speed of the continuum", "[pd][long]") {
   const double E = 2e11, rho = 7850.0;
   // Plane stress, nu = 1/3: c = sqrt(E / (rho (1 - nu^2))).
   const double c_plate = std::sqrt(E / (rho * (1.0 - 1.0 / 9.0)));

@@ -358,7 +358,7 @@ TEST_CASE("a detonation plane lights a 2D TNT strip as a plane wave at D_CJ", "[
 
 TEST_CASE("TNT slab with an unreacted equation of state: a self-sustained ZND front at D_CJ "
           "that ends at the Chapman-Jouguet pressure",
-          "[sph]") {
+          "[sph][long]") {
   // The unreacted TNT (Mie-Grueneisen, U_s = 2390 + 2.05 u_p m/s) is lit where the shock has
   // compressed it by 10%; its burn then takes 6 h / D_CJ. Nothing imposes the front speed: it
   // follows from the products' JWL. The state at the end of the burn is the CJ state

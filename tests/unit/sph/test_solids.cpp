@@ -304,7 +304,8 @@ TEST_CASE("an SPH particle with kinematic hardening carries its back stress betw
   CHECK(plastic_steps >= 4);
 }
 
-TEST_CASE("plane elastic wave in a 2D and a 3D block: stress behind the front", "[sph][solid]") {
+TEST_CASE("plane elastic wave in a 2D and a 3D block: stress behind the front",
+          "[sph][solid][long]") {
   // Two blocks meet at x = 0 with velocities +-v0; near the centre line the state is uniaxial
   // strain until the lateral release waves from the free sides arrive (after half the width over
   // c_L). Behind the front sigma_xx = -rho c_L v0 (the 1D test's material, h = 1.5 dx: the SPH

@@ -166,7 +166,7 @@ Quietness sph_quietness(const Held& c, Law law) {
 } // namespace
 
 TEST_CASE("every held condition hands a homogeneous state to SPH quietly, with no settle",
-          "[staged][sph][held]") {
+          "[staged][sph][held][long]") {
   for (Law law : {Law::Elastic, Law::Isotropic, Law::Kinematic})
     for (const Held& c : table(law)) {
       const Quietness q = sph_quietness(c, law);

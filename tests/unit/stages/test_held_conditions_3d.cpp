@@ -153,7 +153,7 @@ Quietness sph_quietness(const Held& c, Law law) {
 } // namespace
 
 TEST_CASE("every held face condition hands a homogeneous 3D state to SPH quietly",
-          "[staged][sph][held][solid3d]") {
+          "[staged][sph][held][solid3d][long]") {
   for (Law law : {Law::Elastic, Law::Isotropic, Law::Kinematic})
     for (const Held& c : table(law)) {
       const Quietness q = sph_quietness(c, law);
