@@ -88,7 +88,8 @@ bool cut_back(ScheduleRun& run, const spec::LoadStep& step, double to,
   const std::string why = rep.reason + (rep.failure.empty() ? "" : ": " + rep.failure);
   const int most = run.spec.nonlinear.max_cutbacks;
   const double smallest = std::ldexp(1.0 / step.increments, -most);
-  if (at.cuts >= most || 0.5 * at.dtau < smallest * (1.0 - 1e-9)) {
+  // An increment never exceeds its nominal size, so this also bounds the halvings in a row.
+  if (0.5 * at.dtau < smallest * (1.0 - 1e-9)) {
     run.o.status = "stopped";
     run.o.stop_reason = detail::concat(
         "step '", step.name, "': the increment to ", to, " of the step did not converge (", why,
