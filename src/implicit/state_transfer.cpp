@@ -3,10 +3,11 @@
 #include "meshfree/implicit/point_law.hpp"
 #include "meshfree/neighbors/point_grid.hpp"
 #include "meshfree/solvers/parallel.hpp"
-#include <Eigen/SparseLU>
+#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <utility>
 
 namespace mf::implicit {
@@ -47,29 +48,64 @@ std::vector<double> every_history(const GalerkinModel& from, const PointStates& 
   return all;
 }
 
-/// Nodal parameters of `to` whose u^h equals u^h of `from` (parameters d) at the nodes of `to`:
-/// the sparse system of the new shape functions' values at the nodes (RK shape functions do not
-/// interpolate) solved by LU, its two right-hand sides the old u^h's components there.
-std::vector<double> interpolating_parameters(const GalerkinModel& from,
-                                             const std::vector<double>& d,
-                                             const GalerkinModel& to) {
-  const std::vector<Vec2>& x = to.node_positions();
-  const ShapeTable old_at = shapes_at(from, x, false);
-  const ShapeTable new_at = shapes_at(to, x, false);
-  const int n = static_cast<int>(x.size());
+/// u^h and its gradient (row c: the gradient of component c) at each row of `t`.
+struct FieldAt {
+  Vec2 u = Vec2::Zero();
+  Mat2 grad = Mat2::Zero();
+};
+std::vector<FieldAt> field_at_rows(const ShapeTable& t, const std::vector<double>& d) {
+  std::vector<FieldAt> f(t.rows());
+  for (int k = 0; k < t.rows(); ++k)
+    for (int q = t.offset[k]; q < t.offset[k + 1]; ++q) {
+      const Vec2 dJ(d[2 * t.node[q]], d[2 * t.node[q] + 1]);
+      f[k].u += t.phi[q] * dJ;
+      f[k].grad += dJ * t.dphi[q].transpose();
+    }
+  return f;
+}
+
+/// Nodal parameters of `to` whose u^h is the projection of u^h of `from` (parameters d) in the
+/// norm |grad v|^2 + |v|^2 / l^2 integrated over the body on the integration points of `to`, l
+/// the mean node spacing. One scalar system for both components (each component's gradient is
+/// fitted alike), solved by sparse Cholesky. Its strain follows the old strain where the clouds
+/// differ: the fit of u^h at the new nodes alone (RK shape functions do not interpolate) solves a
+/// system whose rows mix supports of two spacings where boxes meet, and its u^h, exact at the
+/// nodes, wiggles between them (README: refinement during the analysis).
+std::vector<double> projected_parameters(const GalerkinModel& from, const std::vector<double>& d,
+                                         const GalerkinModel& to) {
+  const std::vector<double>& w = to.domain.weight;
+  const ShapeTable t = shapes_at(to, to.domain.x, true);
+  const std::vector<FieldAt> old = field_at_rows(shapes_at(from, to.domain.x, true), d);
+  const int n = to.node_count();
+  const double inverse_l2 = n / std::accumulate(w.begin(), w.end(), 0.0);
+  // Each row I summed in turn over the entries q of the points whose support holds I.
+  std::vector<std::vector<std::pair<int, int>>> entries_of(n); // (point, entry)
+  for (int k = 0; k < t.rows(); ++k)
+    for (int q = t.offset[k]; q < t.offset[k + 1]; ++q) entries_of[t.node[q]].emplace_back(k, q);
   std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(new_at.phi.size());
-  for (int I = 0; I < n; ++I)
-    for (int q = new_at.offset[I]; q < new_at.offset[I + 1]; ++q)
-      entries.emplace_back(I, new_at.node[q], new_at.phi[q]);
-  Eigen::SparseMatrix<double> values(n, n);
-  values.setFromTriplets(entries.begin(), entries.end());
-  Eigen::MatrixX2d target(n, 2);
-  for (int I = 0; I < n; ++I) target.row(I) = displacement_at(old_at, I, d).transpose();
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(values);
-  MF_REQUIRE(lu.info() == Eigen::Success,
-             "state transfer: the new cloud's shape functions at its nodes are singular");
-  const Eigen::MatrixX2d p = lu.solve(target);
+  Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(n, 2);
+  std::vector<double> sum(n, 0.0);
+  std::vector<char> touched(n, 0);
+  std::vector<int> columns;
+  for (int I = 0; I < n; ++I) {
+    for (const auto& [k, qI] : entries_of[I]) {
+      for (int q = t.offset[k]; q < t.offset[k + 1]; ++q) {
+        const int J = t.node[q];
+        if (!touched[J]) touched[J] = 1, columns.push_back(J);
+        sum[J] += w[k] * (t.dphi[qI].dot(t.dphi[q]) + inverse_l2 * t.phi[qI] * t.phi[q]);
+      }
+      rhs.row(I) +=
+          w[k] * (old[k].grad * t.dphi[qI] + inverse_l2 * t.phi[qI] * old[k].u).transpose();
+    }
+    for (int J : columns) entries.emplace_back(I, J, sum[J]), sum[J] = 0.0, touched[J] = 0;
+    columns.clear();
+  }
+  Eigen::SparseMatrix<double> a(n, n);
+  a.setFromTriplets(entries.begin(), entries.end());
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(a);
+  MF_REQUIRE(ldlt.info() == Eigen::Success,
+             "state transfer: the new cloud's projection system is singular");
+  const Eigen::MatrixX2d p = ldlt.solve(rhs);
   std::vector<double> out(2 * static_cast<std::size_t>(n));
   for (int I = 0; I < n; ++I) out[2 * I] = p(I, 0), out[2 * I + 1] = p(I, 1);
   return out;
@@ -128,7 +164,7 @@ CarriedState carry_state(const spec::ProblemSpec& spec, const GalerkinModel& fro
                          const PointStates& st, const std::vector<double>& d,
                          const GalerkinModel& to, const solvers::PetscSession& session) {
   CarriedState c;
-  c.d = interpolating_parameters(from, d, to);
+  c.d = projected_parameters(from, d, to);
   const std::vector<double> old = every_history(from, st, d, session);
   const NearestInMaterial nearest(spec, from.domain.x);
   const int rows = to.domain_table.rows();

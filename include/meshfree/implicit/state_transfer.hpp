@@ -10,8 +10,10 @@
 //   stress and equivalent plastic strain of one material point together, none averaged (an
 //   average over a support diffuses a plastic zone's edge; measured on Cook's membrane near its
 //   limit load, the tip deflection 0.19% off where the nearest point's state gives 0.066%);
-// - the nodal parameters of the new model are fitted so that its u^h equals the old u^h at its
-//   nodes (the sparse system of the new shape functions at the nodes, solved by LU);
+// - the nodal parameters of the new model are the projection of the old u^h on the new cloud in
+//   the norm |grad v|^2 + |v|^2 / l^2 over the body (l the mean spacing), so that the new strain
+//   follows the old one (a fit at the new nodes alone wiggles between them where boxes of two
+//   spacings meet);
 // - the stress of a point that has yielded is carried too (history_keeping_stress): its
 //   plastic strain moved by the difference of the new strain there and its old point's, so that
 //   its elastic strain and stress are the old point's (the new strain alone gave the strip at

@@ -232,3 +232,44 @@ TEST_CASE("carried state: a yielded point keeps its old point's stress on the ne
     CHECK(shifted > 1e-6); // the two clouds' strains do differ
   }
 }
+
+TEST_CASE("carried state: the refined cloud's u^h keeps the old strain where staircase boxes "
+          "meet (a fit at the nodes alone wiggles between them)",
+          "[adaptivity][transfer]") {
+  // Boxes of half the spacing stepping diagonally across the bar, as refinement during the
+  // analysis makes them along a shear band; both clouds with the adapted supports.
+  std::string boxes = "discretisation.refinement=[";
+  for (int i = 0; i < 6; ++i) {
+    const double x = 0.1 + 0.1 * i, y = 0.3 + 0.1 * i;
+    boxes += (i ? ", " : "") + detail::concat("{box: [[", x, ", ", y, "], [", x + 0.4, ", ",
+                                              y + 0.4, "]], spacing: 0.05}");
+  }
+  boxes += "]";
+  const std::vector<std::string> adapt = {"discretisation.adapt={target: 0.5, every: 1}"};
+  PhaseTimer timer;
+  std::vector<std::string> refined = adapt;
+  refined.push_back(boxes);
+  const spec::ProblemSpec coarse = load_problem("bar_uniaxial_cyclic", adapt);
+  const spec::ProblemSpec fine = load_problem("bar_uniaxial_cyclic", refined);
+  const implicit::GalerkinModel from =
+      implicit::build_galerkin_model(coarse, test_session(), timer);
+  const implicit::GalerkinModel to = implicit::build_galerkin_model(fine, test_session(), timer);
+  // A smooth field no linear basis holds: its u^h on the old cloud is what is carried.
+  std::vector<double> d;
+  for (const Vec2& x : from.node_positions()) {
+    d.push_back(1e-3 * std::sin(3.0 * x.x()) * std::cos(2.0 * x.y()));
+    d.push_back(1e-3 * x.x() * x.x() * x.y());
+  }
+  const implicit::CarriedState carried = implicit::carry_state(
+      fine, from, implicit::PointStates(from.domain_table.rows()), d, to, test_session());
+  const std::vector<Vec2> x = implicit::domain_rows(to);
+  const implicit::ShapeTable old_at = implicit::shapes_at(from, x, true);
+  double misfit = 0.0, largest = 0.0;
+  for (int k = 0; k < to.domain_table.rows(); ++k) {
+    const Vec3 was = implicit::strain_at(old_at, k, d);
+    largest = std::max(largest, was.norm());
+    misfit = std::max(misfit, (implicit::strain_at(to.domain_table, k, carried.d) - was).norm());
+  }
+  INFO("largest strain " << largest << ", largest misfit " << misfit);
+  CHECK(misfit < 0.1 * largest);
+}
