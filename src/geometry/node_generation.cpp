@@ -102,19 +102,36 @@ double distance_to_boundary(const Domain& domain, const Vec2& p) {
   return d;
 }
 
+/// True where p lies inside the union of the boxes finer than h: each of the four points a
+/// quarter of `finest` from p diagonally lies in one of them.
+bool inside_finer_union(const Vec2& p, double h, double finest,
+                        const std::vector<Refinement>& refinements) {
+  for (const Vec2 dir : {Vec2(1, 1), Vec2(1, -1), Vec2(-1, 1), Vec2(-1, -1)}) {
+    const Vec2 q = p + 0.25 * finest * dir;
+    bool covered = false;
+    for (const auto& r : refinements) covered = covered || (r.spacing < h && r.box.contains(q));
+    if (!covered) return false;
+  }
+  return true;
+}
+
 /// True where a lattice of spacing h gives way to a finer refinement box: inside the box, or
 /// outside it by less than half the box's spacing (such a row would lie a sliver from the box's
 /// outer row), unless p is also a node of the box's lattice (anchored at `anchor`) on its
-/// border, where the merge keeps one of the two.
+/// border, where the merge keeps one of the two. A point on the borders of several finer boxes
+/// but inside their union (where overlapping boxes meet) gives way too: kept, its coarse
+/// support would reach across the finer nodes around it.
 bool yields_to_finer_box(const Vec2& p, double h, const Vec2& anchor,
                          const std::vector<Refinement>& refinements) {
+  double finest = h;
   for (const auto& r : refinements) {
     if (r.spacing >= h || !r.box.contains(p, 0.5 * r.spacing)) continue;
     const double tol = 1e-9 * h;
     const bool on_border = r.box.contains(p, tol) && !r.box.contains(p, -tol);
     if (!(on_border && on_lattice(p, anchor, r.spacing))) return true;
+    finest = std::min(finest, r.spacing);
   }
-  return false;
+  return finest < h && inside_finer_union(p, h, finest, refinements);
 }
 
 /// Node positions and the spacing each was placed at.

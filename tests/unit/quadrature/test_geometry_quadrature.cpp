@@ -82,6 +82,56 @@ TEST_CASE("node generation: lattice, boundary nodes, no near-duplicates, local r
   CHECK(fine > 150); // the refined 2 x 2 box minus the hole holds about 16 x 16 - 50 fine nodes
 }
 
+TEST_CASE("node generation: a coarse node where overlapping finer boxes meet inside their union "
+          "gives way to the finer lattice; on the union's outer border it stays",
+          "[geometry]") {
+  const auto body = geometry::Domain::rectangle({0, 0}, {8, 8});
+  using B = geometry::Refinement;
+  struct Case {
+    const char* what;
+    std::vector<B> boxes;
+    Vec2 inside;  // a base-lattice point on the boxes' borders, inside their union
+    Vec2 outside; // a base-lattice point on the union's outer border
+  };
+  const std::vector<Case> cases = {
+      {"two boxes sharing an edge",
+       {{{{2, 2}, {4, 6}}, 0.5}, {{{4, 2}, {6, 6}}, 0.5}},
+       {4, 4},
+       {2, 4}},
+      {"four boxes meeting at a corner",
+       {{{{2, 2}, {4, 4}}, 0.5},
+        {{{4, 2}, {6, 4}}, 0.5},
+        {{{2, 4}, {4, 6}}, 0.5},
+        {{{4, 4}, {6, 6}}, 0.5}},
+       {4, 4},
+       {6, 4}},
+      {"a staircase of boxes offset by one spacing (as refinement along a band makes them)",
+       {{{{3, 0}, {7, 4}}, 0.5},
+        {{{4, 1}, {8, 5}}, 0.5},
+        {{{1, 4}, {5, 8}}, 0.5},
+        {{{2, 4}, {6, 8}}, 0.5}},
+       {4, 4},
+       {1, 6}},
+      {"a finer box inside a fine one",
+       {{{{1, 1}, {7, 7}}, 0.5}, {{{3, 3}, {5, 5}}, 0.25}, {{{5, 3}, {7, 5}}, 0.25}},
+       {5, 4},
+       {1, 4}},
+  };
+  for (const Case& c : cases) {
+    INFO(c.what);
+    const geometry::NodeCloud cloud = geometry::generate_nodes(body, 1.0, c.boxes);
+    const auto spacing_at = [&](const Vec2& p) {
+      for (std::size_t i = 0; i < cloud.x.size(); ++i)
+        if ((cloud.x[i] - p).norm() < 1e-9) return cloud.spacing[i];
+      return -1.0;
+    };
+    const double finest_there = geometry::local_spacing(c.inside + Vec2(1e-3, 1e-3), 1.0, c.boxes);
+    CHECK(spacing_at(c.inside) == finest_there);
+    // On the outer border the coarser lattice's node stays: it is shared by both lattices.
+    CHECK(spacing_at(c.outside) > finest_there);
+  }
+}
+
 namespace {
 /// The smallest distance between two nodes of `cloud`, over the finer of their two spacings.
 double smallest_relative_gap(const geometry::NodeCloud& cloud, double largest_spacing) {
