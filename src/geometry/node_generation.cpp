@@ -106,7 +106,7 @@ double distance_to_boundary(const Domain& domain, const Vec2& p) {
 /// quarter of `finest` from p diagonally lies in one of them.
 bool inside_finer_union(const Vec2& p, double h, double finest,
                         const std::vector<Refinement>& refinements) {
-  for (const Vec2 dir : {Vec2(1, 1), Vec2(1, -1), Vec2(-1, 1), Vec2(-1, -1)}) {
+  for (const Vec2& dir : {Vec2(1, 1), Vec2(1, -1), Vec2(-1, 1), Vec2(-1, -1)}) {
     const Vec2 q = p + 0.25 * finest * dir;
     bool covered = false;
     for (const auto& r : refinements) covered = covered || (r.spacing < h && r.box.contains(q));
