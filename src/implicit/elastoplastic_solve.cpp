@@ -300,6 +300,9 @@ private:
     std::unique_ptr<Discretised> next;
     try { // the model's errors reach every rank
       next = discretise(spec, session_, build, R);
+      // The output evaluates u^h at the nodes (the same on every rank): a node that too few
+      // supports cover ends the refinement here rather than the run later.
+      shapes_at(*next->model, next->model->node_positions(), false);
     } catch (const Error& e) {
       return stay(now, detail::concat("the refined cloud cannot be used (", e.what(), ")"),
                   "refined cloud not usable", R);
