@@ -108,9 +108,9 @@ bool inside_finer_union(const Vec2& p, double h, double finest,
                         const std::vector<Refinement>& refinements) {
   for (const Vec2& dir : {Vec2(1, 1), Vec2(1, -1), Vec2(-1, 1), Vec2(-1, -1)}) {
     const Vec2 q = p + 0.25 * finest * dir;
-    bool covered = false;
-    for (const auto& r : refinements) covered = covered || (r.spacing < h && r.box.contains(q));
-    if (!covered) return false;
+    if (std::none_of(refinements.begin(), refinements.end(),
+                     [&](const Refinement& r) { return r.spacing < h && r.box.contains(q); }))
+      return false;
   }
   return true;
 }

@@ -48,20 +48,12 @@ std::vector<double> every_history(const GalerkinModel& from, const PointStates& 
   return all;
 }
 
-/// u^h and its gradient (row c: the gradient of component c) at each row of `t`.
-struct FieldAt {
-  Vec2 u = Vec2::Zero();
-  Mat2 grad = Mat2::Zero();
-};
-std::vector<FieldAt> field_at_rows(const ShapeTable& t, const std::vector<double>& d) {
-  std::vector<FieldAt> f(t.rows());
-  for (int k = 0; k < t.rows(); ++k)
-    for (int q = t.offset[k]; q < t.offset[k + 1]; ++q) {
-      const Vec2 dJ(d[2 * t.node[q]], d[2 * t.node[q] + 1]);
-      f[k].u += t.phi[q] * dJ;
-      f[k].grad += dJ * t.dphi[q].transpose();
-    }
-  return f;
+/// The gradient of u^h at table row r (row c: the gradient of component c).
+Mat2 gradient_at(const ShapeTable& t, int r, const std::vector<double>& d) {
+  Mat2 g = Mat2::Zero();
+  for (int q = t.offset[r]; q < t.offset[r + 1]; ++q)
+    g += Vec2(d[2 * t.node[q]], d[2 * t.node[q] + 1]) * t.dphi[q].transpose();
+  return g;
 }
 
 /// Nodal parameters of `to` whose u^h is the projection of u^h of `from` (parameters d) in the
@@ -73,9 +65,14 @@ std::vector<FieldAt> field_at_rows(const ShapeTable& t, const std::vector<double
 /// nodes, wiggles between them (README: refinement during the analysis).
 std::vector<double> projected_parameters(const GalerkinModel& from, const std::vector<double>& d,
                                          const GalerkinModel& to) {
+  // Every point of the body, not this rank's rows, so that every rank solves the same system.
   const std::vector<double>& w = to.domain.weight;
   const ShapeTable t = shapes_at(to, to.domain.x, true);
-  const std::vector<FieldAt> old = field_at_rows(shapes_at(from, to.domain.x, true), d);
+  const ShapeTable old_at = shapes_at(from, to.domain.x, true);
+  std::vector<Vec2> old_u(t.rows());
+  std::vector<Mat2> old_grad(t.rows());
+  for (int k = 0; k < t.rows(); ++k)
+    old_u[k] = displacement_at(old_at, k, d), old_grad[k] = gradient_at(old_at, k, d);
   const int n = to.node_count();
   const double inverse_l2 = n / std::accumulate(w.begin(), w.end(), 0.0);
   // Each row I summed in turn over the entries q of the points whose support holds I.
@@ -95,7 +92,7 @@ std::vector<double> projected_parameters(const GalerkinModel& from, const std::v
         sum[J] += w[k] * (t.dphi[qI].dot(t.dphi[q]) + inverse_l2 * t.phi[qI] * t.phi[q]);
       }
       rhs.row(I) +=
-          w[k] * (old[k].grad * t.dphi[qI] + inverse_l2 * t.phi[qI] * old[k].u).transpose();
+          w[k] * (old_grad[k] * t.dphi[qI] + inverse_l2 * t.phi[qI] * old_u[k]).transpose();
     }
     for (int J : columns) entries.emplace_back(I, J, sum[J]), sum[J] = 0.0, touched[J] = 0;
     columns.clear();
