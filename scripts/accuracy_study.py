@@ -13,7 +13,9 @@ analysis (`adapt.every: 1`: each increment above the target solved again on a re
 the state at its start carried to it; no pilots; modified Newton, `nonlinear.keep_tangent:
 0.5`, to `nonlinear.tolerance: 1e-5`), from twice the file's spacing (cells cut by a hole integrated on their exact region) and
 from the file's own cloud (its spacing, refinement boxes and cut cells, as a user runs the
-file). Q8 is run adapted too, for fairness: on a gmsh mesh
+file); and, from either start, refined in the first increment only (`adapt.until: 1`: its
+elastic solution refined until it meets the target, the rest of the schedule on that cloud;
+meshfree_vci_first and meshfree_vci_first_file). Q8 is run adapted too, for fairness: on a gmsh mesh
 whose size field is each adapted cloud's refinement boxes (its adapted_refinement.yaml), so that
 the same estimate grades both; its wall time does not include the meshfree pilots.
 
@@ -187,24 +189,43 @@ KEPT_TANGENT = ["nonlinear.keep_tangent=0.5", f"nonlinear.tolerance={NEWTON_TOLE
 CALCULIX_CONTROLS = (NEWTON_TOLERANCE, NEWTON_TOLERANCE)
 
 
-def run_vci_every(binary, problem, target, out):
+def every_increment(target, until=None):
+    """The adapt map of a run refined during the analysis: every increment estimated (up to
+    increment `until`, where given) and, above the target, solved again on a refined cloud."""
+    return (f"discretisation.adapt={{target: {target!r}, passes: 10, every: 1"
+            + (f", until: {until}" if until else "") + "}")
+
+
+def run_vci_every(binary, problem, target, out, until=None, name="meshfree_vci_every"):
     """Adaptive meshfree with the correction, refined during the analysis itself (every increment
     estimated, and above the target solved again on a refined cloud) instead of by pilot
     solves; a cell cut by a hole integrated on its exact region."""
     spacing, _ = problem_spacings(problem)
     sets = [f"discretisation.spacing={2 * spacing!r}", "discretisation.refinement=[]",
-            f"discretisation.adapt={{target: {target!r}, passes: 10, every: 1}}"]
+            every_increment(target, until)]
     arcs = ["discretisation.quadrature.cut_cells=arcs"] if problem in WITH_HOLES else []
-    return run_case(binary, problem, "meshfree_vci_every", target, out,
+    return run_case(binary, problem, name, target, out,
                     sets + VARIANTS["meshfree_vci"] + arcs + KEPT_TANGENT)
 
 
-def run_vci_every_file(binary, problem, target, out):
+def run_vci_every_file(binary, problem, target, out, until=None,
+                       name="meshfree_vci_every_file"):
     """The same refinement during the analysis from the problem file's own cloud (its spacing,
     refinement boxes and cut cells), as a user runs the file."""
-    sets = [f"discretisation.adapt={{target: {target!r}, passes: 10, every: 1}}"]
-    return run_case(binary, problem, "meshfree_vci_every_file", target, out,
-                    sets + VARIANTS["meshfree_vci"] + KEPT_TANGENT)
+    return run_case(binary, problem, name, target, out,
+                    [every_increment(target, until)] + VARIANTS["meshfree_vci"] + KEPT_TANGENT)
+
+
+def run_vci_first(binary, problem, target, out):
+    """Refinement in the first increment only (`until: 1`, its elastic solution estimated and
+    refined until it meets the target), the rest of the schedule on that cloud; from 2 h."""
+    return run_vci_every(binary, problem, target, out, until=1, name="meshfree_vci_first")
+
+
+def run_vci_first_file(binary, problem, target, out):
+    """Refinement in the first increment only, from the file's own cloud."""
+    return run_vci_every_file(binary, problem, target, out, until=1,
+                              name="meshfree_vci_first_file")
 
 
 def run_fem_adapted(binary, problem, target, out):
@@ -252,6 +273,7 @@ def reach(runs, target):
 # meshfree_adaptive run of the same target).
 ADAPTIVE = {"meshfree_adaptive": run_adaptive, "meshfree_vci_adaptive": run_vci_adaptive,
             "meshfree_vci_every": run_vci_every, "meshfree_vci_every_file": run_vci_every_file,
+            "meshfree_vci_first": run_vci_first, "meshfree_vci_first_file": run_vci_first_file,
             "fem_adapted": run_fem_adapted}
 METHODS = list(VARIANTS) + list(ADAPTIVE) + ["calculix"]
 

@@ -42,6 +42,7 @@ io::Json adaptation_json(const spec::ProblemSpec& spec, const Adaptation& a,
   io::Json j;
   j.set("target", s.target).set("fraction", s.fraction);
   if (s.every > 0) j.set("every", s.every);
+  if (s.until > 0) j.set("until", s.until);
   j.set("ended", a.ended)
       .set("refinement_boxes", static_cast<long>(a.refinement.size()))
       .set(s.every > 0 ? "passes" : "pilot_passes", passes)

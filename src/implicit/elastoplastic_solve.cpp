@@ -234,6 +234,13 @@ public:
   /// `every`-th increment while refinement has not ended).
   bool review(const Discretised& now, long k, ElastoplasticResult& R) {
     if (!active() || !record_.ended.empty() || k % adapt_->every != 0) return false;
+    if (adapt_->until > 0 && k > adapt_->until) {
+      record_.ended = "until reached";
+      log::info("adapt: refinement ends after increment ", adapt_->until,
+                " (until); the schedule goes on on the cloud of ", now.model->node_count(),
+                " nodes");
+      return false;
+    }
     const auto began = std::chrono::steady_clock::now();
     const ErrorEstimate e = estimate_of(now, now.problem->states().stress, session_);
     AdaptPass pass;

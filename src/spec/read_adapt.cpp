@@ -23,6 +23,9 @@ void read_adapt_keys(KeyReader& a, AdaptSpec& r) {
                                 "analysis (every: " +
                                     std::to_string(r.every) + ")");
   r.pilot_increments = a.integer("pilot_increments", r.pilot_increments, 1, 1000000);
+  if (r.every == 0 && a.has("until"))
+    a.error("until", "ends refinement during the analysis, which needs every: N (N > 0)");
+  r.until = a.integer("until", r.until, 1, 1000000);
   a.finish();
 }
 } // namespace

@@ -28,7 +28,7 @@ struct Adaptation {
   std::vector<AdaptPass> passes;
   std::vector<geometry::Refinement> refinement; // the last cloud's boxes, the problem's first
   int nodes = 0;                                // the last cloud's node count
-  std::string ended; // why: "target reached", "passes used", "max_nodes reached"
+  std::string ended; // why: "target reached", "passes used", "max_nodes reached", "until reached"
 };
 
 /// The nodes marked by Doerfler's rule: the fewest of the largest eta_I^2 whose sum reaches

@@ -38,6 +38,9 @@ struct AdaptSpec {
   // Refine during an elastoplastic analysis after every `every` converged increments, the
   // committed state carried to the new cloud, instead of by pilot solves before it (0: pilots).
   int every = 0;
+  // With every: estimates (and refinements) in increments 1 to `until` only, the rest of the
+  // schedule on the cloud then reached (0: the whole schedule).
+  int until = 0;
 };
 
 struct DiscretisationSpec {

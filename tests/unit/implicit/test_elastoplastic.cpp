@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 
 using namespace mf;
@@ -93,6 +94,57 @@ TEST_CASE("a bar refined between increments keeps the closed-form cyclic respons
   CHECK(clouds[1] < clouds[2]);
   CHECK(clouds.back() == clouds[2]);
   CHECK(error < 1e-6); // as on the file's own cloud without the correction (6e-8)
+}
+
+TEST_CASE("refinement during the analysis ends after increment `until`",
+          "[elastoplastic][adaptivity]") {
+  // Cook's membrane on spacing 4 over 10 increments at target 0.08: increment 1 is refined twice
+  // (118, 229 and 569 nodes) and increment 6 once more, where the plastic zone has spread. With
+  // until the estimates stop after that increment: until 5 ends just before the later refinement,
+  // until 6 keeps it, and until past the schedule is no limit.
+  const auto run = [](const std::string& until) {
+    const std::string adapt = "discretisation.adapt={target: 0.08, passes: 6, every: 1" +
+                              (until.empty() ? "" : ", until: " + until) + "}";
+    const auto spec =
+        load_problem("cook_membrane",
+                     {"discretisation.spacing=4", "discretisation.refinement=[]",
+                      "discretisation.quadrature.order=2",
+                      "discretisation.quadrature.correction=vci", "steps.0.increments=10", adapt});
+    const auto r = implicit::solve_elastoplastic_static(spec, test_session(), nullptr);
+    REQUIRE(r.status == "completed");
+    REQUIRE(r.adaptation);
+    return *r.adaptation;
+  };
+  const auto refined_in = [](const implicit::Adaptation& a) {
+    std::vector<int> at;
+    for (const auto& p : a.passes)
+      if (p.marked > 0) at.push_back(p.increment);
+    return at;
+  };
+  const implicit::Adaptation whole = run("");
+  REQUIRE(refined_in(whole) == std::vector<int>{1, 1, 6});
+  struct Case {
+    const char* until;
+    std::vector<int> refined;
+    const char* ended; // empty: as without until
+  };
+  const std::vector<Case> cases = {{"1", {1, 1}, "until reached"},
+                                   {"5", {1, 1}, "until reached"},
+                                   {"6", {1, 1, 6}, "until reached"},
+                                   {"100", {1, 1, 6}, ""}};
+  for (const Case& c : cases) {
+    INFO("until " << c.until);
+    const implicit::Adaptation a = run(c.until);
+    CHECK(refined_in(a) == c.refined);
+    CHECK(a.ended == (c.ended[0] ? std::string(c.ended) : whole.ended));
+    // Up to `until` the run is the one without it, estimate for estimate.
+    for (std::size_t k = 0; k < a.passes.size(); ++k) {
+      REQUIRE(k < whole.passes.size());
+      CHECK(a.passes[k].nodes == whole.passes[k].nodes);
+      CHECK(a.passes[k].estimate == whole.passes[k].estimate);
+    }
+    CHECK(a.passes.back().increment <= std::atoi(c.until));
+  }
 }
 
 TEST_CASE("Newton with the consistent tangent converges quadratically in plastic increments",

@@ -203,6 +203,17 @@ TEST_CASE("discretisation.adapt as a switch: off runs the file's cloud, on every
   CHECK(adapt_of("discretisation.adapt={target: 0.05}")->target == 0.05);
   CHECK(error_of("discretisation.adapt=sometimes") ==
         "discretisation.adapt: expected on, off or a map of keys, got sometimes");
+  // until ends refinement during the analysis: without every there is none to end.
+  CHECK(error_of("discretisation.adapt={target: 0.05, until: 1}") ==
+        "discretisation.adapt.until: ends refinement during the analysis, which needs every: N "
+        "(N > 0)");
+  CHECK(error_of("discretisation.adapt={every: 1, until: 0}") ==
+        "discretisation.adapt.until: expected an integer from 1 to 1000000, got 0");
+  CHECK(error_of("discretisation.adapt={every: 1, until: 1.5}") ==
+        "discretisation.adapt.until: expected an integer from 1 to 1000000, got 1.5");
+  CHECK_THAT(error_of("discretisation.adapt={every: 1, untill: 1}"),
+             Catch::StartsWith("discretisation.adapt.untill: unknown key") &&
+                 Catch::EndsWith("did you mean 'until'?"));
   // Off is allowed where adaptation is not: a finite-element run of a file that adapts.
   YAML::Node root = YAML::Load(kGood);
   spec::apply_override(root, "discretisation.method=fem");
