@@ -26,6 +26,10 @@ void read_adapt_keys(KeyReader& a, AdaptSpec& r) {
   if (r.every == 0 && a.has("until"))
     a.error("until", "ends refinement during the analysis, which needs every: N (N > 0)");
   r.until = a.integer("until", r.until, 1, 1000000);
+  if (r.until > 0 && r.until < r.every)
+    a.error("until", "is " + std::to_string(r.until) +
+                         ", before the first increment estimated (every: " +
+                         std::to_string(r.every) + "): no refinement would be made");
   a.finish();
 }
 } // namespace

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """scripts/accuracy_study.py on its first level of the force-driven Cook's membrane: every method
 gives a row (Q8 on the adapted cloud's boxes, and the cloud refined between increments from
-twice the file's spacing and from the file's own cloud, too), and CalculiX's error is the tip deflection's,
+twice the file's spacing and from the file's own cloud, every increment or the first only,
+too), the first-increment runs estimate no later increment, and CalculiX's error is the tip deflection's,
 the coarsest recipe mesh against the finest, as the committed curves give it; the report made
 again from runs.csv (--report-only) bounds each ratio by CalculiX's finest run, which stays above
 1% on this level.
@@ -9,6 +10,7 @@ again from runs.csv (--report-only) bounds each ratio by CalculiX's finest run, 
     accuracy_study_smoke.py MESHFREE OUT
 """
 import csv
+import json
 import subprocess
 import sys
 from pathlib import Path
@@ -21,7 +23,8 @@ subprocess.run([sys.executable, str(ROOT / "scripts" / "accuracy_study.py"), "--
 with open(out / "runs.csv", newline="") as f:
     rows = {r["method"]: r for r in csv.DictReader(f)}
 methods = {"meshfree", "meshfree_vci", "fem", "meshfree_adaptive", "meshfree_vci_adaptive",
-           "meshfree_vci_every", "meshfree_vci_every_file", "fem_adapted", "calculix"}
+           "meshfree_vci_every", "meshfree_vci_every_file", "meshfree_vci_first",
+           "meshfree_vci_first_file", "fem_adapted", "calculix"}
 if set(rows) != methods:
     sys.exit(f"FAIL: methods {sorted(rows)}, expected {sorted(methods)}")
 ref_dir = ROOT / "reference" / "calculix_plastic" / "cook_membrane_force"
@@ -36,6 +39,18 @@ if abs(got - expected) > 1e-6 * expected:
 for m in methods:
     if not 0 < float(rows[m]["error"]) < 0.1:
         sys.exit(f"FAIL: {m}: error {rows[m]['error']} outside (0, 0.1) on the first level")
+# until: 1 ends the estimates after the first increment; the every-increment run goes on past it.
+for m in ("meshfree_vci_first", "meshfree_vci_first_file", "meshfree_vci_every"):
+    level = rows[m]["level"]
+    summary = json.loads((out / f"cook_membrane_force_{m}_{level}" / "summary.json").read_text())
+    a = summary["results"]["adaptivity"]
+    estimated = set(a["passes"]["increment"])
+    if m == "meshfree_vci_every":
+        if max(estimated) <= 1:
+            sys.exit(f"FAIL: {m}: no increment past the first estimated")
+    elif a["ended"] != "until reached" or estimated != {1}:
+        sys.exit(f"FAIL: {m}: refinement ended '{a['ended']}', increments estimated "
+                 f"{sorted(estimated)}; expected 'until reached' after increment 1 alone")
 # The report again from runs.csv alone (--report-only), for every problem the study knows: the
 # two it did not run are reported as not reached, and on this first level CalculiX (3.9% off)
 # is above 1%, so every method that reached 1% has its ratio to CalculiX as a bound ("<" its

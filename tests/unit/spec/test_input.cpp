@@ -211,6 +211,9 @@ TEST_CASE("discretisation.adapt as a switch: off runs the file's cloud, on every
         "discretisation.adapt.until: expected an integer from 1 to 1000000, got 0");
   CHECK(error_of("discretisation.adapt={every: 1, until: 1.5}") ==
         "discretisation.adapt.until: expected an integer from 1 to 1000000, got 1.5");
+  CHECK(error_of("discretisation.adapt={every: 5, until: 3}") ==
+        "discretisation.adapt.until: is 3, before the first increment estimated (every: 5): no "
+        "refinement would be made");
   CHECK_THAT(error_of("discretisation.adapt={every: 1, untill: 1}"),
              Catch::StartsWith("discretisation.adapt.untill: unknown key") &&
                  Catch::EndsWith("did you mean 'until'?"));
