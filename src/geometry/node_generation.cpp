@@ -14,8 +14,10 @@ double local_spacing(const Vec2& p, double spacing, const std::vector<Refinement
   return h;
 }
 
-std::vector<Curve> split_at_refinements(const Curve& c,
-                                        const std::vector<Refinement>& refinements) {
+namespace {
+
+/// The parameters where c enters or leaves a refinement box, with 0 and 1, sorted.
+std::vector<double> refinement_cuts(const Curve& c, const std::vector<Refinement>& refinements) {
   std::vector<double> cuts{0.0, 1.0};
   for (const auto& r : refinements)
     for (const auto& [t0, t1] :
@@ -24,10 +26,22 @@ std::vector<Curve> split_at_refinements(const Curve& c,
       cuts.push_back(t1);
     }
   std::sort(cuts.begin(), cuts.end());
+  return cuts;
+}
+
+/// The pieces of c between consecutive cuts.
+std::vector<Curve> pieces_between(const Curve& c, const std::vector<double>& cuts) {
   std::vector<Curve> parts;
   for (std::size_t i = 0; i + 1 < cuts.size(); ++i)
     if (cuts[i + 1] - cuts[i] > 1e-12) parts.push_back(c.piece(cuts[i], cuts[i + 1]));
   return parts;
+}
+
+} // namespace
+
+std::vector<Curve> split_at_refinements(const Curve& c,
+                                        const std::vector<Refinement>& refinements) {
+  return pieces_between(c, refinement_cuts(c, refinements));
 }
 
 namespace {
@@ -140,6 +154,31 @@ struct PlacedNodes {
   std::vector<double> h;
 };
 
+/// Boundary pieces are not cut nearer than this fraction of the local spacing to each other.
+constexpr double kShortestPiece = 0.5;
+
+/// The cuts of a boundary curve at the boxes' borders, less those nearer than kShortestPiece of
+/// the local spacing (the finer at either end) to the cut kept before them or to the curve's
+/// end. Each cut is a boundary node, and the borders of many boxes (adapted clouds put boxes
+/// round boundary nodes anywhere) cross an edge at points arbitrarily close together: two nodes
+/// a sliver apart have nearly the same shape function, so that their parameters oscillate and
+/// multigrid stalls.
+std::vector<double> node_cuts(const Curve& c, double spacing,
+                              const std::vector<Refinement>& refinements) {
+  const std::vector<double> cuts = refinement_cuts(c, refinements);
+  const auto h_at = [&](double t) { return local_spacing(c.point(t), spacing, refinements); };
+  const double length = c.length();
+  std::vector<double> kept{0.0};
+  for (std::size_t i = 1; i + 1 < cuts.size(); ++i) {
+    const double t = cuts[i], h = h_at(t);
+    if ((t - kept.back()) * length >= kShortestPiece * std::min(h, h_at(kept.back())) &&
+        (1.0 - t) * length >= kShortestPiece * std::min(h, h_at(1.0)))
+      kept.push_back(t);
+  }
+  kept.push_back(1.0);
+  return kept;
+}
+
 /// Boundary nodes: each piece divided evenly at about the local spacing. An axis-parallel
 /// segment at the base spacing takes as many intervals as the base lattice over its length, so
 /// that a side of the bounding box holds the lattice's rows; other pieces ceil(L / h).
@@ -147,7 +186,7 @@ PlacedNodes boundary_nodes(const Domain& domain, double spacing, const Vec2& bas
                            const std::vector<Refinement>& refinements) {
   PlacedNodes bnd;
   for (const Curve& whole : domain.boundary())
-    for (const Curve& c : split_at_refinements(whole, refinements)) {
+    for (const Curve& c : pieces_between(whole, node_cuts(whole, spacing, refinements))) {
       const double h = local_spacing(c.point(0.5), spacing, refinements);
       const int n = std::max(1, boundary_intervals(c, h, h == spacing ? &base_step : nullptr));
       for (int k = 0; k <= n; ++k) {

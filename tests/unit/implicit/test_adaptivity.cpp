@@ -93,21 +93,25 @@ TEST_CASE("adapted Kirsch plate: below the uniform cloud's exact error with fewe
           "the linear basis, VCI and the quadratic basis",
           "[adaptivity]") {
   // Measured, from h = 0.5 to the target 0.015, against the uniform h = 0.125 (3,262 DOFs):
-  //   linear     1,338 DOFs, exact energy error 0.0061 (uniform 0.0096; h = 0.083: 7,212 DOFs
-  //              and 0.0055)
-  //   VCI on 2 x 2 points   1,004 DOFs, 0.0058 (uniform 0.0094)
-  //   quadratic  1,876 DOFs, 0.0030 (uniform 0.0062)
+  //   linear     1,184 DOFs, exact energy error 0.0088 (uniform 0.0096), estimate 1.3 times
+  //   VCI on 2 x 2 points   974 DOFs, 0.0063 (uniform 0.0094), estimate 2.0 times
+  //   quadratic  1,376 DOFs, 0.0024 (uniform 0.0062), estimate 3.5 times
+  // The recovery (nodal averages through the shape functions) is no more accurate than the
+  // quadratic basis's own stress, so its estimate measures the recovery's error as much as the
+  // solution's and lies further above the exact error, the more so the better the solution.
   struct Variant {
     std::string name;
     std::vector<std::string> settings;
-    double dofs_share; // of the uniform cloud's DOFs, at most
+    double dofs_share;  // of the uniform cloud's DOFs, at most
+    double effectivity; // estimate / exact error, at most
   };
   const std::vector<Variant> variants{
-      {"linear", {}, 0.5},
+      {"linear", {}, 0.5, 3.0},
       {"vci",
        {"discretisation.quadrature.correction=vci", "discretisation.quadrature.order=2"},
-       0.5},
-      {"quadratic", {"discretisation.basis=quadratic", "discretisation.dilation=3"}, 0.7}};
+       0.5,
+       3.0},
+      {"quadratic", {"discretisation.basis=quadratic", "discretisation.dilation=3"}, 0.7, 4.0}};
   for (const Variant& v : variants) {
     INFO(v.name);
     const Run uniform = kirsch(0.125, "0.5", v.settings);
@@ -116,7 +120,7 @@ TEST_CASE("adapted Kirsch plate: below the uniform cloud's exact error with fewe
     CHECK(adapted.exact < uniform.exact);
     CHECK(adapted.dofs < v.dofs_share * uniform.dofs);
     CHECK(adapted.estimate / adapted.exact > 1.0);
-    CHECK(adapted.estimate / adapted.exact < 3.0);
+    CHECK(adapted.estimate / adapted.exact < v.effectivity);
   }
 }
 
