@@ -167,13 +167,14 @@ std::vector<double> node_cuts(const Curve& c, double spacing,
                               const std::vector<Refinement>& refinements) {
   const std::vector<double> cuts = refinement_cuts(c, refinements);
   const auto h_at = [&](double t) { return local_spacing(c.point(t), spacing, refinements); };
-  const double length = c.length();
+  const double length = c.length(), h_end = h_at(1.0);
   std::vector<double> kept{0.0};
+  double h_kept = h_at(0.0); // the local spacing at the last cut kept
   for (std::size_t i = 1; i + 1 < cuts.size(); ++i) {
     const double t = cuts[i], h = h_at(t);
-    if ((t - kept.back()) * length >= kShortestPiece * std::min(h, h_at(kept.back())) &&
-        (1.0 - t) * length >= kShortestPiece * std::min(h, h_at(1.0)))
-      kept.push_back(t);
+    if ((t - kept.back()) * length >= kShortestPiece * std::min(h, h_kept) &&
+        (1.0 - t) * length >= kShortestPiece * std::min(h, h_end))
+      kept.push_back(t), h_kept = h;
   }
   kept.push_back(1.0);
   return kept;

@@ -98,13 +98,15 @@ TEST_CASE("a bar refined between increments keeps the closed-form cyclic respons
 
 TEST_CASE("refinement during the analysis ends after increment `until`",
           "[elastoplastic][adaptivity]") {
-  // Cook's membrane on spacing 4 over 10 increments at target 0.08: increment 1 is refined twice
-  // (118, 229 and 569 nodes) and increment 6 once more, where the plastic zone has spread. With
-  // until the estimates stop after that increment: until 5 ends just before the later refinement,
-  // until 6 keeps it, and until past the schedule is no limit.
-  const auto run = [](const std::string& until) {
-    const std::string adapt = "discretisation.adapt={target: 0.08, passes: 6, every: 1" +
-                              (until.empty() ? "" : ", until: " + until) + "}";
+  // Cook's membrane on spacing 4 over 10 increments at target 0.08. Estimated every increment,
+  // increment 1 is refined twice (118, 229 and 569 nodes) and increment 6 once more, where the
+  // plastic zone has spread; estimated every second increment, increments 2 and 6 are refined.
+  // With until the estimates stop after that increment: just before the later refinement, at
+  // it, past the schedule (no limit), and between two estimated increments.
+  const auto run = [](int every, const std::string& until) {
+    const std::string adapt =
+        detail::concat("discretisation.adapt={target: 0.08, passes: 6, every: ", every,
+                       until.empty() ? std::string() : ", until: " + until, "}");
     const auto spec =
         load_problem("cook_membrane",
                      {"discretisation.spacing=4", "discretisation.refinement=[]",
@@ -121,27 +123,31 @@ TEST_CASE("refinement during the analysis ends after increment `until`",
       if (p.marked > 0) at.push_back(p.increment);
     return at;
   };
-  const implicit::Adaptation whole = run("");
-  REQUIRE(refined_in(whole) == std::vector<int>{1, 1, 6});
+  const implicit::Adaptation whole[] = {run(1, ""), run(2, "")};
+  REQUIRE(refined_in(whole[0]) == std::vector<int>{1, 1, 6});
+  REQUIRE(refined_in(whole[1]) == std::vector<int>{2, 6});
   struct Case {
+    int every;
     const char* until;
     std::vector<int> refined;
     const char* ended; // empty: as without until
   };
-  const std::vector<Case> cases = {{"1", {1, 1}, "until reached"},
-                                   {"5", {1, 1}, "until reached"},
-                                   {"6", {1, 1, 6}, "until reached"},
-                                   {"100", {1, 1, 6}, ""}};
+  const std::vector<Case> cases = {{1, "1", {1, 1}, "until reached"},
+                                   {1, "5", {1, 1}, "until reached"},
+                                   {1, "6", {1, 1, 6}, "until reached"},
+                                   {1, "100", {1, 1, 6}, ""},
+                                   {2, "5", {2}, "until reached"}};
   for (const Case& c : cases) {
-    INFO("until " << c.until);
-    const implicit::Adaptation a = run(c.until);
+    INFO("every " << c.every << ", until " << c.until);
+    const implicit::Adaptation& without = whole[c.every - 1];
+    const implicit::Adaptation a = run(c.every, c.until);
     CHECK(refined_in(a) == c.refined);
-    CHECK(a.ended == (c.ended[0] ? std::string(c.ended) : whole.ended));
+    CHECK(a.ended == (c.ended[0] ? std::string(c.ended) : without.ended));
     // Up to `until` the run is the one without it, estimate for estimate.
     for (std::size_t k = 0; k < a.passes.size(); ++k) {
-      REQUIRE(k < whole.passes.size());
-      CHECK(a.passes[k].nodes == whole.passes[k].nodes);
-      CHECK(a.passes[k].estimate == whole.passes[k].estimate);
+      REQUIRE(k < without.passes.size());
+      CHECK(a.passes[k].nodes == without.passes[k].nodes);
+      CHECK(a.passes[k].estimate == without.passes[k].estimate);
     }
     CHECK(a.passes.back().increment <= std::atoi(c.until));
   }
