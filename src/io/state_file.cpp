@@ -48,13 +48,36 @@ bool put_checksum(hid_t set, std::uint64_t sum) {
   return ok;
 }
 
-/// The checksum a dataset was written with; false when it has none or it cannot be read.
+/// The number of values in a dataspace (a dataset's or an attribute's), -1 when it has none.
+hssize_t values_in(hid_t space) {
+  return space >= 0 ? H5Sget_simple_extent_npoints(space) : -1;
+}
+
+/// The checksum a dataset was written with; false when it has none or it cannot be read. The
+/// attribute must hold one value: a damaged dataspace would have H5Aread write past `sum`.
 bool get_checksum(hid_t set, std::uint64_t& sum) {
   if (H5Aexists(set, kChecksum) <= 0) return false;
   const hid_t attr = H5Aopen(set, kChecksum, H5P_DEFAULT);
-  const bool ok = attr >= 0 && H5Aread(attr, H5T_NATIVE_UINT64, &sum) >= 0;
+  const hid_t space = attr >= 0 ? H5Aget_space(attr) : -1;
+  const hid_t type = attr >= 0 ? H5Aget_type(attr) : -1;
+  const bool ok = values_in(space) == 1 && type >= 0 && H5Tequal(type, H5T_NATIVE_UINT64) > 0 &&
+                  H5Aread(attr, H5T_NATIVE_UINT64, &sum) >= 0;
+  if (type >= 0) H5Tclose(type);
+  if (space >= 0) H5Sclose(space);
   if (attr >= 0) H5Aclose(attr);
   return ok;
+}
+
+/// The number of values a dataset of `width`-byte values holds, or -1 where its bytes could not
+/// be in the file: more than the file's size, or other than the storage the file gives it (the
+/// writer stores every array whole and contiguous). Checked before anything is allocated, since a
+/// flipped bit in a dimension would otherwise ask for up to 2^63 values (16 GiB for bit 31 of a
+/// double array) before the read fails.
+hssize_t bounded_count(hid_t set, hid_t space, std::size_t width, std::uintmax_t file_bytes) {
+  const hssize_t n = values_in(space);
+  if (n < 0 || width == 0 || static_cast<std::uintmax_t>(n) > file_bytes / width) return -1;
+  const std::uintmax_t bytes = static_cast<std::uintmax_t>(n) * width;
+  return H5Dget_storage_size(set) == bytes ? n : -1;
 }
 
 } // namespace
@@ -131,6 +154,7 @@ StateReader::StateReader(const std::string& path) : path_(path) {
   struct stat st {};
   if (::lstat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
     refuse_checkpoint(path + ": not a regular file (a link, or missing)");
+  file_bytes_ = static_cast<std::uintmax_t>(st.st_size);
   const hid_t access = serial_access();
   file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, access);
   H5Pclose(access);
@@ -153,7 +177,7 @@ template <class T> void StateReader::get(const std::string& name, std::vector<T>
   const hid_t space = set >= 0 ? H5Dget_space(set) : -1;
   const hid_t type = set >= 0 ? H5Dget_type(set) : -1;
   const bool same_type = type >= 0 && H5Tequal(type, native<T>()) > 0;
-  const hssize_t size = space >= 0 ? H5Sget_simple_extent_npoints(space) : -1;
+  const hssize_t size = same_type ? bounded_count(set, space, sizeof(T), file_bytes_) : -1;
   bool ok = set >= 0 && same_type && size >= 0;
   if (ok) {
     values.resize(static_cast<std::size_t>(size));
@@ -174,7 +198,9 @@ template <class T> void StateReader::get(const std::string& name, std::vector<T>
 namespace {
 struct VerifyVisit {
   hid_t file;
-  std::string bad; // the first dataset that fails its checksum
+  std::uintmax_t file_bytes;
+  std::string bad;  // the first dataset that cannot be read or fails its checksum
+  bool unreadable = false; // which of the two
 };
 
 herr_t verify_one(hid_t, const char* name, const H5L_info_t*, void* data) {
@@ -183,14 +209,17 @@ herr_t verify_one(hid_t, const char* name, const H5L_info_t*, void* data) {
   const hid_t space = set >= 0 ? H5Dget_space(set) : -1;
   const hid_t stored = set >= 0 ? H5Dget_type(set) : -1;
   const hid_t type = stored >= 0 ? H5Tget_native_type(stored, H5T_DIR_ASCEND) : -1;
-  const hssize_t n = space >= 0 ? H5Sget_simple_extent_npoints(space) : -1;
   const std::size_t width = type >= 0 ? H5Tget_size(type) : 0;
+  const hssize_t n = bounded_count(set, space, stored >= 0 ? H5Tget_size(stored) : 0, v.file_bytes);
   std::uint64_t sum = 0;
-  bool ok = n >= 0 && width > 0 && get_checksum(set, sum);
-  if (ok) {
+  bool ok = n >= 0 && width > 0;
+  v.unreadable = !ok;
+  if (ok && get_checksum(set, sum)) {
     std::vector<unsigned char> bytes(static_cast<std::size_t>(n) * width);
     ok = n == 0 || H5Dread(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()) >= 0;
     ok = ok && sum == checksum(bytes.data(), bytes.size());
+  } else {
+    ok = false;
   }
   for (const hid_t t : {type, stored})
     if (t >= 0) H5Tclose(t);
@@ -203,11 +232,13 @@ herr_t verify_one(hid_t, const char* name, const H5L_info_t*, void* data) {
 } // namespace
 
 void StateReader::verify() const {
-  VerifyVisit v{file_, {}};
+  VerifyVisit v{file_, file_bytes_, {}};
   hsize_t at = 0;
   const herr_t r = H5Literate(file_, H5_INDEX_NAME, H5_ITER_NATIVE, &at, verify_one, &v);
   if (!v.bad.empty())
-    refuse_checkpoint(path_ + ": '" + v.bad + "' does not match its checksum (a damaged file)");
+    refuse_checkpoint(path_ + ": '" + v.bad +
+                      (v.unreadable ? "' cannot be read (a damaged file?)"
+                                    : "' does not match its checksum (a damaged file)"));
   if (r < 0) refuse_checkpoint(path_ + ": cannot list its arrays (a damaged file)");
 }
 

@@ -2,7 +2,10 @@
 """Mutated checkpoints against `meshfree run --restart`: every mutant is refused cleanly (exit 2,
 one line on stderr starting "meshfree: --restart ", nothing written into the folder or wherever a
 link in it points) or restarted to completion (exit 0, a summary.json of status "completed", a
-history.csv of finite numbers), within 60 seconds; never a crash, a hang, exit 1 or a second line.
+history.csv of finite numbers), within 60 CPU seconds; never a crash, a hang, exit 1 or a second
+line. A refusal takes at most 2 CPU seconds and 100 MB of peak resident memory beyond a clean
+restart's peak: what the program allocates is bounded by what the file holds, not by what a
+damaged number in it claims (a flipped bit in a dimension once asked for 16.9 GB).
 A mutant that damages what a restart must read (a cut file, a flipped bit in an array's values,
 a checksum changed or removed, a dataset removed or renamed, another run's checkpoint, a time
 that is not the state's, a marker naming no checkpoint, a link, a FIFO) must be refused; one that
@@ -25,12 +28,14 @@ links: checkpoint/, the state file or the marker a symbolic link to a copy, a FI
 their place, a dangling link. Restarts end three steps after the checkpoint (time.end may change
 on restart), so a mutant that is accepted runs a few steps.
 
-The seed changes every day (the UTC date, 20261127 on 27 November 2026) unless --seed is given; it
-is printed first, so that a failure is reproduced by --seed and its number; a failing mutant's
+The seed is fixed unless --seed is given (scripts/fuzz_nightly.sh gives --seed today, the UTC
+date, 20261127 on 27 November 2026); it is printed first, so that a failure is reproduced by --seed and its number; a failing mutant's
 folder goes to OUT/mutant_<n> with its output. An exception in this script while a mutant is made
 or judged is a failure of that mutant. JOBS restarts run at once (default: 4 per core: most of a
-short restart's time is spent starting the program and reading, not computing).
+short restart's time is spent starting the program and reading, not computing). --mutations
+draws from the named mutations only (flip_metadata, say).
 Usage: fuzz_checkpoints.py MESHFREE SOURCE_DIR [--count N] [--seed S] [--out DIR] [--jobs J]
+                           [--mutations NAME ...]
 """
 import json
 import math
@@ -51,7 +56,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from fuzz_support import arguments, fnv, one_rank_env, parse  # noqa: E402
+from fuzz_support import arguments, fnv, one_rank_env, parse, run_limited, status  # noqa: E402
 
 FIRST_STEP = re.compile(r"(?:first CFL step|time step) ([0-9.]+(?:[eE][-+]?[0-9]+)?)")
 
@@ -63,6 +68,7 @@ class Base:
     def __init__(self, name, problem, sets):
         self.name, self.problem, self.sets = name, problem, sets
         self.own, self.foreign, self.end, self.reference = None, {}, None, None
+        self.peak_bytes = None  # a clean restart's peak resident memory
 
 
 def generation(folder):
@@ -341,15 +347,16 @@ def listing(folder):
     return sorted(out)
 
 
+CPU_S = 60  # any restart's limit of CPU time
+REFUSAL_CPU_S = 2.0  # a refusal's
+REFUSAL_EXTRA_BYTES = 100e6  # a refusal's peak memory beyond a clean restart's
+
+
 def restart(meshfree, base, folder):
-    """A restart from `folder`."""
+    """A restart from `folder`: its Outcome."""
     args = [meshfree, "run", base.problem, "--restart", str(folder)] + base.sets + \
         ["--set", "time.end=%r" % base.end]
-    try:
-        p = subprocess.run(args, capture_output=True, timeout=60, env=one_rank_env())
-        return p.returncode, p.stderr.decode(errors="replace")
-    except subprocess.TimeoutExpired as e:
-        return "timeout", (e.stderr or b"").decode(errors="replace")
+    return run_limited(args, CPU_S, one_rank_env())
 
 
 def finite_history(folder):
@@ -362,13 +369,19 @@ def finite_history(folder):
     return None
 
 
-def judge(rc, err, before, after, folder, must_refuse, same_state, base):
+def judge(outcome, before, after, folder, must_refuse, same_state, base):
+    rc, err = outcome.returncode, outcome.stderr.decode(errors="replace")
     lines = [l for l in err.split("\n") if l.strip() and not l.startswith("[meshfree] warning")]
     if rc == 2:
         if len(lines) != 1 or not lines[0].startswith("meshfree: --restart "):
             return "refused without one '--restart' line: %r" % err[-400:]
         if before != after:
             return "refused, but the folder (or what its links point at) changed"
+        if outcome.cpu_s > REFUSAL_CPU_S:
+            return "refused after %.2f CPU seconds (at most %g)" % (outcome.cpu_s, REFUSAL_CPU_S)
+        if outcome.peak_bytes > base.peak_bytes + REFUSAL_EXTRA_BYTES:
+            return "refused at a peak of %.0f MB, a clean restart's is %.0f MB" % (
+                outcome.peak_bytes / 1e6, base.peak_bytes / 1e6)
         return None
     if rc == 0:
         summary = folder / "summary.json"
@@ -382,9 +395,7 @@ def judge(rc, err, before, after, folder, must_refuse, same_state, base):
         if same_state and (folder / "history.csv").read_text() != base.reference:
             return "restarted from the run's own state to other results than its own restart"
         return None
-    if isinstance(rc, int) and rc < 0:
-        return "killed by signal %d: %s" % (-rc, err[-400:])
-    return "exit %s: %s" % (rc, err[-400:])
+    return "%s: %s" % (status(rc), err[-400:])
 
 
 def copy_file(src, dst):
@@ -417,15 +428,22 @@ def prepare(meshfree, source, work):
         b.end = t + 3 * float(FIRST_STEP.search(out).group(1))  # three steps or so
         ref = work / (b.name + ".reference")
         shutil.copytree(b.own / "checkpoint", ref / "checkpoint", symlinks=True)
-        rc, err = restart(meshfree, b, ref)
-        if rc != 0:
-            sys.exit("the own checkpoint of %s does not restart: %s" % (b.name, err))
+        clean = restart(meshfree, b, ref)
+        if clean.returncode != 0:
+            sys.exit("the own checkpoint of %s does not restart: %s" % (b.name, clean.stderr))
         b.reference = (ref / "history.csv").read_text()
+        b.peak_bytes = clean.peak_bytes
+        print("%s: a clean restart peaks at %.0f MB in %.2f CPU seconds"
+              % (b.name, clean.peak_bytes / 1e6, clean.cpu_s), flush=True)
     return [pd, sph]
 
 
 def main():
-    a = parse(arguments(__doc__))
+    ap = arguments(__doc__)
+    ap.add_argument("--mutations", nargs="+", default=[m.__name__ for m in MUTATIONS],
+                    choices=[m.__name__ for m in MUTATIONS])
+    a = parse(ap)
+    mutations = [m for m in MUTATIONS if m.__name__ in a.mutations]
     work = Path(tempfile.mkdtemp(prefix="fuzz_checkpoints_"))
     try:
         bases = prepare(a.meshfree, a.source, work)
@@ -436,14 +454,16 @@ def main():
             folder = work / ("m%d" % n)
             outside = Path(str(folder) + ".outside")
             what, rc, err = "(not made)", None, ""
+            outcome = None
             try:
                 shutil.copytree(base.own / "checkpoint", folder / "checkpoint", symlinks=True)
-                mutation = rng.choice(MUTATIONS)
+                mutation = rng.choice(mutations)
                 state = folder / "checkpoint" / state_files(base.own)[0].name
                 what, must_refuse, same_state = mutation(folder, state, base, rng)
                 before = listing(folder) + listing(outside)
-                rc, err = restart(a.meshfree, base, folder)
-                failure = judge(rc, err, before, listing(folder) + listing(outside), folder,
+                outcome = restart(a.meshfree, base, folder)
+                rc, err = outcome.returncode, outcome.stderr.decode(errors="replace")
+                failure = judge(outcome, before, listing(folder) + listing(outside), folder,
                                 must_refuse, same_state, base)
             except Exception:
                 err = traceback.format_exc()
@@ -455,19 +475,26 @@ def main():
                 (keep / "output.txt").write_text("%s: %s\nexit %s\n%s" % (base.name, what, rc, err))
             shutil.rmtree(folder, ignore_errors=True)
             shutil.rmtree(outside, ignore_errors=True)
-            return n, base.name + ": " + what, rc, failure
+            return n, base.name + ": " + what, rc, failure, outcome
 
         outcomes = {"refused": 0, "restarted": 0}
-        failures = []
+        failures, refusals = [], []
         with ThreadPoolExecutor(a.jobs) as pool:
-            for n, what, rc, failure in pool.map(one, range(a.count)):
+            for n, what, rc, failure, outcome in pool.map(one, range(a.count)):
                 if failure:
                     failures.append((n, what, failure))
                     print("FAIL mutant %d (%s): %s" % (n, what, failure), flush=True)
                 else:
                     outcomes["refused" if rc == 2 else "restarted"] += 1
+                if rc == 2 and outcome:
+                    refusals.append(outcome)
         print("seed %d: %d mutants: %d refused cleanly, %d restarted to completion, %d failures"
               % (a.seed, a.count, outcomes["refused"], outcomes["restarted"], len(failures)))
+        if refusals:
+            print("refusals: at most %.2f CPU seconds (median %.2f), peak resident memory at most "
+                  "%.0f MB" % (max(o.cpu_s for o in refusals),
+                               sorted(o.cpu_s for o in refusals)[len(refusals) // 2],
+                               max(o.peak_bytes for o in refusals) / 1e6))
         return 1 if failures else 0
     finally:
         shutil.rmtree(work, ignore_errors=True)

@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
 """Mutated problem files against `meshfree check`: every mutant is accepted (exit 0) or refused
 cleanly (exit 2 with one line on stderr, "meshfree: ...", of at most 400 characters), within 60
-seconds (check builds the set-up a run builds, and a mutated size that is still valid can make it
+CPU seconds (check builds the set-up a run builds, and a mutated size that is still valid can make it
 large: tens of millions of bonds), never with a crash, a hang or another exit code.
 
-The mutants are drawn from every problems/*.yaml with a seed that changes every day (the UTC date,
-20261127 on 27 November 2026) unless --seed is given; the seed is printed first, so that a failure
-is reproduced by --seed and its number: a number replaced by an extreme or wrong value, a line deleted, doubled or moved,
+The mutants are drawn from every problems/*.yaml with a fixed seed unless --seed is given (the
+suite's runs; scripts/fuzz_nightly.sh gives --seed today, the UTC date, 20261127 on 27 November
+2026); the seed is printed first, so that a failure is reproduced by --seed and its number: a number replaced by an extreme or wrong value, a line deleted, doubled or moved,
 a key renamed, stray characters inserted, the file cut short. A failing mutant is written to
 OUT/mutant_<n>.yaml with its output.
 
@@ -16,11 +16,12 @@ if sooner): each completes (exit 0, a summary.json of status "completed" and a h
 numbers are all finite), is refused as input (exit 2, one clean line, nothing written; a mutant
 that `check` said was valid must not be refused so), or fails (exit 1, one line "meshfree: run
 failed..." on stderr besides the log's "[meshfree] ..." lines, and a failed/summary.json of status
-"failed"), within 60 seconds. The bodies are made smaller first: every `spacing:` of a problem is
+"failed"), within 60 CPU seconds. The bodies are made smaller first: every `spacing:` of a problem is
 doubled where `check` still finds it valid (1/8 of the particles in 3D), since a short run's cost
 is its set-up, the bonds and neighbours of every particle.
 
-Any other outcome is a failure: a signal (a crash), a timeout (a hang), another exit status, a
+Any other outcome is a failure: a signal (a crash), its CPU time used up, a hang (no end after
+10 minutes of wall time: a limit that no load reaches), another exit status, a
 message of more than one line, files written on exit 2, or an exception in this script.
 JOBS processes run at once (default: 4 per core: most of a short run's time is spent starting
 MPI and writing, not computing).
@@ -32,7 +33,6 @@ import os
 import random
 import re
 import shutil
-import subprocess
 import sys
 import tempfile
 import traceback
@@ -40,7 +40,9 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from fuzz_support import arguments, one_rank_env, parse  # noqa: E402
+from fuzz_support import arguments, one_rank_env, parse, run_limited, status  # noqa: E402
+
+CPU_S = 60  # a case's limit of CPU time (one costs 0.04 to 0.13 CPU seconds)
 
 VALUES = ["-1", "0", "1e308", "-1e308", "1e-308", "1e999", ".nan", ".inf", "-.inf",
           "99999999999999999999", "abc", "[]", "{}", "[1, 2, 3, 4]", "''", "null", "true",
@@ -81,16 +83,10 @@ def mutate(text, rng):
     return "\n".join(lines)
 
 
-def status(rc):
-    return "killed by signal %d" % -rc if rc < 0 else "exit %d" % rc
-
-
 def check(meshfree, path, workdir):
-    try:
-        p = subprocess.run([meshfree, "check", str(path)], capture_output=True, timeout=60,
-                           cwd=workdir, env=one_rank_env())
-    except subprocess.TimeoutExpired:
-        return "hung (over 60 s)", b"", b""
+    p = run_limited([meshfree, "check", str(path)], CPU_S, one_rank_env(), cwd=workdir)
+    if not isinstance(p.returncode, int) or p.returncode < 0:
+        return status(p.returncode), p.stdout, p.stderr
     err_lines = p.stderr.decode(errors="replace").strip().split("\n") if p.stderr.strip() else []
     # Unit-sanity warnings (a mutated number may be implausible) come before the refusal line.
     err_lines = [l for l in err_lines if not l.startswith("[meshfree] warning: ")]
@@ -145,20 +141,17 @@ def coarser(text, meshfree, path, workdir):
     coarse = SPACING.sub(lambda m: m.group(1) + repr(2 * float(m.group(2))), text)
     path.write_text(coarse)
     try:
-        p = subprocess.run([meshfree, "check", str(path)], capture_output=True, timeout=60,
-                           cwd=workdir, env=one_rank_env())
+        p = run_limited([meshfree, "check", str(path)], CPU_S, one_rank_env(), cwd=workdir)
     finally:
         path.unlink(missing_ok=True)
     return coarse if p.returncode == 0 and b": valid" in p.stdout else text
 
 
 def judge_run(meshfree, path, out, workdir, end, valid):
-    try:
-        p = subprocess.run([meshfree, "run", str(path), "--out", str(out), "--set",
-                            "time.end=%g" % end], capture_output=True, timeout=60,
-                           cwd=workdir, env=one_rank_env())
-    except subprocess.TimeoutExpired:
-        return "timeout", b"", b""
+    p = run_limited([meshfree, "run", str(path), "--out", str(out), "--set", "time.end=%g" % end],
+                    CPU_S, one_rank_env(), cwd=workdir)
+    if not isinstance(p.returncode, int) or p.returncode < 0:
+        return status(p.returncode), p.stdout, p.stderr
     if p.returncode == 0:
         return completed(out), p.stdout, p.stderr
     if p.returncode == 2:

@@ -80,6 +80,11 @@ public:
     return {v.begin(), v.end()};
   }
   const std::string& path() const { return path_; }
+  /// Whether the file is large enough to hold `count` records (each at least one byte): a count
+  /// read from the file is checked so before a list is sized by it.
+  bool can_hold(long count) const {
+    return count >= 0 && static_cast<std::uintmax_t>(count) <= file_bytes_;
+  }
   /// Reads every dataset of the file and checks it against its checksum.
   void verify() const;
   [[noreturn]] void wrong_size(const std::string& name, std::size_t size) const;
@@ -89,7 +94,8 @@ public:
 
 private:
   std::string path_;
-  long file_ = -1; // hid_t
+  long file_ = -1;                // hid_t
+  std::uintmax_t file_bytes_ = 0; // no dataset can hold more
 };
 
 /// A visitor that writes each visited value under prefix + name.
@@ -163,6 +169,7 @@ struct Loader {
   Loader resizing() const { return {in, prefix, true}; }
   /// The checkpoint folder the state is read from.
   std::string folder() const;
+  bool can_hold(long count) const { return in.can_hold(count); }
 };
 
 /// A visitor that packs the visited values, names aside, into one byte array: many small
@@ -225,6 +232,10 @@ struct Unpacker {
     at += n;
   }
   [[noreturn]] static void short_of(const std::string& name);
+  /// Whether the bytes left hold `count` records (each packs at least one byte).
+  bool can_hold(long count) const {
+    return count >= 0 && static_cast<std::size_t>(count) <= bytes.size() - at;
+  }
 };
 
 /// Visits the number of `what` (particles, nodes) the run has over every rank: a checkpoint that
@@ -245,7 +256,9 @@ void visit_list(Visit&& visit, const std::string& name, std::vector<T>& list, Ea
   const long had = static_cast<long>(list.size());
   long count = had;
   visit(name + ".count", count);
-  if (count < 0 || (had != 0 && count != had))
+  bool fits = count >= 0;
+  if constexpr (std::decay_t<Visit>::loads) fits = visit.can_hold(count);
+  if (!fits || (had != 0 && count != had))
     refuse_checkpoint("checkpoint holds " + std::to_string(count) + " " + name + ", this run has " +
                       std::to_string(had));
   list.resize(static_cast<std::size_t>(count));
