@@ -26,8 +26,12 @@ shared with nothing else only if you make it so.
 The 3D cases (model solid_3d, on the box of problems/patch_test_3d.yaml): `box`, meshfree RK,
 and `hex8`, `hex20`, the same box in bricks (discretisation.method: fem), from 10^4 to 10^6
 DOFs (--box-max-dofs, --brick-max-dofs). No run starts whose peak memory, predicted from the
-bytes per DOF of the case's last run, exceeds --max-memory-gb; the prediction for the largest
-size left out is printed instead. For each 3D case on multigrid it prints, and writes in
+case's last run, exceeds --max-memory-gb, or whose memory above the program's own baseline
+exceeds --max-added-memory-gb; the prediction for the largest size left out is printed instead.
+The prediction is the baseline (the peak of `meshfree check` on a small 3D problem: the program,
+its libraries and MPI, 34 MiB on one machine and 113 MB on another) plus the last run's bytes per
+DOF above it times the size, so that it does not depend on the machine's baseline. A case that
+runs at fewer than two sizes has no growth to report, and is said to. For each 3D case on multigrid it prints, and writes in
 criteria.csv, whether the CG iterations at the largest size are within 30% of those at the size
 nearest 10^5 and whether the assembly grows no faster than N^1.15 from there (issue 31's
 acceptance for 3D); --check-criteria exits 1 if either fails.
@@ -202,12 +206,26 @@ def local_exponents(rows):
     return out
 
 
-def predicted_peak(rows, case, solver, layout, dofs):
-    """The peak memory of a run of `dofs` DOFs at the bytes per DOF of the same case's largest
-    run so far (they fall with size in every case measured, so this over-estimates), or None
-    before its first run."""
+def program_baseline(binary):
+    """The peak resident memory of the program that holds no model of size: `meshfree check` on
+    the small box of problems/patch_test_3d.yaml (the program, its libraries, MPI's start)."""
+    p = subprocess.Popen([str(binary), "check", str(ROOT / "problems" / "patch_test_3d.yaml")],
+                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    _, status, usage = os.wait4(p.pid, 0)
+    p.returncode = os.waitstatus_to_exitcode(status)
+    if p.returncode != 0:
+        sys.exit(f"{binary} check on patch_test_3d.yaml exited {p.returncode}")
+    return usage.ru_maxrss * 1024
+
+
+def predicted_peak(rows, case, solver, layout, dofs, baseline):
+    """The peak memory of a run of `dofs` DOFs: the program's baseline plus the bytes per DOF
+    above it of the same case's largest run so far (they fall with size in every case measured,
+    so this over-estimates), or None before its first run."""
     done = [r for r in rows if (r["case"], r["solver"], r["layout"]) == (case, solver, layout)]
-    return max(done, key=lambda r: r["dofs"])["bytes_per_dof"] * dofs if done else None
+    if not done:
+        return None
+    return baseline + max(done, key=lambda r: r["dofs"])["added_bytes_per_dof"] * dofs
 
 
 def criteria(rows, reference_dofs=1e5):
@@ -286,7 +304,10 @@ def plot(rows, path):
 
 
 def write_csv(path, rows):
+    """Writes `rows` (dicts of one set of keys); none: an empty file, which says so."""
     with open(path, "w", newline="") as f:
+        if not rows:
+            return
         w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
         w.writeheader()
         for r in rows:
@@ -339,8 +360,11 @@ def main():
     ap.add_argument("--brick-max-dofs", type=float, default=1e6,
                     help="the largest box of bricks (cases hex8, hex20)")
     ap.add_argument("--max-memory-gb", type=float, default=10.0,
-                    help="no run whose peak memory, predicted from the bytes per DOF of its "
-                         "case's last run, exceeds this (the machine is shared)")
+                    help="no run whose peak memory, predicted from its case's last run, exceeds "
+                         "this (the machine is shared)")
+    ap.add_argument("--max-added-memory-gb", type=float, default=float("inf"),
+                    help="no run whose predicted peak memory above the program's baseline "
+                         "exceeds this (a cap that does not depend on the machine's baseline)")
     ap.add_argument("--solvers", nargs="+", default=["direct", "multigrid"],
                     choices=["direct", "multigrid"])
     ap.add_argument("--check-criteria", action="store_true",
@@ -362,6 +386,8 @@ def main():
 
     sizes = [4e3, 1e4] if args.quick else [1e4, 4e4, 1e5, 2e5, 4e5, 1e6, 2.5e6]
     rows, skipped = [], []
+    baseline = program_baseline(args.meshfree)
+    print(f"the program's baseline: peak {baseline / 2**20:.0f} MiB", flush=True)
     tops = {"plate": args.max_dofs, "box": args.box_max_dofs, "hex8": args.brick_max_dofs,
             "hex20": args.brick_max_dofs}
     for case in args.cases:
@@ -371,19 +397,25 @@ def main():
                 for dofs in sizes:
                     if dofs > top or (solver == "direct" and dofs > args.direct_max_dofs):
                         continue
-                    guess = predicted_peak(rows, case, solver, layout, dofs)
-                    if guess is not None and guess > args.max_memory_gb * 1e9:
+                    guess = predicted_peak(rows, case, solver, layout, dofs, baseline)
+                    if guess is not None and (guess > args.max_memory_gb * 1e9 or
+                                              guess - baseline > args.max_added_memory_gb * 1e9):
                         measured = max((r for r in rows if (r["case"], r["solver"], r["layout"])
                                         == (case, solver, layout)), key=lambda r: r["dofs"])
                         print(f"{case} {solver} {layout}: about {dofs:.3g} DOFs not run: predicted "
-                              f"peak {guess / 1e9:.1f} GB > --max-memory-gb {args.max_memory_gb:g}",
-                              flush=True)
+                              f"peak {guess / 1e9:.3f} GB, {(guess - baseline) / 1e9:.3f} GB above "
+                              f"the baseline (caps: --max-memory-gb {args.max_memory_gb:g}, "
+                              f"--max-added-memory-gb {args.max_added_memory_gb:g})", flush=True)
                         skipped.append(dict(case=case, solver=solver, layout=layout, dofs=dofs,
-                                            predicted_peak_bytes=guess, bytes_per_dof=guess / dofs,
+                                            predicted_peak_bytes=guess, baseline_bytes=baseline,
+                                            added_bytes_per_dof=(guess - baseline) / dofs,
+                                            bytes_per_dof=guess / dofs,
                                             measured_at_dofs=measured["dofs"]))
                         continue
                     row = run_case(args.meshfree, case, dofs, solver, layout, out)
                     if row:
+                        row["added_bytes_per_dof"] = (row["peak_bytes_all_ranks"] -
+                                                      baseline * LAYOUTS[layout][0]) / row["dofs"]
                         rows.append(row)
     write_csv(out / "runs.csv", rows)
     if skipped:
@@ -392,6 +424,10 @@ def main():
         print("\nthis machine's memory (what the largest runs' assembly and set-up pay per byte):")
         write_csv(out / "first_touch.csv", first_touch_rates(args.first_touch))
     fits = exponents(rows, 0 if args.quick else args.fit_from)
+    for key in sorted({(r["case"], r["solver"], r["layout"]) for r in rows}):
+        if sum((r["case"], r["solver"], r["layout"]) == key for r in rows) < 2:
+            print(f"{' '.join(key)}: ran at one size only (the others were left out or failed): "
+                  "no growth exponent or criterion for it", flush=True)
     write_csv(out / "exponents.csv", fits)
     write_csv(out / "local_exponents.csv", local_exponents(rows))
     print("\ngrowth exponents (time ~ DOFs^e) and iterations per solve, largest over smallest size:")
@@ -406,8 +442,7 @@ def main():
     checks = criteria(rows)
     if checks or skipped:
         print_criteria(checks, skipped)
-    if checks:
-        write_csv(out / "criteria.csv", checks)
+    write_csv(out / "criteria.csv", checks)
     if args.check_criteria and not all(c["iterations_ok"] and c["assembly_ok"] for c in checks):
         sys.exit(1)
     if args.max_iterations_growth is not None:
