@@ -3,6 +3,7 @@
 #include "meshfree/core/log.hpp"
 #include "meshfree/core/memory.hpp"
 #include "meshfree/core/run_bounds.hpp"
+#include "meshfree/sph/step.hpp"
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -37,8 +38,8 @@ void refuse_endless_run(const PlannedRun& r, const std::string& folder) {
   const double steps = std::ceil(r.end_time / r.dt);
   const std::string& k = r.key_prefix;
   require_run_time(k + (r.dt_key.empty() ? "time.end" : r.dt_key),
-                   detail::concat(r.end_time, " s in time steps of ", r.dt, " s, ", r.particles,
-                                  " particles: particle-steps"),
+                   detail::concat(r.dt_why, r.end_time, " s in time steps of ", r.dt, " s, ",
+                                  r.particles, " particles: particle-steps"),
                    steps * std::max(1.0, r.particles), r.particle_steps_per_second);
   const double frames = 2.0 + (r.fields_interval > 0.0 ? events(r.fields_interval, r, steps) : 0.0);
   require_disk(k + "output.fields_interval", "field frames", frames,
@@ -86,10 +87,39 @@ PlannedRun planned_run(const spec::PdSpec& s, const PdSetup& setup) {
   return r;
 }
 
-PlannedRun planned_run(const spec::SphSpec& s, double particles, double dt) {
+namespace {
+/// A signal speed faster than light in every unit of length and time a problem may declare (the
+/// speed of light is 3e14 um/s): no material makes it, so a state that gives it is wrong.
+constexpr double kImpossibleSpeed = 1e15;
+
+/// The region whose state gives particle `i` (the one that sets the first step) an impossible
+/// signal speed: its key and why, so that a refusal names the pressure of 1e300 rather than the
+/// end time that its time step cannot reach. None when the speed is possible or no region holds i.
+void blame_region(const spec::SphSpec& s, const sph::Hydro& h, int i, PlannedRun& r) {
+  if (i < 0) return;
+  const particles::ParticleSet& P = h.particles;
+  const double c = h.fields.c[i];
+  const double v = Vec3(P.v[3 * i], P.v[3 * i + 1], P.v[3 * i + 2]).stableNorm();
+  if (c + v <= kImpossibleSpeed) return; // NaN is caught where the state is checked
+  const spec::Point x = P.position(i);
+  for (const spec::SphRegion& g : s.regions)
+    if (P.material[i] == g.material && g.region.contains(x, 1e-9 * g.spacing)) {
+      const bool moving = v > c;
+      r.dt_key = g.key_path + "." + (moving ? "velocity" : g.state_key);
+      r.dt_why = detail::concat("it gives its particles a ", moving ? "speed" : "sound speed", " of ",
+                                moving ? v : c, ", faster than light: ");
+      return;
+    }
+}
+} // namespace
+
+PlannedRun planned_run(const spec::SphSpec& s, const sph::Hydro& h) {
   PlannedRun r;
+  int limiting = -1;
+  const double particles = h.particles.size();
   r.end_time = s.end_time;
-  r.dt = dt;
+  r.dt = sph::stable_step(h, &limiting);
+  blame_region(s, h, limiting, r);
   r.history_interval = s.output.history_interval;
   r.fields_interval = s.output.fields_interval;
   r.checkpoint_interval = s.output.checkpoint.interval;

@@ -67,7 +67,7 @@ void print_sph_plan(const spec::ProblemSpec& spec, std::ostream& os) {
   const sph::Hydro h = build_sph(spec.sph());
   int limiting = -1;
   const double dt = sph::stable_step(h, &limiting);
-  require_finite_run(planned_run(spec.sph(), h.particles.size(), dt), "out/" + spec.name);
+  require_finite_run(planned_run(spec.sph(), h), "out/" + spec.name);
   os << "  sph: " << h.particles.size() << " particles in " << spec.sph().dimension
      << "D, first CFL step " << dt << " (particle " << limiting << "), about "
      << static_cast<long>(std::ceil(spec.sph().end_time / dt)) << " steps or more\n"
@@ -85,7 +85,7 @@ void require_finite_pd_run(const spec::ProblemSpec& spec, const std::string& fol
 
 void require_finite_sph_run(const spec::ProblemSpec& spec, const std::string& folder) {
   const sph::Hydro h = build_sph(spec.sph());
-  refuse_endless_run(planned_run(spec.sph(), h.particles.size(), sph::stable_step(h)), folder);
+  refuse_endless_run(planned_run(spec.sph(), h), folder);
 }
 
 } // namespace mf::explicit_dynamics

@@ -6,6 +6,10 @@ void summarise(const SphRunResult& r, io::Json& counts, io::Json& time_step, io:
   counts.set("particles", r.particles)
       .set("steps", r.steps)
       .set("neighbour_list_builds", r.neighbour_rebuilds);
+  // Particle-steps whose smoothing length was held at its bound (discretisation.smoothing_bounds).
+  io::Json held;
+  held.set("at_min", r.bounded_h.at_min).set("at_max", r.bounded_h.at_max);
+  counts.set("smoothing_length_held", held);
   if (r.mpi_ranks > 1)
     counts.set("ghost_particles", r.remote_ghosts)
         .set("ghost_particles_largest_rank", r.remote_ghosts_largest)

@@ -346,6 +346,7 @@ void SphRun::finish(const LoopReport& loop) {
   r_.remote_ghosts = ranks.sum(static_cast<long>(h_.remote));
   r_.remote_ghosts_largest = static_cast<long>(ranks.max(static_cast<double>(h_.remote)));
   r_.migrated = ranks.sum(h_.migrated);
+  r_.bounded_h = {ranks.sum(h_.bounded_h.at_min), ranks.sum(h_.bounded_h.at_max)};
   r_.gauge_maxima = gauges_.maxima();
   r_.particle_steps_per_second =
       loop.seconds > 0.0 ? static_cast<double>(r_.particles) * loop.steps_timed / loop.seconds

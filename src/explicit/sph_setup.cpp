@@ -67,8 +67,11 @@ void add_region(sph::Hydro& h, const spec::SphSpec& s, std::size_t k) {
       if (dx * dx + dy * dy < c.radius * c.radius) return;
     }
     const double spacing = std::pow(volume, 1.0 / s.dimension);
-    const int i =
-        sph::add_particle(h, x, volume, b.density, b.energy, s.smoothing * spacing, mat, b.fixed);
+    const double h0 = s.smoothing * spacing;
+    const int i = sph::add_particle(h, x, volume, b.density, b.energy, h0, mat, b.fixed);
+    // h = h0 (rho0 / rho)^(1/dim) within [min, max] h0: the density within these.
+    h.fields.rho_lo[i] = b.density * std::pow(b.smoothing_bounds.max, -s.dimension);
+    h.fields.rho_hi[i] = b.density * std::pow(b.smoothing_bounds.min, -s.dimension);
     for (int d = 0; d < 3; ++d) h.particles.v[3 * i + d] = b.velocity[d];
   };
   if (g.ring)

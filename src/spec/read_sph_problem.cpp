@@ -26,9 +26,24 @@ void take_material(const MaterialSpec& m) {
                    "solid with plasticity");
 }
 
+/// `key`: [min, max] multiples of a particle's initial smoothing length (SmoothingBounds), or
+/// `otherwise` when it is not given.
+SmoothingBounds read_smoothing_bounds(KeyReader& r, const std::string& key,
+                                      const SmoothingBounds& otherwise) {
+  if (!r.has(key)) return otherwise;
+  const std::vector<double> v = r.numbers(key, 2);
+  if (!(v[0] > 0.0 && v[0] <= 1.0 && v[1] >= 1.0 && std::isfinite(v[1])))
+    r.error(key, "expected [min, max] multiples of the initial smoothing length with "
+                 "0 < min <= 1 <= max, got [" + detail::concat(v[0]) + ", " +
+                 detail::concat(v[1]) + "]");
+  return {v[0], v[1]};
+}
+
 SphRegion read_region_of_particles(KeyReader& b, int dim, double spacing,
-                                   const std::vector<MaterialSpec>& materials) {
+                                   const std::vector<MaterialSpec>& materials,
+                                   const SmoothingBounds& bounds) {
   SphRegion block;
+  block.key_path = b.path();
   block.material = find_material(b, "material", materials, b.text("material"));
   const MaterialSpec& mat = materials[block.material];
   if (b.has("box") == b.has("ring")) b.error("box", "give exactly one of 'box' or 'ring'");
@@ -68,6 +83,7 @@ SphRegion read_region_of_particles(KeyReader& b, int dim, double spacing,
     b.error("energy", "this equation of state does not depend on the internal energy");
   if (b.has("pressure") == b.has("energy") && !explosive && !energy_free)
     b.error("energy", "give exactly one of 'energy' (J/kg) or 'pressure'");
+  block.state_key = b.has("pressure") ? "pressure" : b.has("energy") ? "energy" : "density";
   if (b.has("pressure")) {
     if (!ideal_gas)
       b.error("pressure", "an initial pressure is turned into energy for an ideal gas only; "
@@ -79,6 +95,7 @@ SphRegion read_region_of_particles(KeyReader& b, int dim, double spacing,
   if (b.has("velocity")) block.velocity = read_point(b, "velocity", dim);
   b.allow("velocity");
   block.fixed = b.choice("motion", {"free", "fixed"}, "free") == "fixed";
+  block.smoothing_bounds = read_smoothing_bounds(b, "smoothing_bounds", bounds);
   if (block.fixed && b.has("velocity")) b.error("velocity", "a fixed region does not move");
   b.finish();
   return block;
@@ -150,6 +167,7 @@ double read_discretisation(KeyReader& r, SphSpec& s) {
             : kernels::SphKernel::WendlandC2;
     s.numerics.gradient_correction = m->choice("gradient_correction", {"off", "on"}, "off") == "on";
     s.numerics.deterministic = m->choice("deterministic", {"true", "false"}, "false") == "true";
+    s.smoothing_bounds = read_smoothing_bounds(*m, "smoothing_bounds", s.smoothing_bounds);
     if (s.smoothing < 1.0 || s.smoothing > 3.0)
       m->error("smoothing",
                "expected h / spacing between 1 and 3, got " + std::to_string(s.smoothing));
@@ -171,7 +189,7 @@ void read_regions(KeyReader& r, const std::vector<MaterialSpec>& all, int dim, d
       s.materials.push_back(all[k]);
     }
   for (KeyReader& b : regions)
-    s.regions.push_back(read_region_of_particles(b, dim, spacing, s.materials));
+    s.regions.push_back(read_region_of_particles(b, dim, spacing, s.materials, s.smoothing_bounds));
 }
 
 /// detonation: a point, or a plane {at, normal}, and the burn front's width and ignition.
@@ -241,6 +259,7 @@ SphSpec parse_sph(KeyReader& r, const ProblemSpec& front) {
   if (front.model_type == ModelType::PlaneStress)
     r.error("model", "analysis sph takes model.type uniaxial_strain, plane_strain or solid_3d");
   s.dimension = front.dimension;
+  s.smoothing_bounds = SmoothingBounds::defaults(s.dimension);
   const int dim = s.dimension;
   const double spacing = read_discretisation(r, s);
   read_regions(r, front.materials, dim, spacing, s);

@@ -1,5 +1,6 @@
 #include "meshfree/sph/particle_fields.hpp"
 #include <cstddef>
+#include <limits>
 
 namespace mf::sph {
 
@@ -18,6 +19,8 @@ void ParticleFields::add(double density, double energy, double smoothing, bool i
   e[i] = energy;
   h[i] = smoothing;
   h_ref[i] = smoothing;
+  rho_lo[i] = 0.0;
+  rho_hi[i] = std::numeric_limits<double>::infinity();
   light_time[i] = -1.0;
   fixed[i] = is_fixed ? 1 : 0;
   rho_max[i] = density;

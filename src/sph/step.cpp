@@ -88,6 +88,26 @@ void body_force_work(Hydro& s, const std::vector<double>& v0, const std::vector<
   s.damping_work += dt * damping;
 }
 
+/// rho = rho0 + dt drho held within [rho_lo, rho_hi], and e = e0 + dt de, for the owned
+/// particles; returns those held. Without the bound a particle whose neighbours recede loses
+/// density at a rate that does not fall with it, through zero, once its h no longer grows to take
+/// in more of them (the first particle of the light gas in Sod's tube, within 20 steps); with it,
+/// its volume and h stop at the bound, as AUTODYN's density limits hold an SPH particle's.
+SmoothingBoundHits update_density_energy(Hydro& s, const std::vector<double>& rho0,
+                                         const std::vector<double>& e0, const Rates& r, double dt) {
+  ParticleFields& F = s.fields;
+  long at_min = 0, at_max = 0;
+  const int n = s.particles.owned_count();
+#pragma omp parallel for schedule(static) reduction(+ : at_min, at_max)
+  for (int i = 0; i < n; ++i) {
+    const double rho = rho0[i] + dt * r.drho[i];
+    F.rho[i] = std::clamp(rho, F.rho_lo[i], F.rho_hi[i]);
+    F.e[i] = e0[i] + dt * r.de[i];
+    at_max += rho < F.rho_lo[i], at_min += rho > F.rho_hi[i];
+  }
+  return {at_min, at_max};
+}
+
 } // namespace
 
 void advance(Hydro& s, double dt) {
@@ -109,11 +129,7 @@ void advance(Hydro& s, double dt) {
     P.u[k] = u0[k] + 0.5 * dt * v0[k];
     P.v[k] = v0[k] + 0.5 * dt * r.dv[k];
   }
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
-    F.rho[i] = rho0[i] + 0.5 * dt * r.drho[i];
-    F.e[i] = e0[i] + 0.5 * dt * r.de[i];
-  }
+  update_density_energy(s, rho0, e0, r, 0.5 * dt);
   if (solids) update_stress(s, start, r, 0.5 * dt);
   s.particles.time = t0 + 0.5 * dt;
   // A density that is not positive at the half step would give its neighbours a non-finite h
@@ -134,11 +150,7 @@ void advance(Hydro& s, double dt) {
     P.u[k] = u0[k] + dt * P.v[k];
     P.v[k] = v0[k] + dt * r.dv[k];
   }
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
-    F.rho[i] = rho0[i] + dt * r.drho[i];
-    F.e[i] = e0[i] + dt * r.de[i];
-  }
+  const SmoothingBoundHits held = update_density_energy(s, rho0, e0, r, dt);
   if (solids) update_stress(s, start, r, dt);
   // Their work: F_mid . (v0 + v1) / 2 dt, which is exactly the kinetic energy the corrector's
   // velocity update gives them, pulses that arrive within the step included.
@@ -150,6 +162,7 @@ void advance(Hydro& s, double dt) {
   s.particles.time = t0 + dt;
   check_finite(s, "at the end");
   ++s.particles.step;
+  s.bounded_h += held;
   commit_history(s);
   refresh_ghosts(s);
   update_state(s);

@@ -166,7 +166,7 @@ sph::Hydro build_body(const spec::SphSpec& s, PhaseTimer& timer, const io::Outpu
     h = explicit_dynamics::build_sph(s);
   }
   explicit_dynamics::require_finite_run(
-      explicit_dynamics::planned_run(s, h.particles.size(), sph::stable_step(h)),
+      explicit_dynamics::planned_run(s, h),
       out ? out->dir() : ".");
   return h;
 }

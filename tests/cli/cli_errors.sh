@@ -117,6 +117,13 @@ expect_error "materials[0].eos.type: expected one of" "$S" --set 'materials.0.eo
 expect_error "regions[0].energy: give exactly one of 'energy' (J/kg) or 'pressure'" "$S" --set 'regions.0.energy=2.5'
 expect_error "discretisation.smoothing: expected h / spacing between 1 and 3" "$S" --set discretisation.smoothing=5
 expect_error "regions[1].material: no material is named 'air'" "$S" --set regions.1.material=air
+expect_error "discretisation.smoothing_bounds: expected [min, max] multiples of the initial smoothing length with 0 < min <= 1 <= max, got [1.5, 2]" "$S" --set 'discretisation.smoothing_bounds=[1.5, 2]'
+expect_error "regions[1].smoothing_bounds: expected a list of 2 numbers" "$S" --set 'regions.1.smoothing_bounds=[0.5]'
+expect_error "regions[1].smoothing_bounds: expected [min, max] multiples of the initial smoothing length with 0 < min <= 1 <= max, got [0, 2]" "$S" --set 'regions.1.smoothing_bounds=[0, 2]'
+# A state that makes the first time step absurd is named, not the end time it cannot reach.
+expect_error "regions[0].pressure: it gives its particles a sound speed of 1.183215957e+150, faster than light" "$S" --set regions.0.pressure=1e300
+expect_error "regions[1].velocity: it gives its particles a speed of 1e+200, faster than light" "$S" --set 'regions.1.velocity=[1e200]'
+expect_error "time.end: 1e+20 s in time steps of" "$S" --set time.end=1e20
 expect_error "materials[0].eos.unreacted.c0: expected a positive number, got -2390" "$ROOT/problems/sph_tnt_slab.yaml" --set 'materials.0.eos.unreacted.c0=-2390'
 expect_error "detonation.point: give exactly one of 'point' or 'plane: {at, normal}'" "$ROOT/problems/sph_tnt_slab.yaml" --set 'detonation.plane={at: [0.0], normal: [1]}'
 T="$ROOT/problems/sph_tunnel_blast.yaml"

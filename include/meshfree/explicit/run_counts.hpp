@@ -4,6 +4,7 @@
 // the key that asked for them, before anything is written.
 #include "meshfree/explicit/pd_setup.hpp"
 #include "meshfree/spec/sph_spec.hpp"
+#include "meshfree/sph/hydro.hpp"
 #include <string>
 
 namespace mf::explicit_dynamics {
@@ -12,6 +13,7 @@ struct PlannedRun {
   double end_time = 0.0;
   double dt = 0.0;    // the first time step
   std::string dt_key; // the key whose value set it, when not the stability bound
+  std::string dt_why; // what about that value set it (SPH: a region's signal speed)
   double history_interval = 0.0, fields_interval = 0.0, checkpoint_interval = 0.0;
   double particles = 0.0;
   double particle_steps_per_second = 0.0; // per core (core/run_bounds.hpp)
@@ -32,7 +34,8 @@ void require_finite_run(const PlannedRun& r, const std::string& folder);
 
 /// The run a peridynamic set-up and its spec make.
 PlannedRun planned_run(const spec::PdSpec& s, const PdSetup& setup);
-/// The run an SPH spec makes with `particles` particles and a first step dt.
-PlannedRun planned_run(const spec::SphSpec& s, double particles, double dt);
+/// The run an SPH spec makes with the body `h` it built: its first stable step, and the region
+/// whose state sets it when that state's signal speed is beyond any physical one.
+PlannedRun planned_run(const spec::SphSpec& s, const sph::Hydro& h);
 
 } // namespace mf::explicit_dynamics

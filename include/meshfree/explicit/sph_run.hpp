@@ -20,6 +20,7 @@ struct SphRunResult {
   int mpi_ranks = 1;
   long remote_ghosts = 0, remote_ghosts_largest = 0; // at the last list build: all, fullest rank
   long migrated = 0; // particles that moved to another rank over the run
+  sph::SmoothingBoundHits bounded_h; // particle-steps with h held at a bound, every rank's
   long steps = 0;
   int neighbour_rebuilds = 0;
   double neighbour_seconds = 0.0; // of the stepping time, in neighbour checks and builds

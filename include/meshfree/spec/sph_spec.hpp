@@ -14,6 +14,17 @@ namespace mf::spec {
 /// A body of particles, one material, uniform initial state: a box on a lattice of the given
 /// spacing (kept inside the region's circle, less its holes), or (2D) a ring of concentric
 /// particle circles.
+/// Bounds on a particle's smoothing length as multiples of its initial one, as LS-DYNA's HMIN
+/// and HMAX scale factors: h = smoothing x spacing at the start, and h follows rho^(-1/dim)
+/// within [min, max] times that, the density being held within the bounds this gives it.
+/// The defaults are LS-DYNA's, 0.2 and 2 (a volume 8 times the initial in 3D, 4 in 2D), but for
+/// max in 1D, where h grows as the volume itself: 3 there, since the rarefaction of Sod's tube
+/// alone expands the gas 2.35 times.
+struct SmoothingBounds {
+  double min = 0.2, max = 2.0;
+  static SmoothingBounds defaults(int dimension) { return {0.2, dimension == 1 ? 3.0 : 2.0}; }
+};
+
 struct SphRegion {
   int material = 0; // index into SphSpec::materials
   Region region;
@@ -22,6 +33,10 @@ struct SphRegion {
   double energy = 0.0; // specific internal energy [J/kg]
   Point velocity{0, 0, 0};
   bool fixed = false; // a wall of fixed particles
+  std::string key_path;  // "regions[k]", for messages
+  std::string state_key; // the key that gave its state: pressure, energy or density
+  /// Its particles' h is held within these multiples of their initial h (SphSpec's).
+  SmoothingBounds smoothing_bounds;
 };
 
 /// A Kingery-Bulmash blast on the particles of a region (a surface layer one particle thick).
@@ -56,6 +71,7 @@ struct SphSymmetry {
 struct SphSpec {
   int dimension = 1;      // 1 (uniaxial strain), 2 (plane strain, per unit thickness) or 3
   double smoothing = 1.5; // h = smoothing * spacing
+  SmoothingBounds smoothing_bounds; // every region's, unless it gives its own
   std::vector<MaterialSpec> materials; // each with an equation of state
   std::vector<SphRegion> regions;
   std::optional<Point> detonation_point;  // a point, or with the normal a plane

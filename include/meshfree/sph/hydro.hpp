@@ -69,6 +69,17 @@ struct NeighbourState {
   double seconds = 0.0; // wall time in refresh_neighbours (checks and builds)
 };
 
+/// Owned particles whose density, and so smoothing length, was held at its bound
+/// (ParticleFields::rho_lo, rho_hi): counted once a step, at its end, so over a run these are
+/// particle-steps. at_max counts h held at its largest (the density at rho_lo).
+struct SmoothingBoundHits {
+  long at_min = 0, at_max = 0;
+  SmoothingBoundHits& operator+=(const SmoothingBoundHits& o) {
+    at_min += o.at_min, at_max += o.at_max;
+    return *this;
+  }
+};
+
 /// An SPH run's data: the particle layer (the set and SPH's fields), the materials, the solver's
 /// settings, the neighbour state, the boundary conditions and body forces, and the distribution
 /// over ranks.
@@ -105,6 +116,7 @@ struct Hydro {
   std::vector<int> remote_owner; // the rank that owns each remote ghost
   distribution::Halo halo;
   long migrated = 0; // particles that moved to another rank so far
+  SmoothingBoundHits bounded_h; // this rank's, over the steps so far
   MaterialGroups groups;
   bool any_solid() const;
   /// What changes as a run goes: this rank's particles (owned, remote ghosts and mirror images),
@@ -126,6 +138,7 @@ struct Hydro {
     visit("groups.owned_end", groups.owned_end), visit("groups.members", groups.members);
     visit("groups.built_for", groups.built_for);
     visit("remote", remote), visit("remote_owner", remote_owner), visit("migrated", migrated);
+    visit("bounded_h.at_min", bounded_h.at_min), visit("bounded_h.at_max", bounded_h.at_max);
     conditions.for_each_state(visit / "conditions");
   }
 };

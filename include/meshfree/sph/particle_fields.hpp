@@ -12,6 +12,10 @@ namespace mf::sph {
 struct ParticleFields {
   std::vector<double> rho, e, h;
   std::vector<double> h_ref;      // h = h_ref (rho_ref / rho)^(1/dim), rho_ref the set's density
+  /// The density is held within [rho_lo, rho_hi] (sph::advance), and so h within the bounds
+  /// they give (spec::SmoothingBounds): a particle whose neighbours recede would otherwise expand
+  /// without limit, and its h with it, until it pairs with the whole body.
+  std::vector<double> rho_lo, rho_hi;
   std::vector<double> light_time; // programmed burn: when the particle is lit (< 0: never burns)
   /// Fixed (wall) particles: they do not move, but their density and energy evolve, so that they
   /// push back on approaching particles (dynamic boundary particles, Crespo et al. 2007).
@@ -27,7 +31,8 @@ struct ParticleFields {
   std::vector<double> damage;      // HJC damage, 0..1
   std::vector<double> strain_rate; // equivalent deviatoric strain rate sqrt(2/3 D':D') [1/s]
   std::vector<char> failed;        // no deviatoric stress and no tension once set
-  /// Appends the state of a particle at rest with density rho, energy e and smoothing length h.
+  /// Appends the state of a particle at rest with density rho, energy e and smoothing length h
+  /// (its density unbounded: rho_lo 0, rho_hi infinite).
   void add(double rho, double e, double h, bool fixed);
   /// Appends a copy of particle i's state as a fixed particle (a mirror image starts as one).
   void append_copy(int i);
@@ -42,6 +47,8 @@ struct ParticleFields {
     visit(FieldInfo{"e", 1, kept, "specific_energy"}, &ParticleFields::e);
     visit(FieldInfo{"h", 1, kept, "smoothing_length"}, &ParticleFields::h);
     visit(FieldInfo{"h_ref", 1, set_up}, &ParticleFields::h_ref);
+    visit(FieldInfo{"rho_lo", 1, set_up}, &ParticleFields::rho_lo);
+    visit(FieldInfo{"rho_hi", 1, set_up}, &ParticleFields::rho_hi);
     visit(FieldInfo{"light_time", 1, kept}, &ParticleFields::light_time);
     visit(FieldInfo{"fixed", 1, set_up}, &ParticleFields::fixed);
     visit(FieldInfo{"held_axes", 1, set_up}, &ParticleFields::held_axes);
