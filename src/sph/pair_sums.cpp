@@ -147,10 +147,11 @@ MF_ROW_STEP void artificial_stress(const Hydro& s, const Rates& r, const RowPart
   const Settings& S = s.settings;
   for (int t = 0; t < count; ++t) {
     const std::size_t j = static_cast<std::size_t>(live.j[t]);
-    const double dp = 0.5 * (o.spacing + r.spacing[j]), hij = live.h[t];
-    const double f = kernels::sph_kernel(S.kernel, s.dim, std::sqrt(live.r2[t]), hij) /
-                     kernels::sph_kernel(S.kernel, s.dim, dp, hij);
-    const double fn = std::pow(f, S.artificial_stress_exponent);
+    const double dp = 0.5 * (o.spacing + r.spacing[j]), inv_h = 1.0 / live.h[t];
+    const double f = kernels::sph_kernel_profile(S.kernel, s.dim, std::sqrt(live.r2[t]) * inv_h) /
+                     kernels::sph_kernel_profile(S.kernel, s.dim, dp * inv_h);
+    double fn = f; // f^n by products: std::pow took 35% of a run with artificial stress
+    for (int k = 1; k < S.artificial_stress_exponent; ++k) fn *= f;
     const double* Rj = &r.art_stress[6 * j];
     for (int c = 0; c < 6; ++c)
       if (stress_component_acts<Dim>(c)) live.T[c][t] += fn * (o.R[c] + Rj[c]);

@@ -80,6 +80,15 @@ enum class SphKernel { CubicSpline, WendlandC2 };
 inline double sph_kernel(SphKernel k, int dim, double r, double h) {
   return k == SphKernel::CubicSpline ? cubic_spline(dim, r, h) : wendland_c2(dim, r, h);
 }
+/// W(q h, h) without its normalisation a_d / h^dim, for q = r / h: a ratio of two kernel values
+/// at one h (the artificial stress's W(r) / W(dp)) is a ratio of these, with one division for q.
+inline double sph_kernel_profile(SphKernel k, int dim, double q) {
+  if (!(q < 2.0)) return 0.0;
+  if (k == SphKernel::CubicSpline)
+    return q < 1.0 ? 1.0 - 1.5 * q * q + 0.75 * q * q * q : 0.25 * (2.0 - q) * (2.0 - q) * (2.0 - q);
+  const double t = 1.0 - 0.5 * q;
+  return dim == 1 ? t * t * t * (1.5 * q + 1.0) : t * t * t * t * (2.0 * q + 1.0);
+}
 inline double sph_kernel_slope_over_r(SphKernel k, int dim, double r, double h) {
   return k == SphKernel::CubicSpline ? cubic_spline_slope_over_r(dim, r, h)
                                      : wendland_c2_slope_over_r(dim, r, h);
