@@ -21,8 +21,7 @@ explicit_dynamics::SphRunResult run_sph(const spec::ProblemSpec& spec, io::Outpu
     PhaseTimer::Scope scope(result.timer, "particles");
     h = explicit_dynamics::build_sph(s);
   }
-  explicit_dynamics::require_finite_run(
-      explicit_dynamics::planned_run(s, h), dir);
+  explicit_dynamics::require_finite_run(explicit_dynamics::planned_run(s, h), dir);
   log::info("sph: ", h.particles.size(), " particles in ", s.dimension, "D, ", s.materials.size(),
             " material(s)", s.detonation_point ? ", detonation lit" : "");
   {

@@ -45,9 +45,8 @@ namespace {
 /// A unit eigenvector of a for its simple eigenvalue lambda: the largest of the cross products
 /// of two rows of a - lambda I, which span the plane normal to it.
 void eigenvector(const double a[6], double lambda, double v[3]) {
-  const double r[3][3] = {{a[0] - lambda, a[5], a[4]},
-                          {a[5], a[1] - lambda, a[3]},
-                          {a[4], a[3], a[2] - lambda}};
+  const double r[3][3] = {
+      {a[0] - lambda, a[5], a[4]}, {a[5], a[1] - lambda, a[3]}, {a[4], a[3], a[2] - lambda}};
   double best = -1.0;
   for (int i = 0; i < 3; ++i) {
     const double* x = r[i];

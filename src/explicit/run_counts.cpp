@@ -106,8 +106,8 @@ void blame_region(const spec::SphSpec& s, const sph::Hydro& h, int i, PlannedRun
     if (P.material[i] == g.material && g.region.contains(x, 1e-9 * g.spacing)) {
       const bool moving = v > c;
       r.dt_key = g.key_path + "." + (moving ? "velocity" : g.state_key);
-      r.dt_why = detail::concat("it gives its particles a ", moving ? "speed" : "sound speed", " of ",
-                                moving ? v : c, ", faster than light: ");
+      r.dt_why = detail::concat("it gives its particles a ", moving ? "speed" : "sound speed",
+                                " of ", moving ? v : c, ", faster than light: ");
       return;
     }
 }

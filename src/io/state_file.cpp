@@ -199,7 +199,7 @@ namespace {
 struct VerifyVisit {
   hid_t file;
   std::uintmax_t file_bytes;
-  std::string bad;  // the first dataset that cannot be read or fails its checksum
+  std::string bad;         // the first dataset that cannot be read or fails its checksum
   bool unreadable = false; // which of the two
 };
 

@@ -34,8 +34,8 @@ SmoothingBounds read_smoothing_bounds(KeyReader& r, const std::string& key,
   const std::vector<double> v = r.numbers(key, 2);
   if (!(v[0] > 0.0 && v[0] <= 1.0 && v[1] >= 1.0 && std::isfinite(v[1])))
     r.error(key, "expected [min, max] multiples of the initial smoothing length with "
-                 "0 < min <= 1 <= max, got [" + detail::concat(v[0]) + ", " +
-                 detail::concat(v[1]) + "]");
+                 "0 < min <= 1 <= max, got [" +
+                     detail::concat(v[0]) + ", " + detail::concat(v[1]) + "]");
   return {v[0], v[1]};
 }
 

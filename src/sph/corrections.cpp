@@ -59,8 +59,7 @@ void artificial_stresses(const Hydro& s, std::vector<double>& R) {
       const double* si = &F.S[6 * static_cast<std::size_t>(i)];
       // The tensile part of sigma = -p I + S, in closed form (core/symmetric3.hpp): 13.5% of a
       // run with artificial stress went to an iterative eigen-solver here.
-      const double sigma[6] = {si[0] - F.p[i], si[1] - F.p[i], si[2] - F.p[i],
-                               si[3],          si[4],          si[5]};
+      const double sigma[6] = {si[0] - F.p[i], si[1] - F.p[i], si[2] - F.p[i], si[3], si[4], si[5]};
       double tensile[6];
       positive_part(sigma, tensile);
       const double scale = -eps / (F.rho[i] * F.rho[i]);

@@ -101,9 +101,11 @@ SmoothingBoundHits update_density_energy(Hydro& s, const std::vector<double>& rh
 #pragma omp parallel for schedule(static) reduction(+ : at_min, at_max)
   for (int i = 0; i < n; ++i) {
     const double rho = rho0[i] + dt * r.drho[i];
-    F.rho[i] = std::clamp(rho, F.rho_lo[i], F.rho_hi[i]);
+    // min(max()), not std::clamp: defined for whatever bounds a checkpoint gave back.
+    F.rho[i] = std::min(std::max(rho, F.rho_lo[i]), F.rho_hi[i]);
     F.e[i] = e0[i] + dt * r.de[i];
-    at_max += rho < F.rho_lo[i], at_min += rho > F.rho_hi[i];
+    if (rho < F.rho_lo[i]) ++at_max;
+    if (rho > F.rho_hi[i]) ++at_min;
   }
   return {at_min, at_max};
 }

@@ -165,9 +165,8 @@ sph::Hydro build_body(const spec::SphSpec& s, PhaseTimer& timer, const io::Outpu
     PhaseTimer::Scope scope(timer, "particles");
     h = explicit_dynamics::build_sph(s);
   }
-  explicit_dynamics::require_finite_run(
-      explicit_dynamics::planned_run(s, h),
-      out ? out->dir() : ".");
+  explicit_dynamics::require_finite_run(explicit_dynamics::planned_run(s, h),
+                                        out ? out->dir() : ".");
   return h;
 }
 

@@ -85,7 +85,8 @@ inline double sph_kernel(SphKernel k, int dim, double r, double h) {
 inline double sph_kernel_profile(SphKernel k, int dim, double q) {
   if (!(q < 2.0)) return 0.0;
   if (k == SphKernel::CubicSpline)
-    return q < 1.0 ? 1.0 - 1.5 * q * q + 0.75 * q * q * q : 0.25 * (2.0 - q) * (2.0 - q) * (2.0 - q);
+    return q < 1.0 ? 1.0 - 1.5 * q * q + 0.75 * q * q * q
+                   : 0.25 * (2.0 - q) * (2.0 - q) * (2.0 - q);
   const double t = 1.0 - 0.5 * q;
   return dim == 1 ? t * t * t * (1.5 * q + 1.0) : t * t * t * t * (2.0 * q + 1.0);
 }

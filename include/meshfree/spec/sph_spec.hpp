@@ -71,7 +71,7 @@ struct SphSymmetry {
 struct SphSpec {
   int dimension = 1;      // 1 (uniaxial strain), 2 (plane strain, per unit thickness) or 3
   double smoothing = 1.5; // h = smoothing * spacing
-  SmoothingBounds smoothing_bounds; // every region's, unless it gives its own
+  SmoothingBounds smoothing_bounds;    // every region's, unless it gives its own
   std::vector<MaterialSpec> materials; // each with an equation of state
   std::vector<SphRegion> regions;
   std::optional<Point> detonation_point;  // a point, or with the normal a plane

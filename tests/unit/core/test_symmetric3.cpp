@@ -30,23 +30,35 @@ std::pair<double, double> errors(const double a[6]) {
     value_error = std::max(value_error, std::abs(l[k] - eig.eigenvalues()[2 - k]) / scale);
   double plus[6];
   mf::positive_part(a, plus);
-  return {value_error, (matrix_of(plus) - positive_part_reference(a)).cwiseAbs().maxCoeff() / scale};
+  return {value_error,
+          (matrix_of(plus) - positive_part_reference(a)).cwiseAbs().maxCoeff() / scale};
 }
 } // namespace
 
-TEST_CASE("closed-form symmetric 3x3: eigenvalues and positive part equal Eigen's solver", "[core]") {
+TEST_CASE("closed-form symmetric 3x3: eigenvalues and positive part equal Eigen's solver",
+          "[core]") {
   SECTION("states with repeated, zero and mixed eigenvalues") {
     // Voigt: xx yy zz yz xz xy.
-    const double cases[][6] = {
-        {0, 0, 0, 0, 0, 0},          {2, 2, 2, 0, 0, 0},       {-3, -3, -3, 0, 0, 0},
-        {5, 0, 0, 0, 0, 0},          {-5, 0, 0, 0, 0, 0},      {5, 5, 0, 0, 0, 0},
-        {0, 0, 0, 0, 0, 4},          {1, -1, 0, 0, 0, 0},      {3, 1, -2, 0.5, -0.7, 1.1},
-        {-1, -2, -3, 0.1, 0.2, 0.3}, {1e6, 1e6, -1, 0, 0, 1}, {1, 1, 1, 1, 1, 1},
-        {2, 2, -1, 0, 0, 1e-9},      {1e-3, -1e3, 0, 0, 0, 0}, {7, 7, 7, 0, 0, 1e-12},
-        // Entries whose cubes underflow or overflow (an SPH particle's first stress under a
-        // blast was of 1e-110 and gave NaN unscaled).
-        {3e-110, 1e-110, -2e-110, 5e-111, -7e-111, 1.1e-110}, {0, 0, 0, 0, 0, 1e-160},
-        {3e110, 1e110, -2e110, 5e109, -7e109, 1.1e110}};
+    const double cases[][6] = {{0, 0, 0, 0, 0, 0},
+                               {2, 2, 2, 0, 0, 0},
+                               {-3, -3, -3, 0, 0, 0},
+                               {5, 0, 0, 0, 0, 0},
+                               {-5, 0, 0, 0, 0, 0},
+                               {5, 5, 0, 0, 0, 0},
+                               {0, 0, 0, 0, 0, 4},
+                               {1, -1, 0, 0, 0, 0},
+                               {3, 1, -2, 0.5, -0.7, 1.1},
+                               {-1, -2, -3, 0.1, 0.2, 0.3},
+                               {1e6, 1e6, -1, 0, 0, 1},
+                               {1, 1, 1, 1, 1, 1},
+                               {2, 2, -1, 0, 0, 1e-9},
+                               {1e-3, -1e3, 0, 0, 0, 0},
+                               {7, 7, 7, 0, 0, 1e-12},
+                               // Entries whose cubes underflow or overflow (an SPH particle's first
+                               // stress under a blast was of 1e-110 and gave NaN unscaled).
+                               {3e-110, 1e-110, -2e-110, 5e-111, -7e-111, 1.1e-110},
+                               {0, 0, 0, 0, 0, 1e-160},
+                               {3e110, 1e110, -2e110, 5e109, -7e109, 1.1e110}};
     double worst_values = 0.0, worst_plus = 0.0;
     for (const auto& a : cases) {
       const auto [values, plus] = errors(a);
@@ -68,7 +80,8 @@ TEST_CASE("closed-form symmetric 3x3: eigenvalues and positive part equal Eigen'
       worst_values = std::max(worst_values, values), worst_plus = std::max(worst_plus, plus);
     }
     std::printf("  symmetric 3x3, 20,000 random states: eigenvalues within %.2e, positive part "
-                "%.2e\n", worst_values, worst_plus);
+                "%.2e\n",
+                worst_values, worst_plus);
     CHECK(worst_values < 1e-12);
     CHECK(worst_plus < 1e-12);
   }

@@ -51,9 +51,8 @@ TEST_CASE("cubic spline and Wendland C2 kernels have unit integral and consisten
       CHECK(kind.W(dim, 2.0 * h, h) == 0.0);
       // The profile (W without its normalisation) gives W's ratios: the artificial stress's
       // f = W(r) / W(dp) from one division.
-      const kernels::SphKernel k =
-          kind.W == kernels::cubic_spline ? kernels::SphKernel::CubicSpline
-                                          : kernels::SphKernel::WendlandC2;
+      const kernels::SphKernel k = kind.W == kernels::cubic_spline ? kernels::SphKernel::CubicSpline
+                                                                   : kernels::SphKernel::WendlandC2;
       for (double r : {0.0, 0.1, 0.5, 0.69, 0.71, 1.0, 1.3, 1.4, 1.5})
         for (double dp : {0.3, 0.7, 1.1}) {
           const double ratio = kernels::sph_kernel_profile(k, dim, r / h) /

@@ -7,8 +7,8 @@
 #include "meshfree/materials/equation_of_state.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
 #include "meshfree/materials/strength.hpp"
-#include "meshfree/sph/detonation.hpp"
 #include "meshfree/spec/problem_spec.hpp"
+#include "meshfree/sph/detonation.hpp"
 #include "meshfree/sph/hydro.hpp"
 #include "meshfree/sph/neighbours.hpp"
 #include "meshfree/sph/rates.hpp"
@@ -265,7 +265,8 @@ TEST_CASE("Sod's shock tube with the Wendland C2 kernel", "[sph]") {
 }
 
 TEST_CASE("Sod's tube from its problem file: h within its bounds, no particle paired with the "
-          "tube, the exact solution's plateau", "[sph]") {
+          "tube, the exact solution's plateau",
+          "[sph]") {
   Riemann exact{1.0, 0.0, 1.0, 0.125, 0.0, 0.1, 1.4};
   exact.solve();
   const spec::ProblemSpec spec = load_problem("sph_sod_tube");
@@ -275,8 +276,8 @@ TEST_CASE("Sod's tube from its problem file: h within its bounds, no particle pa
     if (!bounded) // as before the bounds: h follows the density wherever it goes
       for (int i = 0; i < s.particles.size(); ++i)
         s.fields.rho_lo[i] = 0.0, s.fields.rho_hi[i] = std::numeric_limits<double>::infinity();
-    double largest_h = 0.0; // over h_ref, over every step
-    int most = 0, median = 0;   // partners: the largest over every step, the median then
+    double largest_h = 0.0;   // over h_ref, over every step
+    int most = 0, median = 0; // partners: the largest over every step, the median then
     const SodResult r = run_sod_to_end(s, exact, [&](const sph::Hydro& h) {
       for (int i = 0; i < h.particles.size(); ++i)
         largest_h = std::max(largest_h, h.fields.h[i] / h.fields.h_ref[i]);
@@ -288,8 +289,7 @@ TEST_CASE("Sod's tube from its problem file: h within its bounds, no particle pa
                 "largest h / h0 %.4g, most partners %d (median %d then), at t = 0.2 %d (median "
                 "%d), h held %ld particle-steps\n",
                 bounded ? "bounded h" : "h unbounded", r.l1_density, r.plateau_p, r.plateau_u,
-                r.shock_x, largest_h, most, median, most_at_end, median_at_end,
-                s.bounded_h.at_max);
+                r.shock_x, largest_h, most, median, most_at_end, median_at_end, s.bounded_h.at_max);
     INFO((bounded ? "bounded" : "unbounded"));
     if (!bounded) {
       // Measured: the first particle of the light gas, thrown ahead of the shock, reaches
