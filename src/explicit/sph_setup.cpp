@@ -73,6 +73,8 @@ void add_region(sph::Hydro& h, const spec::SphSpec& s, std::size_t k) {
     h.fields.rho_lo[i] = b.density * std::pow(b.smoothing_bounds.max, -s.dimension);
     h.fields.rho_hi[i] = b.density * std::pow(b.smoothing_bounds.min, -s.dimension);
     for (int d = 0; d < 3; ++d) h.particles.v[3 * i + d] = b.velocity[d];
+    if (const auto& p = b.velocity_profile)
+      h.particles.v[3 * i + p->component] += p->table(x[p->along]);
   };
   if (g.ring)
     geometry::for_each_ring_point(g.ring->center, g.ring->inner_radius, g.ring->outer_radius,

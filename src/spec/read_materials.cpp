@@ -106,9 +106,6 @@ void read_hardening(KeyReader& p, materials::J2Parameters& j) {
   if (h) h->finish();
 }
 
-namespace {
-
-/// A table [[x0, y0], [x1, y1], ...] with strictly ascending x, as a piecewise-linear function.
 materials::PiecewiseLinear read_table(KeyReader& r, const std::string& key, std::size_t at_least,
                                       bool positive_values) {
   materials::PiecewiseLinear t;
@@ -126,6 +123,8 @@ materials::PiecewiseLinear read_table(KeyReader& r, const std::string& key, std:
   }
   return t;
 }
+
+namespace {
 
 /// The Holmquist-Johnson-Cook constants; defaults: the 48 MPa concrete of the 1993 paper.
 materials::Hjc read_hjc(KeyReader& h) {

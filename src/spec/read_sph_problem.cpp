@@ -94,9 +94,24 @@ SphRegion read_region_of_particles(KeyReader& b, int dim, double spacing,
   }
   if (b.has("velocity")) block.velocity = read_point(b, "velocity", dim);
   b.allow("velocity");
+  if (auto v = b.optional_map("velocity_profile")) {
+    const std::vector<std::string> axes{"x", "y", "z"};
+    const std::vector<std::string> ours(axes.begin(), axes.begin() + dim);
+    const auto index = [&](const std::string& a) {
+      return static_cast<int>(std::find(axes.begin(), axes.end(), a) - axes.begin());
+    };
+    SphRegion::VelocityProfile p;
+    p.along = index(v->choice("along", ours, ""));
+    p.component = index(v->choice("component", ours, ""));
+    p.table = read_table(*v, "table", 2, false);
+    v->finish();
+    block.velocity_profile = p;
+  }
   block.fixed = b.choice("motion", {"free", "fixed"}, "free") == "fixed";
   block.smoothing_bounds = read_smoothing_bounds(b, "smoothing_bounds", bounds);
   if (block.fixed && b.has("velocity")) b.error("velocity", "a fixed region does not move");
+  if (block.fixed && block.velocity_profile)
+    b.error("velocity_profile", "a fixed region does not move");
   b.finish();
   return block;
 }

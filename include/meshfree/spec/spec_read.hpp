@@ -55,6 +55,10 @@ void read_hardening(KeyReader& p, materials::J2Parameters& j);
 
 /// The `materials:` list, every part of every entry read and checked.
 std::vector<MaterialSpec> read_materials(KeyReader& r);
+/// A table [[x0, y0], [x1, y1], ...] of at least `at_least` rows with strictly ascending x (and
+/// positive y where asked), as a piecewise-linear function.
+materials::PiecewiseLinear read_table(KeyReader& r, const std::string& key, std::size_t at_least,
+                                      bool positive_values);
 /// The index of the material `name`, or an error at `key` listing the known names.
 int find_material(KeyReader& r, const std::string& key, const std::vector<MaterialSpec>& list,
                   const std::string& name);

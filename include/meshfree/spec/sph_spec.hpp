@@ -2,6 +2,7 @@
 // What the SPH part of a problem file says (analysis: sph), validated and typed: plain data that
 // the SPH builder maps to the solver's own settings.
 #include "meshfree/kernels/sph_kernel.hpp"
+#include "meshfree/materials/geomaterials.hpp"
 #include "meshfree/spec/material_spec.hpp"
 #include "meshfree/spec/region_spec.hpp"
 #include "meshfree/sph/settings.hpp"
@@ -32,6 +33,13 @@ struct SphRegion {
   double density = 0.0;
   double energy = 0.0; // specific internal energy [J/kg]
   Point velocity{0, 0, 0};
+  /// A velocity that varies along an axis, added to `velocity`: component `component` is
+  /// table(x_along) (piecewise linear, constant beyond its ends); a beam's mode shape, say.
+  struct VelocityProfile {
+    int along = 0, component = 1;
+    materials::PiecewiseLinear table;
+  };
+  std::optional<VelocityProfile> velocity_profile;
   bool fixed = false; // a wall of fixed particles
   std::string key_path;  // "regions[k]", for messages
   std::string state_key; // the key that gave its state: pressure, energy or density
