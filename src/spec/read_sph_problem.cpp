@@ -39,6 +39,24 @@ SmoothingBounds read_smoothing_bounds(KeyReader& r, const std::string& key,
   return {v[0], v[1]};
 }
 
+/// `key`: one of the model's axes, x, y or z (dimension `dim`), as its index.
+int read_axis(KeyReader& r, const std::string& key, int dim) {
+  const std::vector<std::string> axes{"x", "y", "z"};
+  const std::string axis =
+      r.choice(key, std::vector<std::string>(axes.begin(), axes.begin() + dim), "");
+  return static_cast<int>(std::find(axes.begin(), axes.end(), axis) - axes.begin());
+}
+
+/// velocity_profile: {along, component, table}, one velocity component along one axis.
+SphRegion::VelocityProfile read_velocity_profile(KeyReader& v, int dim) {
+  SphRegion::VelocityProfile p;
+  p.along = read_axis(v, "along", dim);
+  p.component = read_axis(v, "component", dim);
+  p.table = read_table(v, "table", 2, false);
+  v.finish();
+  return p;
+}
+
 SphRegion read_region_of_particles(KeyReader& b, int dim, double spacing,
                                    const std::vector<MaterialSpec>& materials,
                                    const SmoothingBounds& bounds) {
@@ -94,19 +112,8 @@ SphRegion read_region_of_particles(KeyReader& b, int dim, double spacing,
   }
   if (b.has("velocity")) block.velocity = read_point(b, "velocity", dim);
   b.allow("velocity");
-  if (auto v = b.optional_map("velocity_profile")) {
-    const std::vector<std::string> axes{"x", "y", "z"};
-    const std::vector<std::string> ours(axes.begin(), axes.begin() + dim);
-    const auto index = [&](const std::string& a) {
-      return static_cast<int>(std::find(axes.begin(), axes.end(), a) - axes.begin());
-    };
-    SphRegion::VelocityProfile p;
-    p.along = index(v->choice("along", ours, ""));
-    p.component = index(v->choice("component", ours, ""));
-    p.table = read_table(*v, "table", 2, false);
-    v->finish();
-    block.velocity_profile = p;
-  }
+  if (auto v = b.optional_map("velocity_profile"))
+    block.velocity_profile = read_velocity_profile(*v, dim);
   block.fixed = b.choice("motion", {"free", "fixed"}, "free") == "fixed";
   block.smoothing_bounds = read_smoothing_bounds(b, "smoothing_bounds", bounds);
   if (block.fixed && b.has("velocity")) b.error("velocity", "a fixed region does not move");
@@ -128,13 +135,11 @@ void read_condition(KeyReader& c, int dim, SphSpec& s) {
     KeyReader m = c.map("symmetry");
     SphSymmetry plane;
     plane.name = name;
-    const std::vector<std::string> axes{"x", "y", "z"};
-    const std::string axis =
-        m.choice("axis", std::vector<std::string>(axes.begin(), axes.begin() + dim), "");
-    plane.axis = static_cast<int>(std::find(axes.begin(), axes.end(), axis) - axes.begin());
+    plane.axis = read_axis(m, "axis", dim);
     plane.at = m.number("at");
     for (const auto& other : s.symmetry)
-      if (other.axis == plane.axis) m.error("axis", "another symmetry plane is normal to " + axis);
+      if (other.axis == plane.axis)
+        m.error("axis", std::string("another symmetry plane is normal to ") + "xyz"[plane.axis]);
     m.finish();
     s.symmetry.push_back(plane);
   } else {

@@ -12,9 +12,6 @@
 
 namespace mf::spec {
 
-/// A body of particles, one material, uniform initial state: a box on a lattice of the given
-/// spacing (kept inside the region's circle, less its holes), or (2D) a ring of concentric
-/// particle circles.
 /// Bounds on a particle's smoothing length as multiples of its initial one, as LS-DYNA's HMIN
 /// and HMAX scale factors: h = smoothing x spacing at the start, and h follows rho^(-1/dim)
 /// within [min, max] times that, the density being held within the bounds this gives it.
@@ -26,6 +23,9 @@ struct SmoothingBounds {
   static SmoothingBounds defaults(int dimension) { return {0.2, dimension == 1 ? 3.0 : 2.0}; }
 };
 
+/// A body of particles, one material, uniform initial state: a box on a lattice of the given
+/// spacing (kept inside the region's circle, less its holes), or (2D) a ring of concentric
+/// particle circles.
 struct SphRegion {
   int material = 0; // index into SphSpec::materials
   Region region;
@@ -40,7 +40,7 @@ struct SphRegion {
     materials::PiecewiseLinear table;
   };
   std::optional<VelocityProfile> velocity_profile;
-  bool fixed = false; // a wall of fixed particles
+  bool fixed = false;    // a wall of fixed particles
   std::string key_path;  // "regions[k]", for messages
   std::string state_key; // the key that gave its state: pressure, energy or density
   /// Its particles' h is held within these multiples of their initial h (SphSpec's).
