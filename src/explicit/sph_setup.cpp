@@ -36,11 +36,15 @@ sph::Material to_solver(const spec::MaterialSpec& m) {
     out.strength = granular;
   } else if (model == Model::Hjc) {
     out.strength = *m.hjc;
+  } else if (m.plasticity &&
+             std::holds_alternative<materials::DruckerPragerParameters>(*m.plasticity)) {
+    out.strength = materials::DruckerPragerShear{
+        m.shear_modulus, std::get<materials::DruckerPragerParameters>(*m.plasticity)};
   } else if (m.plasticity) {
     // The J2 return uses mu = G (E = 2G, nu = 0); the pressure is the equation of state's.
     materials::VonMises vm;
     vm.shear_modulus = m.shear_modulus;
-    vm.j2 = *m.plasticity;
+    vm.j2 = std::get<materials::J2Parameters>(*m.plasticity);
     vm.j2.E = 2.0 * m.shear_modulus;
     vm.j2.nu = 0.0;
     out.strength = vm;

@@ -47,10 +47,10 @@ ElasticLimit elastic_limit(const spec::ProblemSpec& spec, const GalerkinModel& m
   // First yield where sigma_vm / sigma_y of the point's material peaks, over the points of
   // plastic materials; sigma_ref is the yield stress of the analysis' material (or of the first
   // plastic one), so that one material gives the von Mises peak itself.
-  double sigma_ref = spec.plasticity() ? spec.plasticity()->sigma0 : 0.0;
+  double sigma_ref = spec.plasticity() ? materials::reference_strength(*spec.plasticity()) : 0.0;
   for (const spec::MaterialRegion& r : spec.galerkin().material_regions)
     if (!(sigma_ref > 0.0) && spec.materials[r.material].plasticity)
-      sigma_ref = spec.materials[r.material].plasticity->sigma0;
+      sigma_ref = materials::reference_strength(*spec.materials[r.material].plasticity);
   const auto best_of = [&](const ShapeTable& t, const std::vector<Vec2>& x, const char* counted,
                            double& score, double& vm_best, Vec2& where) {
     const PointLaws laws = point_laws(spec, x);
@@ -60,7 +60,9 @@ ElasticLimit elastic_limit(const spec::ProblemSpec& spec, const GalerkinModel& m
       if (!laws.plastic[mat] || (counted && !counted[k])) continue;
       const auto [s, szz] = laws.elastic_stress(spec.model, k, strain_at(t, k, d));
       const double vm = materials::von_mises(s, szz);
-      const double sc = vm * (sigma_ref / laws.params[mat].sigma0);
+      materials::Vec6 s3;
+      s3 << s(0), s(1), szz, 0.0, 0.0, s(2);
+      const double sc = materials::first_yield_measure(laws.params[mat], s3, sigma_ref);
       if (sc > score) score = sc, vm_best = vm, where = x[k];
     }
   };

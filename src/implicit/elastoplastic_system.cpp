@@ -72,7 +72,7 @@ void ElastoplasticSystem::commit() {
   committed_d_ = states_valid_ ? states_d_ : std::vector<double>{};
 }
 
-void ElastoplasticSystem::start_from(std::vector<materials::J2State> history) {
+void ElastoplasticSystem::start_from(std::vector<materials::MaterialState> history) {
   MF_REQUIRE(history.size() == states_.committed.size(),
              "ElastoplasticSystem: a carried history must have one state a point");
   states_.committed = std::move(history);
@@ -160,7 +160,7 @@ void ElastoplasticSystem::update_materials(const std::vector<double>& d) {
     const Vec3 eps = strain_at(t, k, d);
     try {
       MF_REQUIRE(eps.allFinite(), "the strain is not finite");
-      const materials::J2Result2D r = laws_.update(model, k, eps, states_.committed[k]);
+      const materials::StressUpdate2D r = laws_.update(model, k, eps, states_.committed[k]);
       MF_REQUIRE(r.stress.allFinite(), "the stress is not finite");
       states_.trial[k] = r.state;
       states_.stress[k] = r.stress;

@@ -9,7 +9,7 @@ std::pair<Vec3, double> PointLaws::elastic_stress(materials::PlaneModel model, i
                                                   const Vec3& strain) const {
   const int m = material[k];
   const Vec3 stress = elastic[m] * strain;
-  return {stress, materials::out_of_plane_stress({params[m].E, params[m].nu}, model, stress)};
+  return {stress, materials::out_of_plane_stress(materials::elasticity(params[m]), model, stress)};
 }
 
 namespace {
@@ -44,7 +44,7 @@ void add_region_crossings(double x, const spec::Region& g, std::vector<double>& 
 
 /// The 3D compliance applied to [xx, yy, xy, zz]: the elastic strain of a stress, engineering
 /// shear (Hooke's law, e.g. Timoshenko & Goodier 1970, eq. 3).
-Vec4 compliance(const materials::J2Parameters& p, const Vec4& s) {
+Vec4 compliance(const materials::IsotropicElastic& p, const Vec4& s) {
   const double E = p.E, nu = p.nu;
   return {(s(0) - nu * (s(1) + s(3))) / E, (s(1) - nu * (s(0) + s(3))) / E,
           2.0 * (1.0 + nu) / E * s(2), (s(3) - nu * (s(0) + s(1))) / E};
@@ -65,12 +65,10 @@ int material_at(const spec::ProblemSpec& spec, const Vec2& x) {
   return galerkin.material_index;
 }
 
-materials::J2Parameters material_parameters(const spec::ProblemSpec& spec, int material) {
+materials::ConstitutiveModel material_parameters(const spec::ProblemSpec& spec, int material) {
   const spec::MaterialSpec& m = spec.materials.at(static_cast<std::size_t>(material));
-  materials::J2Parameters p;
-  if (m.plasticity) p = *m.plasticity;
-  p.E = m.E;
-  p.nu = m.nu;
+  materials::ConstitutiveModel p = m.plasticity.value_or(materials::J2Parameters{});
+  materials::set_elasticity(p, {m.E, m.nu});
   return p;
 }
 
@@ -124,19 +122,20 @@ Vec2 body_force_at(const spec::ProblemSpec& spec, const Vec2& x) {
   return galerkin.body_force + spec.materials[material_at(spec, x)].density * galerkin.gravity;
 }
 
-materials::J2Result2D update_law(materials::PlaneModel model, const materials::J2Parameters& p,
-                                 bool plastic, const Vec4& sigma0, const Vec3& strain,
-                                 const materials::J2State& committed) {
+materials::StressUpdate2D update_law(materials::PlaneModel model,
+                                     const materials::ConstitutiveModel& law, bool plastic,
+                                     const Vec4& sigma0, const Vec3& strain,
+                                     const materials::MaterialState& committed) {
   const bool plane_strain = model == materials::PlaneModel::PlaneStrain;
   const bool initial = !is_zero(sigma0);
+  const materials::IsotropicElastic e = materials::elasticity(law);
   if (!plastic) {
     // sigma = sigma0 + C (eps - eps_p), eps_p = 0 at an elastic point.
-    const materials::IsotropicElastic e{p.E, p.nu};
-    materials::J2Result2D r;
+    materials::StressUpdate2D r;
     r.tangent = materials::elastic_matrix(e, model);
     r.stress = r.tangent * strain;
     r.stress_zz = materials::out_of_plane_stress(e, model, r.stress);
-    r.strain_zz = plane_strain ? 0.0 : -p.nu / (1.0 - p.nu) * (strain(0) + strain(1));
+    r.strain_zz = plane_strain ? 0.0 : -e.nu / (1.0 - e.nu) * (strain(0) + strain(1));
     if (initial) {
       r.stress += sigma0.head<3>();
       r.stress_zz += sigma0(3);
@@ -144,36 +143,23 @@ materials::J2Result2D update_law(materials::PlaneModel model, const materials::J
     r.state = committed;
     return r;
   }
-  if (!initial)
-    return plane_strain ? materials::j2_update_plane_strain(p, strain, committed)
-                        : materials::j2_update_plane_stress(p, strain, committed);
+  if (!initial) return materials::stress_update_plane(law, model, strain, committed);
   // The initial elastic strain eps0 = C^-1 sigma0 added to the strain of the displacement.
-  const Vec4 e0 = compliance(p, sigma0);
+  const Vec4 e0 = compliance(e, sigma0);
   const Vec3 total(strain(0) + e0(0), strain(1) + e0(1), strain(2) + e0(2));
   if (!plane_strain) {
     // sigma0_zz = 0 in plane stress; the return finds eps_zz with sigma_zz = 0 itself.
-    materials::J2Result2D r = materials::j2_update_plane_stress(p, total, committed);
+    materials::StressUpdate2D r = materials::stress_update_plane(law, model, total, committed);
     r.strain_zz -= e0(3);
     return r;
   }
   materials::Vec6 e3;
   e3 << total(0), total(1), e0(3), 0.0, 0.0, total(2);
-  const materials::J2Result3D r3 = materials::j2_update_3d(p, e3, committed);
-  constexpr int kPlane[3] = {0, 1, 5}; // 3D Voigt indices of xx, yy, xy
-  materials::J2Result2D r;
-  for (int a = 0; a < 3; ++a) {
-    r.stress(a) = r3.stress(kPlane[a]);
-    for (int b = 0; b < 3; ++b) r.tangent(a, b) = r3.tangent(kPlane[a], kPlane[b]);
-  }
-  r.stress_zz = r3.stress(2);
-  r.strain_zz = 0.0;
-  r.state = r3.state;
-  r.plastic = r3.plastic;
-  return r;
+  return materials::voigt::reduce(materials::stress_update_3d(law, e3, committed), 0.0);
 }
 
-materials::J2Result2D update_point(const spec::ProblemSpec& spec, const PointLaw& law,
-                                   const Vec3& strain, const materials::J2State& committed) {
+materials::StressUpdate2D update_point(const spec::ProblemSpec& spec, const PointLaw& law,
+                                   const Vec3& strain, const materials::MaterialState& committed) {
   return update_law(spec.model, law.params, law.plastic, law.initial_stress, strain, committed);
 }
 
@@ -196,7 +182,7 @@ PointLaws point_laws(const spec::ProblemSpec& spec, const std::vector<Vec2>& x) 
     const int i = static_cast<int>(m);
     L.params[m] = material_parameters(spec, i);
     L.plastic[m] = spec.materials[m].plasticity.has_value();
-    L.elastic[m] = materials::elastic_matrix({L.params[m].E, L.params[m].nu}, spec.model);
+    L.elastic[m] = materials::elastic_matrix(materials::elasticity(L.params[m]), spec.model);
     density[m] = spec.materials[m].density;
     L.any_plastic = L.any_plastic || L.plastic[m];
   }

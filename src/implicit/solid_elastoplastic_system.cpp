@@ -26,10 +26,10 @@ struct OwnedRows3 {
 
 } // namespace
 
-materials::J2Parameters solid_material_law(const spec::ProblemSpec& spec) {
-  materials::J2Parameters p = material_parameters(spec, spec.solid().material_index);
+materials::ConstitutiveModel solid_material_law(const spec::ProblemSpec& spec) {
+  materials::ConstitutiveModel p = material_parameters(spec, spec.solid().material_index);
   if (!spec.materials[spec.solid().material_index].plasticity)
-    p.sigma0 = std::numeric_limits<double>::infinity();
+    std::get<materials::J2Parameters>(p).sigma0 = std::numeric_limits<double>::infinity();
   return p;
 }
 
@@ -147,7 +147,7 @@ void SolidElastoplasticSystem::update_materials(const std::vector<double>& d) {
     const Vec6 eps = solid_strain_at(t, k, d);
     try {
       MF_REQUIRE(eps.allFinite(), "the strain is not finite");
-      const materials::J2Result3D r = materials::j2_update_3d(params_, eps, states_.committed[k]);
+      const materials::StressUpdate3D r = materials::stress_update_3d(params_, eps, states_.committed[k]);
       MF_REQUIRE(r.stress.allFinite(), "the stress is not finite");
       states_.trial[k] = r.state;
       states_.stress[k] = r.stress;

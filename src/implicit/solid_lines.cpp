@@ -4,7 +4,7 @@
 namespace mf::implicit {
 
 SolidLineSampler::SolidLineSampler(const spec::ProblemSpec& spec, const SolidModel& m,
-                                   const materials::J2Parameters& law)
+                                   const materials::ConstitutiveModel& law)
     : law_(law) {
   for (const spec::SolidLineSpec& s : spec.solid().lines) {
     Line l;
@@ -35,7 +35,7 @@ void SolidLineSampler::add(Line l, const SolidModel& m) {
 void SolidLineSampler::record(int state, const std::vector<double>& d) {
   for (Line& l : lines_)
     for (int k = 0; k < static_cast<int>(l.x.size()); ++k) {
-      const materials::J2Result3D r = carry_point(l.table, k, d, law_, l.committed[k]);
+      const materials::StressUpdate3D r = carry_point(l.table, k, d, law_, l.committed[k]);
       const Vec3 u = solid_displacement_at(l.table, k, d);
       const Vec3& x = l.x[k];
       std::vector<double> row{static_cast<double>(state),

@@ -18,14 +18,14 @@ namespace {
 /// strain) and its strain [xx, yy, xy] on its own cloud.
 constexpr int kValues = 16;
 
-void pack(const materials::J2State& s, const Vec3& strain, double* v) {
+void pack(const materials::MaterialState& s, const Vec3& strain, double* v) {
   for (int c = 0; c < 6; ++c) v[c] = s.plastic_strain(c), v[6 + c] = s.back_stress(c);
   v[12] = s.alpha;
   for (int c = 0; c < 3; ++c) v[13 + c] = strain(c);
 }
 
-materials::J2State unpack(const double* v) {
-  materials::J2State s;
+materials::MaterialState unpack(const double* v) {
+  materials::MaterialState s;
   for (int c = 0; c < 6; ++c) s.plastic_strain(c) = v[c], s.back_stress(c) = v[6 + c];
   s.alpha = v[12];
   return s;
@@ -180,10 +180,10 @@ CarriedState carry_state(const spec::ProblemSpec& spec, const GalerkinModel& fro
   return c;
 }
 
-std::vector<materials::J2State> history_keeping_stress(const CarriedState& c,
+std::vector<materials::MaterialState> history_keeping_stress(const CarriedState& c,
                                                        const GalerkinModel& to,
                                                        const std::vector<double>& d) {
-  std::vector<materials::J2State> h = c.history;
+  std::vector<materials::MaterialState> h = c.history;
   for (std::size_t k = 0; k < h.size(); ++k) {
     if (h[k].alpha <= 0.0) continue; // never yielded: its stress is that of the new strain
     const Vec3 shift = strain_at(to.domain_table, static_cast<int>(k), d) - c.old_strain[k];

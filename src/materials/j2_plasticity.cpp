@@ -7,36 +7,15 @@
 
 namespace mf::materials {
 
+using voigt::deviator;
+using voigt::engineering;
+using voigt::tensor_norm;
+using voigt::unit_trace;
+
 namespace {
 
 const double kSqrt23 = std::sqrt(2.0 / 3.0);
 const double kSqrt23Cubed = kSqrt23 * kSqrt23 * kSqrt23; // (2/3)^(3/2)
-
-/// m = [1 1 1 0 0 0]
-Vec6 unit_trace() {
-  Vec6 m = Vec6::Zero();
-  m.head<3>().setOnes();
-  return m;
-}
-
-/// Deviatoric part of a stress-like Voigt vector.
-Vec6 deviator(const Vec6& s) {
-  Vec6 d = s;
-  d.head<3>().array() -= s.head<3>().sum() / 3.0;
-  return d;
-}
-
-/// Tensor norm of a stress-like Voigt vector: sqrt(s : s).
-double tensor_norm(const Vec6& s) {
-  return std::sqrt(s.head<3>().squaredNorm() + 2.0 * s.tail<3>().squaredNorm());
-}
-
-/// Stress-like to strain-like (engineering shear) Voigt.
-Vec6 engineering(const Vec6& t) {
-  Vec6 e = t;
-  e.tail<3>() *= 2.0;
-  return e;
-}
 
 /// The uniaxial yield stress sigma_y(alpha) and its slope, together (Voce: one exponential).
 struct YieldCurve {
@@ -117,13 +96,11 @@ J2Return j2_radial_return(const J2Parameters& p, const Vec6& s_trial, const Vec6
   return r;
 }
 
-J2Result3D j2_update_3d(const J2Parameters& p, const Vec6& strain, const J2State& committed) {
+StressUpdate3D j2_update_3d(const J2Parameters& p, const Vec6& strain, const MaterialState& committed) {
   const double mu = p.E / (2.0 * (1.0 + p.nu));
   const double kappa = p.E / (3.0 * (1.0 - 2.0 * p.nu));
   const Vec6 m = unit_trace();
-  Mat6 I_sym = Mat6::Identity();
-  I_sym.diagonal().tail<3>().setConstant(0.5); // maps engineering strain to tensor strain
-  const Mat6 I_dev = I_sym - m * m.transpose() / 3.0;
+  const Mat6 I_dev = voigt::deviatoric_projector();
 
   // Elastic trial state (Simo & Hughes Box 3.1, step 1), returned radially (Box 3.2).
   const Vec6 eps_e = strain - committed.plastic_strain;
@@ -131,7 +108,7 @@ J2Result3D j2_update_3d(const J2Parameters& p, const Vec6& strain, const J2State
   const Vec6 s_trial = 2.0 * mu * (I_dev * eps_e); // deviatoric stress, stress-like
   const J2Return ret = j2_radial_return(p, s_trial, committed.back_stress, committed.alpha);
 
-  J2Result3D r;
+  StressUpdate3D r;
   r.state = committed;
   if (!ret.plastic) {
     r.stress = kappa * volumetric * m + s_trial;
@@ -155,33 +132,9 @@ J2Result3D j2_update_3d(const J2Parameters& p, const Vec6& strain, const J2State
   return r;
 }
 
-namespace {
-
-/// Embeds [xx, yy, xy] and eps_zz into a 3D strain.
-Vec6 embed(const Vec3& e, double ezz) {
-  Vec6 s = Vec6::Zero();
-  s << e(0), e(1), ezz, 0.0, 0.0, e(2);
-  return s;
-}
-
-J2Result2D reduce(const J2Result3D& r3, double ezz) {
-  J2Result2D r;
-  for (int a = 0; a < 3; ++a) {
-    r.stress(a) = r3.stress(kPlane[a]);
-    for (int b = 0; b < 3; ++b) r.tangent(a, b) = r3.tangent(kPlane[a], kPlane[b]);
-  }
-  r.stress_zz = r3.stress(2);
-  r.strain_zz = ezz;
-  r.state = r3.state;
-  r.plastic = r3.plastic;
-  return r;
-}
-
-} // namespace
-
-J2Result2D j2_update_plane_strain(const J2Parameters& p, const Vec3& strain,
-                                  const J2State& committed) {
-  return reduce(j2_update_3d(p, embed(strain, 0.0), committed), 0.0);
+StressUpdate2D j2_update_plane_strain(const J2Parameters& p, const Vec3& strain,
+                                  const MaterialState& committed) {
+  return voigt::reduce(j2_update_3d(p, voigt::embed(strain, 0.0), committed), 0.0);
 }
 
 namespace {
@@ -271,8 +224,8 @@ Mat3 projected_tangent(const J2Parameters& p, const PlaneStressBasis& e, const V
 
 } // namespace
 
-J2Result2D j2_update_plane_stress(const J2Parameters& p, const Vec3& strain,
-                                  const J2State& committed) {
+StressUpdate2D j2_update_plane_stress(const J2Parameters& p, const Vec3& strain,
+                                  const MaterialState& committed) {
   // The plane-stress projected return ([Simo & Taylor 1986]; [de Souza Neto, Peric & Owen 2008]
   // ch. 9), with linear kinematic hardening: eta = sigma - b is the stress relative to the plane
   // stress b whose deviator is the back stress beta, and with lambda = dgamma / |dev eta| the
@@ -294,7 +247,7 @@ J2Result2D j2_update_plane_stress(const J2Parameters& p, const Vec3& strain,
   if (!std::isfinite(xi2_trial))
     fail("plane-stress return: the trial stress is not finite (strain ", strain.transpose(), ")");
 
-  J2Result2D r;
+  StressUpdate2D r;
   r.state = committed;
   r.stress = sigma_trial;
   r.tangent = C;

@@ -267,6 +267,71 @@ BondSpec read_bond(KeyReader& m) {
   return b;
 }
 
+materials::J2Parameters read_j2(KeyReader& p, const MaterialSpec& mat) {
+  materials::J2Parameters j;
+  j.E = mat.E;
+  j.nu = mat.nu;
+  read_hardening(p, j);
+  j.H_kinematic = p.number("kinematic_modulus", 0.0);
+  if (j.H_kinematic < 0.0)
+    p.error("kinematic_modulus", "expected a number >= 0, got " + detail::concat(j.H_kinematic));
+  return j;
+}
+
+/// An angle in degrees in [0, 90), returned in radians; required without a fallback.
+double read_angle(KeyReader& p, const std::string& key,
+                  std::optional<double> fallback_degrees = std::nullopt) {
+  const double degrees = fallback_degrees ? p.number(key, *fallback_degrees) : p.number(key);
+  if (!(degrees >= 0.0 && degrees < 90.0))
+    p.error(key, "expected an angle in degrees in [0, 90), got " + detail::concat(degrees));
+  return degrees * M_PI / 180.0;
+}
+
+/// Drucker-Prager from Mohr-Coulomb's cohesion and angles, matched as `match` says.
+materials::DruckerPragerParameters read_drucker_prager(KeyReader& p, const MaterialSpec& mat) {
+  materials::DruckerPragerParameters d;
+  d.E = mat.E;
+  d.nu = mat.nu;
+  d.cohesion = p.positive("cohesion");
+  d.hardening = p.number("cohesion_hardening", 0.0);
+  if (d.hardening < 0.0)
+    p.error("cohesion_hardening", "expected a number >= 0, got " + detail::concat(d.hardening));
+  const std::string match = p.choice("match", {"plane_strain", "outer", "inner"}, "plane_strain");
+  const auto how = match == "outer"   ? materials::MohrCoulombMatch::Outer
+                   : match == "inner" ? materials::MohrCoulombMatch::Inner
+                                      : materials::MohrCoulombMatch::PlaneStrain;
+  const double phi = read_angle(p, "friction_angle");
+  const double psi = read_angle(p, "dilation_angle", phi * 180.0 / M_PI);
+  if (psi > phi)
+    p.error("dilation_angle", detail::concat("expected at most the friction angle ",
+                                             phi * 180.0 / M_PI, ", got ", psi * 180.0 / M_PI));
+  const materials::ConeConstants cone = materials::mohr_coulomb_cone(phi, how);
+  d.eta = cone.eta;
+  d.xi = cone.xi;
+  d.eta_bar = materials::mohr_coulomb_cone(psi, how).eta;
+  if (p.has("tension_cutoff")) {
+    d.tension_cutoff = p.number("tension_cutoff");
+    const double apex = materials::apex_pressure(d, d.cohesion);
+    if (!(d.tension_cutoff >= 0.0 && d.tension_cutoff < apex))
+      p.error("tension_cutoff",
+              detail::concat("expected a mean stress in [0, ", apex,
+                             ") (the cone's apex, xi c / eta), got ", d.tension_cutoff));
+  }
+  return d;
+}
+
+/// `plasticity:` of a material: the model by name (j2 by default) and its parameters.
+materials::ConstitutiveModel read_plasticity(KeyReader& p, const MaterialSpec& mat) {
+  const std::string model = p.choice("model", {"j2", "drucker_prager"}, "j2");
+  materials::ConstitutiveModel out;
+  if (model == "drucker_prager")
+    out = read_drucker_prager(p, mat);
+  else
+    out = read_j2(p, mat);
+  p.finish();
+  return out;
+}
+
 MaterialSpec read_material(KeyReader& m) {
   MaterialSpec mat;
   mat.key_path = m.path();
@@ -291,17 +356,7 @@ MaterialSpec read_material(KeyReader& m) {
   }
   mat.bulk_modulus = m.positive("bulk_modulus", 0.0);
   mat.density = m.positive("density", 0.0);
-  if (auto p = m.optional_map("plasticity")) {
-    materials::J2Parameters j;
-    j.E = mat.E;
-    j.nu = mat.nu;
-    read_hardening(*p, j);
-    j.H_kinematic = p->number("kinematic_modulus", 0.0);
-    if (j.H_kinematic < 0.0)
-      p->error("kinematic_modulus", "expected a number >= 0, got " + detail::concat(j.H_kinematic));
-    p->finish();
-    mat.plasticity = j;
-  }
+  if (auto p = m.optional_map("plasticity")) mat.plasticity = read_plasticity(*p, mat);
   if (auto e = m.optional_map("eos")) mat.eos = read_eos(*e);
   if (auto h = m.optional_map("hjc")) mat.hjc = read_hjc(*h);
   if (auto st = m.optional_map("strength")) mat.strength = read_strength(*st, mat);

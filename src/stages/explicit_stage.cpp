@@ -65,7 +65,7 @@ double stored_energy(const Preload& preload, const PreloadAtParticles& pa,
   //                       + 2 (1 + nu) (s23^2 + s13^2 + s12^2)] / E  (isotropic compliance).
   double w = 0.0;
   for (std::size_t i = 0; i < pa.image.size(); ++i) {
-    const materials::J2Parameters law = preload.elasticity_at(pa.image[i].x);
+    const materials::IsotropicElastic law = preload.elasticity_at(pa.image[i].x);
     const double nu = law.nu;
     const materials::Vec6& s = pa.final_stress()[i];
     const double normal = s[0] * s[0] + s[1] * s[1] + s[2] * s[2] -

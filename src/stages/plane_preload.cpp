@@ -15,8 +15,8 @@ std::vector<HeldCondition> PlanePreload::held(const spec::StageLink& link,
   return held_conditions(spec(), r_, link, x, layers);
 }
 
-materials::J2Parameters PlanePreload::elasticity_at(const Vec3& x) const {
-  return implicit::point_law(spec(), x.head<2>()).params;
+materials::IsotropicElastic PlanePreload::elasticity_at(const Vec3& x) const {
+  return materials::elasticity(implicit::point_law(spec(), x.head<2>()).params);
 }
 
 Vec3 PlanePreload::body_force_at(bool gravity, const Vec3& x) const {

@@ -76,7 +76,7 @@ Vec6 mirrored(const Vec6& s, const Mirrored& m) {
 
 namespace {
 
-Vec6 stress_3d(const materials::J2Result2D& r) {
+Vec6 stress_3d(const materials::StressUpdate2D& r) {
   Vec6 s;
   s << r.stress(0), r.stress(1), r.stress_zz, 0.0, 0.0, r.stress(2);
   return s;
@@ -84,8 +84,8 @@ Vec6 stress_3d(const materials::J2Result2D& r) {
 
 } // namespace
 
-materials::J2State mirrored(const materials::J2State& h, const Mirrored& m) {
-  materials::J2State out = h;
+materials::MaterialState mirrored(const materials::MaterialState& h, const Mirrored& m) {
+  materials::MaterialState out = h;
   out.plastic_strain = mirrored(h.plastic_strain, m);
   out.back_stress = mirrored(h.back_stress, m);
   return out;
@@ -153,10 +153,10 @@ PreloadAtParticles sample_preload(const spec::ProblemSpec& preload,
 #pragma omp parallel for schedule(dynamic, 64)
   for (int p = 0; p < np; ++p) {
     const implicit::PointLaw law = implicit::point_law(preload, points[p]);
-    materials::J2State committed;
+    materials::MaterialState committed;
     for (int n = 0; n <= N; ++n) {
       const std::vector<double>& d = n == 0 ? zero : r.increments[n].parameters;
-      const materials::J2Result2D res =
+      const materials::StressUpdate2D res =
           implicit::update_point(preload, law, implicit::strain_at(table, p, d), committed);
       committed = res.state;
       const Vec2 u = implicit::displacement_at(table, p, d);

@@ -1,5 +1,5 @@
 // A 3D preload as the explicit stage sees it (stages/preload.hpp): the particles carried through
-// its increments as passive material points (j2_update_3d from their own history, as its Gauss
+// its increments as passive material points (the material update from their own history, as its Gauss
 // points are), and its face conditions on particle layers chosen by their distance to the faces.
 #include "meshfree/core/error.hpp"
 #include "meshfree/implicit/solid_forms.hpp"
@@ -33,10 +33,10 @@ PreloadAtParticles SolidPreload::sample(const std::vector<Vec3>& x,
   const std::vector<double> zero(r_.parameters.size(), 0.0);
 #pragma omp parallel for schedule(dynamic, 64)
   for (int p = 0; p < np; ++p) {
-    materials::J2State committed;
+    materials::MaterialState committed;
     for (int n = 0; n <= N; ++n) {
       const std::vector<double>& d = n == 0 ? zero : r_.increments[n].record.parameters;
-      const materials::J2Result3D res = implicit::carry_point(table, p, d, r_.material, committed);
+      const materials::StressUpdate3D res = implicit::carry_point(table, p, d, r_.material, committed);
       out.u[n][p] = mirrored(implicit::solid_displacement_at(table, p, d), out.image[p]);
       out.stress[n][p] = mirrored(res.stress, out.image[p]);
       out.alpha[n][p] = res.state.alpha;
@@ -235,8 +235,8 @@ std::vector<HeldCondition> SolidPreload::held(const spec::StageLink& link,
   return out;
 }
 
-materials::J2Parameters SolidPreload::elasticity_at(const Vec3&) const {
-  return r_.material;
+materials::IsotropicElastic SolidPreload::elasticity_at(const Vec3&) const {
+  return materials::elasticity(r_.material);
 }
 
 Vec3 SolidPreload::body_force_at(bool, const Vec3&) const {

@@ -64,7 +64,7 @@ struct ElastoplasticState {
   std::shared_ptr<const GalerkinModel> model;
   std::vector<double> parameters;          // nodal parameters d, all 2N of them, on every rank
   std::vector<double> factors;             // load factors per condition, then the body force
-  std::vector<materials::J2State> history; // plastic strain, back stress, alpha per point
+  std::vector<materials::MaterialState> history; // plastic strain, back stress, alpha per point
   std::vector<Vec3> stress;                // [sxx, syy, sxy] per point
   std::vector<double> stress_zz;           // per point
 };

@@ -23,7 +23,7 @@ namespace mf::implicit {
 /// domain table): the committed history and the stress it was committed with, and the trial
 /// response of the current iterate.
 struct PointStates {
-  std::vector<materials::J2State> committed, trial;
+  std::vector<materials::MaterialState> committed, trial;
   std::vector<Vec3> committed_stress;      // the stress of the committed history
   std::vector<double> committed_stress_zz; // its out-of-plane component
   std::vector<Vec3> stress;                // trial
@@ -75,7 +75,7 @@ public:
 
   /// Starts from a history carried here from another model of the body (a refined cloud): it
   /// becomes the committed history; the next residual returns the map from it at every point.
-  void start_from(std::vector<materials::J2State> history);
+  void start_from(std::vector<materials::MaterialState> history);
 
   /// Residuals from now on are R(d) - share r0 (r0 on the owned rows, as residual() gives
   /// them): the out-of-balance r0 of a carried state taken away in steps (share 1 to 0).

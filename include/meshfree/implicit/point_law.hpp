@@ -10,18 +10,19 @@
 // from sigma0 (Abaqus *GEOSTATIC; Zienkiewicz & Taylor, The Finite Element Method vol. 1, 6th
 // ed., eq. 2.4 sigma = D (eps - eps0) + sigma0).
 #include "meshfree/core/types.hpp"
-#include "meshfree/materials/j2_plasticity.hpp"
+#include "meshfree/materials/constitutive_model.hpp"
 #include "meshfree/spec/problem_spec.hpp"
 #include <utility>
 #include <vector>
 
 namespace mf::implicit {
 
-/// The constitutive law at a point of the body: material index, its J2 parameters (elastic if the
-/// material has no plasticity), and the initial (geostatic) stress there [xx, yy, xy, zz].
+/// The constitutive law at a point of the body: material index, its model (a J2 model with its
+/// elastic constants if the material has no plasticity), and the initial (geostatic) stress
+/// there [xx, yy, xy, zz].
 struct PointLaw {
   int material = 0;
-  materials::J2Parameters params;
+  materials::ConstitutiveModel params;
   bool plastic = false;
   Vec4 initial_stress = Vec4::Zero();
 };
@@ -30,8 +31,8 @@ struct PointLaw {
 /// the analysis' material.
 int material_at(const spec::ProblemSpec& spec, const Vec2& x);
 
-/// The J2 parameters of a material of the spec (E and nu, and its plasticity if it has one).
-materials::J2Parameters material_parameters(const spec::ProblemSpec& spec, int material);
+/// The model of a material of the spec (E and nu, and its plasticity if it has one).
+materials::ConstitutiveModel material_parameters(const spec::ProblemSpec& spec, int material);
 
 /// The initial stress at x [xx, yy, xy, zz]: zero without `initial_stress`; geostatic: the
 /// column integral of rho |g| from y up to the surface, piecewise exact (the density changes
@@ -44,21 +45,22 @@ PointLaw point_law(const spec::ProblemSpec& spec, const Vec2& x);
 /// The body force per volume at x at body-force factor 1: body_force + rho g.
 Vec2 body_force_at(const spec::ProblemSpec& spec, const Vec2& x);
 
-/// The stress update of a Galerkin point (plane model, initial stress, J2 or elastic).
-materials::J2Result2D update_point(const spec::ProblemSpec& spec, const PointLaw& law,
-                                   const Vec3& strain, const materials::J2State& committed);
+/// The stress update of a Galerkin point (plane model, initial stress, its model or elastic).
+materials::StressUpdate2D update_point(const spec::ProblemSpec& spec, const PointLaw& law,
+                                   const Vec3& strain, const materials::MaterialState& committed);
 
 /// The same update from its parts: the material's parameters, whether it is plastic, and the
 /// point's initial stress. Elastic: sigma = sigma0 + C eps with C the plane elastic matrix.
 /// strain_zz is the out-of-plane strain of the displacement (eps0_zz left out).
-materials::J2Result2D update_law(materials::PlaneModel model, const materials::J2Parameters& p,
-                                 bool plastic, const Vec4& sigma0, const Vec3& strain,
-                                 const materials::J2State& committed);
+materials::StressUpdate2D update_law(materials::PlaneModel model,
+                                     const materials::ConstitutiveModel& law, bool plastic,
+                                     const Vec4& sigma0, const Vec3& strain,
+                                     const materials::MaterialState& committed);
 
 /// The laws of a set of points as flat arrays: per point the index of its material into small
 /// per-material arrays, its body force and initial stress; no look-up in the loops that use it.
 struct PointLaws {
-  std::vector<materials::J2Parameters> params; // per entry of spec.materials
+  std::vector<materials::ConstitutiveModel> params; // per entry of spec.materials
   std::vector<char> plastic;                   // per entry of spec.materials
   std::vector<Mat3> elastic;                   // plane elastic matrix, per entry of spec.materials
   std::vector<int> material;                   // per point
@@ -71,8 +73,8 @@ struct PointLaws {
   std::pair<Vec3, double> elastic_stress(materials::PlaneModel model, int k,
                                          const Vec3& strain) const;
 
-  materials::J2Result2D update(materials::PlaneModel model, int k, const Vec3& strain,
-                               const materials::J2State& committed) const {
+  materials::StressUpdate2D update(materials::PlaneModel model, int k, const Vec3& strain,
+                               const materials::MaterialState& committed) const {
     const int m = material[k];
     return update_law(model, params[m], plastic[m] != 0,
                       initial_stress.empty() ? Vec4::Zero().eval() : initial_stress[k], strain,

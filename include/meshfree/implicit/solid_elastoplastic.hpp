@@ -38,7 +38,7 @@ struct SolidElastoplasticResult {
   // the material's J2 parameters; each increment's parameters are in its record with
   // SolidSpec::record_increment_parameters.
   std::shared_ptr<const SolidModel> model;
-  materials::J2Parameters material;
+  materials::ConstitutiveModel material;
   std::shared_ptr<const SolidLineSampler> lines; // output.lines at every state (rank 0's rows)
 };
 

@@ -2,12 +2,12 @@
 // The discrete equilibrium equations of a quasi-static elastoplastic 3D body (J2, small strain)
 // on a 3D meshfree model, as the plane ones (elastoplastic_system.hpp) with 3 DOFs a node:
 //   R(d) = f_int(d) + K_pen d - sum_c factor_c f_c,  f_int = sum_g w_g B^T sigma_g(eps(d), h_n),
-// and the consistent tangent ([Simo & Hughes 1998] Box 3.2 through materials::j2_update_3d).
+// and the consistent tangent ([Simo & Hughes 1998] Box 3.2 through materials::stress_update_3d).
 // The history at the Gauss points is committed only after an increment has converged.
 #include "meshfree/implicit/incremental_system.hpp"
 #include "meshfree/implicit/solid_forms.hpp"
 #include "meshfree/implicit/solid_model.hpp"
-#include "meshfree/materials/j2_plasticity.hpp"
+#include "meshfree/materials/constitutive_model.hpp"
 #include "meshfree/solvers/nonlinear_system.hpp"
 #include <vector>
 
@@ -15,7 +15,7 @@ namespace mf::implicit {
 
 /// Committed and trial material states at this rank's domain points (rows of the domain table).
 struct SolidPointStates {
-  std::vector<materials::J2State> committed, trial;
+  std::vector<materials::MaterialState> committed, trial;
   std::vector<Vec6> committed_stress, stress; // stress of the committed history, and trial
   std::vector<Mat6> tangent;                  // trial, algorithmic
   std::vector<char> plastic;                  // trial
@@ -40,7 +40,7 @@ struct SolidPointStates {
 
 /// The J2 parameters of the body's material; a material without plasticity (an elastic preload
 /// stage) gets an infinite yield stress, so that its every update is the elastic one.
-materials::J2Parameters solid_material_law(const spec::ProblemSpec& spec);
+materials::ConstitutiveModel solid_material_law(const spec::ProblemSpec& spec);
 
 class SolidElastoplasticSystem : public IncrementalSystem {
 public:
@@ -65,7 +65,7 @@ private:
 
   const spec::ProblemSpec& spec_;
   const SolidModel& m_;
-  materials::J2Parameters params_;
+  materials::ConstitutiveModel params_;
   SolidPointStates states_;
   BlockRows penalty_;                      // K_pen: constant
   BlockScatter scatter_;                   // where each point's blocks go among the Jacobian's

@@ -8,7 +8,7 @@
 #include "meshfree/core/types.hpp"
 #include "meshfree/implicit/solid_space.hpp"
 #include "meshfree/materials/elastic.hpp"
-#include "meshfree/materials/j2_plasticity.hpp"
+#include "meshfree/materials/constitutive_model.hpp"
 #include <vector>
 
 namespace mf::implicit {
@@ -45,14 +45,14 @@ inline Vec3 solid_displacement_at(const SolidShapeTable& t, int r, const std::ve
   return u;
 }
 
-/// Point r of a table carried to nodal parameters d as a passive material point: the J2 update
+/// Point r of a table carried to nodal parameters d as a passive material point: the update
 /// of its strain from its committed history, which then becomes the update's.
-inline materials::J2Result3D carry_point(const SolidShapeTable& t, int r,
+inline materials::StressUpdate3D carry_point(const SolidShapeTable& t, int r,
                                          const std::vector<double>& d,
-                                         const materials::J2Parameters& law,
-                                         materials::J2State& committed) {
-  const materials::J2Result3D res =
-      materials::j2_update_3d(law, solid_strain_at(t, r, d), committed);
+                                         const materials::ConstitutiveModel& law,
+                                         materials::MaterialState& committed) {
+  const materials::StressUpdate3D res =
+      materials::stress_update_3d(law, solid_strain_at(t, r, d), committed);
   committed = res.state;
   return res;
 }

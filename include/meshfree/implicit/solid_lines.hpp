@@ -8,7 +8,7 @@
 // series for ParaView (face_<name>.h5/.xmf, a step per state).
 #include "meshfree/implicit/solid_model.hpp"
 #include "meshfree/io/output.hpp"
-#include "meshfree/materials/j2_plasticity.hpp"
+#include "meshfree/materials/constitutive_model.hpp"
 #include "meshfree/spec/problem_spec.hpp"
 #include <string>
 #include <utility>
@@ -21,7 +21,7 @@ public:
   /// The sample points of spec.solid().lines inside the body and of spec.solid().faces, with
   /// their shape functions.
   SolidLineSampler(const spec::ProblemSpec& spec, const SolidModel& m,
-                   const materials::J2Parameters& law);
+                   const materials::ConstitutiveModel& law);
   /// Carries every sample point to the converged state of nodal parameters `d` (all of them) and
   /// records its row, tagged `state` (the increment; 0 unloaded).
   void record(int state, const std::vector<double>& d);
@@ -36,10 +36,10 @@ private:
     Vec3 from;
     std::vector<Vec3> x;
     SolidShapeTable table;
-    std::vector<materials::J2State> committed;
+    std::vector<materials::MaterialState> committed;
     std::vector<std::vector<double>> rows;
   };
-  materials::J2Parameters law_;
+  materials::ConstitutiveModel law_;
   std::vector<Line> lines_;
   void add(Line l, const SolidModel& m);
 };

@@ -31,7 +31,7 @@ namespace mf::implicit {
 
 struct CarriedState {
   std::vector<double> d;                   // nodal parameters of the new model, all of them
-  std::vector<materials::J2State> history; // per row of the new model's domain table
+  std::vector<materials::MaterialState> history; // per row of the new model's domain table
   long copied = 0, nearest = 0;            // the new model's points (over all ranks) by how
   std::vector<Vec3> old_strain;            // per row: the strain of the old point it came from
 };
@@ -39,7 +39,7 @@ struct CarriedState {
 /// The carried history with the plastic strain of each point that has yielded (alpha > 0) moved
 /// by the difference between the strain of the new model's parameters d there and its old
 /// point's strain: the old point's elastic strain, so its stress, at the new point.
-std::vector<materials::J2State> history_keeping_stress(const CarriedState& c,
+std::vector<materials::MaterialState> history_keeping_stress(const CarriedState& c,
                                                        const GalerkinModel& to,
                                                        const std::vector<double>& d);
 

@@ -15,17 +15,11 @@
 //    where iterating the 3D update on eps_zz nests one inside another.
 //
 // Voigt order 3D [xx, yy, zz, yz, xz, xy], 2D [xx, yy, xy]; engineering shear strains.
-#include "meshfree/core/types.hpp"
+#include "meshfree/materials/stress_update.hpp"
 #include <variant>
 #include <vector>
 
 namespace mf::materials {
-
-/// The 3D Voigt indices of a plane state's [xx, yy, xy].
-constexpr int kPlane[3] = {0, 1, 5};
-
-using Vec6 = Eigen::Matrix<double, 6, 1>;
-using Mat6 = Eigen::Matrix<double, 6, 6>;
 
 /// Isotropic hardening laws: the uniaxial yield stress as a function of the equivalent plastic
 /// strain alpha.
@@ -57,38 +51,15 @@ struct J2Parameters {
   double H_kinematic = 0.0; // linear (Prager) kinematic modulus: uniaxial slope adds H_kinematic
 };
 
-/// Committed history at a material point.
-struct J2State {
-  Vec6 plastic_strain = Vec6::Zero(); // engineering shear components
-  Vec6 back_stress = Vec6::Zero();    // deviatoric, stress-like
-  double alpha = 0.0;                 // equivalent plastic strain
-};
-
-struct J2Result3D {
-  Vec6 stress = Vec6::Zero();
-  Mat6 tangent = Mat6::Zero();
-  J2State state;
-  bool plastic = false;
-};
-
-struct J2Result2D {
-  Vec3 stress = Vec3::Zero(); // [xx, yy, xy]
-  double stress_zz = 0.0;
-  double strain_zz = 0.0; // total eps_zz (0 in plane strain)
-  Mat3 tangent = Mat3::Zero();
-  J2State state;
-  bool plastic = false;
-};
-
 /// Uniaxial yield stress and its slope at alpha.
 double yield_stress(const J2Parameters& p, double alpha);
 double yield_slope(const J2Parameters& p, double alpha);
 
-J2Result3D j2_update_3d(const J2Parameters& p, const Vec6& strain, const J2State& committed);
-J2Result2D j2_update_plane_strain(const J2Parameters& p, const Vec3& strain,
-                                  const J2State& committed);
-J2Result2D j2_update_plane_stress(const J2Parameters& p, const Vec3& strain,
-                                  const J2State& committed);
+StressUpdate3D j2_update_3d(const J2Parameters& p, const Vec6& strain, const MaterialState& committed);
+StressUpdate2D j2_update_plane_strain(const J2Parameters& p, const Vec3& strain,
+                                  const MaterialState& committed);
+StressUpdate2D j2_update_plane_stress(const J2Parameters& p, const Vec3& strain,
+                                  const MaterialState& committed);
 
 /// The radial return of J2 plasticity with isotropic and linear kinematic hardening (Simo &
 /// Hughes 1998, Box 3.2): a trial deviator s_trial (stress-like Voigt) with back stress beta at

@@ -6,11 +6,17 @@
 //  - VonMises: the J2 return of materials/j2_plasticity with its isotropic and kinematic
 //    hardening (the same update as the Galerkin solver's);
 //  - GranularStrength: a pressure-dependent yield Y(p) and a shear modulus G(rho) (soil);
-//  - Hjc: the Holmquist-Johnson-Cook surface with damage (concrete).
+//  - Hjc: the Holmquist-Johnson-Cook surface with damage (concrete);
+//  - DruckerPragerShear: the Galerkin solver's Drucker-Prager cone (materials/drucker_prager)
+//    at the equation of state's pressure, the deviator returned to it alone (the volumetric
+//    response, and with it the dilatancy, is the equation of state's).
 // The pressure comes from the equation of state. A solver dispatches on the model once per
 // material (std::visit) and calls these pure functions for each of that material's particles.
 #include "meshfree/materials/geomaterials.hpp"
+#include "meshfree/materials/drucker_prager.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
+#include <algorithm>
+#include <cmath>
 #include <variant>
 
 namespace mf::materials {
@@ -30,7 +36,14 @@ struct VonMises {
   J2Parameters j2;
 };
 
-using StrengthModel = std::variant<NoStrength, ElasticShear, VonMises, GranularStrength, Hjc>;
+/// A Drucker-Prager solid: shear modulus G = E / (2 (1 + nu)) of its parameters.
+struct DruckerPragerShear {
+  double shear_modulus = 0.0;
+  DruckerPragerParameters dp;
+};
+
+using StrengthModel =
+    std::variant<NoStrength, ElasticShear, VonMises, GranularStrength, Hjc, DruckerPragerShear>;
 
 /// The shear modulus of each model at density rho.
 inline double shear_modulus(const NoStrength&, double) {
@@ -47,6 +60,9 @@ inline double shear_modulus(const GranularStrength& g, double rho) {
 }
 inline double shear_modulus(const Hjc& h, double) {
   return h.shear_modulus;
+}
+inline double shear_modulus(const DruckerPragerShear& m, double) {
+  return m.shear_modulus;
 }
 double shear_modulus(const StrengthModel& m, double rho);
 
@@ -67,6 +83,14 @@ inline double current_yield(const GranularStrength& g, double pressure, double, 
 inline double current_yield(const Hjc& h, double pressure, double, double damage,
                             double strain_rate) {
   return hjc_yield(h, pressure, damage, strain_rate);
+}
+/// The cone's von Mises stress at the pressure p (compression positive: the mean stress is -p),
+/// sqrt 3 (xi c(alpha) + eta p), and zero beyond the apex.
+inline double current_yield(const DruckerPragerShear& m, double pressure, double alpha, double,
+                            double) {
+  const DruckerPragerParameters& d = m.dp;
+  return std::max(0.0, std::sqrt(3.0) * (d.xi * (d.cohesion + d.hardening * alpha) +
+                                         d.eta * pressure));
 }
 double current_yield(const StrengthModel& m, double pressure, double alpha, double damage,
                      double strain_rate);

@@ -4,7 +4,7 @@
 // solids, an equation of state and a strength model for SPH, bond parameters for peridynamics).
 #include "meshfree/materials/equation_of_state.hpp"
 #include "meshfree/materials/geomaterials.hpp"
-#include "meshfree/materials/j2_plasticity.hpp"
+#include "meshfree/materials/constitutive_model.hpp"
 #include <optional>
 #include <string>
 
@@ -38,7 +38,7 @@ struct MaterialSpec {
   double shear_modulus = 0.0; // given, or E / (2 (1 + nu)) from E and nu; 0: none
   double bulk_modulus = 0.0;  // given only
   double density = 0.0;       // 0: not given
-  std::optional<materials::J2Parameters> plasticity; // E and nu from above
+  std::optional<materials::ConstitutiveModel> plasticity; // E and nu from above
   std::optional<materials::EquationOfState> eos;     // type hjc: the constants of `hjc:`
   std::optional<StrengthSpec> strength;
   std::optional<materials::Hjc> hjc;

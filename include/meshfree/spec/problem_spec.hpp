@@ -89,7 +89,7 @@ struct ProblemSpec {
     return materials.at(is_solid() ? solid().material_index : galerkin().material_index);
   }
   materials::IsotropicElastic elasticity() const { return {body_material().E, body_material().nu}; }
-  const std::optional<materials::J2Parameters>& plasticity() const {
+  const std::optional<materials::ConstitutiveModel>& plasticity() const {
     return body_material().plasticity;
   }
 

@@ -28,7 +28,7 @@ public:
   virtual std::vector<HeldCondition> held(const spec::StageLink& link, const std::vector<Vec3>& x,
                                           const HoldLayers& layers) const = 0;
   /// E and nu of the material at a point of the preload's part.
-  virtual materials::J2Parameters elasticity_at(const Vec3& x) const = 0;
+  virtual materials::IsotropicElastic elasticity_at(const Vec3& x) const = 0;
   /// The held body force per volume at a point of the preload's part at factor 1: gravity
   /// (rho g) or the uniform body force.
   virtual Vec3 body_force_at(bool gravity, const Vec3& x) const = 0;
@@ -51,7 +51,7 @@ public:
   PreloadAtParticles sample(const std::vector<Vec3>& x, const spec::StageLink& link) const override;
   std::vector<HeldCondition> held(const spec::StageLink& link, const std::vector<Vec3>& x,
                                   const HoldLayers& layers) const override;
-  materials::J2Parameters elasticity_at(const Vec3& x) const override;
+  materials::IsotropicElastic elasticity_at(const Vec3& x) const override;
   Vec3 body_force_at(bool gravity, const Vec3& x) const override;
   Vec3 gravity() const override;
   int dimension() const override { return 2; }
@@ -70,7 +70,7 @@ public:
   PreloadAtParticles sample(const std::vector<Vec3>& x, const spec::StageLink& link) const override;
   std::vector<HeldCondition> held(const spec::StageLink& link, const std::vector<Vec3>& x,
                                   const HoldLayers& layers) const override;
-  materials::J2Parameters elasticity_at(const Vec3& x) const override;
+  materials::IsotropicElastic elasticity_at(const Vec3& x) const override;
   Vec3 body_force_at(bool gravity, const Vec3& x) const override;
   Vec3 gravity() const override { return Vec3::Zero(); }
   int dimension() const override { return 3; }

@@ -27,7 +27,7 @@ struct PreloadAtParticles {
   std::vector<std::vector<Vec3>> u;        // [increment][particle]
   std::vector<std::vector<Vec6>> stress;   // [increment][particle]
   std::vector<std::vector<double>> alpha;  // [increment][particle], equivalent plastic strain
-  std::vector<materials::J2State> history; // final committed history per particle
+  std::vector<materials::MaterialState> history; // final committed history per particle
   std::vector<char> plastic;               // yielding in the last increment
   std::vector<Mirrored> image;             // where each particle lies in the preload's part
   int increments() const { return static_cast<int>(u.size()); }
@@ -71,6 +71,6 @@ PreloadAtParticles select_particles(const PreloadAtParticles& pa, const std::vec
 /// A vector, a stress and a material history of the part, seen from the mirrored image.
 Vec3 mirrored(const Vec3& v, const Mirrored& m);
 Vec6 mirrored(const Vec6& s, const Mirrored& m);
-materials::J2State mirrored(const materials::J2State& h, const Mirrored& m);
+materials::MaterialState mirrored(const materials::MaterialState& h, const Mirrored& m);
 
 } // namespace mf::stages

@@ -101,7 +101,7 @@ TEST_CASE("one steel entry feeds an elastoplastic, a peridynamic and an SPH anal
   CHECK(bar.elasticity().E == kE);
   CHECK(bar.elasticity().nu == kNu);
   REQUIRE(bar.plasticity());
-  CHECK(bar.plasticity()->sigma0 == kYield);
+  CHECK(std::get<materials::J2Parameters>(*bar.plasticity()).sigma0 == kYield);
   // Peridynamics: E, density and the bond.
   REQUIRE(cube.pd().materials.size() == 1);
   CHECK(cube.pd().materials[0].density == kRho);

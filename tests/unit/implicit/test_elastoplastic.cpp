@@ -33,7 +33,7 @@ double bar_error(const std::vector<std::string>& overrides, std::vector<int>* cl
   if (clouds && r.adaptation)
     for (const auto& pass : r.adaptation->passes) clouds->push_back(pass.nodes);
   if (clouds) clouds->push_back(r.nodes);
-  Uniaxial exact{*spec.plasticity()};
+  Uniaxial exact{std::get<materials::J2Parameters>(*spec.plasticity())};
   const double length = 2.0, area = 1.0; // height and width x thickness of the bar
   double worst = 0.0, largest = 0.0;
   int top = -1;
@@ -291,11 +291,12 @@ TEST_CASE("the converged state returned by the solver is the closed-form homogen
        {std::vector<std::string>{"discretisation.method=fem", "discretisation.fem.element=q4"},
         std::vector<std::string>{}}) {
     auto spec = load_problem("bar_uniaxial_cyclic", overrides);
-    spec.materials[spec.galerkin().material_index].plasticity->hardening =
-        materials::LinearHardening{1000.0};
-    spec.materials[spec.galerkin().material_index].plasticity->H_kinematic = 3000.0;
+    auto& j2 = std::get<materials::J2Parameters>(
+        *spec.materials[spec.galerkin().material_index].plasticity);
+    j2.hardening = materials::LinearHardening{1000.0};
+    j2.H_kinematic = 3000.0;
     spec.galerkin().steps.resize(1);
-    const materials::J2Parameters& p = *spec.plasticity();
+    const materials::J2Parameters& p = j2;
     const auto r = implicit::solve_elastoplastic_static(spec, test_session(), nullptr);
     REQUIRE(r.status == "completed");
     const implicit::ElastoplasticState& st = r.state;

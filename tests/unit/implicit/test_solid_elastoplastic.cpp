@@ -24,7 +24,8 @@ BlockRun block_run(std::vector<std::string> overrides) {
   const auto r = implicit::solve_solid_elastoplastic(spec, test_session());
   REQUIRE(r.status == "completed");
   REQUIRE(r.increments.size() == 41);
-  Uniaxial exact{implicit::material_parameters(spec, spec.solid().material_index)};
+  Uniaxial exact{std::get<materials::J2Parameters>(
+      implicit::material_parameters(spec, spec.solid().material_index))};
   const double length = 2.0, area = 1.0;
   const std::size_t end = 3; // the condition that moves the end z = 2
   REQUIRE(spec.solid().boundary[end].name == "end");

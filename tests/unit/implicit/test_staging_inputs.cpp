@@ -372,8 +372,8 @@ TEST_CASE("a point carried through the increments by update_point has the Gauss 
     long plastic = 0;
     for (std::size_t k = 0; k < x.size(); ++k) {
       const implicit::PointLaw law = implicit::point_law(spec, x[k]);
-      materials::J2State state;
-      materials::J2Result2D res;
+      materials::MaterialState state;
+      materials::StressUpdate2D res;
       for (std::size_t i = 1; i < r.increments.size(); ++i) {
         const Vec3 eps =
             implicit::strain_at(carried, static_cast<int>(k), r.increments[i].parameters);

@@ -49,8 +49,8 @@ std::vector<double> parameters_of_linear(const implicit::GalerkinModel& m) {
   return d;
 }
 
-materials::J2State history_at(const Vec2& x) {
-  materials::J2State s;
+materials::MaterialState history_at(const Vec2& x) {
+  materials::MaterialState s;
   for (int c = 0; c < 6; ++c) {
     s.plastic_strain(c) = 1e-3 * (c + 1) * (x.x() + x.y() * x.y());
     s.back_stress(c) = 10.0 * (c - 2.5) * x.x() * x.y();
@@ -84,7 +84,7 @@ TEST_CASE("carried state: uniform history and linear displacement exact on the r
   Clouds c = clouds();
   REQUIRE(c.to.node_count() > c.from.node_count());
   implicit::PointStates st(c.from.domain_table.rows());
-  materials::J2State uniform;
+  materials::MaterialState uniform;
   uniform.plastic_strain << 1e-3, -2e-3, 1e-3, 4e-4, 0.0, 0.0;
   uniform.back_stress << 5.0, -10.0, 5.0, 2.0, 0.0, 0.0;
   uniform.alpha = 2.5e-3;
@@ -96,7 +96,7 @@ TEST_CASE("carried state: uniform history and linear displacement exact on the r
   CHECK(carried.nearest > 0);
   CHECK(carried.copied + carried.nearest == static_cast<long>(c.to.domain.x.size()));
   double worst = 0.0;
-  for (const materials::J2State& h : carried.history) {
+  for (const materials::MaterialState& h : carried.history) {
     worst = std::max(worst, (h.plastic_strain - uniform.plastic_strain).cwiseAbs().maxCoeff());
     worst = std::max(worst, 1e-3 * (h.back_stress - uniform.back_stress).cwiseAbs().maxCoeff());
     worst = std::max(worst, std::abs(h.alpha - uniform.alpha));
@@ -123,8 +123,8 @@ TEST_CASE("carried state: points at old places keep their history bit for bit, t
   for (int k = 0; k < c.to.domain_table.rows(); ++k) {
     const Vec2 x = c.to.domain.x[c.to.domain_mine.rows[k]];
     const std::size_t r = nearest_old(old, x);
-    const materials::J2State& h = carried.history[k];
-    const materials::J2State exact = history_at(old[r]);
+    const materials::MaterialState& h = carried.history[k];
+    const materials::MaterialState exact = history_at(old[r]);
     INFO("point (" << x.x() << ", " << x.y() << "), nearest old (" << old[r].x() << ", "
                    << old[r].y() << ")");
     CHECK(h.plastic_strain == exact.plastic_strain);
@@ -160,7 +160,7 @@ TEST_CASE("carried state: a point takes the history of its nearest old point of 
     }
     REQUIRE(r < old.size());
     across += implicit::material_at(c.fine, old[any]) != material;
-    const materials::J2State exact = history_at(old[r]);
+    const materials::MaterialState exact = history_at(old[r]);
     CHECK(carried.history[k].plastic_strain == exact.plastic_strain);
     CHECK(carried.history[k].alpha == exact.alpha);
   }
@@ -188,7 +188,7 @@ TEST_CASE("carried state: a yielded point keeps its old point's stress on the ne
       st.committed[k] = history_at(c.from.domain.x[c.from.domain_mine.rows[k]]);
     const implicit::CarriedState carried =
         implicit::carry_state(c.fine, c.from, st, d, c.to, test_session());
-    const std::vector<materials::J2State> moved =
+    const std::vector<materials::MaterialState> moved =
         implicit::history_keeping_stress(carried, c.to, carried.d);
     const std::vector<Vec2>& old = c.from.domain.x;
     const implicit::PointLaws laws = implicit::point_laws(c.fine, old);
@@ -199,7 +199,7 @@ TEST_CASE("carried state: a yielded point keeps its old point's stress on the ne
       const std::size_t r = nearest_old(old, c.to.domain.x[c.to.domain_mine.rows[k]]);
       const Vec3 e_old = implicit::strain_at(c.from.domain_table, static_cast<int>(r), d);
       const Vec3 e_new = implicit::strain_at(c.to.domain_table, k, carried.d);
-      const materials::J2State was = history_at(old[r]);
+      const materials::MaterialState was = history_at(old[r]);
       if (!(was.alpha > 0.0)) {
         CHECK(moved[k].plastic_strain == was.plastic_strain);
         ++elastic;
@@ -212,8 +212,8 @@ TEST_CASE("carried state: a yielded point keeps its old point's stress on the ne
       }
       worst = std::max(worst, ((e_new - p_new) - (e_old - p_old)).cwiseAbs().maxCoeff());
       shifted = std::max(shifted, (p_new - p_old).cwiseAbs().maxCoeff());
-      const materials::J2Result2D then = laws.update(plane, static_cast<int>(r), e_old, was);
-      const materials::J2Result2D now = laws.update(plane, static_cast<int>(r), e_new, moved[k]);
+      const materials::StressUpdate2D then = laws.update(plane, static_cast<int>(r), e_old, was);
+      const materials::StressUpdate2D now = laws.update(plane, static_cast<int>(r), e_new, moved[k]);
       stress = std::max({stress, (now.stress - then.stress).cwiseAbs().maxCoeff(),
                          std::abs(now.stress_zz - then.stress_zz)});
       scale = std::max(scale, then.stress.cwiseAbs().maxCoeff());

@@ -54,8 +54,8 @@ enum class Model { ThreeD, PlaneStrain, PlaneStress };
 
 /// A history left by a first plastic step, so that the tested step starts from nonzero plastic
 /// strain, back stress and alpha.
-J2State prestrained(const J2Parameters& p, Model m) {
-  const J2State zero;
+MaterialState prestrained(const J2Parameters& p, Model m) {
+  const MaterialState zero;
   if (m == Model::ThreeD) {
     Vec6 e;
     e << 3e-3, -1e-3, -0.5e-3, 0.4e-3, -0.2e-3, 1.5e-3;
@@ -90,7 +90,7 @@ TEST_CASE("the algorithmic tangent equals the finite-difference tangent of the s
   const std::vector<double> scales = {1.0, 0.05, -0.3, -2.0};
   for (const Law& law : laws()) {
     for (Model m : {Model::ThreeD, Model::PlaneStrain, Model::PlaneStress}) {
-      const J2State h = prestrained(law.p, m);
+      const MaterialState h = prestrained(law.p, m);
       for (double s : scales) {
         double err = 0.0;
         bool plastic = false;
@@ -121,7 +121,7 @@ TEST_CASE("the algorithmic tangent equals the finite-difference tangent of the s
 
 TEST_CASE("the tested paths cover elastic and plastic steps", "[materials]") {
   const Law law = laws()[1];
-  const J2State h = prestrained(law.p, Model::PlaneStress);
+  const MaterialState h = prestrained(law.p, Model::PlaneStress);
   const Vec3 e(3e-3, -1e-3, 1.5e-3), de(1.2e-3, 0.3e-3, -0.4e-3);
   CHECK(j2_update_plane_stress(law.p, e + de, h).plastic);
   CHECK_FALSE(j2_update_plane_stress(law.p, e - 0.3 * de, h).plastic);
@@ -129,10 +129,10 @@ TEST_CASE("the tested paths cover elastic and plastic steps", "[materials]") {
 
 TEST_CASE("a plastic step returns the stress to the yield surface", "[materials]") {
   for (const Law& law : laws()) {
-    const J2State zero;
+    const MaterialState zero;
     Vec6 e;
     e << 5e-3, -2e-3, -1e-3, 1e-3, 0.5e-3, 2e-3;
-    const J2Result3D r = j2_update_3d(law.p, e, zero);
+    const StressUpdate3D r = j2_update_3d(law.p, e, zero);
     REQUIRE(r.plastic);
     Vec6 xi = r.stress - r.state.back_stress;
     xi.head<3>().array() -= r.stress.head<3>().sum() / 3.0;
@@ -140,7 +140,7 @@ TEST_CASE("a plastic step returns the stress to the yield surface", "[materials]
     INFO(law.name << ": f = " << f);
     CHECK(std::abs(f) <= 1e-10 * yield_stress(law.p, r.state.alpha));
 
-    const J2Result2D ps = j2_update_plane_stress(law.p, Vec3(5e-3, -1e-3, 3e-3), zero);
+    const StressUpdate2D ps = j2_update_plane_stress(law.p, Vec3(5e-3, -1e-3, 3e-3), zero);
     REQUIRE(ps.plastic);
     Vec6 s3;
     s3 << ps.stress(0), ps.stress(1), ps.stress_zz, 0.0, 0.0, ps.stress(2);
@@ -162,13 +162,13 @@ TEST_CASE("the plane-stress return is the 3D return at its eps_zz, along a path 
                                   {4.1e-3, -0.9e-3, 3.2e-3}, {1e-3, 2e-3, 4e-3},
                                   {-3e-3, 1e-3, -2e-3},      {-6e-3, -4e-3, 1e-3}};
   for (const Law& law : laws()) {
-    J2State ps, s3;
+    MaterialState ps, s3;
     int plastic_steps = 0;
     for (const Vec3& e : path) {
-      const J2Result2D r = j2_update_plane_stress(law.p, e, ps);
+      const StressUpdate2D r = j2_update_plane_stress(law.p, e, ps);
       Vec6 e3;
       e3 << e(0), e(1), r.strain_zz, 0.0, 0.0, e(2);
-      const J2Result3D q = j2_update_3d(law.p, e3, s3);
+      const StressUpdate3D q = j2_update_3d(law.p, e3, s3);
       const double scale = yield_stress(law.p, q.state.alpha);
       INFO(law.name << " at " << e.transpose() << ": sigma_zz " << q.stress(2));
       CHECK(std::abs(q.stress(2)) <= 1e-9 * scale);
@@ -208,10 +208,10 @@ TEST_CASE(
     for (double size : {1e-3, 1e-2, 0.1, 1.0, 10.0, 1e3, 1e5})
       for (int i = 0; i < 40; ++i) {
         const Vec3 e = size * Vec3(u(rng), u(rng), u(rng));
-        const J2Result2D r = j2_update_plane_stress(law.p, e, J2State{});
+        const StressUpdate2D r = j2_update_plane_stress(law.p, e, MaterialState{});
         Vec6 e3;
         e3 << e(0), e(1), r.strain_zz, 0.0, 0.0, e(2);
-        const J2Result3D q = j2_update_3d(law.p, e3, J2State{});
+        const StressUpdate3D q = j2_update_3d(law.p, e3, MaterialState{});
         const double scale = yield_stress(law.p, q.state.alpha);
         INFO(law.name << " at " << e.transpose());
         CHECK(std::abs(q.stress(2)) <= 1e-7 * scale);
@@ -224,8 +224,8 @@ namespace {
 
 /// Uniaxial stress in x under plane stress: eps_yy is found by Newton (with the algorithmic
 /// tangent) so that syy = 0; sxy = 0 by symmetry. Returns sxx and updates the history.
-double uniaxial_step(const J2Parameters& p, double exx, double& eyy, J2State& state) {
-  J2Result2D r;
+double uniaxial_step(const J2Parameters& p, double exx, double& eyy, MaterialState& state) {
+  StressUpdate2D r;
   for (int it = 0; it < 30; ++it) {
     r = j2_update_plane_stress(p, Vec3(exx, eyy, 0.0), state);
     if (std::abs(r.stress(1)) < 1e-11 * p.sigma0) break;
@@ -242,7 +242,7 @@ TEST_CASE("uniaxial stress paths follow the closed-form hardening curves", "[mat
   // Monotonic uniaxial loading: sxx = sigma_y(alpha) + Hk alpha with the axial plastic strain
   // equal to alpha (J2 with isochoric flow), so eps = sxx / E + alpha.
   for (const Law& law : laws()) {
-    J2State state;
+    MaterialState state;
     double eyy = 0.0, worst = 0.0;
     const double ey = law.p.sigma0 / law.p.E;
     for (int k = 1; k <= 60; ++k) {
@@ -272,7 +272,7 @@ TEST_CASE("linear hardening: tangent modulus E H / (E + H) and the Bauschinger e
       p.H_kinematic = H;
     else
       p.hardening = LinearHardening{H};
-    J2State state;
+    MaterialState state;
     double eyy = 0.0;
     const double ey = s0 / E, e_max = 10.0 * ey;
     const double s_max = uniaxial_step(p, e_max, eyy, state);
@@ -281,12 +281,12 @@ TEST_CASE("linear hardening: tangent modulus E H / (E + H) and the Bauschinger e
     // yields again at s_max - 2 s0, isotropic hardening at -s_max.
     const double reverse_yield = kinematic ? s_max - 2.0 * s0 : -s_max;
     const double e_reverse = e_max - (s_max - reverse_yield) / E;
-    J2State s1 = state;
+    MaterialState s1 = state;
     double eyy1 = eyy;
     const double just_before = uniaxial_step(p, e_reverse + 1e-9, eyy1, s1);
     CHECK(s1.alpha == state.alpha);
     CHECK(just_before == Approx(reverse_yield + E * 1e-9).epsilon(1e-9));
-    J2State s2 = state;
+    MaterialState s2 = state;
     double eyy2 = eyy;
     const double beyond = uniaxial_step(p, e_reverse - 10.0 * ey, eyy2, s2);
     CHECK(s2.alpha > state.alpha);
@@ -300,12 +300,12 @@ TEST_CASE("pure shear in plane stress yields at sigma_y / sqrt(3)", "[materials]
   p.nu = 0.3;
   p.sigma0 = 250.0;
   const double G = p.E / (2.0 * (1.0 + p.nu));
-  const J2State zero;
+  const MaterialState zero;
   const double gamma_y = p.sigma0 / std::sqrt(3.0) / G;
-  const J2Result2D below = j2_update_plane_stress(p, Vec3(0.0, 0.0, 0.999 * gamma_y), zero);
+  const StressUpdate2D below = j2_update_plane_stress(p, Vec3(0.0, 0.0, 0.999 * gamma_y), zero);
   CHECK_FALSE(below.plastic);
   CHECK(below.stress(2) == Approx(0.999 * p.sigma0 / std::sqrt(3.0)).epsilon(1e-12));
-  const J2Result2D above = j2_update_plane_stress(p, Vec3(0.0, 0.0, 5.0 * gamma_y), zero);
+  const StressUpdate2D above = j2_update_plane_stress(p, Vec3(0.0, 0.0, 5.0 * gamma_y), zero);
   CHECK(above.plastic);
   CHECK(above.stress(2) == Approx(p.sigma0 / std::sqrt(3.0)).epsilon(1e-10));
   CHECK(std::abs(above.stress(0)) < 1e-9);
@@ -318,15 +318,15 @@ TEST_CASE("plane strain keeps eps_zz = 0 and develops szz, and its elastic stres
   p.E = 200000.0;
   p.nu = 0.3;
   p.sigma0 = 250.0;
-  const J2State zero;
-  const J2Result2D el = j2_update_plane_strain(p, Vec3(1e-4, -0.5e-4, 0.2e-4), zero);
+  const MaterialState zero;
+  const StressUpdate2D el = j2_update_plane_strain(p, Vec3(1e-4, -0.5e-4, 0.2e-4), zero);
   REQUIRE_FALSE(el.plastic);
   const double lam = p.E * p.nu / ((1 + p.nu) * (1 - 2 * p.nu)), G = p.E / (2 * (1 + p.nu));
   CHECK(el.stress(0) == Approx((lam + 2 * G) * 1e-4 + lam * -0.5e-4).epsilon(1e-12));
   CHECK(el.stress_zz == Approx(lam * 0.5e-4).epsilon(1e-12));
   CHECK(el.stress(2) == Approx(G * 0.2e-4).epsilon(1e-12));
   CHECK(el.strain_zz == 0.0);
-  const J2Result2D pl = j2_update_plane_strain(p, Vec3(5e-3, -1e-3, 2e-3), zero);
+  const StressUpdate2D pl = j2_update_plane_strain(p, Vec3(5e-3, -1e-3, 2e-3), zero);
   REQUIRE(pl.plastic);
   // Isochoric flow: the plastic strain has no trace.
   CHECK(std::abs(pl.state.plastic_strain.head<3>().sum()) < 1e-15);

@@ -180,9 +180,9 @@ TEST_CASE("deviatoric radial return agrees with the implicit J2 update", "[sph][
     materials::Vec6 strain;
     strain << 1.0e-3, -0.4e-3, -0.2e-3, 0.3e-3, 0.0, 0.5e-3; // engineering shears
     strain *= scale;
-    materials::J2State committed;
+    materials::MaterialState committed;
     committed.alpha = 0.01;
-    const materials::J2Result3D implicit = materials::j2_update_3d(p, strain, committed);
+    const materials::StressUpdate3D implicit = materials::j2_update_3d(p, strain, committed);
     // Trial deviator 2 mu e' (tensor shears = engineering / 2).
     const double tr = strain(0) + strain(1) + strain(2);
     materials::Vec6 s;
@@ -215,13 +215,13 @@ TEST_CASE("SPH's deviatoric update with kinematic hardening follows j2_update_3d
   direction << 1.0, -0.3, -0.5, 0.4, -0.2, 0.6; // engineering shears
   const std::vector<double> path = {0.5e-3,  1.0e-3,  2.0e-3,  3.0e-3, 1.5e-3, 0.0,
                                     -1.5e-3, -3.0e-3, -2.0e-3, 1.0e-3, 4.0e-3};
-  materials::J2State galerkin;
+  materials::MaterialState galerkin;
   materials::Vec6 S = materials::Vec6::Zero(), beta = materials::Vec6::Zero();
   double alpha = 0.0, previous = 0.0;
   int plastic_steps = 0;
   for (double level : path) {
     const materials::Vec6 strain = level * direction;
-    const materials::J2Result3D implicit = materials::j2_update_3d(p, strain, galerkin);
+    const materials::StressUpdate3D implicit = materials::j2_update_3d(p, strain, galerkin);
     galerkin = implicit.state;
     // The deviatoric strain increment (tensor shears = engineering / 2).
     const materials::Vec6 de = (level - previous) * direction;
@@ -270,11 +270,11 @@ TEST_CASE("an SPH particle with kinematic hardening carries its back stress betw
   materials::Vec6 direction; // engineering shears
   direction << 1.0, -0.2, -0.6, 0.3, 0.5, -0.4;
   const std::vector<double> path = {1.0e-3, 2.5e-3, 4.0e-3, 2.0e-3, -1.0e-3, -4.0e-3, 0.0, 5.0e-3};
-  materials::J2State galerkin;
+  materials::MaterialState galerkin;
   double previous = 0.0;
   int plastic_steps = 0;
   for (double level : path) {
-    const materials::J2Result3D implicit =
+    const materials::StressUpdate3D implicit =
         materials::j2_update_3d(vm.j2, level * direction, galerkin);
     galerkin = implicit.state;
     plastic_steps += implicit.plastic ? 1 : 0;

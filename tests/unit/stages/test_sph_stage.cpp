@@ -72,7 +72,7 @@ std::vector<Vec3> references(const sph::Hydro& h) {
   return X;
 }
 
-materials::Vec6 stress_3d(const materials::J2Result2D& r) {
+materials::Vec6 stress_3d(const materials::StressUpdate2D& r) {
   materials::Vec6 s;
   s << r.stress(0), r.stress(1), r.stress_zz, 0.0, 0.0, r.stress(2);
   return s;
@@ -130,13 +130,13 @@ struct Homogeneous {
 
 /// The exact stress, plastic strain, back stress and alpha of each increment: the pure law on
 /// the homogeneous strain (a_n, b_n, 0) of each increment, increment by increment.
-std::vector<materials::J2Result2D> exact_history(const Homogeneous& c,
+std::vector<materials::StressUpdate2D> exact_history(const Homogeneous& c,
                                                  const std::vector<Vec2>& ab) {
-  std::vector<materials::J2Result2D> out;
-  materials::J2State committed;
+  std::vector<materials::StressUpdate2D> out;
+  materials::MaterialState committed;
   for (const Vec2& g : ab) {
     const Vec3 strain(g.x(), g.y(), 0.0);
-    materials::J2Result2D r;
+    materials::StressUpdate2D r;
     if (c.plastic) {
       r = materials::j2_update_plane_strain(c.law, strain, committed);
     } else {
@@ -187,7 +187,7 @@ void check_homogeneous(const std::string& yaml, const Homogeneous& c) {
     ab.emplace_back(a, b);
     shift.emplace_back(pa.u[n][x0].x() - a * X[x0].x(), pa.u[n][y0].y() - b * X[y0].y());
   }
-  const std::vector<materials::J2Result2D> exact = exact_history(c, ab);
+  const std::vector<materials::StressUpdate2D> exact = exact_history(c, ab);
   double applied = 0.0, s_max = 0.0;
   for (std::size_t n = 0; n < c.factors.size(); ++n) {
     s_max = std::max(s_max, stress_3d(exact[n]).cwiseAbs().maxCoeff());
@@ -216,7 +216,7 @@ void check_homogeneous(const std::string& yaml, const Homogeneous& c) {
       if (sa > 0.0) ea = std::max(ea, rel(pa.alpha[n][p], exact[n].state.alpha, sa));
     }
   }
-  const materials::J2State& last = exact.back().state;
+  const materials::MaterialState& last = exact.back().state;
   for (int p = 0; p < np; ++p) {
     if (sb > 0.0)
       eb = std::max(eb, (pa.history[p].back_stress - last.back_stress).cwiseAbs().maxCoeff() / sb);
