@@ -32,7 +32,8 @@ sph::Material to_solver(const spec::MaterialSpec& m) {
   const Model model = m.strength ? m.strength->model : Model::J2;
   if (model == Model::Granular) {
     materials::GranularStrength granular = m.strength->granular;
-    if (m.shear_modulus > 0.0) granular.shear_modulus = {{0.0}, {m.shear_modulus}}; // a constant
+    if (granular.shear_modulus.x.empty()) // the material's own, a constant
+      granular.shear_modulus = {{0.0}, {m.shear_modulus}};
     out.strength = granular;
   } else if (model == Model::Hjc) {
     out.strength = *m.hjc;

@@ -28,10 +28,11 @@ void point_stiffness(const ShapeTable& t, int r, const Mat3& wC, double* K) {
     CB = heap.data();
   }
   for (int j = 0; j < n; ++j) CB[j] = wC * strain_matrix(g[j]);
-  // C is symmetric (elasticity, and the consistent tangent of associative plasticity), so with
-  // the same test and trial functions K_JI = K_IJ^T and half the blocks are computed; corrected
-  // test functions (a Petrov-Galerkin form) need every block.
-  const bool symmetric = t.test_dphi.empty();
+  // Where C is symmetric (elasticity, and the consistent tangent of associative plasticity) and
+  // the test functions are the trial functions, K_JI = K_IJ^T and half the blocks are computed;
+  // corrected test functions (a Petrov-Galerkin form) and a non-associated flow's tangent need
+  // every block.
+  const bool symmetric = t.test_dphi.empty() && wC == wC.transpose();
   const Vec2* h = t.test_gradients(r);
   for (int i = 0; i < n; ++i) {
     const Eigen::Matrix<double, 3, 2> Bi = strain_matrix(h[i]);

@@ -2,6 +2,7 @@
 #include "meshfree/core/log.hpp"
 #include "meshfree/fem/mesh_generation.hpp"
 #include "meshfree/implicit/integration_correction.hpp"
+#include "meshfree/implicit/point_law.hpp"
 #include <algorithm>
 
 namespace mf::implicit {
@@ -360,7 +361,8 @@ solvers::LinearSolverSettings linear_solver_settings(const spec::ProblemSpec& sp
                                                      const GalerkinModel& m) {
   solvers::LinearSolverSettings s;
   s.multigrid = spec.galerkin().linear_solver.multigrid_for(2.0 * m.node_count());
-  s.symmetric = m.domain_table.test_dphi.empty(); // corrected test functions: Petrov-Galerkin
+  // Corrected test functions (Petrov-Galerkin) and non-associated flow are unsymmetric.
+  s.symmetric = m.domain_table.test_dphi.empty() && symmetric_tangents(spec);
   if (s.multigrid)
     for (int I = m.own.begin; I < m.own.end; ++I) {
       s.coordinates.push_back(m.node_positions()[I].x());

@@ -1,6 +1,7 @@
 #include "meshfree/implicit/solid_model.hpp"
 #include "meshfree/core/log.hpp"
 #include "meshfree/core/memory.hpp"
+#include "meshfree/implicit/point_law.hpp"
 #include "meshfree/implicit/solid_forms.hpp"
 #include "meshfree/solvers/parallel.hpp"
 #include "meshfree/verification/exact_solutions_3d.hpp"
@@ -355,7 +356,8 @@ solvers::LinearSolverSettings solid_solver_settings(const spec::ProblemSpec& spe
                                                     const SolidModel& m) {
   const spec::SolidSpec& s = spec.solid();
   solvers::LinearSolverSettings L;
-  L.symmetric = !s.discretisation.vci || s.discretisation.method == spec::Method::Fem;
+  L.symmetric = (!s.discretisation.vci || s.discretisation.method == spec::Method::Fem) &&
+                symmetric_tangents(spec);
   L.multigrid = s.linear_solver.multigrid_for(3.0 * m.node_count());
   if (s.discretisation.method != spec::Method::Fem)
     L.fine_smoother = solvers::LinearSolverSettings::FineSmoother::sor;

@@ -23,10 +23,16 @@ void set_elasticity(ConstitutiveModel& m, const IsotropicElastic& e) {
       m);
 }
 
+bool symmetric_tangent(const ConstitutiveModel& m) {
+  const auto* dp = std::get_if<DruckerPragerParameters>(&m);
+  return !dp || dp->eta_bar == dp->eta;
+}
+
 double reference_strength(const ConstitutiveModel& m) {
   if (const auto* j2 = std::get_if<J2Parameters>(&m)) return j2->sigma0;
   const auto& dp = std::get<DruckerPragerParameters>(m);
-  return dp.xi * dp.cohesion;
+  // A cohesionless soil has no strength of its own: any scale serves a relative measure.
+  return dp.cohesion > 0.0 ? dp.xi * dp.cohesion : 1.0;
 }
 
 double first_yield_measure(const ConstitutiveModel& m, const Vec6& stress, double sigma_ref) {
@@ -40,7 +46,10 @@ double first_yield_measure(const ConstitutiveModel& m, const Vec6& stress, doubl
   const auto& dp = std::get<DruckerPragerParameters>(m);
   const double p = stress.head<3>().sum() / 3.0;
   const double J = voigt::tensor_norm(voigt::deviator(stress)) / std::sqrt(2.0);
-  double ratio = (J + dp.eta * p) / (dp.xi * dp.cohesion);
+  const double shear = J + dp.eta * p;
+  double ratio = dp.cohesion > 0.0 ? shear / (dp.xi * dp.cohesion)
+                 : shear > 0.0     ? std::numeric_limits<double>::infinity()
+                                   : 0.0;
   if (std::isfinite(dp.tension_cutoff) && p > 0.0)
     ratio = std::max(ratio, dp.tension_cutoff > 0.0 ? p / dp.tension_cutoff
                                                     : std::numeric_limits<double>::infinity());

@@ -51,7 +51,7 @@ StressUpdate3D plastic_result(const Vec6& s, double p, const MaterialState& comm
 /// the tangent
 ///   D = 2G (1 - sqrt2 G dgamma / |s_tr|)(I_dev - n n) + 2G (1 - G A) n n
 ///       - sqrt2 G A K (eta n m + eta_bar m n) + K (1 - K eta eta_bar A) m m,
-/// A = 1 / (G + K eta eta_bar + xi^2 H) (de Souza Neto et al. 2008, eq. 8.95 in this notation).
+/// A = 1 / (G + K eta eta_bar + xi^2 H) (de Souza Neto et al. 2008, section 8.3, in this notation; derived again here).
 StressUpdate3D cone_return(const DruckerPragerParameters& p, const Trial& t, double dgamma,
                            const MaterialState& committed) {
   const double G = t.G, K = t.K;
@@ -70,7 +70,7 @@ StressUpdate3D cone_return(const DruckerPragerParameters& p, const Trial& t, dou
 }
 
 /// The apex: s = 0 and p = xi c(alpha) / eta, with alpha' = (xi / eta_bar) eps_v^p (de Souza
-/// Neto et al. 2008, Box 8.8); without dilatancy (eta_bar = 0) the apex does not harden.
+/// Neto et al. 2008, section 8.3); without dilatancy (eta_bar = 0) the apex does not harden.
 /// D = K (1 - K / (K + a b H)) m m, a = xi / eta_bar, b = xi / eta.
 StressUpdate3D apex_return(const DruckerPragerParameters& p, const Trial& t,
                            const MaterialState& committed) {

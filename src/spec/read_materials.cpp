@@ -226,13 +226,16 @@ materials::EquationOfState read_eos(KeyReader& e) {
   return eos;
 }
 
-StrengthSpec read_strength(KeyReader& st, const MaterialSpec& m) {
+/// `strength:`; shear_modulus_key: the material gives 'shear_modulus' itself (not derived from
+/// E and nu, which a Galerkin stage of the same material needs beside a granular table).
+StrengthSpec read_strength(KeyReader& st, const MaterialSpec& m, bool shear_modulus_key) {
   StrengthSpec s;
   const std::string model = st.choice("model", {"j2", "granular", "hjc"}, "j2");
   if (model == "granular") {
     s.model = StrengthSpec::Model::Granular;
     s.granular.yield = read_table(st, "yield", 2, false);
-    if ((m.shear_modulus > 0.0) == st.has("shear_modulus_table"))
+    const bool table = st.has("shear_modulus_table");
+    if ((shear_modulus_key && table) || !(m.shear_modulus > 0.0 || table))
       st.error("shear_modulus_table", "give exactly one of the material's 'shear_modulus' or "
                                       "'strength.shear_modulus_table' [[density, G], ...]");
     if (st.has("shear_modulus_table"))
@@ -292,7 +295,9 @@ materials::DruckerPragerParameters read_drucker_prager(KeyReader& p, const Mater
   materials::DruckerPragerParameters d;
   d.E = mat.E;
   d.nu = mat.nu;
-  d.cohesion = p.positive("cohesion");
+  d.cohesion = p.number("cohesion");
+  if (!(d.cohesion >= 0.0))
+    p.error("cohesion", "expected a number >= 0, got " + detail::concat(d.cohesion));
   d.hardening = p.number("cohesion_hardening", 0.0);
   if (d.hardening < 0.0)
     p.error("cohesion_hardening", "expected a number >= 0, got " + detail::concat(d.hardening));
@@ -309,6 +314,8 @@ materials::DruckerPragerParameters read_drucker_prager(KeyReader& p, const Mater
   d.eta = cone.eta;
   d.xi = cone.xi;
   d.eta_bar = materials::mohr_coulomb_cone(psi, how).eta;
+  if (d.cohesion == 0.0 && phi == 0.0)
+    p.error("friction_angle", "a soil without cohesion needs a friction angle above 0");
   if (p.has("tension_cutoff")) {
     d.tension_cutoff = p.number("tension_cutoff");
     const double apex = materials::apex_pressure(d, d.cohesion);
@@ -359,7 +366,8 @@ MaterialSpec read_material(KeyReader& m) {
   if (auto p = m.optional_map("plasticity")) mat.plasticity = read_plasticity(*p, mat);
   if (auto e = m.optional_map("eos")) mat.eos = read_eos(*e);
   if (auto h = m.optional_map("hjc")) mat.hjc = read_hjc(*h);
-  if (auto st = m.optional_map("strength")) mat.strength = read_strength(*st, mat);
+  if (auto st = m.optional_map("strength"))
+    mat.strength = read_strength(*st, mat, m.has("shear_modulus"));
   const bool hjc_eos = mat.eos && std::holds_alternative<materials::Hjc>(*mat.eos);
   const bool hjc_strength = mat.strength && mat.strength->model == StrengthSpec::Model::Hjc;
   if (hjc_eos != hjc_strength)

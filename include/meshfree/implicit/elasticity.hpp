@@ -27,9 +27,9 @@ inline Eigen::Matrix<double, 3, 2> strain_matrix(const Vec2& g) {
 }
 
 /// The 2n x 2n block (row-major) of one point r of the table with n nodes: K_IJ = B~_I^T wC B_J,
-/// with wC the constitutive (or algorithmic tangent) matrix times the point's weight, which must
-/// be symmetric, and B~ the test functions' strain matrix (B itself unless the table holds
-/// corrected test gradients). `K` has room for 4 n^2 values.
+/// with wC the constitutive (or algorithmic tangent) matrix times the point's weight (half the
+/// blocks computed where it is symmetric), and B~ the test functions' strain matrix (B itself
+/// unless the table holds corrected test gradients). `K` has room for 4 n^2 values.
 void point_stiffness(const ShapeTable& t, int r, const Mat3& wC, double* K);
 
 /// The 2n internal-force values of point r of the table: w B~_I^T sigma (B~ as in

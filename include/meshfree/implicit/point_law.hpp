@@ -85,6 +85,13 @@ struct PointLaws {
 /// The laws at the points x (the spec's materials that no point uses keep default entries).
 PointLaws point_laws(const spec::ProblemSpec& spec, const std::vector<Vec2>& x);
 
+/// Whether every material's tangent is symmetric (a non-associated flow's is not).
+inline bool symmetric_tangents(const spec::ProblemSpec& spec) {
+  for (const spec::MaterialSpec& m : spec.materials)
+    if (m.plasticity && !materials::symmetric_tangent(*m.plasticity)) return false;
+  return true;
+}
+
 inline bool has_gravity(const spec::ProblemSpec& spec) {
   return (spec.galerkin().gravity.array() != 0.0).any();
 }

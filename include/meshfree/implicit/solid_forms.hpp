@@ -58,7 +58,7 @@ inline materials::StressUpdate3D carry_point(const SolidShapeTable& t, int r,
 }
 
 /// The (3n x 3n, row-major) block of point r with n nodes: K_IJ = B~_I^T wC B_J, wC the
-/// (symmetric) constitutive or tangent matrix times the point's weight, B~ the test functions'
+/// constitutive or tangent matrix (unsymmetric under non-associated flow) times the point's weight, B~ the test functions'
 /// strain matrix; one matrix product of the stacked B~^T wC (3n x 6) and B (6 x 3n), `work`
 /// holding them (resized, so a thread keeps one buffer for every point).
 void solid_point_stiffness(const SolidShapeTable& t, int r, const Mat6& wC, double* K,

@@ -7,8 +7,8 @@
 // drucker_prager); the dispatch is a std::visit per point, no virtual call. Plane strain is the
 // 3D update at eps_zz = 0. Plane stress is J2's projected return where the model is J2, and for
 // any other model a local Newton iteration on eps_zz to sigma_zz = 0 with the tangent condensed
-// (D_ab - D_az D_zb / D_zz), the "local iteration" of de Souza Neto, Peric & Owen 2008, section
-// 9.2.2.
+// (D_ab - D_az D_zb / D_zz), the plane-stress enforcement at the Gauss point of de Souza Neto,
+// Peric & Owen 2008, ch. 9.
 #include "meshfree/materials/drucker_prager.hpp"
 #include "meshfree/materials/elastic.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
@@ -33,8 +33,12 @@ StressUpdate3D stress_update_3d(const ConstitutiveModel& m, const Vec6& strain,
 StressUpdate2D stress_update_plane(const ConstitutiveModel& m, PlaneModel model,
                                    const Vec3& strain, const MaterialState& committed);
 
+/// Whether the model's consistent tangent is symmetric (Drucker-Prager's only with associated
+/// flow, eta_bar = eta).
+bool symmetric_tangent(const ConstitutiveModel& m);
+
 /// A strength of the model's scale: J2's initial yield stress, Drucker-Prager's xi c0 (the
-/// cone's sqrt(J2) at zero mean stress).
+/// cone's sqrt(J2) at zero mean stress; 1 for a cohesionless soil).
 double reference_strength(const ConstitutiveModel& m);
 
 /// How far a stress is towards first yield from a virgin state, on the scale of

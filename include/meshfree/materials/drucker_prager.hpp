@@ -1,6 +1,6 @@
 #pragma once
 // Drucker-Prager plasticity for soils and rock, backward Euler, as pure functions in the form of
-// de Souza Neto, Peric & Owen 2008 (section 8.3.3, Boxes 8.7-8.8): the cone
+// de Souza Neto, Peric & Owen 2008 (section 8.3) and Drucker & Prager 1952: the cone
 //   Phi = sqrt(J2(s)) + eta p - xi c(alpha),      p = tr(sigma) / 3 (tension positive),
 // a flow potential sqrt(J2) + eta_bar p (eta_bar = eta: associated flow), cohesion hardening
 // c = c0 + H alpha with alpha' = xi dgamma, the return to the smooth cone or to its apex, and a
@@ -9,7 +9,7 @@
 // the linear hardening law, and each has its consistent tangent.
 //
 // The cone's constants from Mohr-Coulomb's c and phi (de Souza Neto et al. 2008, section
-// 6.4.4): the plane-strain match (collapse loads of Mohr-Coulomb under plane strain and
+// 6.4): the plane-strain match (collapse loads of Mohr-Coulomb under plane strain and
 // associated flow) eta = 3 tan(phi) / sqrt(9 + 12 tan^2 phi), xi = 3 / sqrt(9 + 12 tan^2 phi);
 // the outer cone (through Mohr-Coulomb's compressive meridians) eta = 6 sin(phi) / (sqrt 3 (3 -
 // sin phi)), xi = 6 cos(phi) / (sqrt 3 (3 - sin phi)); the inner cone (tensile meridians) with

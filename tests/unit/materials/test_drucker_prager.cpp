@@ -221,7 +221,7 @@ TEST_CASE("Drucker-Prager's plane-strain match reaches Mohr-Coulomb's limit stat
   // Under plane strain and associated flow, a limit state of the matched cone (stress rate zero:
   // the strain rate is all plastic and has no zz part) lies on Mohr-Coulomb's surface in the
   // plane, (s1 - s3) / 2 + (s1 + s3) / 2 sin(phi) = c cos(phi), s1 >= s3 the in-plane principal
-  // stresses (de Souza Neto et al. 2008, section 6.4.4). The in-plane strain rate that such a
+  // stresses (de Souza Neto et al. 2008, section 6.4). The in-plane strain rate that such a
   // state admits: the unit normal n has n_zz = -sqrt2 eta / 3 (no zz flow), n_xy = 0 and
   // n_xx - n_yy = -d, d = sqrt(2 (1 - eta^2 / 3)); per unit multiplier
   //   eps_xx + eps_yy = eta,  eps_xx - eps_yy = -d / sqrt 2.

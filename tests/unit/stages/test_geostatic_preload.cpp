@@ -22,6 +22,7 @@
 #include "meshfree/implicit/elastoplastic_solve.hpp"
 #include "meshfree/materials/geomaterials.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
+#include "meshfree/materials/strength.hpp"
 #include "meshfree/spec/problem_spec.hpp"
 #include "meshfree/stages/explicit_stage.hpp"
 #include "test_support.hpp"
@@ -268,4 +269,38 @@ TEST_CASE("greenfield sand column: gravity's own K0 = nu / (1 - nu) lies outside
   CHECK(t.particles == 160);
   CHECK(t.over_surface == 160);
   CHECK(std::abs(t.worst_yield_ratio - q_over_p(k0) / slope) < 1e-3);
+}
+
+TEST_CASE("the staged tunnel's sand has one yield surface in both stages, and no particle starts "
+          "over it",
+          "[staged][sph][drucker_prager]") {
+  // problems/staged_tunnel_blast.yaml: the preload's Drucker-Prager cone (outer, no cohesion)
+  // is the SPH granular table's first segment, Y = (4.24 / 3.40) p, up to 3.4 MPa.
+  auto spec = load_problem("staged_tunnel_blast", {"stages.1.time.end=2.0e-4"});
+  const spec::MaterialSpec& sand = spec.materials[1];
+  REQUIRE(sand.name == "sand");
+  const auto& dp = std::get<materials::DruckerPragerParameters>(*sand.plasticity);
+  const materials::DruckerPragerShear cone{sand.shear_modulus, dp};
+  const materials::GranularStrength& table = sand.strength->granular;
+  for (double p = 0.0; p <= 3.4e6; p += 1.0e5) {
+    INFO("pressure " << p);
+    CHECK(std::abs(materials::current_yield(cone, p, 0.0, 0.0, 0.0) -
+                   materials::granular_yield(table, p)) <= 1e-12 * (4.24e6));
+  }
+  spec::ProblemSpec preload = spec.staged().stages[0];
+  preload.galerkin().record_increment_parameters = true;
+  const implicit::ElastoplasticResult pre =
+      implicit::solve_elastoplastic_static(preload, test_session(), nullptr);
+  REQUIRE(pre.status == "completed");
+  const stages::ExplicitStage st = stages::run_sph_stage(
+      stages::PlanePreload(preload, pre), spec.staged().stages[1], spec.staged().links[1], 1);
+  REQUIRE(st.status == "completed");
+  INFO("plastic particles " << st.transfer.plastic_particles << ", over the surface "
+                            << st.transfer.over_surface << ", worst q / Y "
+                            << st.transfer.worst_yield_ratio << ", out-of-balance "
+                            << st.transfer.out_of_balance);
+  CHECK(st.transfer.plastic_particles > 0); // the surface's top row yields in the preload
+  CHECK(st.transfer.over_surface == 0);     // 124 did from an elastic preload
+  CHECK(st.transfer.worst_yield_ratio <= 1.0 + 1e-9);
+  CHECK(st.transfer.out_of_balance <= 1e-3);
 }
