@@ -324,6 +324,7 @@ materials::DruckerPragerParameters read_drucker_prager(KeyReader& p, const Mater
               detail::concat("expected a mean stress in [0, ", apex,
                              ") (the cone's apex, xi c / eta), got ", d.tension_cutoff));
   }
+  p.allow("tension_cutoff");
   return d;
 }
 

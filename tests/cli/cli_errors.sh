@@ -64,6 +64,17 @@ expect_error "materials[0].plasticity.hardening.points: equivalent plastic strai
 expect_error "materials[0].plasticity.hardening.points: the first point must be at equivalent plastic strain 0" "$Q" --set 'materials.0.plasticity={hardening: {type: table, points: [[0.1, 300], [0.2, 320]]}}'
 expect_error "materials[0].plasticity.hardening.points: the yield stress falls from 300 to 280 at equivalent plastic strain 0.1: a softening law; give softening: true if that is meant" "$Q" --set 'materials.0.plasticity={hardening: {type: table, points: [[0, 300], [0.1, 280], [0.2, 320]]}}'
 expect_error "materials[0].plasticity.hardening.points: the last segment falls, and the yield stress goes on along it past the last point (zero at equivalent plastic strain 0.2); end the table with a segment that does not fall" "$Q" --set 'materials.0.plasticity={hardening: {type: table, points: [[0, 300], [0.1, 150]], softening: true}}'
+# Drucker-Prager (problems/strip_footing_prandtl.yaml).
+D="$ROOT/problems/strip_footing_prandtl.yaml"
+expect_error "materials[0].plasticity.model: expected one of [j2, drucker_prager], got 'mohr_coulomb'" "$D" --set materials.0.plasticity.model=mohr_coulomb
+expect_error "materials[0].plasticity.friction_angle: expected an angle in degrees in [0, 90), got 95" "$D" --set materials.0.plasticity.friction_angle=95
+expect_error "materials[0].plasticity.friction_angle: required value is missing" "$D" --set 'materials.0.plasticity={model: drucker_prager, cohesion: 1.0e4}'
+expect_error "materials[0].plasticity.dilation_angle: expected at most the friction angle 20, got 25" "$D" --set materials.0.plasticity.dilation_angle=25
+expect_error "materials[0].plasticity.tension_cutoff: expected a mean stress in [0, 27474.77419) (the cone's apex, xi c / eta), got 100000" "$D" --set materials.0.plasticity.tension_cutoff=1.0e5
+expect_error "materials[0].plasticity.cohesion: expected a number >= 0, got -1" "$D" --set materials.0.plasticity.cohesion=-1
+expect_error "materials[0].plasticity.friction_angle: a soil without cohesion needs a friction angle above 0" "$D" --set 'materials.0.plasticity={model: drucker_prager, cohesion: 0, friction_angle: 0}'
+expect_error "materials[0].plasticity.match: expected one of [plane_strain, outer, inner], got 'middle'" "$D" --set materials.0.plasticity.match=middle
+expect_error "materials[0].plasticity.yield_stress: unknown key" "$D" --set materials.0.plasticity.yield_stress=300
 expect_error "materials[0].plasticity: analysis elastoplastic_static needs a plasticity law" "$Q" --set 'materials.0={name: steel, E: 2.0e5, nu: 0.1}'
 expect_error "materials[0].plasticity: used only by analysis elastoplastic_static" "$Q" --set analysis=elastic_static
 expect_error "material_regions[0].material: no material is named 'clay'" "$Q" --set 'material_regions=[{material: clay, box: [[0, 0], [1, 1]]}]'
