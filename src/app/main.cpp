@@ -275,7 +275,6 @@ int run_in(Command& c, mf::solvers::PetscSession& session) {
 } // namespace
 
 int main(int argc, char** argv) {
-  mf::wait_passively(argv);
   mf::keep_freed_memory();
   mf::single_process_mpi();
   // A write past a file-size limit (ulimit -f) fails with EFBIG and is reported as a failed

@@ -1,31 +1,28 @@
 #include "meshfree/core/process_setup.hpp"
 #include <cstdlib>
-#include <fstream>
+#include <initializer_list>
 #include <limits>
 #include <malloc.h>
-#include <string>
-#include <unistd.h>
 
 namespace mf {
 
 namespace {
 
-/// Whether a debugger or tracer is attached (/proc/self/status names its process).
-bool traced() {
-  std::ifstream status("/proc/self/status");
-  std::string line;
-  while (std::getline(status, line))
-    if (line.rfind("TracerPid:", 0) == 0) return std::atoi(line.c_str() + 10) != 0;
-  return false;
+/// OMP_WAIT_POLICY=passive unless the user chose a policy. libgomp reads its environment in its
+/// initialiser, when the dynamic linker initialises the shared libraries; an executable's
+/// preinit array runs before any of them (System V ABI, DT_PREINIT_ARRAY; glibc's _dl_init), so
+/// the policy is in place when libgomp looks, without the process running itself again.
+void passive_wait_policy(int, char**, char**) {
+  if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
+  setenv("OMP_WAIT_POLICY", "passive", 0);
 }
 
 } // namespace
 
-void wait_passively(char** argv) {
-  if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT") || traced()) return;
-  setenv("OMP_WAIT_POLICY", "passive", 1);
-  execv("/proc/self/exe", argv);
-}
+// In every executable that links this file: the program and the unit tests' runner, which call
+// keep_freed_memory from it.
+__attribute__((section(".preinit_array"), used)) void (*const kPassiveWaitPolicy)(
+    int, char**, char**) = passive_wait_policy;
 
 void keep_freed_memory() {
   mallopt(M_MMAP_MAX, 0);

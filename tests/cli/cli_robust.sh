@@ -141,4 +141,12 @@ msg="$(timeout 20 "$MF" check "$ROOT/problems/pd_disk_impact.yaml" \
   echo "ok: check of a 14-million-particle body reports estimates" ||
   bad "exit $rc, '$(tail -2 <<<"$msg")'" check pd_disk_impact 16 m tall
 
+# The OpenMP wait policy is set before libgomp starts (the executable's preinit array), not by the
+# program running itself again: passive by default, the user's own policy kept.
+policy() { env "$@" OMP_DISPLAY_ENV=true "$MF" --help 2>&1 | grep -o "OMP_WAIT_POLICY = '[A-Z]*'"; }
+[ "$(policy)" = "OMP_WAIT_POLICY = 'PASSIVE'" ] && echo "ok: OpenMP waits passively" ||
+  bad "wait policy '$(policy)', not PASSIVE" --help
+[ "$(policy OMP_WAIT_POLICY=active)" = "OMP_WAIT_POLICY = 'ACTIVE'" ] &&
+  echo "ok: the user's OMP_WAIT_POLICY is kept" || bad "OMP_WAIT_POLICY=active not kept" --help
+
 [ $fails -eq 0 ] && echo "every hostile input ends in one line" || exit 1

@@ -15,7 +15,6 @@ const mf::solvers::PetscSession& test_session() {
 }
 
 int main(int argc, char** argv) {
-  mf::wait_passively(argv);
   mf::keep_freed_memory();
   mf::single_process_mpi();
   int pargc = 1;

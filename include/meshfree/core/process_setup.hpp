@@ -1,18 +1,18 @@
 #pragma once
 // How a program of this project sets up its process before anything else runs: the OpenMP
-// threads' wait, what glibc does with freed memory, and what Open MPI starts for a single process.
+// threads' wait (set before main), what glibc does with freed memory, and what Open MPI starts
+// for a single process.
 // The program and the unit tests both start with them, so that a test measures the code as a run
 // executes it.
 
 namespace mf {
 
-/// OpenMP threads that wait at the end of a loop sleep instead of spinning, unless the user chose
-/// a policy: with another job on one of the cores a spinning team waits for its slowest thread
-/// at every loop, a sleeping one gives the core away (README.md, "Running", has the measured
-/// cost). libgomp reads OMP_WAIT_POLICY when it is loaded, before main, so the program runs
-/// itself again once with the policy set (on failure it goes on with the default). Not under a
-/// debugger or tracer, which would lose the process. Call it first in main.
-void wait_passively(char** argv);
+// OpenMP threads that wait at the end of a loop sleep instead of spinning, unless the user chose
+// a policy (OMP_WAIT_POLICY or GOMP_SPINCOUNT): with another job on one of the cores a spinning
+// team waits for its slowest thread at every loop, a sleeping one gives the core away
+// (README.md, "Running", has the measured cost). libgomp reads OMP_WAIT_POLICY when it is
+// loaded, before main; process_setup.cpp sets it from the executable's preinit array, which
+// runs before any shared library's initialiser. Nothing to call.
 
 /// Freed memory stays with the process instead of going back to the system. glibc serves large
 /// blocks by mmap and unmaps them on free, so every large vector (a shape table, a solver's work
