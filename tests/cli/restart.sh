@@ -94,6 +94,12 @@ OMP_NUM_THREADS=2 restart_case staged_pmma staged_pmma_impact 2.5e-5 \
 # An implicit elastoplastic run (cyclic load steps, J2 with hardening) with a checkpoint after
 # every converged increment: the Gauss points' histories, the nodal parameters, the schedule.
 restart_case implicit_cyclic bar_uniaxial_cyclic 1 --set output.checkpoint_every=1
+# Drucker-Prager (non-associated, with a tension cut-off): its Gauss points' histories carried
+# through a checkpoint as J2's are.
+restart_case implicit_drucker_prager strip_footing_prandtl 1 --set output.checkpoint_every=1 \
+  --set 'discretisation.refinement=[{box: [[0, -2], [4, 0]], spacing: 0.125}]' \
+  --set steps.0.increments=8 --set steps.0.load_factor=0.008 \
+  --set materials.0.plasticity.dilation_angle=10 --set materials.0.plasticity.tension_cutoff=1.0e4
 # An adapted cloud: the restart refines it again by the same pilots (the estimates do not depend
 # on the run's history) and goes on from the checkpoint of the analysis on the last cloud.
 restart_case implicit_adapted cook_membrane 1 --set output.checkpoint_every=1 \

@@ -4,6 +4,7 @@
 // region of the return, Mohr-Coulomb's plane-strain limit state reached by the plane-strain
 // match, and the plane-stress local iteration; and the model chosen by name in a problem file.
 #include "meshfree/materials/constitutive_model.hpp"
+#include "meshfree/materials/strength.hpp"
 #include "meshfree/spec/problem_spec.hpp"
 #include "meshfree/spec/spec_read.hpp"
 #include <catch2/catch.hpp>
@@ -317,4 +318,25 @@ steps: [{name: s, load_factor: 0.001, increments: 2}]
   CHECK(dp.E == 3.0e7);
   CHECK(dp.tension_cutoff == 5.0e3);
   CHECK(model_name(*s.plasticity()) == "drucker_prager");
+}
+
+TEST_CASE("the SPH strength of a Drucker-Prager material is the Galerkin solvers' cone",
+          "[materials][drucker_prager][sph]") {
+  // A deviator of von Mises stress Y(p, alpha) at pressure p (compression positive) lies on the
+  // cone of the implicit update: Phi = 0. Beyond the apex Y = 0.
+  DruckerPragerParameters p = soil(10.0, 2000.0, MohrCoulombMatch::Outer);
+  const DruckerPragerShear sph{p.E / (2.0 * (1.0 + p.nu)), p};
+  Vec6 direction;
+  direction << 0.3, -0.5, 0.2, 0.1, -0.4, 0.25;
+  direction = voigt::deviator(direction);
+  for (double pressure : {0.0, 5.0, 40.0, 300.0})
+    for (double alpha : {0.0, 1e-3}) {
+      const double Y = current_yield(StrengthModel(sph), pressure, alpha, 0.0, 0.0);
+      const Vec6 stress =
+          direction * (Y / von_mises_3d(direction)) - pressure * voigt::unit_trace();
+      INFO("pressure " << pressure << " alpha " << alpha << " Y " << Y);
+      CHECK(std::abs(drucker_prager_yield(p, stress, alpha)) < 1e-12 * (Y + p.cohesion));
+    }
+  const double beyond_apex = -2.0 * apex_pressure(p, p.cohesion);
+  CHECK(current_yield(StrengthModel(sph), beyond_apex, 0.0, 0.0, 0.0) == 0.0);
 }
