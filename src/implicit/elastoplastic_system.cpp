@@ -1,4 +1,5 @@
 #include "meshfree/implicit/elastoplastic_system.hpp"
+#include "meshfree/implicit/point_updates.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/core/log.hpp"
 #include "meshfree/core/memory.hpp"
@@ -151,32 +152,21 @@ void ElastoplasticSystem::update_materials(const std::vector<double>& d) {
     return;
   }
   const ShapeTable& t = m_.domain_table;
-  const int n = t.rows();
-  int failed = n;
-  std::string message;
   const materials::PlaneModel model = spec_.model;
-#pragma omp parallel for schedule(static)
-  for (int k = 0; k < n; ++k) {
+  states_valid_ = false;
+  const auto update = [&](int k) {
     const Vec3 eps = strain_at(t, k, d);
-    try {
-      MF_REQUIRE(eps.allFinite(), "the strain is not finite");
-      const materials::StressUpdate2D r = laws_.update(model, k, eps, states_.committed[k]);
-      MF_REQUIRE(r.stress.allFinite(), "the stress is not finite");
-      states_.trial[k] = r.state;
-      states_.stress[k] = r.stress;
-      states_.stress_zz[k] = r.stress_zz;
-      states_.tangent[k] = r.tangent;
-      states_.plastic[k] = r.plastic;
-    } catch (const std::exception& e) {
-#pragma omp critical
-      if (k < failed) failed = k, message = e.what();
-    }
-  }
-  if (failed < n) {
-    states_valid_ = false;
-    const Vec2& x = m_.domain.x[m_.domain_mine.rows[failed]];
-    fail("material update failed at the Gauss point (", x.x(), ", ", x.y(), "): ", message);
-  }
+    MF_REQUIRE(eps.allFinite(), "the strain is not finite");
+    const materials::StressUpdate2D r = laws_.update(model, k, eps, states_.committed[k]);
+    MF_REQUIRE(r.stress.allFinite(), "the stress is not finite");
+    states_.trial[k] = r.state;
+    states_.stress[k] = r.stress;
+    states_.stress_zz[k] = r.stress_zz;
+    states_.tangent[k] = r.tangent;
+    states_.plastic[k] = r.plastic;
+  };
+  update_every_point(t.rows(), update,
+                     [&](int k) { return m_.domain.x[m_.domain_mine.rows[k]]; });
   states_d_ = d;
   states_valid_ = true;
 }

@@ -2,6 +2,7 @@
 #include "meshfree/core/log.hpp"
 #include "meshfree/fem/mesh_generation.hpp"
 #include "meshfree/implicit/integration_correction.hpp"
+#include "meshfree/implicit/point_coupling.hpp"
 #include "meshfree/implicit/point_law.hpp"
 #include <algorithm>
 
@@ -12,12 +13,6 @@ namespace {
 /// Traction sigma . n from Voigt stress [sxx, syy, sxy].
 Vec2 traction(const Vec3& s, const Vec2& n) {
   return {s(0) * n.x() + s(2) * n.y(), s(2) * n.x() + s(1) * n.y()};
-}
-
-void require_covered(const Csr& support, const std::vector<Vec2>& x) {
-  for (int r = 0; r < support.rows(); ++r)
-    MF_REQUIRE(support.size(r) > 0, "integration point (", x[r].x(), ", ", x[r].y(),
-               ") is covered by no node: raise discretisation.dilation");
 }
 
 } // namespace
@@ -99,17 +94,7 @@ GalerkinModel build_meshfree_model(const spec::ProblemSpec& spec,
   m.own = solvers::owned_nodes(N, session.rank(), session.size());
   {
     PhaseTimer::Scope scope(timer, "neighbours");
-    m.domain_support = m.space->support_lists(m.domain.x);
-    require_covered(m.domain_support, m.domain.x);
-    std::vector<const Csr*> coupling{&m.domain_support};
-    for (auto& c : m.conditions) {
-      c.support = m.space->support_lists(c.points.x);
-      require_covered(c.support, c.points.x);
-      if (c.bc->constrains) coupling.push_back(&c.support);
-      c.mine = rank_points(c.support, m.own, N, session);
-    }
-    m.domain_mine = rank_points(m.domain_support, m.own, N, session);
-    m.pattern = coupling_pattern(coupling, N, m.own.begin, m.own.end);
+    couple_points(m, session);
   }
 
   // Shape functions at this rank's points, and what each point carries.

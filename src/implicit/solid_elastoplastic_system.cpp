@@ -1,4 +1,5 @@
 #include "meshfree/implicit/solid_elastoplastic_system.hpp"
+#include "meshfree/implicit/point_updates.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/implicit/point_law.hpp"
 #include "meshfree/implicit/residual_terms.hpp"
@@ -139,31 +140,20 @@ void SolidElastoplasticSystem::update_materials(const std::vector<double>& d) {
     return;
   }
   const SolidShapeTable& t = m_.domain_table;
-  const int n = t.rows();
-  int failed = n;
-  std::string message;
-#pragma omp parallel for schedule(static)
-  for (int k = 0; k < n; ++k) {
+  states_valid_ = false;
+  const auto update = [&](int k) {
     const Vec6 eps = solid_strain_at(t, k, d);
-    try {
-      MF_REQUIRE(eps.allFinite(), "the strain is not finite");
-      const materials::StressUpdate3D r = materials::stress_update_3d(params_, eps, states_.committed[k]);
-      MF_REQUIRE(r.stress.allFinite(), "the stress is not finite");
-      states_.trial[k] = r.state;
-      states_.stress[k] = r.stress;
-      states_.tangent[k] = r.tangent;
-      states_.plastic[k] = r.plastic;
-    } catch (const std::exception& e) {
-#pragma omp critical
-      if (k < failed) failed = k, message = e.what();
-    }
-  }
-  if (failed < n) {
-    states_valid_ = false;
-    const Vec3& x = m_.domain.x[m_.domain_mine.rows[failed]];
-    fail("material update failed at the Gauss point (", x.x(), ", ", x.y(), ", ", x.z(),
-         "): ", message);
-  }
+    MF_REQUIRE(eps.allFinite(), "the strain is not finite");
+    const materials::StressUpdate3D r =
+        materials::stress_update_3d(params_, eps, states_.committed[k]);
+    MF_REQUIRE(r.stress.allFinite(), "the stress is not finite");
+    states_.trial[k] = r.state;
+    states_.stress[k] = r.stress;
+    states_.tangent[k] = r.tangent;
+    states_.plastic[k] = r.plastic;
+  };
+  update_every_point(t.rows(), update,
+                     [&](int k) { return m_.domain.x[m_.domain_mine.rows[k]]; });
   states_d_ = d;
   states_valid_ = true;
 }

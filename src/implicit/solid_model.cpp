@@ -1,6 +1,7 @@
 #include "meshfree/implicit/solid_model.hpp"
 #include "meshfree/core/log.hpp"
 #include "meshfree/core/memory.hpp"
+#include "meshfree/implicit/point_coupling.hpp"
 #include "meshfree/implicit/point_law.hpp"
 #include "meshfree/implicit/solid_forms.hpp"
 #include "meshfree/solvers/parallel.hpp"
@@ -11,12 +12,6 @@
 namespace mf::implicit {
 
 namespace {
-
-void require_covered(const Csr& support, const std::vector<Vec3>& x) {
-  for (int r = 0; r < support.rows(); ++r)
-    MF_REQUIRE(support.size(r) > 0, "integration point (", x[r].x(), ", ", x[r].y(), ", ", x[r].z(),
-               ") is covered by no node: raise discretisation.dilation");
-}
 
 /// Traction sigma n from a Voigt stress [xx, yy, zz, yz, xz, xy].
 Vec3 traction(const Vec6& s, const Vec3& n) {
@@ -93,18 +88,7 @@ void build_points(const spec::ProblemSpec& spec, SolidModel& m) {
 
 void build_tables(const spec::ProblemSpec& spec, const solvers::PetscSession& session,
                   SolidModel& m) {
-  const int N = m.node_count();
-  m.domain_support = m.space->support_lists(m.domain.x);
-  require_covered(m.domain_support, m.domain.x);
-  m.domain_mine = rank_points(m.domain_support, m.own, N, session);
-  std::vector<const Csr*> coupling{&m.domain_support};
-  for (auto& c : m.conditions) {
-    c.support = m.space->support_lists(c.points.x);
-    require_covered(c.support, c.points.x);
-    if (c.bc->constrains) coupling.push_back(&c.support);
-    c.mine = rank_points(c.support, m.own, N, session);
-  }
-  m.pattern = coupling_pattern(coupling, N, m.own.begin, m.own.end);
+  couple_points(m, session);
   m.domain_table = m.space->shape_table(m.domain.x, m.domain_mine.rows, m.domain_support, true);
   for (auto& c : m.conditions) {
     c.table = m.space->shape_table(c.points.x, c.mine.rows, c.support, false);
