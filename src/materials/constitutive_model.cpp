@@ -35,6 +35,11 @@ double reference_strength(const ConstitutiveModel& m) {
   return dp.cohesion > 0.0 ? dp.xi * dp.cohesion : 1.0;
 }
 
+StrengthInput strength_input(const ConstitutiveModel& m) {
+  if (const auto* j2 = std::get_if<J2Parameters>(&m)) return {"yield_stress", j2->sigma0};
+  return {"cohesion", std::get<DruckerPragerParameters>(m).cohesion};
+}
+
 double first_yield_measure(const ConstitutiveModel& m, const Vec6& stress, double sigma_ref) {
   if (const auto* j2 = std::get_if<J2Parameters>(&m)) {
     // A plane state's von Mises stress by the plane formula the plane outputs report.

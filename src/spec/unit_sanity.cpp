@@ -90,14 +90,11 @@ void check_material(Report& r, const MaterialSpec& m) {
   r.check(m.key_path + ".bulk_modulus", m.bulk_modulus, u.stress(), kModulus, "bulk moduli");
   r.check(m.key_path + ".density", m.density, u.density(), kDensity, "densities");
   const double modulus = m.E > 0.0 ? m.E : m.shear_modulus * 2.0 * (1.0 + m.nu);
-  // J2's yield stress, or Drucker-Prager's cohesion.
-  const bool j2 = m.plasticity && std::holds_alternative<materials::J2Parameters>(*m.plasticity);
-  const double sy =
-      !m.plasticity ? 0.0
-      : j2          ? std::get<materials::J2Parameters>(*m.plasticity).sigma0
-                    : std::get<materials::DruckerPragerParameters>(*m.plasticity).cohesion;
+  const materials::StrengthInput strength =
+      m.plasticity ? materials::strength_input(*m.plasticity) : materials::StrengthInput{};
+  const double sy = strength.value;
   if (sy > 0.0) {
-    const std::string key = m.key_path + (j2 ? ".plasticity.yield_stress" : ".plasticity.cohesion");
+    const std::string key = m.key_path + ".plasticity." + strength.key;
     r.check(key, sy, u.stress(), kYield, "yield stresses");
     if (modulus > 0.0 && sy / modulus > kMaxYieldStrain)
       r.add(key + " = " + num(sy) + " is " + num(sy / modulus) + " of E = " + num(modulus) +

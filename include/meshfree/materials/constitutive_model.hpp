@@ -41,6 +41,14 @@ bool symmetric_tangent(const ConstitutiveModel& m);
 /// cone's sqrt(J2) at zero mean stress; 1 for a cohesionless soil).
 double reference_strength(const ConstitutiveModel& m);
 
+/// The model's strength as its input gives it, for the plausibility checks of units: the key
+/// under `plasticity:` and its value (J2's yield_stress, Drucker-Prager's cohesion).
+struct StrengthInput {
+  const char* key = "";
+  double value = 0.0;
+};
+StrengthInput strength_input(const ConstitutiveModel& m);
+
 /// How far a stress is towards first yield from a virgin state, on the scale of
 /// reference_strength: the factor lambda with which lambda * stress reaches the yield surface is
 /// reference_strength / first_yield_measure (J2: the von Mises stress scaled by sigma_ref /
