@@ -120,7 +120,7 @@ void check_transfer(const ProblemSpec& from, const ProblemSpec& to) {
     const MaterialSpec& mat = from.materials[m];
     const std::string& path = mat.key_path;
     if (mat.plasticity)
-      throw Error(path + ".plasticity: a J2 preload (plastic strain, back stress) cannot start "
+      throw Error(path + ".plasticity: a plastic preload (plastic strain, hardening) cannot start "
                          "a bond-based peridynamic stage, whose bonds carry no plastic state");
     if (std::abs(mat.nu - nu_pd) > 0.02)
       throw Error(path + ".nu: bond-based peridynamics in " +
