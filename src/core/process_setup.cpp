@@ -21,8 +21,8 @@ void passive_wait_policy(int, char**, char**) {
 
 // In every executable that links this file: the program and the unit tests' runner, which call
 // keep_freed_memory from it.
-__attribute__((section(".preinit_array"), used)) void (*const kPassiveWaitPolicy)(
-    int, char**, char**) = passive_wait_policy;
+__attribute__((section(".preinit_array"),
+               used)) void (*const kPassiveWaitPolicy)(int, char**, char**) = passive_wait_policy;
 
 void keep_freed_memory() {
   mallopt(M_MMAP_MAX, 0);

@@ -1,11 +1,11 @@
 #include "meshfree/implicit/elastoplastic_system.hpp"
-#include "meshfree/implicit/point_updates.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/core/log.hpp"
 #include "meshfree/core/memory.hpp"
 #include "meshfree/core/progress.hpp"
 #include "meshfree/core/timer.hpp"
 #include "meshfree/implicit/elasticity.hpp"
+#include "meshfree/implicit/point_updates.hpp"
 #include "meshfree/implicit/residual_terms.hpp"
 #include <algorithm>
 #include <chrono>
@@ -165,8 +165,7 @@ void ElastoplasticSystem::update_materials(const std::vector<double>& d) {
     states_.tangent[k] = r.tangent;
     states_.plastic[k] = r.plastic;
   };
-  update_every_point(t.rows(), update,
-                     [&](int k) { return m_.domain.x[m_.domain_mine.rows[k]]; });
+  update_every_point(t.rows(), update, [&](int k) { return m_.domain.x[m_.domain_mine.rows[k]]; });
   states_d_ = d;
   states_valid_ = true;
 }

@@ -159,7 +159,8 @@ materials::StressUpdate2D update_law(materials::PlaneModel model,
 }
 
 materials::StressUpdate2D update_point(const spec::ProblemSpec& spec, const PointLaw& law,
-                                   const Vec3& strain, const materials::MaterialState& committed) {
+                                       const Vec3& strain,
+                                       const materials::MaterialState& committed) {
   return update_law(spec.model, law.params, law.plastic, law.initial_stress, strain, committed);
 }
 

@@ -1,7 +1,7 @@
 #include "meshfree/implicit/solid_elastoplastic_system.hpp"
-#include "meshfree/implicit/point_updates.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/implicit/point_law.hpp"
+#include "meshfree/implicit/point_updates.hpp"
 #include "meshfree/implicit/residual_terms.hpp"
 #include <algorithm>
 #include <cmath>
@@ -152,8 +152,7 @@ void SolidElastoplasticSystem::update_materials(const std::vector<double>& d) {
     states_.tangent[k] = r.tangent;
     states_.plastic[k] = r.plastic;
   };
-  update_every_point(t.rows(), update,
-                     [&](int k) { return m_.domain.x[m_.domain_mine.rows[k]]; });
+  update_every_point(t.rows(), update, [&](int k) { return m_.domain.x[m_.domain_mine.rows[k]]; });
   states_d_ = d;
   states_valid_ = true;
 }

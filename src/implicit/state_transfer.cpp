@@ -181,8 +181,8 @@ CarriedState carry_state(const spec::ProblemSpec& spec, const GalerkinModel& fro
 }
 
 std::vector<materials::MaterialState> history_keeping_stress(const CarriedState& c,
-                                                       const GalerkinModel& to,
-                                                       const std::vector<double>& d) {
+                                                             const GalerkinModel& to,
+                                                             const std::vector<double>& d) {
   std::vector<materials::MaterialState> h = c.history;
   for (std::size_t k = 0; k < h.size(); ++k) {
     if (h[k].alpha <= 0.0) continue; // never yielded: its stress is that of the new strain

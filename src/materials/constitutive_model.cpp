@@ -44,8 +44,8 @@ double first_yield_measure(const ConstitutiveModel& m, const Vec6& stress, doubl
   if (const auto* j2 = std::get_if<J2Parameters>(&m)) {
     // A plane state's von Mises stress by the plane formula the plane outputs report.
     const bool plane = stress(3) == 0.0 && stress(4) == 0.0;
-    const double vm = plane ? von_mises(Vec3(stress(0), stress(1), stress(5)), stress(2))
-                            : von_mises_3d(stress);
+    const double vm =
+        plane ? von_mises(Vec3(stress(0), stress(1), stress(5)), stress(2)) : von_mises_3d(stress);
     return vm * (sigma_ref / j2->sigma0);
   }
   const auto& dp = std::get<DruckerPragerParameters>(m);
@@ -93,8 +93,8 @@ StressUpdate2D plane_stress_by_iteration(const ConstitutiveModel& m, const Vec3&
   }
 }
 
-StressUpdate2D stress_update_plane(const ConstitutiveModel& m, PlaneModel model,
-                                   const Vec3& strain, const MaterialState& committed) {
+StressUpdate2D stress_update_plane(const ConstitutiveModel& m, PlaneModel model, const Vec3& strain,
+                                   const MaterialState& committed) {
   if (const auto* j2 = std::get_if<J2Parameters>(&m))
     return model == PlaneModel::PlaneStrain ? j2_update_plane_strain(*j2, strain, committed)
                                             : j2_update_plane_stress(*j2, strain, committed);

@@ -51,7 +51,8 @@ StressUpdate3D plastic_result(const Vec6& s, double p, const MaterialState& comm
 /// the tangent
 ///   D = 2G (1 - sqrt2 G dgamma / |s_tr|)(I_dev - n n) + 2G (1 - G A) n n
 ///       - sqrt2 G A K (eta n m + eta_bar m n) + K (1 - K eta eta_bar A) m m,
-/// A = 1 / (G + K eta eta_bar + xi^2 H) (de Souza Neto et al. 2008, section 8.3, in this notation; derived again here).
+/// A = 1 / (G + K eta eta_bar + xi^2 H) (de Souza Neto et al. 2008, section 8.3, in this notation;
+/// derived again here).
 StressUpdate3D cone_return(const DruckerPragerParameters& p, const Trial& t, double dgamma,
                            const MaterialState& committed) {
   const double G = t.G, K = t.K;
@@ -79,8 +80,7 @@ StressUpdate3D apex_return(const DruckerPragerParameters& p, const Trial& t,
   const double dev_p = (t.p - b * t.c) / stiffness; // volumetric plastic strain
   const Vec6 m = voigt::unit_trace();
   const Vec6 dep = voigt::engineering(t.s) / (2.0 * t.G) + dev_p / 3.0 * m;
-  StressUpdate3D r =
-      plastic_result(Vec6::Zero(), t.p - t.K * dev_p, committed, dep, a * dev_p);
+  StressUpdate3D r = plastic_result(Vec6::Zero(), t.p - t.K * dev_p, committed, dep, a * dev_p);
   r.tangent = t.K * (1.0 - t.K / stiffness) * m * m.transpose();
   return r;
 }
@@ -117,8 +117,8 @@ ConeConstants mohr_coulomb_cone(double phi, MohrCoulombMatch match) {
     const double t = std::tan(phi), d = std::sqrt(9.0 + 12.0 * t * t);
     return {3.0 * t / d, 3.0 / d};
   }
-  const double d = std::sqrt(3.0) * (match == MohrCoulombMatch::Outer ? 3.0 - std::sin(phi)
-                                                                      : 3.0 + std::sin(phi));
+  const double d = std::sqrt(3.0) *
+                   (match == MohrCoulombMatch::Outer ? 3.0 - std::sin(phi) : 3.0 + std::sin(phi));
   return {6.0 * std::sin(phi) / d, 6.0 * std::cos(phi) / d};
 }
 
@@ -145,8 +145,7 @@ StressUpdate3D drucker_prager_update_3d(const DruckerPragerParameters& p, const 
     return r;
   }
   if (phi > 0.0) {
-    const double dgamma =
-        phi / (t.G + t.K * p.eta * p.eta_bar + p.xi * p.xi * p.hardening);
+    const double dgamma = phi / (t.G + t.K * p.eta * p.eta_bar + p.xi * p.xi * p.hardening);
     const bool inside_apex = t.J - t.G * dgamma >= 0.0;
     const bool below_cutoff = t.p - t.K * p.eta_bar * dgamma <= p.tension_cutoff;
     if (inside_apex && below_cutoff) return cone_return(p, t, dgamma, committed);

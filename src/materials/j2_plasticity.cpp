@@ -96,7 +96,8 @@ J2Return j2_radial_return(const J2Parameters& p, const Vec6& s_trial, const Vec6
   return r;
 }
 
-StressUpdate3D j2_update_3d(const J2Parameters& p, const Vec6& strain, const MaterialState& committed) {
+StressUpdate3D j2_update_3d(const J2Parameters& p, const Vec6& strain,
+                            const MaterialState& committed) {
   const double mu = p.E / (2.0 * (1.0 + p.nu));
   const double kappa = p.E / (3.0 * (1.0 - 2.0 * p.nu));
   const Vec6 m = unit_trace();
@@ -133,7 +134,7 @@ StressUpdate3D j2_update_3d(const J2Parameters& p, const Vec6& strain, const Mat
 }
 
 StressUpdate2D j2_update_plane_strain(const J2Parameters& p, const Vec3& strain,
-                                  const MaterialState& committed) {
+                                      const MaterialState& committed) {
   return voigt::reduce(j2_update_3d(p, voigt::embed(strain, 0.0), committed), 0.0);
 }
 
@@ -225,7 +226,7 @@ Mat3 projected_tangent(const J2Parameters& p, const PlaneStressBasis& e, const V
 } // namespace
 
 StressUpdate2D j2_update_plane_stress(const J2Parameters& p, const Vec3& strain,
-                                  const MaterialState& committed) {
+                                      const MaterialState& committed) {
   // The plane-stress projected return ([Simo & Taylor 1986]; [de Souza Neto, Peric & Owen 2008]
   // ch. 9), with linear kinematic hardening: eta = sigma - b is the stress relative to the plane
   // stress b whose deviator is the back stress beta, and with lambda = dgamma / |dev eta| the

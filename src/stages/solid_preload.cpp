@@ -1,6 +1,7 @@
 // A 3D preload as the explicit stage sees it (stages/preload.hpp): the particles carried through
-// its increments as passive material points (the material update from their own history, as its Gauss
-// points are), and its face conditions on particle layers chosen by their distance to the faces.
+// its increments as passive material points (the material update from their own history, as its
+// Gauss points are), and its face conditions on particle layers chosen by their distance to the
+// faces.
 #include "meshfree/core/error.hpp"
 #include "meshfree/implicit/solid_forms.hpp"
 #include "meshfree/stages/preload.hpp"
@@ -36,7 +37,8 @@ PreloadAtParticles SolidPreload::sample(const std::vector<Vec3>& x,
     materials::MaterialState committed;
     for (int n = 0; n <= N; ++n) {
       const std::vector<double>& d = n == 0 ? zero : r_.increments[n].record.parameters;
-      const materials::StressUpdate3D res = implicit::carry_point(table, p, d, r_.material, committed);
+      const materials::StressUpdate3D res =
+          implicit::carry_point(table, p, d, r_.material, committed);
       out.u[n][p] = mirrored(implicit::solid_displacement_at(table, p, d), out.image[p]);
       out.stress[n][p] = mirrored(res.stress, out.image[p]);
       out.alpha[n][p] = res.state.alpha;

@@ -47,7 +47,8 @@ Vec2 body_force_at(const spec::ProblemSpec& spec, const Vec2& x);
 
 /// The stress update of a Galerkin point (plane model, initial stress, its model or elastic).
 materials::StressUpdate2D update_point(const spec::ProblemSpec& spec, const PointLaw& law,
-                                   const Vec3& strain, const materials::MaterialState& committed);
+                                       const Vec3& strain,
+                                       const materials::MaterialState& committed);
 
 /// The same update from its parts: the material's parameters, whether it is plastic, and the
 /// point's initial stress. Elastic: sigma = sigma0 + C eps with C the plane elastic matrix.
@@ -74,7 +75,7 @@ struct PointLaws {
                                          const Vec3& strain) const;
 
   materials::StressUpdate2D update(materials::PlaneModel model, int k, const Vec3& strain,
-                               const materials::MaterialState& committed) const {
+                                   const materials::MaterialState& committed) const {
     const int m = material[k];
     return update_law(model, params[m], plastic[m] != 0,
                       initial_stress.empty() ? Vec4::Zero().eval() : initial_stress[k], strain,

@@ -7,8 +7,8 @@
 // Voigt order [xx, yy, zz, yz, xz, xy] with engineering shear strains.
 #include "meshfree/core/types.hpp"
 #include "meshfree/implicit/solid_space.hpp"
-#include "meshfree/materials/elastic.hpp"
 #include "meshfree/materials/constitutive_model.hpp"
+#include "meshfree/materials/elastic.hpp"
 #include <vector>
 
 namespace mf::implicit {
@@ -48,9 +48,9 @@ inline Vec3 solid_displacement_at(const SolidShapeTable& t, int r, const std::ve
 /// Point r of a table carried to nodal parameters d as a passive material point: the update
 /// of its strain from its committed history, which then becomes the update's.
 inline materials::StressUpdate3D carry_point(const SolidShapeTable& t, int r,
-                                         const std::vector<double>& d,
-                                         const materials::ConstitutiveModel& law,
-                                         materials::MaterialState& committed) {
+                                             const std::vector<double>& d,
+                                             const materials::ConstitutiveModel& law,
+                                             materials::MaterialState& committed) {
   const materials::StressUpdate3D res =
       materials::stress_update_3d(law, solid_strain_at(t, r, d), committed);
   committed = res.state;
@@ -58,9 +58,9 @@ inline materials::StressUpdate3D carry_point(const SolidShapeTable& t, int r,
 }
 
 /// The (3n x 3n, row-major) block of point r with n nodes: K_IJ = B~_I^T wC B_J, wC the
-/// constitutive or tangent matrix (unsymmetric under non-associated flow) times the point's weight, B~ the test functions'
-/// strain matrix; one matrix product of the stacked B~^T wC (3n x 6) and B (6 x 3n), `work`
-/// holding them (resized, so a thread keeps one buffer for every point).
+/// constitutive or tangent matrix (unsymmetric under non-associated flow) times the point's weight,
+/// B~ the test functions' strain matrix; one matrix product of the stacked B~^T wC (3n x 6) and B
+/// (6 x 3n), `work` holding them (resized, so a thread keeps one buffer for every point).
 void solid_point_stiffness(const SolidShapeTable& t, int r, const Mat6& wC, double* K,
                            std::vector<double>& work);
 /// The 3n internal-force values of point r: B~_I^T ws, with ws = weight times stress.

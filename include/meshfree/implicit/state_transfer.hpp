@@ -40,8 +40,8 @@ struct CarriedState {
 /// by the difference between the strain of the new model's parameters d there and its old
 /// point's strain: the old point's elastic strain, so its stress, at the new point.
 std::vector<materials::MaterialState> history_keeping_stress(const CarriedState& c,
-                                                       const GalerkinModel& to,
-                                                       const std::vector<double>& d);
+                                                             const GalerkinModel& to,
+                                                             const std::vector<double>& d);
 
 /// Carries the committed history of `st` (this rank's rows of `from`) and the nodal parameters
 /// `d` of `from` (all of them, on every rank) to the model `to` of the same body (`spec`: its

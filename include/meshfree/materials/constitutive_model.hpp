@@ -30,8 +30,8 @@ void set_elasticity(ConstitutiveModel& m, const IsotropicElastic& e);
 
 StressUpdate3D stress_update_3d(const ConstitutiveModel& m, const Vec6& strain,
                                 const MaterialState& committed);
-StressUpdate2D stress_update_plane(const ConstitutiveModel& m, PlaneModel model,
-                                   const Vec3& strain, const MaterialState& committed);
+StressUpdate2D stress_update_plane(const ConstitutiveModel& m, PlaneModel model, const Vec3& strain,
+                                   const MaterialState& committed);
 
 /// Whether the model's consistent tangent is symmetric (Drucker-Prager's only with associated
 /// flow, eta_bar = eta).

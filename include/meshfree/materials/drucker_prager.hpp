@@ -23,11 +23,11 @@ enum class MohrCoulombMatch { PlaneStrain, Outer, Inner };
 
 struct DruckerPragerParameters {
   double E = 0.0, nu = 0.0;
-  double cohesion = 0.0;     // c0
-  double hardening = 0.0;    // H = dc / dalpha (>= 0)
-  double eta = 0.0;          // friction
-  double xi = 1.0;           // cohesion factor
-  double eta_bar = 0.0;      // dilatancy (the flow potential's eta)
+  double cohesion = 0.0;  // c0
+  double hardening = 0.0; // H = dc / dalpha (>= 0)
+  double eta = 0.0;       // friction
+  double xi = 1.0;        // cohesion factor
+  double eta_bar = 0.0;   // dilatancy (the flow potential's eta)
   double tension_cutoff = std::numeric_limits<double>::infinity(); // T: p <= T
 };
 

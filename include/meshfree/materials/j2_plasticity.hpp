@@ -55,11 +55,12 @@ struct J2Parameters {
 double yield_stress(const J2Parameters& p, double alpha);
 double yield_slope(const J2Parameters& p, double alpha);
 
-StressUpdate3D j2_update_3d(const J2Parameters& p, const Vec6& strain, const MaterialState& committed);
+StressUpdate3D j2_update_3d(const J2Parameters& p, const Vec6& strain,
+                            const MaterialState& committed);
 StressUpdate2D j2_update_plane_strain(const J2Parameters& p, const Vec3& strain,
-                                  const MaterialState& committed);
+                                      const MaterialState& committed);
 StressUpdate2D j2_update_plane_stress(const J2Parameters& p, const Vec3& strain,
-                                  const MaterialState& committed);
+                                      const MaterialState& committed);
 
 /// The radial return of J2 plasticity with isotropic and linear kinematic hardening (Simo &
 /// Hughes 1998, Box 3.2): a trial deviator s_trial (stress-like Voigt) with back stress beta at

@@ -12,8 +12,8 @@
 //    response, and with it the dilatancy, is the equation of state's).
 // The pressure comes from the equation of state. A solver dispatches on the model once per
 // material (std::visit) and calls these pure functions for each of that material's particles.
-#include "meshfree/materials/geomaterials.hpp"
 #include "meshfree/materials/drucker_prager.hpp"
+#include "meshfree/materials/geomaterials.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
 #include <algorithm>
 #include <cmath>
@@ -89,8 +89,8 @@ inline double current_yield(const Hjc& h, double pressure, double, double damage
 inline double current_yield(const DruckerPragerShear& m, double pressure, double alpha, double,
                             double) {
   const DruckerPragerParameters& d = m.dp;
-  return std::max(0.0, std::sqrt(3.0) * (d.xi * (d.cohesion + d.hardening * alpha) +
-                                         d.eta * pressure));
+  return std::max(0.0,
+                  std::sqrt(3.0) * (d.xi * (d.cohesion + d.hardening * alpha) + d.eta * pressure));
 }
 double current_yield(const StrengthModel& m, double pressure, double alpha, double damage,
                      double strain_rate);

@@ -132,7 +132,7 @@ TEST_CASE("a Drucker-Prager block in 3D follows its material point, meshfree and
     const auto r = implicit::solve_solid_elastoplastic(spec, test_session());
     REQUIRE(r.status == "completed");
     UniaxialPoint point;
-  point.model = *spec.plasticity();
+    point.model = *spec.plasticity();
     const double length = 2.0, area = 1.0;
     const std::size_t end = 3;
     REQUIRE(spec.solid().boundary[end].name == "end");

@@ -213,7 +213,8 @@ TEST_CASE("carried state: a yielded point keeps its old point's stress on the ne
       worst = std::max(worst, ((e_new - p_new) - (e_old - p_old)).cwiseAbs().maxCoeff());
       shifted = std::max(shifted, (p_new - p_old).cwiseAbs().maxCoeff());
       const materials::StressUpdate2D then = laws.update(plane, static_cast<int>(r), e_old, was);
-      const materials::StressUpdate2D now = laws.update(plane, static_cast<int>(r), e_new, moved[k]);
+      const materials::StressUpdate2D now =
+          laws.update(plane, static_cast<int>(r), e_new, moved[k]);
       stress = std::max({stress, (now.stress - then.stress).cwiseAbs().maxCoeff(),
                          std::abs(now.stress_zz - then.stress_zz)});
       scale = std::max(scale, then.stress.cwiseAbs().maxCoeff());

@@ -8,9 +8,9 @@
 #include "meshfree/spec/problem_spec.hpp"
 #include "meshfree/spec/spec_read.hpp"
 #include <catch2/catch.hpp>
-#include <yaml-cpp/yaml.h>
 #include <cmath>
 #include <string>
+#include <yaml-cpp/yaml.h>
 
 using namespace mf;
 using namespace mf::materials;
@@ -55,8 +55,7 @@ Vec6 closed_form_stress(const DruckerPragerParameters& p, const Vec6& d, double 
   const Vec6 m = voigt::unit_trace();
   const Vec6 f = voigt::engineering(n) / std::sqrt(2.0) + p.eta / 3.0 * m;
   const Vec6 g = voigt::engineering(n) / std::sqrt(2.0) + p.eta_bar / 3.0 * m;
-  const Mat6 Dep = C - (C * g) * (f.transpose() * C) /
-                           (f.dot(C * g) + p.xi * p.xi * p.hardening);
+  const Mat6 Dep = C - (C * g) * (f.transpose() * C) / (f.dot(C * g) + p.xi * p.xi * p.hardening);
   const Vec6 s = ty * sd + Dep * ((t - ty) * d);
   REQUIRE(voigt::deviator(s).dot(n) > 0.0); // still on the cone, not past its apex
   return s;
@@ -88,9 +87,9 @@ Mat6 fd_tangent(const DruckerPragerParameters& p, const Vec6& e, const MaterialS
     Vec6 ep = e, em = e;
     ep(b) += step;
     em(b) -= step;
-    D.col(b) = (drucker_prager_update_3d(p, ep, h).stress -
-                drucker_prager_update_3d(p, em, h).stress) /
-               (2.0 * step);
+    D.col(b) =
+        (drucker_prager_update_3d(p, ep, h).stress - drucker_prager_update_3d(p, em, h).stress) /
+        (2.0 * step);
   }
   return D;
 }
@@ -111,8 +110,8 @@ TEST_CASE("Drucker-Prager: oedometric and triaxial strain paths equal their clos
         MaterialState h;
         const Vec6 s = update_along(p, d, steps, &h);
         const Vec6 exact = closed_form_stress(p, d, steps.back());
-        INFO("psi " << psi << " H " << H << " d " << d.transpose() << "\n  stress "
-                    << s.transpose() << "\n  exact  " << exact.transpose());
+        INFO("psi " << psi << " H " << H << " d " << d.transpose() << "\n  stress " << s.transpose()
+                    << "\n  exact  " << exact.transpose());
         CHECK(relative(s, exact) < 1e-8);
         CHECK(h.alpha > 0.0); // every path reached the cone
         CHECK(std::abs(drucker_prager_yield(p, s, h.alpha)) < 1e-9 * p.cohesion);

@@ -131,7 +131,7 @@ struct Homogeneous {
 /// The exact stress, plastic strain, back stress and alpha of each increment: the pure law on
 /// the homogeneous strain (a_n, b_n, 0) of each increment, increment by increment.
 std::vector<materials::StressUpdate2D> exact_history(const Homogeneous& c,
-                                                 const std::vector<Vec2>& ab) {
+                                                     const std::vector<Vec2>& ab) {
   std::vector<materials::StressUpdate2D> out;
   materials::MaterialState committed;
   for (const Vec2& g : ab) {
