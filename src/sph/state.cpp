@@ -114,8 +114,9 @@ void plastic_return(ParticleFields& F, const materials::VonMises& law, const Str
   for (int c = 0; c < 6; ++c) F.back_stress[i6 + c] = beta(c);
 }
 
-/// Perfectly plastic at the current pressure (and damage): radial return to Y, with the plastic
-/// strain increment (q - Y) / 3G; HJC adds its damage.
+/// Perfectly plastic at the current pressure (and damage): radial return to Y, the hardening
+/// variable growing by the model's alpha_increment ((q - Y) / 3G for von Mises-type surfaces);
+/// HJC adds its damage.
 template <class Law>
 void plastic_return(ParticleFields& F, const Law& law, const StressHistory& start, const Rates&,
                     double, int i) {
@@ -127,7 +128,7 @@ void plastic_return(ParticleFields& F, const Law& law, const StressHistory& star
       materials::perfectly_plastic_return(q, Y, materials::shear_modulus(law, F.rho[i]));
   if (ret.plastic)
     for (int c = 0; c < 6; ++c) si[c] *= ret.scale;
-  F.alpha[i] = start.alpha[i] + ret.dalpha;
+  F.alpha[i] = start.alpha[i] + materials::alpha_increment(law, ret);
   if constexpr (std::is_same_v<Law, materials::Hjc>)
     F.damage[i] =
         std::min(1.0, start.damage[i] + materials::hjc_damage_increment(law, F.rho[i], F.rho_max[i],

@@ -112,6 +112,17 @@ inline YieldReturn perfectly_plastic_return(double q, double Y, double G) {
   return r;
 }
 
+/// The increment of a model's hardening variable alpha in such a return: the equivalent plastic
+/// strain (q - Y) / 3G of the von Mises-type surfaces; the Drucker-Prager cone's own
+/// alpha' = xi dgamma, the return shrinking sqrt(J2) = q / sqrt 3 by G dgamma, so that a preload's
+/// alpha goes on in the same measure: xi (q - Y) / (sqrt 3 G) = sqrt 3 xi dalpha.
+template <class Law> double alpha_increment(const Law&, const YieldReturn& r) {
+  return r.dalpha;
+}
+inline double alpha_increment(const DruckerPragerShear& m, const YieldReturn& r) {
+  return std::sqrt(3.0) * m.dp.xi * r.dalpha;
+}
+
 /// The HJC damage increment of a step (Holmquist, Johnson & Cook 1993): the plastic strain
 /// increment plus the plastic volumetric compaction (the growth of the largest compression
 /// mu = rho / rho0 - 1 beyond the crush point) over the strain to fracture at pressure p.

@@ -339,3 +339,26 @@ TEST_CASE("the SPH strength of a Drucker-Prager material is the Galerkin solvers
   const double beyond_apex = -2.0 * apex_pressure(p, p.cohesion);
   CHECK(current_yield(StrengthModel(sph), beyond_apex, 0.0, 0.0, 0.0) == 0.0);
 }
+
+TEST_CASE("SPH's deviatoric return on a Drucker-Prager cone is the Galerkin return without "
+          "dilatancy, its hardening variable in the same measure",
+          "[materials][drucker_prager][sph]") {
+  // Without dilatancy the Galerkin return leaves p and shrinks the deviator radially, as SPH's
+  // return at the equation of state's pressure does: the same deviator and the same alpha
+  // (alpha' = xi dgamma), so a preload's alpha goes on in its own measure in an SPH stage.
+  const DruckerPragerParameters p = soil(0.0, 0.0);
+  const double G = p.E / (2.0 * (1.0 + p.nu));
+  const DruckerPragerShear sph{G, p};
+  Vec6 e;
+  e << -2e-3, 4e-4, 1e-4, 6e-4, -3e-4, 1e-3;
+  const StressUpdate3D r = drucker_prager_update_3d(p, e, MaterialState{});
+  REQUIRE(r.plastic);
+  const Vec6 trial = 2.0 * G * (voigt::deviatoric_projector() * e);
+  const double pressure = -r.stress.head<3>().sum() / 3.0; // unchanged by the return
+  const double q = von_mises_3d(trial);
+  const YieldReturn ret =
+      perfectly_plastic_return(q, current_yield(StrengthModel(sph), pressure, 0.0, 0.0, 0.0), G);
+  REQUIRE(ret.plastic);
+  CHECK((ret.scale * trial - voigt::deviator(r.stress)).norm() < 1e-12 * trial.norm());
+  CHECK(std::abs(alpha_increment(sph, ret) - r.state.alpha) < 1e-12 * r.state.alpha);
+}
