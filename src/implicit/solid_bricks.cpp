@@ -216,7 +216,9 @@ ElementPoints ExtrudedMesh::face_points(const std::vector<std::string>& faces, i
           add_point(e, l, Vec3(g.points[i], g.points[j], face == kBack ? -1.0 : 1.0),
                     g.weights[i] * g.weights[j], face, false, all);
   }
-  return box ? points_in_box(all, *box, 1e-9 * size) : all;
+  return box ? points_in_box(all, *box, 1e-9 * size,
+                             static_cast<int>(g.points.size() * g.points.size()), x_)
+             : all;
 }
 
 } // namespace mf::implicit

@@ -47,6 +47,14 @@ void solid_point_stiffness(const SolidShapeTable& t, int r, const Mat6& wC, doub
     BtC.middleRows<3>(3 * a) = bt_times(test[a], wC);
     B.middleCols<3>(3 * a) = strain_matrix_3d(t.dphi[first + a]);
   }
+  if (const Vec3* shift = t.trial_shifts(r)) { // B-bar: B + m shift^T / 3, and so the test side
+    const Vec3* test_shift = t.test_shifts(r);
+    const Eigen::Matrix<double, 1, 6> mC = wC.topRows<3>().colwise().sum() / 3.0;
+    for (int a = 0; a < n; ++a) {
+      BtC.middleRows<3>(3 * a) += test_shift[a] * mC;
+      for (int i = 0; i < 3; ++i) B.block<3, 1>(0, 3 * a + i).array() += shift[a](i) / 3.0;
+    }
+  }
   Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> out(K, 3 * n,
                                                                                          3 * n);
   out.noalias() = BtC * B;
@@ -60,6 +68,11 @@ void solid_point_force(const SolidShapeTable& t, int r, const Vec6& ws, double* 
     f[3 * a] = g.x() * ws(0) + g.z() * ws(4) + g.y() * ws(5);
     f[3 * a + 1] = g.y() * ws(1) + g.z() * ws(3) + g.x() * ws(5);
     f[3 * a + 2] = g.z() * ws(2) + g.y() * ws(3) + g.x() * ws(4);
+  }
+  if (const Vec3* shift = t.test_shifts(r)) { // B-bar: the mean pressure's share
+    const double p = (ws(0) + ws(1) + ws(2)) / 3.0;
+    for (int a = 0; a < n; ++a)
+      for (int i = 0; i < 3; ++i) f[3 * a + i] += p * shift[a](i);
   }
 }
 

@@ -4,6 +4,7 @@
 #include "meshfree/implicit/point_coupling.hpp"
 #include "meshfree/implicit/point_law.hpp"
 #include "meshfree/implicit/solid_forms.hpp"
+#include "meshfree/implicit/volumetric_projection.hpp"
 #include "meshfree/solvers/parallel.hpp"
 #include "meshfree/verification/exact_solutions_3d.hpp"
 #include <algorithm>
@@ -80,7 +81,11 @@ void build_points(const spec::ProblemSpec& spec, SolidModel& m) {
   for (std::size_t b = 0; b < s.boundary.size(); ++b) {
     const spec::FaceCondition& bc = s.boundary[b];
     m.conditions[b].bc = &bc;
-    m.conditions[b].points = prism_face_points(m.body, s.discretisation, bc.faces, bc.box);
+    try {
+      m.conditions[b].points = prism_face_points(m.body, s.discretisation, bc.faces, bc.box);
+    } catch (const Error& e) {
+      fail(bc.key_path, ".box: ", e.what());
+    }
     MF_REQUIRE(!m.conditions[b].points.x.empty(), bc.key_path,
                ": no point of the named faces lies in its box");
   }
@@ -88,12 +93,28 @@ void build_points(const spec::ProblemSpec& spec, SolidModel& m) {
 
 void build_tables(const spec::ProblemSpec& spec, const solvers::PetscSession& session,
                   SolidModel& m) {
-  couple_points(m, session);
+  couple_points(m, session, [&](Csr support) {
+    return spec.solid().discretisation.cell_mean_volumetric ? cell_supports(support, m.domain.cell)
+                                                            : support;
+  });
   m.domain_table = m.space->shape_table(m.domain.x, m.domain_mine.rows, m.domain_support, true);
   for (auto& c : m.conditions) {
     c.table = m.space->shape_table(c.points.x, c.mine.rows, c.support, false);
     c.values = face_values(spec, *c.bc, c.points, c.mine.rows);
   }
+}
+
+/// The element of each element point: rows listing the same nodes in a run are one element's.
+std::vector<int> elements_of(const ElementPoints& b) {
+  std::vector<int> element;
+  const int rows = static_cast<int>(b.offset.size()) - 1;
+  for (int r = 0; r < rows; ++r) {
+    const bool same =
+        r > 0 && std::equal(b.node.begin() + b.offset[r - 1], b.node.begin() + b.offset[r],
+                            b.node.begin() + b.offset[r], b.node.begin() + b.offset[r + 1]);
+    element.push_back(r == 0 ? 0 : element.back() + (same ? 0 : 1));
+  }
+  return element;
 }
 
 /// This rank's rows of element points as a shape table.
@@ -133,13 +154,17 @@ void build_elements(const spec::ProblemSpec& spec, const solvers::PetscSession& 
   {
     PhaseTimer::Scope scope(timer, "quadrature");
     body = m.fe->body_points(order);
-    for (std::size_t b = 0; b < s.boundary.size(); ++b)
-      faces[b] = m.fe->face_points(s.boundary[b].faces, order, s.boundary[b].box);
+    for (std::size_t b = 0; b < s.boundary.size(); ++b) try {
+        faces[b] = m.fe->face_points(s.boundary[b].faces, order, s.boundary[b].box);
+      } catch (const Error& e) {
+        fail(s.boundary[b].key_path, ".box: ", e.what());
+      }
   }
   const int N = m.node_count();
   m.own = solvers::owned_nodes(N, session.rank(), session.size());
   PhaseTimer::Scope scope(timer, "shape_functions");
   m.domain = body.points;
+  m.domain.cell = elements_of(body);
   m.domain_support = rows_of(body);
   m.domain_mine = rank_points(m.domain_support, m.own, N, session);
   std::vector<const Csr*> coupling{&m.domain_support};
@@ -233,6 +258,11 @@ SolidModel build_solid_model(const spec::ProblemSpec& spec, const solvers::Petsc
     group_points(m);
   });
   if (s.discretisation.vci && !m.fe) correct_test_gradients_3d(spec, m, session);
+  if (s.discretisation.cell_mean_volumetric) {
+    std::vector<int> cell;
+    for (int r : m.domain_mine.rows) cell.push_back(m.domain.cell[r]);
+    project_volumetric_strain(m.domain_table, cell, m.domain_weight);
+  }
   return m;
 }
 
@@ -245,20 +275,21 @@ SolidShapeTable solid_shapes_at(const SolidModel& m, const std::vector<Vec3>& x,
 
 std::string describe_solid_method(const spec::ProblemSpec& spec) {
   const spec::DiscretisationSpec& d = spec.solid().discretisation;
+  const char* volumetric = d.cell_mean_volumetric ? ", volumetric strain of the cell's mean" : "";
   const geometry::Prism body = spec.solid().body(spec.domain);
   const int layers = layer_count(body, d.spacing);
   if (d.method == spec::Method::Fem && (d.fem.element == "tet4" || d.fem.element == "tet10"))
     return detail::concat("FE ", d.fem.element, " (gmsh's tetrahedra of the prism), spacing ",
-                          d.spacing);
+                          d.spacing, volumetric);
   if (d.method == spec::Method::Fem)
     return detail::concat("FE ", d.fem.element == "q8" ? "hex20" : "hex8", " (the plane ",
                           d.fem.element, " mesh extruded in ", layers, " layers), spacing ",
-                          d.spacing);
+                          d.spacing, volumetric);
   return detail::concat(
       "meshfree RK (", d.shape.basis == kernels::Basis::Quadratic ? "quadratic" : "linear",
       " basis, ", d.shape.support == kernels::SupportShape::Circular ? "spherical" : "box",
       " supports), 3D, spacing ", d.spacing, " (", layers, " layers), dilation ", d.dilation.x(),
-      d.vci ? ", VCI" : "");
+      d.vci ? ", VCI" : "", volumetric);
 }
 
 SolidCounts count_model(const spec::ProblemSpec& spec, const SolidModel& m) {

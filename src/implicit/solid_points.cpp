@@ -1,6 +1,7 @@
 #include "meshfree/implicit/solid_points.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/core/gauss_legendre.hpp"
+#include "meshfree/geometry/box_clip.hpp"
 #include "meshfree/geometry/node_generation.hpp"
 #include "meshfree/implicit/solid_sphere_points.hpp"
 #include "meshfree/quadrature/integration_points.hpp"
@@ -15,21 +16,61 @@ quadrature::CellSizing sizing_of(const spec::DiscretisationSpec& d) {
   return {d.spacing, d.refinement, d.cell_size / d.spacing, d.dilation.maxCoeff()};
 }
 
-/// Points (z, weight) of `order` Gauss points in each of the body's layers.
-std::vector<std::pair<double, double>> through_depth(const geometry::Prism& body, double spacing,
-                                                     int order) {
-  const int layers = layer_count(body, spacing);
-  const double dz = body.depth / layers;
+/// The interval of z from z0 to z1.
+struct Span {
+  double z0, z1;
+  double length() const { return z1 - z0; }
+};
+
+/// Points (z, weight) of `order` Gauss points in each of round(length / spacing) layers (at least
+/// one) of `span`.
+std::vector<std::pair<double, double>> through(const Span& span, double spacing, int order) {
+  const int layers = std::max(1, static_cast<int>(std::lround(span.length() / spacing)));
+  const double dz = span.length() / layers;
   const GaussRule& g = gauss_legendre(order);
   std::vector<std::pair<double, double>> out;
   for (int l = 0; l < layers; ++l)
     for (std::size_t q = 0; q < g.points.size(); ++q)
-      out.emplace_back(body.z0 + (l + 0.5 * (g.points[q] + 1.0)) * dz, 0.5 * dz * g.weights[q]);
+      out.emplace_back(span.z0 + (l + 0.5 * (g.points[q] + 1.0)) * dz, 0.5 * dz * g.weights[q]);
   return out;
+}
+
+/// Points (z, weight) of `order` Gauss points in each of the body's layers.
+std::vector<std::pair<double, double>> through_depth(const geometry::Prism& body, double spacing,
+                                                     int order) {
+  return through({body.z0, body.z1()}, spacing, order);
 }
 
 bool kept(const std::optional<spec::Box>& box, const Vec3& x, double tol) {
   return !box || box->contains(x, tol);
+}
+
+BoundingBox plane_box(const spec::Box& box) {
+  return {box.lo.head<2>(), box.hi.head<2>()};
+}
+
+/// The depth of the body inside the box (all of it without one).
+Span depth_in(const geometry::Prism& body, const std::optional<spec::Box>& box) {
+  if (!box) return {body.z0, body.z1()};
+  return {std::max(body.z0, box->lo.z()), std::min(body.z1(), box->hi.z())};
+}
+
+/// The parts of boundary piece `c` inside the box's plane footprint (all of c without a box).
+std::vector<geometry::Curve> parts_in_box(const geometry::Curve& c,
+                                          const std::optional<spec::Box>& box, double tol) {
+  if (!box) return {c};
+  const BoundingBox b = plane_box(*box);
+  std::vector<geometry::Curve> parts;
+  if (c.kind == geometry::Curve::Kind::Segment) {
+    if (const auto t = geometry::clip_segment(c.a, c.b, b, tol))
+      parts.push_back(t->first == 0.0 && t->second == 1.0 ? c : c.piece(t->first, t->second));
+    return parts;
+  }
+  // An arc meets a side of the box at most tangentially: the box itself bounds it.
+  for (const auto& [t0, t1] :
+       geometry::kept_intervals(c, [&](const Vec2& x) { return b.contains(x); }))
+    parts.push_back(c.piece(t0, t1));
+  return parts;
 }
 
 // Lattice nodes nearer a sphere's surface than this many local spacings are left out (the plane
@@ -95,21 +136,22 @@ bool sphere_cuts_side(const geometry::Prism& body, const geometry::Curve& c) {
   });
 }
 
-/// The side face over the straight piece `c`, which spheres cut: the rectangle (arc length along
-/// c) x (depth) minus each sphere's disc in its plane, integrated as a plane body with holes
-/// (exact arcs where the discretisation asks for them); `add(x, weight, normal)` takes each point.
+/// The side face over the straight piece `c` through `span`, which spheres cut: the rectangle
+/// (arc length along c) x (span) minus each sphere's disc in its plane, integrated as a plane body
+/// with holes (exact arcs where the discretisation asks for them); `add(x, weight, normal)` takes
+/// each point.
 template <class Add>
 void side_cut_by_spheres(const geometry::Prism& body, const spec::DiscretisationSpec& d,
-                         const geometry::Curve& c, Add&& add) {
+                         const geometry::Curve& c, const Span& span, Add&& add) {
   const double length = c.length();
-  geometry::Domain face = geometry::Domain::rectangle({0.0, 0.0}, {length, body.depth});
+  geometry::Domain face = geometry::Domain::rectangle({0.0, 0.0}, {length, span.length()});
   const Vec2 along = (c.b - c.a) / length;
   for (const geometry::Sphere& s : body.spheres) {
     const Vec2 rel = s.center.head<2>() - c.a;
     const double t = rel.dot(along), off = rel.x() * along.y() - rel.y() * along.x();
     const double rho2 = s.radius * s.radius - off * off;
     if (rho2 > 1e-18 * body.size() * body.size())
-      face.add_hole({Vec2(t, s.center.z() - body.z0), std::sqrt(rho2), s.name});
+      face.add_hole({Vec2(t, s.center.z() - span.z0), std::sqrt(rho2), s.name});
   }
   const Vec2 m = c.point(0.5);
   const double cell = std::min(d.cell_size, sizing_of(d).size_at({m, m}));
@@ -118,8 +160,30 @@ void side_cut_by_spheres(const geometry::Prism& body, const spec::Discretisation
   const Vec2 n = c.outward_normal(0.5);
   for (std::size_t k = 0; k < on.x.size(); ++k) {
     const Vec2 xy = c.a + on.x[k].x() * along;
-    add(Vec3(xy.x(), xy.y(), body.z0 + on.x[k].y()), on.weight[k], Vec3(n.x(), n.y(), 0.0));
+    add(Vec3(xy.x(), xy.y(), span.z0 + on.x[k].y()), on.weight[k], Vec3(n.x(), n.y(), 0.0));
   }
+}
+
+/// The end section at height z cut to the box's footprint; none when the box leaves nothing of
+/// positive area of it (or misses the plane z).
+std::optional<geometry::Domain> end_in_box(const geometry::Prism& body, double z,
+                                           const std::optional<spec::Box>& box, double tol) {
+  geometry::Domain section = end_section(body, z);
+  if (!box) return section;
+  if (z < box->lo.z() - tol || z > box->hi.z() + tol) return std::nullopt;
+  const BoundingBox b = plane_box(*box);
+  const std::vector<Vec2>& v = section.vertices();
+  if (std::all_of(v.begin(), v.end(), [&](const Vec2& x) { return b.contains(x, tol); }))
+    return section;
+  const std::vector<Vec2> cut = geometry::clip_polygon(v, b);
+  double area2 = 0.0;
+  for (std::size_t i = 0; i < cut.size(); ++i)
+    area2 +=
+        cut[i].x() * cut[(i + 1) % cut.size()].y() - cut[(i + 1) % cut.size()].x() * cut[i].y();
+  if (cut.size() < 3 || std::abs(area2) <= tol * tol) return std::nullopt;
+  geometry::Domain in = geometry::Domain::polygon(cut);
+  for (const geometry::Circle& h : section.holes()) in.add_hole(h);
+  return in;
 }
 
 /// The plane cell of the quadrature's grid (quadrature::domain_points: cells of about
@@ -159,6 +223,7 @@ SolidPoints volume_points_with_spheres(const geometry::Prism& body,
       if (cells[c].size().isZero() || !sphere_touches(body, lo, hi)) continue;
       touched[c] = 1;
       sphere_cell_points(body, lo, hi, d.order, d.cut_levels, sizing_of(d), p);
+      p.cell.resize(p.x.size(), l * plane.cell_count + static_cast<int>(c));
     }
     for (std::size_t q = 0; q < g.points.size(); ++q) {
       const double z = z0 + 0.5 * (g.points[q] + 1.0) * dz, wz = 0.5 * dz * g.weights[q];
@@ -166,6 +231,7 @@ SolidPoints volume_points_with_spheres(const geometry::Prism& body,
         if (touched[plane.cell[k]]) continue;
         p.x.emplace_back(plane.x[k].x(), plane.x[k].y(), z);
         p.weight.push_back(plane.weight[k] * wz);
+        p.cell.push_back(l * plane.cell_count + plane.cell[k]);
       }
     }
   }
@@ -202,11 +268,15 @@ SolidPoints prism_volume_points(const geometry::Prism& body, const spec::Discret
       body.section, d.cell_size, d.order, d.cut_levels, sizing_of(d), d.cut_arcs);
   if (!body.spheres.empty()) return volume_points_with_spheres(body, d, plane);
   SolidPoints p;
-  for (const auto& [z, wz] : through_depth(body, d.cell_size, d.order))
+  const std::vector<std::pair<double, double>> along_z = through_depth(body, d.cell_size, d.order);
+  for (std::size_t q = 0; q < along_z.size(); ++q) {
+    const int layer = static_cast<int>(q) / d.order;
     for (std::size_t k = 0; k < plane.x.size(); ++k) {
-      p.x.emplace_back(plane.x[k].x(), plane.x[k].y(), z);
-      p.weight.push_back(plane.weight[k] * wz);
+      p.x.emplace_back(plane.x[k].x(), plane.x[k].y(), along_z[q].first);
+      p.weight.push_back(plane.weight[k] * along_z[q].second);
+      p.cell.push_back(layer * plane.cell_count + plane.cell[k]);
     }
+  }
   return p;
 }
 
@@ -219,23 +289,28 @@ SolidPoints prism_face_points(const geometry::Prism& body, const spec::Discretis
   };
   SolidPoints p;
   const auto add = [&](const Vec3& x, double w, const Vec3& n) {
-    if (!kept(box, x, tol) || !body.outside_spheres(x, 1e-9)) return;
+    if (!body.outside_spheres(x, 1e-9)) return;
     p.x.push_back(x);
     p.weight.push_back(w);
     p.normal.push_back(n);
   };
+  // The sides and ends are integrated over their parts inside the box, so that the box's edges
+  // bound the loaded area wherever they fall among the background cells.
+  const Span span = depth_in(body, box);
   std::vector<geometry::Curve> sides;
   for (const geometry::Curve& c : body.section.boundary()) {
-    if (!named(c.name)) continue;
-    if (sphere_cuts_side(body, c))
-      side_cut_by_spheres(body, d, c, add);
-    else
-      sides.push_back(c);
+    if (!named(c.name) || span.length() <= tol) continue;
+    for (const geometry::Curve& part : parts_in_box(c, box, tol)) {
+      if (sphere_cuts_side(body, part))
+        side_cut_by_spheres(body, d, part, span, add);
+      else
+        sides.push_back(part);
+    }
   }
   if (!sides.empty()) {
     const quadrature::BoundaryPoints edge =
         quadrature::boundary_points(sides, d.cell_size, d.boundary_order, sizing_of(d));
-    for (const auto& [z, wz] : through_depth(body, d.cell_size, d.boundary_order))
+    for (const auto& [z, wz] : through(span, d.cell_size, d.boundary_order))
       for (std::size_t k = 0; k < edge.x.size(); ++k)
         add(Vec3(edge.x[k].x(), edge.x[k].y(), z), edge.weight[k] * wz,
             Vec3(edge.normal[k].x(), edge.normal[k].y(), 0.0));
@@ -243,16 +318,22 @@ SolidPoints prism_face_points(const geometry::Prism& body, const spec::Discretis
   for (const bool back : {true, false}) {
     if (!named(back ? "back" : "front")) continue;
     const double z = back ? body.z0 : body.z1();
-    const quadrature::DomainPoints end =
-        quadrature::domain_points(end_section(body, z), d.cell_size, d.boundary_order, d.cut_levels,
-                                  sizing_of(d), d.cut_arcs);
+    const std::optional<geometry::Domain> section = end_in_box(body, z, box, tol);
+    if (!section) continue;
+    const quadrature::DomainPoints end = quadrature::domain_points(
+        *section, d.cell_size, d.boundary_order, d.cut_levels, sizing_of(d), d.cut_arcs);
     for (std::size_t k = 0; k < end.x.size(); ++k)
       add(Vec3(end.x[k].x(), end.x[k].y(), z), end.weight[k], Vec3(0.0, 0.0, back ? -1.0 : 1.0));
   }
   for (const geometry::Sphere& s : body.spheres) {
     if (!named(s.name)) continue;
     const SolidPoints on = sphere_face_points(body, s, d.cell_size, d.boundary_order, d.cut_levels);
-    for (std::size_t k = 0; k < on.x.size(); ++k) add(on.x[k], on.weight[k], on.normal[k]);
+    const auto in = [&](const Vec3& x) { return kept(box, x, tol); };
+    const std::size_t count = std::count_if(on.x.begin(), on.x.end(), in);
+    MF_REQUIRE(count == 0 || count == on.x.size(), "a box cuts the surface of sphere ", s.name,
+               ": a box holds the whole of a sphere's face or none of it");
+    for (std::size_t k = 0; k < on.x.size(); ++k)
+      if (in(on.x[k])) add(on.x[k], on.weight[k], on.normal[k]);
   }
   return p;
 }

@@ -114,7 +114,9 @@ ElementPoints TetElements::face_points(const std::vector<std::string>& faces, in
       add_point(f.element, fem::on_tet_face(f.local_face, rule.xi[q]), rule.weight[q], f.local_face,
                 false, all);
   }
-  return box ? points_in_box(all, *box, 1e-9 * body_size(body_)) : all;
+  return box ? points_in_box(all, *box, 1e-9 * body_size(body_), static_cast<int>(rule.xi.size()),
+                             nodes())
+             : all;
 }
 
 ElementPoints TetElements::shapes_at(const std::vector<Vec3>& x, bool gradients) const {

@@ -134,7 +134,7 @@ void read_shape_functions(KeyReader& d, int dim, DiscretisationSpec& s) {
                             " so that every point is covered by enough nodes for the basis");
 }
 
-void read_quadrature(KeyReader& d, DiscretisationSpec& s) {
+void read_quadrature(KeyReader& d, int dim, DiscretisationSpec& s) {
   if (auto q = d.optional_map("quadrature")) {
     s.order = q->integer("order", 3, 2, 10);
     s.cell_size = q->positive("cell_size", s.spacing);
@@ -142,6 +142,10 @@ void read_quadrature(KeyReader& d, DiscretisationSpec& s) {
     s.cut_arcs = q->choice("cut_cells", {"subdivide", "arcs"}, "subdivide") == "arcs";
     s.boundary_order = q->integer("boundary_order", s.order, 2, 10);
     s.vci = q->choice("correction", {"none", "vci"}, "none") == "vci";
+    s.cell_mean_volumetric =
+        q->choice("volumetric_strain", {"pointwise", "cell_mean"}, "pointwise") == "cell_mean";
+    if (s.cell_mean_volumetric && dim != 3)
+      q->error("volumetric_strain", "cell_mean is for bodies of model solid_3d");
     q->finish();
   } else {
     s.cell_size = s.spacing;
@@ -165,7 +169,7 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
   require_memory(d.path_of("spacing"), "nodes over the body and its refinements", nodes_total,
                  bytes_per_node(solver, nodes_total));
   read_shape_functions(d, dim, s);
-  read_quadrature(d, s);
+  read_quadrature(d, dim, s);
   s.adapt = read_adapt(d, dim, s, solver);
   d.finish();
   return s;

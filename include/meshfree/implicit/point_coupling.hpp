@@ -27,11 +27,13 @@ template <class Point> void require_covered(const Csr& support, const std::vecto
 
 /// The support lists of the model's domain and condition points, the points this rank
 /// integrates and the pattern of its block rows (the constraining conditions couple their nodes
-/// too).
-template <class Model> void couple_points(Model& m, const solvers::PetscSession& session) {
+/// too); `widen` may widen the domain points' supports (it takes and gives a Csr).
+template <class Model, class Widen>
+void couple_points(Model& m, const solvers::PetscSession& session, Widen&& widen) {
   const int N = m.node_count();
   m.domain_support = m.space->support_lists(m.domain.x);
   require_covered(m.domain_support, m.domain.x);
+  m.domain_support = widen(std::move(m.domain_support));
   m.domain_mine = rank_points(m.domain_support, m.own, N, session);
   std::vector<const Csr*> coupling{&m.domain_support};
   for (auto& c : m.conditions) {
@@ -41,6 +43,10 @@ template <class Model> void couple_points(Model& m, const solvers::PetscSession&
     c.mine = rank_points(c.support, m.own, N, session);
   }
   m.pattern = coupling_pattern(coupling, N, m.own.begin, m.own.end);
+}
+
+template <class Model> void couple_points(Model& m, const solvers::PetscSession& session) {
+  couple_points(m, session, [](Csr s) { return s; });
 }
 
 } // namespace mf::implicit

@@ -56,7 +56,11 @@ public:
 std::unique_ptr<SolidElements> make_solid_elements(const spec::DiscretisationSpec& d,
                                                    const geometry::Prism& body);
 
-/// The rows of `all` whose points lie within `tol` of `box`.
-ElementPoints points_in_box(const ElementPoints& all, const spec::Box& box, double tol);
+/// The rows of `all` (face points, `per_face` a face in a row) whose points lie within `tol` of
+/// `box`. A face partly inside the box is refused, since its Gauss points would load a part of
+/// it that is not the box's: the box's edges must follow element borders (`nodes`: the mesh's
+/// node positions, from which each face's extent is read).
+ElementPoints points_in_box(const ElementPoints& all, const spec::Box& box, double tol,
+                            int per_face, const std::vector<Vec3>& nodes);
 
 } // namespace mf::implicit

@@ -19,9 +19,18 @@ using Mat6 = Eigen::Matrix<double, 6, 6>;
 /// Isotropic elasticity: C = lambda 1 (x) 1 + 2 mu I on engineering shear strains.
 Mat6 elastic_matrix_3d(const materials::IsotropicElastic& m);
 
-/// Strain at table row r: eps = sum_I B_I d_I (3 values per node in d).
+/// Strain at table row r: eps = sum_I B_I d_I (3 values per node in d), the volumetric part
+/// the cell's mean where the table carries the shifts (B-bar).
 inline Vec6 solid_strain_at(const SolidShapeTable& t, int r, const std::vector<double>& d) {
   Vec6 e = Vec6::Zero();
+  if (const Vec3* shift = t.trial_shifts(r)) {
+    double dtheta = 0.0; // mean div u less div u
+    for (int k = t.offset[r]; k < t.offset[r + 1]; ++k) {
+      const double* u = d.data() + 3 * static_cast<std::size_t>(t.node[k]);
+      dtheta += shift[k - t.offset[r]].dot(Vec3(u[0], u[1], u[2]));
+    }
+    e.head<3>().setConstant(dtheta / 3.0);
+  }
   for (int k = t.offset[r]; k < t.offset[r + 1]; ++k) {
     const Vec3& g = t.dphi[k];
     const double* u = d.data() + 3 * static_cast<std::size_t>(t.node[k]);

@@ -24,6 +24,7 @@ struct SolidPoints {
   std::vector<Vec3> x;
   std::vector<double> weight; // volume weight, or area weight on a face
   std::vector<Vec3> normal;   // outward unit normal (face points only)
+  std::vector<int> cell;      // the background cell or element of each volume point
 };
 
 /// Layers along z: round(depth / spacing) intervals, at least one.

@@ -56,6 +56,9 @@ struct DiscretisationSpec {
   bool cut_arcs = false;   // cells cut by one hole: exact region (quadrature::cell_minus_disc)
   int boundary_order = 3;  // Gauss points per boundary part
   bool vci = false;        // meshfree: variationally consistent test-function gradients
+  // 3D bodies: the volumetric strain at each Gauss point replaced by its mean over the point's
+  // background cell or element (B-bar), so that incompressible plastic flow does not lock.
+  bool cell_mean_volumetric = false;
   std::optional<AdaptSpec> adapt; // meshfree plane bodies: error-driven refinement
 };
 
