@@ -85,14 +85,9 @@ Domain Domain::polygon(std::vector<Vec2> vertices, std::vector<std::string> edge
     for (std::size_t i = 0; i < n; ++i) edge_names.push_back("edge" + std::to_string(i));
   MF_REQUIRE(edge_names.size() == n, "a polygon with ", n, " vertices needs ", n,
              " edge names, got ", edge_names.size());
-  double area2 = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec2& p = vertices[i];
-    const Vec2& q = vertices[(i + 1) % n];
-    area2 += p.x() * q.y() - q.x() * p.y();
-  }
-  MF_REQUIRE(std::abs(area2) > 0.0, "polygon has zero area");
-  if (area2 < 0.0) { // make it counter-clockwise; edge i (v_i -> v_i+1) keeps its name
+  const double area = signed_area(vertices);
+  MF_REQUIRE(std::abs(area) > 0.0, "polygon has zero area");
+  if (area < 0.0) { // make it counter-clockwise; edge i (v_i -> v_i+1) keeps its name
     std::vector<Vec2> v(vertices.rbegin(), vertices.rend());
     std::vector<std::string> names(n);
     for (std::size_t i = 0; i < n; ++i) names[i] = edge_names[(2 * n - 2 - i) % n];
@@ -123,13 +118,17 @@ BoundingBox Domain::bounds() const {
 }
 
 double Domain::area_estimate() const {
+  return signed_area(vertices_); // holes ignored: used only for sizing estimates
+}
+
+double signed_area(const std::vector<Vec2>& vertices) {
   double area2 = 0.0;
-  for (std::size_t i = 0; i < vertices_.size(); ++i) {
-    const Vec2& p = vertices_[i];
-    const Vec2& q = vertices_[(i + 1) % vertices_.size()];
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const Vec2& p = vertices[i];
+    const Vec2& q = vertices[(i + 1) % vertices.size()];
     area2 += p.x() * q.y() - q.x() * p.y();
   }
-  return 0.5 * area2; // holes ignored: used only for sizing estimates
+  return 0.5 * area2;
 }
 
 bool Domain::inside_polygon(const Vec2& p) const {

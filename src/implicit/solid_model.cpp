@@ -259,6 +259,8 @@ SolidModel build_solid_model(const spec::ProblemSpec& spec, const solvers::Petsc
   });
   if (s.discretisation.vci && !m.fe) correct_test_gradients_3d(spec, m, session);
   if (s.discretisation.cell_mean_volumetric) {
+    m.cell_mean = true;
+    m.cell_reach = 2.0 * std::max(s.discretisation.spacing, s.discretisation.cell_size);
     std::vector<int> cell;
     for (int r : m.domain_mine.rows) cell.push_back(m.domain.cell[r]);
     project_volumetric_strain(m.domain_table, cell, m.domain_weight);
@@ -266,11 +268,23 @@ SolidModel build_solid_model(const spec::ProblemSpec& spec, const solvers::Petsc
   return m;
 }
 
-SolidShapeTable solid_shapes_at(const SolidModel& m, const std::vector<Vec3>& x, bool gradients) {
+namespace {
+
+SolidShapeTable plain_shapes_at(const SolidModel& m, const std::vector<Vec3>& x, bool gradients) {
   std::vector<int> rows(x.size());
   std::iota(rows.begin(), rows.end(), 0);
   if (m.fe) return element_table(m.fe->shapes_at(x, gradients), rows);
   return m.space->shape_table(x, rows, m.space->support_lists(x), gradients);
+}
+
+} // namespace
+
+SolidShapeTable solid_shapes_at(const SolidModel& m, const std::vector<Vec3>& x, bool gradients) {
+  SolidShapeTable t = plain_shapes_at(m, x, gradients);
+  if (gradients && m.cell_mean)
+    sample_cell_means({m.domain.x, m.domain.weight, m.domain.cell, m.cell_reach}, x, t,
+                      [&m](const std::vector<Vec3>& at) { return plain_shapes_at(m, at, true); });
+  return t;
 }
 
 std::string describe_solid_method(const spec::ProblemSpec& spec) {

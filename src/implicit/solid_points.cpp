@@ -176,11 +176,7 @@ std::optional<geometry::Domain> end_in_box(const geometry::Prism& body, double z
   if (std::all_of(v.begin(), v.end(), [&](const Vec2& x) { return b.contains(x, tol); }))
     return section;
   const std::vector<Vec2> cut = geometry::clip_polygon(v, b);
-  double area2 = 0.0;
-  for (std::size_t i = 0; i < cut.size(); ++i)
-    area2 +=
-        cut[i].x() * cut[(i + 1) % cut.size()].y() - cut[(i + 1) % cut.size()].x() * cut[i].y();
-  if (cut.size() < 3 || std::abs(area2) <= tol * tol) return std::nullopt;
+  if (cut.size() < 3 || std::abs(geometry::signed_area(cut)) <= tol * tol) return std::nullopt;
   geometry::Domain in = geometry::Domain::polygon(cut);
   for (const geometry::Circle& h : section.holes()) in.add_hole(h);
   return in;

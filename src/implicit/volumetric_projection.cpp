@@ -1,6 +1,9 @@
 #include "meshfree/implicit/volumetric_projection.hpp"
 #include "meshfree/core/error.hpp"
+#include "meshfree/neighbors/point_grid.hpp"
 #include <algorithm>
+#include <limits>
+#include <map>
 #include <unordered_map>
 
 namespace mf::implicit {
@@ -73,3 +76,69 @@ void project_volumetric_strain(SolidShapeTable& t, const std::vector<int>& cell,
 }
 
 } // namespace mf::implicit
+
+namespace mf::implicit::cell_means {
+
+std::vector<int> cells_at(const CellPoints& g, const std::vector<Vec3>& at) {
+  std::vector<Vec2> xy;
+  for (const Vec3& x : g.x) xy.push_back(x.head<2>());
+  const neighbors::PointGrid grid(xy, g.reach);
+  std::vector<int> cell;
+  for (const Vec3& x : at) {
+    int nearest = -1;
+    double best = std::numeric_limits<double>::infinity();
+    grid.for_each_within(x.head<2>(), g.reach, [&](int q) {
+      const double d2 = (g.x[q] - x).squaredNorm();
+      if (d2 < best || (d2 == best && q < nearest)) best = d2, nearest = q;
+    });
+    MF_REQUIRE(nearest >= 0, "no Gauss point within ", g.reach, " of (", x.x(), ", ", x.y(), ", ",
+               x.z(), ") to take its cell's mean volumetric strain from");
+    cell.push_back(g.cell[nearest]);
+  }
+  return cell;
+}
+
+std::unordered_map<int, std::vector<int>> points_by_cell(const CellPoints& g) {
+  std::unordered_map<int, std::vector<int>> members;
+  for (int q = 0; q < static_cast<int>(g.cell.size()); ++q) members[g.cell[q]].push_back(q);
+  return members;
+}
+
+MeanGradients mean_gradients(const SolidShapeTable& table, const std::vector<double>& weight) {
+  std::map<int, Vec3> sum;
+  double volume = 0.0;
+  for (int r = 0; r < table.rows(); ++r) {
+    for (int k = table.offset[r]; k < table.offset[r + 1]; ++k) {
+      const auto [it, fresh] = sum.emplace(table.node[k], Vec3::Zero());
+      it->second += weight[r] * table.dphi[k];
+    }
+    volume += weight[r];
+  }
+  MeanGradients mean;
+  for (const auto& [node, g] : sum) mean.emplace_back(node, g / volume);
+  return mean;
+}
+
+SolidShapeTable widened(const SolidShapeTable& t, const std::vector<int>& cell,
+                        const std::unordered_map<int, MeanGradients>& means) {
+  SolidShapeTable out;
+  for (int r = 0; r < t.rows(); ++r) {
+    std::map<int, std::pair<int, Vec3>> row; // node -> (own entry or -1, mean gradient)
+    for (int k = t.offset[r]; k < t.offset[r + 1]; ++k) row[t.node[k]] = {k, Vec3::Zero()};
+    for (const auto& [node, g] : means.at(cell[r])) {
+      const auto [it, fresh] = row.emplace(node, std::make_pair(-1, Vec3::Zero()));
+      it->second.second = g;
+    }
+    for (const auto& [node, entry] : row) {
+      const auto& [k, mean] = entry;
+      out.node.push_back(node);
+      out.phi.push_back(k >= 0 ? t.phi[k] : 0.0);
+      out.dphi.push_back(k >= 0 ? t.dphi[k] : Vec3::Zero());
+      out.volumetric_shift.push_back(mean - out.dphi.back());
+    }
+    out.offset.push_back(static_cast<int>(out.node.size()));
+  }
+  return out;
+}
+
+} // namespace mf::implicit::cell_means

@@ -74,6 +74,9 @@ private:
   double scale_ = 1.0; // length scale for tolerances
 };
 
+/// The signed area of a polygon (positive counter-clockwise), by the shoelace formula.
+double signed_area(const std::vector<Vec2>& vertices);
+
 /// Parameter intervals [t0, t1] of `curve` on which `keep` holds, found by sampling and bisection.
 std::vector<std::pair<double, double>> kept_intervals(const Curve& curve,
                                                       const std::function<bool(const Vec2&)>& keep);

@@ -43,6 +43,10 @@ struct SolidModel {
   std::vector<SolidConditionPoints> conditions;
   RowPattern pattern;
   PointGroups domain_groups; // the domain table's rows in columns along z for threaded assembly
+  // The volumetric strain of the cell's mean (volumetric_projection): every Gauss point of a cell
+  // lies within cell_reach of any point of the cell.
+  bool cell_mean = false;
+  double cell_reach = 0.0;
   int node_count() const { return fe ? fe->node_count() : space->node_count(); }
   const std::vector<Vec3>& node_positions() const { return fe ? fe->nodes() : space->nodes().x; }
 };
@@ -95,7 +99,9 @@ std::vector<Vec3> face_values(const spec::ProblemSpec& spec, const spec::FaceCon
 std::vector<Vec3> nodal_displacements(const SolidModel& m, const std::vector<double>& d);
 
 /// The shape functions (and their gradients if asked) at points of the body (every node's), on
-/// the calling rank; throws naming a point no node covers.
+/// the calling rank; throws naming a point no node covers. With the cell-mean volumetric strain,
+/// rows with gradients carry it too (the cell of the point's nearest Gauss point), so that
+/// passive points (output samples, a stage's particles) are strained as the Gauss points are.
 SolidShapeTable solid_shapes_at(const SolidModel& m, const std::vector<Vec3>& x,
                                 bool gradients = false);
 

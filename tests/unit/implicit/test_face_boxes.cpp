@@ -64,12 +64,7 @@ TEST_CASE("face boxes: a hole's face cut by a box", "[solid3d][boundary]") {
 }
 
 TEST_CASE("face boxes: polygons clipped to a box exactly", "[solid3d][boundary]") {
-  const auto area = [](const std::vector<Vec2>& v) {
-    double a2 = 0.0;
-    for (std::size_t i = 0; i < v.size(); ++i)
-      a2 += v[i].x() * v[(i + 1) % v.size()].y() - v[(i + 1) % v.size()].x() * v[i].y();
-    return 0.5 * std::abs(a2);
-  };
+  const auto area = [](const std::vector<Vec2>& v) { return std::abs(geometry::signed_area(v)); };
   // A trapezoid's part with y in [1, 3], x in [5, 9]: under its slanted edge x = 8 - y / 2, a
   // trapezoid of widths 2.5 and 1.5 over y from 1 to 3.
   const std::vector<Vec2> trapezoid{{0, 0}, {8, 0}, {6, 4}, {2, 4}};
