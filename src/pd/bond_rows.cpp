@@ -168,6 +168,16 @@ template <bool H> RowsFn of_terms(Terms terms) {
 
 } // namespace
 
+std::vector<int> rows_of_threads(const long* offset, int owned, int T) {
+  const long total = offset[owned];
+  std::vector<int> first_row(T + 1, owned);
+  for (int q = 0; q < T; ++q)
+    first_row[q] =
+        static_cast<int>(std::lower_bound(offset, offset + owned, total * q / T) - offset);
+  first_row[0] = 0;
+  return first_row;
+}
+
 Sums half(const Arrays& a, Terms terms, SimdTarget target, int lo, int hi, const Output& out) {
 #if MF_PD_X86
   if (target != SimdTarget::Baseline) return packed(a, terms, true, target, lo, hi, out);

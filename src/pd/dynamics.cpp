@@ -1,5 +1,6 @@
 #include "meshfree/pd/dynamics.hpp"
 #include "meshfree/pd/spin_barrier.hpp"
+#include "meshfree/pd/state_based.hpp"
 #include <algorithm>
 #include <cmath>
 #include <omp.h>
@@ -189,7 +190,8 @@ StepReport forces(Model& m, BondState& s, const Loading& loading, const Interact
   std::vector<double>& f = step_arrays().f;
   std::vector<unsigned char> intact_before;
   if (x.fracture) intact_before = s.intact;
-  const ForceReport fr = bond_forces(m, s, y, f, with_energy);
+  const ForceReport fr = m.state_based() ? state_forces(m, s, y, f, with_energy)
+                                         : bond_forces(m, s, y, f, with_energy);
   if (!s.s0.empty()) m.halo.exchange(s.s0.committed); // the ghosts' critical stretch
   const double contact_energy = add_interactions(m, loading, x, y, f);
   const std::vector<double> held = kick.on ? fixed_velocities(loading, q) : std::vector<double>{};
@@ -200,9 +202,10 @@ StepReport forces(Model& m, BondState& s, const Loading& loading, const Interact
 
 /// Whether a step can run as one parallel region whose threads wait for each other by spinning
 /// (advance_in_one_region): nothing in it has parallel loops of its own (impactors, short-range
-/// contact) or exchanges with other ranks.
+/// contact, the two passes of a state-based body) or exchanges with other ranks.
 bool one_region(const Model& m, const Interactions& x) {
-  return (!x.impactors || x.impactors->empty()) && !x.short_range && m.halo.ranks().serial();
+  return (!x.impactors || x.impactors->empty()) && !x.short_range && m.halo.ranks().serial() &&
+         !m.state_based();
 }
 
 /// advance() without impactors, short-range contact or other ranks, as one parallel region: its

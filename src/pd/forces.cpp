@@ -16,17 +16,8 @@ constexpr double kNone = -std::numeric_limits<double>::infinity();
 
 using rows::Arrays;
 
-/// The first row of each of T threads, for an equal share of the bonds each (T + 1 entries,
-/// the last `owned`).
 std::vector<int> rows_of_threads(const Arrays& a, int T) {
-  const int owned = a.owned;
-  const long total = a.offset[owned];
-  std::vector<int> first_row(T + 1, owned);
-  for (int q = 0; q < T; ++q)
-    first_row[q] =
-        static_cast<int>(std::lower_bound(a.offset, a.offset + owned, total * q / T) - a.offset);
-  first_row[0] = 0;
-  return first_row;
+  return rows::rows_of_threads(a.offset, a.owned, T);
 }
 
 /// `v` holding n zeros from a 32-byte boundary: the first of them.

@@ -50,6 +50,10 @@ struct Sums {
   double energy = 0.0; // sum of V W over the rows' particles (half layout only)
 };
 
+/// The first row of each of T threads for an equal share of the bonds each (T + 1 entries, the
+/// last `owned`), rows ending at offset[i + 1].
+std::vector<int> rows_of_threads(const long* offset, int owned, int T);
+
 /// Half layout, rows [lo, hi): each stored pair once, the reaction on an owned partner added to
 /// `out` (Newton's third law). Adds to `out`.
 Sums half(const Arrays& a, Terms terms, SimdTarget target, int lo, int hi, const Output& out);

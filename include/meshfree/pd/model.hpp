@@ -1,11 +1,12 @@
 #pragma once
-// A bond-based peridynamic body: its particles (particles/particle_set.hpp, positions z = 0 in a
-// plane), their bonds in compressed rows, and the bond laws of every pair of materials. Building
-// it is done once; the bond state that changes during a run (intact flags, plastic stretches)
-// lives in BondState, the motion in the particle set.
+// A peridynamic body, bond-based or state-based (LPS): its particles (particles/particle_set.hpp,
+// positions z = 0 in a plane), their bonds in compressed rows, and the bond laws of every pair of
+// materials. Building it is done once; the bond state that changes during a run (intact flags,
+// plastic stretches) lives in BondState, the motion in the particle set.
 #include "meshfree/core/types.hpp"
 #include "meshfree/distribution/halo.hpp"
 #include "meshfree/materials/pd_bonds.hpp"
+#include "meshfree/materials/pd_state.hpp"
 #include "meshfree/particles/particle_set.hpp"
 #include <cstdint>
 #include <string>
@@ -94,11 +95,19 @@ struct Model {
   bool deterministic = false; // Full bond layout (see BondLayout) instead of Half
   Bonds bonds;
   std::vector<double> weight_sum; // sum of a particle's bond weights at t = 0 (damage)
+  /// A state-based body (LPS, pd/state_based.hpp): one law per material, empty for a bond-based
+  /// body; the influence function; the weighted volume m_i of every particle, owned and ghosts
+  /// (pd::set_weighted_volumes). The bond laws then give the critical stretches and the contact
+  /// micromodulus only.
+  std::vector<materials::LpsLaw> lps;
+  materials::Influence influence = materials::Influence::InverseLength;
+  std::vector<double> weighted_volume;
   /// On a run spread over MPI ranks: the ghosts' copies of other ranks' particles, refreshed
   /// before every force evaluation. Bonds are built for owned particles only.
   distribution::Halo halo;
 
   bool plane() const { return dimension != materials::PdDimension::Solid3D; }
+  bool state_based() const { return !lps.empty(); }
   bool any_plastic() const;
   bool any_alpha() const;
 };

@@ -1,0 +1,39 @@
+#pragma once
+// The forces of a state-based peridynamic body (the linear peridynamic solid, LPS; constants and
+// formulas in materials/pd_state.hpp) on the bonds of a bond-based one (pd/model.hpp): the same
+// rows, classes, intact flags, breaking rules and layouts, evaluated in two passes, as LAMMPS
+// peri/lps does (PairPeriLPS::compute): the dilatation theta_i of every owned particle, which the
+// halo then gives the ghosts, and the forces
+//   F_i = sum_j (t_i<xi_ij> + t_j<xi_ji>) w_ij (y_j - y_i) / |y_j - y_i|,
+// t_i = omega [p_i |xi| + b_i e], p_i = (d kappa_i - a mu_i / d) theta_i / m_i, b_i = a mu_i / m_i,
+// with w_ij the volume V_j a bond counts (volume corrections included) and e = |y_j - y_i| - |xi|.
+// Each particle's state takes its own material's constants (LAMMPS takes particle i's for both
+// terms; one material gives the same). A bond breaks after its force has counted (critical
+// stretch, or LAMMPS's alpha rule), as in pd/forces.hpp; the weighted volumes m_i stay those of
+// the family at the start (LAMMPS computes them once, FixPeriNeigh::setup).
+#include "meshfree/pd/forces.hpp"
+#include "meshfree/pd/model.hpp"
+#include <vector>
+
+namespace mf::pd {
+
+/// m_i = sum_j omega |xi|^2 w_ij over the bonds intact in `s` (after pre-cracks), for every
+/// owned particle, given to the ghosts by the halo (collective). Call once the state is built.
+void set_weighted_volumes(Model& m, const BondState& s);
+
+/// Fills `force` (3 per particle, force per unit volume) at positions `y` (3 per particle;
+/// ghosts' refreshed), breaking bonds as bond_forces does; `energy_density` (optional) gets
+/// W_i. `theta` (optional) gets every particle's dilatation. Collective on a run over ranks (the
+/// ghosts' dilatation is exchanged).
+ForceReport state_forces(const Model& m, BondState& s, const std::vector<double>& y,
+                         std::vector<double>& force, bool with_energy = false,
+                         std::vector<double>* energy_density = nullptr,
+                         std::vector<double>* theta = nullptr);
+
+/// The bound on the velocity-Verlet time step of an LPS body, the Silling-Askari form
+/// dt_i = sqrt(4 rho_i / R_i) with R_i the absolute row sum of the linearised stiffness acting
+/// along the bonds (deviatoric bonds, the particle's dilatation and its partners'); returns the
+/// smallest and its particle.
+double state_stable_time_step(const Model& m, int* limiting_particle = nullptr);
+
+} // namespace mf::pd

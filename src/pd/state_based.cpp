@@ -1,0 +1,350 @@
+// The two passes of the LPS force (pd/state_based.hpp) over the bond rows: dilatation, then
+// forces, each a parallel loop over rows. In the half layout a thread's contributions to other
+// rows go to buffers of its own, added in thread order (as pd/forces does); in the full layout
+// every row sums its own bonds in its partners' global-id order, so the sums do not depend on
+// the threads or the ranks.
+#include "meshfree/pd/state_based.hpp"
+#include "meshfree/core/error.hpp"
+#include "meshfree/pd/bond_rows.hpp"
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <omp.h>
+
+namespace mf::pd {
+
+namespace {
+
+constexpr double kNone = -std::numeric_limits<double>::infinity();
+
+/// What both passes read: positions, rows, per-class influence and the particles' constants.
+struct Family {
+  const double* y; // three a point
+  const long* offset;
+  const int* partner;
+  const std::uint32_t* cls;
+  const BondClass* classes;
+  const double* omega; // per class
+  unsigned char* intact;
+  int owned;
+  bool half;
+  double d; // dimensions
+};
+
+/// The influence function of every bond class.
+std::vector<double> class_influence(const Model& m) {
+  std::vector<double> omega(m.bonds.classes.size());
+  for (std::size_t c = 0; c < omega.size(); ++c)
+    omega[c] = materials::influence(m.influence, m.bonds.classes[c].length, m.horizon);
+  return omega;
+}
+
+/// One bond seen from its row's particle at (xi, yi, zi): y_j - y_i, its length r and its
+/// extension e = r - |xi|.
+struct Stretch {
+  double dx, dy, dz, r, e;
+};
+
+inline Stretch stretch_of(const Family& f, int j, const BondClass& c, double xi, double yi,
+                          double zi) {
+  const double dx = f.y[3 * j] - xi, dy = f.y[3 * j + 1] - yi, dz = f.y[3 * j + 2] - zi;
+  const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+  return {dx, dy, dz, r, r - c.length};
+}
+
+/// A thread's buffers for the half layout's contributions to rows [lo, owned).
+struct Buffers {
+  int lo = 0;
+  std::vector<double> theta, f, w, s0;
+};
+
+std::vector<Buffers>& thread_buffers(int T) {
+  static std::vector<Buffers> buffers;
+  if (static_cast<int>(buffers.size()) < T) buffers.resize(T);
+  return buffers;
+}
+
+/// Pass 1, a thread's rows [lo, hi): sum_j omega |xi| e w_ij into theta (row particle) and,
+/// in the half layout, sum_i omega |xi| e w_ji into the partner's slot of `other` (element 0 at
+/// row `base`).
+void dilatation_rows(const Family& f, int lo, int hi, double* theta, double* other, int base) {
+  for (int i = lo; i < hi; ++i) {
+    const double xi = f.y[3 * i], yi = f.y[3 * i + 1], zi = f.y[3 * i + 2];
+    double sum = 0.0;
+    for (long k = f.offset[i]; k < f.offset[i + 1]; ++k) {
+      if (!f.intact[k]) continue;
+      const int j = f.partner[k];
+      const BondClass& c = f.classes[f.cls[k]];
+      const double q = f.omega[f.cls[k]] * c.length * stretch_of(f, j, c, xi, yi, zi).e;
+      sum += q * c.weight;
+      if (f.half && j < f.owned) other[j - base] += q * c.weight_partner;
+    }
+    theta[i - (f.half ? base : 0)] += sum;
+  }
+}
+
+/// What pass 2 reads per particle: p_i and b_i of t_i = omega (p_i |xi| + b_i e), theta_i and
+/// m_i for the energy, the committed s0 of the LAMMPS rule.
+struct StateTerms {
+  const double* p;
+  const double* b;
+  const double* theta;
+  const double* kappa; // per particle, for the energy
+  const double* s0;    // null without the alpha rule
+  bool energy;
+};
+
+/// Where pass 2 writes: forces (3 a point), energy density, trial s0, element 0 at `base`.
+struct PassOut {
+  double* f;
+  double* w;
+  double* s0n;
+  int base;
+};
+
+inline double critical(const BondClass& c, const double* s0, double s0_i, int j) {
+  return s0 ? std::max(std::min(s0_i, s0[j]), c.alpha_floor) : c.limit;
+}
+
+/// Pass 2, a thread's rows [lo, hi): the force of each intact bond on its row's particle (and,
+/// half layout, the reaction on an owned partner), the deviatoric energy, the LAMMPS rule's s0,
+/// breaking after the force has counted. Returns directed bonds broken.
+long force_rows(const Family& f, const StateTerms& t, int lo, int hi, const PassOut& out) {
+  long broken = 0;
+  const double d = f.d;
+  for (int i = lo; i < hi; ++i) {
+    const double xi = f.y[3 * i], yi = f.y[3 * i + 1], zi = f.y[3 * i + 2];
+    const double pi = t.p[i], bi = t.b[i], ti = t.theta[i] / d;
+    const double s0_i = t.s0 ? t.s0[i] : 0.0;
+    double fx = 0.0, fy = 0.0, fz = 0.0, wi = 0.0, s0_next = kNone;
+    for (long k = f.offset[i]; k < f.offset[i + 1]; ++k) {
+      if (!f.intact[k]) continue;
+      const int j = f.partner[k];
+      const BondClass& c = f.classes[f.cls[k]];
+      const double omega = f.omega[f.cls[k]];
+      const Stretch s = stretch_of(f, j, c, xi, yi, zi);
+      const double T = omega * ((pi + t.p[j]) * c.length + (bi + t.b[j]) * s.e);
+      const double g = s.r > 0.0 ? T / s.r : 0.0;
+      const double gi = g * c.weight;
+      fx += gi * s.dx, fy += gi * s.dy, fz += gi * s.dz;
+      const bool j_row = f.half && j < f.owned;
+      const std::ptrdiff_t jb = j - out.base;
+      if (j_row) {
+        const double gj = g * c.weight_partner;
+        out.f[3 * jb] -= gj * s.dx, out.f[3 * jb + 1] -= gj * s.dy, out.f[3 * jb + 2] -= gj * s.dz;
+      }
+      if (t.energy) {
+        const double ed_i = s.e - ti * c.length;
+        wi += 0.5 * bi * omega * ed_i * ed_i * c.weight;
+        if (j_row) {
+          const double ed_j = s.e - t.theta[j] / d * c.length;
+          out.w[jb] += 0.5 * t.b[j] * omega * ed_j * ed_j * c.weight_partner;
+        }
+      }
+      const double stretch = s.e / c.length;
+      if (t.s0) {
+        const double candidate = c.s00 - c.alpha * stretch;
+        s0_next = std::max(s0_next, candidate);
+        if (j_row) out.s0n[jb] = std::max(out.s0n[jb], candidate);
+      }
+      if (stretch > critical(c, t.s0, s0_i, j)) {
+        f.intact[k] = 0;
+        broken += j_row ? 2 : 1;
+      }
+    }
+    const std::ptrdiff_t ib = i - out.base;
+    out.f[3 * ib] += fx, out.f[3 * ib + 1] += fy, out.f[3 * ib + 2] += fz;
+    if (t.energy) out.w[ib] += wi + 0.5 * t.kappa[i] * t.theta[i] * t.theta[i];
+    if (t.s0) out.s0n[ib] = std::max(out.s0n[ib], s0_next);
+  }
+  return broken;
+}
+
+/// Adds the half layout's thread buffers over [first_row[q], owned) into `sum` in thread order,
+/// `per` values a point (a work-sharing loop of the enclosing region).
+void add_buffers(const std::vector<int>& rows_of, std::vector<Buffers>& buf, int T, int owned,
+                 int per, std::vector<double> Buffers::*field, double* sum, bool maximum) {
+#pragma omp for schedule(static)
+  for (int i = 0; i < owned; ++i)
+    for (int q = 1; q < T && rows_of[q] <= i; ++q) {
+      const std::vector<double>& v = buf[q].*field;
+      for (int e = 0; e < per; ++e) {
+        double& to = sum[per * i + e];
+        const double from = v[per * (i - rows_of[q]) + e];
+        to = maximum ? std::max(to, from) : to + from;
+      }
+    }
+}
+
+/// The family's arrays of a model at positions y.
+Family family_of(const Model& m, BondState& s, const std::vector<double>& y,
+                 const std::vector<double>& omega) {
+  const Bonds& b = m.bonds;
+  return Family{y.data(),
+                b.offset.data(),
+                b.partner.data(),
+                b.cls.data(),
+                b.classes.data(),
+                omega.data(),
+                s.intact.data(),
+                m.particles.owned_count(),
+                b.layout == BondLayout::Half,
+                static_cast<double>(materials::pd_dimensions(m.dimension))};
+}
+
+/// Pass 1 over every owned row: theta_i = (d / m_i) sum_j omega |xi| e w_ij.
+void dilatations(const Family& f, const Model& m, std::vector<double>& theta) {
+  const int owned = f.owned;
+  std::fill(theta.begin(), theta.end(), 0.0);
+  std::vector<Buffers>& buf = thread_buffers(omp_get_max_threads());
+#pragma omp parallel
+  {
+    const int T = omp_get_num_threads(), q = omp_get_thread_num();
+    const std::vector<int> first = rows::rows_of_threads(f.offset, owned, T);
+    if (f.half) {
+      Buffers& own = buf[q];
+      own.lo = q == 0 ? 0 : first[q];
+      own.theta.assign(q == 0 ? 0 : owned - own.lo, 0.0);
+      double* into = q == 0 ? theta.data() : own.theta.data();
+      dilatation_rows(f, first[q], first[q + 1], into, into, own.lo);
+#pragma omp barrier
+      add_buffers(first, buf, T, owned, 1, &Buffers::theta, theta.data(), false);
+    } else {
+#pragma omp for schedule(dynamic, 512)
+      for (int i = 0; i < owned; ++i) dilatation_rows(f, i, i + 1, theta.data(), nullptr, 0);
+    }
+#pragma omp for schedule(static)
+    for (int i = 0; i < owned; ++i) {
+      const double mi = m.weighted_volume[i];
+      theta[i] = mi > 0.0 ? f.d * theta[i] / mi : 0.0;
+    }
+  }
+}
+
+} // namespace
+
+void set_weighted_volumes(Model& m, const BondState& s) {
+  MF_REQUIRE(m.state_based(), "set_weighted_volumes: the body is bond-based");
+  const std::vector<double> omega = class_influence(m);
+  const Bonds& b = m.bonds;
+  m.weighted_volume.assign(m.particles.size(), 0.0);
+  for_each_directed_bond(m, [&](int i, int, long k, double w, const BondClass& c) {
+    if (s.intact[k]) m.weighted_volume[i] += omega[&c - b.classes.data()] * c.length * c.length * w;
+  });
+  m.halo.exchange(m.weighted_volume);
+}
+
+ForceReport state_forces(const Model& m, BondState& s, const std::vector<double>& y,
+                         std::vector<double>& force, bool with_energy,
+                         std::vector<double>* energy_density, std::vector<double>* theta_out) {
+  MF_REQUIRE(m.weighted_volume.size() == static_cast<std::size_t>(m.particles.size()),
+             "state_forces: the weighted volumes are not set (pd::set_weighted_volumes)");
+  const int n = m.particles.size();
+  const std::vector<double> omega = class_influence(m);
+  const Family f = family_of(m, s, y, omega);
+  const int owned = f.owned;
+  thread_local std::vector<double> theta, p, b, kappa, density;
+  theta.assign(n, 0.0);
+  dilatations(f, m, theta);
+  m.halo.exchange(theta); // the ghosts' dilatation, from their owners
+  // Per particle: p_i, b_i of its own material.
+  p.resize(n), b.resize(n), kappa.resize(n);
+  const double dd = f.d, a = materials::lps_deviatoric_factor(m.dimension);
+  for (int i = 0; i < n; ++i) {
+    const materials::LpsLaw& law = m.lps[m.particles.material[i]];
+    const double mi = m.weighted_volume[i];
+    b[i] = mi > 0.0 ? a * law.mu / mi : 0.0;
+    p[i] = mi > 0.0 ? (dd * law.kappa - a * law.mu / dd) * theta[i] / mi : 0.0;
+    kappa[i] = law.kappa;
+  }
+  force.assign(3 * static_cast<std::size_t>(n), 0.0);
+  double* w = nullptr;
+  if (with_energy || energy_density) {
+    density.assign(n, 0.0);
+    w = density.data();
+  }
+  const bool alpha = !s.s0.empty();
+  if (alpha) std::fill(s.s0.trial.begin(), s.s0.trial.end(), kNone);
+  const StateTerms terms{
+      p.data(),    b.data(), theta.data(), kappa.data(), alpha ? s.s0.committed.data() : nullptr,
+      w != nullptr};
+  std::vector<Buffers>& buf = thread_buffers(omp_get_max_threads());
+  long broken = 0;
+#pragma omp parallel reduction(+ : broken)
+  {
+    const int T = omp_get_num_threads(), q = omp_get_thread_num();
+    const std::vector<int> first = rows::rows_of_threads(f.offset, owned, T);
+    PassOut out{force.data(), w, alpha ? s.s0.trial.data() : nullptr, 0};
+    if (f.half) {
+      if (q > 0) {
+        Buffers& own = buf[q];
+        own.lo = first[q];
+        const std::size_t len = static_cast<std::size_t>(owned - own.lo);
+        own.f.assign(3 * len, 0.0);
+        own.w.assign(w ? len : 0, 0.0);
+        own.s0.assign(alpha ? len : 0, kNone);
+        out = PassOut{own.f.data(), own.w.data(), own.s0.data(), own.lo};
+      }
+      broken += force_rows(f, terms, first[q], first[q + 1], out);
+#pragma omp barrier
+      add_buffers(first, buf, T, owned, 3, &Buffers::f, force.data(), false);
+      if (w) add_buffers(first, buf, T, owned, 1, &Buffers::w, w, false);
+      if (alpha) add_buffers(first, buf, T, owned, 1, &Buffers::s0, s.s0.trial.data(), true);
+    } else {
+#pragma omp for schedule(dynamic, 512)
+      for (int i = 0; i < owned; ++i) broken += force_rows(f, terms, i, i + 1, out);
+    }
+  }
+  ForceReport r;
+  r.broken = broken;
+  if (alpha) {
+    for (int i = 0; i < n; ++i)
+      if (s.s0.trial[i] == kNone) s.s0.trial[i] = s.s0.committed[i];
+    s.s0.commit();
+  }
+  if (with_energy)
+    for (int i = 0; i < owned; ++i) r.strain_energy += m.particles.volume[i] * w[i];
+  if (energy_density) energy_density->assign(density.begin(), density.end());
+  if (theta_out) theta_out->assign(theta.begin(), theta.end());
+  return r;
+}
+
+double state_stable_time_step(const Model& m, int* limiting) {
+  const int n = m.particles.size();
+  const std::vector<double> omega = class_influence(m);
+  const Bonds& bonds = m.bonds;
+  const double d = materials::pd_dimensions(m.dimension);
+  const double a = materials::lps_deviatoric_factor(m.dimension);
+  // Per particle: b_i, |d kappa - a mu / d| / m_i and S_i = sum_j omega |xi| w_ij.
+  std::vector<double> b(n, 0.0), dil(n, 0.0), S(n, 0.0);
+  for_each_directed_bond(m, [&](int i, int, long, double w, const BondClass& c) {
+    S[i] += omega[&c - bonds.classes.data()] * c.length * w;
+  });
+  for (int i = 0; i < n; ++i) {
+    const materials::LpsLaw& law = m.lps[m.particles.material[i]];
+    const double mi = m.weighted_volume[i];
+    if (mi <= 0.0) continue;
+    b[i] = a * law.mu / mi;
+    dil[i] = std::abs(d * law.kappa - a * law.mu / d) / mi * d / mi;
+  }
+  // The row sum: 2 sum_j omega (b_i + b_j) w_ij (deviatoric bonds, diagonal and off-diagonal),
+  // 2 |A_i| S_i^2 (the particle's own dilatation) and 2 sum_j omega |xi| w_ij |A_j| S_j (its
+  // partners').
+  std::vector<double> R(n, 0.0);
+  for_each_directed_bond(m, [&](int i, int j, long, double w, const BondClass& c) {
+    const double om = omega[&c - bonds.classes.data()];
+    R[i] += 2.0 * om * (b[i] + b[j]) * w + 2.0 * om * c.length * w * dil[j] * S[j];
+  });
+  double best = std::numeric_limits<double>::infinity();
+  int where = -1;
+  for (int i = 0; i < m.particles.owned_count(); ++i) {
+    const double row = R[i] + 2.0 * dil[i] * S[i] * S[i];
+    if (row <= 0.0) continue;
+    const double dt = std::sqrt(4.0 * m.particles.density[i] / row);
+    if (dt < best) best = dt, where = i;
+  }
+  if (limiting) *limiting = where;
+  return best;
+}
+
+} // namespace mf::pd
