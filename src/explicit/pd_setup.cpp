@@ -5,6 +5,7 @@
 #include "meshfree/explicit/surface_blast.hpp"
 #include "meshfree/geometry/lattice.hpp"
 #include "meshfree/pd/particle_order.hpp"
+#include "meshfree/pd/state_based.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -59,11 +60,35 @@ particles::ParticleSet lattice(const spec::ProblemSpec& spec) {
   return p;
 }
 
+/// The LPS constants of a material in the body's kinematic setting: from E and nu, or from the
+/// bulk and shear moduli.
+materials::LpsLaw lps_of(const spec::PdSpec& s, const spec::MaterialSpec& mat) {
+  const double K = mat.bulk_modulus > 0.0 ? mat.bulk_modulus : mat.E / (3.0 * (1.0 - 2.0 * mat.nu));
+  return materials::lps_law(s.dimension, K, mat.shear_modulus);
+}
+
+/// The bonds of an LPS material: the micromodulus of its short-range contact and impactors, the
+/// critical stretch (given, or from G0 by the state-based energy balance) and the LAMMPS alpha.
+materials::BondLaw state_law(const spec::PdSpec& s, const spec::MaterialSpec& mat, double delta) {
+  const spec::BondSpec& m = *mat.bond;
+  const materials::LpsLaw lps = lps_of(s, mat);
+  materials::BondLaw law;
+  law.c = materials::lps_contact_micromodulus(s.dimension, lps, delta, s.thickness);
+  law.critical_stretch =
+      m.critical_stretch > 0.0 ? m.critical_stretch
+      : m.fracture_energy > 0.0
+          ? materials::lps_critical_stretch(s.dimension, lps, m.fracture_energy, delta)
+          : 0.0;
+  law.alpha = m.alpha;
+  return law;
+}
+
 /// The bond law of one material: micromodulus (from E, the bulk modulus or given), critical
 /// stretch (from G0, given, or none), micro-plastic yield stretch and the LAMMPS alpha.
 materials::BondLaw material_law(const spec::PdSpec& s, const spec::MaterialSpec& mat,
                                 double delta) {
   const spec::BondSpec& m = *mat.bond;
+  if (m.lps) return state_law(s, mat, delta);
   materials::BondLaw law;
   law.c = m.micromodulus > 0.0 ? m.micromodulus
           : mat.bulk_modulus > 0.0
@@ -161,7 +186,10 @@ pd::Model model_of(const spec::PdSpec& s) {
   m.spacing = s.spacing;
   m.horizon = s.horizon_factor * s.spacing;
   m.deterministic = s.deterministic;
-  for (const auto& mat : s.materials) m.material_names.push_back(mat.name);
+  for (const auto& mat : s.materials) {
+    m.material_names.push_back(mat.name);
+    if (mat.bond->lps) m.lps.push_back(lps_of(s, mat)), m.influence = mat.bond->influence;
+  }
   return m;
 }
 
@@ -235,6 +263,7 @@ void bond_body(PdSetup& out, const spec::PdSpec& s, pd::VolumeCorrection correct
   std::vector<pd::PreCrack> cracks;
   for (const auto& c : s.cracks) cracks.push_back({c.a, c.b, c.c});
   out.state = pd::initial_state(m, cracks);
+  if (m.state_based()) pd::set_weighted_volumes(m, out.state);
 }
 
 std::vector<pd::Impactor> impactors_of(const spec::PdSpec& s) {
@@ -258,11 +287,12 @@ std::vector<pd::Impactor> impactors_of(const spec::PdSpec& s) {
   return out;
 }
 
-/// The Silling-Askari bound on the time step over every rank, and where it is set.
+/// The stable time step over every rank, and where it is set: the Silling-Askari bound of a
+/// bond-based body (a particle sets it), the limit 2 / omega_max of a state-based one.
 struct StableStep {
   double local = 0.0; // of this rank's particles
   double stable = 0.0;
-  int limiting = -1; // this rank's particle that sets `local`
+  int limiting = -1; // this rank's particle that sets `local`; -1 for the whole body's limit
 };
 
 /// The time step: the stable step times the safety factor, one step per load sample when a
@@ -271,13 +301,19 @@ void set_time_step(PdSetup& out, const spec::PdSpec& s, const distribution::Rank
                    const StableStep& bound) {
   const double stable = bound.stable;
   out.dt = s.safety * stable;
-  Vec3d where(0.0, 0.0, 0.0);
-  const int holder = ranks.rank_of_min(bound.local);
-  if (ranks.rank == holder) where = out.model.particles.reference(bound.limiting);
-  ranks.broadcast(where.data(), 3, holder);
-  out.dt_limit = detail::concat("stable step ", stable, " (Silling & Askari 2005) times safety ",
-                                s.safety, ", set by the particle at (", where.x(), ", ", where.y(),
-                                ", ", where.z(), ")");
+  const char* source = bound.limiting < 0 ? " (2 / omega_max of the linearised body)"
+                                          : " (Silling & Askari 2005)";
+  if (bound.limiting < 0) {
+    out.dt_limit = detail::concat("stable step ", stable, source, " times safety ", s.safety);
+  } else {
+    Vec3d where(0.0, 0.0, 0.0);
+    const int holder = ranks.rank_of_min(bound.local);
+    if (ranks.rank == holder) where = out.model.particles.reference(bound.limiting);
+    ranks.broadcast(where.data(), 3, holder);
+    out.dt_limit = detail::concat("stable step ", stable, source, " times safety ", s.safety,
+                                  ", set by the particle at (", where.x(), ", ", where.y(), ", ",
+                                  where.z(), ")");
+  }
   for (std::size_t k = 0; k < s.functions.size(); ++k) {
     const auto& f = s.functions[k];
     if (f.f.kind == loads::TimeFunction::Kind::Table && f.f.sample_step < out.dt) {
@@ -289,7 +325,7 @@ void set_time_step(PdSetup& out, const spec::PdSpec& s, const distribution::Rank
   }
   if (s.dt > 0.0) {
     MF_REQUIRE(s.dt <= stable, "time.dt: ", s.dt, " exceeds the stable time step ", stable,
-               " (Silling & Askari 2005); velocity Verlet would diverge");
+               source, "; velocity Verlet would diverge");
     if (s.dt < out.dt) {
       out.dt = s.dt;
       out.dt_limit = "time.dt";
@@ -303,14 +339,19 @@ void set_contact_and_step(PdSetup& out, const spec::PdSpec& s, const distributio
   pd::Model& m = out.model;
   out.impactors = impactors_of(s);
   StableStep bound;
-  bound.local = pd::stable_time_step(m, &bound.limiting);
+  bound.local = m.state_based() ? pd::state_stable_time_step(m)
+                                : pd::stable_time_step(m, &bound.limiting);
   bound.stable = ranks.min(bound.local);
   MF_REQUIRE(std::isfinite(bound.stable), "peridynamics: no particle has a bond; is the horizon "
                                           "(discretisation.horizon) smaller than the spacing?");
+  // A derived penalty stiffness takes the density of the particle that limits the step, or
+  // the densest of this rank's.
+  double density = 0.0;
+  for (int i : m.particles.owned()) density = std::max(density, m.particles.density[i]);
+  if (bound.limiting >= 0) density = m.particles.density[bound.limiting];
   for (pd::Impactor& imp : out.impactors)
     if (imp.law == pd::Impactor::Law::Penalty && imp.stiffness == 0.0)
-      imp.stiffness = pd::derived_penalty_stiffness(m.particles.density[bound.limiting],
-                                                    bound.stable, s.spacing);
+      imp.stiffness = pd::derived_penalty_stiffness(density, bound.stable, s.spacing);
   // A fragment may fly beyond the ghosts, which are fixed at the start: one rank sees it all.
   MF_REQUIRE(!s.short_range_contact || ranks.serial(),
              "discretisation.short_range_contact: runs on one MPI rank (", ranks.size, " given)");
@@ -354,8 +395,13 @@ void log_pd_setup(const spec::ProblemSpec& spec, const PdSetup& setup) {
   log::info("peridynamics: ", setup.particles_total, " particles, ", m.bonds.pairs(),
             " bonds, horizon ", m.horizon, " (", spec.pd().horizon_factor, " spacings), ",
             m.laws.size(), " bond law(s)");
+  const char* influence[] = {"1 / |xi|", "1", "exp(-|xi|^2 / delta^2)"};
+  for (std::size_t k = 0; k < m.lps.size(); ++k)
+    log::info("  material '", m.material_names[k], "': state-based LPS, kappa ", m.lps[k].kappa,
+              ", mu ", m.lps[k].mu, ", influence ", influence[static_cast<int>(m.influence)]);
   for (std::size_t k = 0; k < m.laws.size(); ++k)
-    log::info("  law ", k, ": c ", m.laws[k].c, ", critical stretch ", m.laws[k].critical_stretch,
+    log::info("  law ", k, m.state_based() ? ": contact c " : ": c ", m.laws[k].c,
+              ", critical stretch ", m.laws[k].critical_stretch,
               m.laws[k].plastic() ? detail::concat(", yield stretch ", m.laws[k].yield_stretch)
                                   : "");
   log::info("time step ", setup.dt, ": ", setup.dt_limit);

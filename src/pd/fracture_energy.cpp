@@ -1,4 +1,5 @@
 #include "meshfree/pd/fracture_energy.hpp"
+#include "meshfree/pd/state_based.hpp"
 #include <cmath>
 
 namespace mf::pd {
@@ -6,6 +7,7 @@ namespace mf::pd {
 double FractureEnergy::broken(const Model& m, const BondState& s,
                               const std::vector<unsigned char>& before,
                               const std::vector<double>& y) {
+  if (m.state_based()) return broken_states(m, s, before, y);
   const int owned = m.particles.owned_count();
   const bool plastic = !s.plastic.empty();
   // Per owned particle: the energy density and force density of its bonds that broke now.
@@ -35,6 +37,31 @@ double FractureEnergy::broken(const Model& m, const BondState& s,
     energy += w[i] * V;
     particle_.push_back(i);
     for (int e = 0; e < 3; ++e) force_.push_back(V * f[3 * i + e]);
+  }
+  return energy;
+}
+
+double FractureEnergy::broken_states(const Model& m, const BondState& s,
+                                     const std::vector<unsigned char>& before,
+                                     const std::vector<double>& y) {
+  // A state-based body's energy is not a sum over bonds: the break changes the dilatation of
+  // both ends and so the force of every bond of theirs and their partners'. What it took is the
+  // body's energy with the bonds before less that after, at the same y, and its force the
+  // difference of the two force fields.
+  std::vector<double> f_before, f_after, w_before, w_after;
+  state_forces_kept(m, before, y, f_before, w_before);
+  state_forces_kept(m, s.intact, y, f_after, w_after);
+  particle_.clear();
+  force_.clear();
+  double energy = 0.0;
+  for (int i = 0; i < m.particles.owned_count(); ++i) {
+    const double V = m.particles.volume[i];
+    energy += V * (w_before[i] - w_after[i]);
+    const double d[3] = {f_before[3 * i] - f_after[3 * i], f_before[3 * i + 1] - f_after[3 * i + 1],
+                         f_before[3 * i + 2] - f_after[3 * i + 2]};
+    if (d[0] == 0.0 && d[1] == 0.0 && d[2] == 0.0) continue;
+    particle_.push_back(i);
+    for (int e = 0; e < 3; ++e) force_.push_back(V * d[e]);
   }
   return energy;
 }

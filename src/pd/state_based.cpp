@@ -92,6 +92,7 @@ struct StateTerms {
   const double* kappa; // per particle, for the energy
   const double* s0;    // null without the alpha rule
   bool energy;
+  bool breaking; // false: every bond intact at the start stays intact
 };
 
 /// Where pass 2 writes: forces (3 a point), energy density, trial s0, element 0 at `base`.
@@ -147,7 +148,7 @@ long force_rows(const Family& f, const StateTerms& t, int lo, int hi, const Pass
         s0_next = std::max(s0_next, candidate);
         if (j_row) out.s0n[jb] = std::max(out.s0n[jb], candidate);
       }
-      if (stretch > critical(c, t.s0, s0_i, j)) {
+      if (t.breaking && stretch > critical(c, t.s0, s0_i, j)) {
         f.intact[k] = 0;
         broken += j_row ? 2 : 1;
       }
@@ -234,9 +235,12 @@ void set_weighted_volumes(Model& m, const BondState& s) {
   m.halo.exchange(m.weighted_volume);
 }
 
-ForceReport state_forces(const Model& m, BondState& s, const std::vector<double>& y,
-                         std::vector<double>& force, bool with_energy,
-                         std::vector<double>* energy_density, std::vector<double>* theta_out) {
+namespace {
+
+ForceReport evaluate(const Model& m, BondState& s, const std::vector<double>& y,
+                     std::vector<double>& force, bool with_energy,
+                     std::vector<double>* energy_density, std::vector<double>* theta_out,
+                     bool breaking) {
   MF_REQUIRE(m.weighted_volume.size() == static_cast<std::size_t>(m.particles.size()),
              "state_forces: the weighted volumes are not set (pd::set_weighted_volumes)");
   const int n = m.particles.size();
@@ -267,7 +271,7 @@ ForceReport state_forces(const Model& m, BondState& s, const std::vector<double>
   if (alpha) std::fill(s.s0.trial.begin(), s.s0.trial.end(), kNone);
   const StateTerms terms{
       p.data(),    b.data(), theta.data(), kappa.data(), alpha ? s.s0.committed.data() : nullptr,
-      w != nullptr};
+      w != nullptr, breaking};
   std::vector<Buffers>& buf = thread_buffers(omp_get_max_threads());
   long broken = 0;
 #pragma omp parallel reduction(+ : broken)
@@ -309,42 +313,66 @@ ForceReport state_forces(const Model& m, BondState& s, const std::vector<double>
   return r;
 }
 
-double state_stable_time_step(const Model& m, int* limiting) {
-  const int n = m.particles.size();
-  const std::vector<double> omega = class_influence(m);
-  const Bonds& bonds = m.bonds;
-  const double d = materials::pd_dimensions(m.dimension);
-  const double a = materials::lps_deviatoric_factor(m.dimension);
-  // Per particle: b_i, |d kappa - a mu / d| / m_i and S_i = sum_j omega |xi| w_ij.
-  std::vector<double> b(n, 0.0), dil(n, 0.0), S(n, 0.0);
-  for_each_directed_bond(m, [&](int i, int, long, double w, const BondClass& c) {
-    S[i] += omega[&c - bonds.classes.data()] * c.length * w;
-  });
-  for (int i = 0; i < n; ++i) {
-    const materials::LpsLaw& law = m.lps[m.particles.material[i]];
-    const double mi = m.weighted_volume[i];
-    if (mi <= 0.0) continue;
-    b[i] = a * law.mu / mi;
-    dil[i] = std::abs(d * law.kappa - a * law.mu / d) / mi * d / mi;
+} // namespace
+
+ForceReport state_forces(const Model& m, BondState& s, const std::vector<double>& y,
+                         std::vector<double>& force, bool with_energy,
+                         std::vector<double>* energy_density, std::vector<double>* theta) {
+  return evaluate(m, s, y, force, with_energy, energy_density, theta, true);
+}
+
+void state_forces_kept(const Model& m, const std::vector<unsigned char>& intact,
+                       const std::vector<double>& y, std::vector<double>& force,
+                       std::vector<double>& energy_density) {
+  BondState kept;
+  kept.intact = intact;
+  evaluate(m, kept, y, force, false, &energy_density, nullptr, false);
+}
+
+double state_stable_time_step(const Model& m, int iterations) {
+  // Power iteration on a = -K u / rho, K the stiffness per unit volume at the reference
+  // positions (central differences of the forces, none broken): the Rayleigh quotient in the
+  // mass-weighted product approaches the highest eigenvalue omega_max^2 from below. The start
+  // is a fixed pseudo-random field of the particles' global ids, the same on any ranks.
+  const particles::ParticleSet& p = m.particles;
+  const int n = p.size(), owned = p.owned_count();
+  const distribution::Ranks& ranks = m.halo.ranks();
+  std::vector<double> v(3 * static_cast<std::size_t>(n)), y, fp, fm, w;
+  for (int i = 0; i < n; ++i)
+    for (int d = 0; d < 3; ++d) {
+      const std::uint64_t z = (static_cast<std::uint64_t>(p.id[i]) * 3 + d + 1) * 0x9E3779B97F4A7C15ull;
+      v[3 * i + d] = static_cast<double>((z ^ (z >> 31)) % 2001) / 1000.0 - 1.0;
+    }
+  if (m.plane())
+    for (int i = 0; i < n; ++i) v[3 * i + 2] = 0.0;
+  std::vector<unsigned char> all(m.bonds.stored(), 1);
+  const double h = 1e-6 * m.spacing;
+  double lambda = 0.0;
+  for (int it = 0; it < iterations; ++it) {
+    double vmax = 0.0;
+    for (int i = 0; i < owned; ++i)
+      for (int d = 0; d < 3; ++d) vmax = std::max(vmax, std::abs(v[3 * i + d]));
+    vmax = -ranks.min(-vmax);
+    for (double& x : v) x /= vmax;
+    m.halo.exchange(v, 3);
+    y = p.X;
+    for (std::size_t k = 0; k < y.size(); ++k) y[k] += h * v[k];
+    state_forces_kept(m, all, y, fp, w);
+    y = p.X;
+    for (std::size_t k = 0; k < y.size(); ++k) y[k] -= h * v[k];
+    state_forces_kept(m, all, y, fm, w);
+    double vKv = 0.0, vMv = 0.0;
+    for (int i = 0; i < owned; ++i)
+      for (int d = 0; d < 3; ++d) {
+        const std::size_t k = 3 * static_cast<std::size_t>(i) + d;
+        const double Kv = -(fp[k] - fm[k]) / (2.0 * h);
+        vKv += p.volume[i] * v[k] * Kv;
+        vMv += p.volume[i] * p.density[i] * v[k] * v[k];
+        v[k] = Kv / p.density[i];
+      }
+    lambda = ranks.sum(vKv) / ranks.sum(vMv);
   }
-  // The row sum: 2 sum_j omega (b_i + b_j) w_ij (deviatoric bonds, diagonal and off-diagonal),
-  // 2 |A_i| S_i^2 (the particle's own dilatation) and 2 sum_j omega |xi| w_ij |A_j| S_j (its
-  // partners').
-  std::vector<double> R(n, 0.0);
-  for_each_directed_bond(m, [&](int i, int j, long, double w, const BondClass& c) {
-    const double om = omega[&c - bonds.classes.data()];
-    R[i] += 2.0 * om * (b[i] + b[j]) * w + 2.0 * om * c.length * w * dil[j] * S[j];
-  });
-  double best = std::numeric_limits<double>::infinity();
-  int where = -1;
-  for (int i = 0; i < m.particles.owned_count(); ++i) {
-    const double row = R[i] + 2.0 * dil[i] * S[i] * S[i];
-    if (row <= 0.0) continue;
-    const double dt = std::sqrt(4.0 * m.particles.density[i] / row);
-    if (dt < best) best = dt, where = i;
-  }
-  if (limiting) *limiting = where;
-  return best;
+  return lambda > 0.0 ? 2.0 / std::sqrt(lambda) : std::numeric_limits<double>::infinity();
 }
 
 } // namespace mf::pd

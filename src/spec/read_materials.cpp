@@ -256,7 +256,22 @@ BondSpec read_bond(KeyReader& m) {
   b.critical_stretch = m.positive("critical_stretch", 0.0);
   if (b.fracture_energy > 0.0 && b.critical_stretch > 0.0)
     m.error("critical_stretch", "give 'fracture_energy' or 'critical_stretch', not both");
-  b.microplastic = m.choice("law", {"pmb", "microplastic"}, "pmb") == "microplastic";
+  const std::string law = m.choice("law", {"pmb", "microplastic", "lps"}, "pmb");
+  b.microplastic = law == "microplastic";
+  b.lps = law == "lps";
+  if (b.lps) {
+    const std::string f =
+        m.choice("influence", {"inverse_length", "constant", "gaussian"}, "inverse_length");
+    b.influence = f == "constant"   ? materials::Influence::Constant
+                  : f == "gaussian" ? materials::Influence::Gaussian
+                                    : materials::Influence::InverseLength;
+    if (b.micromodulus > 0.0)
+      m.error("micromodulus", "law: lps takes its constants from the material's E and nu (or "
+                              "bulk_modulus and shear_modulus), not a micromodulus");
+  } else if (m.has("influence")) {
+    m.error("influence", "an influence function belongs to law: lps");
+  }
+  m.allow("influence");
   if (b.microplastic) {
     b.yield_stretch = m.positive("yield_stretch");
   } else if (m.has("yield_stretch")) {

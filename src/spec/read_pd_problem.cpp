@@ -115,9 +115,20 @@ PdCondition read_condition(KeyReader& c, const PdSpec& s, int dim) {
 /// The checks of a material the body uses: E, density and bond parameters.
 void take_material(const MaterialSpec& m, materials::PdDimension dimension) {
   const std::string needs = "analysis peridynamics needs ";
-  if (!(m.E > 0.0)) material_error(m, "E", needs + "Young's modulus E");
   if (!(m.density > 0.0)) material_error(m, "density", needs + "a density");
   if (!m.bond) material_error(m, "bond", needs + "bond parameters (bond: {law: pmb, ...})");
+  if (m.bond->lps) {
+    // E and nu (or E and G), or the bulk and shear moduli LAMMPS peri/lps takes.
+    const bool from_E = m.E > 0.0 && m.has_nu;
+    const bool from_K = m.bulk_modulus > 0.0 && m.shear_modulus > 0.0 && !(m.E > 0.0);
+    if (!from_E && !from_K)
+      material_error(m, "nu", "law: lps needs the material's E and nu (or E and shear_modulus), "
+                              "or bulk_modulus and shear_modulus");
+    if (from_E && m.bulk_modulus > 0.0)
+      material_error(m, "bulk_modulus", "give E and nu, or bulk_modulus and shear_modulus");
+    return;
+  }
+  if (!(m.E > 0.0)) material_error(m, "E", needs + "Young's modulus E");
   if (m.bulk_modulus > 0.0 && m.bond->micromodulus > 0.0)
     material_error(m, "bond.micromodulus",
                    "give 'micromodulus' or the material's "
@@ -210,6 +221,25 @@ void keep_used_materials(const std::vector<MaterialSpec>& all, const std::vector
   s.body_material = index[s.body_material];
   for (PdRegion& g : s.regions)
     if (g.material >= 0) g.material = index[g.material];
+}
+
+/// The body's materials are all bond-based or all state-based with one influence function; a
+/// state-based body takes no energy-method surface correction (its weighted volumes already
+/// make the dilatation exact at the surface).
+void check_one_family(const PdSpec& s) {
+  const MaterialSpec& first = s.materials[s.body_material];
+  for (const MaterialSpec& m : s.materials) {
+    if (m.bond->lps != first.bond->lps)
+      material_error(m, "bond.law", "a body's materials are all state-based (lps) or all "
+                                    "bond-based; '" + first.name + "' is " +
+                                        (first.bond->lps ? "lps" : "bond-based"));
+    if (m.bond->lps && m.bond->influence != first.bond->influence)
+      material_error(m, "bond.influence", "a body's lps materials share one influence function");
+  }
+  if (s.surface_correction && s.state_based())
+    fail(s.key_prefix, "discretisation.surface_correction: energy corrects bond-based bodies; an "
+                       "lps body's weighted volumes already make its dilatation exact at the "
+                       "surface");
 }
 
 PdCrack read_crack(KeyReader& c, int dim) {
@@ -340,6 +370,7 @@ PdSpec parse_pd(KeyReader& r, const ProblemSpec& front, const std::string& base_
   read_discretisation(r, s);
   for (KeyReader& g : r.map_list("regions")) s.regions.push_back(read_pd_region(g, dim, all, used));
   keep_used_materials(all, used, s);
+  check_one_family(s);
   for (KeyReader& g : r.map_list("notches")) {
     s.removed.push_back(read_region(g, dim, kSolids));
     if (s.removed.back().everything()) g.error("box", "a notch needs the region it removes");
@@ -350,6 +381,9 @@ PdSpec parse_pd(KeyReader& r, const ProblemSpec& front, const std::string& base_
   for (KeyReader& c : r.map_list("boundary")) s.conditions.push_back(read_condition(c, s, dim));
   for (KeyReader& k : r.map_list("impactors")) s.impactors.push_back(read_impactor(k, dim));
   read_relaxation(r, s);
+  if (s.relaxation && s.state_based())
+    r.error("relaxation", "dynamic relaxation solves bond-based bodies; a body of law: lps is "
+                          "not relaxed");
   read_time_control(r, s);
   read_output(r, dim, s);
   return s;

@@ -264,6 +264,9 @@ void parse_stages(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
       check_solid_holds(link_reader, link, from);
       check_transfer(from, stage);
       check_explicit_stage(link_reader, link, from, stage);
+      if (stage.is_pd() && stage.pd().state_based())
+        s.error("analysis", "a peridynamic stage after a preload is bond-based: the handover "
+                            "into a body of law: lps (its equilibrium) is not built yet");
       if (stage.analysis == Analysis::Peridynamics && stage.model_type == ModelType::Solid3D)
         link.implicit_equilibrium = false; // ADR, the 3D default
       if (stage.analysis == Analysis::Peridynamics && link.settle_time > 0.0)

@@ -45,6 +45,14 @@ assert float(rows[-1]["broken_bonds"]) > 1000, "the window must include bond bre
 PY
 check pd_pmma_beam_impact 1.0e-4
 check pd_disk_impact 2.0e-5 --set discretisation.short_range_contact=false
+# The state-based body: its ghosts' dilatation exchanged before the forces; through the first
+# broken bonds (step 127).
+check pd_disk_impact_lps 2.0e-5 --set discretisation.short_range_contact=false
+/usr/bin/python3 - "$WORK/pd_disk_impact_lps-2/history.csv" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert float(rows[-1]["broken_bonds"]) > 0, "the window must include bond breaking"
+PY
 # The fast layout: before the first broken bond (the slab's first 0.3 ms), then the count.
 run_both slab-fast-early pd_slab_blast 3.0e-4
 /usr/bin/python3 - "$WORK/slab-fast-early-1/history.csv" <<'PY'

@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """problems/pd_disk_impact.yaml against LAMMPS's run of the same example
-(reference/lammps/disk_impact, made by scripts/pd_reference/make_lammps_disk_impact.py).
+(reference/lammps/disk_impact, made by scripts/pd_reference/make_lammps_disk_impact.py), or with
+--model lps the state-based problems/pd_disk_impact_lps.yaml against LAMMPS's peri/lps example
+(reference/lammps/disk_impact_lps, made by scripts/pd_reference/make_lammps_disk_impact_lps.py).
 
 Every 10 steps over the whole run (1000 steps): the number of damaged particles (damage > 0, from
 fields.h5) within 5% of LAMMPS's, and the force on the indenter within 5% of LAMMPS's peak force
@@ -10,7 +12,7 @@ within 1e-3 of the largest energy up to step 150; after it the indenter's centre
 particles, where the penalty potential K (R - r)^3 / 3 has a cusp (its force, K R^2 at r = 0,
 reverses direction) that a step crosses at once (the indenter force drops from 93 N to 36 N in
 one step, in LAMMPS too), which the balance reports; the whole run's value is printed.
-Usage: pd_disk_impact_vs_lammps.py MESHFREE SOURCE_DIR [OUT_DIR]
+Usage: pd_disk_impact_vs_lammps.py MESHFREE SOURCE_DIR [OUT_DIR] [--model pmb|lps]
 """
 import csv
 import json
@@ -24,21 +26,26 @@ import h5py
 import numpy as np
 
 
-def run(meshfree, source, out, steps=None):
-    """Runs problems/pd_disk_impact.yaml with a history row every step (the first `steps` steps
-    only, when given) into `out`."""
+# The problem file and the LAMMPS reference of each model.
+CASES = {"pmb": ("problems/pd_disk_impact.yaml", "reference/lammps/disk_impact"),
+         "lps": ("problems/pd_disk_impact_lps.yaml", "reference/lammps/disk_impact_lps")}
+
+
+def run(meshfree, source, out, steps=None, model="pmb"):
+    """Runs the model's problem with a history row every step (the first `steps` steps only,
+    when given) into `out`."""
     env = dict(os.environ, OMP_NUM_THREADS="1")
     extra = ["--set", "time.end=%g" % (steps * 1e-7)] if steps else []
-    subprocess.run([meshfree, "run", str(Path(source) / "problems/pd_disk_impact.yaml"), "--out", str(out),
+    subprocess.run([meshfree, "run", str(Path(source) / CASES[model][0]), "--out", str(out),
                     "--set", "output.history_interval=1e-7"] + extra, check=True, env=env,
                    stdout=subprocess.DEVNULL)
 
 
-def compare(source, out, verbose=True):
+def compare(source, out, verbose=True, model="pmb"):
     """The run in `out` against LAMMPS over the steps both have: a dict of the measures the test
     asserts and the curves (steps, forces, damaged-particle counts) for plots."""
     source, out = Path(source), Path(out)
-    ref = {int(r["step"]): r for r in csv.DictReader(open(source / "reference/lammps/disk_impact/history.csv"))}
+    ref = {int(r["step"]): r for r in csv.DictReader(open(source / CASES[model][1] / "history.csv"))}
     rows = {int(float(r["step"])): r for r in csv.DictReader(open(out / "history.csv"))}
     steps = [s for s in sorted(ref) if s in rows]
     lammps_force = np.array([float(ref[s]["indenter_force_y"]) for s in steps])
@@ -87,10 +94,16 @@ def passes(c, whole_run=True):
 
 
 def main():
-    meshfree, source = sys.argv[1], Path(sys.argv[2])
-    out = Path(sys.argv[3]) if len(sys.argv) > 3 else Path(tempfile.mkdtemp()) / "disk_impact"
-    run(meshfree, source, out)
-    c = compare(source, out)
+    args = sys.argv[1:]
+    model = "pmb"
+    if "--model" in args:
+        k = args.index("--model")
+        model = args[k + 1]
+        del args[k:k + 2]
+    meshfree, source = args[0], Path(args[1])
+    out = Path(args[2]) if len(args) > 2 else Path(tempfile.mkdtemp()) / "disk_impact"
+    run(meshfree, source, out, model=model)
+    c = compare(source, out, model=model)
     print("peak indenter force %.4f N (LAMMPS %.4f N), largest force difference %.2e of the peak, "
           "damaged-particle count within %.2e, energy balance %.2e up to step 150 (%.2e over the "
           "whole run)" % (c["ours_peak"], c["peak"], c["force_error"], c["worst_damage"],

@@ -5,7 +5,9 @@
 // trapezoidal work (F^n + F^{n+1}) . dy / 2 of the next step (the half kick after the
 // evaluation), so what the body's energy loses with the bond is its energy e(y^n) less that
 // half work W = F^n . (y^{n+1} - y^n) / 2, counted once the next drift is known. e is the
-// strain energy's own term V_i w_ij w(s_ij) / 2 from each end.
+// strain energy's own term V_i w_ij w(s_ij) / 2 from each end. A state-based body's break
+// changes the energy and forces of the neighbourhood around it: e and F are differences of the
+// whole body's (pd/state_based.hpp, state_forces_kept).
 #include "meshfree/pd/model.hpp"
 #include <vector>
 
@@ -35,6 +37,9 @@ public:
   }
 
 private:
+  /// broken() for a state-based body.
+  double broken_states(const Model& m, const BondState& s, const std::vector<unsigned char>& before,
+                       const std::vector<double>& y);
   std::vector<int> particle_; // particles with a bond broken in the last evaluation
   std::vector<double> force_; // their broken bonds' force (3 per entry), not per volume
 };

@@ -2,6 +2,7 @@
 // One entry of a problem file's `materials:` list: elastic constants, density, and the optional
 // parts each analysis takes what it needs from (plasticity for the Galerkin solver and SPH
 // solids, an equation of state and a strength model for SPH, bond parameters for peridynamics).
+#include "meshfree/materials/pd_state.hpp"
 #include "meshfree/materials/constitutive_model.hpp"
 #include "meshfree/materials/equation_of_state.hpp"
 #include "meshfree/materials/geomaterials.hpp"
@@ -21,8 +22,12 @@ struct StrengthSpec {
 };
 
 /// Peridynamic bond parameters (the micromodulus comes from E, the bulk modulus or is given).
+/// law: lps is the state-based linear peridynamic solid (pd/state_based.hpp): its constants are
+/// the material's E and nu (or bulk and shear moduli), the bonds give its breaking.
 struct BondSpec {
   bool microplastic = false;     // law: pmb | microplastic
+  bool lps = false;              // law: lps
+  materials::Influence influence = materials::Influence::InverseLength; // lps only
   double micromodulus = 0.0;     // > 0: c given directly
   double fracture_energy = 0.0;  // > 0: critical stretch from G0
   double critical_stretch = 0.0; // > 0: given directly

@@ -101,6 +101,9 @@ struct PdSpec {
   PdCrackTracking crack;
   std::optional<PdRelaxation> relaxation;
   std::string key_prefix; // "stages[k]." for a stage of a staged run: its keys' path in messages
+
+  /// Whether the body is state-based (its materials' bond law lps).
+  bool state_based() const { return !materials.empty() && materials.front().bond->lps; }
 };
 
 } // namespace mf::spec

@@ -34,7 +34,7 @@ spec::Box box(const Vec3& lo, const Vec3& hi) {
 
 TEST_CASE("face boxes: the loaded area is the box's part of the face at any spacing",
           "[solid3d][boundary]") {
-  const geometry::Prism block{geometry::Domain::rectangle({0.0, 0.0}, {10.0, 10.0}), 0.0, 10.0};
+  const geometry::Prism block{geometry::Domain::rectangle({0.0, 0.0}, {10.0, 10.0}), 0.0, 10.0, {}};
   // A 4 x 4 patch on the top side (y = 10) and on the front end (z = 10), boxes whose edges
   // fall inside cells at every spacing but 1 and 2/3; a box reaching past the body's edge.
   for (double h : {1.0, 0.75, 0.7, 2.0 / 3.0, 0.6, 1.3}) {
@@ -53,7 +53,7 @@ TEST_CASE("face boxes: the loaded area is the box's part of the face at any spac
 TEST_CASE("face boxes: a hole's face cut by a box", "[solid3d][boundary]") {
   geometry::Domain plate = geometry::Domain::rectangle({0.0, 0.0}, {10.0, 10.0});
   plate.add_hole({Vec2(5.0, 5.0), 1.5, "hole"});
-  const geometry::Prism holed{plate, 0.0, 4.0};
+  const geometry::Prism holed{plate, 0.0, 4.0, {}};
   // The half of the hole's face with x >= 5.4, z in [1, 3.3]: the arc 2 r acos(0.4 / r) long.
   const double arc = 2.0 * 1.5 * std::acos(0.4 / 1.5);
   for (double h : {1.0, 0.7, 0.45}) {
@@ -87,7 +87,7 @@ TEST_CASE("face boxes: polygons clipped to a box exactly", "[solid3d][boundary]"
 
 TEST_CASE("face boxes: finite elements take boxes on element borders and refuse the others",
           "[solid3d][boundary][fem]") {
-  const geometry::Prism block{geometry::Domain::rectangle({0.0, 0.0}, {10.0, 10.0}), 0.0, 10.0};
+  const geometry::Prism block{geometry::Domain::rectangle({0.0, 0.0}, {10.0, 10.0}), 0.0, 10.0, {}};
   for (const char* element : {"q4", "q8"}) {
     CAPTURE(element);
     spec::DiscretisationSpec d;

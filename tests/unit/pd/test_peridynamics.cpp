@@ -6,6 +6,7 @@
 #include "meshfree/loads/blast.hpp"
 #include "meshfree/loads/time_function.hpp"
 #include "meshfree/pd/dynamics.hpp"
+#include "lammps_lattice.hpp"
 #include "test_support.hpp"
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -375,25 +376,12 @@ TEST_CASE("PMB on a lattice matches LAMMPS peri/pmb step for step before any bon
   // the recipe and the conventions matched here (LAMMPS's vfrac_scale is the linear partial
   // volume with r = a / 2; rmass holds the density).
   const std::string dir = source_path("reference/lammps/pmb_lattice/");
-  std::ifstream in(dir + "particles.csv");
-  REQUIRE(in.good());
-  std::string line;
-  std::getline(in, line);
   pd::Model m;
   m.dimension = PdDimension::Solid3D;
   m.spacing = 0.0005;
   m.horizon = 0.0015001;
   m.material_names = {"lammps"};
-  std::vector<double> v0;
-  while (std::getline(in, line)) {
-    std::stringstream ss(line);
-    double id, x, y, z, vol, vx, vy, vz;
-    char comma;
-    ss >> id >> comma >> x >> comma >> y >> comma >> z >> comma >> vol >> comma >> vx >> comma >>
-        vy >> comma >> vz;
-    m.particles.add({x, y, z}, vol, 2200.0, 0);
-    v0.insert(v0.end(), {vx, vy, vz});
-  }
+  const std::vector<double> v0 = test::read_lammps_particles(dir, m, 2200.0);
   REQUIRE(m.particles.size() == 1000);
   pd::LawTable t;
   t.materials = 1;
@@ -411,19 +399,7 @@ TEST_CASE("PMB on a lattice matches LAMMPS peri/pmb step for step before any bon
   std::vector<pd::Impactor> no_impactors;
   pd::accelerate(m, s, none, false);
   // LAMMPS's displacements at every 40th step.
-  std::ifstream ref(dir + "displacements.csv");
-  std::getline(ref, line);
-  std::map<int, std::vector<double>> lammps;
-  while (std::getline(ref, line)) {
-    std::stringstream ss(line);
-    double step, time, id, ux, uy, uz;
-    char comma;
-    ss >> step >> comma >> time >> comma >> id >> comma >> ux >> comma >> uy >> comma >> uz;
-    auto& u = lammps[static_cast<int>(step)];
-    u.resize(3000);
-    const int i = static_cast<int>(id) - 1;
-    u[3 * i] = ux, u[3 * i + 1] = uy, u[3 * i + 2] = uz;
-  }
+  const std::map<int, std::vector<double>> lammps = test::read_lammps_frames(dir, 1000);
   REQUIRE(lammps.size() == 11);
   double worst = 0.0, largest = 0.0;
   long broken = 0;
@@ -431,13 +407,8 @@ TEST_CASE("PMB on a lattice matches LAMMPS peri/pmb step for step before any bon
     broken += pd::advance(m, s, none, no_impactors, 1e-8, false).broken;
     const auto it = lammps.find(step);
     if (it == lammps.end()) continue;
-    double scale = 0.0, diff = 0.0;
-    for (std::size_t k = 0; k < q.u.size(); ++k) {
-      scale = std::max(scale, std::abs(it->second[k]));
-      diff = std::max(diff, std::abs(q.u[k] - it->second[k]));
-    }
-    largest = std::max(largest, scale);
-    worst = std::max(worst, diff / scale);
+    for (double r : it->second) largest = std::max(largest, std::abs(r));
+    worst = std::max(worst, test::relative_difference(q.u, it->second));
   }
   std::cout << "pd vs LAMMPS: " << m.bonds.pairs() << " bonds, largest displacement " << largest
             << " m, largest difference " << worst << " of the largest displacement at that step\n";
