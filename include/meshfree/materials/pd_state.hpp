@@ -12,7 +12,7 @@
 //   W_i = kappa theta_i^2 / 2 + (a mu / (2 m_i)) sum_j omega (e - theta_i |xi| / d)^2 V_j.
 // Under a homogeneous small strain the stress sum_j t ξ⊗ξ/|ξ| V_j is then kappa tr(eps) I +
 // 2 mu dev(eps) in 3D and (kappa - mu) tr(eps) I + 2 mu eps in a plane, by the isotropic second
-// and fourth moments of the family (Silling et al. 2007, sec. 15): kappa is the bulk modulus in
+// and fourth moments of the family (Silling et al. 2007): kappa is the bulk modulus in
 // 3D and the plane's own bulk modulus in 2D, lambda + mu in plane strain and E / (2 (1 - nu)) in
 // plane stress. Any Poisson's ratio follows; bond-based PMB is the case nu = 1/4 (1/3 in plane
 // stress), where the two coincide.
@@ -71,7 +71,7 @@ inline double lps_deviatoric_factor(PdDimension d) {
 }
 
 /// Critical stretch from the fracture energy G0 for the LPS material (Madenci & Oterkus 2014,
-/// sec. 4.4, with their ordinary state-based constants written as kappa and mu):
+/// their ordinary state-based critical stretch, written with kappa and mu):
 ///   3D:    s0 = sqrt(G0 / ((3 mu + (3/4)^4 (kappa - 5 mu / 3)) delta)),
 ///   plane: s0 = sqrt(G0 / ((6 mu / pi + 16 (kappa - 2 mu) / (9 pi^2)) delta)).
 /// At nu = 1/4 (1/3 in plane stress) both equal the bond-based pd_critical_stretch.

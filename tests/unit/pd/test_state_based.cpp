@@ -2,9 +2,11 @@
 // Poisson's ratios bond-based peridynamics cannot have (3D, plane strain, plane stress, three
 // influence functions), the wave speeds, the layouts and threads, the stable step against the
 // linearised body's highest frequency, energy conservation, breaking, and the critical stretch.
+#include "lammps_lattice.hpp"
 #include "meshfree/pd/dynamics.hpp"
 #include "meshfree/pd/state_based.hpp"
-#include "lammps_lattice.hpp"
+#include "meshfree/spec/key_reader.hpp"
+#include "meshfree/spec/problem_spec.hpp"
 #include "test_support.hpp"
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -368,4 +370,58 @@ TEST_CASE("LPS on a lattice matches LAMMPS peri/lps step for step", "[pd][lps]")
   CHECK(compared == 12);
   CHECK(broken == 0);
   CHECK(worst < 1e-8);
+}
+
+TEST_CASE("LPS keys: what a state-based body does not take is refused naming the key",
+          "[pd][lps][input]") {
+  const YAML::Node base = YAML::LoadFile(source_path("problems/pd_disk_impact_lps.yaml"));
+  const auto refused = [&](const std::vector<std::string>& overrides, const std::string& start) {
+    YAML::Node root = YAML::Clone(base);
+    for (const std::string& o : overrides) spec::apply_override(root, o);
+    CHECK_THROWS_WITH(spec::parse_problem(root), Catch::StartsWith(start));
+  };
+  // The problem as shipped reads, with K and G or with E and nu, and any influence function.
+  CHECK(spec::parse_problem(YAML::Clone(base)).pd().state_based());
+  {
+    YAML::Node root = YAML::Clone(base);
+    root["materials"][0].remove("bulk_modulus");
+    root["materials"][0].remove("shear_modulus");
+    spec::apply_override(root, "materials.0.E=30e9");
+    spec::apply_override(root, "materials.0.nu=0.3");
+    spec::apply_override(root, "materials.0.bond.influence=gaussian");
+    const spec::ProblemSpec p = spec::parse_problem(root);
+    CHECK(p.pd().materials[0].bond->influence == materials::Influence::Gaussian);
+  }
+  refused({"materials.0.bond.influence=cubic"}, "materials[0].bond.influence:");
+  refused({"materials.0.bond.micromodulus=1e22"}, "materials[0].bond.micromodulus:");
+  refused({"materials.0.bond.law=pmb", "materials.0.bond.influence=constant"},
+          "materials[0].bond.influence: an influence function belongs to law: lps");
+  refused({"materials.0.bond.yield_stretch=0.001"}, "materials[0].bond.yield_stretch:");
+  refused({"materials.0.E=30e9"}, "materials[0].bulk_modulus: give E and nu, or bulk_modulus");
+  {
+    YAML::Node root = YAML::Clone(base);
+    root["materials"][0].remove("shear_modulus");
+    CHECK_THROWS_WITH(spec::parse_problem(root),
+                      Catch::StartsWith("materials[0].nu: law: lps needs"));
+  }
+  refused({"discretisation.surface_correction=energy"}, "discretisation.surface_correction:");
+  refused({"relaxation.tolerance=1e-6"}, "relaxation: dynamic relaxation solves bond-based");
+  {
+    // A second material of another family in the same body.
+    YAML::Node root = YAML::Clone(base);
+    YAML::Node steel = YAML::Load("{name: steel, E: 200e9, density: 7850, bond: {law: pmb}}");
+    root["materials"].push_back(steel);
+    root["regions"] = YAML::Load("[{box: [[-0.001, -0.001, -0.005], [0.001, 0.001, 0]], material: "
+                                 "steel}]");
+    root["material"] = "lammps";
+    CHECK_THROWS_WITH(spec::parse_problem(root),
+                      Catch::StartsWith("materials[1].bond.law: a body's materials are all"));
+  }
+  {
+    // A staged run's peridynamic stage after a preload stays bond-based for now.
+    YAML::Node root = YAML::LoadFile(source_path("problems/staged_pmma_impact.yaml"));
+    spec::apply_override(root, "materials.0.bond.law=lps");
+    CHECK_THROWS_WITH(spec::parse_problem(root),
+                      Catch::StartsWith("stages[1].analysis: a peridynamic stage after a preload"));
+  }
 }
