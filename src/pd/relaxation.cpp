@@ -1,6 +1,7 @@
 #include "meshfree/pd/relaxation.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/pd/forces.hpp"
+#include "meshfree/pd/state_based.hpp"
 #include "meshfree/solvers/pd_multigrid_system.hpp"
 #include "meshfree/solvers/symmetric_block_system.hpp"
 #include <algorithm>
@@ -92,7 +93,8 @@ struct Norms {
   }
 };
 
-/// Net force density f at the current displacement: the bond forces (pd::bond_forces) plus
+/// Net force density f at the current displacement: the bond forces (pd::bond_forces, or the
+/// state-based pd::state_forces) plus
 /// `scale` times the body loads on free components, zero on held ones.
 Norms net_force(const Model& m, BondState& s, const Statics& st, double scale,
                 std::vector<double>& y, std::vector<double>& f) {
@@ -101,7 +103,10 @@ Norms net_force(const Model& m, BondState& s, const Statics& st, double scale,
   y.resize(q.X.size());
 #pragma omp parallel for schedule(static)
   for (std::size_t k = 0; k < y.size(); ++k) y[k] = q.X[k] + q.u[k];
-  bond_forces(m, s, y, f);
+  if (m.state_based())
+    state_forces(m, s, y, f);
+  else
+    bond_forces(m, s, y, f);
   double residual = 0.0, loads = 0.0, reaction = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : residual, loads, reaction)
   for (int i = 0; i < n; ++i)
@@ -128,6 +133,7 @@ Norms net_force(const Model& m, BondState& s, const Statics& st, double scale,
 /// component d is at most 2 sum_j c w_ij / |xi_ij| |e_d| (|e_x| + |e_y| + |e_z|), over the
 /// intact bonds at the reference directions e.
 std::vector<double> fictitious_density(const Model& m, const BondState& s) {
+  if (m.state_based()) return state_fictitious_density(m, s);
   const particles::ParticleSet& q = m.particles;
   const int n = q.size();
   std::vector<double> lambda(3 * static_cast<std::size_t>(n), 0.0);
@@ -466,6 +472,8 @@ bool multigrid_for(const Model& m, const RelaxSettings& settings) {
 
 RelaxReport solve_statics(Model& m, BondState& s, const Loading& loading,
                           const RelaxSettings& settings) {
+  MF_REQUIRE(!m.state_based(), "solve_statics: Newton on the linearised bond stiffness solves "
+                               "bond-based bodies; a state-based one relaxes by ADR");
   MF_REQUIRE(m.plane(), "peridynamics: the implicit equilibrium solves plane bodies");
   MF_REQUIRE(m.particles.owned_count() == m.particles.size(),
              "peridynamics: the implicit equilibrium runs on one rank");

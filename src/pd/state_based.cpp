@@ -329,6 +329,42 @@ void state_forces_kept(const Model& m, const std::vector<unsigned char>& intact,
   evaluate(m, kept, y, force, false, &energy_density, nullptr, false);
 }
 
+std::vector<double> state_fictitious_density(const Model& m, const BondState& s) {
+  const particles::ParticleSet& q = m.particles;
+  const int n = q.size();
+  const std::vector<double> omega = class_influence(m);
+  const Bonds& bonds = m.bonds;
+  const double d = materials::pd_dimensions(m.dimension);
+  const double a = materials::lps_deviatoric_factor(m.dimension);
+  // Per particle: b_i, |A_i| d / m_i and S_i.
+  std::vector<double> b(n, 0.0), dil(n, 0.0), S(n, 0.0);
+  for_each_directed_bond(m, [&](int i, int, long k, double w, const BondClass& c) {
+    if (s.intact[k]) S[i] += omega[&c - bonds.classes.data()] * c.length * w;
+  });
+  for (int i = 0; i < n; ++i) {
+    const materials::LpsLaw& law = m.lps[q.material[i]];
+    const double mi = m.weighted_volume[i];
+    if (mi <= 0.0) continue;
+    b[i] = a * law.mu / mi;
+    dil[i] = std::abs(d * law.kappa - a * law.mu / d) / mi * d / mi;
+  }
+  const double root3 = std::sqrt(3.0);
+  std::vector<double> lambda(3 * static_cast<std::size_t>(n), 0.0);
+  for_each_directed_bond(m, [&](int i, int j, long k, double w, const BondClass& c) {
+    if (!s.intact[k]) return;
+    const double om = omega[&c - bonds.classes.data()], L = c.length;
+    const double e[3] = {(q.X[3 * j] - q.X[3 * i]) / L, (q.X[3 * j + 1] - q.X[3 * i + 1]) / L,
+                         (q.X[3 * j + 2] - q.X[3 * i + 2]) / L};
+    const double row = std::abs(e[0]) + std::abs(e[1]) + std::abs(e[2]);
+    const double deviatoric = om * (b[i] + b[j]) * w, partners = om * L * w * dil[j] * S[j];
+    for (int e_d = 0; e_d < 3; ++e_d)
+      lambda[3 * i + e_d] += 0.5 * deviatoric * std::abs(e[e_d]) * row + 0.5 * root3 * partners;
+  });
+  for (int i = 0; i < n; ++i)
+    for (int e_d = 0; e_d < 3; ++e_d) lambda[3 * i + e_d] += 0.5 * root3 * dil[i] * S[i] * S[i];
+  return lambda;
+}
+
 double state_stable_time_step(const Model& m, int iterations) {
   // Power iteration on a = -K u / rho, K the stiffness per unit volume at the reference
   // positions (central differences of the forces, none broken): the Rayleigh quotient in the

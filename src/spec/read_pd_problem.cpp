@@ -381,9 +381,6 @@ PdSpec parse_pd(KeyReader& r, const ProblemSpec& front, const std::string& base_
   for (KeyReader& c : r.map_list("boundary")) s.conditions.push_back(read_condition(c, s, dim));
   for (KeyReader& k : r.map_list("impactors")) s.impactors.push_back(read_impactor(k, dim));
   read_relaxation(r, s);
-  if (s.relaxation && s.state_based())
-    r.error("relaxation", "dynamic relaxation solves bond-based bodies; a body of law: lps is "
-                          "not relaxed");
   read_time_control(r, s);
   read_output(r, dim, s);
   return s;

@@ -113,16 +113,17 @@ void check_transfer(const ProblemSpec& from, const ProblemSpec& to) {
   // A plane-stress preload cannot reach an SPH stage: the SPH stage's own reading of the shared
   // model refuses plane stress (2D SPH is plane strain), naming model.type.
   if (to.analysis != Analysis::Peridynamics) return;
+  const bool state_based = to.pd().state_based();
   // Bond-based peridynamics has a fixed Poisson ratio (Silling 2000): 1/3 in plane stress, 1/4
-  // in plane strain and 3D.
+  // in plane strain and 3D. The state-based LPS takes the preload's own.
   const double nu_pd = to.model_type == ModelType::PlaneStress ? 1.0 / 3.0 : 0.25;
   for (int m : materials_used(from)) {
     const MaterialSpec& mat = from.materials[m];
     const std::string& path = mat.key_path;
     if (mat.plasticity)
       throw Error(path + ".plasticity: a plastic preload (plastic strain, hardening) cannot start "
-                         "a bond-based peridynamic stage, whose bonds carry no plastic state");
-    if (std::abs(mat.nu - nu_pd) > 0.02)
+                         "a peridynamic stage, whose bonds carry no plastic state");
+    if (!state_based && std::abs(mat.nu - nu_pd) > 0.02)
       throw Error(path + ".nu: bond-based peridynamics in " +
                   (to.model_type == ModelType::PlaneStress ? "plane stress" : "this model") +
                   " has Poisson's ratio " + detail::concat(nu_pd) + "; the preload's " +
@@ -264,9 +265,12 @@ void parse_stages(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
       check_solid_holds(link_reader, link, from);
       check_transfer(from, stage);
       check_explicit_stage(link_reader, link, from, stage);
-      if (stage.is_pd() && stage.pd().state_based())
-        s.error("analysis", "a peridynamic stage after a preload is bond-based: the handover "
-                            "into a body of law: lps (its equilibrium) is not built yet");
+      if (stage.is_pd() && stage.pd().state_based()) {
+        if (link.implicit_equilibrium && link.equilibrium_given)
+          link_reader.error("transfer", "equilibrium: newton solves bond-based bodies; a body of "
+                                        "law: lps relaxes to its equilibrium by adr");
+        link.implicit_equilibrium = false; // ADR
+      }
       if (stage.analysis == Analysis::Peridynamics && stage.model_type == ModelType::Solid3D)
         link.implicit_equilibrium = false; // ADR, the 3D default
       if (stage.analysis == Analysis::Peridynamics && link.settle_time > 0.0)

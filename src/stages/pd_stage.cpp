@@ -146,9 +146,12 @@ PreloadAtParticles transfer(const Preload& preload, const spec::StageLink& link,
   const std::vector<Vec3> X = reference_positions(m.particles, m.particles.size());
   PreloadAtParticles pa = preload.sample(X, link);
   // A held force acts on the surface layer; a held displacement holds the particles within
-  // a horizon of its boundary, so that every free particle keeps its whole bond family.
+  // a horizon of its boundary, so that every free particle keeps its whole bond family; two
+  // horizons for a state-based body, whose force on a particle takes its partners' dilatation
+  // and so their families too.
   held_from = {setup.loading.loads.size(), setup.loading.constraints.size()};
-  t.held = hold(preload.held(link, X, {m.spacing, m.horizon}), preload, pa, setup);
+  const double layer = m.state_based() ? 2.0 * m.horizon : m.horizon;
+  t.held = hold(preload.held(link, X, {m.spacing, layer}), preload, pa, setup);
   pd::set_displacement(m, flat(pa.final_u()));
   describe_preload(t, preload, pa, m.particles.volume);
   t.residual_at_uh = pd::residual_ratio(m, setup.state, setup.loading);

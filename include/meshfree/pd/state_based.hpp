@@ -37,6 +37,14 @@ void state_forces_kept(const Model& m, const std::vector<unsigned char>& intact,
                        const std::vector<double>& y, std::vector<double>& force,
                        std::vector<double>& energy_density);
 
+/// The fictitious density of every component (3 a particle) for adaptive dynamic relaxation at a
+/// unit step (Kilic & Madenci 2010): a quarter of the absolute row sum of the linearised LPS
+/// stiffness, bounded as Gershgorin's theorem needs: the deviatoric bonds 2 sum_j omega (b_i +
+/// b_j) w_ij |e_d| (|e_x| + |e_y| + |e_z|), the particle's own dilatation 2 sqrt(3) |A_i| d S_i^2
+/// / m_i and its partners' 2 sqrt(3) sum_j omega |xi| w_ij |A_j| d S_j / m_j, where A_i = (d kappa
+/// - a mu / d) / m_i and S_i = sum_j omega |xi| w_ij, over the bonds intact in s.
+std::vector<double> state_fictitious_density(const Model& m, const BondState& s);
+
 /// The velocity-Verlet stability limit 2 / omega_max of an LPS body, omega_max^2 the highest
 /// eigenvalue of its linearised stiffness over density, by `iterations` steps of power iteration
 /// (the estimate approaches the limit from above: the tests bound its excess on small bodies).

@@ -405,7 +405,6 @@ TEST_CASE("LPS keys: what a state-based body does not take is refused naming the
                       Catch::StartsWith("materials[0].nu: law: lps needs"));
   }
   refused({"discretisation.surface_correction=energy"}, "discretisation.surface_correction:");
-  refused({"relaxation.tolerance=1e-6"}, "relaxation: dynamic relaxation solves bond-based");
   {
     // A second material of another family in the same body.
     YAML::Node root = YAML::Clone(base);
@@ -418,10 +417,13 @@ TEST_CASE("LPS keys: what a state-based body does not take is refused naming the
                       Catch::StartsWith("materials[1].bond.law: a body's materials are all"));
   }
   {
-    // A staged run's peridynamic stage after a preload stays bond-based for now.
+    // A state-based stage after a preload relaxes by ADR; Newton's bond stiffness is bond-based.
     YAML::Node root = YAML::LoadFile(source_path("problems/staged_pmma_impact.yaml"));
     spec::apply_override(root, "materials.0.bond.law=lps");
-    CHECK_THROWS_WITH(spec::parse_problem(root),
-                      Catch::StartsWith("stages[1].analysis: a peridynamic stage after a preload"));
+    CHECK_FALSE(spec::parse_problem(root).staged().links[1].implicit_equilibrium);
+    spec::apply_override(root, "stages.1.transfer.equilibrium=newton");
+    CHECK_THROWS_WITH(
+        spec::parse_problem(root),
+        Catch::StartsWith("stages[1].transfer: equilibrium: newton solves bond-based"));
   }
 }

@@ -20,15 +20,16 @@ inline const double kBulk = kE / (3.0 * (1.0 - 2.0 * kNu));
 
 enum class Law { Elastic, Isotropic, Kinematic };
 
-/// The material of an SPH stage, or of a peridynamic one (a PMB bond law: nu = 1/4 in plane
-/// strain and 3D, Silling 2000).
-inline std::string material(Law law, bool peridynamic) {
+/// The material of an SPH stage, or of a peridynamic one: a PMB bond law (nu = 1/4 in plane
+/// strain and 3D, Silling 2000), or with `state_based` the LPS with the aluminium's own nu.
+inline std::string material(Law law, bool peridynamic, bool state_based = false) {
   std::ostringstream s;
   s.precision(17);
   s << "materials:\n  - name: aluminium\n    E: " << kE
-    << "\n    nu: " << (peridynamic ? 0.25 : kNu) << "\n    density: " << kRho << "\n";
+    << "\n    nu: " << (peridynamic && !state_based ? 0.25 : kNu) << "\n    density: " << kRho
+    << "\n";
   if (peridynamic) {
-    s << "    bond: {law: pmb}\n";
+    s << (state_based ? "    bond: {law: lps}\n" : "    bond: {law: pmb}\n");
     return s.str();
   }
   if (law != Law::Elastic) {
