@@ -68,7 +68,9 @@ void PdRun::count_body() {
   r_.ghosts = ranks().sum(ghosts);
   r_.ghosts_largest = static_cast<long>(ranks().max(static_cast<double>(ghosts)));
   const double directed = std::max(1.0, static_cast<double>(m.bonds.directed));
-  r_.bond_bytes_steady = m.bonds.bytes(!setup_.state.plastic.empty()) / directed;
+  const long stored = std::max(1L, m.bonds.stored());
+  r_.bond_bytes_steady =
+      m.bonds.bytes(static_cast<int>(setup_.state.plastic.size() / stored)) / directed;
   r_.bond_bytes_peak = std::max(m.bonds.peak_bytes / directed, r_.bond_bytes_steady);
   r_.dt = setup_.dt;
   r_.dt_limit = setup_.dt_limit;

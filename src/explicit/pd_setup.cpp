@@ -64,7 +64,9 @@ particles::ParticleSet lattice(const spec::ProblemSpec& spec) {
 /// bulk and shear moduli.
 materials::LpsLaw lps_of(const spec::PdSpec& s, const spec::MaterialSpec& mat) {
   const double K = mat.bulk_modulus > 0.0 ? mat.bulk_modulus : mat.E / (3.0 * (1.0 - 2.0 * mat.nu));
-  return materials::lps_law(s.dimension, K, mat.shear_modulus);
+  materials::LpsLaw law = materials::lps_law(s.dimension, K, mat.shear_modulus);
+  law.yield_stress = mat.bond->yield_stress;
+  return law;
 }
 
 /// The bonds of an LPS material: the micromodulus of its short-range contact and impactors, the
@@ -397,8 +399,10 @@ void log_pd_setup(const spec::ProblemSpec& spec, const PdSetup& setup) {
             m.laws.size(), " bond law(s)");
   const char* influence[] = {"1 / |xi|", "1", "exp(-|xi|^2 / delta^2)"};
   for (std::size_t k = 0; k < m.lps.size(); ++k)
-    log::info("  material '", m.material_names[k], "': state-based LPS, kappa ", m.lps[k].kappa,
-              ", mu ", m.lps[k].mu, ", influence ", influence[static_cast<int>(m.influence)]);
+    log::info("  material '", m.material_names[k], "': state-based ",
+              m.lps[k].plastic() ? "EPS" : "LPS", ", kappa ", m.lps[k].kappa, ", mu ", m.lps[k].mu,
+              m.lps[k].plastic() ? detail::concat(", yield stress ", m.lps[k].yield_stress) : "",
+              ", influence ", influence[static_cast<int>(m.influence)]);
   for (std::size_t k = 0; k < m.laws.size(); ++k)
     log::info("  law ", k, m.state_based() ? ": contact c " : ": c ", m.laws[k].c,
               ", critical stretch ", m.laws[k].critical_stretch,

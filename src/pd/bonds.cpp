@@ -136,9 +136,9 @@ private:
 
 } // namespace
 
-double Bonds::bytes(bool plastic) const {
+double Bonds::bytes(int plastic_per_bond) const {
   const double s = static_cast<double>(stored());
-  return 8.0 * offset.size() + (4.0 + 4.0 + 1.0 + (plastic ? 8.0 : 0.0)) * s +
+  return 8.0 * offset.size() + (4.0 + 4.0 + 1.0 + 8.0 * plastic_per_bond) * s +
          static_cast<double>(sizeof(BondClass)) * classes.size();
 }
 
@@ -322,7 +322,7 @@ void build_bonds(Model& m, const LawTable& table, VolumeCorrection correction) {
   count_rows(rows, owned, b);
   const std::size_t entries = fill_rows(rows, p, table, half, b);
   b.directed = directed_bonds(b, owned, half);
-  b.peak_bytes = b.bytes(false) - 1.0 * b.stored() + cells.bytes() +
+  b.peak_bytes = b.bytes(0) - 1.0 * b.stored() + cells.bytes() +
                  8.0 * static_cast<double>(entries) + 48.0 * b.classes.size();
   m.bonds = std::move(b);
   fold_laws(m);

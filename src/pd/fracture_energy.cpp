@@ -49,8 +49,8 @@ double FractureEnergy::broken_states(const Model& m, const BondState& s,
   // body's energy with the bonds before less that after, at the same y, and its force the
   // difference of the two force fields.
   std::vector<double> f_before, f_after, w_before, w_after;
-  state_forces_kept(m, before, y, f_before, w_before);
-  state_forces_kept(m, s.intact, y, f_after, w_after);
+  state_forces_kept(m, before, s.plastic, y, f_before, w_before);
+  state_forces_kept(m, s.intact, s.plastic, y, f_after, w_after);
   particle_.clear();
   force_.clear();
   double energy = 0.0;

@@ -47,11 +47,17 @@ bool segment_crosses_patch(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
 
 } // namespace
 
+bool Model::state_plastic() const {
+  return std::any_of(lps.begin(), lps.end(), [](const auto& l) { return l.plastic(); });
+}
+
 BondState initial_state(const Model& m, const std::vector<PreCrack>& cracks) {
   BondState s;
   const Bonds& b = m.bonds;
   s.intact.assign(b.stored(), 1);
   if (m.any_plastic()) s.plastic.assign(b.stored(), 0.0);
+  // EPS: each stored bond's plastic deviatoric extension at both ends.
+  if (m.state_plastic()) s.plastic.assign(2 * static_cast<std::size_t>(b.stored()), 0.0);
   const int n = m.particles.size();
   if (m.any_alpha()) {
     double s00 = 0.0;

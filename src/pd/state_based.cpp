@@ -83,17 +83,29 @@ void dilatation_rows(const Family& f, int lo, int hi, double* theta, double* oth
   }
 }
 
-/// What pass 2 reads per particle: p_i and b_i of t_i = omega (p_i |xi| + b_i e), theta_i and
-/// m_i for the energy, the committed s0 of the LAMMPS rule.
+/// What pass 2 reads per particle: t_i = omega (iso_i |xi| + scale_i b_i (e^d - e^dp)) with
+/// iso_i = d kappa theta_i / m_i, b_i = a mu / m_i, e^d = e - theta_i |xi| / d; the plastic
+/// return's factor scale_i (1 without plasticity); theta_i and kappa_i for the energy; the
+/// committed s0 of the LAMMPS rule; the bonds' plastic deviatoric extensions (two a stored bond:
+/// the row particle's, then the partner's), null for an elastic body.
 struct StateTerms {
-  const double* p;
+  const double* iso;
   const double* b;
   const double* theta;
   const double* kappa; // per particle, for the energy
   const double* s0;    // null without the alpha rule
   bool energy;
-  bool breaking; // false: every bond intact at the start stays intact
+  bool breaking;       // false: every bond intact at the start stays intact
+  const double* scale; // null: 1
+  double* plastic;     // null: elastic
 };
+
+/// One end's deviatoric state of a bond of extension e: its elastic deviatoric extension
+/// e^d - e^dp before the return.
+inline double elastic_deviatoric(double e, double theta_over_d, double length,
+                                 const double* plastic, long slot) {
+  return e - theta_over_d * length - (plastic ? plastic[slot] : 0.0);
+}
 
 /// Where pass 2 writes: forces (3 a point), energy density, trial s0, element 0 at `base`.
 struct PassOut {
@@ -108,23 +120,33 @@ inline double critical(const BondClass& c, const double* s0, double s0_i, int j)
 }
 
 /// Pass 2, a thread's rows [lo, hi): the force of each intact bond on its row's particle (and,
-/// half layout, the reaction on an owned partner), the deviatoric energy, the LAMMPS rule's s0,
-/// breaking after the force has counted. Returns directed bonds broken.
+/// half layout, the reaction on an owned partner), the deviatoric energy, the plastic return of
+/// both ends' deviatoric extensions, the LAMMPS rule's s0, breaking after the force has counted.
+/// Returns directed bonds broken.
 long force_rows(const Family& f, const StateTerms& t, int lo, int hi, const PassOut& out) {
   long broken = 0;
   const double d = f.d;
   for (int i = lo; i < hi; ++i) {
     const double xi = f.y[3 * i], yi = f.y[3 * i + 1], zi = f.y[3 * i + 2];
-    const double pi = t.p[i], bi = t.b[i], ti = t.theta[i] / d;
+    const double iso_i = t.iso[i], bi = t.b[i], ti = t.theta[i] / d;
+    const double sc_i = t.scale ? t.scale[i] : 1.0;
     const double s0_i = t.s0 ? t.s0[i] : 0.0;
     double fx = 0.0, fy = 0.0, fz = 0.0, wi = 0.0, s0_next = kNone;
     for (long k = f.offset[i]; k < f.offset[i + 1]; ++k) {
       if (!f.intact[k]) continue;
       const int j = f.partner[k];
       const BondClass& c = f.classes[f.cls[k]];
-      const double omega = f.omega[f.cls[k]];
+      const double omega = f.omega[f.cls[k]], L = c.length;
       const Stretch s = stretch_of(f, j, c, xi, yi, zi);
-      const double T = omega * ((pi + t.p[j]) * c.length + (bi + t.b[j]) * s.e);
+      const double tj_d = t.theta[j] / d, sc_j = t.scale ? t.scale[j] : 1.0;
+      const double el_i = elastic_deviatoric(s.e, ti, L, t.plastic, 2 * k);
+      const double el_j = elastic_deviatoric(s.e, tj_d, L, t.plastic, 2 * k + 1);
+      const double T = omega * ((iso_i + t.iso[j]) * L + sc_i * bi * el_i + sc_j * t.b[j] * el_j);
+      if (t.plastic) {
+        // The return to the yield surface: e^dp = e^d - scale (e^d - e^dp_old).
+        t.plastic[2 * k] = s.e - ti * L - sc_i * el_i;
+        t.plastic[2 * k + 1] = s.e - tj_d * L - sc_j * el_j;
+      }
       const double g = s.r > 0.0 ? T / s.r : 0.0;
       const double gi = g * c.weight;
       fx += gi * s.dx, fy += gi * s.dy, fz += gi * s.dz;
@@ -135,14 +157,11 @@ long force_rows(const Family& f, const StateTerms& t, int lo, int hi, const Pass
         out.f[3 * jb] -= gj * s.dx, out.f[3 * jb + 1] -= gj * s.dy, out.f[3 * jb + 2] -= gj * s.dz;
       }
       if (t.energy) {
-        const double ed_i = s.e - ti * c.length;
-        wi += 0.5 * bi * omega * ed_i * ed_i * c.weight;
-        if (j_row) {
-          const double ed_j = s.e - t.theta[j] / d * c.length;
-          out.w[jb] += 0.5 * t.b[j] * omega * ed_j * ed_j * c.weight_partner;
-        }
+        const double ei = sc_i * el_i, ej = sc_j * el_j; // elastic parts after the return
+        wi += 0.5 * bi * omega * ei * ei * c.weight;
+        if (j_row) out.w[jb] += 0.5 * t.b[j] * omega * ej * ej * c.weight_partner;
       }
-      const double stretch = s.e / c.length;
+      const double stretch = s.e / L;
       if (t.s0) {
         const double candidate = c.s00 - c.alpha * stretch;
         s0_next = std::max(s0_next, candidate);
@@ -159,6 +178,34 @@ long force_rows(const Family& f, const StateTerms& t, int lo, int hi, const Pass
     if (t.s0) out.s0n[ib] = std::max(out.s0n[ib], s0_next);
   }
   return broken;
+}
+
+/// The plastic pass between the two, a thread's rows [lo, hi): the squared norm of each
+/// particle's trial deviatoric force state, sum_j (b_i omega (e^d - e^dp))^2 w_ij, into `norm`
+/// (row particle) and, half layout, the partner's into `other` (element 0 at row `base`).
+void trial_norm_rows(const Family& f, const StateTerms& t, int lo, int hi, double* norm,
+                     double* other, int base) {
+  const double d = f.d;
+  for (int i = lo; i < hi; ++i) {
+    const double xi = f.y[3 * i], yi = f.y[3 * i + 1], zi = f.y[3 * i + 2];
+    const double ti = t.theta[i] / d;
+    double sum = 0.0;
+    for (long k = f.offset[i]; k < f.offset[i + 1]; ++k) {
+      if (!f.intact[k]) continue;
+      const int j = f.partner[k];
+      const BondClass& c = f.classes[f.cls[k]];
+      const double omega = f.omega[f.cls[k]];
+      const double e = stretch_of(f, j, c, xi, yi, zi).e;
+      const double td_i = t.b[i] * omega * elastic_deviatoric(e, ti, c.length, t.plastic, 2 * k);
+      sum += td_i * td_i * c.weight;
+      if (f.half && j < f.owned) {
+        const double td_j =
+            t.b[j] * omega * elastic_deviatoric(e, t.theta[j] / d, c.length, t.plastic, 2 * k + 1);
+        other[j - base] += td_j * td_j * c.weight_partner;
+      }
+    }
+    norm[i - (f.half ? base : 0)] += sum;
+  }
 }
 
 /// Adds the half layout's thread buffers over [first_row[q], owned) into `sum` in thread order,
@@ -193,10 +240,14 @@ Family family_of(const Model& m, BondState& s, const std::vector<double>& y,
                 static_cast<double>(materials::pd_dimensions(m.dimension))};
 }
 
-/// Pass 1 over every owned row: theta_i = (d / m_i) sum_j omega |xi| e w_ij.
-void dilatations(const Family& f, const Model& m, std::vector<double>& theta) {
+/// A per-particle sum over the bonds of every owned row into `sum` (zeroed first): `rows(lo, hi,
+/// into, other, base)` adds a row's own part to into[i - base] (base 0 in the full layout) and,
+/// in the half layout, the partners' parts to other[j - base]; the half layout's threads past the
+/// first add into buffers of their own, summed in thread order.
+template <class Rows>
+void particle_sums(const Family& f, std::vector<double>& sum, const Rows& rows) {
   const int owned = f.owned;
-  std::fill(theta.begin(), theta.end(), 0.0);
+  std::fill(sum.begin(), sum.end(), 0.0);
   std::vector<Buffers>& buf = thread_buffers(omp_get_max_threads());
 #pragma omp parallel
   {
@@ -206,19 +257,38 @@ void dilatations(const Family& f, const Model& m, std::vector<double>& theta) {
       Buffers& own = buf[q];
       own.lo = q == 0 ? 0 : first[q];
       own.theta.assign(q == 0 ? 0 : owned - own.lo, 0.0);
-      double* into = q == 0 ? theta.data() : own.theta.data();
-      dilatation_rows(f, first[q], first[q + 1], into, into, own.lo);
+      double* into = q == 0 ? sum.data() : own.theta.data();
+      rows(first[q], first[q + 1], into, into, own.lo);
 #pragma omp barrier
-      add_buffers(first, buf, T, owned, 1, &Buffers::theta, theta.data(), false);
+      add_buffers(first, buf, T, owned, 1, &Buffers::theta, sum.data(), false);
     } else {
 #pragma omp for schedule(dynamic, 512)
-      for (int i = 0; i < owned; ++i) dilatation_rows(f, i, i + 1, theta.data(), nullptr, 0);
+      for (int i = 0; i < owned; ++i) rows(i, i + 1, sum.data(), nullptr, 0);
     }
-#pragma omp for schedule(static)
-    for (int i = 0; i < owned; ++i) {
-      const double mi = m.weighted_volume[i];
-      theta[i] = mi > 0.0 ? f.d * theta[i] / mi : 0.0;
-    }
+  }
+}
+
+/// Pass 1 over every owned row: theta_i = (d / m_i) sum_j omega |xi| e w_ij.
+void dilatations(const Family& f, const Model& m, std::vector<double>& theta) {
+  particle_sums(f, theta, [&f](int lo, int hi, double* into, double* other, int base) {
+    dilatation_rows(f, lo, hi, into, other, base);
+  });
+  for (int i = 0; i < f.owned; ++i) {
+    const double mi = m.weighted_volume[i];
+    theta[i] = mi > 0.0 ? f.d * theta[i] / mi : 0.0;
+  }
+}
+
+/// The plastic pass: every owned particle's return factor min(1, sqrt(2 psi0_i / |t_trial|^2))
+/// (Mitchell 2011: the yield surface |t^d|^2 / 2 = psi0, a radial return).
+void return_factors(const Family& f, const StateTerms& t, const Model& m,
+                    std::vector<double>& scale) {
+  particle_sums(f, scale, [&f, &t](int lo, int hi, double* into, double* other, int base) {
+    trial_norm_rows(f, t, lo, hi, into, other, base);
+  });
+  for (int i = 0; i < f.owned; ++i) {
+    const double limit = 2.0 * m.yield_value[i], norm = scale[i];
+    scale[i] = norm > limit && limit > 0.0 ? std::sqrt(limit / norm) : 1.0;
   }
 }
 
@@ -228,11 +298,23 @@ void set_weighted_volumes(Model& m, const BondState& s) {
   MF_REQUIRE(m.state_based(), "set_weighted_volumes: the body is bond-based");
   const std::vector<double> omega = class_influence(m);
   const Bonds& b = m.bonds;
-  m.weighted_volume.assign(m.particles.size(), 0.0);
+  const int n = m.particles.size();
+  std::vector<double> second(n, 0.0); // sum_j omega^2 |xi|^2 w_ij
+  m.weighted_volume.assign(n, 0.0);
   for_each_directed_bond(m, [&](int i, int, long k, double w, const BondClass& c) {
-    if (s.intact[k]) m.weighted_volume[i] += omega[&c - b.classes.data()] * c.length * c.length * w;
+    if (!s.intact[k]) return;
+    const double om = omega[&c - b.classes.data()], L2 = c.length * c.length;
+    m.weighted_volume[i] += om * L2 * w;
+    second[i] += om * om * L2 * w;
   });
   m.halo.exchange(m.weighted_volume);
+  m.yield_value.clear();
+  if (!m.state_plastic()) return;
+  m.yield_value.assign(n, 0.0);
+  for (int i = 0; i < m.particles.owned_count(); ++i)
+    m.yield_value[i] = materials::eps_yield_value(m.lps[m.particles.material[i]].yield_stress,
+                                                  second[i], m.weighted_volume[i]);
+  m.halo.exchange(m.yield_value);
 }
 
 namespace {
@@ -247,18 +329,18 @@ ForceReport evaluate(const Model& m, BondState& s, const std::vector<double>& y,
   const std::vector<double> omega = class_influence(m);
   const Family f = family_of(m, s, y, omega);
   const int owned = f.owned;
-  thread_local std::vector<double> theta, p, b, kappa, density;
+  thread_local std::vector<double> theta, iso, b, kappa, density, scale;
   theta.assign(n, 0.0);
   dilatations(f, m, theta);
   m.halo.exchange(theta); // the ghosts' dilatation, from their owners
-  // Per particle: p_i, b_i of its own material.
-  p.resize(n), b.resize(n), kappa.resize(n);
+  // Per particle: iso_i, b_i of its own material.
+  iso.resize(n), b.resize(n), kappa.resize(n);
   const double dd = f.d, a = materials::lps_deviatoric_factor(m.dimension);
   for (int i = 0; i < n; ++i) {
     const materials::LpsLaw& law = m.lps[m.particles.material[i]];
     const double mi = m.weighted_volume[i];
     b[i] = mi > 0.0 ? a * law.mu / mi : 0.0;
-    p[i] = mi > 0.0 ? (dd * law.kappa - a * law.mu / dd) * theta[i] / mi : 0.0;
+    iso[i] = mi > 0.0 ? dd * law.kappa * theta[i] / mi : 0.0;
     kappa[i] = law.kappa;
   }
   force.assign(3 * static_cast<std::size_t>(n), 0.0);
@@ -269,9 +351,22 @@ ForceReport evaluate(const Model& m, BondState& s, const std::vector<double>& y,
   }
   const bool alpha = !s.s0.empty();
   if (alpha) std::fill(s.s0.trial.begin(), s.s0.trial.end(), kNone);
-  const StateTerms terms{
-      p.data(),    b.data(), theta.data(), kappa.data(), alpha ? s.s0.committed.data() : nullptr,
-      w != nullptr, breaking};
+  const bool plastic = !s.plastic.empty();
+  StateTerms terms{iso.data(),
+                   b.data(),
+                   theta.data(),
+                   kappa.data(),
+                   alpha ? s.s0.committed.data() : nullptr,
+                   w != nullptr,
+                   breaking,
+                   nullptr,
+                   plastic ? s.plastic.data() : nullptr};
+  if (plastic) {
+    scale.assign(n, 1.0);
+    return_factors(f, terms, m, scale);
+    m.halo.exchange(scale); // the ghosts' return, from their owners
+    terms.scale = scale.data();
+  }
   std::vector<Buffers>& buf = thread_buffers(omp_get_max_threads());
   long broken = 0;
 #pragma omp parallel reduction(+ : broken)
@@ -322,10 +417,11 @@ ForceReport state_forces(const Model& m, BondState& s, const std::vector<double>
 }
 
 void state_forces_kept(const Model& m, const std::vector<unsigned char>& intact,
-                       const std::vector<double>& y, std::vector<double>& force,
-                       std::vector<double>& energy_density) {
+                       const std::vector<double>& plastic, const std::vector<double>& y,
+                       std::vector<double>& force, std::vector<double>& energy_density) {
   BondState kept;
   kept.intact = intact;
+  kept.plastic = plastic;
   evaluate(m, kept, y, force, false, &energy_density, nullptr, false);
 }
 
@@ -393,10 +489,10 @@ double state_stable_time_step(const Model& m, int iterations) {
     m.halo.exchange(v, 3);
     y = p.X;
     for (std::size_t k = 0; k < y.size(); ++k) y[k] += h * v[k];
-    state_forces_kept(m, all, y, fp, w);
+    state_forces_kept(m, all, {}, y, fp, w);
     y = p.X;
     for (std::size_t k = 0; k < y.size(); ++k) y[k] -= h * v[k];
-    state_forces_kept(m, all, y, fm, w);
+    state_forces_kept(m, all, {}, y, fm, w);
     double vKv = 0.0, vMv = 0.0;
     for (int i = 0; i < owned; ++i)
       for (int d = 0; d < 3; ++d) {

@@ -256,9 +256,15 @@ BondSpec read_bond(KeyReader& m) {
   b.critical_stretch = m.positive("critical_stretch", 0.0);
   if (b.fracture_energy > 0.0 && b.critical_stretch > 0.0)
     m.error("critical_stretch", "give 'fracture_energy' or 'critical_stretch', not both");
-  const std::string law = m.choice("law", {"pmb", "microplastic", "lps"}, "pmb");
+  const std::string law = m.choice("law", {"pmb", "microplastic", "lps", "eps"}, "pmb");
   b.microplastic = law == "microplastic";
-  b.lps = law == "lps";
+  b.lps = law == "lps" || law == "eps";
+  if (law == "eps") {
+    b.yield_stress = m.positive("yield_stress");
+  } else if (m.has("yield_stress")) {
+    m.error("yield_stress", "a yield stress belongs to law: eps");
+  }
+  m.allow("yield_stress");
   if (b.lps) {
     const std::string f =
         m.choice("influence", {"inverse_length", "constant", "gaussian"}, "inverse_length");

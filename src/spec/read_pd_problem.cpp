@@ -126,6 +126,10 @@ void take_material(const MaterialSpec& m, materials::PdDimension dimension) {
                               "or bulk_modulus and shear_modulus");
     if (from_E && m.bulk_modulus > 0.0)
       material_error(m, "bulk_modulus", "give E and nu, or bulk_modulus and shear_modulus");
+    if (m.bond->yield_stress > 0.0 && dimension != materials::PdDimension::Solid3D)
+      material_error(m, "bond.law",
+                     "law: eps (Mitchell 2011) is a 3D model; use model.type "
+                     "solid_3d");
     return;
   }
   if (!(m.E > 0.0)) material_error(m, "E", needs + "Young's modulus E");

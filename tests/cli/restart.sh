@@ -85,8 +85,10 @@ sys.exit(not s['restarted_at_time'] >= $kept * $interval * (1 - 1e-9))"
 
 # Peridynamics with a free penalty impactor (contact forces, fracture), one rank, two threads.
 OMP_NUM_THREADS=2 restart_case pd_disk pd_disk_impact 1.0e-5
-# The same with a state-based (LPS) target, through its first broken bonds (step 127).
-OMP_NUM_THREADS=2 restart_case pd_disk_lps pd_disk_impact_lps 1.0e-5 --set time.end=2.5e-5
+# The same with a state-based target, elastic-plastic (EPS: the bonds' plastic deviatoric
+# extensions carried), through its first broken bonds.
+OMP_NUM_THREADS=2 restart_case pd_disk_eps pd_disk_impact_lps 1.0e-5 --set time.end=2.5e-5 \
+  --set materials.0.bond.law=eps --set materials.0.bond.yield_stress=3e8
 # SPH of a solid (strength, plastic strain, neighbour lists), one rank, two threads.
 OMP_NUM_THREADS=2 restart_case sph_taylor sph_taylor_bar 5.0e-6 --set time.end=2.5e-5
 # A staged run: the implicit preload runs again on restart, its explicit stage (peridynamics with

@@ -44,7 +44,20 @@ inline double influence(Influence f, double length, double delta) {
 struct LpsLaw {
   double kappa = 0.0;
   double mu = 0.0;
+  double yield_stress = 0.0; // > 0: elastic-plastic (EPS), 3D
+  bool plastic() const { return yield_stress > 0.0; }
 };
+
+/// The yield value psi0 of the elastic-plastic state-based solid (EPS, Mitchell 2011): the
+/// deviatoric force state t^d = (15 mu / m) omega (e^d - e^dp) stays within |t^d|^2 / 2 <= psi0,
+/// |t|^2 = sum_j t_j^2 V_j, the return to it radial. Under a homogeneous deviatoric strain
+/// eps^d of a family with isotropic moments, |t^d|^2 = (15 mu / m)^2 (2 / 15) M2 eps^d : eps^d
+/// with M2 = sum_j omega^2 |xi|^2 V_j; von Mises's yield, 2 mu^2 eps^d : eps^d = sigma_Y^2 / 3,
+/// then gives psi0 = 2.5 sigma_Y^2 M2 / m^2 (3D). With omega = 1 and the continuous ball
+/// (m = M2 = 4 pi delta^5 / 5) it is Mitchell's 25 sigma_Y^2 / (8 pi delta^5).
+inline double eps_yield_value(double yield_stress, double M2, double m) {
+  return m > 0.0 ? 2.5 * yield_stress * yield_stress * M2 / (m * m) : 0.0;
+}
 
 inline int pd_dimensions(PdDimension d) {
   return d == PdDimension::Solid3D ? 3 : 2;

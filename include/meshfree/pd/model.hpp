@@ -69,9 +69,10 @@ struct Bonds {
 
   long stored() const { return static_cast<long>(partner.size()); }
   long pairs() const { return layout == BondLayout::Half ? stored() : directed / 2; }
-  /// Bytes held in steady state: rows, partners, classes, the intact flags and (micro-plastic
-  /// laws) the plastic stretches of BondState.
-  double bytes(bool plastic) const;
+  /// Bytes held in steady state: rows, partners, classes, the intact flags and the plastic state
+  /// of BondState (`plastic_per_bond` doubles a stored bond: 1 for micro-plastic laws, 2 for
+  /// EPS).
+  double bytes(int plastic_per_bond) const;
 };
 
 /// What changes in a run: intact flags and plastic stretches (one per stored bond; the plastic
@@ -102,12 +103,15 @@ struct Model {
   std::vector<materials::LpsLaw> lps;
   materials::Influence influence = materials::Influence::InverseLength;
   std::vector<double> weighted_volume;
+  std::vector<double> yield_value; // EPS: psi0 of every particle (materials::eps_yield_value)
   /// On a run spread over MPI ranks: the ghosts' copies of other ranks' particles, refreshed
   /// before every force evaluation. Bonds are built for owned particles only.
   distribution::Halo halo;
 
   bool plane() const { return dimension != materials::PdDimension::Solid3D; }
   bool state_based() const { return !lps.empty(); }
+  /// Whether a state-based body has elastic-plastic (EPS) materials.
+  bool state_plastic() const;
   bool any_plastic() const;
   bool any_alpha() const;
 };

@@ -10,7 +10,10 @@
 // Each particle's state takes its own material's constants (LAMMPS takes particle i's for both
 // terms; one material gives the same). A bond breaks after its force has counted (critical
 // stretch, or LAMMPS's alpha rule), as in pd/forces.hpp; the weighted volumes m_i stay those of
-// the family at the start (LAMMPS computes them once, FixPeriNeigh::setup).
+// the family at the start (LAMMPS computes them once, FixPeriNeigh::setup). An elastic-plastic
+// material (EPS, Mitchell 2011; materials::eps_yield_value) adds a pass between the two: the
+// norm of each particle's trial deviatoric force state, whose radial return to the yield surface
+// scales its deviatoric part; every stored bond keeps both ends' plastic deviatoric extension.
 #include "meshfree/pd/forces.hpp"
 #include "meshfree/pd/model.hpp"
 #include <vector>
@@ -30,12 +33,13 @@ ForceReport state_forces(const Model& m, BondState& s, const std::vector<double>
                          std::vector<double>* energy_density = nullptr,
                          std::vector<double>* theta = nullptr);
 
-/// The forces and energy densities at y of the body whose intact bonds are `intact`, none
-/// broken: what the fracture account (pd/fracture_energy.hpp) compares before and after a break.
-/// Collective.
+/// The forces and energy densities at y of the body whose intact bonds are `intact` and whose
+/// plastic deviatoric extensions are `plastic` (empty: elastic), none broken and the plastic
+/// state left as it is: what the fracture account (pd/fracture_energy.hpp) compares before and
+/// after a break. Collective.
 void state_forces_kept(const Model& m, const std::vector<unsigned char>& intact,
-                       const std::vector<double>& y, std::vector<double>& force,
-                       std::vector<double>& energy_density);
+                       const std::vector<double>& plastic, const std::vector<double>& y,
+                       std::vector<double>& force, std::vector<double>& energy_density);
 
 /// The fictitious density of every component (3 a particle) for adaptive dynamic relaxation at a
 /// unit step (Kilic & Madenci 2010): a quarter of the absolute row sum of the linearised LPS

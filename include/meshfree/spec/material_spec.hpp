@@ -23,10 +23,12 @@ struct StrengthSpec {
 
 /// Peridynamic bond parameters (the micromodulus comes from E, the bulk modulus or is given).
 /// law: lps is the state-based linear peridynamic solid (pd/state_based.hpp): its constants are
-/// the material's E and nu (or bulk and shear moduli), the bonds give its breaking.
+/// the material's E and nu (or bulk and shear moduli), the bonds give its breaking; law: eps is
+/// the same with a yield stress (elastic-perfectly plastic, 3D).
 struct BondSpec {
   bool microplastic = false;     // law: pmb | microplastic
-  bool lps = false;              // law: lps
+  bool lps = false;              // law: lps, or law: eps (then yield_stress > 0)
+  double yield_stress = 0.0;     // law: eps: the elastic-plastic LPS (Mitchell 2011)
   materials::Influence influence = materials::Influence::InverseLength; // lps only
   double micromodulus = 0.0;     // > 0: c given directly
   double fracture_energy = 0.0;  // > 0: critical stretch from G0

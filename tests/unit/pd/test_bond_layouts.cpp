@@ -92,7 +92,7 @@ TEST_CASE("a lattice's bonds share one class per offset within the horizon", "[p
   for (int i = 0; i < p.size(); ++i)
     for (long k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) CHECK(m.bonds.partner[k] > i);
   CHECK(m.bonds.directed == 2 * m.bonds.stored());
-  CHECK(m.bonds.bytes(false) / m.bonds.directed < 5.0);
+  CHECK(m.bonds.bytes(0) / m.bonds.directed < 5.0);
 }
 
 TEST_CASE("both bond layouts give Silling and Askari's pairwise forces", "[pd][bonds]") {

@@ -397,6 +397,18 @@ TEST_CASE("LPS keys: what a state-based body does not take is refused naming the
   refused({"materials.0.bond.law=pmb", "materials.0.bond.influence=constant"},
           "materials[0].bond.influence: an influence function belongs to law: lps");
   refused({"materials.0.bond.yield_stretch=0.001"}, "materials[0].bond.yield_stretch:");
+  refused({"materials.0.bond.yield_stress=3e8"},
+          "materials[0].bond.yield_stress: a yield stress belongs to law: eps");
+  refused({"materials.0.bond.law=eps"}, "materials[0].bond.yield_stress:");
+  CHECK(spec::parse_problem([&] {
+          YAML::Node root = YAML::Clone(base);
+          spec::apply_override(root, "materials.0.bond.law=eps");
+          spec::apply_override(root, "materials.0.bond.yield_stress=3e8");
+          return root;
+        }())
+            .pd()
+            .materials[0]
+            .bond->yield_stress == 3e8);
   refused({"materials.0.E=30e9"}, "materials[0].bulk_modulus: give E and nu, or bulk_modulus");
   {
     YAML::Node root = YAML::Clone(base);
@@ -417,6 +429,14 @@ TEST_CASE("LPS keys: what a state-based body does not take is refused naming the
                       Catch::StartsWith("materials[1].bond.law: a body's materials are all"));
   }
   {
+    // EPS is a 3D model.
+    YAML::Node root = YAML::LoadFile(source_path("problems/staged_pmma_impact.yaml"));
+    spec::apply_override(root, "materials.0.bond.law=eps");
+    spec::apply_override(root, "materials.0.bond.yield_stress=3e7");
+    CHECK_THROWS_WITH(spec::parse_problem(root),
+                      Catch::StartsWith("materials[0].bond.law: law: eps (Mitchell 2011) is a 3D"));
+  }
+  {
     // A state-based stage after a preload relaxes by ADR; Newton's bond stiffness is bond-based.
     YAML::Node root = YAML::LoadFile(source_path("problems/staged_pmma_impact.yaml"));
     spec::apply_override(root, "materials.0.bond.law=lps");
@@ -426,4 +446,161 @@ TEST_CASE("LPS keys: what a state-based body does not take is refused naming the
         spec::parse_problem(root),
         Catch::StartsWith("stages[1].transfer: equilibrium: newton solves bond-based"));
   }
+}
+
+namespace {
+
+/// An EPS lattice: lps_lattice with a yield stress, its yield values set.
+pd::Model eps_lattice(int n, const Elastic& el, double yield, materials::Influence influence,
+                      bool deterministic) {
+  pd::Model m = lps_lattice(PdDimension::Solid3D, n, n, n, 1e-3, 3.0, el, 7850.0,
+                            pd::VolumeCorrection::Exact, influence, deterministic);
+  m.lps[0].yield_stress = yield;
+  pd::set_weighted_volumes(m, pd::initial_state(m, {}));
+  return m;
+}
+
+} // namespace
+
+TEST_CASE("EPS under a cyclic deviatoric extension path follows its closed form",
+          "[pd][lps][eps]") {
+  // The centre's partners moved along their bonds so that every bond of the centre extends by
+  // e_j = lambda g_j, g_j = |xi_j| n_j . D n_j with D deviatoric: its dilatation stays zero (the
+  // family's moments are cubic), so its deviatoric state is one scalar: the trial force state
+  // b omega (lambda - p) g_j and |t^d| = b |lambda - p| G, G^2 = sum_j omega^2 g_j^2 w_j, and the
+  // radial return is the elastic-perfectly plastic law of one variable: |lambda - p| <= lambda_Y
+  // = sqrt(2 psi0) / (b G). Every bond's plastic extension p g_j and the centre's energy
+  // density b (lambda - p)^2 G'^2 / 2 (G'^2 = sum_j omega g_j^2 w_j) to 1e-8, over a path that
+  // loads, reverses through yield both ways and unloads.
+  const Elastic el{200e9, 0.3};
+  const double yield = 250e6;
+  using I = materials::Influence;
+  for (I influence : {I::Constant, I::InverseLength}) {
+    for (const Eigen::Matrix3d& D :
+         {Eigen::Matrix3d((Eigen::Matrix3d() << 0, 1, 0, 1, 0, 0, 0, 0, 0).finished()),
+          Eigen::Matrix3d((Eigen::Matrix3d() << 1, 0, 0, 0, -0.5, 0.3, 0, 0.3, -0.5).finished())}) {
+      pd::Model m = eps_lattice(11, el, yield, influence, true);
+      const int centre = centre_of(PdDimension::Solid3D, 11);
+      const pd::Bonds& bonds = m.bonds;
+      const Eigen::Vector3d xc = m.particles.reference(centre);
+      double G2 = 0.0, G2e = 0.0;
+      std::vector<double> g;
+      for (long k = bonds.offset[centre]; k < bonds.offset[centre + 1]; ++k) {
+        const pd::BondClass& c = bonds.classes[bonds.cls[k]];
+        const Eigen::Vector3d n = (m.particles.reference(bonds.partner[k]) - xc) / c.length;
+        g.push_back(c.length * n.dot(D * n));
+        const double om = materials::influence(influence, c.length, m.horizon);
+        G2 += om * om * g.back() * g.back() * c.weight;
+        G2e += om * g.back() * g.back() * c.weight;
+      }
+      const double b = 15.0 * el.mu() / m.weighted_volume[centre];
+      const double lambda_y = std::sqrt(2.0 * m.yield_value[centre]) / (b * std::sqrt(G2));
+      pd::BondState s = pd::initial_state(m, {});
+      double p = 0.0, worst_p = 0.0, worst_w = 0.0;
+      int yielded = 0;
+      const double path[] = {0.5, 1.3, 2.6, 1.2, -0.4, -2.2, -3.1, -1.0, 0.7, 2.9, 0.0};
+      for (double at : path) {
+        const double lambda = at * lambda_y;
+        std::vector<double> y = m.particles.X;
+        for (long k = bonds.offset[centre]; k < bonds.offset[centre + 1]; ++k) {
+          const int j = bonds.partner[k];
+          const pd::BondClass& c = bonds.classes[bonds.cls[k]];
+          const Eigen::Vector3d n = (m.particles.reference(j) - xc) / c.length;
+          for (int d = 0; d < 3; ++d)
+            y[3 * j + d] = xc(d) + (c.length + lambda * g[k - bonds.offset[centre]]) * n(d);
+        }
+        std::vector<double> f, w;
+        pd::state_forces(m, s, y, f, true, &w);
+        const double trial = lambda - p;
+        if (std::abs(trial) > lambda_y) ++yielded;
+        p = lambda - std::clamp(trial, -lambda_y, lambda_y);
+        double g_max = 0.0;
+        for (double gj : g) g_max = std::max(g_max, std::abs(gj));
+        for (long k = bonds.offset[centre]; k < bonds.offset[centre + 1]; ++k)
+          worst_p = std::max(worst_p, std::abs(s.plastic[2 * k] - p * g[k - bonds.offset[centre]]) /
+                                          (lambda_y * g_max));
+        const double w_exact = 0.5 * b * (lambda - p) * (lambda - p) * G2e;
+        worst_w = std::max(worst_w,
+                           std::abs(w[centre] - w_exact) / (0.5 * b * lambda_y * lambda_y * G2e));
+      }
+      std::cout << "eps closed form, influence " << static_cast<int>(influence) << ": " << yielded
+                << " of 11 states yielding, plastic extension within " << worst_p
+                << " of lambda_Y max|g|, energy within " << worst_w << "\n";
+      CHECK(yielded >= 5);
+      CHECK(worst_p < 1e-8);
+      CHECK(worst_w < 1e-8);
+    }
+  }
+}
+
+TEST_CASE("EPS yields under pure shear at von Mises's shear yield stress", "[pd][lps][eps]") {
+  // A homogeneous shear strain gamma at twice the continuum's yield, one evaluation from the
+  // virgin state: the centre's return factor gives the shear strain at which it yielded,
+  // gamma_Y = gamma (1 - e^dp / e^d) for any bond; the shear stress the discrete body carries
+  // there, tau_Y = C44 gamma_Y (C44 from the centre's energy under an elastic shear), against
+  // von Mises's sigma_Y / sqrt(3).
+  const Elastic el{200e9, 0.3};
+  const double yield = 250e6, tau_y = yield / std::sqrt(3.0);
+  using I = materials::Influence;
+  for (I influence : {I::Constant, I::InverseLength, I::Gaussian}) {
+    pd::Model m = eps_lattice(11, el, yield, influence, true);
+    const int centre = centre_of(PdDimension::Solid3D, 11);
+    const double gamma = 2.0 * tau_y / el.mu();
+    pd::BondState s = pd::initial_state(m, {});
+    std::vector<double> f;
+    pd::state_forces(m, s,
+                     deformed(m,
+                              [&](const Eigen::Vector3d& x) {
+                                return Eigen::Vector3d(0.5 * gamma * x.y(), 0.5 * gamma * x.x(),
+                                                       0.0);
+                              }),
+                     f);
+    // The bond of largest deviatoric extension, (1, 1, 0) / sqrt(2).
+    const pd::Bonds& bonds = m.bonds;
+    double ratio = 0.0;
+    for (long k = bonds.offset[centre]; k < bonds.offset[centre + 1]; ++k) {
+      const Eigen::Vector3d xi =
+          m.particles.reference(bonds.partner[k]) - m.particles.reference(centre);
+      if (std::abs(xi.x() - 1e-3) > 1e-9 || std::abs(xi.y() - 1e-3) > 1e-9 ||
+          std::abs(xi.z()) > 1e-9)
+        continue;
+      const double length = xi.norm();
+      const double e =
+          std::sqrt((xi.x() + 0.5 * gamma * xi.y()) * (xi.x() + 0.5 * gamma * xi.y()) +
+                    (xi.y() + 0.5 * gamma * xi.x()) * (xi.y() + 0.5 * gamma * xi.x())) -
+          length;
+      ratio = 1.0 - s.plastic[2 * k] / e; // theta is second order in gamma: below 1e-6 of e
+    }
+    Eigen::Matrix3d G = Eigen::Matrix3d::Zero();
+    G(0, 1) = 1e-6;
+    const double c44 = 2.0 * energy_density(m, centre, G) / (1e-6 * 1e-6);
+    const double tau = c44 * gamma * ratio;
+    std::cout << "eps shear yield, influence " << static_cast<int>(influence) << ": tau_Y " << tau
+              << " against sigma_Y / sqrt(3) " << tau_y << " (ratio " << tau / tau_y << ")\n";
+    CHECK(std::abs(tau / tau_y - 1.0) < 0.01);
+  }
+}
+
+TEST_CASE("EPS: both layouts give the same forces and plastic states along a plastic path",
+          "[pd][lps][eps]") {
+  const Elastic el{200e9, 0.3};
+  std::vector<double> f_half, f_full;
+  for (bool full : {false, true}) {
+    pd::Model m = eps_lattice(8, el, 250e6, materials::Influence::InverseLength, full);
+    pd::BondState s = pd::initial_state(m, {});
+    std::vector<double>& f = full ? f_full : f_half;
+    for (double a : {0.002, 0.004, 0.001, -0.003}) {
+      const std::vector<double> y = deformed(m, [a](const Eigen::Vector3d& x) {
+        return Eigen::Vector3d(a * x.y() + 40.0 * a * x.x() * x.x(), a * x.x(), -0.5 * a * x.z());
+      });
+      pd::state_forces(m, s, y, f);
+    }
+  }
+  double scale = 0.0, diff = 0.0;
+  for (std::size_t k = 0; k < f_full.size(); ++k) {
+    scale = std::max(scale, std::abs(f_full[k]));
+    diff = std::max(diff, std::abs(f_half[k] - f_full[k]));
+  }
+  std::cout << "eps layouts: half - full " << diff / scale << " of the largest force\n";
+  CHECK(diff < 1e-12 * scale);
 }
