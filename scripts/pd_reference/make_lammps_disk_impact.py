@@ -24,15 +24,19 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 EXAMPLE = Path("/usr/share/lammps/examples/peri/in.peri.pmb")
 # sha256 of the example as Debian's lammps-examples 20220106.git7586adbb6a+ds1-2 ships it.
 EXAMPLE_SHA256 = "299440d5b038c819c51711ada30484041b61acfcb2246413c0939e482373c8af"
+# the same in this example and in.peri.lps (make_lammps_disk_impact_lps.py)
 VOLUME = 1.25e-10  # `set group all volume 1.25e-10` of the example
+DT = 1.0e-7        # the example's timestep
 
+# the output lines added before the example's `run`; {script} is the recipe's file name
 ADDED = """\
-# ---- added by scripts/pd_reference/make_lammps_disk_impact.py: the histories compared ----
+# ---- added by scripts/pd_reference/{script}: the histories compared ----
 variable        damaged atom "c_1 > 0"
 compute         ndam all reduce sum v_damaged
 compute         dsum all reduce sum c_1
@@ -43,27 +47,35 @@ thermo_style    custom step time ke pe f_2 f_2[2] c_ndam
 """
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+def make_reference(doc, script, case, example, example_sha256):
+    """The recipe of this script and of make_lammps_disk_impact_lps.py: read --out (default
+    reference/lammps/<case>), check the shipped `example` against its sha256, add the output
+    lines (marked with the recipe's file name `script`) before its `run`, run it with serial
+    LAMMPS and write lammps.in, history.csv and log.lammps.  Returns (out, digest, rows, log,
+    wall): the output folder, the example's sha256, the lines of history.csv (the header
+    first), LAMMPS' whole log and the seconds the LAMMPS run took."""
+    ap = argparse.ArgumentParser(description=doc.split("\n")[0])
     here = Path(__file__).resolve().parents[2]
-    ap.add_argument("--out", default=str(here / "reference" / "lammps" / "disk_impact"))
+    ap.add_argument("--out", default=str(here / "reference" / "lammps" / case))
     args = ap.parse_args()
     lmp = shutil.which("lmp")
     if not lmp:
         sys.exit("no LAMMPS executable 'lmp' on PATH; apt-get install lammps")
-    if not EXAMPLE.exists():
-        sys.exit("%s missing; apt-get install lammps-examples" % EXAMPLE)
-    shipped = EXAMPLE.read_text()
+    if not example.exists():
+        sys.exit("%s missing; apt-get install lammps-examples" % example)
+    shipped = example.read_text()
     digest = hashlib.sha256(shipped.encode()).hexdigest()
-    if EXAMPLE_SHA256 and digest != EXAMPLE_SHA256:
-        sys.exit("%s differs from the example this reference was made from" % EXAMPLE)
+    if example_sha256 and digest != example_sha256:
+        sys.exit("%s differs from the example this reference was made from" % example)
     lines = shipped.splitlines()
     run = [k for k, l in enumerate(lines) if l.split()[:1] == ["run"]]
     if len(run) != 1:
-        sys.exit("expected one 'run' command in %s" % EXAMPLE)
-    deck = "\n".join(lines[:run[0]]) + "\n" + ADDED + "\n".join(lines[run[0]:]) + "\n"
+        sys.exit("expected one 'run' command in %s" % example)
+    deck = ("\n".join(lines[:run[0]]) + "\n" + ADDED.format(script=script)
+            + "\n".join(lines[run[0]:]) + "\n")
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
+    t0 = time.time()
     with tempfile.TemporaryDirectory() as tmp:
         (Path(tmp) / "lammps.in").write_text(deck)
         res = subprocess.run([lmp, "-in", "lammps.in", "-log", "log.lammps", "-screen", "none",
@@ -73,22 +85,28 @@ def main():
         if res.returncode != 0 or "Loop time" not in log:
             sys.exit("LAMMPS failed:\n" + res.stdout[-2000:] + res.stderr[-2000:] + log[-2000:])
         raw = (Path(tmp) / "history_raw.txt").read_text().splitlines()
+    wall = time.time() - t0
     rows = ["step,time,damaged_particles,damage_sum,indenter_force_x,indenter_force_y,"
             "indenter_force_z,indenter_energy"]
-    dt = 1.0e-7  # the example's timestep
     for line in raw:
         if line.startswith("#"):
             continue
         step, ndam, dsum, energy, fx, fy, fz = line.split()
         s = int(step)
         rows.append("%d,%.7e,%d,%.12e,%.12e,%.12e,%.12e,%.12e" % (
-            s, s * dt, round(float(ndam)), float(dsum), VOLUME * float(fx), VOLUME * float(fy),
+            s, s * DT, round(float(ndam)), float(dsum), VOLUME * float(fx), VOLUME * float(fy),
             VOLUME * float(fz), VOLUME * float(energy)))
     (out / "history.csv").write_text("\n".join(rows) + "\n")
     (out / "lammps.in").write_text(deck)
     keep = log.split("Loop time of", 1)[0]
     (out / "log.lammps").write_text(
         "\n".join(l for l in keep.splitlines() if not l.startswith("Total wall time")) + "\n")
+    return out, digest, rows, log, wall
+
+
+def main():
+    out, digest, rows, _, _ = make_reference(__doc__, "make_lammps_disk_impact.py", "disk_impact",
+                                             EXAMPLE, EXAMPLE_SHA256)
     f = [float(r.split(",")[5]) for r in rows[1:]]
     d = [int(r.split(",")[2]) for r in rows[1:]]
     peak = max(range(len(f)), key=lambda k: f[k])

@@ -1,17 +1,18 @@
 #!/usr/bin/python3
 """Regenerate the LAMMPS reference for the state-based linear peridynamic solid (LPS).
 
-Run from anywhere, without arguments (``--out DIR`` writes into DIR instead of
-reference/lammps):
+Usage, from anywhere (``--out DIR`` writes into DIR instead of reference/lammps):
 
-    /usr/bin/python3 scripts/pd_reference/make_lammps_lps_reference.py
+    /usr/bin/python3 scripts/pd_reference/make_lammps_lps_reference.py [--out DIR] [--every N] [--pulse P]
 
-Needs the LAMMPS executable ``lmp`` (Debian package ``lammps``, with the PERI
-package) and numpy (Debian ``python3-numpy``).  All LAMMPS runs happen in a
-temporary directory; the files listed below are overwritten.  Every number in
-the "State-based LPS" section of reference/lammps/README.md is taken from this
-script's printout.  The generic helpers (finding lmp, running it, reading dumps
-and logs) are imported from make_lammps_reference.py beside this file.
+It needs what make_lammps_reference.py needs (LAMMPS ``lmp`` with the PERI package,
+Debian ``lammps``; numpy, ``python3-numpy``) and imports from that script beside it
+the generic helpers (finding lmp, running it, reading dumps and logs, the data file,
+the deck's common lines), the steps the two recipes share (the reference run and its
+checks, the sensitivity and time-step runs, writing the files) and with them its
+lattice spacing, particle volume and density.  The LAMMPS runs happen in a temporary
+directory; the files listed below are overwritten.  Every number in the "State-based
+LPS" section of reference/lammps/README.md is taken from this script's printout.
 
 Problem ``lps_lattice`` (a free bar hit at one end)
 ---------------------------------------------------
@@ -70,11 +71,8 @@ log.lammps         its log (thermo every 20 steps; the CPU and wall-clock times
                    removed, so that a second run gives the same file)
 """
 
-import argparse
-import importlib.util
 import math
 import re
-import shutil
 import sys
 import tempfile
 import time
@@ -84,29 +82,18 @@ from pathlib import Path
 import numpy as np
 
 HERE = Path(__file__).resolve().parent
-REPO = HERE.parents[1]
 
 sys.dont_write_bytecode = True     # no __pycache__ beside the scripts
-_spec = importlib.util.spec_from_file_location("make_lammps_reference",
-                                               HERE / "make_lammps_reference.py")
-pmbref = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(pmbref)
-find_lmp = pmbref.find_lmp
-lammps_info = pmbref.lammps_info
-machine_info = pmbref.machine_info
-run_lmp = pmbref.run_lmp
-read_dump = pmbref.read_dump
-parse_log = pmbref.parse_log
-pairs_within = pmbref.pairs_within
+sys.path.insert(0, str(HERE))
+from make_lammps_reference import (  # noqa: E402  (the helpers and steps shared with PMB's recipe)
+    MASS_DUMP, check_contact, check_frames, deck_end, deck_start, no_partial_volume, pairs_within,
+    parse_case_args, read_dump, reference_run, refine_dt, report_lammps, run_lmp, vfrac_scale,
+    write_case, write_data)
+# lattice (SI units): spacing a, volume a^3 and density (atom_style peri: rmass holds it) of
+# the PMB reference; its data file, deck and contact-list helpers use them
+from make_lammps_reference import A, A_STR, VOLUME_STR, RHO_STR  # noqa: E402
 
-# lattice (SI units)
-A = 0.0005
-A_STR = "0.0005"
 NX, NY, NZ = 40, 6, 6
-VOLUME_STR = "1.25e-10"     # a^3 [m^3]
-RHO_STR = "2200"            # density [kg/m^3] (atom_style peri: rmass holds it)
-MARGIN_CELLS = 5
-SKIN_STR = "0.0001"
 
 # material: K and G from E and nu, correctly rounded
 E_FR = Fraction(30 * 10 ** 9)
@@ -168,44 +155,12 @@ def make_lattice(pulse):
             "L": float(coord_str(NX - 1)), "L_str": coord_str(NX - 1)}
 
 
-def write_data(path, lat):
-    with open(path, "w") as fh:
-        fh.write("LAMMPS data file: LPS reference, %dx%dx%d simple-cubic lattice, a = %s m\n\n"
-                 % (NX, NY, NZ, A_STR))
-        fh.write("%d atoms\n1 atom types\n\n" % len(lat["ids"]))
-        for ax, n in zip("xyz", (NX, NY, NZ)):
-            fh.write("%.4f %.4f %slo %shi\n" % (-MARGIN_CELLS * A, (n - 1 + MARGIN_CELLS) * A, ax, ax))
-        fh.write("\nAtoms # peri\n\n")
-        for idx, (xs, ys, zs) in zip(lat["ids"], lat["pos_s"]):
-            fh.write("%d 1 %s %s %s %s %s\n" % (idx, VOLUME_STR, RHO_STR, xs, ys, zs))
-        fh.write("\nVelocities\n\n")
-        for idx, (vx, vy, vz) in zip(lat["ids"], lat["vel_s"]):
-            fh.write("%d %s %s %s\n" % (idx, vx, vy, vz))
-
-
 def deck(datafile, dt_str, nsteps, title, s00_str=S00_STR, dump_every=1, thermo_every=THERMO_EVERY,
          lattice_str=A_STR, guard=True, diag=True):
-    lines = [
-        "# %s" % title,
-        "# LPS state-based peridynamics (pair_style peri/lps), free body, units si",
-        "units           si",
-        "dimension       3",
-        "boundary        f f f",
-        "atom_style      peri",
-        "atom_modify     map array",
-        "# peri/lps takes its lattice constant lc from this command",
-        "# (vfrac_scale near the horizon, contact distance 1.35 lc)",
-        "lattice         sc %s" % lattice_str,
-        "read_data       %s" % datafile,
-        "",
-        "# K [Pa], G [Pa], delta [m], s00, alpha  (E = 30e9 Pa, nu = 0.3)",
-        "pair_style      peri/lps",
-        "pair_coeff      * * %s %s %s %s %s" % (K_STR, G_STR, DELTA_STR, s00_str, ALPHA_STR),
-        "neighbor        %s bin" % SKIN_STR,
-        "neigh_modify    every 1 delay 0 check yes",
-        "",
-        "compute         dmg all damage/atom",
-        "compute         dmax all reduce max c_dmg",
+    lines = deck_start(title, "LPS state-based", "peri/lps",
+                       "K [Pa], G [Pa], delta [m], s00, alpha  (E = 30e9 Pa, nu = 0.3)",
+                       (K_STR, G_STR, DELTA_STR, s00_str, ALPHA_STR), datafile, lattice_str)
+    lines += [
         "compute         dsum all reduce sum c_dmg",
         "compute         s0 all property/atom s0",
         "compute         s0min all reduce min c_s0",
@@ -228,21 +183,8 @@ def deck(datafile, dt_str, nsteps, title, s00_str=S00_STR, dump_every=1, thermo_
         "fix             dmax all ave/time 1 1 1 c_dmax c_dsum c_s0min file damage_s0.txt format \" %.17g\"",
     ]
     if diag:
-        lines += [
-            "dump            m all custom 100000000 dump.mass id mass",
-            "dump_modify     m sort id format float %.17g",
-        ]
-    lines += [
-        "dump            d all custom %d dump.traj id x y z c_u[1] c_u[2] c_u[3] vx vy vz c_theta"
-        % dump_every,
-        "dump_modify     d sort id format float %.17e",
-        "thermo_style    custom step time ke pe c_dmax c_s0min",
-        "thermo_modify   format float %.10e",
-        "thermo          %d" % thermo_every,
-        "run             %d" % nsteps,
-        "",
-    ]
-    return "\n".join(lines)
+        lines += MASS_DUMP
+    return "\n".join(lines + deck_end(nsteps, thermo_every, dump_every, " c_theta", " c_s0min"))
 
 
 def trim_log(text):
@@ -266,12 +208,6 @@ def trim_log(text):
 # --------------------------------------------------------------------------
 # bonds, weighted volume, the LPS force (numpy, independent of LAMMPS)
 # --------------------------------------------------------------------------
-
-def vfrac_scale(r0, lc, delta):
-    half = 0.5 * lc
-    s = (-1.0 / (2 * half)) * r0 + (1.0 + (delta - half) / (2 * half))
-    return np.where(np.abs(r0 - delta) <= half, s, 1.0)
-
 
 class LPS:
     """The conventions of reference/lammps/README.md ("State-based LPS"),
@@ -395,30 +331,13 @@ def stable_steps(model):
 # --------------------------------------------------------------------------
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--out", default=str(REPO / "reference" / "lammps"),
-                    help="output directory (default reference/lammps)")
-    ap.add_argument("--every", type=int, default=50,
-                    help="steps between frames in displacements.csv (default 50)")
-    ap.add_argument("--pulse", choices=("smooth", "step"), default="smooth",
-                    help="initial velocity (default smooth; the reference uses smooth)")
-    args = ap.parse_args()
-    if NSTEPS % args.every:
-        sys.exit("--every must divide %d" % NSTEPS)
-    case_dir = Path(args.out) / "lps_lattice"
-    case_dir.mkdir(parents=True, exist_ok=True)
+    args, case_dir = parse_case_args(
+        __doc__, "lps_lattice", 50, NSTEPS,
+        [("--pulse", dict(choices=("smooth", "step"), default="smooth",
+                          help="initial velocity (default smooth; the reference uses smooth)"))])
 
     t_start = time.time()
-    lmp = find_lmp()
-    info = lammps_info(lmp)
-    nproc, cpu = machine_info()
-    print("LAMMPS executable : %s" % lmp)
-    print("LAMMPS version    : %s" % info["version"])
-    print("Debian package    : %s" % info["debian"])
-    print("PERI package      : %s" % ("yes" if "PERI" in info["packages"] else "NO"))
-    print("machine           : nproc = %s, CPU = %s" % (nproc, cpu))
-    if "PERI" not in info["packages"]:
-        sys.exit("LAMMPS without the PERI package")
+    lmp, _ = report_lammps()
 
     lat = make_lattice(args.pulse)
     pos0 = lat["pos"]
@@ -488,26 +407,14 @@ def main():
 
     with tempfile.TemporaryDirectory(prefix="lammps_lps_") as tmp:
         tmp = Path(tmp)
-        write_data(tmp / "data.lps_lattice", lat)
+        write_data(tmp / "data.lps_lattice", lat, "LPS", (NX, NY, NZ))
         title = "lps_lattice: %dx%dx%d simple-cubic bar, a = %s m, %s pulse at x = 0" % (
             NX, NY, NZ, A_STR, args.pulse)
 
         # --- reference run (dumped every step) ---
         ref_deck = deck("data.lps_lattice", DT_STR, NSTEPS, title)
-        (tmp / "ref.in").write_text(ref_deck)
-        t0 = time.time()
-        ref_log, _ = run_lmp(lmp, tmp, "ref.in")
-        print("\nreference run: %.1f s" % (time.time() - t0))
-        ref = read_dump(tmp / "dump.traj", NCOL)
-        steps = sorted(ref)
-        if steps != list(range(NSTEPS + 1)):
-            sys.exit("unexpected dump steps")
-        lp = parse_log(ref_log)
-        print("LAMMPS bonds (sum of partner counts) = %d; numpy %d" % (lp["bonds"], len(model.i)))
-        if lp["bonds"] != len(model.i):
-            sys.exit("bond count mismatch")
-        mass = read_dump(tmp / "dump.mass", 2)[0]
-        print("rmass read back: min %.17g max %.17g (density %s)" % (mass[:, 1].min(), mass[:, 1].max(), RHO_STR))
+        ref_log, ref, steps = reference_run(lmp, tmp, ref_deck, NCOL, NSTEPS, len(model.i), "numpy",
+                                            RHO_STR)
         ds = np.loadtxt(tmp / "damage_s0.txt", comments="#")
         print("damage/atom: max over particles at %d steps (%d..%d): largest %.3g; sum of damage: largest %.3g"
               % (len(ds), int(ds[0, 0]), int(ds[-1, 0]), ds[:, 1].max(), ds[:, 2].max()))
@@ -520,30 +427,17 @@ def main():
         (tmp / "dump.traj").rename(tmp / "dump.ref")
 
         # --- displacements, stretch, contact, dilatation ---
-        umax, umax_step = 0.0, 0
+        umax, umax_step, udef, ncontact, contact_min = check_frames(ref, lat["ids"], pos0, DELTA, A)
         smax, smin, smax_step = -1.0, 1.0, 0
-        ci, cj, cr0 = pairs_within(pos0, DELTA + float(SKIN_STR))
-        dij = np.minimum(0.9 * cr0, 1.35 * A)
-        contact_min = np.inf
         th_err, th_max = 0.0, 0.0
         for s in steps:
             fr = ref[s]
-            if not np.array_equal(fr[:, 0], lat["ids"]):
-                sys.exit("ids out of order in dump")
-            x, u = fr[:, 1:4], fr[:, 4:7]
-            if np.abs(u - (x - pos0)).max() > 1e-18:
-                sys.exit("compute displace/atom differs from x - x0")
-            un = np.linalg.norm(u, axis=1).max()
-            if un > umax:
-                umax, umax_step = un, s
+            x = fr[:, 1:4]
             d, r, dr = model.stretch_state(x)
             st = dr / model.r0
             if st.max() > smax:
                 smax, smax_step = st.max(), s
             smin = min(smin, st.min())
-            dc = x[cj] - x[ci]
-            rc = np.sqrt((dc * dc).sum(axis=1))
-            contact_min = min(contact_min, (rc / dij).min())
             th = model.theta(x, dr)
             th_err = max(th_err, np.abs(th - fr[:, 10]).max())
             th_max = max(th_max, np.abs(fr[:, 10]).max())
@@ -553,14 +447,10 @@ def main():
                  np.abs(ufin[:, 2]).max()))
         print("mean u at step %d: %.6e %.6e %.6e m; mean(v0) * t = %.6e m"
               % ((NSTEPS,) + tuple(ufin.mean(axis=0)) + (vmom[0] * NSTEPS * DT,)))
-        udef = max(np.linalg.norm(ref[s][:, 4:7] - ref[s][:, 4:7].mean(axis=0), axis=1).max() for s in steps)
         print("largest |u - mean u| over all steps = %.6e m = %.4f of max |u|" % (udef, udef / umax))
         print("bond stretch over all steps: max %.6e (step %d), min %.6e; max |s| / s00 = %.3e"
               % (smax, smax_step, smin, max(smax, -smin) / S00))
-        print("contact: %d pairs in the contact list; min over steps of r/d_ij = %.6f (contact acts only below 1)"
-              % (len(ci), contact_min))
-        if contact_min <= 1.0:
-            sys.exit("the short-range contact force acted")
+        check_contact(ncontact, contact_min)
         print("dilatation: max |theta| over all steps %.6e; numpy theta of LAMMPS' positions vs compute "
               "dilatation/atom: max difference %.3e = %.3e of max |theta|" % (th_max, th_err, th_err / th_max))
 
@@ -646,7 +536,7 @@ def main():
         lat_t = dict(lat)
         lat_t["vel_s"] = [(repr(-float(vx)) if float(vx) != 0.0 else "0.0", vy, vz)
                           for vx, vy, vz in lat["vel_s"]]
-        write_data(tmp / "data.tensile", lat_t)
+        write_data(tmp / "data.tensile", lat_t, "LPS", (NX, NY, NZ))
         x1t = pos0 - DT * lat["vel"]          # positions after one drift (f = 0 before step 1)
         st1t = model.stretch_state(x1t)[2] / model.r0
         for guard in (False, True):
@@ -668,46 +558,22 @@ def main():
         # --- sensitivity: no partial-volume factor ---
         dk = deck("data.lps_lattice", DT_STR, NSTEPS, title + " (lattice sc 1e-9: vfrac_scale = 1)",
                   lattice_str="1e-9", diag=False, dump_every=THERMO_EVERY)
-        (tmp / "nobeta.in").write_text(dk)
-        run_lmp(lmp, tmp, "nobeta.in")
-        fr = read_dump(tmp / "dump.traj", NCOL)
-        e_nob = max(np.linalg.norm(ref[s][:, 4:7] - fr[s][:, 4:7], axis=1).max() for s in fr)
-        print("sensitivity: the same run with vfrac_scale = 1 for every bond (lattice sc 1e-9) differs by"
-              " %.4e m = %.4e of max |u|" % (e_nob, e_nob / umax))
+        no_partial_volume(lmp, tmp, dk, NCOL, ref, umax)
 
         # --- time discretisation ---
-        fine = {}
-        for div in (2, 4):
-            dk = deck("data.lps_lattice", repr(DT / div), NSTEPS * div, title + " (dt/%d)" % div,
-                      diag=False, dump_every=THERMO_EVERY * div, thermo_every=THERMO_EVERY * div)
-            (tmp / ("dt%d.in" % div)).write_text(dk)
-            run_lmp(lmp, tmp, "dt%d.in" % div)
-            fr = read_dump(tmp / "dump.traj", NCOL)
-            fine[div] = {s // div: fr[s][:, 4:7] for s in fr}
-        common = sorted(fine[2])
-        e12 = max(np.linalg.norm(ref[s][:, 4:7] - fine[2][s], axis=1).max() for s in common)
-        e24 = max(np.linalg.norm(fine[2][s] - fine[4][s], axis=1).max() for s in common)
+        common, e12, e24, _ = refine_dt(
+            lmp, tmp, lambda div: deck("data.lps_lattice", repr(DT / div), NSTEPS * div,
+                                       title + " (dt/%d)" % div, diag=False,
+                                       dump_every=THERMO_EVERY * div, thermo_every=THERMO_EVERY * div),
+            NCOL, ref)
         print("time step: max over %d common times (every %d dt) of |u(dt) - u(dt/2)| = %.4e m = %.4e of max |u|"
               % (len(common), THERMO_EVERY, e12, e12 / umax))
         print("           |u(dt/2) - u(dt/4)| = %.4e m = %.4e of max |u|; ratio %.3f (4 for O(dt^2))"
               % (e24, e24 / umax, e12 / e24))
 
         # --- write the reference files ---
-        shutil.copy(tmp / "data.lps_lattice", case_dir / "data.lps_lattice")
-        (case_dir / "lammps.in").write_text(ref_deck)
-        (case_dir / "log.lammps").write_text(trim_log(ref_log))
-        with open(case_dir / "particles.csv", "w") as fh:
-            fh.write("id,x,y,z,volume,vx,vy,vz\n")
-            for idx, (xs, ys, zs), (vx, vy, vz) in zip(lat["ids"], lat["pos_s"], lat["vel_s"]):
-                fh.write("%d,%s,%s,%s,%s,%s,%s,%s\n" % (idx, xs, ys, zs, VOLUME_STR, vx, vy, vz))
-        with open(case_dir / "displacements.csv", "w") as fh:
-            fh.write("step,time,id,ux,uy,uz\n")
-            for s in range(0, NSTEPS + 1, args.every):
-                tstr = "%.15e" % (s * DT)
-                for row in ref[s]:
-                    fh.write("%d,%s,%d,%.15e,%.15e,%.15e\n" % (s, tstr, int(row[0]), row[4], row[5], row[6]))
-        sizes = {p.name: p.stat().st_size for p in case_dir.iterdir()}
-        print("written %s: %s" % (case_dir, ", ".join("%s %d B" % kv for kv in sorted(sizes.items()))))
+        write_case(case_dir, tmp / "data.lps_lattice", ref_deck, trim_log(ref_log), lat, ref,
+                   args.every, DT)
     print("\ntotal run time of this script: %.0f s" % (time.time() - t_start))
 
 

@@ -162,7 +162,8 @@ def lammps_info(lmp):
     except OSError:
         pass
     return {"version": version, "packages": packages,
-            "build": compiler.strip("; "), "debian": deb}
+            "build": compiler.strip("; "), "debian": deb,
+            "openmp": "OPENMP" in packages or "USER-OMP" in packages}
 
 
 def machine_info():
@@ -209,16 +210,17 @@ def make_lattice(n):
             "vel": np.array([[float(v) for v in t] for t in vel_s])}
 
 
-def write_data(path, lat):
-    n = lat["n"]
-    lo = "%.4f" % (-MARGIN_CELLS * A)
-    hi = "%.4f" % ((n - 1 + MARGIN_CELLS) * A)
+def write_data(path, lat, model="PMB", dims=None):
+    """The LAMMPS data file of a lattice (ids, coordinate and velocity strings as make_lattice
+    gives them) with spacing A, box margin MARGIN_CELLS, VOLUME_STR and RHO_STR: this
+    module's n^3 block, or `model`'s nx x ny x nz block with dims = (nx, ny, nz)."""
+    dims = dims or (lat["n"],) * 3
     with open(path, "w") as fh:
-        fh.write("LAMMPS data file: PMB reference, %dx%dx%d simple-cubic lattice, a = %s m\n\n"
-                 % (n, n, n, A_STR))
+        fh.write("LAMMPS data file: %s reference, %dx%dx%d simple-cubic lattice, a = %s m\n\n"
+                 % ((model,) + tuple(dims) + (A_STR,)))
         fh.write("%d atoms\n1 atom types\n\n" % len(lat["ids"]))
-        for ax in "xyz":
-            fh.write("%s %s %slo %shi\n" % (lo, hi, ax, ax))
+        for ax, n in zip("xyz", dims):
+            fh.write("%.4f %.4f %slo %shi\n" % (-MARGIN_CELLS * A, (n - 1 + MARGIN_CELLS) * A, ax, ax))
         fh.write("\nAtoms # peri\n\n")
         for idx, (xs, ys, zs) in zip(lat["ids"], lat["pos_s"]):
             fh.write("%d 1 %s %s %s %s %s\n" % (idx, VOLUME_STR, RHO_STR, xs, ys, zs))
@@ -227,29 +229,63 @@ def write_data(path, lat):
             fh.write("%d %s %s %s\n" % (idx, vx, vy, vz))
 
 
-def deck(datafile, dt_str, nsteps, s00_str, dump_every, thermo_every, title,
-         damage_file=True, mass_dump=True, bench=False, lattice_str=A_STR):
-    lines = [
+# the dump of rmass (atom_style peri: the density), written at step 0 only
+MASS_DUMP = ["dump            m all custom 100000000 dump.mass id mass",
+             "dump_modify     m sort id format float %.17g"]
+
+
+def deck_start(title, model, style, coeff_names, coeffs, datafile, lattice_str):
+    """The first lines of a deck on a free lattice, up to the damage computes: `model` names
+    the model ("PMB bond-based"), `style` its pair style ("peri/pmb"), `coeffs` the values
+    after "pair_coeff * *" and `coeff_names` their comment."""
+    return [
         "# %s" % title,
-        "# PMB bond-based peridynamics (pair_style peri/pmb), free body, units si",
+        "# %s peridynamics (pair_style %s), free body, units si" % (model, style),
         "units           si",
         "dimension       3",
         "boundary        f f f",
         "atom_style      peri",
         "atom_modify     map array",
-        "# peri/pmb takes its lattice constant lc from this command",
+        "# %s takes its lattice constant lc from this command" % style,
         "# (vfrac_scale near the horizon, contact distance 1.35 lc)",
         "lattice         sc %s" % lattice_str,
         "read_data       %s" % datafile,
         "",
-        "# c [N/m^6], delta [m], s00, alpha",
-        "pair_style      peri/pmb",
-        "pair_coeff      * * %s %s %s %s" % (C_STR, DELTA_STR, s00_str, ALPHA_STR),
+        "# %s" % coeff_names,
+        "pair_style      %s" % style,
+        "pair_coeff      * * %s" % " ".join(coeffs),
         "neighbor        %s bin" % SKIN_STR,
         "neigh_modify    every 1 delay 0 check yes",
         "",
         "compute         dmg all damage/atom",
         "compute         dmax all reduce max c_dmg",
+    ]
+
+
+def deck_end(nsteps, thermo_every, dump_every=None, dump_extra="", thermo_extra=""):
+    """The last lines of a deck: with dump_every the trajectory dump.traj (id, x, u = c_u,
+    v and `dump_extra`), then thermo (step time ke pe c_dmax and `thermo_extra`) and the run."""
+    lines = []
+    if dump_every is not None:
+        lines += [
+            "dump            d all custom %d dump.traj id x y z c_u[1] c_u[2] c_u[3] vx vy vz%s"
+            % (dump_every, dump_extra),
+            "dump_modify     d sort id format float %.17e",
+        ]
+    return lines + [
+        "thermo_style    custom step time ke pe c_dmax%s" % thermo_extra,
+        "thermo_modify   format float %.10e",
+        "thermo          %d" % thermo_every,
+        "run             %d" % nsteps,
+        "",
+    ]
+
+
+def deck(datafile, dt_str, nsteps, s00_str, dump_every, thermo_every, title,
+         damage_file=True, mass_dump=True, bench=False, lattice_str=A_STR):
+    lines = deck_start(title, "PMB bond-based", "peri/pmb", "c [N/m^6], delta [m], s00, alpha",
+                       (C_STR, DELTA_STR, s00_str, ALPHA_STR), datafile, lattice_str)
+    lines += [
         "fix             1 all nve",
         "timestep        %s" % dt_str,
     ]
@@ -260,21 +296,8 @@ def deck(datafile, dt_str, nsteps, s00_str, dump_every, thermo_every, title,
         if damage_file:
             lines.append("fix             dmax all ave/time 1 1 1 c_dmax file damage_max.txt")
         if mass_dump:
-            lines.append("dump            m all custom 100000000 dump.mass id mass")
-            lines.append("dump_modify     m sort id format float %.17g")
-        lines += [
-            "dump            d all custom %d dump.traj id x y z c_u[1] c_u[2] c_u[3] vx vy vz"
-            % dump_every,
-            "dump_modify     d sort id format float %.17e",
-        ]
-    lines += [
-        "thermo_style    custom step time ke pe c_dmax",
-        "thermo_modify   format float %.10e",
-        "thermo          %d" % thermo_every,
-        "run             %d" % nsteps,
-        "",
-    ]
-    return "\n".join(lines)
+            lines += MASS_DUMP
+    return "\n".join(lines + deck_end(nsteps, thermo_every, None if bench else dump_every))
 
 
 def busy_seconds():
@@ -392,10 +415,10 @@ def pairs_within(pos, rmax):
     return i, j, np.sqrt(rsq[i, j])
 
 
-def vfrac_scale(r0, lc):
+def vfrac_scale(r0, lc, delta=DELTA):
     half = 0.5 * lc
-    s = (-1.0 / (2 * half)) * r0 + (1.0 + (DELTA - half) / (2 * half))
-    return np.where(np.abs(r0 - DELTA) <= half, s, 1.0)
+    s = (-1.0 / (2 * half)) * r0 + (1.0 + (delta - half) / (2 * half))
+    return np.where(np.abs(r0 - delta) <= half, s, 1.0)
 
 
 # --------------------------------------------------------------------------
@@ -464,41 +487,172 @@ def numpy_pmb(pos0, vel0, bi, bj, r0, nsteps, dt, near_zero=2.2204e-16):
 
 
 # --------------------------------------------------------------------------
-# main
+# the steps of a reference recipe (also make_lammps_lps_reference.py's)
 # --------------------------------------------------------------------------
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+def parse_case_args(doc, case, every, nsteps, extra=()):
+    """Arguments --out and --every (default `every`, dividing `nsteps`) and the `extra` ones,
+    (flag, add_argument keywords) each; returns them and the folder --out/<case>, made."""
+    ap = argparse.ArgumentParser(description=doc.split("\n")[0])
     ap.add_argument("--out", default=str(REPO / "reference" / "lammps"),
                     help="output directory (default reference/lammps)")
-    ap.add_argument("--every", type=int, default=40,
-                    help="steps between frames in displacements.csv (default 40)")
-    ap.add_argument("--no-benchmark", action="store_true", help="skip the benchmark")
-    ap.add_argument("--repeats", type=int, default=3,
-                    help="runs per benchmark configuration; the fastest is kept (default 3)")
+    ap.add_argument("--every", type=int, default=every,
+                    help="steps between frames in displacements.csv (default %d)" % every)
+    for flag, kw in extra:
+        ap.add_argument(flag, **kw)
     args = ap.parse_args()
-    if NSTEPS % args.every:
-        sys.exit("--every must divide %d" % NSTEPS)
-    out = Path(args.out)
-    case_dir = out / "pmb_lattice"
+    if nsteps % args.every:
+        sys.exit("--every must divide %d" % nsteps)
+    case_dir = Path(args.out) / case
     case_dir.mkdir(parents=True, exist_ok=True)
+    return args, case_dir
 
-    t_start = time.time()
+
+def report_lammps(details=False):
+    """Find lmp and print what it is and the machine (with `details` also its build and its
+    packages); stop if it has no PERI package.  Returns (lmp, lammps_info(lmp))."""
     lmp = find_lmp()
     info = lammps_info(lmp)
     nproc, cpu = machine_info()
     print("LAMMPS executable : %s" % lmp)
     print("LAMMPS version    : %s" % info["version"])
     print("Debian package    : %s" % info["debian"])
-    print("build             : %s" % info["build"])
-    print("installed packages: %s" % " ".join(info["packages"]))
+    if details:
+        print("build             : %s" % info["build"])
+        print("installed packages: %s" % " ".join(info["packages"]))
     have_peri = "PERI" in info["packages"]
-    have_omp = "OPENMP" in info["packages"] or "USER-OMP" in info["packages"]
     print("PERI package      : %s" % ("yes" if have_peri else "NO"))
-    print("OPENMP package    : %s" % ("yes" if have_omp else "no"))
+    if details:
+        print("OPENMP package    : %s" % ("yes" if info["openmp"] else "no"))
     print("machine           : nproc = %s, CPU = %s" % (nproc, cpu))
     if not have_peri:
         sys.exit("LAMMPS without the PERI package")
+    return lmp, info
+
+
+def reference_run(lmp, tmp, text, ncol, nsteps, bonds, source, rho_str):
+    """Run the reference deck `text` (tmp/ref.in, dumping every step); check its steps, its
+    bond count against `bonds` (named `source` in the printout) and its rmass against the
+    density rho_str.  Returns (log, {step: dump frame with ncol columns}, steps)."""
+    (tmp / "ref.in").write_text(text)
+    t0 = time.time()
+    log, _ = run_lmp(lmp, tmp, "ref.in")
+    print("\nreference run: %.1f s" % (time.time() - t0))
+    ref = read_dump(tmp / "dump.traj", ncol)
+    steps = sorted(ref)
+    if steps != list(range(nsteps + 1)):
+        sys.exit("unexpected dump steps")
+    lp = parse_log(log)
+    print("LAMMPS bonds (sum of partner counts) = %d; %s %d" % (lp["bonds"], source, bonds))
+    if lp["bonds"] != bonds:
+        sys.exit("bond count mismatch")
+    mass = read_dump(tmp / "dump.mass", 2)[0]
+    print("rmass read back: min %.17g max %.17g (density %s)"
+          % (mass[:, 1].min(), mass[:, 1].max(), rho_str))
+    return log, ref, steps
+
+
+def check_frames(ref, ids, pos0, delta, lc):
+    """Check every frame of a reference dump (columns id x y z u v ...): ids in order, compute
+    displace/atom equal to x - x0.  Returns the largest |u| and its step, the largest
+    |u - mean u|, and the size of the contact list (pairs within delta + skin) and the
+    smallest r / d_ij over it and over all frames (contact acts only below 1)."""
+    ci, cj, cr0 = pairs_within(pos0, delta + float(SKIN_STR))
+    dij = np.minimum(0.9 * cr0, 1.35 * lc)
+    umax, umax_step, udef, contact_min = 0.0, 0, 0.0, np.inf
+    for s in sorted(ref):
+        fr = ref[s]
+        if not np.array_equal(fr[:, 0], ids):
+            sys.exit("ids out of order in dump")
+        x, u = fr[:, 1:4], fr[:, 4:7]
+        if np.abs(u - (x - pos0)).max() > 1e-18:
+            sys.exit("compute displace/atom differs from x - x0")
+        un = np.linalg.norm(u, axis=1).max()
+        if un > umax:
+            umax, umax_step = un, s
+        udef = max(udef, np.linalg.norm(u - u.mean(axis=0), axis=1).max())
+        dc = x[cj] - x[ci]
+        rc = np.sqrt((dc * dc).sum(axis=1))
+        contact_min = min(contact_min, (rc / dij).min())
+    return umax, umax_step, udef, len(ci), contact_min
+
+
+def check_contact(npairs, contact_min):
+    print("contact: %d pairs in the contact list; min over steps of r/d_ij = %.6f (contact acts only below 1)"
+          % (npairs, contact_min))
+    if contact_min <= 1.0:
+        sys.exit("the short-range contact force acted")
+
+
+def run_displacements(lmp, tmp, name, text, ncol):
+    """Run the deck `text` (tmp/<name>.in); {step: displacements} of its dump.traj."""
+    (tmp / (name + ".in")).write_text(text)
+    run_lmp(lmp, tmp, name + ".in")
+    return {s: fr[:, 4:7] for s, fr in read_dump(tmp / "dump.traj", ncol).items()}
+
+
+def max_difference(ref, frames):
+    """Largest |u - u_ref| over the steps of `frames` ({step: displacements}) and particles."""
+    return max(np.linalg.norm(ref[s][:, 4:7] - frames[s], axis=1).max() for s in frames)
+
+
+def no_partial_volume(lmp, tmp, text, ncol, ref, umax):
+    """Run `text`, the reference deck with lattice sc 1e-9, and print how far it moves."""
+    e_nob = max_difference(ref, run_displacements(lmp, tmp, "nobeta", text, ncol))
+    print("sensitivity: the same run with vfrac_scale = 1 for every bond (lattice sc 1e-9) differs by"
+          " %.4e m = %.4e of max |u|" % (e_nob, e_nob / umax))
+
+
+def refine_dt(lmp, tmp, deck_for, ncol, ref):
+    """The reference run at dt/2 and dt/4 (deck_for(div) gives the deck at dt/div).  Returns
+    the common steps (of dt), the largest |u(dt) - u(dt/2)| and |u(dt/2) - u(dt/4)| over them
+    and {div: {step of dt: displacements}}."""
+    fine = {}
+    for div in (2, 4):
+        fr = run_displacements(lmp, tmp, "dt%d" % div, deck_for(div), ncol)
+        fine[div] = {s // div: u for s, u in fr.items()}
+    common = sorted(fine[2])
+    e12 = max_difference(ref, fine[2])
+    e24 = max(np.linalg.norm(fine[2][s] - fine[4][s], axis=1).max() for s in common)
+    return common, e12, e24, fine
+
+
+def write_case(case_dir, data, text, log, lat, ref, every, dt):
+    """The reference files: the data file `data`, lammps.in (`text`), log.lammps (`log`),
+    particles.csv (the initial state of `lat`) and displacements.csv (every `every` steps of
+    the dump frames `ref`, time = step * dt); prints their sizes."""
+    shutil.copy(data, case_dir / data.name)
+    (case_dir / "lammps.in").write_text(text)
+    (case_dir / "log.lammps").write_text(log)
+    with open(case_dir / "particles.csv", "w") as fh:
+        fh.write("id,x,y,z,volume,vx,vy,vz\n")
+        for idx, (xs, ys, zs), (vx, vy, vz) in zip(lat["ids"], lat["pos_s"], lat["vel_s"]):
+            fh.write("%d,%s,%s,%s,%s,%s,%s,%s\n" % (idx, xs, ys, zs, VOLUME_STR, vx, vy, vz))
+    with open(case_dir / "displacements.csv", "w") as fh:
+        fh.write("step,time,id,ux,uy,uz\n")
+        for s in range(0, max(ref) + 1, every):
+            tstr = "%.15e" % (s * dt)
+            for row in ref[s]:
+                fh.write("%d,%s,%d,%.15e,%.15e,%.15e\n" % (s, tstr, int(row[0]), row[4], row[5], row[6]))
+    sizes = {p.name: p.stat().st_size for p in case_dir.iterdir()}
+    print("written %s: %s" % (case_dir, ", ".join("%s %d B" % kv for kv in sorted(sizes.items()))))
+
+
+# --------------------------------------------------------------------------
+# main
+# --------------------------------------------------------------------------
+
+def main():
+    args, case_dir = parse_case_args(
+        __doc__, "pmb_lattice", 40, NSTEPS,
+        [("--no-benchmark", dict(action="store_true", help="skip the benchmark")),
+         ("--repeats", dict(type=int, default=3,
+                            help="runs per benchmark configuration; the fastest is kept (default 3)"))])
+    out = case_dir.parent
+
+    t_start = time.time()
+    lmp, info = report_lammps(details=True)
+    have_omp = info["openmp"]
 
     lat = make_lattice(N_REF)
     pos0 = lat["pos"]
@@ -542,21 +696,8 @@ def main():
 
         # --- reference run (positions dumped every step) ---
         ref_deck = deck("data.pmb_lattice", DT_STR, NSTEPS, S00_STR, 1, THERMO_EVERY, title)
-        (tmp / "ref.in").write_text(ref_deck)
-        t0 = time.time()
-        ref_log, _ = run_lmp(lmp, tmp, "ref.in")
-        print("\nreference run: %.1f s" % (time.time() - t0))
-        ref = read_dump(tmp / "dump.traj", 10)
-        steps = sorted(ref)
-        if steps != list(range(NSTEPS + 1)):
-            sys.exit("unexpected dump steps")
-        lp = parse_log(ref_log)
-        print("LAMMPS bonds (sum of partner counts) = %d; expected %d" % (lp["bonds"], nb_expected))
-        if lp["bonds"] != nb_expected:
-            sys.exit("bond count mismatch")
-        mass = read_dump(tmp / "dump.mass", 2)[0]
-        print("rmass read back: min %.17g max %.17g (density %s)"
-              % (mass[:, 1].min(), mass[:, 1].max(), RHO_STR))
+        ref_log, ref, steps = reference_run(lmp, tmp, ref_deck, 10, NSTEPS, nb_expected, "expected",
+                                            RHO_STR)
 
         # --- damage ---
         dmg = np.loadtxt(tmp / "damage_max.txt", comments="#")
@@ -566,36 +707,21 @@ def main():
             sys.exit("a bond broke in the reference run")
 
         # --- displacement, stretch and contact ---
-        umax, umax_step, smax, smin, smax_step = 0.0, 0, -1.0, 1.0, 0
-        ci, cj, cr0 = pairs_within(pos0, DELTA + float(SKIN_STR))
-        dij = np.minimum(0.9 * cr0, 1.35 * A)
-        contact_min = np.inf
+        umax, umax_step, udef, ncontact, contact_min = check_frames(ref, lat["ids"], pos0, DELTA, A)
+        smax, smin, smax_step = -1.0, 1.0, 0
         for s in steps:
-            fr = ref[s]
-            if not np.array_equal(fr[:, 0], lat["ids"]):
-                sys.exit("ids out of order in dump")
-            x = fr[:, 1:4]
-            u = fr[:, 4:7]
-            if np.abs(u - (x - pos0)).max() > 1e-18:
-                sys.exit("compute displace/atom differs from x - x0")
-            un = np.linalg.norm(u, axis=1).max()
-            if un > umax:
-                umax, umax_step = un, s
+            x = ref[s][:, 1:4]
             d = x[bj] - x[bi]
             r = np.sqrt((d * d).sum(axis=1))
             st = (r - r0) / r0
             if st.max() > smax:
                 smax, smax_step = st.max(), s
             smin = min(smin, st.min())
-            dc = x[cj] - x[ci]
-            rc = np.sqrt((dc * dc).sum(axis=1))
-            contact_min = min(contact_min, (rc / dij).min())
         ufin = ref[NSTEPS][:, 4:7]
         print("largest |u| over all steps = %.6e m (step %d); at step %d: max |u| = %.6e m, "
               "max |ux|, |uy|, |uz| = %.6e %.6e %.6e m"
               % (umax, umax_step, NSTEPS, np.linalg.norm(ufin, axis=1).max(),
                  np.abs(ufin[:, 0]).max(), np.abs(ufin[:, 1]).max(), np.abs(ufin[:, 2]).max()))
-        udef = max(np.linalg.norm(ref[s][:, 4:7] - ref[s][:, 4:7].mean(axis=0), axis=1).max() for s in steps)
         drift = ufin.mean(axis=0)
         print("rigid translation (mean u) at step %d: %.6e %.6e %.6e m; mean(v0) * t = %.6e %.6e %.6e m"
               % ((NSTEPS,) + tuple(drift) + tuple(lat["vel"].mean(axis=0) * NSTEPS * DT)))
@@ -605,10 +731,7 @@ def main():
               % (smax, smax_step, smin, max(smax, -smin) / S00))
         print("breaking needs s > s00 - alpha*min_j s_ij >= %.6e at every step, i.e. %.2f x the largest stretch"
               % (S00 - ALPHA * max(smax, 0.0), (S00 - ALPHA * max(smax, 0.0)) / smax))
-        print("contact: %d pairs in the contact list; min over steps of r/d_ij = %.6f (contact acts only below 1)"
-              % (len(ci), contact_min))
-        if contact_min <= 1.0:
-            sys.exit("the short-range contact force acted")
+        check_contact(ncontact, contact_min)
         th = [l for l in ref_log.splitlines() if re.match(r"^\s+\d+\s+[\d.]+e", l)]
         if th:
             first, last = th[0].split(), th[-1].split()
@@ -654,26 +777,13 @@ def main():
         nob = deck("data.pmb_lattice", DT_STR, NSTEPS, S00_STR, THERMO_EVERY, THERMO_EVERY,
                    title + " (lattice sc 1e-9: vfrac_scale = 1)", damage_file=False,
                    mass_dump=False, lattice_str="1e-9")
-        (tmp / "nobeta.in").write_text(nob)
-        run_lmp(lmp, tmp, "nobeta.in")
-        fr = read_dump(tmp / "dump.traj", 10)
-        e_nob = max(np.linalg.norm(ref[s][:, 4:7] - fr[s][:, 4:7], axis=1).max() for s in fr)
-        print("sensitivity: the same run with vfrac_scale = 1 for every bond (lattice sc 1e-9) differs by"
-              " %.4e m = %.4e of max |u|" % (e_nob, e_nob / umax))
+        no_partial_volume(lmp, tmp, nob, 10, ref, umax)
 
         # --- time discretisation: dt/2 and dt/4 ---
-        fine = {}
-        for div in (2, 4):
-            dtd = DT / div
-            dk = deck("data.pmb_lattice", repr(dtd), NSTEPS * div, S00_STR, THERMO_EVERY * div,
-                      THERMO_EVERY * div, title + " (dt/%d)" % div, damage_file=False, mass_dump=False)
-            (tmp / ("dt%d.in" % div)).write_text(dk)
-            run_lmp(lmp, tmp, "dt%d.in" % div)
-            fr = read_dump(tmp / "dump.traj", 10)
-            fine[div] = {s // div: fr[s][:, 4:7] for s in fr}
-        common = sorted(fine[2])
-        e12 = max(np.linalg.norm(ref[s][:, 4:7] - fine[2][s], axis=1).max() for s in common)
-        e24 = max(np.linalg.norm(fine[2][s] - fine[4][s], axis=1).max() for s in common)
+        common, e12, e24, fine = refine_dt(
+            lmp, tmp, lambda div: deck("data.pmb_lattice", repr(DT / div), NSTEPS * div, S00_STR,
+                                       THERMO_EVERY * div, THERMO_EVERY * div, title + " (dt/%d)" % div,
+                                       damage_file=False, mass_dump=False), 10, ref)
         e12_end = np.linalg.norm(ref[NSTEPS][:, 4:7] - fine[2][NSTEPS], axis=1).max()
         print("time step: max over %d common times (every %d dt) and particles of |u(dt) - u(dt/2)| = %.4e m"
               " = %.4e of max |u|" % (len(common), THERMO_EVERY, e12, e12 / umax))
@@ -682,22 +792,8 @@ def main():
               % (e24, e24 / umax, e12 / e24))
 
         # --- write the reference files ---
-        shutil.copy(tmp / "data.pmb_lattice", case_dir / "data.pmb_lattice")
-        (case_dir / "lammps.in").write_text(ref_deck)
-        (case_dir / "log.lammps").write_text(trim_log(ref_log))
-        with open(case_dir / "particles.csv", "w") as fh:
-            fh.write("id,x,y,z,volume,vx,vy,vz\n")
-            for idx, (xs, ys, zs), (vx, vy, vz) in zip(lat["ids"], lat["pos_s"], lat["vel_s"]):
-                fh.write("%d,%s,%s,%s,%s,%s,%s,%s\n" % (idx, xs, ys, zs, VOLUME_STR, vx, vy, vz))
-        with open(case_dir / "displacements.csv", "w") as fh:
-            fh.write("step,time,id,ux,uy,uz\n")
-            for s in range(0, NSTEPS + 1, args.every):
-                fr = ref[s]
-                tstr = "%.15e" % (s * DT)
-                for row in fr:
-                    fh.write("%d,%s,%d,%.15e,%.15e,%.15e\n" % (s, tstr, int(row[0]), row[4], row[5], row[6]))
-        sizes = {p.name: p.stat().st_size for p in case_dir.iterdir()}
-        print("written %s: %s" % (case_dir, ", ".join("%s %d B" % kv for kv in sorted(sizes.items()))))
+        write_case(case_dir, tmp / "data.pmb_lattice", ref_deck, trim_log(ref_log), lat, ref,
+                   args.every, DT)
 
         if args.no_benchmark:
             print("\nbenchmark skipped; total %.0f s" % (time.time() - t_start))
