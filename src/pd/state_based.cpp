@@ -319,6 +319,40 @@ void set_weighted_volumes(Model& m, const BondState& s) {
 
 namespace {
 
+/// Pass 2 over every owned row, its outputs in `out` (base 0): in the half layout the threads past
+/// the first write to buffers of their own, added in thread order. Returns directed bonds broken.
+long force_pass(const Family& f, const StateTerms& t, const PassOut& out) {
+  const int owned = f.owned;
+  std::vector<Buffers>& buf = thread_buffers(omp_get_max_threads());
+  long broken = 0;
+#pragma omp parallel reduction(+ : broken)
+  {
+    const int T = omp_get_num_threads(), q = omp_get_thread_num();
+    const std::vector<int> first = rows::rows_of_threads(f.offset, owned, T);
+    if (f.half) {
+      PassOut mine = out;
+      if (q > 0) {
+        Buffers& own = buf[q];
+        own.lo = first[q];
+        const std::size_t len = static_cast<std::size_t>(owned - own.lo);
+        own.f.assign(3 * len, 0.0);
+        own.w.assign(out.w ? len : 0, 0.0);
+        own.s0.assign(out.s0n ? len : 0, kNone);
+        mine = PassOut{own.f.data(), own.w.data(), own.s0.data(), own.lo};
+      }
+      broken += force_rows(f, t, first[q], first[q + 1], mine);
+#pragma omp barrier
+      add_buffers(first, buf, T, owned, 3, &Buffers::f, out.f, false);
+      if (out.w) add_buffers(first, buf, T, owned, 1, &Buffers::w, out.w, false);
+      if (out.s0n) add_buffers(first, buf, T, owned, 1, &Buffers::s0, out.s0n, true);
+    } else {
+#pragma omp for schedule(dynamic, 512)
+      for (int i = 0; i < owned; ++i) broken += force_rows(f, t, i, i + 1, out);
+    }
+  }
+  return broken;
+}
+
 ForceReport evaluate(const Model& m, BondState& s, const std::vector<double>& y,
                      std::vector<double>& force, bool with_energy,
                      std::vector<double>* energy_density, std::vector<double>* theta_out,
@@ -367,33 +401,7 @@ ForceReport evaluate(const Model& m, BondState& s, const std::vector<double>& y,
     m.halo.exchange(scale); // the ghosts' return, from their owners
     terms.scale = scale.data();
   }
-  std::vector<Buffers>& buf = thread_buffers(omp_get_max_threads());
-  long broken = 0;
-#pragma omp parallel reduction(+ : broken)
-  {
-    const int T = omp_get_num_threads(), q = omp_get_thread_num();
-    const std::vector<int> first = rows::rows_of_threads(f.offset, owned, T);
-    PassOut out{force.data(), w, alpha ? s.s0.trial.data() : nullptr, 0};
-    if (f.half) {
-      if (q > 0) {
-        Buffers& own = buf[q];
-        own.lo = first[q];
-        const std::size_t len = static_cast<std::size_t>(owned - own.lo);
-        own.f.assign(3 * len, 0.0);
-        own.w.assign(w ? len : 0, 0.0);
-        own.s0.assign(alpha ? len : 0, kNone);
-        out = PassOut{own.f.data(), own.w.data(), own.s0.data(), own.lo};
-      }
-      broken += force_rows(f, terms, first[q], first[q + 1], out);
-#pragma omp barrier
-      add_buffers(first, buf, T, owned, 3, &Buffers::f, force.data(), false);
-      if (w) add_buffers(first, buf, T, owned, 1, &Buffers::w, w, false);
-      if (alpha) add_buffers(first, buf, T, owned, 1, &Buffers::s0, s.s0.trial.data(), true);
-    } else {
-#pragma omp for schedule(dynamic, 512)
-      for (int i = 0; i < owned; ++i) broken += force_rows(f, terms, i, i + 1, out);
-    }
-  }
+  const long broken = force_pass(f, terms, {force.data(), w, alpha ? s.s0.trial.data() : nullptr, 0});
   ForceReport r;
   r.broken = broken;
   if (alpha) {
