@@ -303,8 +303,8 @@ void set_time_step(PdSetup& out, const spec::PdSpec& s, const distribution::Rank
                    const StableStep& bound) {
   const double stable = bound.stable;
   out.dt = s.safety * stable;
-  const char* source = bound.limiting < 0 ? " (2 / omega_max of the linearised body)"
-                                          : " (Silling & Askari 2005)";
+  const char* source =
+      bound.limiting < 0 ? " (2 / omega_max of the linearised body)" : " (Silling & Askari 2005)";
   if (bound.limiting < 0) {
     out.dt_limit = detail::concat("stable step ", stable, source, " times safety ", s.safety);
   } else {
@@ -326,8 +326,8 @@ void set_time_step(PdSetup& out, const spec::PdSpec& s, const distribution::Rank
     }
   }
   if (s.dt > 0.0) {
-    MF_REQUIRE(s.dt <= stable, "time.dt: ", s.dt, " exceeds the stable time step ", stable,
-               source, "; velocity Verlet would diverge");
+    MF_REQUIRE(s.dt <= stable, "time.dt: ", s.dt, " exceeds the stable time step ", stable, source,
+               "; velocity Verlet would diverge");
     if (s.dt < out.dt) {
       out.dt = s.dt;
       out.dt_limit = "time.dt";
@@ -341,8 +341,8 @@ void set_contact_and_step(PdSetup& out, const spec::PdSpec& s, const distributio
   pd::Model& m = out.model;
   out.impactors = impactors_of(s);
   StableStep bound;
-  bound.local = m.state_based() ? pd::state_stable_time_step(m)
-                                : pd::stable_time_step(m, &bound.limiting);
+  bound.local =
+      m.state_based() ? pd::state_stable_time_step(m) : pd::stable_time_step(m, &bound.limiting);
   bound.stable = ranks.min(bound.local);
   MF_REQUIRE(std::isfinite(bound.stable), "peridynamics: no particle has a bond; is the horizon "
                                           "(discretisation.horizon) smaller than the spacing?");

@@ -401,7 +401,8 @@ ForceReport evaluate(const Model& m, BondState& s, const std::vector<double>& y,
     m.halo.exchange(scale); // the ghosts' return, from their owners
     terms.scale = scale.data();
   }
-  const long broken = force_pass(f, terms, {force.data(), w, alpha ? s.s0.trial.data() : nullptr, 0});
+  const long broken =
+      force_pass(f, terms, {force.data(), w, alpha ? s.s0.trial.data() : nullptr, 0});
   ForceReport r;
   r.broken = broken;
   if (alpha) {
@@ -480,7 +481,8 @@ double state_stable_time_step(const Model& m, int iterations) {
   std::vector<double> v(3 * static_cast<std::size_t>(n)), y, fp, fm, w;
   for (int i = 0; i < n; ++i)
     for (int d = 0; d < 3; ++d) {
-      const std::uint64_t z = (static_cast<std::uint64_t>(p.id[i]) * 3 + d + 1) * 0x9E3779B97F4A7C15ull;
+      const std::uint64_t z =
+          (static_cast<std::uint64_t>(p.id[i]) * 3 + d + 1) * 0x9E3779B97F4A7C15ull;
       v[3 * i + d] = static_cast<double>((z ^ (z >> 31)) % 2001) / 1000.0 - 1.0;
     }
   if (m.plane())

@@ -122,8 +122,9 @@ void take_material(const MaterialSpec& m, materials::PdDimension dimension) {
     const bool from_E = m.E > 0.0 && m.has_nu;
     const bool from_K = m.bulk_modulus > 0.0 && m.shear_modulus > 0.0 && !(m.E > 0.0);
     if (!from_E && !from_K)
-      material_error(m, "nu", "law: lps needs the material's E and nu (or E and shear_modulus), "
-                              "or bulk_modulus and shear_modulus");
+      material_error(m, "nu",
+                     "law: lps needs the material's E and nu (or E and shear_modulus), "
+                     "or bulk_modulus and shear_modulus");
     if (from_E && m.bulk_modulus > 0.0)
       material_error(m, "bulk_modulus", "give E and nu, or bulk_modulus and shear_modulus");
     if (m.bond->yield_stress > 0.0 && dimension != materials::PdDimension::Solid3D)
@@ -234,9 +235,10 @@ void check_one_family(const PdSpec& s) {
   const MaterialSpec& first = s.materials[s.body_material];
   for (const MaterialSpec& m : s.materials) {
     if (m.bond->lps != first.bond->lps)
-      material_error(m, "bond.law", "a body's materials are all state-based (lps) or all "
-                                    "bond-based; '" + first.name + "' is " +
-                                        (first.bond->lps ? "lps" : "bond-based"));
+      material_error(m, "bond.law",
+                     "a body's materials are all state-based (lps) or all "
+                     "bond-based; '" +
+                         first.name + "' is " + (first.bond->lps ? "lps" : "bond-based"));
     if (m.bond->lps && m.bond->influence != first.bond->influence)
       material_error(m, "bond.influence", "a body's lps materials share one influence function");
   }

@@ -2,10 +2,10 @@
 // One entry of a problem file's `materials:` list: elastic constants, density, and the optional
 // parts each analysis takes what it needs from (plasticity for the Galerkin solver and SPH
 // solids, an equation of state and a strength model for SPH, bond parameters for peridynamics).
-#include "meshfree/materials/pd_state.hpp"
 #include "meshfree/materials/constitutive_model.hpp"
 #include "meshfree/materials/equation_of_state.hpp"
 #include "meshfree/materials/geomaterials.hpp"
+#include "meshfree/materials/pd_state.hpp"
 #include <optional>
 #include <string>
 

@@ -2,11 +2,11 @@
 // moduli of the discrete model from uniform deformations, wave speeds against theory, energy
 // conservation of velocity Verlet, momentum conservation of the impactor contact, bond breaking,
 // pre-cracks, and the Haar approximation of load histories.
+#include "lammps_lattice.hpp"
 #include "meshfree/explicit/pd_setup.hpp"
 #include "meshfree/loads/blast.hpp"
 #include "meshfree/loads/time_function.hpp"
 #include "meshfree/pd/dynamics.hpp"
-#include "lammps_lattice.hpp"
 #include "test_support.hpp"
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -257,14 +257,13 @@ TEST_CASE("LPS: the stable step is the linearised body's 2 / omega_max", "[pd][l
               K(dims * j + e, dims * i + d) = -(fp[3 * j + e] - fm[3 * j + e]) / (2 * h);
         }
       const Eigen::MatrixXd Ks = 0.5 * (K + K.transpose());
-      const double lambda_max = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Ks / rho)
-                                    .eigenvalues()
-                                    .maxCoeff();
+      const double lambda_max =
+          Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Ks / rho).eigenvalues().maxCoeff();
       const double exact = 2.0 / std::sqrt(lambda_max);
       const double estimate = pd::state_stable_time_step(m);
       std::cout << "lps stable step, dimension " << static_cast<int>(dim) << ", nu " << nu
-                << ": power iteration " << estimate << " s, 2 / omega_max " << exact
-                << " s (ratio " << estimate / exact << ")\n";
+                << ": power iteration " << estimate << " s, 2 / omega_max " << exact << " s (ratio "
+                << estimate / exact << ")\n";
       CHECK(estimate >= exact * (1.0 - 1e-6));
       CHECK(estimate < 1.02 * exact);
     }
