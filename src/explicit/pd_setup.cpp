@@ -347,9 +347,10 @@ void set_contact_and_step(PdSetup& out, const spec::PdSpec& s, const distributio
   MF_REQUIRE(std::isfinite(bound.stable), "peridynamics: no particle has a bond; is the horizon "
                                           "(discretisation.horizon) smaller than the spacing?");
   // A derived penalty stiffness takes the density of the particle that limits the step, or
-  // the densest of this rank's.
+  // (a state-based body, limited as a whole) the densest of the body's.
   double density = 0.0;
   for (int i : m.particles.owned()) density = std::max(density, m.particles.density[i]);
+  density = ranks.max(density);
   if (bound.limiting >= 0) density = m.particles.density[bound.limiting];
   for (pd::Impactor& imp : out.impactors)
     if (imp.law == pd::Impactor::Law::Penalty && imp.stiffness == 0.0)

@@ -213,6 +213,10 @@ double SphRun::von_mises(int i) const {
                           2.0 * (si[3] * si[3] + si[4] * si[4] + si[5] * si[5])));
 }
 
+namespace {
+constexpr double kCollapse = 1e-6; // the smallest CFL step a run takes, over its first
+} // namespace
+
 bool SphRun::time_step(double remaining, double& dt, std::string& why) {
   int limiting = -1;
   const double stable = sph::stable_step(h_, &limiting);
@@ -242,6 +246,14 @@ bool SphRun::time_step(double remaining, double& dt, std::string& why) {
         detail::concat("CFL step ", stable, " (Courant ", spec_.numerics.courant, ") set at step ",
                        h_.particles.step, " by particle ", static_cast<long>(at[5]), " at (", at[0],
                        ", ", at[1], ", ", at[2], "), h ", at[3], ", c ", at[4]);
+  }
+  // A step a million times below the first is a collapsing state, not a slow run: it would take
+  // a million times the steps planned (LS-DYNA stops the same way at its DTMIN).
+  if (h_.particles.step > 0 && stable < kCollapse * r_.first_dt) {
+    why = detail::concat("the CFL step fell to ", stable, ", below ", kCollapse, " of the first (",
+                         r_.first_dt, "), at t = ", h_.particles.time, " (step ", h_.particles.step,
+                         "): ", r_.dt_limit, "; check the regions' density, energy and velocity");
+    return false;
   }
   return true;
 }

@@ -1,8 +1,8 @@
-// The two passes of the LPS force (pd/state_based.hpp) over the bond rows: dilatation, then
-// forces, each a parallel loop over rows. In the half layout a thread's contributions to other
-// rows go to buffers of its own, added in thread order (as pd/forces does); in the full layout
-// every row sums its own bonds in its partners' global-id order, so the sums do not depend on
-// the threads or the ranks.
+// The passes of the LPS force (pd/state_based.hpp) over the bond rows: dilatation, (EPS) the
+// trial deviatoric norms, then forces, each a parallel loop over rows. In the half layout a
+// thread's contributions to other rows go to buffers of its own, added in thread order (as
+// pd/forces does); in the full layout every row sums its own bonds in its partners' global-id
+// order, so the sums do not depend on the threads or the ranks.
 #include "meshfree/pd/state_based.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/pd/bond_rows.hpp"
@@ -55,7 +55,7 @@ inline Stretch stretch_of(const Family& f, int j, const BondClass& c, double xi,
 /// A thread's buffers for the half layout's contributions to rows [lo, owned).
 struct Buffers {
   int lo = 0;
-  std::vector<double> theta, f, w, s0;
+  std::vector<double> sum, f, w, s0; // a per-particle sum (dilatation, norm), forces, energy, s0
 };
 
 std::vector<Buffers>& thread_buffers(int T) {
@@ -256,11 +256,11 @@ void particle_sums(const Family& f, std::vector<double>& sum, const Rows& rows) 
     if (f.half) {
       Buffers& own = buf[q];
       own.lo = q == 0 ? 0 : first[q];
-      own.theta.assign(q == 0 ? 0 : owned - own.lo, 0.0);
-      double* into = q == 0 ? sum.data() : own.theta.data();
+      own.sum.assign(q == 0 ? 0 : owned - own.lo, 0.0);
+      double* into = q == 0 ? sum.data() : own.sum.data();
       rows(first[q], first[q + 1], into, into, own.lo);
 #pragma omp barrier
-      add_buffers(first, buf, T, owned, 1, &Buffers::theta, sum.data(), false);
+      add_buffers(first, buf, T, owned, 1, &Buffers::sum, sum.data(), false);
     } else {
 #pragma omp for schedule(dynamic, 512)
       for (int i = 0; i < owned; ++i) rows(i, i + 1, sum.data(), nullptr, 0);

@@ -162,7 +162,7 @@ expect_error "stages[1].mirror[0].axis" "$G" --set 'stages.1.mirror=[{axis: w}]'
 expect_error "stages[1].regions[0].spacing" "$G" --set 'stages.1.regions.0.spacing=-1'
 expect_error "stages[1].settle.damping" "$G" --set 'stages.1.settle={time: 1.0e-4}'
 printf 'name: x\nanalysis: staged\nmodel: {type: plane_stress}\nmaterials: [{name: m, E: 1.0e9, nu: 0.3, density: 1000, bond: {law: pmb, critical_stretch: 0.01}, plasticity: {yield_stress: 1.0e6, hardening: perfect}}]\ngeometry: {rectangle: {origin: [0, 0], size: [1, 1]}}\nstages:\n  - {name: a, analysis: elastoplastic_static, discretisation: {spacing: 0.25}, boundary: [{name: b, edges: bottom, displacement: {x: 0, y: 0}}], steps: [{name: s, load_factor: 1, increments: 1}]}\n  - {name: i, analysis: peridynamics, from: a, hold: [b], discretisation: {spacing: 0.05, horizon: 3}, time: {end: 1.0e-6}}\n' > "$WORK/staged_pd.yaml"
-expect_error "materials[0].plasticity: a plastic preload (plastic strain, hardening) cannot start a bond-based peridynamic stage" "$WORK/staged_pd.yaml"
+expect_error "materials[0].plasticity: a plastic preload (plastic strain, hardening) cannot start a peridynamic stage" "$WORK/staged_pd.yaml"
 expect_error "materials[0].nu: bond-based peridynamics in plane stress has Poisson's ratio 0.3333333333" "$WORK/staged_pd.yaml" --set 'materials.0.plasticity=null'
 expect_error "stages[1].hold" "$WORK/staged_pd.yaml" --set 'stages.1.hold=[]' --set 'materials.0.plasticity=null' --set 'materials.0.nu=0.3333333333333333'
 ELASTIC_PD=(--set 'materials.0.plasticity=null' --set 'materials.0.nu=0.3333333333333333')
@@ -170,7 +170,7 @@ expect_error "stages[1].settle: a peridynamic stage starts from its own static e
 # A material region's law reaches the peridynamic stage as the body's own does.
 TWO='materials=[{name: m, E: 1.0e9, nu: 0.3333333333333333, density: 1000, bond: {law: pmb, critical_stretch: 0.01}}, {name: soft, E: 1.0e8, nu: 0.3333333333333333, density: 1000, plasticity: {yield_stress: 1.0e5, hardening: perfect}}]'
 REGION=(--set "$TWO" --set 'stages.0.material=m' --set 'stages.1.material=m' --set 'stages.0.material_regions=[{material: soft, box: [[0, 0], [0.5, 0.5]]}]')
-expect_error "materials[1].plasticity: a plastic preload (plastic strain, hardening) cannot start a bond-based peridynamic stage" "$WORK/staged_pd.yaml" "${REGION[@]}"
+expect_error "materials[1].plasticity: a plastic preload (plastic strain, hardening) cannot start a peridynamic stage" "$WORK/staged_pd.yaml" "${REGION[@]}"
 expect_error "materials[1].nu: bond-based peridynamics in plane stress has Poisson's ratio" "$WORK/staged_pd.yaml" "${REGION[@]}" --set 'materials.1.plasticity=null' --set 'materials.1.nu=0.25'
 # A 3D preload: what its layers of particles cannot hold is refused before anything runs.
 C="$ROOT/problems/staged_column_blast.yaml"
