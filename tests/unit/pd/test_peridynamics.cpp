@@ -2,6 +2,7 @@
 // moduli of the discrete model from uniform deformations, wave speeds against theory, energy
 // conservation of velocity Verlet, momentum conservation of the impactor contact, bond breaking,
 // pre-cracks, and the Haar approximation of load histories.
+#include "energy_drift.hpp"
 #include "lammps_lattice.hpp"
 #include "meshfree/explicit/pd_setup.hpp"
 #include "meshfree/loads/blast.hpp"
@@ -228,23 +229,11 @@ TEST_CASE("velocity Verlet conserves energy over 10,000 steps without breaking",
     q.v[3 * i] = 0.5 * std::sin(M_PI * x.x() / 0.03);
     q.v[3 * i + 1] = 0.3 * std::cos(M_PI * x.x() / 0.03) * std::sin(M_PI * x.y() / 0.015);
   }
-  pd::Loading none;
-  std::vector<pd::Impactor> no_impactors;
-  const double e0 = pd::kinetic_energy(m) + pd::accelerate(m, s, none, true).strain_energy;
   // Velocity Verlet keeps a shadow energy: E oscillates within O(dt^2) and does not drift.
   // Measured on this plate: max |E - E0| / E0 = 2.6e-3 at 0.8 dt_crit, 1.0e-3 at 0.5, 2.4e-4 at
   // 0.25, the same in the first and the last thousand steps.
-  const double dt = 0.25 * pd::stable_time_step(m);
-  double worst = 0.0, first = 0.0, last = 0.0;
-  for (int step = 1; step <= 10000; ++step) {
-    const bool check = step % 50 == 0;
-    const pd::StepReport r = pd::advance(m, s, none, no_impactors, dt, check);
-    if (!check) continue;
-    const double e = std::abs(pd::kinetic_energy(m) + r.strain_energy - e0) / e0;
-    worst = std::max(worst, e);
-    if (step <= 1000) first = std::max(first, e);
-    if (step > 9000) last = std::max(last, e);
-  }
+  const test::EnergyDrift d = test::energy_drift(m, s, 0.25 * pd::stable_time_step(m), 10000, 50);
+  const double worst = d.worst, first = d.first, last = d.last;
   std::cout << "pd energy: largest |E - E0| / E0 over 10,000 steps " << worst << " (first thousand "
             << first << ", last thousand " << last << ")\n";
   CHECK(worst < 1e-3);
