@@ -70,9 +70,10 @@ inline double critical(const BondClass& c, const Arrays& a, double s0_i, int j) 
     return c.limit;
 }
 
-/// Half layout, scalar: each stored pair once, the reaction to an owned partner.
-template <bool Plastic, bool Alpha, bool Energy>
-Sums half_rows(const Arrays& a, int lo, int hi, const Output& out) {
+/// Half layout, scalar: each stored pair once, the reaction to an owned partner. `cls`: the class
+/// indices, two or four bytes (ClassView), a loop for each.
+template <bool Plastic, bool Alpha, bool Energy, class Index>
+Sums half_rows(const Arrays& a, const Index* cls, int lo, int hi, const Output& out) {
   Sums sums;
   double* const f = out.f;
   for (int i = lo; i < hi; ++i) {
@@ -82,7 +83,7 @@ Sums half_rows(const Arrays& a, int lo, int hi, const Output& out) {
     for (long k = a.offset[i]; k < a.offset[i + 1]; ++k) {
       if (!a.intact[k]) continue;
       const int j = a.partner[k];
-      const BondClass& c = a.classes[a.cls[k]];
+      const BondClass& c = a.classes[cls[k]];
       const auto [dx, dy, dz, bond] = stretched<Plastic>(a, c, k, j, xi, yi, zi);
       const double g = bond.e * bond.inv_r;
       const double gi = c.cw * g, gj = c.cw_partner * g;
@@ -122,8 +123,8 @@ Sums half_rows(const Arrays& a, int lo, int hi, const Output& out) {
 }
 
 /// Full layout, scalar: each row its own sums, in the order of its partners.
-template <bool Plastic, bool Alpha, bool Energy>
-Sums full_rows(const Arrays& a, int lo, int hi, const Output& out) {
+template <bool Plastic, bool Alpha, bool Energy, class Index>
+Sums full_rows(const Arrays& a, const Index* cls, int lo, int hi, const Output& out) {
   Sums sums;
   for (int i = lo; i < hi; ++i) {
     const double xi = a.y[4 * i], yi = a.y[4 * i + 1], zi = a.y[4 * i + 2];
@@ -132,7 +133,7 @@ Sums full_rows(const Arrays& a, int lo, int hi, const Output& out) {
     for (long k = a.offset[i]; k < a.offset[i + 1]; ++k) {
       if (!a.intact[k]) continue;
       const int j = a.partner[k];
-      const BondClass& c = a.classes[a.cls[k]];
+      const BondClass& c = a.classes[cls[k]];
       const auto [dx, dy, dz, bond] = stretched<Plastic>(a, c, k, j, xi, yi, zi);
       const double gi = c.cw * bond.e * bond.inv_r;
       fx += gi * dx, fy += gi * dy, fz += gi * dz;
@@ -152,12 +153,16 @@ Sums full_rows(const Arrays& a, int lo, int hi, const Output& out) {
 
 using RowsFn = Sums (*)(const Arrays&, int, int, const Output&);
 
-template <bool H, bool P, bool A, bool E> RowsFn scalar_rows() {
-  return H ? &half_rows<P, A, E> : &full_rows<P, A, E>;
+template <bool H, bool P, bool A, bool E>
+Sums scalar_rows(const Arrays& a, int lo, int hi, const Output& out) {
+  const auto rows = [&](auto cls) {
+    return H ? half_rows<P, A, E>(a, cls, lo, hi, out) : full_rows<P, A, E>(a, cls, lo, hi, out);
+  };
+  return a.cls.narrow ? rows(a.cls.narrow) : rows(a.cls.wide);
 }
 
 template <bool H, bool P, bool A> RowsFn of_energy(Terms terms) {
-  return terms.energy ? scalar_rows<H, P, A, true>() : scalar_rows<H, P, A, false>();
+  return terms.energy ? &scalar_rows<H, P, A, true> : &scalar_rows<H, P, A, false>;
 }
 
 template <bool H> RowsFn of_terms(Terms terms) {

@@ -80,14 +80,16 @@ struct Factors {
   int breaks;                      // bit q set where bond q breaks
 };
 
-/// The group starting at bond k0 of a row ending at `end`, for the particle at yi.
-MF_TARGET_AVX2 MF_ALWAYS_INLINE void load_group(const Arrays& a, long k0, long end, __m256d yi,
-                                                Group& g) {
+/// The group starting at bond k0 of a row ending at `end`, for the particle at yi; `cls` the
+/// class indices (two or four bytes).
+template <class Index>
+MF_TARGET_AVX2 MF_ALWAYS_INLINE void load_group(const Arrays& a, const Index* cls, long k0,
+                                                long end, __m256d yi, Group& g) {
   for (int q = 0; q < 4; ++q) {
     const long k = std::min(k0 + q, end - 1);
     g.k[q] = k;
     g.j[q] = a.partner[k];
-    g.c[q] = &a.classes[a.cls[k]];
+    g.c[q] = &a.classes[cls[k]];
     g.d[q] = _mm256_sub_pd(_mm256_load_pd(a.y + 4 * static_cast<std::ptrdiff_t>(g.j[q])), yi);
   }
 }
@@ -264,8 +266,9 @@ MF_TARGET_AVX2 MF_ALWAYS_INLINE void write_row(const Arrays& a, int i, const Row
 }
 
 /// Rows [lo, hi) of either layout, in groups of four bonds.
-template <bool Half, bool Plastic, bool Alpha, bool Energy, bool OneLaw>
-MF_TARGET_AVX2 MF_ALWAYS_INLINE Sums run_rows(const Arrays& a, int lo, int hi, const Output& out) {
+template <bool Half, bool Plastic, bool Alpha, bool Energy, bool OneLaw, class Index>
+MF_TARGET_AVX2 MF_ALWAYS_INLINE Sums run_rows(const Arrays& a, const Index* cls, int lo, int hi,
+                                              const Output& out) {
   Sums sums;
   Group g;
   Factors b;
@@ -276,7 +279,7 @@ MF_TARGET_AVX2 MF_ALWAYS_INLINE Sums run_rows(const Arrays& a, int lo, int hi, c
     RowSums row{_mm256_setzero_pd()};
     const long end = a.offset[i + 1];
     for (long k0 = a.offset[i]; k0 < end; k0 += 4) {
-      load_group(a, k0, end, yi, g);
+      load_group(a, cls, k0, end, yi, g);
       evaluate<Half, Plastic, Alpha, Energy, OneLaw>(a, g, s0_i, b);
       add<Half, Plastic, Alpha, Energy>(t, g, static_cast<int>(std::min<long>(4, end - k0)), b, row,
                                         sums);
@@ -286,23 +289,30 @@ MF_TARGET_AVX2 MF_ALWAYS_INLINE Sums run_rows(const Arrays& a, int lo, int hi, c
   return sums;
 }
 
+template <bool H, bool P, bool A, bool E, class Index>
+MF_TARGET_AVX2 MF_ALWAYS_INLINE Sums of_law(const Arrays& a, const Index* cls, int lo, int hi,
+                                            const Output& out) {
+  return a.law ? run_rows<H, P, A, E, true>(a, cls, lo, hi, out)
+               : run_rows<H, P, A, E, false>(a, cls, lo, hi, out);
+}
+
 template <bool H, bool P, bool A, bool E>
-MF_TARGET_AVX2 MF_ALWAYS_INLINE Sums of_law(const Arrays& a, int lo, int hi, const Output& out) {
-  return a.law ? run_rows<H, P, A, E, true>(a, lo, hi, out)
-               : run_rows<H, P, A, E, false>(a, lo, hi, out);
+MF_TARGET_AVX2 MF_ALWAYS_INLINE Sums of_index(const Arrays& a, int lo, int hi, const Output& out) {
+  return a.cls.narrow ? of_law<H, P, A, E>(a, a.cls.narrow, lo, hi, out)
+                      : of_law<H, P, A, E>(a, a.cls.wide, lo, hi, out);
 }
 
 using RowsFn = Sums (*)(const Arrays&, int, int, const Output&);
 
 template <bool H, bool P, bool A, bool E>
 MF_TARGET_AVX2 Sums rows_avx2(const Arrays& a, int lo, int hi, const Output& out) {
-  return of_law<H, P, A, E>(a, lo, hi, out);
+  return of_index<H, P, A, E>(a, lo, hi, out);
 }
 
 /// The same rows in AVX-512's encoding (the vector registers and the instructions are AVX2's).
 template <bool H, bool P, bool A, bool E>
 MF_TARGET_AVX512 Sums rows_avx512(const Arrays& a, int lo, int hi, const Output& out) {
-  return of_law<H, P, A, E>(a, lo, hi, out);
+  return of_index<H, P, A, E>(a, lo, hi, out);
 }
 
 template <bool H, bool P, bool A, bool E> RowsFn of_target(SimdTarget t) {

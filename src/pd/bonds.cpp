@@ -136,9 +136,21 @@ private:
 
 } // namespace
 
+void ClassIndices::resize(long n) {
+  wide_.clear();
+  wide_.shrink_to_fit();
+  narrow_.assign(n, 0);
+}
+
+void ClassIndices::widen() {
+  wide_.assign(narrow_.begin(), narrow_.end());
+  narrow_.clear();
+  narrow_.shrink_to_fit();
+}
+
 double Bonds::bytes(int plastic_per_bond) const {
   const double s = static_cast<double>(stored());
-  return 8.0 * offset.size() + (4.0 + 4.0 + 1.0 + 8.0 * plastic_per_bond) * s +
+  return 8.0 * offset.size() + (4.0 + cls.bytes_per_bond() + 1.0 + 8.0 * plastic_per_bond) * s +
          static_cast<double>(sizeof(BondClass)) * classes.size();
 }
 
@@ -284,7 +296,7 @@ std::size_t fill_rows(const BondRows& rows, const particles::ParticleSet& p, con
       });
     }
     long k = b.offset[i];
-    for (const auto& [j, c] : entries) b.partner[k] = static_cast<int>(j), b.cls[k++] = c;
+    for (const auto& [j, c] : entries) b.partner[k] = static_cast<int>(j), b.cls.set(k++, c);
   }
   return entries.capacity();
 }
@@ -380,7 +392,7 @@ void apply_surface_correction(Model& m) {
         sum += e(d) * e(d) / (g * g);
       }
       const double root = std::sqrt(sum);
-      b.cls[k] = classes.find(c.law, c.length, c.weight / root, c.weight_partner / root);
+      b.cls.set(k, classes.find(c.law, c.length, c.weight / root, c.weight_partner / root));
     }
   fold_laws(m);
   m.weight_sum.assign(n, 0.0);

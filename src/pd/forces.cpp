@@ -159,7 +159,7 @@ BondForcePass::BondForcePass(const Model& m, BondState& s, const std::vector<dou
   a_ = Arrays{padded_positions(y),
               b.offset.data(),
               b.partner.data(),
-              b.cls.data(),
+              b.cls.view(),
               classes,
               s.intact.data(),
               plastic ? s.plastic.data() : nullptr,

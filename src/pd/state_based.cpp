@@ -22,7 +22,7 @@ struct Family {
   const double* y; // three a point
   const long* offset;
   const int* partner;
-  const std::uint32_t* cls;
+  ClassView cls;
   const BondClass* classes;
   const double* omega; // per class
   unsigned char* intact;
@@ -231,7 +231,7 @@ Family family_of(const Model& m, BondState& s, const std::vector<double>& y,
   return Family{y.data(),
                 b.offset.data(),
                 b.partner.data(),
-                b.cls.data(),
+                b.cls.view(),
                 b.classes.data(),
                 omega.data(),
                 s.intact.data(),

@@ -19,7 +19,7 @@ struct Arrays {
                    // (owned and ghosts): a point is one load of a packed register
   const long* offset;
   const int* partner;
-  const std::uint32_t* cls;
+  ClassView cls;
   const BondClass* classes;
   unsigned char* intact;
   double* plastic;

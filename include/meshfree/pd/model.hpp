@@ -57,11 +57,47 @@ struct BondClass {
 ///    on the thread count or on which rank holds which particle.
 enum class BondLayout { Half, Full };
 
+/// The class of each stored bond, read as `cls[k]`: two bytes a bond while the classes number at
+/// most 65,536 (a lattice's bonds fall into tens to hundreds), four beyond (the per-pair factors
+/// of a surface correction can make more). The narrow index is a quarter of a bond's steady
+/// memory; the test of which array is held is the same for every bond of a loop.
+struct ClassView {
+  const std::uint16_t* narrow = nullptr;
+  const std::uint32_t* wide = nullptr;
+  std::uint32_t operator[](long k) const { return narrow ? narrow[k] : wide[k]; }
+};
+
+/// The class indices of the stored bonds: narrow until a class past 65,535 is set, then wide.
+class ClassIndices {
+public:
+  /// n bonds of class 0, narrow.
+  void resize(long n);
+  std::uint32_t operator[](long k) const { return wide_.empty() ? narrow_[k] : wide_[k]; }
+  void set(long k, std::uint32_t c) {
+    if (wide_.empty() && c > kNarrowLast) widen();
+    if (wide_.empty())
+      narrow_[k] = static_cast<std::uint16_t>(c);
+    else
+      wide_[k] = c;
+  }
+  long size() const { return static_cast<long>(narrow_.size() + wide_.size()); }
+  int bytes_per_bond() const { return wide_.empty() ? 2 : 4; }
+  ClassView view() const {
+    return wide_.empty() ? ClassView{narrow_.data(), nullptr} : ClassView{nullptr, wide_.data()};
+  }
+
+private:
+  static constexpr std::uint32_t kNarrowLast = 0xFFFF;
+  void widen();
+  std::vector<std::uint16_t> narrow_;
+  std::vector<std::uint32_t> wide_;
+};
+
 struct Bonds {
   BondLayout layout = BondLayout::Half;
   std::vector<long> offset{0};
   std::vector<int> partner;
-  std::vector<std::uint32_t> cls; // index into classes
+  ClassIndices cls; // index into classes
   std::vector<BondClass> classes;
   std::vector<materials::BondLaw> folded; // the laws the classes were folded from
   long directed = 0;       // directed bonds: a pair of owned particles counts 2, owned-ghost 1

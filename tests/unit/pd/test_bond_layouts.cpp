@@ -1,7 +1,8 @@
-// The bond storage of peridynamics: the class table of a lattice against its offsets, the half
-// (each pair once) and full (global-id order) layouts against a direct sum of Silling & Askari's
-// pairwise forces, the full layout's independence of threads and of which particles a rank owns
-// (ghost partners), and the Morton order of the particles.
+// The bond storage of peridynamics: the class table of a lattice against its offsets, its
+// two-byte indices and their widening past 65,536 classes, the half (each pair once) and full
+// (global-id order) layouts against a direct sum of Silling & Askari's pairwise forces (a
+// lattice, and a jittered cloud of a class a pair), the full layout's independence of threads and
+// of which particles a rank owns (ghost partners), and the Morton order of the particles.
 #include "meshfree/pd/forces.hpp"
 #include "meshfree/pd/particle_order.hpp"
 #include <catch2/catch.hpp>
@@ -16,10 +17,15 @@ namespace {
 
 constexpr double kDx = 0.5e-3, kHorizon = 3.0002 * kDx, kC = 1.6863e22;
 
-void add_lattice(particles::ParticleSet& p, int n) {
+/// An n^3 lattice; with `jitter` each particle moved by up to jitter dx along each axis (seeded),
+/// so that no two bonds have the same length.
+void add_lattice(particles::ParticleSet& p, int n, double jitter = 0.0) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-jitter * kDx, jitter * kDx);
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) p.add({i * kDx, j * kDx, k * kDx}, kDx * kDx * kDx, 2200.0, 0);
+      for (int i = 0; i < n; ++i)
+        p.add({i * kDx + u(rng), j * kDx + u(rng), k * kDx + u(rng)}, kDx * kDx * kDx, 2200.0, 0);
 }
 
 pd::LawTable table(double s00, double alpha, double yield) {
@@ -58,6 +64,26 @@ std::vector<double> deformed(const particles::ParticleSet& p, double stretch, do
   return y;
 }
 
+/// Direct sum over all pairs at positions y: f_i = sum_j c s w_ij e_ij, w_ij = V_j beta
+/// (Silling & Askari 2005, eq. 3 and 6; beta the linear partial volume).
+std::vector<double> pairwise_forces(const particles::ParticleSet& p, const std::vector<double>& y) {
+  const int n = p.size();
+  std::vector<double> direct(3 * n, 0.0);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      if (i == j) continue;
+      const Vec3 xi = p.reference(j) - p.reference(i);
+      const double L = xi.norm();
+      if (L > kHorizon) continue;
+      const double beta = L > kHorizon - 0.5 * kDx ? (kHorizon + 0.5 * kDx - L) / kDx : 1.0;
+      const Vec3 d(y[3 * j] - y[3 * i], y[3 * j + 1] - y[3 * i + 1], y[3 * j + 2] - y[3 * i + 2]);
+      const double s = (d.norm() - L) / L;
+      for (int a = 0; a < 3; ++a)
+        direct[3 * i + a] += kC * s * p.volume[j] * beta * d(a) / d.norm();
+    }
+  return direct;
+}
+
 double largest_difference(const std::vector<double>& a, const std::vector<double>& b) {
   double d = 0.0, s = 0.0;
   for (std::size_t k = 0; k < a.size(); ++k) {
@@ -92,7 +118,9 @@ TEST_CASE("a lattice's bonds share one class per offset within the horizon", "[p
   for (int i = 0; i < p.size(); ++i)
     for (long k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) CHECK(m.bonds.partner[k] > i);
   CHECK(m.bonds.directed == 2 * m.bonds.stored());
-  CHECK(m.bonds.bytes(0) / m.bonds.directed < 5.0);
+  // Partner 4 bytes, class 2, intact flag 1 a pair: 3.5 a directed bond and the rows' offsets.
+  CHECK(m.bonds.cls.bytes_per_bond() == 2);
+  CHECK(m.bonds.bytes(0) / m.bonds.directed < 4.0);
 }
 
 TEST_CASE("both bond layouts give Silling and Askari's pairwise forces", "[pd][bonds]") {
@@ -100,24 +128,45 @@ TEST_CASE("both bond layouts give Silling and Askari's pairwise forces", "[pd][b
   add_lattice(p, 7);
   const pd::LawTable t = table(0.0, 0.0, 0.0);
   const std::vector<double> y = deformed(p, 1e-4, 1e-3);
-  // Direct sum over all pairs: f_i = sum_j c s w_ij e_ij, w_ij = V_j beta (Silling & Askari
-  // 2005, eq. 3 and 6; beta the linear partial volume).
-  const int n = p.size();
-  std::vector<double> direct(3 * n, 0.0);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      if (i == j) continue;
-      const Vec3 xi = p.reference(j) - p.reference(i);
-      const double L = xi.norm();
-      if (L > kHorizon) continue;
-      const double beta = L > kHorizon - 0.5 * kDx ? (kHorizon + 0.5 * kDx - L) / kDx : 1.0;
-      const Vec3 d(y[3 * j] - y[3 * i], y[3 * j + 1] - y[3 * i + 1], y[3 * j + 2] - y[3 * i + 2]);
-      const double s = (d.norm() - L) / L;
-      for (int a = 0; a < 3; ++a)
-        direct[3 * i + a] += kC * s * p.volume[j] * beta * d(a) / d.norm();
-    }
+  const std::vector<double> direct = pairwise_forces(p, y);
   for (bool deterministic : {false, true}) {
     const pd::Model m = model(p, deterministic, t);
+    pd::BondState s = pd::initial_state(m, {});
+    std::vector<double> f;
+    pd::bond_forces(m, s, y, f);
+    CHECK(largest_difference(direct, f) < 1e-10);
+  }
+}
+
+TEST_CASE("class indices past two bytes widen to four and keep every class", "[pd][bonds]") {
+  pd::ClassIndices cls;
+  cls.resize(5);
+  for (long k = 0; k < 4; ++k) cls.set(k, static_cast<std::uint32_t>(65'532 + k));
+  CHECK(cls.bytes_per_bond() == 2);
+  CHECK(cls.view().narrow != nullptr);
+  cls.set(4, 65'536);
+  CHECK(cls.bytes_per_bond() == 4);
+  CHECK(cls.view().wide != nullptr);
+  CHECK(cls.view().narrow == nullptr);
+  for (long k = 0; k < 5; ++k) {
+    CHECK(cls[k] == 65'532 + k);
+    CHECK(cls.view()[k] == 65'532 + k);
+  }
+}
+
+TEST_CASE("a cloud of more bond classes than two bytes index gives the pairwise forces",
+          "[pd][bonds]") {
+  // A jittered lattice: every stored pair has a length of its own, so a class of its own.
+  particles::ParticleSet p;
+  add_lattice(p, 14, 0.05);
+  const std::vector<double> y = deformed(p, 1e-4, 1e-3);
+  const std::vector<double> direct = pairwise_forces(p, y);
+  for (bool deterministic : {false, true}) {
+    const pd::Model m = model(p, deterministic, table(0.0, 0.0, 0.0));
+    INFO((deterministic ? "full rows" : "half rows")
+         << ", " << m.bonds.classes.size() << " classes");
+    CHECK(m.bonds.classes.size() > 65'536);
+    CHECK(m.bonds.cls.bytes_per_bond() == 4);
     pd::BondState s = pd::initial_state(m, {});
     std::vector<double> f;
     pd::bond_forces(m, s, y, f);
