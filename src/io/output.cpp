@@ -82,8 +82,8 @@ struct Closing {
 /// A rows x cols dataset (1-D when cols is 1), creating the groups on its path. With a slice,
 /// `rows` are this rank's rows offset .. offset + rows of slice.total, written collectively.
 template <class T>
-void write_dataset(hid_t file, const std::string& name, const std::vector<T>& data, hsize_t rows,
-                   hsize_t cols, hid_t type, const PointSlice* slice = nullptr) {
+void write_dataset(hid_t file, const std::string& name, const T* data, hsize_t rows, hsize_t cols,
+                   hid_t type, const PointSlice* slice = nullptr) {
   hsize_t dims[2] = {slice ? slice->total : rows, cols};
   const int rank = cols > 1 ? 2 : 1;
   const Closing space(H5Screate_simple(rank, dims, nullptr), H5Sclose);
@@ -95,7 +95,7 @@ void write_dataset(hid_t file, const std::string& name, const std::vector<T>& da
   if (set.id < 0) hdf5_failure(file, "creating dataset " + name, errno);
   herr_t status;
   if (!slice) {
-    status = H5Dwrite(set.id, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data());
+    status = H5Dwrite(set.id, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data);
   } else {
     const hsize_t start[2] = {slice->offset, 0}, count[2] = {rows, cols};
     const Closing memory(H5Screate_simple(rank, count, nullptr), H5Sclose);
@@ -107,7 +107,7 @@ void write_dataset(hid_t file, const std::string& name, const std::vector<T>& da
     }
     const Closing transfer(H5Pcreate(H5P_DATASET_XFER), H5Pclose);
     H5Pset_dxpl_mpio(transfer.id, H5FD_MPIO_COLLECTIVE);
-    status = H5Dwrite(set.id, type, memory.id, space.id, transfer.id, data.data());
+    status = H5Dwrite(set.id, type, memory.id, space.id, transfer.id, data);
   }
   if (status < 0) hdf5_failure(file, "dataset " + name, errno);
   const hid_t written = set.id;
@@ -117,7 +117,7 @@ void write_dataset(hid_t file, const std::string& name, const std::vector<T>& da
 
 void write_dataset(hid_t file, const std::string& name, const std::vector<double>& data,
                    hsize_t rows, hsize_t cols, const PointSlice* slice = nullptr) {
-  write_dataset(file, name, data, rows, cols, H5T_NATIVE_DOUBLE, slice);
+  write_dataset(file, name, data.data(), rows, cols, H5T_NATIVE_DOUBLE, slice);
 }
 
 std::string data_item(const std::string& h5, const std::string& set, std::size_t rows, int cols) {
@@ -142,7 +142,7 @@ namespace {
 
 void write_int_dataset(hid_t file, const std::string& name, const std::vector<int>& data,
                        hsize_t rows, hsize_t cols, const PointSlice* slice = nullptr) {
-  write_dataset(file, name, data, rows, cols, H5T_NATIVE_INT, slice);
+  write_dataset(file, name, data.data(), rows, cols, H5T_NATIVE_INT, slice);
 }
 
 } // namespace
@@ -311,10 +311,10 @@ void FieldSeries::add_step(const FieldStep& step) {
   std::ostringstream group;
   group << "/step_" << std::setw(6) << std::setfill('0') << steps_;
   // A dataset of this step, 1 or 3 values per point, as an XDMF data item.
-  const auto put = [&](const std::string& name, const std::vector<double>& v, int per) {
+  const auto put = [&](const std::string& name, const FieldValues& v, int per) {
     MF_ASSERT(v.size() == per * n);
     try {
-      write_dataset(file_, group.str() + "/" + name, v, n, per, slice);
+      write_dataset(file_, group.str() + "/" + name, v.data(), n, per, H5T_NATIVE_DOUBLE, slice);
     } catch (const Error&) {
       broken_ = true;
       throw;
@@ -328,14 +328,15 @@ void FieldSeries::add_step(const FieldStep& step) {
   if (step.positions.empty()) {
     x << geometry(reference_);
   } else {
-    x << geometry(put("coordinates", step.positions, 3));
+    const auto& xyz = step.positions;
+    x << geometry(put("coordinates", FieldValues::in_place(xyz.data(), xyz.size()), 3));
     x << attribute("reference_position", "Vector", reference_);
   }
   for (const auto& [name, v] : step.scalars) x << attribute(name, "Scalar", put(name, v, 1));
   for (const auto& [name, v] : step.vectors) {
     std::vector<double> d(3 * v.size(), 0.0);
     for (std::size_t i = 0; i < v.size(); ++i) d[3 * i] = v[i].x(), d[3 * i + 1] = v[i].y();
-    x << attribute(name, "Vector", put(name, d, 3));
+    x << attribute(name, "Vector", put(name, FieldValues(std::move(d)), 3));
   }
   for (const auto& [name, v] : step.vectors3) x << attribute(name, "Vector", put(name, v, 3));
   x << "   </Grid>\n";

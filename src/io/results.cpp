@@ -139,11 +139,11 @@ FieldOutput::FieldOutput(OutputDirectory* out, const std::string& stem,
 }
 
 void FieldOutput::scalar(std::string name, Fill fill) {
-  scalars_.emplace_back(std::move(name), std::move(fill));
+  scalars_.push_back({std::move(name), std::move(fill), nullptr});
 }
 
 void FieldOutput::vector(std::string name, Fill fill) {
-  vectors_.emplace_back(std::move(name), std::move(fill));
+  vectors_.push_back({std::move(name), std::move(fill), nullptr});
 }
 
 void FieldOutput::vector2(std::string name, Fill2 fill) {
@@ -158,22 +158,26 @@ void FieldOutput::write(double t) {
     positions_(step.positions);
     MF_ASSERT(step.positions.size() == 3 * points_);
   }
-  for (const auto& [name, fill] : scalars_) {
-    step.scalars.emplace_back(name, std::vector<double>());
-    fill(step.scalars.back().second);
-    MF_ASSERT(step.scalars.back().second.size() == points_);
-  }
-  for (const auto& [name, fill] : vectors_) {
-    step.vectors3.emplace_back(name, std::vector<double>());
-    fill(step.vectors3.back().second);
-    MF_ASSERT(step.vectors3.back().second.size() == 3 * points_);
-  }
+  for (const Field& f : scalars_) step.scalars.emplace_back(f.name, values_of(f, 1));
+  for (const Field& f : vectors_) step.vectors3.emplace_back(f.name, values_of(f, 3));
   for (const auto& [name, fill] : vectors2_) {
     step.vectors.emplace_back(name, std::vector<Vec2>());
     fill(step.vectors.back().second);
     MF_ASSERT(step.vectors.back().second.size() == points_);
   }
   series_->add_step(step);
+}
+
+FieldValues FieldOutput::values_of(const Field& f, std::size_t per) const {
+  const std::size_t count = per * points_;
+  if (f.array) {
+    MF_ASSERT(f.array->size() >= count);
+    return FieldValues::in_place(f.array->data(), count);
+  }
+  FieldValues v(std::vector<double>{});
+  f.fill(v.held());
+  MF_ASSERT(v.size() == count);
+  return v;
 }
 
 void FieldOutput::regrid(const std::vector<Vec2>& points, const GridCells& cells) {

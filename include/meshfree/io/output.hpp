@@ -12,6 +12,28 @@
 
 namespace mf::io {
 
+/// One field's values at a step (x, y, z of each point in turn for a vector): held by the step,
+/// or read where they lie in an array that outlives the write (a particle field of an explicit
+/// run), so that a step of a large body copies none of its arrays.
+class FieldValues {
+public:
+  FieldValues(std::vector<double> values) : own_(std::move(values)) {} // NOLINT: a vector is one
+  static FieldValues in_place(const double* data, std::size_t size) {
+    FieldValues v({});
+    v.view_ = data, v.size_ = size;
+    return v;
+  }
+  const double* data() const { return view_ ? view_ : own_.data(); }
+  std::size_t size() const { return view_ ? size_ : own_.size(); }
+  /// The values held, for filling.
+  std::vector<double>& held() { return own_; }
+
+private:
+  std::vector<double> own_;
+  const double* view_ = nullptr;
+  std::size_t size_ = 0;
+};
+
 /// Point fields of one output step: scalars (one value per point) and 2D vectors (written as
 /// 3-component vectors with z = 0 so that ParaView can warp by them). With `positions` the step's
 /// geometry is those points (the deformed configuration: x, y, z of each point in turn) and the
@@ -19,9 +41,9 @@ namespace mf::io {
 struct FieldStep {
   double time = 0.0;
   std::vector<double> positions; // empty: the step's geometry is the series' points
-  std::vector<std::pair<std::string, std::vector<double>>> scalars;
+  std::vector<std::pair<std::string, FieldValues>> scalars;
   std::vector<std::pair<std::string, std::vector<Vec2>>> vectors;
-  std::vector<std::pair<std::string, std::vector<double>>> vectors3; // 3 values per point
+  std::vector<std::pair<std::string, FieldValues>> vectors3; // 3 values per point
 };
 
 /// Cells of the grid a field series lives on: none (the points alone, an XDMF Polyvertex grid),

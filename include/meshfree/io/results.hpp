@@ -120,10 +120,10 @@ public:
   /// The first points() values (three per point for a vector) of an array that lives as long
   /// as this series (it may grow: it is read at each write); its elements convert to double.
   template <class T> void scalar(std::string name, const std::vector<T>& a) {
-    scalar(std::move(name), copy_of(a, 1));
+    add(scalars_, std::move(name), a, 1);
   }
   template <class T> void vector(std::string name, const std::vector<T>& a) {
-    vector(std::move(name), copy_of(a, 3));
+    add(vectors_, std::move(name), a, 3);
   }
   std::size_t points() const { return points_; }
   bool active() const { return series_ != nullptr; }
@@ -142,15 +142,30 @@ public:
   void close();
 
 private:
-  template <class T> Fill copy_of(const std::vector<T>& a, std::size_t per) const {
-    // The count is read at each write: regrid() changes it.
-    return [&a, per, this](std::vector<double>& out) {
-      out.assign(a.begin(), a.begin() + per * points_);
-    };
+  /// A field filled at each write, or an array of doubles written where it lies.
+  struct Field {
+    std::string name;
+    Fill fill;
+    const std::vector<double>* array = nullptr;
+  };
+  template <class T>
+  void add(std::vector<Field>& to, std::string name, const std::vector<T>& a, std::size_t per) {
+    if constexpr (std::is_same_v<T, double>) {
+      to.push_back({std::move(name), nullptr, &a});
+    } else {
+      // The count is read at each write: regrid() changes it.
+      to.push_back({std::move(name),
+                    [&a, per, this](std::vector<double>& out) {
+                      out.assign(a.begin(), a.begin() + per * points_);
+                    },
+                    nullptr});
+    }
   }
+  /// The field's values at this write.
+  FieldValues values_of(const Field& f, std::size_t per) const;
   std::unique_ptr<FieldSeries> series_;
   std::size_t points_ = 0;
-  std::vector<std::pair<std::string, Fill>> scalars_, vectors_;
+  std::vector<Field> scalars_, vectors_;
   std::vector<std::pair<std::string, Fill2>> vectors2_;
   Fill positions_;
 };

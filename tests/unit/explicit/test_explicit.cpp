@@ -13,6 +13,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
+#include <hdf5.h>
 #include <limits>
 #include <set>
 
@@ -340,4 +341,53 @@ TEST_CASE("summary.json keeps the header, status, sections and timers in order",
   h.append({0.0, -2.0});
   h.append({1.0, 1.0});
   CHECK(h.max_abs(1) == 2.0);
+}
+
+namespace {
+
+/// The doubles of dataset `name` of an HDF5 file.
+std::vector<double> read_doubles(const std::string& file, const std::string& name) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  REQUIRE(f >= 0);
+  const hid_t d = H5Dopen2(f, name.c_str(), H5P_DEFAULT);
+  REQUIRE(d >= 0);
+  const hid_t space = H5Dget_space(d);
+  std::vector<double> v(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
+  H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+  H5Sclose(space), H5Dclose(d), H5Fclose(f);
+  return v;
+}
+
+} // namespace
+
+TEST_CASE("a field series writes each field's values of the moment, in place or copied",
+          "[explicit][io]") {
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / "meshfree_field_values").string();
+  std::filesystem::remove_all(dir);
+  std::vector<double> xyz{0, 0, 0, 1, 0, 0}, speed{1.0, 2.0}, velocity(6, 0.5);
+  std::vector<int> count{3, 4};
+  {
+    io::OutputDirectory out(dir);
+    io::FieldOutput fields(&out, "fields", xyz);
+    fields.scalar("speed", speed);       // doubles: written where they lie
+    fields.vector("velocity", velocity); // three a point, in place too
+    fields.scalar("count", count);       // other types: copied as doubles
+    fields.scalar("twice", [&](std::vector<double>& v) { v = {2 * speed[0], 2 * speed[1]}; });
+    fields.write(0.0);
+    speed = {5.0, -6.0}, velocity[4] = -7.0, count = {8, 9};
+    fields.write(1.0);
+    fields.close();
+    out.commit();
+  }
+  const std::string h5 = dir + "/fields.h5";
+  CHECK(read_doubles(h5, "/step_000000/speed") == std::vector<double>{1.0, 2.0});
+  CHECK(read_doubles(h5, "/step_000001/speed") == std::vector<double>{5.0, -6.0});
+  CHECK(read_doubles(h5, "/step_000000/velocity") == std::vector<double>(6, 0.5));
+  CHECK(read_doubles(h5, "/step_000001/velocity") ==
+        std::vector<double>{0.5, 0.5, 0.5, 0.5, -7.0, 0.5});
+  CHECK(read_doubles(h5, "/step_000000/count") == std::vector<double>{3.0, 4.0});
+  CHECK(read_doubles(h5, "/step_000001/count") == std::vector<double>{8.0, 9.0});
+  CHECK(read_doubles(h5, "/step_000001/twice") == std::vector<double>{10.0, -12.0});
+  std::filesystem::remove_all(dir);
 }
