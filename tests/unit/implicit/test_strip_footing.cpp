@@ -61,9 +61,6 @@ void check_footing(const std::string& method, double phi_degrees) {
   INFO(method << ", phi " << phi_degrees << ": q / c " << q / c << " against N_c " << nc
               << "\n  active wedge  " << active.transpose() / c << "\n  passive wedge "
               << passive.transpose() / c);
-  INFO(method << ", phi " << phi_degrees << ": q / c " << q / c << " against N_c " << nc
-              << "\n  active wedge  " << active.transpose() / c << "\n  passive wedge "
-              << passive.transpose() / c);
   CHECK(std::abs(q / (c * nc) - 1.0) < 0.03);
   // Each wedge's stress within 1% of its largest component: c N_c under the footing,
   // 2 c sqrt(K_p) beside it.
