@@ -80,7 +80,7 @@ def brick_spacing(dofs, nodes_per_cell):
 
 
 def bricks(element, nodes_per_cell):
-    """The box of BOX in 8-node (plane q4 extruded) or 20-node (q8) bricks on a structured mesh
+    """The box of BOX in 8-node (hex8: plane q4 extruded) or 20-node (hex20) bricks on a structured mesh
     of spacing h, 2 x 2 x 2 or 3 x 3 x 3 Gauss points per brick."""
     return dict(problem="patch_test_3d.yaml", analysis="elastic",
                 spacing=lambda dofs: brick_spacing(dofs, nodes_per_cell),
@@ -88,7 +88,7 @@ def bricks(element, nodes_per_cell):
                                 "discretisation.quadrature.correction=none"])
 
 
-EXTRA_CASES = {"box": BOX, "hex8": bricks("q4", 1), "hex20": bricks("q8", 4)}
+EXTRA_CASES = {"box": BOX, "hex8": bricks("hex8", 1), "hex20": bricks("hex20", 4)}
 SOLID_3D = set(EXTRA_CASES)
 # Issue 31's acceptance for 3D on multigrid: CG iterations at the largest size within this
 # fraction of those near 10^5 DOFs, and the assembly's growth exponent at most this.

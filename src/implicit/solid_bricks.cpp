@@ -62,7 +62,8 @@ ExtrudedMesh::ExtrudedMesh(fem::Mesh plane, const geometry::Prism& body, double 
     : plane_(std::move(plane)), body_(body), layers_(layer_count(body, spacing)),
       dz_(body.depth / layers_) {
   MF_REQUIRE(plane_.type != fem::ElementType::T3,
-             "discretisation.fem.element: model solid_3d extrudes q4 or q8 elements, not t3");
+             "discretisation.fem.element: model solid_3d extrudes q4 or q8 plane elements into "
+             "hex8 or hex20 bricks, not t3");
   const int np = plane_.node_count();
   corner_index_.assign(np, -1);
   if (serendipity())

@@ -18,7 +18,9 @@ std::unique_ptr<SolidElements> make_solid_elements(const spec::DiscretisationSpe
     fem::sort_nodes_for_locality(mesh, fem::characteristic_size(mesh));
     return std::make_unique<TetElements>(std::move(mesh), body);
   }
-  return std::make_unique<ExtrudedMesh>(plane_fe_mesh(d, body.section), body, d.spacing);
+  spec::DiscretisationSpec plane = d; // the section's mesh, of the plane element of the bricks
+  plane.fem.element = spec::plane_element(e);
+  return std::make_unique<ExtrudedMesh>(plane_fe_mesh(plane, body.section), body, d.spacing);
 }
 
 namespace {

@@ -296,9 +296,9 @@ std::string describe_solid_method(const spec::ProblemSpec& spec) {
     return detail::concat("FE ", d.fem.element, " (gmsh's tetrahedra of the prism), spacing ",
                           d.spacing, volumetric);
   if (d.method == spec::Method::Fem)
-    return detail::concat("FE ", d.fem.element == "q8" ? "hex20" : "hex8", " (the plane ",
-                          d.fem.element, " mesh extruded in ", layers, " layers), spacing ",
-                          d.spacing, volumetric);
+    return detail::concat("FE ", d.fem.element, " (the plane ", spec::plane_element(d.fem.element),
+                          " mesh extruded in ", layers, " layers), spacing ", d.spacing,
+                          volumetric);
   return detail::concat(
       "meshfree RK (", d.shape.basis == kernels::Basis::Quadratic ? "quadratic" : "linear",
       " basis, ", d.shape.support == kernels::SupportShape::Circular ? "spherical" : "box",

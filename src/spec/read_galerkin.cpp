@@ -47,8 +47,11 @@ namespace {
 /// quadrature order.
 void read_fem_options(KeyReader& d, int dim, const std::string& base_dir, DiscretisationSpec& s) {
   if (auto f = d.optional_map("fem")) {
-    s.fem.element = dim == 3 ? f->choice("element", {"t3", "q4", "q8", "tet4", "tet10"}, "q8")
-                             : f->choice("element", {"t3", "q4", "q8"}, "q8");
+    // In 3D, q4 and q8 name the plane elements extruded into 8- and 20-node bricks (hex8, hex20).
+    s.fem.element =
+        dim == 3
+            ? f->choice("element", {"hex8", "hex20", "tet4", "tet10", "q4", "q8", "t3"}, "hex20")
+            : f->choice("element", {"t3", "q4", "q8"}, "q8");
     if (f->has("mesh")) {
       const std::string mesh = f->text("mesh");
       s.fem.mesh = !mesh.empty() && mesh.front() == '/' ? mesh : base_dir + mesh;

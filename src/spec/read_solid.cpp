@@ -204,11 +204,12 @@ void read_boundary(KeyReader& r, const ProblemSpec& p, SolidSpec& s) {
 void read_solid_discretisation(KeyReader& r, const ProblemSpec& p, const std::string& base_dir,
                                SolidSpec& s) {
   s.discretisation = read_discretisation(r, 3, p.domain.bounds(), base_dir, s.linear_solver);
-  const DiscretisationSpec& d = s.discretisation;
+  DiscretisationSpec& d = s.discretisation;
   const std::string key = "discretisation";
   if (d.method == Method::Fem && d.fem.element == "t3")
-    fail(key, ".fem.element: model solid_3d extrudes q4 (into 8-node bricks) or q8 (into 20-node "
-              "bricks), or meshes tet4 or tet10, not t3");
+    fail(key, ".fem.element: model solid_3d extrudes hex8 or hex20 bricks (q4 or q8 plane "
+              "elements), or meshes tet4 or tet10, not t3");
+  d.fem.element = solid_element(d.fem.element);
   const bool tets = d.fem.element == "tet4" || d.fem.element == "tet10";
   if (d.method == Method::Fem && !tets && !s.spheres.empty())
     fail("geometry.spheres: bricks extrude a plane mesh and cannot follow the sphere '",
@@ -229,7 +230,7 @@ void read_solid_discretisation(KeyReader& r, const ProblemSpec& p, const std::st
     fail(key, ".spacing: ", d.spacing, " exceeds the body's depth along z (", s.depth, ")");
   const Vec2 size = p.domain.bounds().size();
   const bool bricks = d.method == Method::Fem;
-  const double nodes = (bricks && d.fem.element == "q8" ? 4.0 : 1.0) *
+  const double nodes = (bricks && d.fem.element == "hex20" ? 4.0 : 1.0) *
                        (size.x() / d.spacing + 1.0) * (size.y() / d.spacing + 1.0) *
                        (s.depth / d.spacing + 1.0);
   require_memory(key + ".spacing", "nodes over the 3D body", nodes,

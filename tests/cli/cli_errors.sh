@@ -95,12 +95,13 @@ expect_error "lies outside the body" "$ROOT/problems/perforated_strip.yaml" --se
 # 3D finite elements: an element name the 3D body does not know, tetrahedra from a plane mesh
 # file, one point per 10-node tetrahedron; and tetrahedra on a plane body.
 T="$ROOT/problems/thick_cylinder_3d.yaml"
-expect_error "discretisation.fem.element: expected one of [t3, q4, q8, tet4, tet10], got 'tet20'" "$T" --set discretisation.method=fem --set discretisation.fem.element=tet20
-expect_error "discretisation.fem.element: model solid_3d extrudes q4 (into 8-node bricks) or q8 (into 20-node bricks), or meshes tet4 or tet10, not t3" "$T" --set discretisation.method=fem --set discretisation.fem.element=t3
+expect_error "discretisation.fem.element: expected one of [hex8, hex20, tet4, tet10, q4, q8, t3], got 'tet20'" "$T" --set discretisation.method=fem --set discretisation.fem.element=tet20
+expect_error "discretisation.fem.element: model solid_3d extrudes hex8 or hex20 bricks (q4 or q8 plane elements), or meshes tet4 or tet10, not t3" "$T" --set discretisation.method=fem --set discretisation.fem.element=t3
 expect_error "discretisation.fem.mesh: tet4 elements are meshed by gmsh from the geometry" "$T" --set discretisation.method=fem --set discretisation.fem.element=tet4 --set discretisation.fem.mesh=meshes/perforated_strip_q8.msh
 expect_error "discretisation.fem.order: 1 (the centroid) leaves tet10 elements without stiffness" "$T" --set discretisation.method=fem --set discretisation.fem.element=tet10 --set discretisation.fem.order=1
-expect_error "stages[0].discretisation.fem.element: expected one of [t3, q4, q8, tet4, tet10], got 'tet'" "$ROOT/problems/staged_column_blast.yaml" --set stages.0.discretisation.fem.element=tet
+expect_error "stages[0].discretisation.fem.element: expected one of [hex8, hex20, tet4, tet10, q4, q8, t3], got 'tet'" "$ROOT/problems/staged_column_blast.yaml" --set stages.0.discretisation.fem.element=tet
 expect_error "discretisation.fem.element: expected one of [t3, q4, q8], got 'tet4'" "$Q" --set discretisation.method=fem --set discretisation.fem.element=tet4
+expect_error "discretisation.fem.element: expected one of [t3, q4, q8], got 'hex20'" "$Q" --set discretisation.method=fem --set discretisation.fem.element=hex20
 # Spherical holes in 3D bodies and face samples: a sphere outside the body, one overlapping
 # another hole, a bad radius, a name taken; bricks, which cannot follow a sphere; face samples
 # naming no face, or a box that is not flat or misses the body.

@@ -51,8 +51,8 @@ public:
   virtual ElementPoints shapes_at(const std::vector<Vec3>& x, bool gradients = false) const = 0;
 };
 
-/// The elements `d.fem.element` asks for on the prism: q4 or q8 extruded into 8- or 20-node
-/// bricks, tet4 or tet10 meshed by gmsh.
+/// The elements `d.fem.element` asks for on the prism: hex8 or hex20 bricks (the section's q4 or
+/// q8 mesh extruded), tet4 or tet10 meshed by gmsh.
 std::unique_ptr<SolidElements> make_solid_elements(const spec::DiscretisationSpec& d,
                                                    const geometry::Prism& body);
 

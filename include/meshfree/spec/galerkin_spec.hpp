@@ -19,12 +19,21 @@ enum class Method { Meshfree, Fem };
 
 /// Finite-element settings (used when the method is fem).
 struct FemSpec {
-  std::string element = "q8"; // t3 | q4 | q8; model solid_3d also tet4 | tet10
+  std::string element = "q8"; // t3 | q4 | q8; model solid_3d: hex8 | hex20 | tet4 | tet10
   std::string mesh;           // gmsh .msh file (absolute path); empty: a structured mesh of the
                               // rectangle with elements of the discretisation's spacing
   int order = 0;              // Gauss points per direction; triangles and tetrahedra: the
                               // degree their rule integrates exactly (0: the element's default)
 };
+
+/// A 3D body's brick named by the plane element it extrudes (q4, q8) is the brick (hex8, hex20);
+/// plane_element is the way back. Other names are their own.
+inline std::string solid_element(const std::string& e) {
+  return e == "q4" ? "hex8" : e == "q8" ? "hex20" : e;
+}
+inline std::string plane_element(const std::string& e) {
+  return e == "hex8" ? "q4" : e == "hex20" ? "q8" : e;
+}
 
 /// Error-driven refinement of a plane meshfree body's nodes (discretisation.adapt): pilot solves
 /// estimate the error (implicit/error_indicator), the nodes carrying the bulk of it get boxes of
