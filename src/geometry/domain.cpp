@@ -108,6 +108,27 @@ void Domain::add_hole(const Circle& hole) {
   if (holes_.back().name.empty()) holes_.back().name = "hole" + std::to_string(holes_.size() - 1);
 }
 
+std::vector<std::string> Domain::names_selected(const std::string& name) const {
+  for (const Curve& c : boundary())
+    if (c.name == name) return {name};
+  static const char* const sides[4] = {"x_min", "x_max", "y_min", "y_max"};
+  const auto side = std::find(sides, sides + 4, name);
+  if (side == sides + 4) return {};
+  const int axis = static_cast<int>(side - sides) / 2;
+  const BoundingBox b = bounds();
+  const double at = (side - sides) % 2 ? b.hi(axis) : b.lo(axis);
+  const double tol = 1e-9 * b.size().maxCoeff();
+  std::vector<std::string> out;
+  const std::size_t n = vertices_.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool on = std::abs(vertices_[i](axis) - at) <= tol &&
+                    std::abs(vertices_[(i + 1) % n](axis) - at) <= tol;
+    if (on && std::find(out.begin(), out.end(), edge_names_[i]) == out.end())
+      out.push_back(edge_names_[i]);
+  }
+  return out;
+}
+
 BoundingBox Domain::bounds() const {
   BoundingBox bb{vertices_[0], vertices_[0]};
   for (const auto& v : vertices_) {

@@ -24,6 +24,14 @@ std::vector<std::string> Prism::face_names() const {
   return names;
 }
 
+std::vector<std::string> Prism::names_selected(const std::string& name) const {
+  const std::vector<std::string> all = face_names();
+  if (std::find(all.begin(), all.end(), name) != all.end()) return {name};
+  if (name == "z_min") return {"back"};
+  if (name == "z_max") return {"front"};
+  return section.names_selected(name);
+}
+
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;

@@ -67,20 +67,22 @@ std::vector<geometry::Curve> select_boundary(const geometry::Domain& domain, con
                                              const std::string& key_path) {
   std::vector<geometry::Curve> out;
   const auto all = domain.boundary();
+  std::vector<std::string> edges;
   for (const auto& name : on.edges) {
-    bool known = false;
-    for (const auto& c : all) known = known || c.name == name;
-    if (!known) {
+    const std::vector<std::string> named = domain.names_selected(name);
+    if (named.empty()) {
       std::string names;
       for (const auto& c : all)
         if (names.find(c.name) == std::string::npos) names += (names.empty() ? "" : ", ") + c.name;
       fail(key_path, ".edges: no boundary piece is named '", one_line(name),
-           "' (the body's pieces: ", names, ")");
+           "' (the body's pieces: ", names,
+           "; x_min, x_max, y_min and y_max name the edges on the sides of its bounding box)");
     }
+    edges.insert(edges.end(), named.begin(), named.end());
   }
   for (const auto& c : all) {
     const bool named =
-        on.edges.empty() || std::find(on.edges.begin(), on.edges.end(), c.name) != on.edges.end();
+        on.edges.empty() || std::find(edges.begin(), edges.end(), c.name) != edges.end();
     if (!named) continue;
     if (!on.box) {
       out.push_back(c);

@@ -93,6 +93,21 @@ void read_held_components(KeyReader& bc, FaceCondition& c) {
   if (c.mask.isZero()) bc.error("displacement", "hold at least one of x, y, z (or say 'exact')");
 }
 
+/// The faces `name` selects (Prism::names_selected); refused, with the body's faces and the
+/// axis sides, where it selects none.
+std::vector<std::string> faces_selected(KeyReader& r, const std::string& key,
+                                        const std::string& name, const geometry::Prism& body) {
+  std::vector<std::string> named = body.names_selected(name);
+  if (named.empty()) {
+    std::string list;
+    for (const auto& k : body.face_names()) list += (list.empty() ? "" : ", ") + k;
+    r.error(key, "no face is named '" + one_line(name) + "' (the body's faces: " + list +
+                     "; x_min, x_max, y_min, y_max, z_min and z_max name the faces on the sides "
+                     "of its bounding box)");
+  }
+  return named;
+}
+
 /// One boundary entry: {name, faces, box, displacement | traction | pressure, penalty}.
 FaceCondition read_face_condition(KeyReader& bc, const geometry::Prism& body, double stiffness) {
   FaceCondition c;
@@ -100,14 +115,10 @@ FaceCondition read_face_condition(KeyReader& bc, const geometry::Prism& body, do
   c.name = bc.text("name");
   check_name(bc, "name", c.name, false);
   if (!bc.has("faces")) bc.error("faces", "name the faces the condition acts on");
-  c.faces = read_names(bc, "faces");
-  const std::vector<std::string> known = body.face_names();
-  for (const std::string& f : c.faces)
-    if (std::find(known.begin(), known.end(), f) == known.end()) {
-      std::string list;
-      for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
-      bc.error("faces", "no face is named '" + one_line(f) + "' (the body's faces: " + list + ")");
-    }
+  for (const std::string& f : read_names(bc, "faces"))
+    for (std::string& named : faces_selected(bc, "faces", f, body))
+      if (std::find(c.faces.begin(), c.faces.end(), named) == c.faces.end())
+        c.faces.push_back(std::move(named));
   if (bc.has("box")) c.box = read_box(bc, "box", 3);
   const int kinds = bc.has("displacement") + bc.has("traction") + bc.has("pressure");
   if (kinds != 1)
@@ -269,14 +280,12 @@ SolidFaceSampleSpec read_face_sample(KeyReader& f, const geometry::Prism& body, 
   if (f.has("face") == f.has("box")) f.error("name", "give exactly one of 'face' or 'box'");
   s.spacing = f.positive("spacing", spacing);
   if (f.has("face")) {
-    s.face = f.text("face");
-    const std::vector<std::string> known = body.face_names();
-    if (std::find(known.begin(), known.end(), s.face) == known.end()) {
-      std::string list;
-      for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
-      f.error("face",
-              "no face is named '" + one_line(s.face) + "' (the body's faces: " + list + ")");
-    }
+    const std::string face = f.text("face");
+    const std::vector<std::string> named = faces_selected(f, "face", face, body);
+    if (named.size() > 1)
+      f.error("face", "'" + one_line(face) + "' is " + std::to_string(named.size()) +
+                          " faces; a face sample takes one (or a flat box)");
+    s.face = named.front();
   } else {
     s.box = read_box(f, "box", 3);
     if ((s.box->hi - s.box->lo).minCoeff() > 1e-12 * body.size())

@@ -112,7 +112,7 @@ expect_error "geometry.spheres[1].radius: 0.8: the sphere 'other' overlaps the s
 expect_error "geometry.spheres[0].radius: 0.5: the sphere 'ball' overlaps the cylindrical hole 'bore'" "$T" --set 'geometry.spheres=[{center: [1.2, 0.5, 0.25], radius: 0.5, name: ball}]'
 expect_error "geometry.spheres[0].name: 'left' already names a face of the body" "$C" --set geometry.spheres.0.name=left
 expect_error "geometry.spheres: bricks extrude a plane mesh and cannot follow the sphere 'cavity'" "$C" --set discretisation.method=fem
-expect_error "output.faces[0].face: no face is named 'roof' (the body's faces: bottom, right, top, left, back, front, cavity)" "$C" --set 'output.faces=[{name: f, face: roof}]'
+expect_error "output.faces[0].face: no face is named 'roof' (the body's faces: bottom, right, top, left, back, front, cavity; x_min, x_max, y_min, y_max, z_min and z_max name the faces on the sides of its bounding box)" "$C" --set 'output.faces=[{name: f, face: roof}]'
 expect_error "output.faces[0].box: a face sample's box is flat: give one extent zero" "$C" --set 'output.faces=[{name: f, box: [[0, 0, 0], [1, 1, 1]]}]'
 expect_error "output.faces[0].box: no sample point lies in the body" "$C" --set 'output.faces=[{name: f, box: [[5, 5, 1], [6, 6, 1]]}]'
 expect_error "output.faces[0].name: give exactly one of 'face' or 'box'" "$C" --set 'output.faces=[{name: f}]'

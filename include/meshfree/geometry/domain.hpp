@@ -60,6 +60,11 @@ public:
   /// The boundary of the body: polygon edges with the parts inside holes removed, and the
   /// parts of hole circles that lie inside the polygon.
   std::vector<Curve> boundary() const;
+  /// What a boundary name given by a user selects: the piece or pieces of that name, or, for a
+  /// side of the bounding box named by its axis (x_min, x_max, y_min, y_max), the names of the
+  /// outline's edges that lie wholly on it (a rectangle's left, right, bottom, top). Empty when
+  /// the name selects nothing.
+  std::vector<std::string> names_selected(const std::string& name) const;
 
   /// True for points inside the polygon or within `tol` (relative) of its outline; holes ignored.
   bool within_outline(const Vec2& p, double tol = 1e-12) const;

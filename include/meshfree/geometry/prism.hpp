@@ -40,6 +40,11 @@ struct Prism {
   /// Every face name: the section's edges and holes in order, "back" and "front", then the
   /// spheres.
   std::vector<std::string> face_names() const;
+  /// What a face name given by a user selects: the face of that name, or, for a side of the
+  /// bounding box named by its axis, the faces that lie wholly on it (x_min .. y_max as the
+  /// section's Domain::names_selected; z_min the back, z_max the front). Empty when it selects
+  /// nothing.
+  std::vector<std::string> names_selected(const std::string& name) const;
 };
 
 /// Latitude rings about `spacing` apart in polar angle on a sphere of `radius`: an even count

@@ -62,7 +62,8 @@ TEST_CASE("bad inputs are rejected with the key path and the value", "[input]") 
                              "quartic_spline, gaussian], got 'bspline'"));
   CHECK(error_of("boundary.0.edges=north") ==
         "boundary[0].edges: no boundary piece is named 'north' "
-        "(the body's pieces: bottom, right, top, left)");
+        "(the body's pieces: bottom, right, top, left; x_min, x_max, y_min and y_max name the "
+        "edges on the sides of its bounding box)");
   CHECK(error_of("boundary.1.box=[[5, 5], [6, 6]]") ==
         "boundary[1]: selects no part of the boundary");
   CHECK(error_of("model.type=shell") == "model.type: expected one of [plane_stress, "
