@@ -55,7 +55,7 @@ Vec2 on_edge(int k, double s, Vec2& direction) {
 
 std::string ExtrudedMesh::summary() const {
   return detail::concat("bricks: ", element_count(), " of ", nodes_per_element(), " nodes, ",
-                        node_count(), " nodes (", layers_ + 1, " layers along z)");
+                        node_count(), " nodes (", layers_ + 1, " layers of nodes along z)");
 }
 
 ExtrudedMesh::ExtrudedMesh(fem::Mesh plane, const geometry::Prism& body, double spacing)

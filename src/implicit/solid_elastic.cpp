@@ -1,9 +1,11 @@
 #include "meshfree/implicit/solid_elastic.hpp"
 #include "meshfree/core/log.hpp"
+#include "meshfree/implicit/nodal_sums.hpp"
 #include "meshfree/implicit/solid_elastoplastic_system.hpp"
 #include "meshfree/implicit/solid_forms.hpp"
 #include "meshfree/implicit/solid_model.hpp"
 #include "meshfree/verification/exact_solutions_3d.hpp"
+#include <algorithm>
 #include <cmath>
 
 namespace mf::implicit {
@@ -116,6 +118,11 @@ SolidElasticResult solve_solid_elastic(const spec::ProblemSpec& spec,
   if (spec.solid().exact) exact_errors(spec, m, R.parameters, session, R);
   R.node_x = m.node_positions();
   R.node_u = nodal_displacements(m, R.parameters);
+  const Mat6 C = elastic_matrix_3d(spec.elasticity());
+  R.node_stress = nodal_averages<6>(m, session, [&](int k, double* v) {
+    const Vec6 stress = C * solid_strain_at(m.domain_table, k, R.parameters);
+    std::copy(stress.data(), stress.data() + 6, v);
+  });
   auto lines = std::make_shared<SolidLineSampler>(spec, m, solid_material_law(spec));
   if (session.rank() == 0) lines->record(1, R.parameters);
   R.lines = lines;

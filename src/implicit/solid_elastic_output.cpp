@@ -20,6 +20,7 @@ void write_fields(const spec::ProblemSpec& spec, const SolidElasticResult& r,
     for (const Vec3& u : r.node_u) v.insert(v.end(), {u.x(), u.y(), u.z()});
   });
   fields.vector("nodal_parameters", [&](std::vector<double>& v) { v = r.parameters; });
+  add_node_stress_fields(fields, r.node_stress, 6);
   if (spec.solid().exact)
     fields.vector("displacement_exact", [&](std::vector<double>& v) {
       v.clear();

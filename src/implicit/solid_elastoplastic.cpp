@@ -1,6 +1,7 @@
 #include "meshfree/implicit/solid_elastoplastic.hpp"
 #include "meshfree/core/log.hpp"
 #include "meshfree/implicit/load_stepping.hpp"
+#include "meshfree/implicit/nodal_sums.hpp"
 #include "meshfree/implicit/point_law.hpp"
 #include "meshfree/implicit/solid_elastic.hpp"
 #include "meshfree/implicit/solid_elastoplastic_system.hpp"
@@ -68,8 +69,9 @@ void describe_increment(const SolidModel& m, const SolidElastoplasticSystem& sys
   inc.record.max_plastic_strain = solvers::max_everywhere(session.comm(), alpha);
 }
 
-/// The field series of the run (rank 0 writes): u^h at the nodes (fields.h5) and the stress and
-/// equivalent plastic strain at every Gauss point once (gauss_points.h5), at the increments the
+/// The field series of the run (rank 0 writes): u^h, and the stress and equivalent plastic strain
+/// averaged at the nodes (nodal_sums.hpp), in fields.h5, and the stress and equivalent plastic
+/// strain at every Gauss point once (gauss_points.h5), at the increments the
 /// schedule marks for output, at time step + step fraction.
 class SolidSeries {
 public:
@@ -80,6 +82,7 @@ public:
     for (const Vec3& x : m.node_positions()) nodes.insert(nodes.end(), {x.x(), x.y(), x.z()});
     fields_ = std::make_unique<io::FieldOutput>(out, "fields", nodes);
     fields_->vector("displacement", [this](std::vector<double>& v) { v = node_u_; });
+    add_node_stress_fields(*fields_, node_values_, 7);
     points_ = std::make_unique<io::FieldOutput>(out, "gauss_points", points);
     const char* names[6] = {"stress_xx", "stress_yy", "stress_zz",
                             "stress_yz", "stress_xz", "stress_xy"};
@@ -106,6 +109,10 @@ public:
       mine.push_back(s.committed[k].alpha);
     }
     values_ = solvers::gather_on_root(session_.comm(), mine);
+    node_values_ = nodal_averages<7>(m_, session_, [&s](int k, double* v) {
+      for (int c = 0; c < 6; ++c) v[c] = s.committed_stress[k](c);
+      v[6] = s.committed[k].alpha;
+    });
     if (session_.rank() != 0) return;
     node_u_.clear();
     for (const Vec3& u : nodal_displacements(m_, all))
@@ -138,6 +145,7 @@ private:
   const solvers::PetscSession& session_;
   std::unique_ptr<io::FieldOutput> fields_, points_;
   std::vector<double> node_u_, values_;
+  std::vector<double> node_values_; // the stress and plastic strain averaged at the nodes
 };
 
 } // namespace

@@ -1,5 +1,6 @@
 #include "meshfree/implicit/solid_lines.hpp"
 #include "meshfree/implicit/solid_forms.hpp"
+#include "meshfree/materials/j2_plasticity.hpp"
 
 namespace mf::implicit {
 
@@ -66,6 +67,13 @@ const std::vector<std::string> kColumns{"increment", "s",         "x",         "
                                         "stress_xx", "stress_yy", "stress_zz", "stress_yz",
                                         "stress_xz", "stress_xy", "von_mises", "plastic_strain"};
 
+/// Values `c` of every node, `stride` a node.
+std::vector<double> column(const std::vector<double>& values, int stride, int c) {
+  std::vector<double> v;
+  for (std::size_t i = 0; i + stride <= values.size(); i += stride) v.push_back(values[i + c]);
+  return v;
+}
+
 /// A face's rows (without s) as a point series for ParaView: one step per state, the
 /// displacement as a vector, the stress components, von Mises and the plastic strain as scalars.
 void write_point_series(io::OutputDirectory& out, const std::string& stem,
@@ -100,6 +108,22 @@ void SolidLineSampler::write(io::OutputDirectory& out) const {
     out.write_csv(l.file + ".csv", columns, l.rows);
     if (!l.along) write_point_series(out, l.file, l.x, l.rows);
   }
+}
+
+void add_node_stress_fields(io::FieldOutput& fields, const std::vector<double>& values,
+                            int stride) {
+  // kColumns's stress names, in Voigt order, then von_mises and plastic_strain.
+  for (int c = 0; c < 6; ++c)
+    fields.scalar(kColumns[8 + c],
+                  [&values, stride, c](std::vector<double>& v) { v = column(values, stride, c); });
+  fields.scalar("von_mises", [&values, stride](std::vector<double>& v) {
+    v.clear();
+    for (std::size_t i = 0; i + stride <= values.size(); i += stride)
+      v.push_back(materials::von_mises_3d(Eigen::Map<const Vec6>(values.data() + i)));
+  });
+  if (stride > 6)
+    fields.scalar("plastic_strain",
+                  [&values, stride](std::vector<double>& v) { v = column(values, stride, 6); });
 }
 
 } // namespace mf::implicit

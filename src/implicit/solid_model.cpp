@@ -297,13 +297,13 @@ std::string describe_solid_method(const spec::ProblemSpec& spec) {
                           d.spacing, volumetric);
   if (d.method == spec::Method::Fem)
     return detail::concat("FE ", d.fem.element, " (the plane ", spec::plane_element(d.fem.element),
-                          " mesh extruded in ", layers, " layers), spacing ", d.spacing,
+                          " mesh extruded in ", layers, " layers of elements), spacing ", d.spacing,
                           volumetric);
   return detail::concat(
       "meshfree RK (", d.shape.basis == kernels::Basis::Quadratic ? "quadratic" : "linear",
       " basis, ", d.shape.support == kernels::SupportShape::Circular ? "spherical" : "box",
-      " supports), 3D, spacing ", d.spacing, " (", layers, " layers), dilation ", d.dilation.x(),
-      d.vci ? ", VCI" : "", volumetric);
+      " supports), 3D, spacing ", d.spacing, " (", layers + 1,
+      " layers of nodes along z), dilation ", d.dilation.x(), d.vci ? ", VCI" : "", volumetric);
 }
 
 SolidCounts count_model(const spec::ProblemSpec& spec, const SolidModel& m) {
@@ -359,7 +359,7 @@ void print_solid_plan(const spec::ProblemSpec& spec, std::ostream& os) {
     os << "  " << fe->summary() << ", " << 3 * n << " DOFs\n";
   } else {
     n = static_cast<double>(prism_nodes(body, s.discretisation).x.size());
-    os << "  nodes: " << n << " (" << layers << " layers along z), " << 3 * n << " DOFs\n";
+    os << "  nodes: " << n << " (" << layers << " layers of nodes along z), " << 3 * n << " DOFs\n";
   }
   for (const geometry::Sphere& sphere : s.spheres)
     os << "  sphere " << sphere.name << ": radius " << sphere.radius << " at (" << sphere.center.x()

@@ -23,6 +23,7 @@ struct SolidElasticResult {
   solvers::SolveReport solve;
   std::vector<double> parameters;   // the nodal parameters, 3 per node (every node)
   std::vector<Vec3> node_x, node_u; // nodes and u^h there
+  std::vector<double> node_stress;  // the stress averaged at the nodes, 6 a node (rank 0)
   std::vector<FaceReport> boundary;
   double error_l2 = std::numeric_limits<double>::quiet_NaN();     // relative, with an exact
   double error_energy = std::numeric_limits<double>::quiet_NaN(); // solution
@@ -34,7 +35,8 @@ SolidElasticResult solve_solid_elastic(const spec::ProblemSpec& spec,
                                        const solvers::PetscSession& session);
 
 /// summary.json, history.csv and fields.h5/.xmf (the nodes as points: u^h, the nodal
-/// parameters, and the exact displacement where there is one). Rank 0 writes.
+/// parameters, the stress averaged at the nodes and the exact displacement where there is one).
+/// Rank 0 writes.
 void write_solid_elastic_outputs(const spec::ProblemSpec& spec, const SolidElasticResult& r,
                                  const solvers::PetscSession& session, io::OutputDirectory& out);
 

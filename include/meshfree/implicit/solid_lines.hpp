@@ -8,6 +8,7 @@
 // series for ParaView (face_<name>.h5/.xmf, a step per state).
 #include "meshfree/implicit/solid_model.hpp"
 #include "meshfree/io/output.hpp"
+#include "meshfree/io/results.hpp"
 #include "meshfree/materials/constitutive_model.hpp"
 #include "meshfree/spec/problem_spec.hpp"
 #include <string>
@@ -15,6 +16,11 @@
 #include <vector>
 
 namespace mf::implicit {
+
+/// Registers a 3D body's stress at its nodes in a field series: stress_xx .. stress_xy (Voigt
+/// order xx, yy, zz, yz, xz, xy), von_mises and, with 7 values a node, plastic_strain, read from
+/// `values` (`stride` values a node) at each write.
+void add_node_stress_fields(io::FieldOutput& fields, const std::vector<double>& values, int stride);
 
 class SolidLineSampler {
 public:

@@ -2,6 +2,7 @@
 // non-finite state, gauges, particle lattices, the particle set's owned and ghost ranges, and
 // the summary.json and history.csv writer.
 #include "field_registry_support.hpp"
+#include "hdf5_read.hpp"
 #include "meshfree/explicit/gauges.hpp"
 #include "meshfree/explicit/time_loop.hpp"
 #include "meshfree/geometry/lattice.hpp"
@@ -13,7 +14,6 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
-#include <hdf5.h>
 #include <limits>
 #include <set>
 
@@ -342,23 +342,6 @@ TEST_CASE("summary.json keeps the header, status, sections and timers in order",
   h.append({1.0, 1.0});
   CHECK(h.max_abs(1) == 2.0);
 }
-
-namespace {
-
-/// The doubles of dataset `name` of an HDF5 file.
-std::vector<double> read_doubles(const std::string& file, const std::string& name) {
-  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  REQUIRE(f >= 0);
-  const hid_t d = H5Dopen2(f, name.c_str(), H5P_DEFAULT);
-  REQUIRE(d >= 0);
-  const hid_t space = H5Dget_space(d);
-  std::vector<double> v(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
-  H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
-  H5Sclose(space), H5Dclose(d), H5Fclose(f);
-  return v;
-}
-
-} // namespace
 
 TEST_CASE("a field series writes each field's values of the moment, in place or copied",
           "[explicit][io]") {
