@@ -80,8 +80,9 @@ void write_lines(const spec::ProblemSpec& spec, const ElasticResult& r,
   }
 }
 
-/// history.csv: the single step's boundary forces and maxima.
-void write_history(const ElasticResult& r, double umax, double vmmax, io::OutputDirectory& out) {
+/// history.csv: the single step's boundary forces, gauges and maxima.
+void write_history(const spec::ProblemSpec& spec, const ElasticResult& r, double umax, double vmmax,
+                   io::OutputDirectory& out) {
   io::History history({"step", "load_factor"});
   std::vector<double> row{1.0, 1.0};
   for (const auto& b : r.boundary) {
@@ -90,6 +91,12 @@ void write_history(const ElasticResult& r, double umax, double vmmax, io::Output
     history.add_column(kind + b.name + "_y");
     row.push_back(b.force.x());
     row.push_back(b.force.y());
+  }
+  const std::vector<spec::GaugeSpec>& gauges = spec.galerkin().gauges;
+  for (std::size_t k = 0; k < gauges.size(); ++k) {
+    history.add_column("ux_" + gauges[k].name);
+    history.add_column("uy_" + gauges[k].name);
+    row.insert(row.end(), {r.gauge_u[k].x(), r.gauge_u[k].y()});
   }
   for (const char* c : {"max_displacement", "max_von_mises", "solver_iterations"})
     history.add_column(c);
@@ -166,7 +173,7 @@ void write_elastic_outputs(const spec::ProblemSpec& spec, const ElasticResult& r
   double umax = 0.0, vmmax = 0.0;
   for (const auto& u : r.node_u) umax = std::max(umax, u.norm());
   for (double v : stresses.vm) vmmax = std::max(vmmax, v);
-  write_history(r, umax, vmmax, out);
+  write_history(spec, r, umax, vmmax, out);
   if (r.adaptation) write_adaptation(spec, *r.adaptation, r.estimate, 0, out);
   write_summary(spec, r, session, umax, vmmax, out);
 }

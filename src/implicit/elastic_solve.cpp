@@ -69,11 +69,19 @@ ErrorEstimate elastic_estimate(const spec::ProblemSpec& spec, const GalerkinMode
   return recovery_error(m, stress, C.inverse(), session);
 }
 
-/// u^h and stresses at the nodes and along the sample lines (on the calling rank).
+/// u^h and stresses at the nodes and along the sample lines, u^h at the gauges (on the calling
+/// rank).
 void sample_fields(const spec::ProblemSpec& spec, const GalerkinModel& m, ElasticResult& R) {
   const auto& d = R.parameters;
   R.node_x = m.node_positions();
   evaluate_fields(m, spec, R.node_x, d, R.node_u, R.node_stress, R.node_szz);
+  if (!spec.galerkin().gauges.empty()) {
+    std::vector<Vec2> at;
+    for (const spec::GaugeSpec& g : spec.galerkin().gauges) at.push_back(g.at.head<2>());
+    std::vector<Vec3> stress;
+    std::vector<double> szz;
+    evaluate_fields(m, spec, at, d, R.gauge_u, stress, szz);
+  }
   for (const auto& line : spec.galerkin().lines) {
     LineSample s;
     for (int k = 0; k < line.points; ++k) {

@@ -118,6 +118,9 @@ SolidElasticResult solve_solid_elastic(const spec::ProblemSpec& spec,
   if (spec.solid().exact) exact_errors(spec, m, R.parameters, session, R);
   R.node_x = m.node_positions();
   R.node_u = nodal_displacements(m, R.parameters);
+  std::vector<Vec3> at;
+  for (const spec::GaugeSpec& g : spec.solid().gauges) at.push_back(g.at);
+  R.gauge_u = gauge_displacements(solid_shapes_at(m, at), m.own, R.parameters, session);
   const Mat6 C = elastic_matrix_3d(spec.elasticity());
   R.node_stress = nodal_averages<6>(m, session, [&](int k, double* v) {
     const Vec6 stress = C * solid_strain_at(m.domain_table, k, R.parameters);

@@ -34,13 +34,19 @@ void write_fields(const spec::ProblemSpec& spec, const SolidElasticResult& r,
   fields.close();
 }
 
-void write_history(const SolidElasticResult& r, double umax, io::OutputDirectory& out) {
+void write_history(const spec::ProblemSpec& spec, const SolidElasticResult& r, double umax,
+                   io::OutputDirectory& out) {
   io::History history({"step", "load_factor"});
   std::vector<double> row{1.0, 1.0};
   for (const FaceReport& b : r.boundary)
     for (int c = 0; c < 3; ++c) {
       history.add_column((b.constraint ? "reaction_" : "load_") + b.name + "_" + kAxes[c]);
       row.push_back(b.force(c));
+    }
+  for (std::size_t k = 0; k < r.gauge_u.size(); ++k)
+    for (int c = 0; c < 3; ++c) {
+      history.add_column("u" + std::string(kAxes[c]) + "_" + spec.solid().gauges[k].name);
+      row.push_back(r.gauge_u[k](c));
     }
   for (const char* c : {"max_displacement", "solver_iterations"}) history.add_column(c);
   row.insert(row.end(), {umax, static_cast<double>(r.solve.iterations)});
@@ -97,7 +103,7 @@ void write_solid_elastic_outputs(const spec::ProblemSpec& spec, const SolidElast
   write_fields(spec, r, out);
   double umax = 0.0;
   for (const Vec3& u : r.node_u) umax = std::max(umax, u.norm());
-  write_history(r, umax, out);
+  write_history(spec, r, umax, out);
   if (r.lines) r.lines->write(out);
   write_summary(spec, r, session, umax, out);
 }

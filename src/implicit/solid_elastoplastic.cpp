@@ -33,22 +33,6 @@ ScheduleSpec solid_schedule(const spec::ProblemSpec& spec) {
   return out;
 }
 
-/// u^h at the gauges: each rank sums its owned nodes' terms (the owned entries of d are always
-/// the current ones), then the ranks add them up.
-std::vector<Vec3> gauge_displacements(const SolidShapeTable& t, const solvers::OwnedRange& own,
-                                      const std::vector<double>& d,
-                                      const solvers::PetscSession& session) {
-  std::vector<double> u(3 * static_cast<std::size_t>(t.rows()), 0.0);
-  for (int g = 0; g < t.rows(); ++g)
-    for (int k = t.offset[g]; k < t.offset[g + 1]; ++k)
-      if (own.owns(t.node[k]))
-        for (int c = 0; c < 3; ++c) u[3 * g + c] += t.phi[k] * d[3 * t.node[k] + c];
-  solvers::sum_everywhere(session.comm(), u.data(), static_cast<int>(u.size()));
-  std::vector<Vec3> out;
-  for (int g = 0; g < t.rows(); ++g) out.emplace_back(u[3 * g], u[3 * g + 1], u[3 * g + 2]);
-  return out;
-}
-
 /// The increment's faces, gauges, plastic points and largest equivalent plastic strain.
 void describe_increment(const SolidModel& m, const SolidElastoplasticSystem& system,
                         const SolidShapeTable& gauges, const std::vector<double>& d,

@@ -396,4 +396,18 @@ solvers::LinearSolverSettings solid_solver_settings(const spec::ProblemSpec& spe
   return L;
 }
 
+std::vector<Vec3> gauge_displacements(const SolidShapeTable& t, const solvers::OwnedRange& own,
+                                      const std::vector<double>& d,
+                                      const solvers::PetscSession& session) {
+  std::vector<double> u(3 * static_cast<std::size_t>(t.rows()), 0.0);
+  for (int g = 0; g < t.rows(); ++g)
+    for (int k = t.offset[g]; k < t.offset[g + 1]; ++k)
+      if (own.owns(t.node[k]))
+        for (int c = 0; c < 3; ++c) u[3 * g + c] += t.phi[k] * d[3 * t.node[k] + c];
+  solvers::sum_everywhere(session.comm(), u.data(), static_cast<int>(u.size()));
+  std::vector<Vec3> out;
+  for (int g = 0; g < t.rows(); ++g) out.emplace_back(u[3 * g], u[3 * g + 1], u[3 * g + 2]);
+  return out;
+}
+
 } // namespace mf::implicit

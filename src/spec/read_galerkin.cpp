@@ -506,11 +506,9 @@ void read_plastic_controls(KeyReader& r, ProblemSpec& p, bool plastic) {
   }
 }
 
-/// output.gauges: points of the body whose history an elastoplastic run records.
-void read_body_gauges(KeyReader& out, ProblemSpec& p, bool plastic) {
+/// output.gauges: points of the body whose displacement a run records (history.csv).
+void read_body_gauges(KeyReader& out, ProblemSpec& p) {
   auto& galerkin = p.galerkin();
-  if (!plastic && out.has("gauges"))
-    out.error("gauges", "gauges are recorded only by analysis elastoplastic_static");
   galerkin.gauges = read_gauges(out, 2);
   for (std::size_t k = 0; k < galerkin.gauges.size(); ++k) {
     const Vec2 at = galerkin.gauges[k].at.head<2>();
@@ -560,7 +558,7 @@ LineSpec read_line(KeyReader& l, const ProblemSpec& p) {
 void read_output(KeyReader& r, ProblemSpec& p, bool plastic) {
   auto& galerkin = p.galerkin();
   if (auto out = r.optional_map("output")) {
-    read_body_gauges(*out, p, plastic);
+    read_body_gauges(*out, p);
     galerkin.fields_every = out->integer("fields_every", 1, 1, 1000000);
     read_checkpoint_output(*out, p, plastic);
     for (KeyReader& l : out->map_list("lines")) galerkin.lines.push_back(read_line(l, p));

@@ -329,8 +329,6 @@ void parse_solid(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
   r.allow("body_force");
   read_boundary(r, p, s);
   if (auto out = r.optional_map("output")) {
-    if (!plastic && out->has("gauges"))
-      out->error("gauges", "gauges are recorded only by analysis elastoplastic_static");
     s.gauges = read_gauges(*out, 3);
     if (!plastic && out->has("fields_every"))
       out->error("fields_every", "an elastic run writes one frame; fields_every is for "

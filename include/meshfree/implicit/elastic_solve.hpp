@@ -31,6 +31,7 @@ struct ElasticResult {
   std::vector<Vec3> node_stress;                         // rank 0
   std::vector<double> node_szz;                          // rank 0
   std::vector<std::pair<std::string, LineSample>> lines; // rank 0
+  std::vector<Vec2> gauge_u;                             // rank 0: u^h at output.gauges
   std::vector<BoundaryReport> boundary;
   double error_l2 = std::numeric_limits<double>::quiet_NaN();     // relative, vs exact
   double error_energy = std::numeric_limits<double>::quiet_NaN(); // relative, vs exact

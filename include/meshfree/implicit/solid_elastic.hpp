@@ -24,6 +24,7 @@ struct SolidElasticResult {
   std::vector<double> parameters;   // the nodal parameters, 3 per node (every node)
   std::vector<Vec3> node_x, node_u; // nodes and u^h there
   std::vector<double> node_stress;  // the stress averaged at the nodes, 6 a node (rank 0)
+  std::vector<Vec3> gauge_u;        // u^h at output.gauges
   std::vector<FaceReport> boundary;
   double error_l2 = std::numeric_limits<double>::quiet_NaN();     // relative, with an exact
   double error_energy = std::numeric_limits<double>::quiet_NaN(); // solution

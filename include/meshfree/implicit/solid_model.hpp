@@ -95,6 +95,12 @@ void print_solid_plan(const spec::ProblemSpec& spec, std::ostream& os);
 std::vector<Vec3> face_values(const spec::ProblemSpec& spec, const spec::FaceCondition& bc,
                               const SolidPoints& pts, const std::vector<int>& rows);
 
+/// u^h at the points of table `t` (the gauges), on every rank: each rank sums its owned nodes'
+/// terms (the owned entries of d are always the current ones), then the ranks add them up.
+std::vector<Vec3> gauge_displacements(const SolidShapeTable& t, const solvers::OwnedRange& own,
+                                      const std::vector<double>& d,
+                                      const solvers::PetscSession& session);
+
 /// u^h at every node from the nodal parameters of every node (finite elements: the parameters).
 std::vector<Vec3> nodal_displacements(const SolidModel& m, const std::vector<double>& d);
 
