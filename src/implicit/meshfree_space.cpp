@@ -1,11 +1,9 @@
 #include "meshfree/implicit/meshfree_space.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/core/parallel_rows.hpp"
-#include "meshfree/core/progress.hpp"
+#include "meshfree/implicit/shape_tabulation.hpp"
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <omp.h>
 
 namespace mf::implicit {
 
@@ -64,37 +62,14 @@ Csr MeshfreeSpace::support_lists(const std::vector<Vec2>& points) const {
 
 ShapeTable MeshfreeSpace::shape_table(const std::vector<Vec2>& points, const std::vector<int>& rows,
                                       const Csr& support, bool gradients) const {
-  ShapeTable t;
-  const int n = static_cast<int>(rows.size());
-  t.offset.assign(n + 1, 0);
-  for (int k = 0; k < n; ++k) t.offset[k + 1] = t.offset[k] + support.size(rows[k]);
-  t.node.resize(t.offset[n]);
-  t.phi.resize(t.offset[n]);
-  if (gradients) t.dphi.resize(t.offset[n]);
-  std::atomic<int> failed{-1};
   const auto v = view();
-  // Progress of large systems: the points done, counted by all threads, reported by thread 0;
-  // only for tables of more points than nodes (the body's integration points), not for the few
-  // boundary points nor for samples at the nodes.
-  const bool report = 2.0 * node_count() >= log::kProgressUnknowns && n > node_count();
-  log::PhaseProgress progress("shape functions", n, report);
-#pragma omp parallel for schedule(dynamic, 256)
-  for (int k = 0; k < n; ++k) {
-    progress.count_one(omp_get_thread_num());
-    const int p = rows[k];
-    const int* nb = support.index.data() + support.offset[p];
-    const int count = support.size(p);
-    std::copy(nb, nb + count, t.node.begin() + t.offset[k]);
-    const bool ok =
-        kernels::evaluate_shape(settings_, v, points[p], nb, count, t.phi.data() + t.offset[k],
-                                gradients ? t.dphi.data() + t.offset[k] : nullptr);
-    if (!ok) { // keep the lowest failing point, so the message does not depend on threads
-      int seen = failed.load();
-      while ((seen < 0 || p < seen) && !failed.compare_exchange_weak(seen, p)) {
-      }
-    }
-  }
-  progress.finish();
+  int failed = -1;
+  ShapeTable t = tabulate_shapes<ShapeTable>(
+      rows, support, gradients, 2.0 * node_count(), node_count(),
+      [&](int p, const int* nb, int count, double* phi, Vec2* dphi) {
+        return kernels::evaluate_shape(settings_, v, points[p], nb, count, phi, dphi);
+      },
+      failed);
   if (failed >= 0) {
     const Vec2& x = points[failed];
     fail("shape functions are undefined at (", x.x(), ", ", x.y(), "): ", support.size(failed),

@@ -1,8 +1,8 @@
 #include "meshfree/implicit/solid_space.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/core/parallel_rows.hpp"
+#include "meshfree/implicit/shape_tabulation.hpp"
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 
 namespace mf::implicit {
@@ -66,30 +66,14 @@ Csr SolidSpace::support_lists(const std::vector<Vec3>& points) const {
 SolidShapeTable SolidSpace::shape_table(const std::vector<Vec3>& points,
                                         const std::vector<int>& rows, const Csr& support,
                                         bool gradients) const {
-  SolidShapeTable t;
-  const int n = static_cast<int>(rows.size());
-  t.offset.assign(n + 1, 0);
-  for (int k = 0; k < n; ++k) t.offset[k + 1] = t.offset[k] + support.size(rows[k]);
-  t.node.resize(t.offset[n]);
-  t.phi.resize(t.offset[n]);
-  if (gradients) t.dphi.resize(t.offset[n]);
-  std::atomic<int> failed{-1};
   const auto v = view();
-#pragma omp parallel for schedule(dynamic, 256)
-  for (int k = 0; k < n; ++k) {
-    const int p = rows[k];
-    const int* nb = support.index.data() + support.offset[p];
-    const int count = support.size(p);
-    std::copy(nb, nb + count, t.node.begin() + t.offset[k]);
-    const bool ok =
-        kernels::evaluate_shape_3d(settings_, v, points[p], nb, count, t.phi.data() + t.offset[k],
-                                   gradients ? t.dphi.data() + t.offset[k] : nullptr);
-    if (!ok) { // the lowest failing point, so the message does not depend on threads
-      int seen = failed.load();
-      while ((seen < 0 || p < seen) && !failed.compare_exchange_weak(seen, p)) {
-      }
-    }
-  }
+  int failed = -1;
+  SolidShapeTable t = tabulate_shapes<SolidShapeTable>(
+      rows, support, gradients, 3.0 * node_count(), node_count(),
+      [&](int p, const int* nb, int count, double* phi, Vec3* dphi) {
+        return kernels::evaluate_shape_3d(settings_, v, points[p], nb, count, phi, dphi);
+      },
+      failed);
   if (failed >= 0) {
     const Vec3& x = points[failed];
     fail("shape functions are undefined at (", x.x(), ", ", x.y(), ", ", x.z(),
