@@ -17,7 +17,8 @@ namespace mf::io {
 /// run), so that a step of a large body copies none of its arrays.
 class FieldValues {
 public:
-  FieldValues(std::vector<double> values) : own_(std::move(values)) {} // NOLINT: a vector is one
+  // Implicit: a step is often given its values as a vector.
+  FieldValues(std::vector<double> values) : own_(std::move(values)) {} // NOLINT
   static FieldValues in_place(const double* data, std::size_t size) {
     FieldValues v({});
     v.view_ = data, v.size_ = size;

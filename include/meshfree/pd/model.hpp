@@ -60,7 +60,8 @@ enum class BondLayout { Half, Full };
 /// The class of each stored bond, read as `cls[k]`: two bytes a bond while the classes number at
 /// most 65,536 (a lattice's bonds fall into tens to hundreds), four beyond (the per-pair factors
 /// of a surface correction can make more). The narrow index is a quarter of a bond's steady
-/// memory; the test of which array is held is the same for every bond of a loop.
+/// memory. The force rows are compiled for each width (pd/bond_rows); other loops read through
+/// this view, whose test of the width is the same for every bond.
 struct ClassView {
   const std::uint16_t* narrow = nullptr;
   const std::uint32_t* wide = nullptr;
