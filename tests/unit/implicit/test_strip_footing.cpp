@@ -77,8 +77,10 @@ TEST_CASE("a strip footing on a Drucker-Prager soil collapses at Prandtl's load,
   for (const char* method : {"meshfree", "fem"}) check_footing(method, 20.0);
 }
 
-TEST_CASE("strip footings at friction angles 10 and 30 degrees collapse at Prandtl's load",
+// Over the friction angles the meshfree footing, the further from N_c (+2.5% at 10 degrees,
+// +2.1% at 30), is the one that can leave the 3%: Q8 is within 0.3% at all three angles
+// (checked at 20 degrees above; its 10 and 30 degree runs, 40-50 s of the suite, were left out).
+TEST_CASE("meshfree strip footings at friction angles 10 and 30 degrees collapse at Prandtl's load",
           "[elastoplastic][drucker_prager][long]") {
-  for (const char* method : {"meshfree", "fem"})
-    for (double phi : {10.0, 30.0}) check_footing(method, phi);
+  for (double phi : {10.0, 30.0}) check_footing("meshfree", phi);
 }
