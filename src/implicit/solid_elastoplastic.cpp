@@ -68,19 +68,7 @@ public:
     fields_->vector("displacement", [this](std::vector<double>& v) { v = node_u_; });
     add_node_stress_fields(*fields_, node_values_, 7);
     points_ = std::make_unique<io::FieldOutput>(out, "gauss_points", points);
-    const char* names[6] = {"stress_xx", "stress_yy", "stress_zz",
-                            "stress_yz", "stress_xz", "stress_xy"};
-    for (int c = 0; c < 6; ++c)
-      points_->scalar(names[c], [this, c](std::vector<double>& v) { column(c, v); });
-    points_->scalar("von_mises", [this](std::vector<double>& v) {
-      v.clear();
-      for (std::size_t i = 0; i + 7 <= values_.size(); i += 7) {
-        Vec6 s;
-        for (int c = 0; c < 6; ++c) s(c) = values_[i + c];
-        v.push_back(materials::von_mises_3d(s));
-      }
-    });
-    points_->scalar("plastic_strain", [this](std::vector<double>& v) { column(6, v); });
+    add_node_stress_fields(*points_, values_, 7); // the same fields, at the Gauss points
   }
 
   /// Collective: `all` is the whole d on rank 0 (empty elsewhere).
@@ -119,10 +107,6 @@ private:
         x.insert(x.end(), {p.x(), p.y(), p.z()});
       }
     return x;
-  }
-  void column(int c, std::vector<double>& v) const {
-    v.clear();
-    for (std::size_t i = 0; i + 7 <= values_.size(); i += 7) v.push_back(values_[i + c]);
   }
 
   const SolidModel& m_;

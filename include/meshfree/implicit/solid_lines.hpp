@@ -17,9 +17,9 @@
 
 namespace mf::implicit {
 
-/// Registers a 3D body's stress at its nodes in a field series: stress_xx .. stress_xy (Voigt
-/// order xx, yy, zz, yz, xz, xy), von_mises and, with 7 values a node, plastic_strain, read from
-/// `values` (`stride` values a node) at each write.
+/// Registers a 3D body's stress at its nodes (or its Gauss points) in a field series: stress_xx ..
+/// stress_xy (Voigt order xx, yy, zz, yz, xz, xy), von_mises and, with 7 values a node,
+/// plastic_strain, read from `values` (`stride` values a node) at each write.
 void add_node_stress_fields(io::FieldOutput& fields, const std::vector<double>& values, int stride);
 
 class SolidLineSampler {

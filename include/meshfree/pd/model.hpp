@@ -81,7 +81,6 @@ public:
     else
       wide_[k] = c;
   }
-  long size() const { return static_cast<long>(narrow_.size() + wide_.size()); }
   int bytes_per_bond() const { return wide_.empty() ? 2 : 4; }
   ClassView view() const {
     return wide_.empty() ? ClassView{narrow_.data(), nullptr} : ClassView{nullptr, wide_.data()};
