@@ -6,6 +6,7 @@
 #include "meshfree/geometry/lattice.hpp"
 #include "meshfree/pd/particle_order.hpp"
 #include "meshfree/pd/state_based.hpp"
+#include "meshfree/pd/state_surface.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -261,11 +262,18 @@ pd::VolumeCorrection volume_correction(const spec::PdSpec& s) {
 void bond_body(PdSetup& out, const spec::PdSpec& s, pd::VolumeCorrection correction) {
   pd::Model& m = out.model;
   pd::build_bonds(m, law_table(s, m.horizon), correction);
-  if (s.surface_correction) pd::apply_surface_correction(m);
+  if (s.surface_correction == "energy") pd::apply_surface_correction(m);
   std::vector<pd::PreCrack> cracks;
   for (const auto& c : s.cracks) cracks.push_back({c.a, c.b, c.c});
   out.state = pd::initial_state(m, cracks);
   if (m.state_based()) pd::set_weighted_volumes(m, out.state);
+  if (s.surface_correction == "position_aware") {
+    const long left = pd::apply_position_aware_influence(m, out.state);
+    if (left > 0)
+      log::warn("discretisation.surface_correction: position_aware: ", left,
+                " particles have too few or collinear bonds to fix their influence; they keep "
+                "the LPS's");
+  }
 }
 
 std::vector<pd::Impactor> impactors_of(const spec::PdSpec& s) {

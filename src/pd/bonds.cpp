@@ -1,6 +1,7 @@
 // Building the bonds of a peridynamic body in place: a cell list of the reference positions, a
 // pass that counts each owned particle's bonds, a pass that fills the rows, and the class table
 // that the bonds of equal geometry and law share.
+#include "class_table.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/pd/forces.hpp"
 #include "meshfree/pd/model.hpp"
@@ -11,6 +12,8 @@
 #include <unordered_map>
 
 namespace mf::pd {
+
+using detail::ClassTable;
 
 namespace {
 
@@ -77,61 +80,6 @@ struct CellList {
         }
   }
   double bytes() const { return 8.0 * start.size() + 4.0 * sorted.size(); }
-};
-
-/// The key that makes two bonds share a class: exact equality of law, length and weights.
-struct ClassKey {
-  int law;
-  double length, weight, weight_partner;
-  bool operator==(const ClassKey& o) const {
-    return law == o.law && length == o.length && weight == o.weight &&
-           weight_partner == o.weight_partner;
-  }
-};
-
-struct ClassKeyHash {
-  std::size_t operator()(const ClassKey& k) const {
-    std::uint64_t h = static_cast<std::uint64_t>(k.law) * 0x9E3779B97F4A7C15ull;
-    for (double v : {k.length, k.weight, k.weight_partner}) {
-      std::uint64_t bits;
-      std::memcpy(&bits, &v, sizeof bits);
-      h = (h ^ bits) * 0x100000001B3ull + (h >> 29);
-    }
-    return static_cast<std::size_t>(h);
-  }
-};
-
-/// Index of the class (law, length, weight, weight_partner), added when new.
-class ClassTable {
-public:
-  explicit ClassTable(std::vector<BondClass>& classes) : classes_(classes) {
-    for (std::size_t c = 0; c < classes.size(); ++c) {
-      const BondClass& b = classes[c];
-      index_.emplace(ClassKey{b.law, b.length, b.weight, b.weight_partner},
-                     static_cast<std::uint32_t>(c));
-    }
-  }
-  std::uint32_t find(int law, double length, double weight, double weight_partner) {
-    const ClassKey key{law, length, weight, weight_partner};
-    const auto it = index_.find(key);
-    if (it != index_.end()) return it->second;
-    MF_REQUIRE(classes_.size() < std::numeric_limits<std::uint32_t>::max(),
-               "peridynamics: more bond classes than a 32-bit index holds");
-    BondClass c;
-    c.law = law;
-    c.length = length;
-    c.inv_length = 1.0 / length;
-    c.weight = weight;
-    c.weight_partner = weight_partner;
-    classes_.push_back(c);
-    const auto k = static_cast<std::uint32_t>(classes_.size() - 1);
-    index_.emplace(key, k);
-    return k;
-  }
-
-private:
-  std::vector<BondClass>& classes_;
-  std::unordered_map<ClassKey, std::uint32_t, ClassKeyHash> index_;
 };
 
 } // namespace
@@ -392,7 +340,9 @@ void apply_surface_correction(Model& m) {
         sum += e(d) * e(d) / (g * g);
       }
       const double root = std::sqrt(sum);
-      b.cls.set(k, classes.find(c.law, c.length, c.weight / root, c.weight_partner / root));
+      BondClass scaled = c;
+      scaled.weight /= root, scaled.weight_partner /= root;
+      b.cls.set(k, classes.find(scaled));
     }
   fold_laws(m);
   m.weight_sum.assign(n, 0.0);

@@ -6,6 +6,7 @@
 #include "meshfree/pd/state_based.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/pd/bond_rows.hpp"
+#include "meshfree/pd/state_surface.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -28,7 +29,8 @@ struct Family {
   unsigned char* intact;
   int owned;
   bool half;
-  double d; // dimensions
+  bool aware; // position-aware factors (pd/state_surface.hpp) in the classes
+  double d;   // dimensions
 };
 
 /// The influence function of every bond class.
@@ -83,6 +85,33 @@ void dilatation_rows(const Family& f, int lo, int hi, double* theta, double* oth
   }
 }
 
+/// Pass 1 of a position-aware body, a thread's rows [lo, hi): three sums a particle, with each
+/// end's factors: sum_j omega dil |xi| e w_ij (the dilatation's), P_i = sum_j omega dev |xi| e
+/// w_ij and S_i = sum_j omega dev |xi|^2 w_ij (Q_i = b_i (P_i - theta_i S_i / d)).
+void aware_dilatation_rows(const Family& f, int lo, int hi, double* into, double* other, int base) {
+  for (int i = lo; i < hi; ++i) {
+    const double xi = f.y[3 * i], yi = f.y[3 * i + 1], zi = f.y[3 * i + 2];
+    double sum[3] = {0.0, 0.0, 0.0};
+    for (long k = f.offset[i]; k < f.offset[i + 1]; ++k) {
+      if (!f.intact[k]) continue;
+      const int j = f.partner[k];
+      const BondClass& c = f.classes[f.cls[k]];
+      const double oL = f.omega[f.cls[k]] * c.length, e = stretch_of(f, j, c, xi, yi, zi).e;
+      sum[0] += oL * e * c.dil * c.weight;
+      sum[1] += oL * e * c.dev * c.weight;
+      sum[2] += oL * c.length * c.dev * c.weight;
+      if (f.half && j < f.owned) {
+        double* to = other + 3 * (j - base);
+        to[0] += oL * e * c.dil_partner * c.weight_partner;
+        to[1] += oL * e * c.dev_partner * c.weight_partner;
+        to[2] += oL * c.length * c.dev_partner * c.weight_partner;
+      }
+    }
+    double* to = into + 3 * (i - (f.half ? base : 0));
+    for (int e = 0; e < 3; ++e) to[e] += sum[e];
+  }
+}
+
 /// What pass 2 reads per particle: t_i = omega (iso_i |xi| + scale_i b_i (e^d - e^dp)) with
 /// iso_i = d kappa theta_i / m_i, b_i = a mu / m_i, e^d = e - theta_i |xi| / d; the plastic
 /// return's factor scale_i (1 without plasticity); theta_i and kappa_i for the energy; the
@@ -123,6 +152,7 @@ inline double critical(const BondClass& c, const double* s0, double s0_i, int j)
 /// half layout, the reaction on an owned partner), the deviatoric energy, the plastic return of
 /// both ends' deviatoric extensions, the LAMMPS rule's s0, breaking after the force has counted.
 /// Returns directed bonds broken.
+template <bool kAware>
 long force_rows(const Family& f, const StateTerms& t, int lo, int hi, const PassOut& out) {
   long broken = 0;
   const double d = f.d;
@@ -141,7 +171,13 @@ long force_rows(const Family& f, const StateTerms& t, int lo, int hi, const Pass
       const double tj_d = t.theta[j] / d, sc_j = t.scale ? t.scale[j] : 1.0;
       const double el_i = elastic_deviatoric(s.e, ti, L, t.plastic, 2 * k);
       const double el_j = elastic_deviatoric(s.e, tj_d, L, t.plastic, 2 * k + 1);
-      const double T = omega * ((iso_i + t.iso[j]) * L + sc_i * bi * el_i + sc_j * t.b[j] * el_j);
+      // The position-aware factors of both ends (pd/state_surface.hpp), 1 in the LPS.
+      const double di = kAware ? c.dil : 1.0, dj = kAware ? c.dil_partner : 1.0;
+      const double vi = kAware ? c.dev : 1.0, vj = kAware ? c.dev_partner : 1.0;
+      const double T =
+          kAware ? omega * ((iso_i * di + t.iso[j] * dj) * L + sc_i * bi * vi * el_i +
+                            sc_j * t.b[j] * vj * el_j)
+                 : omega * ((iso_i + t.iso[j]) * L + sc_i * bi * el_i + sc_j * t.b[j] * el_j);
       if (t.plastic) {
         // The return to the yield surface: e^dp = e^d - scale (e^d - e^dp_old).
         t.plastic[2 * k] = s.e - ti * L - sc_i * el_i;
@@ -158,8 +194,9 @@ long force_rows(const Family& f, const StateTerms& t, int lo, int hi, const Pass
       }
       if (t.energy) {
         const double ei = sc_i * el_i, ej = sc_j * el_j; // elastic parts after the return
-        wi += 0.5 * bi * omega * ei * ei * c.weight;
-        if (j_row) out.w[jb] += 0.5 * t.b[j] * omega * ej * ej * c.weight_partner;
+        wi += 0.5 * bi * (kAware ? vi * omega : omega) * ei * ei * c.weight;
+        if (j_row)
+          out.w[jb] += 0.5 * t.b[j] * (kAware ? vj * omega : omega) * ej * ej * c.weight_partner;
       }
       const double stretch = s.e / L;
       if (t.s0) {
@@ -237,15 +274,17 @@ Family family_of(const Model& m, BondState& s, const std::vector<double>& y,
                 s.intact.data(),
                 m.particles.owned_count(),
                 b.layout == BondLayout::Half,
+                m.position_aware,
                 static_cast<double>(materials::pd_dimensions(m.dimension))};
 }
 
-/// A per-particle sum over the bonds of every owned row into `sum` (zeroed first): `rows(lo, hi,
-/// into, other, base)` adds a row's own part to into[i - base] (base 0 in the full layout) and,
-/// in the half layout, the partners' parts to other[j - base]; the half layout's threads past the
-/// first add into buffers of their own, summed in thread order.
+/// Per-particle sums (`per` a particle) over the bonds of every owned row into `sum` (zeroed
+/// first): `rows(lo, hi, into, other, base)` adds a row's own part to into[per (i - base)] (base
+/// 0 in the full layout) and, in the half layout, the partners' parts to other[per (j - base)];
+/// the half layout's threads past the first add into buffers of their own, summed in thread
+/// order.
 template <class Rows>
-void particle_sums(const Family& f, std::vector<double>& sum, const Rows& rows) {
+void particle_sums(const Family& f, std::vector<double>& sum, const Rows& rows, int per = 1) {
   const int owned = f.owned;
   std::fill(sum.begin(), sum.end(), 0.0);
   std::vector<Buffers>& buf = thread_buffers(omp_get_max_threads());
@@ -256,11 +295,11 @@ void particle_sums(const Family& f, std::vector<double>& sum, const Rows& rows) 
     if (f.half) {
       Buffers& own = buf[q];
       own.lo = q == 0 ? 0 : first[q];
-      own.sum.assign(q == 0 ? 0 : owned - own.lo, 0.0);
+      own.sum.assign(q == 0 ? 0 : static_cast<std::size_t>(per) * (owned - own.lo), 0.0);
       double* into = q == 0 ? sum.data() : own.sum.data();
       rows(first[q], first[q + 1], into, into, own.lo);
 #pragma omp barrier
-      add_buffers(first, buf, T, owned, 1, &Buffers::sum, sum.data(), false);
+      add_buffers(first, buf, T, owned, per, &Buffers::sum, sum.data(), false);
     } else {
 #pragma omp for schedule(dynamic, 512)
       for (int i = 0; i < owned; ++i) rows(i, i + 1, sum.data(), nullptr, 0);
@@ -276,6 +315,27 @@ void dilatations(const Family& f, const Model& m, std::vector<double>& theta) {
   for (int i = 0; i < f.owned; ++i) {
     const double mi = m.weighted_volume[i];
     theta[i] = mi > 0.0 ? f.d * theta[i] / mi : 0.0;
+  }
+}
+
+/// Pass 1 of a position-aware body: theta_i = (d / m_i) sum_j omega dil |xi| e w_ij and Q_i =
+/// b_i (P_i - theta_i S_i / d) (pd/state_surface.hpp) of every owned particle.
+void aware_dilatations(const Family& f, const Model& m, std::vector<double>& theta,
+                       std::vector<double>& Q) {
+  thread_local std::vector<double> sums;
+  sums.assign(3 * theta.size(), 0.0);
+  particle_sums(
+      f, sums,
+      [&f](int lo, int hi, double* into, double* other, int base) {
+        aware_dilatation_rows(f, lo, hi, into, other, base);
+      },
+      3);
+  const double a = materials::lps_deviatoric_factor(m.dimension);
+  for (int i = 0; i < f.owned; ++i) {
+    const double mi = m.weighted_volume[i], *s = &sums[3 * static_cast<std::size_t>(i)];
+    theta[i] = mi > 0.0 ? f.d * s[0] / mi : 0.0;
+    const double bi = mi > 0.0 ? a * m.lps[m.particles.material[i]].mu / mi : 0.0;
+    Q[i] = bi * (s[1] - theta[i] * s[2] / f.d);
   }
 }
 
@@ -340,14 +400,17 @@ long force_pass(const Family& f, const StateTerms& t, const PassOut& out) {
         own.s0.assign(out.s0n ? len : 0, kNone);
         mine = PassOut{own.f.data(), own.w.data(), own.s0.data(), own.lo};
       }
-      broken += force_rows(f, t, first[q], first[q + 1], mine);
+      broken += f.aware ? force_rows<true>(f, t, first[q], first[q + 1], mine)
+                        : force_rows<false>(f, t, first[q], first[q + 1], mine);
 #pragma omp barrier
       add_buffers(first, buf, T, owned, 3, &Buffers::f, out.f, false);
       if (out.w) add_buffers(first, buf, T, owned, 1, &Buffers::w, out.w, false);
       if (out.s0n) add_buffers(first, buf, T, owned, 1, &Buffers::s0, out.s0n, true);
     } else {
 #pragma omp for schedule(dynamic, 512)
-      for (int i = 0; i < owned; ++i) broken += force_rows(f, t, i, i + 1, out);
+      for (int i = 0; i < owned; ++i)
+        broken += f.aware ? force_rows<true>(f, t, i, i + 1, out)
+                          : force_rows<false>(f, t, i, i + 1, out);
     }
   }
   return broken;
@@ -363,9 +426,15 @@ ForceReport evaluate(const Model& m, BondState& s, const std::vector<double>& y,
   const std::vector<double> omega = class_influence(m);
   const Family f = family_of(m, s, y, omega);
   const int owned = f.owned;
-  thread_local std::vector<double> theta, iso, b, kappa, density, scale;
+  thread_local std::vector<double> theta, Q, iso, b, kappa, density, scale;
   theta.assign(n, 0.0);
-  dilatations(f, m, theta);
+  Q.assign(m.position_aware ? n : 0, 0.0);
+  if (m.position_aware) {
+    aware_dilatations(f, m, theta, Q);
+    m.halo.exchange(Q);
+  } else {
+    dilatations(f, m, theta);
+  }
   m.halo.exchange(theta); // the ghosts' dilatation, from their owners
   // Per particle: iso_i, b_i of its own material.
   iso.resize(n), b.resize(n), kappa.resize(n);
@@ -374,7 +443,9 @@ ForceReport evaluate(const Model& m, BondState& s, const std::vector<double>& y,
     const materials::LpsLaw& law = m.lps[m.particles.material[i]];
     const double mi = m.weighted_volume[i];
     b[i] = mi > 0.0 ? a * law.mu / mi : 0.0;
-    iso[i] = mi > 0.0 ? dd * law.kappa * theta[i] / mi : 0.0;
+    iso[i] = mi <= 0.0   ? 0.0
+             : Q.empty() ? dd * law.kappa * theta[i] / mi
+                         : (dd * law.kappa * theta[i] - Q[i]) / mi;
     kappa[i] = law.kappa;
   }
   force.assign(3 * static_cast<std::size_t>(n), 0.0);
@@ -435,6 +506,7 @@ void state_forces_kept(const Model& m, const std::vector<unsigned char>& intact,
 }
 
 std::vector<double> state_fictitious_density(const Model& m, const BondState& s) {
+  if (m.position_aware) return position_aware_fictitious_density(m, s);
   const particles::ParticleSet& q = m.particles;
   const int n = q.size();
   const std::vector<double> omega = class_influence(m);
@@ -446,6 +518,7 @@ std::vector<double> state_fictitious_density(const Model& m, const BondState& s)
   for_each_directed_bond(m, [&](int i, int, long k, double w, const BondClass& c) {
     if (s.intact[k]) S[i] += omega[&c - bonds.classes.data()] * c.length * w;
   });
+  m.halo.exchange(S); // a ghost partner's S_j, from its owner
   for (int i = 0; i < n; ++i) {
     const materials::LpsLaw& law = m.lps[q.material[i]];
     const double mi = m.weighted_volume[i];

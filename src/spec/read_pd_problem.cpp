@@ -188,8 +188,8 @@ void read_discretisation(KeyReader& r, PdSpec& s) {
     d.error("horizon",
             "expected delta / spacing between 1 and 10, got " + detail::concat(s.horizon_factor));
   s.volume_correction = d.choice("volume_correction", {"exact", "linear", "none"}, "exact");
-  const std::string surface = d.choice("surface_correction", {"none", "energy"}, "none");
-  s.surface_correction = surface == "energy";
+  s.surface_correction =
+      d.choice("surface_correction", {"none", "energy", "position_aware"}, "none");
   s.short_range_contact = d.choice("short_range_contact", {"false", "true"}, "false") == "true";
   s.deterministic = d.choice("deterministic", {"true", "false"}, "false") == "true";
   d.finish();
@@ -242,10 +242,18 @@ void check_one_family(const PdSpec& s) {
     if (m.bond->lps && m.bond->influence != first.bond->influence)
       material_error(m, "bond.influence", "a body's lps materials share one influence function");
   }
-  if (s.surface_correction && s.state_based())
+  if (s.surface_correction == "energy" && s.state_based())
     fail(s.key_prefix, "discretisation.surface_correction: energy corrects bond-based bodies; an "
-                       "lps body's weighted volumes already make its dilatation exact at the "
-                       "surface");
+                       "lps body takes position_aware");
+  if (s.surface_correction == "position_aware" && !s.state_based())
+    fail(s.key_prefix, "discretisation.surface_correction: position_aware corrects lps bodies; a "
+                       "bond-based body takes energy");
+  for (const MaterialSpec& m : s.materials)
+    if (s.surface_correction == "position_aware" && m.bond && m.bond->lps &&
+        m.bond->yield_stress > 0.0)
+      fail(s.key_prefix,
+           "discretisation.surface_correction: position_aware is elastic; '" + m.name +
+               "' is eps (its plastic return is Mitchell's, on the LPS's own influence)");
 }
 
 PdCrack read_crack(KeyReader& c, int dim) {

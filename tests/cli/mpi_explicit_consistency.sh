@@ -54,6 +54,18 @@ import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 assert float(rows[-1]["broken_bonds"]) > 0, "the window must include bond breaking"
 PY
+# The LPS with its position-aware influence: the ghosts' coefficients at set-up, their Q_i with
+# the dilatation at every step; through its first broken bonds.
+run_both pd_disk_impact_lps-aware pd_disk_impact_lps 2.0e-5 \
+  --set discretisation.short_range_contact=false \
+  --set discretisation.surface_correction=position_aware --set discretisation.deterministic=true
+/usr/bin/python3 "$ROOT/scripts/compare_runs.py" "$WORK/pd_disk_impact_lps-aware-1" \
+  "$WORK/pd_disk_impact_lps-aware-2" --rtol 1e-12
+/usr/bin/python3 - "$WORK/pd_disk_impact_lps-aware-2/history.csv" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert float(rows[-1]["broken_bonds"]) > 0, "the window must include bond breaking"
+PY
 # The fast layout: before the first broken bond (the slab's first 0.3 ms), then the count.
 run_both slab-fast-early pd_slab_blast 3.0e-4
 /usr/bin/python3 - "$WORK/slab-fast-early-1/history.csv" <<'PY'

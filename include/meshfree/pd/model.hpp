@@ -30,7 +30,8 @@ enum class VolumeCorrection { None, Linear, Exact };
 /// What a bond's force needs besides its partner, shared by every bond with the same geometry,
 /// weights and law (on a lattice: bonds of the same offset), so that a bond stores a partner and a
 /// class index. Classes are deduplicated by exact equality of (law, length, weight,
-/// weight_partner); the folded constants follow from those and the law (fold_laws).
+/// weight_partner and the position-aware factors); the folded constants follow from those and
+/// the law (fold_laws).
 struct BondClass {
   // The four the force loop reads for every bond first, side by side (pd/bond_rows.cpp).
   double length = 0.0;               // |xi|
@@ -45,6 +46,9 @@ struct BondClass {
   double s00 = 0.0;         // LAMMPS rule: s0 candidate s00 - alpha s
   double alpha = 0.0;
   double yield = 0.0; // micro-plastic yield stretch; +inf for an elastic law
+  // A state-based body's position-aware influence (pd/state_surface.hpp) over the LPS's, 1
+  // without it: the dilatation's and the deviatoric part's, of the row particle and the partner.
+  double dil = 1.0, dil_partner = 1.0, dev = 1.0, dev_partner = 1.0;
 };
 
 /// How the bonds of the owned particles are stored (both in compressed rows, one row per owned
@@ -140,6 +144,7 @@ struct Model {
   materials::Influence influence = materials::Influence::InverseLength;
   std::vector<double> weighted_volume;
   std::vector<double> yield_value; // EPS: psi0 of every particle (materials::eps_yield_value)
+  bool position_aware = false;     // the classes carry pd/state_surface.hpp's factors
   /// On a run spread over MPI ranks: the ghosts' copies of other ranks' particles, refreshed
   /// before every force evaluation. Bonds are built for owned particles only.
   distribution::Halo halo;

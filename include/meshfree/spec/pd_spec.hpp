@@ -84,7 +84,7 @@ struct PdSpec {
   double spacing = 0.0;
   double horizon_factor = 3.0;             // delta = horizon_factor * spacing
   std::string volume_correction = "exact"; // exact | linear | none
-  bool surface_correction = false;
+  std::string surface_correction = "none"; // none | energy (bond-based) | position_aware (lps)
   bool short_range_contact = false; // LAMMPS peri/pmb's short-range repulsion of particles
   bool deterministic = false; // discretisation.deterministic: bonds in full rows, global-id order
   std::vector<MaterialSpec> materials; // each with density and bond

@@ -8,6 +8,7 @@
 #include "meshfree/pd/state_based.hpp"
 #include "meshfree/spec/key_reader.hpp"
 #include "meshfree/spec/problem_spec.hpp"
+#include "pd/lps_body.hpp"
 #include "test_support.hpp"
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -16,57 +17,11 @@
 
 using namespace mf;
 using materials::PdDimension;
+using test::deformed;
+using test::Elastic;
+using test::lps_lattice;
 
 namespace {
-
-struct Elastic {
-  double E = 0.0, nu = 0.0;
-  double K() const { return E / (3.0 * (1.0 - 2.0 * nu)); }
-  double mu() const { return E / (2.0 * (1.0 + nu)); }
-  double lambda() const { return E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)); }
-};
-
-/// A uniform LPS lattice of nx x ny (x nz) particles of spacing dx, one material.
-pd::Model lps_lattice(PdDimension dim, int nx, int ny, int nz, double dx, double m_factor,
-                      const Elastic& el, double density, pd::VolumeCorrection correction,
-                      materials::Influence influence = materials::Influence::InverseLength,
-                      bool deterministic = false) {
-  pd::Model m;
-  m.dimension = dim;
-  m.thickness = 0.01;
-  m.spacing = dx;
-  m.horizon = m_factor * dx;
-  m.deterministic = deterministic;
-  m.material_names = {"solid"};
-  const bool plane = dim != PdDimension::Solid3D;
-  const double volume = plane ? dx * dx * m.thickness : dx * dx * dx;
-  for (int k = 0; k < (plane ? 1 : nz); ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i)
-        m.particles.add({i * dx, j * dx, plane ? 0.0 : k * dx}, volume, density, 0);
-  const materials::LpsLaw law = materials::lps_law(dim, el.K(), el.mu());
-  m.lps = {law};
-  m.influence = influence;
-  pd::LawTable t;
-  t.materials = 1;
-  materials::BondLaw bond;
-  bond.c = materials::lps_contact_micromodulus(dim, law, m.horizon, m.thickness);
-  t.laws = {bond};
-  t.law_of = {0};
-  pd::build_bonds(m, t, correction);
-  pd::set_weighted_volumes(m, pd::initial_state(m, {}));
-  return m;
-}
-
-/// Positions X + u(X).
-template <class U> std::vector<double> deformed(const pd::Model& m, U&& u) {
-  std::vector<double> y = m.particles.X;
-  for (int i = 0; i < m.particles.size(); ++i) {
-    const Eigen::Vector3d d = u(m.particles.reference(i));
-    for (int e = 0; e < 3; ++e) y[3 * i + e] += d(e);
-  }
-  return y;
-}
 
 /// Strain energy density at particle `centre` under u = G x.
 double energy_density(const pd::Model& m, int centre, const Eigen::Matrix3d& G) {
@@ -404,7 +359,31 @@ TEST_CASE("LPS keys: what a state-based body does not take is refused naming the
     CHECK_THROWS_WITH(spec::parse_problem(root),
                       Catch::StartsWith("materials[0].nu: law: lps needs"));
   }
-  refused({"discretisation.surface_correction=energy"}, "discretisation.surface_correction:");
+  refused({"discretisation.surface_correction=energy"},
+          "discretisation.surface_correction: energy corrects bond-based bodies; an lps body "
+          "takes position_aware");
+  CHECK(spec::parse_problem([&] {
+          YAML::Node root = YAML::Clone(base);
+          spec::apply_override(root, "discretisation.surface_correction=position_aware");
+          return root;
+        }())
+            .pd()
+            .surface_correction == "position_aware");
+  {
+    YAML::Node root = YAML::Clone(base);
+    root["materials"][0].remove("bulk_modulus");
+    root["materials"][0].remove("shear_modulus");
+    for (const char* o : {"materials.0.E=30e9", "materials.0.bond.law=pmb",
+                          "discretisation.surface_correction=position_aware"})
+      spec::apply_override(root, o);
+    CHECK_THROWS_WITH(spec::parse_problem(root),
+                      Catch::StartsWith("discretisation.surface_correction: position_aware "
+                                        "corrects lps bodies; a bond-based body takes energy"));
+  }
+  refused({"discretisation.surface_correction=position_aware", "materials.0.bond.law=eps",
+           "materials.0.bond.yield_stress=3e8"},
+          "discretisation.surface_correction: position_aware is elastic; 'lammps' is eps");
+  refused({"discretisation.surface_correction=aware"}, "discretisation.surface_correction:");
   {
     // A second material of another family in the same body.
     YAML::Node root = YAML::Clone(base);
