@@ -265,10 +265,10 @@ void parse_stages(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
       check_solid_holds(link_reader, link, from);
       check_transfer(from, stage);
       check_explicit_stage(link_reader, link, from, stage);
-      if (stage.is_pd() && stage.pd().state_based()) {
+      if (stage.is_pd() && stage.pd().state_plastic()) {
         if (link.implicit_equilibrium && link.equilibrium_given)
-          link_reader.error("transfer", "equilibrium: newton solves bond-based bodies; a body of "
-                                        "law: lps relaxes to its equilibrium by adr");
+          link_reader.error("transfer", "equilibrium: newton solves elastic bodies; a body of "
+                                        "law: eps relaxes to its equilibrium by adr");
         link.implicit_equilibrium = false; // ADR
       }
       if (stage.analysis == Analysis::Peridynamics && stage.model_type == ModelType::Solid3D)

@@ -68,7 +68,11 @@ RelaxReport relax(Model& m, BondState& s, const Loading& loading, const RelaxSet
 /// every right-hand side and step. The residual, evaluated by the bond-force loop, decides
 /// convergence as in relax; nothing is assembled when the body starts in equilibrium. Every
 /// particle must be owned (one rank); bonds do not break. Leaves v = 0, a = 0 and the clock as
-/// it was.
+/// it was. A state-based (elastic LPS) body takes Newton-Krylov steps instead: conjugate
+/// gradients on its own tangent, applied by central differences of its forces (two force
+/// evaluations an iteration), preconditioned by the bond stiffness above with the body's contact
+/// micromodulus (the bond-based body of its bulk modulus), each step as accurate as the
+/// tolerance asks; an eps body relaxes by ADR.
 RelaxReport solve_statics(Model& m, BondState& s, const Loading& loading,
                           const RelaxSettings& settings);
 

@@ -104,6 +104,12 @@ struct PdSpec {
 
   /// Whether the body is state-based (its materials' bond law lps).
   bool state_based() const { return !materials.empty() && materials.front().bond->lps; }
+  /// Whether a state-based body has elastic-plastic (eps) materials.
+  bool state_plastic() const {
+    for (const MaterialSpec& m : materials)
+      if (m.bond && m.bond->lps && m.bond->yield_stress > 0.0) return true;
+    return false;
+  }
 };
 
 } // namespace mf::spec

@@ -423,6 +423,52 @@ TEST_CASE("conjugate gradients with multigrid reach the equilibrium of the Chole
   }
 }
 
+TEST_CASE("Newton-Krylov steps bring a state-based plate to the equilibrium ADR reaches",
+          "[staged][pd][lps]") {
+  // The plate as an LPS body (nu = 1/3, plane stress), with and without its position-aware
+  // influence, held by forces alone and clamped along its bottom: solve_statics's conjugate
+  // gradients on the LPS tangent (central differences of the forces) preconditioned by the bond
+  // stiffness, against adaptive dynamic relaxation of the same body, both to a residual ratio
+  // of 1e-9. As in the multigrid test, the displacements differ by the tolerance times a
+  // stiffness ratio of order one: 100 times the tolerance bounds it.
+  constexpr double tolerance = 1e-9;
+  for (const char* surface : {"none", "position_aware"})
+    for (const bool clamped : {false, true}) {
+      INFO(surface << ", clamped " << clamped);
+      const std::vector<std::string> lps = {
+          "materials.0.bond.law=lps",
+          std::string("stages.1.discretisation.surface_correction=") + surface};
+      std::vector<std::vector<double>> u;
+      for (const bool newton : {true, false}) {
+        explicit_dynamics::PdSetup setup = held_body(plate(lps));
+        if (clamped) {
+          const explicit_dynamics::PdSetup with = plate_body(true);
+          setup.loading.constraints.push_back(with.loading.constraints.back());
+        }
+        pd::RelaxSettings rs;
+        rs.tolerance = tolerance;
+        const pd::RelaxReport r =
+            newton ? pd::solve_statics(setup.model, setup.state, setup.loading, rs)
+                   : pd::relax(setup.model, setup.state, setup.loading, rs);
+        CHECK(r.converged);
+        std::cout << "lps equilibrium to 1e-9, " << surface << (clamped ? ", clamped" : "")
+                  << (newton ? ": Newton " : ": ADR ") << r.iterations << " iterations"
+                  << (newton ? ", " + std::to_string(r.linear_iterations) + " CG, " + r.solver
+                             : std::string())
+                  << ", " << r.seconds << " s\n";
+        if (newton) CHECK(r.iterations <= 4);
+        u.push_back(setup.model.particles.u);
+      }
+      double difference = 0.0, largest = 0.0;
+      for (std::size_t k = 0; k < u[0].size(); ++k) {
+        difference = std::max(difference, std::abs(u[0][k] - u[1][k]));
+        largest = std::max(largest, std::abs(u[0][k]));
+      }
+      std::cout << "  Newton-Krylov against ADR: " << difference / largest << " of the largest u\n";
+      CHECK(difference <= 1e2 * tolerance * largest);
+    }
+}
+
 /// Processor seconds of the process since `start` (std::clock): on one thread the wall time of
 /// an idle machine, and on a shared one a steadier measure than the wall clock.
 double cpu_seconds(std::clock_t start) {
