@@ -10,6 +10,7 @@
 // theirs bit for bit.
 #include "meshfree/pd/bond_rows.hpp"
 #if defined(__x86_64__) && defined(__GNUC__)
+#include "packed_columns.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -17,10 +18,6 @@
 #include <cstring>
 #include <immintrin.h>
 #include <limits>
-
-#define MF_TARGET_AVX2 __attribute__((target("avx2")))
-#define MF_TARGET_AVX512 __attribute__((target("avx2,avx512f,avx512vl,avx512bw,avx512dq,avx512cd")))
-#define MF_ALWAYS_INLINE __attribute__((always_inline)) inline
 
 namespace mf::pd::rows {
 namespace {
@@ -30,13 +27,7 @@ static_assert(offsetof(BondClass, inv_length) == offsetof(BondClass, length) + 8
                   offsetof(BondClass, cw_partner) == offsetof(BondClass, length) + 24,
               "the four constants read per bond lie side by side");
 
-/// Four rows of four doubles as four columns.
-MF_TARGET_AVX2 MF_ALWAYS_INLINE void transpose(__m256d r[4]) {
-  const __m256d t0 = _mm256_unpacklo_pd(r[0], r[1]), t1 = _mm256_unpackhi_pd(r[0], r[1]);
-  const __m256d t2 = _mm256_unpacklo_pd(r[2], r[3]), t3 = _mm256_unpackhi_pd(r[2], r[3]);
-  r[0] = _mm256_permute2f128_pd(t0, t2, 0x20), r[1] = _mm256_permute2f128_pd(t1, t3, 0x20);
-  r[2] = _mm256_permute2f128_pd(t0, t2, 0x31), r[3] = _mm256_permute2f128_pd(t1, t3, 0x31);
-}
+using packed::transpose;
 
 /// A group of four bonds of a row: the bonds k0 .. k0 + 3, or where the row ends first, its
 /// last bond in the lanes past the end (computed, never summed).

@@ -7,6 +7,7 @@
 #include "meshfree/core/error.hpp"
 #include "meshfree/pd/bond_rows.hpp"
 #include "meshfree/pd/state_surface.hpp"
+#include "state_rows.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -14,24 +15,9 @@
 
 namespace mf::pd {
 
+using namespace detail;
+
 namespace {
-
-constexpr double kNone = -std::numeric_limits<double>::infinity();
-
-/// What both passes read: positions, rows, per-class influence and the particles' constants.
-struct Family {
-  const double* y; // three a point
-  const long* offset;
-  const int* partner;
-  ClassView cls;
-  const BondClass* classes;
-  const double* omega; // per class
-  unsigned char* intact;
-  int owned;
-  bool half;
-  bool aware; // position-aware factors (pd/state_surface.hpp) in the classes
-  double d;   // dimensions
-};
 
 /// The influence function of every bond class.
 std::vector<double> class_influence(const Model& m) {
@@ -39,19 +25,6 @@ std::vector<double> class_influence(const Model& m) {
   for (std::size_t c = 0; c < omega.size(); ++c)
     omega[c] = materials::influence(m.influence, m.bonds.classes[c].length, m.horizon);
   return omega;
-}
-
-/// One bond seen from its row's particle at (xi, yi, zi): y_j - y_i, its length r and its
-/// extension e = r - |xi|.
-struct Stretch {
-  double dx, dy, dz, r, e;
-};
-
-inline Stretch stretch_of(const Family& f, int j, const BondClass& c, double xi, double yi,
-                          double zi) {
-  const double dx = f.y[3 * j] - xi, dy = f.y[3 * j + 1] - yi, dz = f.y[3 * j + 2] - zi;
-  const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
-  return {dx, dy, dz, r, r - c.length};
 }
 
 /// A thread's buffers for the half layout's contributions to rows [lo, owned).
@@ -110,42 +83,6 @@ void aware_dilatation_rows(const Family& f, int lo, int hi, double* into, double
     double* to = into + 3 * (i - (f.half ? base : 0));
     for (int e = 0; e < 3; ++e) to[e] += sum[e];
   }
-}
-
-/// What pass 2 reads per particle: t_i = omega (iso_i |xi| + scale_i b_i (e^d - e^dp)) with
-/// iso_i = d kappa theta_i / m_i, b_i = a mu / m_i, e^d = e - theta_i |xi| / d; the plastic
-/// return's factor scale_i (1 without plasticity); theta_i and kappa_i for the energy; the
-/// committed s0 of the LAMMPS rule; the bonds' plastic deviatoric extensions (two a stored bond:
-/// the row particle's, then the partner's), null for an elastic body.
-struct StateTerms {
-  const double* iso;
-  const double* b;
-  const double* theta;
-  const double* kappa; // per particle, for the energy
-  const double* s0;    // null without the alpha rule
-  bool energy;
-  bool breaking;       // false: every bond intact at the start stays intact
-  const double* scale; // null: 1
-  double* plastic;     // null: elastic
-};
-
-/// One end's deviatoric state of a bond of extension e: its elastic deviatoric extension
-/// e^d - e^dp before the return.
-inline double elastic_deviatoric(double e, double theta_over_d, double length,
-                                 const double* plastic, long slot) {
-  return e - theta_over_d * length - (plastic ? plastic[slot] : 0.0);
-}
-
-/// Where pass 2 writes: forces (3 a point), energy density, trial s0, element 0 at `base`.
-struct PassOut {
-  double* f;
-  double* w;
-  double* s0n;
-  int base;
-};
-
-inline double critical(const BondClass& c, const double* s0, double s0_i, int j) {
-  return s0 ? std::max(std::min(s0_i, s0[j]), c.alpha_floor) : c.limit;
 }
 
 /// Pass 2, a thread's rows [lo, hi): the force of each intact bond on its row's particle (and,
@@ -310,7 +247,10 @@ void particle_sums(const Family& f, std::vector<double>& sum, const Rows& rows, 
 /// Pass 1 over every owned row: theta_i = (d / m_i) sum_j omega |xi| e w_ij.
 void dilatations(const Family& f, const Model& m, std::vector<double>& theta) {
   particle_sums(f, theta, [&f](int lo, int hi, double* into, double* other, int base) {
-    dilatation_rows(f, lo, hi, into, other, base);
+    if (f.y4)
+      packed_dilatation_rows(f, lo, hi, into, other, base);
+    else
+      dilatation_rows(f, lo, hi, into, other, base);
   });
   for (int i = 0; i < f.owned; ++i) {
     const double mi = m.weighted_volume[i];
@@ -379,6 +319,12 @@ void set_weighted_volumes(Model& m, const BondState& s) {
 
 namespace {
 
+/// Pass 2 over rows [lo, hi): packed where the positions are (an elastic body), else scalar.
+long rows_of(const Family& f, const StateTerms& t, int lo, int hi, const PassOut& out) {
+  if (f.y4 && !t.plastic) return packed_force_rows(f, t, lo, hi, out);
+  return f.aware ? force_rows<true>(f, t, lo, hi, out) : force_rows<false>(f, t, lo, hi, out);
+}
+
 /// Pass 2 over every owned row, its outputs in `out` (base 0): in the half layout the threads past
 /// the first write to buffers of their own, added in thread order. Returns directed bonds broken.
 long force_pass(const Family& f, const StateTerms& t, const PassOut& out) {
@@ -400,17 +346,14 @@ long force_pass(const Family& f, const StateTerms& t, const PassOut& out) {
         own.s0.assign(out.s0n ? len : 0, kNone);
         mine = PassOut{own.f.data(), own.w.data(), own.s0.data(), own.lo};
       }
-      broken += f.aware ? force_rows<true>(f, t, first[q], first[q + 1], mine)
-                        : force_rows<false>(f, t, first[q], first[q + 1], mine);
+      broken += rows_of(f, t, first[q], first[q + 1], mine);
 #pragma omp barrier
       add_buffers(first, buf, T, owned, 3, &Buffers::f, out.f, false);
       if (out.w) add_buffers(first, buf, T, owned, 1, &Buffers::w, out.w, false);
       if (out.s0n) add_buffers(first, buf, T, owned, 1, &Buffers::s0, out.s0n, true);
     } else {
 #pragma omp for schedule(dynamic, 512)
-      for (int i = 0; i < owned; ++i)
-        broken += f.aware ? force_rows<true>(f, t, i, i + 1, out)
-                          : force_rows<false>(f, t, i, i + 1, out);
+      for (int i = 0; i < owned; ++i) broken += rows_of(f, t, i, i + 1, out);
     }
   }
   return broken;
@@ -424,9 +367,15 @@ ForceReport evaluate(const Model& m, BondState& s, const std::vector<double>& y,
              "state_forces: the weighted volumes are not set (pd::set_weighted_volumes)");
   const int n = m.particles.size();
   const std::vector<double> omega = class_influence(m);
-  const Family f = family_of(m, s, y, omega);
+  Family f = family_of(m, s, y, omega);
   const int owned = f.owned;
-  thread_local std::vector<double> theta, Q, iso, b, kappa, density, scale;
+  thread_local std::vector<double> theta, Q, iso, b, kappa, density, scale, y4, partner;
+  if (packed_rows()) {
+    y4.resize(4 * static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i)
+      for (int e = 0; e < 4; ++e) y4[4 * i + e] = e < 3 ? y[3 * i + e] : 0.0;
+    f.y4 = y4.data();
+  }
   theta.assign(n, 0.0);
   Q.assign(m.position_aware ? n : 0, 0.0);
   if (m.position_aware) {
@@ -466,6 +415,14 @@ ForceReport evaluate(const Model& m, BondState& s, const std::vector<double>& y,
                    breaking,
                    nullptr,
                    plastic ? s.plastic.data() : nullptr};
+  if (f.y4 && !plastic) {
+    partner.resize(4 * static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) {
+      double* p = &partner[4 * static_cast<std::size_t>(i)];
+      p[0] = theta[i] / dd, p[1] = iso[i], p[2] = b[i], p[3] = 0.0;
+    }
+    terms.partner = partner.data();
+  }
   if (plastic) {
     scale.assign(n, 1.0);
     return_factors(f, terms, m, scale);
