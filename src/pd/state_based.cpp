@@ -359,23 +359,20 @@ long force_pass(const Family& f, const StateTerms& t, const PassOut& out) {
   return broken;
 }
 
-ForceReport evaluate(const Model& m, BondState& s, const std::vector<double>& y,
-                     std::vector<double>& force, bool with_energy,
-                     std::vector<double>* energy_density, std::vector<double>* theta_out,
-                     bool breaking) {
-  MF_REQUIRE(m.weighted_volume.size() == static_cast<std::size_t>(m.particles.size()),
-             "state_forces: the weighted volumes are not set (pd::set_weighted_volumes)");
+/// The positions four doubles a point for the packed rows, null when the scalar rows run.
+const double* padded_positions(const std::vector<double>& y, int n) {
+  if (!packed_rows()) return nullptr;
+  thread_local std::vector<double> y4;
+  y4.resize(4 * static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i)
+    for (int e = 0; e < 4; ++e) y4[4 * i + e] = e < 3 ? y[3 * i + e] : 0.0;
+  return y4.data();
+}
+
+/// Pass 1 and its halo: every particle's dilatation and, position-aware, its Q_i.
+void dilatation_pass(const Family& f, const Model& m, std::vector<double>& theta,
+                     std::vector<double>& Q) {
   const int n = m.particles.size();
-  const std::vector<double> omega = class_influence(m);
-  Family f = family_of(m, s, y, omega);
-  const int owned = f.owned;
-  thread_local std::vector<double> theta, Q, iso, b, kappa, density, scale, y4, partner;
-  if (packed_rows()) {
-    y4.resize(4 * static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i)
-      for (int e = 0; e < 4; ++e) y4[4 * i + e] = e < 3 ? y[3 * i + e] : 0.0;
-    f.y4 = y4.data();
-  }
   theta.assign(n, 0.0);
   Q.assign(m.position_aware ? n : 0, 0.0);
   if (m.position_aware) {
@@ -385,18 +382,53 @@ ForceReport evaluate(const Model& m, BondState& s, const std::vector<double>& y,
     dilatations(f, m, theta);
   }
   m.halo.exchange(theta); // the ghosts' dilatation, from their owners
-  // Per particle: iso_i, b_i of its own material.
+}
+
+/// Per particle, of its own material: iso_i = (d kappa theta_i - Q_i) / m_i, b_i = a mu / m_i
+/// and kappa_i.
+void particle_terms(const Model& m, double d, const std::vector<double>& theta,
+                    const std::vector<double>& Q, std::vector<double>& iso, std::vector<double>& b,
+                    std::vector<double>& kappa) {
+  const int n = m.particles.size();
   iso.resize(n), b.resize(n), kappa.resize(n);
-  const double dd = f.d, a = materials::lps_deviatoric_factor(m.dimension);
+  const double a = materials::lps_deviatoric_factor(m.dimension);
   for (int i = 0; i < n; ++i) {
     const materials::LpsLaw& law = m.lps[m.particles.material[i]];
     const double mi = m.weighted_volume[i];
     b[i] = mi > 0.0 ? a * law.mu / mi : 0.0;
     iso[i] = mi <= 0.0   ? 0.0
-             : Q.empty() ? dd * law.kappa * theta[i] / mi
-                         : (dd * law.kappa * theta[i] - Q[i]) / mi;
+             : Q.empty() ? d * law.kappa * theta[i] / mi
+                         : (d * law.kappa * theta[i] - Q[i]) / mi;
     kappa[i] = law.kappa;
   }
+}
+
+/// The packed rows' partner columns: theta / d, iso, b and 0 a particle.
+const double* partner_columns(const std::vector<double>& theta, const std::vector<double>& iso,
+                              const std::vector<double>& b, double d) {
+  thread_local std::vector<double> partner;
+  partner.resize(4 * theta.size());
+  for (std::size_t i = 0; i < theta.size(); ++i) {
+    double* p = &partner[4 * i];
+    p[0] = theta[i] / d, p[1] = iso[i], p[2] = b[i], p[3] = 0.0;
+  }
+  return partner.data();
+}
+
+ForceReport evaluate(const Model& m, BondState& s, const std::vector<double>& y,
+                     std::vector<double>& force, bool with_energy,
+                     std::vector<double>* energy_density, std::vector<double>* theta_out,
+                     bool breaking) {
+  MF_REQUIRE(m.weighted_volume.size() == static_cast<std::size_t>(m.particles.size()),
+             "state_forces: the weighted volumes are not set (pd::set_weighted_volumes)");
+  const int n = m.particles.size();
+  const std::vector<double> omega = class_influence(m);
+  Family f = family_of(m, s, y, omega);
+  f.y4 = padded_positions(y, n);
+  const int owned = f.owned;
+  thread_local std::vector<double> theta, Q, iso, b, kappa, density, scale;
+  dilatation_pass(f, m, theta, Q);
+  particle_terms(m, f.d, theta, Q, iso, b, kappa);
   force.assign(3 * static_cast<std::size_t>(n), 0.0);
   double* w = nullptr;
   if (with_energy || energy_density) {
@@ -415,14 +447,7 @@ ForceReport evaluate(const Model& m, BondState& s, const std::vector<double>& y,
                    breaking,
                    nullptr,
                    plastic ? s.plastic.data() : nullptr};
-  if (f.y4 && !plastic) {
-    partner.resize(4 * static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) {
-      double* p = &partner[4 * static_cast<std::size_t>(i)];
-      p[0] = theta[i] / dd, p[1] = iso[i], p[2] = b[i], p[3] = 0.0;
-    }
-    terms.partner = partner.data();
-  }
+  if (f.y4 && !plastic) terms.partner = partner_columns(theta, iso, b, f.d);
   if (plastic) {
     scale.assign(n, 1.0);
     return_factors(f, terms, m, scale);

@@ -7,6 +7,7 @@
 #include "meshfree/pd/dynamics.hpp"
 #include "meshfree/pd/relaxation.hpp"
 #include "meshfree/pd/state_based.hpp"
+#include "meshfree/pd/state_surface.hpp"
 #include "meshfree/spec/key_reader.hpp"
 #include "meshfree/spec/problem_spec.hpp"
 #include "pd/lps_body.hpp"
@@ -148,42 +149,48 @@ TEST_CASE("LPS waves travel at the continuum's P- and S-wave speeds", "[pd][lps]
 
 TEST_CASE("LPS: both layouts give the same forces and breaks, the full one whatever the threads",
           "[pd][lps]") {
+  // The LPS, and the LPS with its position-aware influence (pd/state_surface.hpp).
   const Elastic el{70e9, 0.3};
-  const auto run = [&](bool full, int threads, long& broken) {
-    pd::Model m =
-        lps_lattice(PdDimension::Solid3D, 9, 8, 7, 1e-3, 3.0, el, 2700.0,
-                    pd::VolumeCorrection::Exact, materials::Influence::InverseLength, full);
-    m.laws[0].critical_stretch = 2.0e-3;
-    pd::fold_laws(m);
-    pd::BondState s = pd::initial_state(m, {});
-    // A stretch that grows along x and a twist: bonds in the right part break.
-    const std::vector<double> y = deformed(m, [](const Eigen::Vector3d& x) {
-      return Eigen::Vector3d(0.3 * x.x() * x.x(), 0.02 * x.x() * x.z(), -0.02 * x.x() * x.y());
-    });
-    std::vector<double> f;
-    const int before = omp_get_max_threads();
-    omp_set_num_threads(threads);
-    broken = pd::state_forces(m, s, y, f).broken;
-    omp_set_num_threads(before);
-    return f;
-  };
-  long b_half = 0, b_full1 = 0, b_full2 = 0, b_half2 = 0;
-  const std::vector<double> half = run(false, 1, b_half), half2 = run(false, 2, b_half2);
-  const std::vector<double> full1 = run(true, 1, b_full1), full2 = run(true, 2, b_full2);
-  REQUIRE(b_half > 0);
-  CHECK(b_half == b_full1);
-  CHECK(b_half2 == b_half);
-  CHECK(full1 == full2); // bit for bit
-  double scale = 0.0, diff = 0.0, diff2 = 0.0;
-  for (std::size_t k = 0; k < half.size(); ++k) {
-    scale = std::max(scale, std::abs(full1[k]));
-    diff = std::max(diff, std::abs(half[k] - full1[k]));
-    diff2 = std::max(diff2, std::abs(half2[k] - full1[k]));
+  for (const bool aware : {false, true}) {
+    const auto run = [&](bool full, int threads, long& broken) {
+      pd::Model m =
+          lps_lattice(PdDimension::Solid3D, 9, 8, 7, 1e-3, 3.0, el, 2700.0,
+                      pd::VolumeCorrection::Exact, materials::Influence::InverseLength, full);
+      m.laws[0].critical_stretch = 2.0e-3;
+      pd::fold_laws(m);
+      pd::BondState s = pd::initial_state(m, {});
+      if (aware) REQUIRE(pd::apply_position_aware_influence(m, s) == 0);
+      // A stretch that grows along x and a twist: bonds in the right part break.
+      const std::vector<double> y = deformed(m, [](const Eigen::Vector3d& x) {
+        return Eigen::Vector3d(0.3 * x.x() * x.x(), 0.02 * x.x() * x.z(), -0.02 * x.x() * x.y());
+      });
+      std::vector<double> f;
+      const int before = omp_get_max_threads();
+      omp_set_num_threads(threads);
+      broken = pd::state_forces(m, s, y, f).broken;
+      omp_set_num_threads(before);
+      return f;
+    };
+    long b_half = 0, b_full1 = 0, b_full2 = 0, b_half2 = 0;
+    const std::vector<double> half = run(false, 1, b_half), half2 = run(false, 2, b_half2);
+    const std::vector<double> full1 = run(true, 1, b_full1), full2 = run(true, 2, b_full2);
+    INFO("position-aware " << aware);
+    REQUIRE(b_half > 0);
+    CHECK(b_half == b_full1);
+    CHECK(b_half2 == b_half);
+    CHECK(full1 == full2); // bit for bit
+    double scale = 0.0, diff = 0.0, diff2 = 0.0;
+    for (std::size_t k = 0; k < half.size(); ++k) {
+      scale = std::max(scale, std::abs(full1[k]));
+      diff = std::max(diff, std::abs(half[k] - full1[k]));
+      diff2 = std::max(diff2, std::abs(half2[k] - full1[k]));
+    }
+    std::cout << "lps" << (aware ? " position-aware" : "") << " layouts: " << b_half
+              << " bonds broken, half - full " << diff / scale << " (1 thread), " << diff2 / scale
+              << " (2 threads)\n";
+    CHECK(diff < 1e-12 * scale);
+    CHECK(diff2 < 1e-12 * scale);
   }
-  std::cout << "lps layouts: " << b_half << " bonds broken, half - full " << diff / scale
-            << " (1 thread), " << diff2 / scale << " (2 threads)\n";
-  CHECK(diff < 1e-12 * scale);
-  CHECK(diff2 < 1e-12 * scale);
 }
 
 TEST_CASE("LPS: the stable step is the linearised body's 2 / omega_max", "[pd][lps]") {

@@ -1,14 +1,13 @@
 // The position-aware influence of the LPS (pd/state_surface.hpp): every particle's dilatation and
 // energy density are the continuum's for every homogeneous strain, at faces, edges, corners and
 // curved surfaces, where the LPS's are not; the forces are the energy's gradient, bonds broken or
-// not; both layouts and any thread count give the same forces.
+// not (both layouts and thread counts: test_state_based.cpp's layouts test).
 #include "meshfree/pd/state_based.hpp"
 #include "meshfree/pd/state_surface.hpp"
 #include "pd/lps_body.hpp"
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <iostream>
-#include <omp.h>
 #include <random>
 
 using namespace mf;
@@ -177,40 +176,4 @@ TEST_CASE("position-aware LPS: the force is the gradient of the energy, bonds br
       CHECK(std::abs(slope - work) < 1e-8 * scale);
     }
   }
-}
-
-TEST_CASE("position-aware LPS: both layouts give the same forces and breaks, the full one "
-          "whatever the threads",
-          "[pd][lps][surface]") {
-  const auto run = [&](bool full, int threads, long& broken) {
-    pd::Model m = body_of(bodies()[0], full);
-    m.laws[0].critical_stretch = 2.0e-3;
-    pd::fold_laws(m);
-    pd::BondState s = pd::initial_state(m, {});
-    REQUIRE(pd::apply_position_aware_influence(m, s) == 0);
-    const std::vector<double> y = deformed(m, [](const Eigen::Vector3d& x) {
-      return Eigen::Vector3d(0.3 * x.x() * x.x(), 0.02 * x.x() * x.z(), -0.02 * x.x() * x.y());
-    });
-    std::vector<double> f;
-    const int before = omp_get_max_threads();
-    omp_set_num_threads(threads);
-    broken = pd::state_forces(m, s, y, f).broken;
-    omp_set_num_threads(before);
-    return f;
-  };
-  long b_half = 0, b_half2 = 0, b_full1 = 0, b_full2 = 0;
-  const std::vector<double> half = run(false, 1, b_half), half2 = run(false, 2, b_half2);
-  const std::vector<double> full1 = run(true, 1, b_full1), full2 = run(true, 2, b_full2);
-  REQUIRE(b_half > 0);
-  CHECK(b_half == b_full1);
-  CHECK(b_half2 == b_half);
-  CHECK(full1 == full2); // bit for bit
-  double scale = 0.0, diff = 0.0;
-  for (std::size_t k = 0; k < half.size(); ++k) {
-    scale = std::max(scale, std::abs(full1[k]));
-    diff = std::max({diff, std::abs(half[k] - full1[k]), std::abs(half2[k] - full1[k])});
-  }
-  std::cout << "position-aware layouts: " << b_half << " bonds broken, half - full " << diff / scale
-            << "\n";
-  CHECK(diff < 1e-12 * scale);
 }
