@@ -3,7 +3,8 @@
 // whose family a surface cuts has an anisotropic family: under a homogeneous strain its LPS
 // dilatation is not the strain's trace nor its deviatoric energy mu e^d : e^d, which moves a
 // free edge's layers and, through them, the body (a plane-strain strip of 40 x 20 particles
-// under a traction moved 5.7% of u two horizons inside its edges; 0.24% corrected). After
+// under a traction: its interior, two horizons inside the edges, moves 5.0% of u; 0.24% with the
+// correction, tests/unit/stages/test_held_conditions.cpp). After
 // Mitchell, Silling & Littlewood's position-aware linear solid (PALS, 2015), each particle i
 // takes its own influence for the two parts, the LPS's scaled by forms of the bond's direction n:
 //   dilatation   omega_i<xi> = omega<xi> (n . Lambda_i . n),

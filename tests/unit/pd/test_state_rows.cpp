@@ -11,9 +11,7 @@
 
 using namespace mf;
 using materials::PdDimension;
-using test::deformed;
-using test::Elastic;
-using test::lps_lattice;
+using namespace mf::test; // lps_lattice, deformed, Elastic
 
 namespace {
 
