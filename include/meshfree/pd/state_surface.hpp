@@ -36,7 +36,9 @@ namespace mf::pd {
 long apply_position_aware_influence(Model& m, const BondState& s);
 
 /// state_fictitious_density (pd/state_based.hpp) for a position-aware body: the same Gershgorin
-/// row sums, each bond's terms with its factors and the Q_i coupling added.
+/// row sums, each bond's terms with its factors and the Q_i coupling added. With every factor 1
+/// and no Q_i it is that bound summed in another order; the LPS keeps its own function so that
+/// its relaxations stay bit for bit what they were.
 std::vector<double> position_aware_fictitious_density(const Model& m, const BondState& s);
 
 } // namespace mf::pd
