@@ -13,6 +13,14 @@ void put_block(double* K, int n, int i, int j, const Mat2& k) {
   row1[0] = k(1, 0), row1[1] = k(1, 1);
 }
 
+/// B + [1 1 0]^T shift^T / 2: a node's strain matrix with its shift to the cell's mean
+/// volumetric strain (implicit/volumetric_projection), or B without one.
+Eigen::Matrix<double, 3, 2> shifted_strain_matrix(const Vec2& g, const Vec2* shift) {
+  Eigen::Matrix<double, 3, 2> B = strain_matrix(g);
+  if (shift) B.topRows<2>().rowwise() += shift->transpose() / 2.0;
+  return B;
+}
+
 } // namespace
 
 void point_stiffness(const ShapeTable& t, int r, const Mat3& wC, double* K) {
@@ -27,15 +35,18 @@ void point_stiffness(const ShapeTable& t, int r, const Mat3& wC, double* K) {
     heap.resize(n);
     CB = heap.data();
   }
-  for (int j = 0; j < n; ++j) CB[j] = wC * strain_matrix(g[j]);
+  const Vec2* shift = t.trial_shifts(r);
+  for (int j = 0; j < n; ++j) CB[j] = wC * shifted_strain_matrix(g[j], shift ? shift + j : nullptr);
   // Where C is symmetric (elasticity, and the consistent tangent of associative plasticity) and
   // the test functions are the trial functions, K_JI = K_IJ^T and half the blocks are computed;
   // corrected test functions (a Petrov-Galerkin form) and a non-associated flow's tangent need
   // every block.
   const bool symmetric = t.test_dphi.empty() && wC == wC.transpose();
   const Vec2* h = t.test_gradients(r);
+  const Vec2* test_shift = t.test_shifts(r);
   for (int i = 0; i < n; ++i) {
-    const Eigen::Matrix<double, 3, 2> Bi = strain_matrix(h[i]);
+    const Eigen::Matrix<double, 3, 2> Bi =
+        shifted_strain_matrix(h[i], test_shift ? test_shift + i : nullptr);
     for (int j = symmetric ? i : 0; j < n; ++j) {
       const Mat2 kij = Bi.transpose() * CB[j];
       put_block(K, n, i, j, kij);
@@ -51,6 +62,13 @@ void point_internal_force(const ShapeTable& t, int r, const Vec3& ws, double* f)
   for (int i = 0; i < n; ++i) {
     f[2 * i] = g[i].x() * ws(0) + g[i].y() * ws(2);
     f[2 * i + 1] = g[i].y() * ws(1) + g[i].x() * ws(2);
+  }
+  if (const Vec2* shift = t.test_shifts(r)) { // B-bar: the in-plane mean stress's share
+    const double p = (ws(0) + ws(1)) / 2.0;
+    for (int i = 0; i < n; ++i) {
+      f[2 * i] += p * shift[i].x();
+      f[2 * i + 1] += p * shift[i].y();
+    }
   }
 }
 

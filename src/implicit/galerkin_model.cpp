@@ -4,6 +4,7 @@
 #include "meshfree/implicit/integration_correction.hpp"
 #include "meshfree/implicit/point_coupling.hpp"
 #include "meshfree/implicit/point_law.hpp"
+#include "meshfree/implicit/volumetric_projection.hpp"
 #include <algorithm>
 
 namespace mf::implicit {
@@ -94,7 +95,9 @@ GalerkinModel build_meshfree_model(const spec::ProblemSpec& spec,
   m.own = solvers::owned_nodes(N, session.rank(), session.size());
   {
     PhaseTimer::Scope scope(timer, "neighbours");
-    couple_points(m, session);
+    couple_points(m, session, [&](Csr support) {
+      return disc.cell_mean_volumetric ? cell_supports(support, m.domain.piece) : support;
+    });
   }
 
   // Shape functions at this rank's points, and what each point carries.
@@ -242,8 +245,8 @@ void place_fem_points(const spec::ProblemSpec& spec, const solvers::PetscSession
   session.collective([&] { domain = fem::domain_points(mesh, order); });
   m.domain.x = domain.x;
   m.domain.weight = domain.weight;
-  m.domain.cell = domain.element;
-  m.domain.cell_count = mesh.element_count();
+  m.domain.cell = m.domain.piece = domain.element;
+  m.domain.cell_count = m.domain.piece_count = mesh.element_count();
   const std::vector<fem::BoundaryEdge> edges = fem::boundary_edges(mesh);
   const double tol = 1e-6 * fem::characteristic_size(mesh);
   const int edge_order = disc.fem.order > 0 ? disc.fem.order : fem::default_edge_order(mesh.type);
@@ -327,10 +330,18 @@ GalerkinModel build_fem_model(const spec::ProblemSpec& spec, const solvers::Pets
 
 GalerkinModel build_galerkin_model(const spec::ProblemSpec& spec,
                                    const solvers::PetscSession& session, PhaseTimer& timer) {
-  GalerkinModel m = spec.galerkin().discretisation.method == spec::Method::Fem
-                        ? build_fem_model(spec, session, timer)
-                        : build_meshfree_model(spec, session, timer);
+  const spec::DiscretisationSpec& disc = spec.galerkin().discretisation;
+  GalerkinModel m = disc.method == spec::Method::Fem ? build_fem_model(spec, session, timer)
+                                                     : build_meshfree_model(spec, session, timer);
   PhaseTimer::Scope scope(timer, "shape_functions");
+  if (disc.cell_mean_volumetric) {
+    warn_quadratic_cell_mean(disc);
+    m.cell_mean = true;
+    m.cell_reach = 2.0 * std::max(disc.spacing, disc.cell_size);
+    std::vector<int> cell;
+    for (int r : m.domain_mine.rows) cell.push_back(m.domain.piece[r]);
+    project_volumetric_strain(m.domain_table, cell, m.domain_weight);
+  }
   m.domain_groups = PointGroups(m.domain_table, domain_rows(m), m.node_positions());
   return m;
 }
@@ -392,7 +403,9 @@ io::GridCells output_cells(const GalerkinModel& m) {
   return cells;
 }
 
-ShapeTable shapes_at(const GalerkinModel& m, const std::vector<Vec2>& x, bool gradients) {
+namespace {
+
+ShapeTable plain_shapes_at(const GalerkinModel& m, const std::vector<Vec2>& x, bool gradients) {
   if (m.fe) {
     const fem::PointShapes p = fem::shapes_at(m.fe->mesh, *m.fe->locator, x, gradients);
     std::vector<int> all(x.size());
@@ -404,6 +417,17 @@ ShapeTable shapes_at(const GalerkinModel& m, const std::vector<Vec2>& x, bool gr
   std::vector<int> all(x.size());
   for (std::size_t i = 0; i < x.size(); ++i) all[i] = static_cast<int>(i);
   return m.space->shape_table(x, all, support, gradients);
+}
+
+} // namespace
+
+ShapeTable shapes_at(const GalerkinModel& m, const std::vector<Vec2>& x, bool gradients) {
+  ShapeTable t = plain_shapes_at(m, x, gradients);
+  if (gradients && m.cell_mean)
+    sample_cell_means(CellPoints<2>{m.domain.x, m.domain.weight, m.domain.piece, m.cell_reach}, x,
+                      t,
+                      [&m](const std::vector<Vec2>& at) { return plain_shapes_at(m, at, true); });
+  return t;
 }
 
 } // namespace mf::implicit

@@ -259,6 +259,7 @@ SolidModel build_solid_model(const spec::ProblemSpec& spec, const solvers::Petsc
   });
   if (s.discretisation.vci && !m.fe) correct_test_gradients_3d(spec, m, session);
   if (s.discretisation.cell_mean_volumetric) {
+    warn_quadratic_cell_mean(s.discretisation);
     m.cell_mean = true;
     m.cell_reach = 2.0 * std::max(s.discretisation.spacing, s.discretisation.cell_size);
     std::vector<int> cell;
@@ -282,7 +283,7 @@ SolidShapeTable plain_shapes_at(const SolidModel& m, const std::vector<Vec3>& x,
 SolidShapeTable solid_shapes_at(const SolidModel& m, const std::vector<Vec3>& x, bool gradients) {
   SolidShapeTable t = plain_shapes_at(m, x, gradients);
   if (gradients && m.cell_mean)
-    sample_cell_means({m.domain.x, m.domain.weight, m.domain.cell, m.cell_reach}, x, t,
+    sample_cell_means(CellPoints<3>{m.domain.x, m.domain.weight, m.domain.cell, m.cell_reach}, x, t,
                       [&m](const std::vector<Vec3>& at) { return plain_shapes_at(m, at, true); });
   return t;
 }

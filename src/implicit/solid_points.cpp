@@ -219,7 +219,7 @@ SolidPoints volume_points_with_spheres(const geometry::Prism& body,
       if (cells[c].size().isZero() || !sphere_touches(body, lo, hi)) continue;
       touched[c] = 1;
       sphere_cell_points(body, lo, hi, d.order, d.cut_levels, sizing_of(d), p);
-      p.cell.resize(p.x.size(), l * plane.cell_count + static_cast<int>(c));
+      p.cell.resize(p.x.size(), l * plane.piece_count + static_cast<int>(c));
     }
     for (std::size_t q = 0; q < g.points.size(); ++q) {
       const double z = z0 + 0.5 * (g.points[q] + 1.0) * dz, wz = 0.5 * dz * g.weights[q];
@@ -227,7 +227,7 @@ SolidPoints volume_points_with_spheres(const geometry::Prism& body,
         if (touched[plane.cell[k]]) continue;
         p.x.emplace_back(plane.x[k].x(), plane.x[k].y(), z);
         p.weight.push_back(plane.weight[k] * wz);
-        p.cell.push_back(l * plane.cell_count + plane.cell[k]);
+        p.cell.push_back(l * plane.piece_count + plane.piece[k]);
       }
     }
   }
@@ -270,7 +270,7 @@ SolidPoints prism_volume_points(const geometry::Prism& body, const spec::Discret
     for (std::size_t k = 0; k < plane.x.size(); ++k) {
       p.x.emplace_back(plane.x[k].x(), plane.x[k].y(), along_z[q].first);
       p.weight.push_back(plane.weight[k] * along_z[q].second);
-      p.cell.push_back(layer * plane.cell_count + plane.cell[k]);
+      p.cell.push_back(layer * plane.piece_count + plane.piece[k]);
     }
   }
   return p;

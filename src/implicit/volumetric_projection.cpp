@@ -1,5 +1,7 @@
 #include "meshfree/implicit/volumetric_projection.hpp"
 #include "meshfree/core/error.hpp"
+#include "meshfree/core/log.hpp"
+#include "meshfree/implicit/point_coupling.hpp"
 #include "meshfree/neighbors/point_grid.hpp"
 #include <algorithm>
 #include <limits>
@@ -23,11 +25,12 @@ std::vector<std::vector<int>> rows_by_cell(const std::vector<int>& cell) {
 }
 
 /// shift[j] = mean over the rows of gradient[j] - gradient[j], rows of one cell.
-void shift_to_mean(const SolidShapeTable& t, const std::vector<int>& rows,
-                   const std::vector<double>& weight, const std::vector<Vec3>& gradient,
-                   std::vector<Vec3>& shift) {
+template <int dim, class Gradient = typename ShapeTableOf<dim>::Gradient>
+void shift_to_mean(const ShapeTableOf<dim>& t, const std::vector<int>& rows,
+                   const std::vector<double>& weight, const std::vector<Gradient>& gradient,
+                   std::vector<Gradient>& shift) {
   const int n = t.offset[rows[0] + 1] - t.offset[rows[0]];
-  std::vector<Vec3> mean(n, Vec3::Zero());
+  std::vector<Gradient> mean(n, Gradient::Zero());
   double volume = 0.0;
   for (int r : rows) {
     MF_ASSERT(t.offset[r + 1] - t.offset[r] == n &&
@@ -36,12 +39,22 @@ void shift_to_mean(const SolidShapeTable& t, const std::vector<int>& rows,
     for (int a = 0; a < n; ++a) mean[a] += weight[r] * gradient[t.offset[r] + a];
     volume += weight[r];
   }
-  for (Vec3& g : mean) g /= volume;
+  for (Gradient& g : mean) g /= volume;
   for (int r : rows)
     for (int a = 0; a < n; ++a) shift[t.offset[r] + a] = mean[a] - gradient[t.offset[r] + a];
 }
 
 } // namespace
+
+void warn_quadratic_cell_mean(const spec::DiscretisationSpec& d) {
+  const std::string& e = d.fem.element;
+  if (!d.cell_mean_volumetric || d.method != spec::Method::Fem || (e != "q8" && e != "hex20"))
+    return;
+  log::warn("discretisation.quadrature.volumetric_strain: cell_mean gives each ", e,
+            " element one mean volumetric strain, too few constraints for a quadratic element: it "
+            "runs too soft; quadratic elements take the reduced rule (discretisation.fem.order: 2, "
+            "volumetric_strain: pointwise) instead");
+}
 
 Csr cell_supports(const Csr& support, const std::vector<int>& cell) {
   MF_ASSERT(static_cast<int>(cell.size()) == support.rows());
@@ -64,81 +77,106 @@ Csr cell_supports(const Csr& support, const std::vector<int>& cell) {
   return out;
 }
 
-void project_volumetric_strain(SolidShapeTable& t, const std::vector<int>& cell,
+template <int dim>
+void project_volumetric_strain(ShapeTableOf<dim>& t, const std::vector<int>& cell,
                                const std::vector<double>& weight) {
+  using Gradient = typename ShapeTableOf<dim>::Gradient;
   MF_ASSERT(static_cast<int>(cell.size()) == t.rows() && weight.size() == cell.size());
-  t.volumetric_shift.assign(t.dphi.size(), Vec3::Zero());
-  if (!t.test_dphi.empty()) t.test_volumetric_shift.assign(t.dphi.size(), Vec3::Zero());
+  t.volumetric_shift.assign(t.dphi.size(), Gradient::Zero());
+  if (!t.test_dphi.empty()) t.test_volumetric_shift.assign(t.dphi.size(), Gradient::Zero());
   for (const std::vector<int>& rows : rows_by_cell(cell)) {
     shift_to_mean(t, rows, weight, t.dphi, t.volumetric_shift);
     if (!t.test_dphi.empty()) shift_to_mean(t, rows, weight, t.test_dphi, t.test_volumetric_shift);
   }
 }
 
+template void project_volumetric_strain(ShapeTable&, const std::vector<int>&,
+                                        const std::vector<double>&);
+template void project_volumetric_strain(SolidShapeTable&, const std::vector<int>&,
+                                        const std::vector<double>&);
+
 } // namespace mf::implicit
 
 namespace mf::implicit::cell_means {
 
-std::vector<int> cells_at(const CellPoints& g, const std::vector<Vec3>& at) {
+template <int dim>
+std::vector<int> cells_at(const CellPoints<dim>& g,
+                          const std::vector<Eigen::Matrix<double, dim, 1>>& at) {
   std::vector<Vec2> xy;
-  for (const Vec3& x : g.x) xy.push_back(x.head<2>());
+  for (const auto& x : g.x) xy.push_back(x.template head<2>());
   const neighbors::PointGrid grid(xy, g.reach);
   std::vector<int> cell;
-  for (const Vec3& x : at) {
+  for (const auto& x : at) {
     int nearest = -1;
     double best = std::numeric_limits<double>::infinity();
-    grid.for_each_within(x.head<2>(), g.reach, [&](int q) {
+    grid.for_each_within(x.template head<2>(), g.reach, [&](int q) {
       const double d2 = (g.x[q] - x).squaredNorm();
       if (d2 < best || (d2 == best && q < nearest)) best = d2, nearest = q;
     });
-    MF_REQUIRE(nearest >= 0, "no Gauss point within ", g.reach, " of (", x.x(), ", ", x.y(), ", ",
-               x.z(), ") to take its cell's mean volumetric strain from");
+    MF_REQUIRE(nearest >= 0, "no Gauss point within ", g.reach, " of (", point_text(x),
+               ") to take its cell's mean volumetric strain from");
     cell.push_back(g.cell[nearest]);
   }
   return cell;
 }
 
-std::unordered_map<int, std::vector<int>> points_by_cell(const CellPoints& g) {
+std::unordered_map<int, std::vector<int>> points_by_cell(const std::vector<int>& cell) {
   std::unordered_map<int, std::vector<int>> members;
-  for (int q = 0; q < static_cast<int>(g.cell.size()); ++q) members[g.cell[q]].push_back(q);
+  for (int q = 0; q < static_cast<int>(cell.size()); ++q) members[cell[q]].push_back(q);
   return members;
 }
 
-MeanGradients mean_gradients(const SolidShapeTable& table, const std::vector<double>& weight) {
-  std::map<int, Vec3> sum;
+template <int dim>
+MeanGradients<dim> mean_gradients(const ShapeTableOf<dim>& table,
+                                  const std::vector<double>& weight) {
+  using Gradient = typename ShapeTableOf<dim>::Gradient;
+  std::map<int, Gradient> sum;
   double volume = 0.0;
   for (int r = 0; r < table.rows(); ++r) {
     for (int k = table.offset[r]; k < table.offset[r + 1]; ++k) {
-      const auto [it, fresh] = sum.emplace(table.node[k], Vec3::Zero());
+      const auto [it, fresh] = sum.emplace(table.node[k], Gradient::Zero());
       it->second += weight[r] * table.dphi[k];
     }
     volume += weight[r];
   }
-  MeanGradients mean;
+  MeanGradients<dim> mean;
   for (const auto& [node, g] : sum) mean.emplace_back(node, g / volume);
   return mean;
 }
 
-SolidShapeTable widened(const SolidShapeTable& t, const std::vector<int>& cell,
-                        const std::unordered_map<int, MeanGradients>& means) {
-  SolidShapeTable out;
+template <int dim>
+ShapeTableOf<dim> widened(const ShapeTableOf<dim>& t, const std::vector<int>& cell,
+                          const std::unordered_map<int, MeanGradients<dim>>& means) {
+  using Gradient = typename ShapeTableOf<dim>::Gradient;
+  ShapeTableOf<dim> out;
   for (int r = 0; r < t.rows(); ++r) {
-    std::map<int, std::pair<int, Vec3>> row; // node -> (own entry or -1, mean gradient)
-    for (int k = t.offset[r]; k < t.offset[r + 1]; ++k) row[t.node[k]] = {k, Vec3::Zero()};
+    std::map<int, std::pair<int, Gradient>> row; // node -> (own entry or -1, mean gradient)
+    for (int k = t.offset[r]; k < t.offset[r + 1]; ++k) row[t.node[k]] = {k, Gradient::Zero()};
     for (const auto& [node, g] : means.at(cell[r])) {
-      const auto [it, fresh] = row.emplace(node, std::make_pair(-1, Vec3::Zero()));
+      const auto [it, fresh] = row.emplace(node, std::make_pair(-1, Gradient::Zero()));
       it->second.second = g;
     }
     for (const auto& [node, entry] : row) {
       const auto& [k, mean] = entry;
       out.node.push_back(node);
       out.phi.push_back(k >= 0 ? t.phi[k] : 0.0);
-      out.dphi.push_back(k >= 0 ? t.dphi[k] : Vec3::Zero());
+      out.dphi.push_back(k >= 0 ? t.dphi[k] : Gradient::Zero());
       out.volumetric_shift.push_back(mean - out.dphi.back());
     }
     out.offset.push_back(static_cast<int>(out.node.size()));
   }
   return out;
 }
+
+#define MF_CELL_MEANS(dim)                                                                         \
+  template std::vector<int> cells_at(const CellPoints<dim>&,                                       \
+                                     const std::vector<Eigen::Matrix<double, dim, 1>>&);           \
+  template MeanGradients<dim> mean_gradients(const ShapeTableOf<dim>&,                             \
+                                             const std::vector<double>&);                          \
+  template ShapeTableOf<dim> widened(const ShapeTableOf<dim>&, const std::vector<int>&,            \
+                                     const std::unordered_map<int, MeanGradients<dim>>&);
+MF_CELL_MEANS(2)
+MF_CELL_MEANS(3)
+#undef MF_CELL_MEANS
 
 } // namespace mf::implicit::cell_means

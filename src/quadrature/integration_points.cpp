@@ -39,16 +39,18 @@ const geometry::Circle* only_cutting_hole(const geometry::Domain& domain, const 
 }
 
 /// Adds the Gauss points of `box` that lie in the body; splits cells the boundary cuts, or
-/// with `arcs` integrates a cell cut by one hole on its exact region.
+/// with `arcs` integrates a cell cut by one hole on its exact region. The points belong to
+/// background cell `cell_id` and to piece `piece`; quarters that refinement asks for become
+/// pieces of their own (numbered on from out.piece_count).
 void integrate_cell(const geometry::Domain& domain, const BoundingBox& box, const GaussRule& g,
-                    int levels_left, int cell_id, const CellSizing& sizing, bool arcs,
+                    int levels_left, int cell_id, int piece, const CellSizing& sizing, bool arcs,
                     DomainPoints& out) {
   const Vec2 half = 0.5 * box.size();
   const Vec2 mid = box.lo + half;
   if (sizing.spacing > 0.0 && box.size().maxCoeff() > sizing.size_at(box) * (1.0 + 1e-9)) {
     // refined nodes need refined integration
     for_each_quarter(box, [&](const BoundingBox& q) {
-      integrate_cell(domain, q, g, levels_left, cell_id, sizing, arcs, out);
+      integrate_cell(domain, q, g, levels_left, cell_id, out.piece_count++, sizing, arcs, out);
     });
     return;
   }
@@ -71,12 +73,13 @@ void integrate_cell(const geometry::Domain& domain, const BoundingBox& box, cons
     if (const geometry::Circle* hole = only_cutting_hole(domain, box)) {
       cell_minus_disc(box, hole->center, hole->radius, g, out.x, out.weight);
       out.cell.resize(out.x.size(), cell_id);
+      out.piece.resize(out.x.size(), piece);
       return;
     }
   }
   if (cut && levels_left > 0) {
     for_each_quarter(box, [&](const BoundingBox& q) {
-      integrate_cell(domain, q, g, levels_left - 1, cell_id, sizing, arcs, out);
+      integrate_cell(domain, q, g, levels_left - 1, cell_id, piece, sizing, arcs, out);
     });
     return;
   }
@@ -89,6 +92,7 @@ void integrate_cell(const geometry::Domain& domain, const BoundingBox& box, cons
       out.x.push_back(p);
       out.weight.push_back(g.weights[i] * g.weights[j] * jac);
       out.cell.push_back(cell_id);
+      out.piece.push_back(piece);
     }
 }
 
@@ -116,12 +120,12 @@ DomainPoints domain_points(const geometry::Domain& domain, double cell_size, int
   const int ny = std::max(1, static_cast<int>(std::ceil(bb.size().y() / cell_size - 1e-9)));
   const Vec2 h(bb.size().x() / nx, bb.size().y() / ny); // cells fit the box exactly
   DomainPoints out;
-  out.cell_count = nx * ny;
+  out.cell_count = out.piece_count = nx * ny;
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
       BoundingBox box{bb.lo + Vec2(i * h.x(), j * h.y()), Vec2::Zero()};
       box.hi = box.lo + h;
-      integrate_cell(domain, box, g, cut_levels, j * nx + i, sizing, arcs, out);
+      integrate_cell(domain, box, g, cut_levels, j * nx + i, j * nx + i, sizing, arcs, out);
     }
   return out;
 }

@@ -37,6 +37,7 @@ P="$ROOT/problems/plate_tension.yaml"
 expect_error "discretisation.spacing: expected a positive number, got -0.1" "$P" --set discretisation.spacing=-0.1
 expect_error "materials[0].E: expected a number, got steel" "$P" --set materials.0.E=steel
 expect_error "discretisation.colour: unknown key" "$P" --set discretisation.colour=red
+expect_error "discretisation.quadrature.volumetric_strain: cell_mean is for plane_strain and solid_3d bodies: a plane-stress body's thickness changes with its volume freely, so nothing locks" "$P" --set discretisation.quadrature.volumetric_strain=cell_mean
 expect_error "boundary[0]: selects no part of the boundary" "$P" --set 'boundary.0.box=[[5, 5], [6, 6]]'
 expect_error "boundary[1].edges: no boundary piece is named 'roof'" "$P" --set boundary.1.edges=roof
 expect_error "cannot open the problem file" "$WORK/missing.yaml"

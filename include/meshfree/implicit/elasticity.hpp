@@ -29,7 +29,9 @@ inline Eigen::Matrix<double, 3, 2> strain_matrix(const Vec2& g) {
 /// The 2n x 2n block (row-major) of one point r of the table with n nodes: K_IJ = B~_I^T wC B_J,
 /// with wC the constitutive (or algorithmic tangent) matrix times the point's weight (half the
 /// blocks computed where it is symmetric), and B~ the test functions' strain matrix (B itself
-/// unless the table holds corrected test gradients). `K` has room for 4 n^2 values.
+/// unless the table holds corrected test gradients); both with the shifts to the cell's mean
+/// volumetric strain, B + [1 1 0]^T shift^T / 2, where the table has them. `K` has room for
+/// 4 n^2 values.
 void point_stiffness(const ShapeTable& t, int r, const Mat3& wC, double* K);
 
 /// The 2n internal-force values of point r of the table: w B~_I^T sigma (B~ as in
@@ -52,9 +54,19 @@ void add_penalty(const ShapeTable& table, const std::vector<double>& weight, con
 void add_load(const ShapeTable& table, const std::vector<double>& weight,
               const std::vector<Vec2>& load, const VectorAdder& add);
 
-/// Strain-displacement product at table row r: eps = sum_I B_I d_I, Voigt [xx, yy, 2xy].
+/// Strain-displacement product at table row r: eps = sum_I B_I d_I, Voigt [xx, yy, 2xy]; the
+/// in-plane volumetric part the cell's mean where the table carries the shifts (plane-strain
+/// B-bar, implicit/volumetric_projection).
 inline Vec3 strain_at(const ShapeTable& t, int r, const std::vector<double>& d) {
   Vec3 e = Vec3::Zero();
+  if (const Vec2* shift = t.trial_shifts(r)) {
+    double dtheta = 0.0; // mean div u less div u
+    for (int k = t.offset[r]; k < t.offset[r + 1]; ++k) {
+      const int I = t.node[k];
+      dtheta += shift[k - t.offset[r]].dot(Vec2(d[2 * I], d[2 * I + 1]));
+    }
+    e.head<2>().setConstant(dtheta / 2.0);
+  }
   for (int k = t.offset[r]; k < t.offset[r + 1]; ++k) {
     const int I = t.node[k];
     const Vec2& g = t.dphi[k];

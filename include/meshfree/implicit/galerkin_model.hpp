@@ -64,6 +64,10 @@ struct GalerkinModel {
   std::vector<ConditionPoints> conditions;
   RowPattern pattern;        // block rows of the owned nodes
   PointGroups domain_groups; // the domain table's rows in groups for threaded assembly
+  // The volumetric strain of the cell's mean (volumetric_projection): every Gauss point of a cell
+  // lies within cell_reach of any point of the cell.
+  bool cell_mean = false;
+  double cell_reach = 0.0;
 
   int node_count() const { return fe ? fe->mesh.node_count() : space->node_count(); }
   const std::vector<Vec2>& node_positions() const { return fe ? fe->mesh.x : space->nodes().x; }
@@ -91,7 +95,8 @@ fem::Mesh plane_fe_mesh(const spec::DiscretisationSpec& disc, const geometry::Do
 io::GridCells output_cells(const GalerkinModel& m);
 
 /// Shape functions (and gradients) of the model's approximation at arbitrary points of the body,
-/// evaluated on the calling rank.
+/// evaluated on the calling rank; with the cell-mean volumetric strain, gradients take the cell
+/// of each point's nearest Gauss point (as the body's own points do).
 ShapeTable shapes_at(const GalerkinModel& m, const std::vector<Vec2>& x, bool gradients);
 
 /// The positions of this rank's domain points, in the order of the model's domain table.

@@ -3,6 +3,7 @@
 // shape-function settings, and a search grid to find the nodes that cover a point.
 #include "meshfree/core/types.hpp"
 #include "meshfree/geometry/node_generation.hpp"
+#include "meshfree/implicit/shape_table.hpp"
 #include "meshfree/kernels/shape_functions.hpp"
 #include "meshfree/neighbors/point_grid.hpp"
 #include <vector>
@@ -15,22 +16,6 @@ struct Csr {
   std::vector<int> index;
   int rows() const { return static_cast<int>(offset.size()) - 1; }
   int size(int r) const { return offset[r + 1] - offset[r]; }
-};
-
-/// Shape functions and gradients at a list of points, in compressed rows.
-struct ShapeTable {
-  std::vector<int> offset{0};
-  std::vector<int> node;
-  std::vector<double> phi;
-  std::vector<Vec2> dphi;
-  /// The test functions' gradients where they differ from the trial ones (the variationally
-  /// consistent correction, implicit/integration_correction); empty otherwise.
-  std::vector<Vec2> test_dphi;
-  int rows() const { return static_cast<int>(offset.size()) - 1; }
-  /// Test-function gradients of row r's nodes.
-  const Vec2* test_gradients(int r) const {
-    return (test_dphi.empty() ? dphi.data() : test_dphi.data()) + offset[r];
-  }
 };
 
 class MeshfreeSpace {

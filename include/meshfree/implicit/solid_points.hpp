@@ -24,7 +24,9 @@ struct SolidPoints {
   std::vector<Vec3> x;
   std::vector<double> weight; // volume weight, or area weight on a face
   std::vector<Vec3> normal;   // outward unit normal (face points only)
-  std::vector<int> cell;      // the background cell or element of each volume point
+  // The integration cell or element of each volume point (a refined piece of the plane's
+  // background cell times a layer): the cells of the cell-mean volumetric strain.
+  std::vector<int> cell;
 };
 
 /// Layers along z: round(depth / spacing) intervals, at least one.

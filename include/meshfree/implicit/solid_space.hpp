@@ -9,36 +9,6 @@
 
 namespace mf::implicit {
 
-/// Shape functions and gradients at a list of points, in compressed rows.
-struct SolidShapeTable {
-  std::vector<int> offset{0};
-  std::vector<int> node;
-  std::vector<double> phi;
-  std::vector<Vec3> dphi;
-  /// The test functions' gradients where they differ from the trial ones (the variationally
-  /// consistent correction); empty otherwise.
-  std::vector<Vec3> test_dphi;
-  /// With the volumetric strain of a cell's mean (implicit/volumetric_projection): each entry's
-  /// cell mean of the gradient less its own, for the trial and (where they differ) the test
-  /// functions; empty otherwise. The strain matrix becomes B + m (mean g - g)^T / 3, m = [1 1 1 0
-  /// 0 0].
-  std::vector<Vec3> volumetric_shift, test_volumetric_shift;
-  int rows() const { return static_cast<int>(offset.size()) - 1; }
-  const Vec3* test_gradients(int r) const {
-    return (test_dphi.empty() ? dphi.data() : test_dphi.data()) + offset[r];
-  }
-  /// The shifts of row r (null without the projection).
-  const Vec3* trial_shifts(int r) const {
-    return volumetric_shift.empty() ? nullptr : volumetric_shift.data() + offset[r];
-  }
-  const Vec3* test_shifts(int r) const {
-    if (volumetric_shift.empty()) return nullptr;
-    return (test_volumetric_shift.empty() ? volumetric_shift.data()
-                                          : test_volumetric_shift.data()) +
-           offset[r];
-  }
-};
-
 class SolidSpace {
 public:
   /// `dilation` scales each node's local spacing into its support radius.

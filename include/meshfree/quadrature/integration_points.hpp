@@ -14,6 +14,12 @@ struct DomainPoints {
   std::vector<double> weight; // area weight
   std::vector<int> cell;      // background cell the point came from
   int cell_count = 0;
+  // The integration cell of each point: its background cell, or the part of it that node
+  // refinement split off (a cell the boundary cuts keeps its subdivisions as one piece); the
+  // cells whose mean volumetric strain the B-bar projection takes. Ids below piece_count; an
+  // unsplit background cell's piece is its cell's id.
+  std::vector<int> piece;
+  int piece_count = 0;
 };
 
 struct BoundaryPoints {
