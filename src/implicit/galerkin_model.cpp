@@ -241,7 +241,7 @@ void place_fem_points(const spec::ProblemSpec& spec, const solvers::PetscSession
                       std::vector<fem::EdgePoints>& edge_sets) {
   const spec::DiscretisationSpec& disc = spec.galerkin().discretisation;
   const fem::Mesh& mesh = m.fe->mesh;
-  const int order = disc.fem.order > 0 ? disc.fem.order : fem::default_order(mesh.type);
+  const int order = default_fe_order(spec, disc, fem::default_order(mesh.type));
   session.collective([&] { domain = fem::domain_points(mesh, order); });
   m.domain.x = domain.x;
   m.domain.weight = domain.weight;

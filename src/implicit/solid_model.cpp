@@ -148,7 +148,7 @@ void build_elements(const spec::ProblemSpec& spec, const solvers::PetscSession& 
     PhaseTimer::Scope scope(timer, "nodes");
     m.fe = make_solid_elements(d, m.body);
   }
-  const int order = d.fem.order > 0 ? d.fem.order : m.fe->default_order();
+  const int order = default_fe_order(spec, d, m.fe->default_order());
   ElementPoints body;
   std::vector<ElementPoints> faces(s.boundary.size());
   {

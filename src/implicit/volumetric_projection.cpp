@@ -46,6 +46,17 @@ void shift_to_mean(const ShapeTableOf<dim>& t, const std::vector<int>& rows,
 
 } // namespace
 
+int default_fe_order(const spec::ProblemSpec& spec, const spec::DiscretisationSpec& d,
+                     int element_default) {
+  if (d.fem.order > 0) return d.fem.order;
+  const bool quadratic = d.fem.element == "q8" || d.fem.element == "hex20";
+  const bool constrained_volume = spec.model_type == spec::ModelType::PlaneStrain ||
+                                  spec.model_type == spec::ModelType::Solid3D;
+  return quadratic && constrained_volume && spec.analysis == spec::Analysis::ElastoplasticStatic
+             ? 2
+             : element_default;
+}
+
 void warn_quadratic_cell_mean(const spec::DiscretisationSpec& d) {
   const std::string& e = d.fem.element;
   if (!d.cell_mean_volumetric || d.method != spec::Method::Fem || (e != "q8" && e != "hex20"))
