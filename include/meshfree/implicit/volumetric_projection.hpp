@@ -25,8 +25,9 @@ namespace mf::implicit {
 /// 8-node quadrilaterals and 20-node bricks of an elastoplastic plane-strain or 3D body take the
 /// reduced rule, 2 points a direction, as CalculiX's CPE8R and C3D20R: on the full rule their
 /// isochoric plastic flow locks (a 3D punch 17.5% short against 1.7% reduced; a plastic cylinder
-/// carried 4% past its limit pressure, to 199.8 MPa, where the reduced rule collapses at 192.03
-/// against the limit 192.09). Every other body takes its element's own order, `element_default`.
+/// carried 4% past its limit pressure 192.09 MPa, to 199.8, where on the reduced rule its
+/// stiffness is gone at 191.61). Every other body takes its element's own order,
+/// `element_default`.
 int default_fe_order(const spec::ProblemSpec& spec, const spec::DiscretisationSpec& d,
                      int element_default);
 
