@@ -349,6 +349,26 @@ FaceReport face_report(const SolidConditionPoints& c, const std::vector<double>&
   return rep;
 }
 
+namespace {
+
+/// ", its box spans A on that plane" where the faces a box cuts lie in one plane normal to an
+/// axis (A: the box's extent across it, which the loaded area equals unless the box reaches past
+/// the faces), ", in its box" otherwise.
+std::string box_area_text(const spec::Box& box, const std::vector<Vec3>& normal) {
+  if (normal.empty()) return ", in its box";
+  int axis = -1;
+  for (int c = 0; c < 3; ++c)
+    if (std::abs(std::abs(normal[0](c)) - 1.0) < 1e-12) axis = c;
+  for (const Vec3& n : normal)
+    if (axis < 0 || (n - normal[0]).norm() > 1e-12) return ", in its box";
+  double spans = 1.0;
+  for (int c = 0; c < 3; ++c)
+    if (c != axis) spans *= box.hi(c) - box.lo(c);
+  return detail::concat(", its box spans ", spans, " on that plane");
+}
+
+} // namespace
+
 void print_solid_plan(const spec::ProblemSpec& spec, std::ostream& os) {
   const spec::SolidSpec& s = spec.solid();
   const geometry::Prism body = s.body(spec.domain);
@@ -366,13 +386,16 @@ void print_solid_plan(const spec::ProblemSpec& spec, std::ostream& os) {
     os << "  sphere " << sphere.name << ": radius " << sphere.radius << " at (" << sphere.center.x()
        << ", " << sphere.center.y() << ", " << sphere.center.z() << ")\n";
   for (const auto& bc : s.boundary) {
+    const SolidPoints on = prism_face_points(body, s.discretisation, bc.faces, bc.box);
     double area = 0.0;
-    for (double w : prism_face_points(body, s.discretisation, bc.faces, bc.box).weight) area += w;
+    for (double w : on.weight) area += w;
     os << "  boundary " << bc.name << ": "
        << (bc.constrains      ? "displacement"
            : bc.pressure_load ? "pressure"
                               : "traction")
-       << " on area " << area << "\n";
+       << " on area " << area;
+    if (bc.box) os << box_area_text(*bc.box, on.normal);
+    os << "\n";
   }
   const bool multigrid = s.linear_solver.multigrid_for(3.0 * n);
   os << "  memory: "

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # What a user sees on the terminal: unit-sanity warnings (on stderr, the run going on) for a
-# modulus in the wrong units and none for the shipped file; an explicit run's progress lines at
-# every tenth with 3-digit durations, ending at 100%; an elastoplastic run's increments k of N.
+# modulus in the wrong units and none for the shipped file; a face box's loaded area in check;
+# an explicit run's progress lines at every tenth with 3-digit durations, ending at 100%; an
+# elastoplastic run's increments k of N.
 set -u
 MF="$1"; ROOT="$2"
 WORK="$(mktemp -d)"; trap 'rm -rf "$WORK"' EXIT
@@ -18,6 +19,16 @@ if grep -q "warning" "$WORK/err"; then bad "plate_tension warns: $(cat "$WORK/er
 want="[meshfree] warning: materials[0].E = 2e+11 is 2e+17 Pa in the declared units ('N, mm, MPa'): Young's moduli usually lie within 1e+04..1e+13 Pa; check the value's units"
 if grep -qxF -- "$want" "$WORK/err"; then ok "E in Pa in an N-mm model warns"; else bad "expected '$want', got '$(cat "$WORK/err")'"; fi
 [ "$(grep -c "warning" "$WORK/err")" -eq 1 ] && ok "one warning per cause" || bad "warnings: $(cat "$WORK/err")"
+
+# A face condition's box: check prints the loaded area beside the box's span on the face's plane,
+# so a box that reaches past the face shows (4 x 1 across, 1 x 0.5 of it on the plate).
+T="$ROOT/problems/thick_perforated_plate.yaml"
+"$MF" check "$T" --set 'boundary.3={name: pull, faces: y_max, box: [[0, 18, 0], [5.3, 18, 1.3]], pressure: -1}' >"$WORK/box" 2>&1
+want="  boundary pull: pressure on area 6.89, its box spans 6.89 on that plane"
+grep -qxF -- "$want" "$WORK/box" && ok "a box inside the face: its area" || bad "expected '$want' in: $(cat "$WORK/box")"
+"$MF" check "$T" --set 'boundary.3={name: pull, faces: y_max, box: [[8, 17, 2], [12, 19, 3]], pressure: -1}' >"$WORK/box" 2>&1
+want="  boundary pull: pressure on area 1, its box spans 4 on that plane"
+grep -qxF -- "$want" "$WORK/box" && ok "a box past the face's edges: area 1 of 4" || bad "expected '$want' in: $(cat "$WORK/box")"
 
 # Progress of an explicit run: ten lines (10%..100%), the last at 100%, durations to 3
 # significant digits ("elapsed 8.42 s, about 1.2 min left").
