@@ -281,16 +281,50 @@ def solve(mesh, workdir, tag):
 # --------------------------------------------------------------------------
 # output
 # --------------------------------------------------------------------------
-def write_curve(path, rows):
+def write_curve(path, rows, columns=COLUMNS):
+    """A table of rows whose first entry is the increment, its other values to 11 digits."""
     with open(path, "w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(COLUMNS)
+        w.writerow(columns)
         for r in rows:
             w.writerow([r[0]] + ["%.10e" % v for v in r[1:]])
 
 
 def tag_of(h):
     return "h%g" % h
+
+
+def write_study(out, prefix, results, columns, dofs_per_node):
+    """Writes a mesh study whose runs all succeeded: PREFIX_<tag>.csv per run (`columns`, the
+    increment first), its deck where it is below MAX_KEEP_DECK, and convergence.csv (each run's
+    final values of columns[2:6] and their change from the previous run); prints the changes."""
+    os.makedirs(out, exist_ok=True)
+    for tag, res in results:
+        write_curve(os.path.join(out, "%s_%s.csv" % (prefix, tag)), res["rows"], columns)
+        keep = os.path.join(out, "%s_%s.inp" % (prefix, tag))
+        if res["deck_bytes"] < MAX_KEEP_DECK:
+            os.replace(res["deck"], keep)
+        elif os.path.exists(keep):
+            os.remove(keep)
+    with open(os.path.join(out, "convergence.csv"), "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["mesh", "elements", "nodes", "dofs", "wall_s", "newton_iterations"]
+                   + columns[2:6] + ["rel_change_" + c for c in columns[2:6]])
+        prev = None
+        for tag, res in results:
+            last = res["rows"][-1]
+            ch = ["" if prev is None else "%.3e" % ((last[c] - prev[c]) / last[c])
+                  for c in (2, 3, 4, 5)]
+            w.writerow([tag, res["mesh"].nelems, res["mesh"].nnodes,
+                        dofs_per_node * res["mesh"].nnodes, "%.1f" % res["wall"],
+                        res["newton"][2]] + ["%.7g" % last[c] for c in (2, 3, 4, 5)] + ch)
+            prev = last
+    print("rel. change of the final values against the previous mesh (%s):"
+          % ", ".join(columns[2:6]))
+    for (t0, r0), (t1, r1) in zip(results[:-1], results[1:]):
+        a, b = r0["rows"][-1], r1["rows"][-1]
+        print("  %s -> %s: %s" % (t0, t1, ", ".join("%.3e" % ((b[c] - a[c]) / b[c])
+                                                      for c in (2, 3, 4, 5))))
 
 
 def full_run(out, work, hs, graded):
@@ -308,36 +342,7 @@ def full_run(out, work, hs, graded):
               % ((res["wall"],) + res["newton"] + (last[1], last[2], last[3], last[4],
                                                     last[5])), flush=True)
         results.append((tag, res))
-    # every run succeeded: only now write
-    os.makedirs(out, exist_ok=True)
-    for tag, res in results:
-        write_curve(os.path.join(out, "punch_%s.csv" % tag), res["rows"])
-        keep = os.path.join(out, "punch_%s.inp" % tag)
-        if res["deck_bytes"] < MAX_KEEP_DECK:
-            os.replace(res["deck"], keep)
-        elif os.path.exists(keep):
-            os.remove(keep)
-    with open(os.path.join(out, "convergence.csv"), "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(["mesh", "elements", "nodes", "dofs", "wall_s", "newton_iterations",
-                    "mean_patch_disp", "uy_centre", "peeq_0_4_0", "mises_0_4_0",
-                    "rel_change_mean_patch_disp", "rel_change_uy_centre",
-                    "rel_change_peeq_0_4_0", "rel_change_mises_0_4_0"])
-        prev = None
-        for tag, res in results:
-            last = res["rows"][-1]
-            ch = ["" if prev is None else "%.3e" % ((last[c] - prev[c]) / last[c])
-                  for c in (2, 3, 4, 5)]
-            w.writerow([tag, res["mesh"].nelems, res["mesh"].nnodes, 3 * res["mesh"].nnodes,
-                        "%.1f" % res["wall"], res["newton"][2]]
-                       + ["%.7g" % last[c] for c in (2, 3, 4, 5)] + ch)
-            prev = last
-    print("rel. change of the final values against the previous mesh "
-          "(mean patch disp, centre, PEEQ, von Mises):")
-    for (t0, r0), (t1, r1) in zip(results[:-1], results[1:]):
-        a, b = r0["rows"][-1], r1["rows"][-1]
-        print("  %s -> %s: %s" % (t0, t1, ", ".join("%.3e" % ((b[c] - a[c]) / b[c])
-                                                      for c in (2, 3, 4, 5))))
+    write_study(out, "punch", results, COLUMNS, 3)  # every run succeeded: only now write
 
 
 def quick_run(out, work):

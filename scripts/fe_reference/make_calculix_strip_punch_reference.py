@@ -47,7 +47,6 @@ thread (CCX_REF_THREADS), Newton tolerances 1e-8 (the plate recipes').
 """
 
 import argparse
-import csv
 import os
 import sys
 import tempfile
@@ -59,7 +58,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import make_calculix_reference as elastic_recipe  # noqa: E402  (run_ccx, deck helpers)
 import make_calculix_plastic_reference as plane_recipe  # noqa: E402  (mesh, parsing, tables)
 from make_calculix_cantilever_3d_reference import largest_difference, read_curve  # noqa: E402
-from make_calculix_punch_3d_reference import parse_frd_node  # noqa: E402
+from make_calculix_punch_3d_reference import parse_frd_node, write_study  # noqa: E402
 
 NAME = "strip_punch"
 DEFAULT_OUT = os.path.join(elastic_recipe.REPO_ROOT, "reference", "calculix_plastic", NAME)
@@ -68,7 +67,6 @@ SIDE = 8.0                     # the half block [0, 8]^2
 STRIP = 2.0                    # loaded strip [0, 2] on y = 8
 P_END, N_INC = 800.0, 20
 DEFAULT_H = [0.5, 0.25, 0.125]
-MAX_KEEP_DECK = 1_000_000      # decks below this size are kept
 QUICK_TOL = 1e-6
 CENTRE = (0.0, SIDE)           # strip centre
 BELOW = (0.0, 4.0)             # 4 mm below it
@@ -198,32 +196,6 @@ def solve(mesh, workdir, tag):
                 wall=wall, newton=newton)
 
 
-def write_curve(path, rows):
-    with open(path, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(COLUMNS)
-        for r in rows:
-            w.writerow([r[0]] + ["%.10e" % v for v in r[1:]])
-
-
-def write_convergence(path, results):
-    with open(path, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(["mesh", "elements", "nodes", "dofs", "wall_s", "newton_iterations",
-                    "mean_strip_disp", "uy_centre", "peeq_0_4", "mises_0_4",
-                    "rel_change_mean_strip_disp", "rel_change_uy_centre",
-                    "rel_change_peeq_0_4", "rel_change_mises_0_4"])
-        prev = None
-        for tag, res in results:
-            last = res["rows"][-1]
-            ch = ["" if prev is None else "%.3e" % ((last[c] - prev[c]) / last[c])
-                  for c in (2, 3, 4, 5)]
-            w.writerow([tag, res["mesh"].nelems, res["mesh"].nnodes, 2 * res["mesh"].nnodes,
-                        "%.1f" % res["wall"], res["newton"][2]]
-                       + ["%.7g" % last[c] for c in (2, 3, 4, 5)] + ch)
-            prev = last
-
-
 def full_run(out, work, hs):
     results = []
     for h in hs:
@@ -236,22 +208,7 @@ def full_run(out, work, hs):
               "mean strip disp %.7g, centre %.7g, PEEQ(0,4) %.5g, von Mises %.5g"
               % ((res["wall"],) + res["newton"] + tuple(last[1:6])), flush=True)
         results.append((tag, res))
-    # every run succeeded: only now write
-    os.makedirs(out, exist_ok=True)
-    for tag, res in results:
-        write_curve(os.path.join(out, "strip_%s.csv" % tag), res["rows"])
-        keep = os.path.join(out, "strip_%s.inp" % tag)
-        if res["deck_bytes"] < MAX_KEEP_DECK:
-            os.replace(res["deck"], keep)
-        elif os.path.exists(keep):
-            os.remove(keep)
-    write_convergence(os.path.join(out, "convergence.csv"), results)
-    print("rel. change of the final values against the previous mesh "
-          "(mean strip disp, centre, PEEQ, von Mises):")
-    for (t0, r0), (t1, r1) in zip(results[:-1], results[1:]):
-        a, b = r0["rows"][-1], r1["rows"][-1]
-        print("  %s -> %s: %s" % (t0, t1, ", ".join("%.3e" % ((b[c] - a[c]) / b[c])
-                                                      for c in (2, 3, 4, 5))))
+    write_study(out, "strip", results, COLUMNS, 2)  # every run succeeded: only now write
 
 
 def quick_run(out, work):
