@@ -23,11 +23,9 @@ committed local_level0.csv (exit 1 beyond 1e-6 of each column's largest
 |value|); the full run writes that file too.  --out DIR writes into DIR.
 """
 
-import argparse
 import csv
 import os
 import sys
-import tempfile
 import time
 
 import numpy as np
@@ -133,15 +131,8 @@ def quick_run(out, work):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--quick", action="store_true")
-    ap.add_argument("--out", default=os.environ.get("CALCULIX_REFERENCE_OUT", DEFAULT_OUT))
-    args = ap.parse_args()
-    with tempfile.TemporaryDirectory() as work:
-        if args.quick:
-            sys.exit(quick_run(args.out, work))
-        full_run(args.out, work)
-
+    elastic_recipe.recipe_main(__doc__, DEFAULT_OUT, lambda out, work, args: full_run(out, work),
+                               quick_run)
 
 if __name__ == "__main__":
     main()

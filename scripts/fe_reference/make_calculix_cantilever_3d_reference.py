@@ -30,11 +30,9 @@ nz layers into 20-node bricks (make_calculix_3d_reference.extrude); levels
 Newton tolerances 1e-8 (the thick plate recipe's).
 """
 
-import argparse
 import csv
 import os
 import sys
-import tempfile
 import time
 
 import numpy as np
@@ -166,15 +164,8 @@ def quick_run(out, work):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--quick", action="store_true")
-    ap.add_argument("--out", default=os.environ.get("CALCULIX_REFERENCE_OUT", DEFAULT_OUT))
-    args = ap.parse_args()
-    with tempfile.TemporaryDirectory() as work:
-        if args.quick:
-            sys.exit(quick_run(args.out, work))
-        full_run(args.out, work)
-
+    elastic_recipe.recipe_main(__doc__, DEFAULT_OUT, lambda out, work, args: full_run(out, work),
+                               quick_run)
 
 if __name__ == "__main__":
     main()

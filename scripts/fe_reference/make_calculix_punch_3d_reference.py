@@ -45,12 +45,10 @@ GRADED); C3D20R (2x2x2 integration); CalculiX one thread (CCX_REF_THREADS),
 Newton tolerances 1e-8 (the thick plate recipe's).
 """
 
-import argparse
 import csv
 import math
 import os
 import sys
-import tempfile
 import time
 
 import numpy as np
@@ -240,6 +238,32 @@ def parse_frd_node(path, nid):
     return out
 
 
+def punch_records(workdir, job, weights, centre, below, p_end, n_inc, loaded):
+    """The records of a finished punch run (3D patch or plane strip): rows (increment, p, mean
+    displacement under the load (sum of weights[node] times -u_y), -u_y at `centre`, PEEQ and
+    von Mises at `below`, the base reaction F_y), row 0 unloaded; every record checked present
+    and the base reaction equal to p times the `loaded` area (CalculiX prints 7 digits)."""
+    dat = plane_recipe.parse_dat(os.path.join(workdir, job + ".dat"))
+    frd = parse_frd_node(os.path.join(workdir, job + ".frd"), below)
+    disp, tot = dat.get(("displacements", "MON"), []), dat.get(("total force", "BASE"), [])
+    stress, pe = frd.get("STRESS", []), frd.get("PE", [])
+    counts = [len(disp), len(tot), len(stress), len(pe)]
+    if any(c != n_inc for c in counts) or None in stress or None in pe:
+        raise RuntimeError("%s: %d increments expected; U, RF, STRESS, PE records: %s"
+                           % (job, n_inc, counts))
+    rows = [[0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]]
+    for k in range(n_inc):
+        p = p_end * (k + 1) / n_inc
+        mean = sum(w * -disp[k][nid][1] for nid, w in weights.items())
+        s = np.array(stress[k][:6])
+        rows.append([k + 1, p, mean, -disp[k][centre][1], pe[k][0],
+                     float(plane_recipe.von_mises(s)), tot[k][0][1]])
+        if abs(tot[k][0][1] - p * loaded) > 1e-5 * p * loaded:
+            raise RuntimeError("%s, increment %d: base reaction %g, applied %g"
+                               % (job, k + 1, tot[k][0][1], p * loaded))
+    return rows
+
+
 def solve(mesh, workdir, tag):
     """Write the deck, run ccx, parse: rows (increment, p, mean patch
     displacement, -u_y at the centre, PEEQ and von Mises at (0, 4, 0), base
@@ -254,25 +278,7 @@ def solve(mesh, workdir, tag):
     write_deck(deck, mesh, faces, mon)
     elastic_recipe.run_ccx(workdir, job)
     wall = time.time() - t0
-    dat = plane_recipe.parse_dat(os.path.join(workdir, job + ".dat"))
-    frd = parse_frd_node(os.path.join(workdir, job + ".frd"), below)
-    disp, tot = dat.get(("displacements", "MON"), []), dat.get(("total force", "BASE"), [])
-    stress, pe = frd.get("STRESS", []), frd.get("PE", [])
-    counts = [len(disp), len(tot), len(stress), len(pe)]
-    if any(c != N_INC for c in counts) or None in stress or None in pe:
-        raise RuntimeError("%s: %d increments expected; U, RF, STRESS, PE records: %s"
-                           % (job, N_INC, counts))
-    rows = [[0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]]
-    for k in range(N_INC):
-        p = P_END * (k + 1) / N_INC
-        mean = sum(w * -disp[k][nid][1] for nid, w in weights.items())
-        s = np.array(stress[k][:6])
-        rows.append([k + 1, p, mean, -disp[k][centre][1], pe[k][0],
-                     float(plane_recipe.von_mises(s)), tot[k][0][1]])
-        # the base carries the load: F_y = p x patch area (CalculiX prints 7 digits)
-        if abs(tot[k][0][1] - p * PATCH * PATCH) > 1e-5 * p * PATCH * PATCH:
-            raise RuntimeError("%s, increment %d: base reaction %g, applied %g"
-                               % (job, k + 1, tot[k][0][1], p * PATCH * PATCH))
+    rows = punch_records(workdir, job, weights, centre, below, P_END, N_INC, PATCH * PATCH)
     newton = plane_recipe.newton_stats(os.path.join(workdir, job + ".sta"))
     return dict(mesh=mesh, rows=rows, deck=deck, deck_bytes=os.path.getsize(deck),
                 wall=wall, newton=newton, nfaces=len(faces))
@@ -354,20 +360,17 @@ def quick_run(out, work):
     return 0 if worst <= QUICK_TOL else 1
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def add_arguments(ap):
     ap.add_argument("--h", type=float, nargs="+", default=DEFAULT_H,
                     help="uniform element sizes (8/h and 2/h integers)")
     ap.add_argument("--graded", action="store_true",
                     help="also run the graded mesh (0.25 near the patch)")
-    ap.add_argument("--quick", action="store_true")
-    ap.add_argument("--out", default=os.environ.get("CALCULIX_REFERENCE_OUT", DEFAULT_OUT))
-    args = ap.parse_args()
-    with tempfile.TemporaryDirectory() as work:
-        if args.quick:
-            sys.exit(quick_run(args.out, work))
-        full_run(args.out, work, args.h, args.graded)
 
+
+def main():
+    elastic_recipe.recipe_main(__doc__, DEFAULT_OUT,
+                               lambda out, work, args: full_run(out, work, args.h, args.graded),
+                               quick_run, add_arguments)
 
 if __name__ == "__main__":
     main()

@@ -66,6 +66,7 @@ convergence.csv  level,h,line,max_rel_diff_ux,max_rel_diff_uy : max over the
                  on that line (h = base element size of the finer level)
 """
 
+import argparse
 import math
 import os
 import re
@@ -341,6 +342,23 @@ def ccx_version():
         return m.group(1) if m else txt
     except Exception as exc:  # pragma: no cover
         return "unknown (%s)" % exc
+
+
+def recipe_main(doc, default_out, full_run, quick_run, add_arguments=None):
+    """The command line of a reference recipe: the full run, or --quick (remake its coarsest case
+    in a temporary folder and compare it with the committed one; the exit status says whether
+    they agree); --out DIR (or CALCULIX_REFERENCE_OUT=DIR) is where the reference lies.
+    `add_arguments(parser)` adds the recipe's own options; full_run(out, work, args)."""
+    ap = argparse.ArgumentParser(description=doc.splitlines()[0])
+    ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--out", default=os.environ.get("CALCULIX_REFERENCE_OUT", default_out))
+    if add_arguments:
+        add_arguments(ap)
+    args = ap.parse_args()
+    with tempfile.TemporaryDirectory() as work:
+        if args.quick:
+            sys.exit(quick_run(args.out, work))
+        full_run(args.out, work, args)
 
 
 def run_ccx(workdir, jobname):

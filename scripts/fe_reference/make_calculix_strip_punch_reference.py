@@ -46,10 +46,8 @@ integration, which does not lock under isochoric plastic flow); CalculiX one
 thread (CCX_REF_THREADS), Newton tolerances 1e-8 (the plate recipes').
 """
 
-import argparse
 import os
 import sys
-import tempfile
 import time
 
 import numpy as np
@@ -58,7 +56,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import make_calculix_reference as elastic_recipe  # noqa: E402  (run_ccx, deck helpers)
 import make_calculix_plastic_reference as plane_recipe  # noqa: E402  (mesh, parsing, tables)
 from make_calculix_cantilever_3d_reference import largest_difference, read_curve  # noqa: E402
-from make_calculix_punch_3d_reference import parse_frd_node, write_study  # noqa: E402
+from make_calculix_punch_3d_reference import punch_records, write_study  # noqa: E402
 
 NAME = "strip_punch"
 DEFAULT_OUT = os.path.join(elastic_recipe.REPO_ROOT, "reference", "calculix_plastic", NAME)
@@ -172,25 +170,7 @@ def solve(mesh, workdir, tag):
     write_deck(deck, mesh, edges, mon)
     elastic_recipe.run_ccx(workdir, job)
     wall = time.time() - t0
-    dat = plane_recipe.parse_dat(os.path.join(workdir, job + ".dat"))
-    frd = parse_frd_node(os.path.join(workdir, job + ".frd"), below)
-    disp, tot = dat.get(("displacements", "MON"), []), dat.get(("total force", "BASE"), [])
-    stress, pe = frd.get("STRESS", []), frd.get("PE", [])
-    counts = [len(disp), len(tot), len(stress), len(pe)]
-    if any(c != N_INC for c in counts) or None in stress or None in pe:
-        raise RuntimeError("%s: %d increments expected; U, RF, STRESS, PE records: %s"
-                           % (job, N_INC, counts))
-    rows = [[0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]]
-    for k in range(N_INC):
-        p = P_END * (k + 1) / N_INC
-        mean = sum(w * -disp[k][nid][1] for nid, w in weights.items())
-        s = np.array(stress[k][:6])
-        rows.append([k + 1, p, mean, -disp[k][centre][1], pe[k][0],
-                     float(plane_recipe.von_mises(s)), tot[k][0][1]])
-        # the base carries the load: F_y = p x strip length (CalculiX prints 7 digits)
-        if abs(tot[k][0][1] - p * STRIP) > 1e-5 * p * STRIP:
-            raise RuntimeError("%s, increment %d: base reaction %g, applied %g"
-                               % (job, k + 1, tot[k][0][1], p * STRIP))
+    rows = punch_records(workdir, job, weights, centre, below, P_END, N_INC, STRIP)
     newton = plane_recipe.newton_stats(os.path.join(workdir, job + ".sta"))
     return dict(mesh=mesh, rows=rows, deck=deck, deck_bytes=os.path.getsize(deck),
                 wall=wall, newton=newton)
@@ -221,17 +201,10 @@ def quick_run(out, work):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--h", type=float, nargs="+", default=DEFAULT_H,
-                    help="uniform element sizes (8/h and 2/h integers)")
-    ap.add_argument("--quick", action="store_true")
-    ap.add_argument("--out", default=os.environ.get("CALCULIX_REFERENCE_OUT", DEFAULT_OUT))
-    args = ap.parse_args()
-    with tempfile.TemporaryDirectory() as work:
-        if args.quick:
-            sys.exit(quick_run(args.out, work))
-        full_run(args.out, work, args.h)
-
+    elastic_recipe.recipe_main(
+        __doc__, DEFAULT_OUT, lambda out, work, args: full_run(out, work, args.h), quick_run,
+        lambda ap: ap.add_argument("--h", type=float, nargs="+", default=DEFAULT_H,
+                                   help="uniform element sizes (8/h and 2/h integers)"))
 
 if __name__ == "__main__":
     main()
