@@ -334,14 +334,7 @@ GalerkinModel build_galerkin_model(const spec::ProblemSpec& spec,
   GalerkinModel m = disc.method == spec::Method::Fem ? build_fem_model(spec, session, timer)
                                                      : build_meshfree_model(spec, session, timer);
   PhaseTimer::Scope scope(timer, "shape_functions");
-  if (disc.cell_mean_volumetric) {
-    warn_quadratic_cell_mean(disc);
-    m.cell_mean = true;
-    m.cell_reach = 2.0 * std::max(disc.spacing, disc.cell_size);
-    std::vector<int> cell;
-    for (int r : m.domain_mine.rows) cell.push_back(m.domain.piece[r]);
-    project_volumetric_strain(m.domain_table, cell, m.domain_weight);
-  }
+  take_cell_means(m, m.domain.piece, disc);
   m.domain_groups = PointGroups(m.domain_table, domain_rows(m), m.node_positions());
   return m;
 }

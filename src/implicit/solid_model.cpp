@@ -258,14 +258,7 @@ SolidModel build_solid_model(const spec::ProblemSpec& spec, const solvers::Petsc
     group_points(m);
   });
   if (s.discretisation.vci && !m.fe) correct_test_gradients_3d(spec, m, session);
-  if (s.discretisation.cell_mean_volumetric) {
-    warn_quadratic_cell_mean(s.discretisation);
-    m.cell_mean = true;
-    m.cell_reach = 2.0 * std::max(s.discretisation.spacing, s.discretisation.cell_size);
-    std::vector<int> cell;
-    for (int r : m.domain_mine.rows) cell.push_back(m.domain.cell[r]);
-    project_volumetric_strain(m.domain_table, cell, m.domain_weight);
-  }
+  take_cell_means(m, m.domain.cell, s.discretisation);
   return m;
 }
 

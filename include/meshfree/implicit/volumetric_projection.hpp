@@ -15,6 +15,7 @@
 #include "meshfree/implicit/meshfree_space.hpp"
 #include "meshfree/implicit/shape_table.hpp"
 #include "meshfree/spec/problem_spec.hpp"
+#include <algorithm>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -49,6 +50,22 @@ Csr cell_supports(const Csr& support, const std::vector<int>& cell);
 template <int dim>
 void project_volumetric_strain(ShapeTableOf<dim>& t, const std::vector<int>& cell,
                                const std::vector<double>& weight);
+
+/// Gives a plane or solid model's domain table the volumetric strain of its cells' means where
+/// its discretisation asks for it (`cell_of_point`: the cell of each of the body's points, which
+/// the rows m.domain_mine.rows index), with the reach of its passive points' search; warns where
+/// quadratic elements take it.
+template <class Model>
+void take_cell_means(Model& m, const std::vector<int>& cell_of_point,
+                     const spec::DiscretisationSpec& d) {
+  if (!d.cell_mean_volumetric) return;
+  warn_quadratic_cell_mean(d);
+  m.cell_mean = true;
+  m.cell_reach = 2.0 * std::max(d.spacing, d.cell_size);
+  std::vector<int> cell;
+  for (int r : m.domain_mine.rows) cell.push_back(cell_of_point[r]);
+  project_volumetric_strain(m.domain_table, cell, m.domain_weight);
+}
 
 /// The Gauss points of a body, all of them, with their cells: where points that are not Gauss
 /// points (output samples, a stage's particles) find the cell whose mean they take.
