@@ -3,6 +3,7 @@
 // fem/mesh_generation, which loads it when a mesh is to be made (see
 // include/meshfree/fem/gmsh_mesher.hpp for why).
 #include "meshfree/fem/gmsh_mesher.hpp"
+#include <algorithm>
 #include <gmsh.h>
 
 namespace {
@@ -75,17 +76,17 @@ void set_sizes(const Request& q) {
   gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
   if (q.boxes.empty()) return;
   std::vector<double> boxes;
-  for (std::size_t b = 0; b + 4 < q.boxes.size(); b += 5) {
+  for (std::size_t b = 0; b + 6 < q.boxes.size(); b += 7) {
     const int f = field::add("Box");
     field::setNumber(f, "XMin", q.boxes[b]);
     field::setNumber(f, "YMin", q.boxes[b + 1]);
     field::setNumber(f, "XMax", q.boxes[b + 2]);
     field::setNumber(f, "YMax", q.boxes[b + 3]);
-    if (volume(q)) { // the box through the prism's whole depth
-      field::setNumber(f, "ZMin", q.z0);
-      field::setNumber(f, "ZMax", q.z0 + q.depth);
+    if (volume(q)) { // the box's range of the prism's depth
+      field::setNumber(f, "ZMin", std::max(q.z0, q.boxes[b + 4]));
+      field::setNumber(f, "ZMax", std::min(q.z0 + q.depth, q.boxes[b + 5]));
     }
-    field::setNumber(f, "VIn", q.boxes[b + 4]);
+    field::setNumber(f, "VIn", q.boxes[b + 6]);
     field::setNumber(f, "VOut", q.size);
     field::setNumber(f, "Thickness", q.size);
     boxes.push_back(f);

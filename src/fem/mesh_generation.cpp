@@ -53,8 +53,8 @@ gmsh_mesher::Request request(const geometry::Domain& domain, double size,
   for (const geometry::Circle& c : domain.holes())
     q.holes.insert(q.holes.end(), {c.center.x(), c.center.y(), c.radius});
   for (const geometry::Refinement& r : refinement)
-    q.boxes.insert(q.boxes.end(),
-                   {r.box.lo.x(), r.box.lo.y(), r.box.hi.x(), r.box.hi.y(), r.spacing});
+    q.boxes.insert(q.boxes.end(), {r.box.lo.x(), r.box.lo.y(), r.box.hi.x(), r.box.hi.y(), r.z_lo,
+                                   r.z_hi, r.spacing});
   q.size = size;
   return q;
 }

@@ -55,12 +55,13 @@ Vec2 on_edge(int k, double s, Vec2& direction) {
 
 std::string ExtrudedMesh::summary() const {
   return detail::concat("bricks: ", element_count(), " of ", nodes_per_element(), " nodes, ",
-                        node_count(), " nodes (", layers_ + 1, " layers of nodes along z)");
+                        node_count(), " nodes (", layer_count() + 1, " layers of nodes along z)");
 }
 
-ExtrudedMesh::ExtrudedMesh(fem::Mesh plane, const geometry::Prism& body, double spacing)
-    : plane_(std::move(plane)), body_(body), layers_(layer_count(body, spacing)),
-      dz_(body.depth / layers_) {
+ExtrudedMesh::ExtrudedMesh(fem::Mesh plane, const geometry::Prism& body, double spacing,
+                           const std::vector<geometry::Refinement>& refinement)
+    : plane_(std::move(plane)), body_(body),
+      layers_(prism_slabs(body, spacing, spacing, refinement, 0.0)) {
   MF_REQUIRE(plane_.type != fem::ElementType::T3,
              "discretisation.fem.element: model solid_3d extrudes q4 or q8 plane elements into "
              "hex8 or hex20 bricks, not t3");
@@ -72,15 +73,16 @@ ExtrudedMesh::ExtrudedMesh(fem::Mesh plane, const geometry::Prism& body, double 
         int& c = corner_index_[plane_.element(e)[a]];
         if (c < 0) c = corners_++;
       }
-  for (int l = 0; l <= layers_; ++l)
-    for (const Vec2& p : plane_.x) x_.emplace_back(p.x(), p.y(), body_.z0 + l * dz_);
+  for (int l = 0; l <= layer_count(); ++l) {
+    const double z = l < layer_count() ? layers_[l].z(0.0) : layers_.back().z(1.0);
+    for (const Vec2& p : plane_.x) x_.emplace_back(p.x(), p.y(), z);
+  }
   if (!serendipity()) return;
   std::vector<int> corner_node(corners_);
   for (int p = 0; p < np; ++p)
     if (corner_index_[p] >= 0) corner_node[corner_index_[p]] = p;
-  for (int l = 0; l < layers_; ++l)
-    for (int p : corner_node)
-      x_.emplace_back(plane_.x[p].x(), plane_.x[p].y(), body_.z0 + (l + 0.5) * dz_);
+  for (const Slab& layer : layers_)
+    for (int p : corner_node) x_.emplace_back(plane_.x[p].x(), plane_.x[p].y(), layer.z(0.5));
 }
 
 void ExtrudedMesh::brick(int e, int l, int* nodes, Vec3* natural) const {
@@ -93,7 +95,7 @@ void ExtrudedMesh::brick(int e, int l, int* nodes, Vec3* natural) const {
     nodes[4 + a] = upper + n[a], natural[4 + a] = Vec3(ref[a].x(), ref[a].y(), 1.0);
   }
   if (!serendipity()) return;
-  const int middle = (layers_ + 1) * np + l * corners_;
+  const int middle = (layer_count() + 1) * np + l * corners_;
   for (int a = 0; a < 4; ++a) {
     nodes[8 + a] = lower + n[4 + a], natural[8 + a] = Vec3(ref[4 + a].x(), ref[4 + a].y(), -1.0);
     nodes[12 + a] = upper + n[4 + a], natural[12 + a] = Vec3(ref[4 + a].x(), ref[4 + a].y(), 1.0);
@@ -115,14 +117,15 @@ void ExtrudedMesh::add_point(int e, int l, const Vec3& xi, double w, int face, b
     J.col(0) += dN2[a].x() * plane_.x[pn[a]];
     J.col(1) += dN2[a].y() * plane_.x[pn[a]];
   }
-  const double z = body_.z0 + (l + 0.5 * (1.0 + xi.z())) * dz_;
+  const double dz = layers_[l].thickness;
+  const double z = layers_[l].z(0.5 * (1.0 + xi.z()));
   Vec3 normal = Vec3::Zero();
-  double measure = J.determinant() * 0.5 * dz_;
+  double measure = J.determinant() * 0.5 * dz;
   if (face >= 0 && face < kSideFaces) {
     Vec2 direction;
     on_edge(face, 0.0, direction);
     const Vec2 t = J * direction;
-    measure = t.norm() * 0.5 * dz_;
+    measure = t.norm() * 0.5 * dz;
     normal = Vec3(t.y(), -t.x(), 0.0) / t.norm();
   } else if (face >= kBack) {
     measure = J.determinant();
@@ -144,7 +147,7 @@ void ExtrudedMesh::add_point(int e, int l, const Vec3& xi, double w, int face, b
     out.phi.push_back(brick_function(serendipity(), natural[k], xi, g));
     if (gradients) {
       const Vec2 gxy = inverse_transpose * g.head<2>();
-      out.dphi.emplace_back(gxy.x(), gxy.y(), g.z() * 2.0 / dz_);
+      out.dphi.emplace_back(gxy.x(), gxy.y(), g.z() * 2.0 / dz);
     }
   }
   out.offset.push_back(static_cast<int>(out.node.size()));
@@ -156,7 +159,7 @@ void ExtrudedMesh::add_point(int e, int l, const Vec3& xi, double w, int face, b
 ElementPoints ExtrudedMesh::body_points(int order) const {
   const GaussRule& g = gauss_legendre(order);
   ElementPoints out;
-  for (int l = 0; l < layers_; ++l)
+  for (int l = 0; l < layer_count(); ++l)
     for (int e = 0; e < plane_.element_count(); ++e)
       for (std::size_t k = 0; k < g.points.size(); ++k)
         for (std::size_t j = 0; j < g.points.size(); ++j)
@@ -174,9 +177,13 @@ ElementPoints ExtrudedMesh::shapes_at(const std::vector<Vec3>& x, bool gradients
     Vec2 xi;
     MF_REQUIRE(locator.locate(p.head<2>(), e, xi), "no element holds the point (", p.x(), ", ",
                p.y(), ", ", p.z(), ")");
-    const double t = (p.z() - body_.z0) / dz_;
-    const int l = std::clamp(static_cast<int>(std::floor(t)), 0, layers_ - 1);
-    add_point(e, l, Vec3(xi.x(), xi.y(), 2.0 * (t - l) - 1.0), 1.0, -1, gradients, out);
+    // The layer that holds z (the first or last past the ends), and z's place across it.
+    const auto above = std::upper_bound(layers_.begin(), layers_.end(), p.z(),
+                                        [](double z, const Slab& s) { return z < s.z(0.0); });
+    const int l = std::clamp(static_cast<int>(above - layers_.begin()) - 1, 0, layer_count() - 1);
+    const Level& lo = layers_[l].lo;
+    const double t = (p.z() - lo.origin) / lo.step - lo.index;
+    add_point(e, l, Vec3(xi.x(), xi.y(), 2.0 * t - 1.0), 1.0, -1, gradients, out);
   }
   return out;
 }
@@ -200,7 +207,7 @@ ElementPoints ExtrudedMesh::face_points(const std::vector<std::string>& faces, i
       return c.distance_to(middle) < 1e-6 * size;
     });
     if (!on) continue;
-    for (int l = 0; l < layers_; ++l)
+    for (int l = 0; l < layer_count(); ++l)
       for (std::size_t k = 0; k < g.points.size(); ++k)
         for (std::size_t i = 0; i < g.points.size(); ++i) {
           const Vec2 xi = on_edge(edge.local_edge, g.points[i], direction);
@@ -210,7 +217,7 @@ ElementPoints ExtrudedMesh::face_points(const std::vector<std::string>& faces, i
   }
   for (const int face : {kBack, kFront}) {
     if (!named(face == kBack ? "back" : "front")) continue;
-    const int l = face == kBack ? 0 : layers_ - 1;
+    const int l = face == kBack ? 0 : layer_count() - 1;
     for (int e = 0; e < plane_.element_count(); ++e)
       for (std::size_t j = 0; j < g.points.size(); ++j)
         for (std::size_t i = 0; i < g.points.size(); ++i)

@@ -20,7 +20,8 @@ std::unique_ptr<SolidElements> make_solid_elements(const spec::DiscretisationSpe
   }
   spec::DiscretisationSpec plane = d; // the section's mesh, of the plane element of the bricks
   plane.fem.element = spec::plane_element(e);
-  return std::make_unique<ExtrudedMesh>(plane_fe_mesh(plane, body.section), body, d.spacing);
+  return std::make_unique<ExtrudedMesh>(plane_fe_mesh(plane, body.section), body, d.spacing,
+                                        d.refinement);
 }
 
 namespace {

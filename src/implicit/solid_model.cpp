@@ -285,19 +285,19 @@ std::string describe_solid_method(const spec::ProblemSpec& spec) {
   const spec::DiscretisationSpec& d = spec.solid().discretisation;
   const char* volumetric = d.cell_mean_volumetric ? ", volumetric strain of the cell's mean" : "";
   const geometry::Prism body = spec.solid().body(spec.domain);
-  const int layers = layer_count(body, d.spacing);
   if (d.method == spec::Method::Fem && (d.fem.element == "tet4" || d.fem.element == "tet10"))
     return detail::concat("FE ", d.fem.element, " (gmsh's tetrahedra of the prism), spacing ",
                           d.spacing, volumetric);
   if (d.method == spec::Method::Fem)
     return detail::concat("FE ", d.fem.element, " (the plane ", spec::plane_element(d.fem.element),
-                          " mesh extruded in ", layers, " layers of elements), spacing ", d.spacing,
-                          volumetric);
+                          " mesh extruded in ",
+                          prism_slabs(body, d.spacing, d.spacing, d.refinement, 0.0).size(),
+                          " layers of elements), spacing ", d.spacing, volumetric);
   return detail::concat(
       "meshfree RK (", d.shape.basis == kernels::Basis::Quadratic ? "quadratic" : "linear",
       " basis, ", d.shape.support == kernels::SupportShape::Circular ? "spherical" : "box",
-      " supports), 3D, spacing ", d.spacing, " (", layers + 1,
-      " layers of nodes along z), dilation ", d.dilation.x(), d.vci ? ", VCI" : "", volumetric);
+      " supports), 3D, spacing ", d.spacing, " (", node_levels(body, d).size(),
+      " levels of nodes along z), dilation ", d.dilation.x(), d.vci ? ", VCI" : "", volumetric);
 }
 
 SolidCounts count_model(const spec::ProblemSpec& spec, const SolidModel& m) {
@@ -365,7 +365,6 @@ std::string box_area_text(const spec::Box& box, const std::vector<Vec3>& normal)
 void print_solid_plan(const spec::ProblemSpec& spec, std::ostream& os) {
   const spec::SolidSpec& s = spec.solid();
   const geometry::Prism body = s.body(spec.domain);
-  const int layers = layer_count(body, s.discretisation.spacing) + 1;
   double n = 0.0;
   if (s.discretisation.method == spec::Method::Fem) {
     const std::unique_ptr<SolidElements> fe = make_solid_elements(s.discretisation, body);
@@ -373,7 +372,8 @@ void print_solid_plan(const spec::ProblemSpec& spec, std::ostream& os) {
     os << "  " << fe->summary() << ", " << 3 * n << " DOFs\n";
   } else {
     n = static_cast<double>(prism_nodes(body, s.discretisation).x.size());
-    os << "  nodes: " << n << " (" << layers << " layers of nodes along z), " << 3 * n << " DOFs\n";
+    os << "  nodes: " << n << " (" << node_levels(body, s.discretisation).size()
+       << " levels of nodes along z), " << 3 * n << " DOFs\n";
   }
   for (const geometry::Sphere& sphere : s.spheres)
     os << "  sphere " << sphere.name << ": radius " << sphere.radius << " at (" << sphere.center.x()

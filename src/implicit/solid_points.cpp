@@ -7,6 +7,7 @@
 #include "meshfree/quadrature/integration_points.hpp"
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 namespace mf::implicit {
 
@@ -16,29 +17,59 @@ quadrature::CellSizing sizing_of(const spec::DiscretisationSpec& d) {
   return {d.spacing, d.refinement, d.cell_size / d.spacing, d.dilation.maxCoeff()};
 }
 
+/// The cells' sizes in a slab: those of the refinement boxes that refine it.
+quadrature::CellSizing sizing_of(const spec::DiscretisationSpec& d, const Slab& slab) {
+  quadrature::CellSizing s = sizing_of(d);
+  s.refinement = boxes_of(slab.boxes, d.refinement);
+  return s;
+}
+
+/// The slabs of the body's integration cells along z.
+std::vector<Slab> cell_slabs(const geometry::Prism& body, const spec::DiscretisationSpec& d) {
+  return prism_slabs(body, d.spacing, d.cell_size, d.refinement, d.dilation.maxCoeff());
+}
+
+/// The section's Gauss points in each slab, made once for each set of refinement boxes.
+class SectionPoints {
+public:
+  SectionPoints(const geometry::Prism& body, const spec::DiscretisationSpec& d)
+      : body_(body), d_(d) {}
+  const quadrature::DomainPoints& in(const Slab& slab) {
+    auto it = made_.find(slab.boxes);
+    if (it == made_.end())
+      it = made_
+               .emplace(slab.boxes,
+                        quadrature::domain_points(body_.section, d_.cell_size, d_.order,
+                                                  d_.cut_levels, sizing_of(d_, slab), d_.cut_arcs))
+               .first;
+    return it->second;
+  }
+
+private:
+  const geometry::Prism& body_;
+  const spec::DiscretisationSpec& d_;
+  std::map<std::vector<int>, quadrature::DomainPoints> made_;
+};
+
 /// The interval of z from z0 to z1.
 struct Span {
   double z0, z1;
   double length() const { return z1 - z0; }
 };
 
-/// Points (z, weight) of `order` Gauss points in each of round(length / spacing) layers (at least
-/// one) of `span`.
-std::vector<std::pair<double, double>> through(const Span& span, double spacing, int order) {
-  const int layers = std::max(1, static_cast<int>(std::lround(span.length() / spacing)));
-  const double dz = span.length() / layers;
-  const GaussRule& g = gauss_legendre(order);
-  std::vector<std::pair<double, double>> out;
-  for (int l = 0; l < layers; ++l)
-    for (std::size_t q = 0; q < g.points.size(); ++q)
-      out.emplace_back(span.z0 + (l + 0.5 * (g.points[q] + 1.0)) * dz, 0.5 * dz * g.weights[q]);
+/// The parts of the slabs within `span` (a slab cut by its ends as a slab of its own).
+std::vector<Slab> slabs_in(const std::vector<Slab>& slabs, const Span& span, double tol) {
+  std::vector<Slab> out;
+  for (const Slab& s : slabs) {
+    const double z0 = std::max(s.z(0.0), span.z0), z1 = std::min(s.z(1.0), span.z1);
+    if (z1 - z0 <= tol) continue;
+    out.push_back(s);
+    if (z0 > s.z(0.0) + tol || z1 < s.z(1.0) - tol) {
+      out.back().lo = Level{z0, z1 - z0, 0};
+      out.back().thickness = z1 - z0;
+    }
+  }
   return out;
-}
-
-/// Points (z, weight) of `order` Gauss points in each of the body's layers.
-std::vector<std::pair<double, double>> through_depth(const geometry::Prism& body, double spacing,
-                                                     int order) {
-  return through({body.z0, body.z1()}, spacing, order);
 }
 
 bool kept(const std::optional<spec::Box>& box, const Vec3& x, double tol) {
@@ -83,7 +114,8 @@ double spacing_near(const geometry::Sphere& s, const spec::DiscretisationSpec& d
   double h = d.spacing;
   for (const geometry::Refinement& r : d.refinement)
     if ((s.center.head<2>().cwiseMax(r.box.lo).cwiseMin(r.box.hi) - s.center.head<2>()).norm() <
-        s.radius)
+            s.radius &&
+        r.z_lo < s.center.z() + s.radius && r.z_hi > s.center.z() - s.radius)
       h = std::min(h, r.spacing);
   return h;
 }
@@ -164,6 +196,29 @@ void side_cut_by_spheres(const geometry::Prism& body, const spec::Discretisation
   }
 }
 
+/// The side faces over the plane `sides` through `slabs`: each slab's boundary points of the
+/// section (refined as the slab's boxes ask) times its Gauss points along z.
+template <class Add>
+void side_points(const spec::DiscretisationSpec& d, const std::vector<geometry::Curve>& sides,
+                 const std::vector<Slab>& slabs, Add&& add) {
+  const GaussRule& g = gauss_legendre(d.boundary_order);
+  std::map<std::vector<int>, quadrature::BoundaryPoints> made;
+  for (const Slab& slab : slabs) {
+    auto it = made.find(slab.boxes);
+    if (it == made.end())
+      it = made.emplace(slab.boxes, quadrature::boundary_points(
+                                        sides, d.cell_size, d.boundary_order, sizing_of(d, slab)))
+               .first;
+    const quadrature::BoundaryPoints& edge = it->second;
+    for (std::size_t q = 0; q < g.points.size(); ++q) {
+      const double z = slab.z(0.5 * (g.points[q] + 1.0)), wz = 0.5 * slab.thickness * g.weights[q];
+      for (std::size_t k = 0; k < edge.x.size(); ++k)
+        add(Vec3(edge.x[k].x(), edge.x[k].y(), z), edge.weight[k] * wz,
+            Vec3(edge.normal[k].x(), edge.normal[k].y(), 0.0));
+    }
+  }
+}
+
 /// The end section at height z cut to the box's footprint; none when the box leaves nothing of
 /// positive area of it (or misses the plane z).
 std::optional<geometry::Domain> end_in_box(const geometry::Prism& body, double z,
@@ -202,24 +257,24 @@ BoundingBox plane_cell(const geometry::Domain& section, double cell_size, int ce
 /// sphere touches the cell they came from, and the touched cells integrated anew.
 SolidPoints volume_points_with_spheres(const geometry::Prism& body,
                                        const spec::DiscretisationSpec& d,
-                                       const quadrature::DomainPoints& plane) {
-  const int layers = layer_count(body, d.cell_size);
-  const double dz = body.depth / layers;
+                                       const std::vector<Slab>& slabs, SectionPoints& section) {
   const GaussRule& g = gauss_legendre(d.order);
-  std::vector<BoundingBox> cells(plane.cell_count, BoundingBox{Vec2::Zero(), Vec2::Zero()});
-  for (std::size_t k = 0; k < plane.x.size(); ++k)
-    cells[plane.cell[k]] = plane_cell(body.section, d.cell_size, plane.cell[k], plane.x[k]);
   SolidPoints p;
-  for (int l = 0; l < layers; ++l) {
-    const double z0 = body.z0 + l * dz;
+  int first_cell = 0;
+  for (const Slab& slab : slabs) {
+    const quadrature::DomainPoints& plane = section.in(slab);
+    std::vector<BoundingBox> cells(plane.cell_count, BoundingBox{Vec2::Zero(), Vec2::Zero()});
+    for (std::size_t k = 0; k < plane.x.size(); ++k)
+      cells[plane.cell[k]] = plane_cell(body.section, d.cell_size, plane.cell[k], plane.x[k]);
+    const double z0 = slab.z(0.0), dz = slab.thickness;
     std::vector<char> touched(cells.size(), 0);
     for (std::size_t c = 0; c < cells.size(); ++c) {
       const Vec3 lo(cells[c].lo.x(), cells[c].lo.y(), z0),
           hi(cells[c].hi.x(), cells[c].hi.y(), z0 + dz);
       if (cells[c].size().isZero() || !sphere_touches(body, lo, hi)) continue;
       touched[c] = 1;
-      sphere_cell_points(body, lo, hi, d.order, d.cut_levels, sizing_of(d), p);
-      p.cell.resize(p.x.size(), l * plane.piece_count + static_cast<int>(c));
+      sphere_cell_points(body, lo, hi, d.order, d.cut_levels, sizing_of(d, slab), p);
+      p.cell.resize(p.x.size(), first_cell + static_cast<int>(c));
     }
     for (std::size_t q = 0; q < g.points.size(); ++q) {
       const double z = z0 + 0.5 * (g.points[q] + 1.0) * dz, wz = 0.5 * dz * g.weights[q];
@@ -227,32 +282,62 @@ SolidPoints volume_points_with_spheres(const geometry::Prism& body,
         if (touched[plane.cell[k]]) continue;
         p.x.emplace_back(plane.x[k].x(), plane.x[k].y(), z);
         p.weight.push_back(plane.weight[k] * wz);
-        p.cell.push_back(l * plane.piece_count + plane.piece[k]);
+        p.cell.push_back(first_cell + plane.piece[k]);
       }
     }
+    first_cell += plane.piece_count;
   }
   return p;
 }
 
 } // namespace
 
-int layer_count(const geometry::Prism& body, double spacing) {
-  return std::max(1, static_cast<int>(std::lround(body.depth / spacing)));
+std::vector<MergedLevel> node_levels(const geometry::Prism& body,
+                                     const spec::DiscretisationSpec& d) {
+  return merged_levels(prism_levels(body, d.spacing, d.refinement, 1.0, 0.0), 1e-9 * body.size());
 }
 
 SolidNodes prism_nodes(const geometry::Prism& body, const spec::DiscretisationSpec& d) {
-  const geometry::NodeCloud plane = geometry::generate_nodes(body.section, d.spacing, d.refinement);
-  const int layers = layer_count(body, d.spacing);
-  const double dz = body.depth / layers;
+  const double tol = 1e-9 * body.size();
+  const std::vector<Levels> grids = prism_levels(body, d.spacing, d.refinement, 1.0, 0.0);
+  std::map<std::vector<int>, geometry::NodeCloud> clouds;
   SolidNodes n;
-  // Layer-major order: contiguous ranges of nodes are slabs, which keeps the partition over
+  // Level-major order: contiguous ranges of nodes are slabs, which keeps the partition over
   // ranks compact.
-  for (int l = 0; l <= layers; ++l) {
-    const double end = (l == 0 || l == layers) ? 0.5 : 1.0;
+  for (const MergedLevel& level : merged_levels(grids, tol)) {
+    // A box given in the plane refines every level; one given in 3D the levels of its range
+    // but an end of it inside the body: the coarser cloud stands there, whose supports reach
+    // the base layer beyond.
+    std::vector<int> boxes;
+    for (std::size_t i = 0; i + 1 < grids.size(); ++i) {
+      const Levels& g = grids[i + 1];
+      const bool inner_end = g.spans(level.z, tol) &&
+                             ((level.z <= g.at.front().z() + tol && level.z > body.z0 + tol) ||
+                              (level.z >= g.at.back().z() - tol && level.z < body.z1() - tol));
+      if (!d.refinement[i].along_z || (g.spans(level.z, tol) && !inner_end))
+        boxes.push_back(static_cast<int>(i));
+    }
+    auto it = clouds.find(boxes);
+    if (it == clouds.end())
+      it = clouds
+               .emplace(boxes, geometry::generate_nodes(body.section, d.spacing,
+                                                        boxes_of(boxes, d.refinement)))
+               .first;
+    const geometry::NodeCloud& plane = it->second;
     for (std::size_t i = 0; i < plane.x.size(); ++i) {
-      n.x.emplace_back(plane.x[i].x(), plane.x[i].y(), body.z0 + l * dz);
-      n.spacing.push_back(std::max(plane.spacing[i], dz));
-      n.volume.push_back(plane.volume[i] * dz * end);
+      // The node's own layers: the finest of the grids here at least as coarse as it is (a
+      // box given in the plane has none: its nodes stand on the base layers).
+      int own = 0;
+      for (int b : boxes)
+        if (!grids[b + 1].at.empty() && grids[b + 1].spacing >= plane.spacing[i] * (1.0 - 1e-9) &&
+            grids[b + 1].spacing < grids[own].spacing)
+          own = b + 1;
+      const int k = level.index[own];
+      if (k < 0) continue; // a level of finer layers than the node's
+      const double below = grids[own].below(k), above = grids[own].above(k);
+      n.x.emplace_back(plane.x[i].x(), plane.x[i].y(), grids[own].at[k].z());
+      n.spacing.push_back(std::max(plane.spacing[i], std::max(below, above)));
+      n.volume.push_back(plane.volume[i] * (0.5 * (below + above)));
     }
   }
   if (!body.spheres.empty()) fit_nodes_to_spheres(body, d, n);
@@ -260,18 +345,23 @@ SolidNodes prism_nodes(const geometry::Prism& body, const spec::DiscretisationSp
 }
 
 SolidPoints prism_volume_points(const geometry::Prism& body, const spec::DiscretisationSpec& d) {
-  const quadrature::DomainPoints plane = quadrature::domain_points(
-      body.section, d.cell_size, d.order, d.cut_levels, sizing_of(d), d.cut_arcs);
-  if (!body.spheres.empty()) return volume_points_with_spheres(body, d, plane);
+  const std::vector<Slab> slabs = cell_slabs(body, d);
+  SectionPoints section(body, d);
+  if (!body.spheres.empty()) return volume_points_with_spheres(body, d, slabs, section);
+  const GaussRule& g = gauss_legendre(d.order);
   SolidPoints p;
-  const std::vector<std::pair<double, double>> along_z = through_depth(body, d.cell_size, d.order);
-  for (std::size_t q = 0; q < along_z.size(); ++q) {
-    const int layer = static_cast<int>(q) / d.order;
-    for (std::size_t k = 0; k < plane.x.size(); ++k) {
-      p.x.emplace_back(plane.x[k].x(), plane.x[k].y(), along_z[q].first);
-      p.weight.push_back(plane.weight[k] * along_z[q].second);
-      p.cell.push_back(layer * plane.piece_count + plane.piece[k]);
+  int first_cell = 0;
+  for (const Slab& slab : slabs) {
+    const quadrature::DomainPoints& plane = section.in(slab);
+    for (std::size_t q = 0; q < g.points.size(); ++q) {
+      const double z = slab.z(0.5 * (g.points[q] + 1.0)), wz = 0.5 * slab.thickness * g.weights[q];
+      for (std::size_t k = 0; k < plane.x.size(); ++k) {
+        p.x.emplace_back(plane.x[k].x(), plane.x[k].y(), z);
+        p.weight.push_back(plane.weight[k] * wz);
+        p.cell.push_back(first_cell + plane.piece[k]);
+      }
     }
+    first_cell += plane.piece_count;
   }
   return p;
 }
@@ -303,21 +393,16 @@ SolidPoints prism_face_points(const geometry::Prism& body, const spec::Discretis
         sides.push_back(part);
     }
   }
-  if (!sides.empty()) {
-    const quadrature::BoundaryPoints edge =
-        quadrature::boundary_points(sides, d.cell_size, d.boundary_order, sizing_of(d));
-    for (const auto& [z, wz] : through(span, d.cell_size, d.boundary_order))
-      for (std::size_t k = 0; k < edge.x.size(); ++k)
-        add(Vec3(edge.x[k].x(), edge.x[k].y(), z), edge.weight[k] * wz,
-            Vec3(edge.normal[k].x(), edge.normal[k].y(), 0.0));
-  }
+  const std::vector<Slab> slabs = cell_slabs(body, d);
+  if (!sides.empty()) side_points(d, sides, slabs_in(slabs, span, tol), add);
   for (const bool back : {true, false}) {
     if (!named(back ? "back" : "front")) continue;
     const double z = back ? body.z0 : body.z1();
     const std::optional<geometry::Domain> section = end_in_box(body, z, box, tol);
     if (!section) continue;
+    const Slab& next = back ? slabs.front() : slabs.back();
     const quadrature::DomainPoints end = quadrature::domain_points(
-        *section, d.cell_size, d.boundary_order, d.cut_levels, sizing_of(d), d.cut_arcs);
+        *section, d.cell_size, d.boundary_order, d.cut_levels, sizing_of(d, next), d.cut_arcs);
     for (std::size_t k = 0; k < end.x.size(); ++k)
       add(Vec3(end.x[k].x(), end.x[k].y(), z), end.weight[k], Vec3(0.0, 0.0, back ? -1.0 : 1.0));
   }

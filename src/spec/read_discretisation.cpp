@@ -87,13 +87,25 @@ double read_spacing(KeyReader& d, const BoundingBox& bounds, const LinearSolverS
   return nodes;
 }
 
-/// One discretisation.refinement box, clipped to the body; adds its node count to `nodes_total`.
-geometry::Refinement read_refinement(KeyReader& f, const BoundingBox& bounds,
+/// The corners' count of numbers: 3 where a solid's box gives z, else 2.
+int box_dimension(KeyReader& f, int dim) {
+  const YAML::Node b = f.raw("box");
+  return dim == 3 && b.IsSequence() && b.size() > 0 && b[0].IsSequence() && b[0].size() == 3 ? 3
+                                                                                             : 2;
+}
+
+/// One discretisation.refinement box, clipped to the body's section (a solid's range along z is
+/// checked against its depth by the solid's reader); adds its node count in the section to
+/// `nodes_total`.
+geometry::Refinement read_refinement(KeyReader& f, int dim, const BoundingBox& bounds,
                                      const LinearSolverSpec& solver, const DiscretisationSpec& s,
                                      double& nodes_total) {
   geometry::Refinement ref;
-  const Box b = read_box(f, "box", 2);
+  ref.along_z = box_dimension(f, dim) == 3;
+  const Box b = read_box(f, "box", ref.along_z ? 3 : 2);
   ref.box = BoundingBox{b.lo.head<2>(), b.hi.head<2>()};
+  ref.z_lo = b.lo.z();
+  ref.z_hi = b.hi.z();
   ref.spacing = f.positive("spacing");
   if (ref.spacing >= s.spacing)
     f.error("spacing", "a refinement must be finer than discretisation.spacing");
@@ -168,7 +180,7 @@ DiscretisationSpec read_discretisation(KeyReader& r, int dim, const BoundingBox&
   read_fem_options(d, dim, base_dir, s);
   double nodes_total = read_spacing(d, bounds, solver, s);
   for (KeyReader& f : d.map_list("refinement"))
-    s.refinement.push_back(read_refinement(f, bounds, solver, s, nodes_total));
+    s.refinement.push_back(read_refinement(f, dim, bounds, solver, s, nodes_total));
   require_memory(d.path_of("spacing"), "nodes over the body and its refinements", nodes_total,
                  bytes_per_node(solver, nodes_total));
   read_shape_functions(d, dim, s);

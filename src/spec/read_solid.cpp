@@ -209,6 +209,17 @@ void read_boundary(KeyReader& r, const ProblemSpec& p, SolidSpec& s) {
     r.error("boundary", "no displacement condition: the body is free to move as a rigid body");
 }
 
+/// The nodes a refinement box adds along its range of the depth, which it must meet.
+double refined_nodes(const geometry::Refinement& r, const SolidSpec& s, const std::string& key) {
+  const double lo = std::max(r.z_lo, s.z0), hi = std::min(r.z_hi, s.z0 + s.depth);
+  if (hi < lo)
+    fail(key, ": its range along z, [", r.z_lo, ", ", r.z_hi, "], misses the body's, [", s.z0, ", ",
+         s.z0 + s.depth, "]: it refines nothing");
+  const Vec2 extent = r.box.size();
+  return (extent.x() / r.spacing + 1.0) * (extent.y() / r.spacing + 1.0) *
+         ((hi - lo) / (r.along_z ? r.spacing : s.discretisation.spacing) + 1.0);
+}
+
 /// The 3D discretisation: meshfree reproducing kernels or bricks; the plane node count times the
 /// layers along z (four times that for 20-node bricks: a corner and three edge midpoints per
 /// lattice point) checked against the memory.
@@ -241,9 +252,10 @@ void read_solid_discretisation(KeyReader& r, const ProblemSpec& p, const std::st
     fail(key, ".spacing: ", d.spacing, " exceeds the body's depth along z (", s.depth, ")");
   const Vec2 size = p.domain.bounds().size();
   const bool bricks = d.method == Method::Fem;
-  const double nodes = (bricks && d.fem.element == "hex20" ? 4.0 : 1.0) *
-                       (size.x() / d.spacing + 1.0) * (size.y() / d.spacing + 1.0) *
-                       (s.depth / d.spacing + 1.0);
+  double nodes = (bricks && d.fem.element == "hex20" ? 4.0 : 1.0) * (size.x() / d.spacing + 1.0) *
+                 (size.y() / d.spacing + 1.0) * (s.depth / d.spacing + 1.0);
+  for (std::size_t i = 0; i < d.refinement.size(); ++i)
+    nodes += refined_nodes(d.refinement[i], s, detail::concat(key, ".refinement[", i, "].box"));
   require_memory(key + ".spacing", "nodes over the 3D body", nodes,
                  bytes_per::solid_node(bricks, s.linear_solver.multigrid_for(3.0 * nodes)));
 }

@@ -209,6 +209,9 @@ expect_error "discretisation.adapt.pilot_increments: there are no pilot solves w
 expect_error "output.checkpoint_every: a run whose cloud is refined during the analysis (discretisation.adapt.every) writes no checkpoints: 0 or leave it out" "$ROOT/problems/cook_membrane.yaml" --set discretisation.adapt.every=2 --set output.checkpoint_every=1
 expect_error "stages[0].discretisation.adapt: a stage's cloud is not adapted" "$ROOT/problems/staged_strip_blast.yaml" --set stages.0.discretisation.adapt.every=2
 expect_error "discretisation.refinement[0].box: lies outside the body" "$P" --set 'discretisation.refinement=[{box: [[5, 5], [6, 6]], spacing: 0.02}]'
+# A solid's refinement box gives z or spans the depth; a range along z off the body refines nothing.
+expect_error "discretisation.refinement[0].box: its range along z, [5, 6], misses the body's, [0, 2]: it refines nothing" "$ROOT/problems/block_uniaxial_3d.yaml" --set 'discretisation.refinement=[{box: [[0, 0, 5], [1, 1, 6]], spacing: 0.1}]'
+expect_error "discretisation.refinement[0].box[0]: expected a list of 2 numbers, got [0, 0, 0]" "$P" --set 'discretisation.refinement=[{box: [[0, 0, 0], [1, 1, 1]], spacing: 0.02}]'
 # A refinement box reaching far outside the body is clipped to it (node generation walked it whole).
 if timeout 20 "$MF" check "$P" --set 'discretisation.refinement=[{box: [[-1e9, -1e9], [1e9, 1e9]], spacing: 0.02}]' >/dev/null 2>&1; then
   echo "ok: a refinement box far outside the body is clipped"

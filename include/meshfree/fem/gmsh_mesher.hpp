@@ -13,7 +13,7 @@ namespace mf::fem::gmsh_mesher {
 struct Request {
   std::vector<double> polygon; // x0, y0, x1, y1, ...: the outline, counter-clockwise
   std::vector<double> holes;   // cx, cy, r of each hole
-  std::vector<double> boxes;   // x0, y0, x1, y1, element size of each refinement box
+  std::vector<double> boxes;   // x0, y0, x1, y1, z0, z1, element size of each refinement box
   double size = 0.0;           // element size elsewhere
   // gmsh's type of the elements wanted: 2 (T3), 3 (Q4), 16 (Q8) of the plane body, or 4 (tet4),
   // 11 (tet10) of the prism that extrudes it from z = z0 by `depth` along z.

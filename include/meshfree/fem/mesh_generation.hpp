@@ -25,7 +25,7 @@ Mesh mesh_domain(const geometry::Domain& domain, double size,
 
 /// Meshes the prism (its section extruded from z0 by its depth along z, minus its spheres'
 /// balls: OpenCASCADE's boolean cut) with Delaunay tetrahedra of size `size`
-/// (`refinement[i].spacing` inside the i-th box, through the whole depth): 4-node, or 10-node
+/// (`refinement[i].spacing` inside the i-th box, over its range of the depth): 4-node, or 10-node
 /// ones whose mid-edge nodes on the boundary lie on the geometry (on the cylinder of a hole, on
 /// a sphere). Nodes numbered in the order the elements name them, every element positively
 /// oriented. Error with gmsh's reason if gmsh cannot mesh the body.

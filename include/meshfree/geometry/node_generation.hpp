@@ -10,6 +10,10 @@ namespace mf::geometry {
 struct Refinement {
   BoundingBox box;
   double spacing = 0.0;
+  // In a prism (implicit/prism_levels): a box given in 3D refines along z too, over its range
+  // [z_lo, z_hi]; one given in the plane refines the section through the whole depth.
+  bool along_z = false;
+  double z_lo = -1e300, z_hi = 1e300;
 };
 
 struct NodeCloud {

@@ -1,6 +1,8 @@
 #pragma once
 // Finite elements of a prism: the plane body's Q4 or Q8 mesh (the mesh a plane FE run makes of
-// the same geometry) extruded in layers along z into 8-node or 20-node serendipity bricks
+// the same geometry, refinement boxes in its plane) extruded in layers along z (the base layers
+// and, over a refinement box's range, the box's: implicit/prism_levels; an extruded mesh refines
+// along z through the whole section) into 8-node or 20-node serendipity bricks
 // (Zienkiewicz & Taylor, The Finite Element Method, vol. 1, 6th ed., sec. 6.5). Every point of a
 // brick is given by its plane element's natural (xi, eta), its layer and zeta in [-1, 1]; the
 // brick's shape functions and physical gradients there come in the compressed rows of
@@ -10,6 +12,7 @@
 #include "meshfree/core/types.hpp"
 #include "meshfree/fem/mesh.hpp"
 #include "meshfree/geometry/prism.hpp"
+#include "meshfree/implicit/prism_levels.hpp"
 #include "meshfree/implicit/solid_fe.hpp"
 #include <optional>
 #include <string>
@@ -19,12 +22,14 @@ namespace mf::implicit {
 
 class ExtrudedMesh final : public SolidElements {
 public:
-  /// The plane mesh (Q4 or Q8) in round(depth / spacing) layers of the prism.
-  ExtrudedMesh(fem::Mesh plane, const geometry::Prism& body, double spacing);
+  /// The plane mesh (Q4 or Q8) in the prism's layers for nodes `spacing` apart with the
+  /// refinement boxes.
+  ExtrudedMesh(fem::Mesh plane, const geometry::Prism& body, double spacing,
+               const std::vector<geometry::Refinement>& refinement);
 
   int node_count() const override { return static_cast<int>(x_.size()); }
   const std::vector<Vec3>& nodes() const override { return x_; }
-  int element_count() const override { return plane_.element_count() * layers_; }
+  int element_count() const override { return plane_.element_count() * layer_count(); }
   int nodes_per_element() const override { return serendipity() ? 20 : 8; }
   const char* name() const override { return serendipity() ? "hex20" : "hex8"; }
   std::string summary() const override;
@@ -47,10 +52,11 @@ private:
   void add_point(int e, int l, const Vec3& xi, double w, int face, bool gradients,
                  ElementPoints& out) const;
 
+  int layer_count() const { return static_cast<int>(layers_.size()); }
+
   fem::Mesh plane_;
   geometry::Prism body_;
-  int layers_ = 1;
-  double dz_ = 1.0;
+  std::vector<Slab> layers_;
   std::vector<int> corner_index_; // plane node -> its vertical mid-edge column (Q8), or -1
   int corners_ = 0;
   std::vector<Vec3> x_;

@@ -1,11 +1,13 @@
 #pragma once
 // Nodes and integration points of a prism (geometry::Prism), built from those of its plane
-// section: the plane node cloud in layers along z, the plane background cells' Gauss points
-// times a Gauss rule along z (so the plane quadrature's exact cut cells of holes carry over to
-// the cylindrical holes), and face points: a side face is its boundary piece's Gauss points times
-// the rule along z, an end the plane body's points at z0 or z0 + depth.
+// section: the plane node cloud on levels along z, the plane background cells' Gauss points
+// times a Gauss rule along z in each slab between levels (so the plane quadrature's exact cut
+// cells of holes carry over to the cylindrical holes), and face points: a side face is its
+// boundary piece's Gauss points times the rule along z, an end the plane body's points at z0 or
+// z0 + depth. Refinement boxes refine along z too (implicit/prism_levels).
 #include "meshfree/core/types.hpp"
 #include "meshfree/geometry/prism.hpp"
+#include "meshfree/implicit/prism_levels.hpp"
 #include "meshfree/spec/galerkin_spec.hpp"
 #include "meshfree/spec/region_spec.hpp"
 #include <optional>
@@ -29,10 +31,12 @@ struct SolidPoints {
   std::vector<int> cell;
 };
 
-/// Layers along z: round(depth / spacing) intervals, at least one.
-int layer_count(const geometry::Prism& body, double spacing);
+/// The heights of the node levels: the base layers and each refinement box's.
+std::vector<MergedLevel> node_levels(const geometry::Prism& body,
+                                     const spec::DiscretisationSpec& d);
 
-/// The plane section's node cloud (discretisation spacing and refinement boxes) at each layer.
+/// The plane section's node cloud (discretisation spacing, and the refinement boxes whose range
+/// holds the level) at each level, each node on the levels of its own spacing.
 SolidNodes prism_nodes(const geometry::Prism& body, const spec::DiscretisationSpec& d);
 
 /// Gauss points of the body: the plane background cells' points (cell size, order, cut levels

@@ -94,7 +94,7 @@ TEST_CASE("face boxes: finite elements take boxes on element borders and refuse 
     d.method = spec::Method::Fem;
     d.fem.element = element;
     d.spacing = d.cell_size = 1.0;
-    const implicit::ExtrudedMesh fe(implicit::plane_fe_mesh(d, block.section), block, 1.0);
+    const implicit::ExtrudedMesh fe(implicit::plane_fe_mesh(d, block.section), block, 1.0, {});
     double sum = 0.0;
     for (double w : fe.face_points({"top"}, 2, box({3, 9.5, 3}, {7, 11, 7})).points.weight)
       sum += w;
