@@ -177,12 +177,20 @@ ElementPoints ExtrudedMesh::shapes_at(const std::vector<Vec3>& x, bool gradients
     Vec2 xi;
     MF_REQUIRE(locator.locate(p.head<2>(), e, xi), "no element holds the point (", p.x(), ", ",
                p.y(), ", ", p.z(), ")");
-    // The layer that holds z (the first or last past the ends), and z's place across it.
+    // The layer that holds z (the first or last past the ends), and z's place t across it; on
+    // a level between two layers, the one whose t rounds into [0, 1) (the upper but at the top).
     const auto above = std::upper_bound(layers_.begin(), layers_.end(), p.z(),
                                         [](double z, const Slab& s) { return z < s.z(0.0); });
-    const int l = std::clamp(static_cast<int>(above - layers_.begin()) - 1, 0, layer_count() - 1);
-    const Level& lo = layers_[l].lo;
-    const double t = (p.z() - lo.origin) / lo.step - lo.index;
+    int l = std::clamp(static_cast<int>(above - layers_.begin()) - 1, 0, layer_count() - 1);
+    const auto across = [&](int k) {
+      const Level& lo = layers_[k].lo;
+      return (p.z() - lo.origin) / lo.step - lo.index;
+    };
+    double t = across(l);
+    if (t >= 1.0 && l + 1 < layer_count())
+      t = across(++l);
+    else if (t < 0.0 && l > 0)
+      t = across(--l);
     add_point(e, l, Vec3(xi.x(), xi.y(), 2.0 * t - 1.0), 1.0, -1, gradients, out);
   }
   return out;
