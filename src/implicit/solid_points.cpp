@@ -292,6 +292,42 @@ SolidPoints volume_points_with_spheres(const geometry::Prism& body,
 
 } // namespace
 
+namespace {
+
+/// The refinement boxes that refine the section's cloud at height z: every box given in the
+/// plane; one given in 3D on the levels of its range but at an end of it inside the body, where
+/// the coarser cloud stands (its supports reach the base layer beyond).
+std::vector<int> boxes_at(const geometry::Prism& body, const spec::DiscretisationSpec& d,
+                          const std::vector<Levels>& grids, double z, double tol) {
+  std::vector<int> boxes;
+  for (std::size_t i = 0; i + 1 < grids.size(); ++i) {
+    const Levels& g = grids[i + 1];
+    if (!d.refinement[i].along_z) {
+      boxes.push_back(static_cast<int>(i));
+      continue;
+    }
+    if (!g.spans(z, tol)) continue;
+    const bool inner_end = (z <= g.at.front().z() + tol && z > body.z0 + tol) ||
+                           (z >= g.at.back().z() - tol && z < body.z1() - tol);
+    if (!inner_end) boxes.push_back(static_cast<int>(i));
+  }
+  return boxes;
+}
+
+/// The grid whose levels a node of `spacing` stands on, among the base's and those of `boxes`:
+/// the finest at least as coarse as the node (a box given in the plane has no levels: its nodes
+/// stand on the base's).
+int own_grid(const std::vector<Levels>& grids, const std::vector<int>& boxes, double spacing) {
+  int own = 0;
+  for (int b : boxes)
+    if (!grids[b + 1].at.empty() && grids[b + 1].spacing >= spacing * (1.0 - 1e-9) &&
+        grids[b + 1].spacing < grids[own].spacing)
+      own = b + 1;
+  return own;
+}
+
+} // namespace
+
 std::vector<MergedLevel> node_levels(const geometry::Prism& body,
                                      const spec::DiscretisationSpec& d) {
   return merged_levels(prism_levels(body, d.spacing, d.refinement, 1.0, 0.0), 1e-9 * body.size());
@@ -305,18 +341,7 @@ SolidNodes prism_nodes(const geometry::Prism& body, const spec::DiscretisationSp
   // Level-major order: contiguous ranges of nodes are slabs, which keeps the partition over
   // ranks compact.
   for (const MergedLevel& level : merged_levels(grids, tol)) {
-    // A box given in the plane refines every level; one given in 3D the levels of its range
-    // but an end of it inside the body: the coarser cloud stands there, whose supports reach
-    // the base layer beyond.
-    std::vector<int> boxes;
-    for (std::size_t i = 0; i + 1 < grids.size(); ++i) {
-      const Levels& g = grids[i + 1];
-      const bool inner_end = g.spans(level.z, tol) &&
-                             ((level.z <= g.at.front().z() + tol && level.z > body.z0 + tol) ||
-                              (level.z >= g.at.back().z() - tol && level.z < body.z1() - tol));
-      if (!d.refinement[i].along_z || (g.spans(level.z, tol) && !inner_end))
-        boxes.push_back(static_cast<int>(i));
-    }
+    const std::vector<int> boxes = boxes_at(body, d, grids, level.z, tol);
     auto it = clouds.find(boxes);
     if (it == clouds.end())
       it = clouds
@@ -325,13 +350,7 @@ SolidNodes prism_nodes(const geometry::Prism& body, const spec::DiscretisationSp
                .first;
     const geometry::NodeCloud& plane = it->second;
     for (std::size_t i = 0; i < plane.x.size(); ++i) {
-      // The node's own layers: the finest of the grids here at least as coarse as it is (a
-      // box given in the plane has none: its nodes stand on the base layers).
-      int own = 0;
-      for (int b : boxes)
-        if (!grids[b + 1].at.empty() && grids[b + 1].spacing >= plane.spacing[i] * (1.0 - 1e-9) &&
-            grids[b + 1].spacing < grids[own].spacing)
-          own = b + 1;
+      const int own = own_grid(grids, boxes, plane.spacing[i]);
       const int k = level.index[own];
       if (k < 0) continue; // a level of finer layers than the node's
       const double below = grids[own].below(k), above = grids[own].above(k);
