@@ -213,3 +213,23 @@ TEST_CASE("prism levels: a box given in the plane refines the section on the bas
   CHECK(n.x.size() == 5 * plane.x.size());
   CHECK(implicit::node_levels(block(c.depth), discretisation(c)).size() == 5);
 }
+
+TEST_CASE("prism levels: a 3D box at a spherical cavity", "[solid3d][levels][sphere]") {
+  // The octant cavity (a ball of radius 1 at a corner of a cube of 2.5), a box of 0.125 given in
+  // 3D around the cavity's reach: the volume within the cut cells' error (2 levels: 2.6e-7 on
+  // the plain cloud), nodes on the sphere, and linear reproduction at every volume point.
+  const geometry::Prism body{geometry::Domain::rectangle({0.0, 0.0}, {2.5, 2.5}),
+                             0.0,
+                             2.5,
+                             {geometry::Sphere{Vec3::Zero(), 1.0, "cavity"}}};
+  Case c{"a 3D box at the cavity", 2.5, 0.25, 0.25, {box({0.0, 0.0}, {1.5, 1.5}, 0.125, 0.0, 1.5)}};
+  spec::DiscretisationSpec d = discretisation(c);
+  d.cut_levels = 2;
+  const implicit::SolidPoints v = implicit::prism_volume_points(body, d);
+  double volume = 0.0;
+  for (double w : v.weight) volume += w;
+  CHECK(volume == Approx(2.5 * 2.5 * 2.5 - M_PI / 6.0).epsilon(1e-5));
+  const implicit::SolidNodes n = implicit::prism_nodes(body, d);
+  for (const Vec3& x : n.x) REQUIRE(body.spheres[0].distance(x) > -1e-12);
+  CHECK(reproduction_error(n, d, v.x) < 1e-10);
+}
