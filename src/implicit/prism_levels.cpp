@@ -97,7 +97,8 @@ std::vector<Slab> prism_slabs(const geometry::Prism& body, double spacing, doubl
   for (std::size_t k = 0; k + 1 < levels.size(); ++k) {
     const MergedLevel &a = levels[k], &b = levels[k + 1];
     Slab s;
-    // A layer of one grid keeps that grid's form (the finest grid's where several share it).
+    // A layer of one grid keeps that grid's form (the last box's where several share it), so
+    // that a body without 3D boxes gets its points exactly where one loop over its layers did.
     s.lo = Level{a.z, b.z - a.z, 0};
     for (std::size_t g = 0; g < grids.size(); ++g)
       if (a.index[g] >= 0 && b.index[g] == a.index[g] + 1) s.lo = grids[g].at[a.index[g]];
