@@ -102,7 +102,6 @@ std::vector<Slab> prism_slabs(const geometry::Prism& body, double spacing, doubl
     s.lo = Level{a.z, b.z - a.z, 0};
     for (std::size_t g = 0; g < grids.size(); ++g)
       if (a.index[g] >= 0 && b.index[g] == a.index[g] + 1) s.lo = grids[g].at[a.index[g]];
-    s.thickness = s.lo.step;
     const double middle = s.z(0.5);
     for (std::size_t i = 0; i < refinement.size(); ++i)
       if (!refinement[i].along_z || grids[i + 1].spans(middle, tol))

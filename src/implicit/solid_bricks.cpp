@@ -117,7 +117,7 @@ void ExtrudedMesh::add_point(int e, int l, const Vec3& xi, double w, int face, b
     J.col(0) += dN2[a].x() * plane_.x[pn[a]];
     J.col(1) += dN2[a].y() * plane_.x[pn[a]];
   }
-  const double dz = layers_[l].thickness;
+  const double dz = layers_[l].thickness();
   const double z = layers_[l].z(0.5 * (1.0 + xi.z()));
   Vec3 normal = Vec3::Zero();
   double measure = J.determinant() * 0.5 * dz;

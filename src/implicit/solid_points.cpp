@@ -64,10 +64,7 @@ std::vector<Slab> slabs_in(const std::vector<Slab>& slabs, const Span& span, dou
     const double z0 = std::max(s.z(0.0), span.z0), z1 = std::min(s.z(1.0), span.z1);
     if (z1 - z0 <= tol) continue;
     out.push_back(s);
-    if (z0 > s.z(0.0) + tol || z1 < s.z(1.0) - tol) {
-      out.back().lo = Level{z0, z1 - z0, 0};
-      out.back().thickness = z1 - z0;
-    }
+    if (z0 > s.z(0.0) + tol || z1 < s.z(1.0) - tol) out.back().lo = Level{z0, z1 - z0, 0};
   }
   return out;
 }
@@ -211,7 +208,7 @@ void side_points(const spec::DiscretisationSpec& d, const std::vector<geometry::
                .first;
     const quadrature::BoundaryPoints& edge = it->second;
     for (std::size_t q = 0; q < g.points.size(); ++q) {
-      const double z = slab.z(0.5 * (g.points[q] + 1.0)), wz = 0.5 * slab.thickness * g.weights[q];
+      const double z = slab.z(0.5 * (g.points[q] + 1.0)), wz = 0.5 * slab.thickness() * g.weights[q];
       for (std::size_t k = 0; k < edge.x.size(); ++k)
         add(Vec3(edge.x[k].x(), edge.x[k].y(), z), edge.weight[k] * wz,
             Vec3(edge.normal[k].x(), edge.normal[k].y(), 0.0));
@@ -266,7 +263,7 @@ SolidPoints volume_points_with_spheres(const geometry::Prism& body,
     std::vector<BoundingBox> cells(plane.cell_count, BoundingBox{Vec2::Zero(), Vec2::Zero()});
     for (std::size_t k = 0; k < plane.x.size(); ++k)
       cells[plane.cell[k]] = plane_cell(body.section, d.cell_size, plane.cell[k], plane.x[k]);
-    const double z0 = slab.z(0.0), dz = slab.thickness;
+    const double z0 = slab.z(0.0), dz = slab.thickness();
     std::vector<char> touched(cells.size(), 0);
     for (std::size_t c = 0; c < cells.size(); ++c) {
       const Vec3 lo(cells[c].lo.x(), cells[c].lo.y(), z0),
@@ -373,7 +370,7 @@ SolidPoints prism_volume_points(const geometry::Prism& body, const spec::Discret
   for (const Slab& slab : slabs) {
     const quadrature::DomainPoints& plane = section.in(slab);
     for (std::size_t q = 0; q < g.points.size(); ++q) {
-      const double z = slab.z(0.5 * (g.points[q] + 1.0)), wz = 0.5 * slab.thickness * g.weights[q];
+      const double z = slab.z(0.5 * (g.points[q] + 1.0)), wz = 0.5 * slab.thickness() * g.weights[q];
       for (std::size_t k = 0; k < plane.x.size(); ++k) {
         p.x.emplace_back(plane.x[k].x(), plane.x[k].y(), z);
         p.weight.push_back(plane.weight[k] * wz);

@@ -58,8 +58,8 @@ std::vector<MergedLevel> merged_levels(const std::vector<Levels>& grids, double 
 /// it.
 struct Slab {
   Level lo;               // its lower level; its upper is lo with index + 1
-  double thickness;       // lo.step
   std::vector<int> boxes; // indices of the refinement boxes that refine it
+  double thickness() const { return lo.step; }
   /// The height at t in [0, 1] across the slab.
   double z(double t) const { return lo.origin + (lo.index + t) * lo.step; }
 };
