@@ -198,12 +198,53 @@ PlacedNodes boundary_nodes(const Domain& domain, double spacing, const Vec2& bas
   return bnd;
 }
 
+/// True if a lattice of steps `step` from `anchor`, laid over `extent`, has a row along axis d
+/// strictly between a and b.
+bool has_row_between(double a, double b, int d, const Vec2& anchor, const Vec2& step,
+                     const BoundingBox& extent) {
+  const double lo = std::max(a, extent.lo[d]), hi = std::min(b, extent.hi[d]);
+  const double tol = 1e-9 * step[d];
+  const double first = std::floor((lo - anchor[d]) / step[d] + 1e-9) + 1.0;
+  return lo < hi && anchor[d] + first * step[d] < hi - tol;
+}
+
+/// The boxes over which the refinement lattices are laid: each box as given, but taken on to the
+/// body's bounding edge on a side where no row of a coarser lattice can stand between it and that
+/// edge (clear of the box by half its spacing, of the edge by kBoundaryGap of its own). Left
+/// there, the strip beyond the box's outer row would hold the boundary's own nodes alone, a line
+/// on which a linear basis is undefined wherever the box's supports do not reach.
+std::vector<Refinement> lattice_extents(const BoundingBox& bb, double spacing,
+                                        const Vec2& base_step,
+                                        const std::vector<Refinement>& refinements) {
+  std::vector<Refinement> out = refinements;
+  for (Refinement& r : out)
+    for (int d = 0; d < 2; ++d)
+      for (const bool upper : {false, true}) {
+        const double edge = upper ? bb.hi[d] : bb.lo[d];
+        const double side = upper ? r.box.hi[d] : r.box.lo[d];
+        const double sign = upper ? 1.0 : -1.0;
+        if (sign * (edge - side) <= 0.0) continue;
+        const auto coarser_row = [&](const Vec2& step, double h, const BoundingBox& extent) {
+          const double near = side + sign * 0.5 * r.spacing, far = edge - sign * kBoundaryGap * h;
+          return has_row_between(std::min(near, far), std::max(near, far), d, bb.lo, step, extent);
+        };
+        bool row = coarser_row(base_step, spacing, bb);
+        for (const Refinement& m : refinements)
+          if (m.spacing > r.spacing)
+            row = row || coarser_row(Vec2(m.spacing, m.spacing), m.spacing, m.box);
+        if (!row) (upper ? r.box.hi[d] : r.box.lo[d]) = edge;
+      }
+  return out;
+}
+
 /// Interior lattices: the base spacing fitted to the bounding box, so that its first and last
-/// rows land on the edges; each refinement box the lattice of its spacing from the same corner.
-/// Nodes a sliver from the boundary or from a finer box are left out.
+/// rows land on the edges; each refinement box the lattice of its spacing from the same corner,
+/// laid over its `lattice_extents`. Nodes a sliver from the boundary or from a finer box are
+/// left out.
 PlacedNodes lattice_nodes(const Domain& domain, double spacing, const Vec2& base_step,
-                          const std::vector<Refinement>& refinements) {
+                          const std::vector<Refinement>& given) {
   const BoundingBox bb = domain.bounds();
+  const std::vector<Refinement> refinements = lattice_extents(bb, spacing, base_step, given);
   PlacedNodes lat;
   auto clear_of_boundary = [&](const Vec2& p, double h) {
     return domain.contains(p) && distance_to_boundary(domain, p) >= kBoundaryGap * h;

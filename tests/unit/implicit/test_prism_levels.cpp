@@ -1,11 +1,12 @@
 // Refinement boxes along z in a meshfree prism (implicit/prism_levels, solid_points): a table of
 // the boxes a user writes first (through the whole depth, a range inside it, one at a face, one
-// of no thickness, two that overlap, spacings that do not divide the depth or each other), on a
-// block and on a plate with a hole. For each: the volume points integrate the body's volume and
-// first moments exactly, the cells of the cell-mean strain are numbered apart, every face's area
-// is exact, the shape functions exist at every volume point and reproduce a linear field, and the
-// nodes stand where the levels say (refined nodes on their box's layers with supports of their
-// own spacing, the others on the base layers).
+// of no thickness, two that overlap, one that stops a sliver short of the section's edge,
+// spacings that do not divide the depth or each other), on a block and on a plate with a hole.
+// For each: the volume points integrate the body's volume and first moments exactly, the cells
+// of the cell-mean strain are numbered apart, every face's area is exact, the shape functions
+// exist at every volume point and reproduce a linear field, and the nodes stand where the levels
+// say (refined nodes on their box's layers with supports of their own spacing, the others on the
+// base layers).
 #include "meshfree/implicit/prism_levels.hpp"
 #include "meshfree/implicit/solid_points.hpp"
 #include "meshfree/implicit/solid_space.hpp"
@@ -71,6 +72,16 @@ std::vector<Case> cases() {
        0.125,
        0.125,
        {box({0.0, 0.0}, {1.0, 0.75}, 0.04, 0.2, 0.26), box({0.45, 0.25}, {0.75, 0.5}, 0.07)}},
+      {"a box in the plane that stops a sliver short of the section's edge",
+       0.5,
+       0.125,
+       0.125,
+       {box({0.0, 0.0}, {1.0, 0.61}, 0.05)}},
+      {"a 3D box that stops a sliver short of the section's edge",
+       0.5,
+       0.125,
+       0.125,
+       {box({0.0, 0.0}, {0.86, 0.61}, 0.05, 0.1, 0.3)}},
       {"two 3D boxes, one inside the other",
        0.5,
        0.125,
