@@ -28,7 +28,17 @@ bool volume(const Request& q) {
   return q.element_type == 4 || q.element_type == 11;
 }
 
-/// The body as OpenCASCADE entities: the polygon as a surface, cut by the holes (a hole may
+/// The plane surface inside the polygon of n vertices xy (x0, y0, x1, y1, ...) at height z.
+int plane_polygon(const double* xy, std::size_t n, double z) {
+  namespace occ = gmsh::model::occ;
+  std::vector<int> points, lines;
+  for (std::size_t i = 0; i < n; ++i) points.push_back(occ::addPoint(xy[2 * i], xy[2 * i + 1], z));
+  for (std::size_t i = 0; i < n; ++i) lines.push_back(occ::addLine(points[i], points[(i + 1) % n]));
+  return occ::addPlaneSurface({occ::addCurveLoop(lines)});
+}
+
+/// The body as OpenCASCADE entities: the polygon as a surface, cut by the holes (discs and
+/// polygons; a hole may
 /// cross the outline, as the quarter models' holes at a corner do), at z = z0; for tetrahedra
 /// that surface extruded by `depth` along z into a volume, and the spheres' balls cut from it
 /// (a ball may cross the prism's faces, as an octant model's cavity at a corner does).
@@ -36,17 +46,18 @@ void build_body(const Request& q) {
   namespace occ = gmsh::model::occ;
   const double z = volume(q) ? q.z0 : 0.0;
   const std::size_t n = q.polygon.size() / 2;
-  std::vector<int> points, lines;
-  for (std::size_t i = 0; i < n; ++i)
-    points.push_back(occ::addPoint(q.polygon[2 * i], q.polygon[2 * i + 1], z));
-  for (std::size_t i = 0; i < n; ++i) lines.push_back(occ::addLine(points[i], points[(i + 1) % n]));
-  gmsh::vectorpair body{{2, occ::addPlaneSurface({occ::addCurveLoop(lines)})}};
-  if (!q.holes.empty()) {
+  gmsh::vectorpair body{{2, plane_polygon(q.polygon.data(), n, z)}};
+  if (!q.holes.empty() || !q.polygon_hole_sizes.empty()) {
     gmsh::vectorpair holes, out;
     std::vector<gmsh::vectorpair> map;
     for (std::size_t h = 0; h + 2 < q.holes.size(); h += 3)
       holes.push_back(
           {2, occ::addDisk(q.holes[h], q.holes[h + 1], z, q.holes[h + 2], q.holes[h + 2])});
+    std::size_t first = 0;
+    for (const int size : q.polygon_hole_sizes) {
+      holes.push_back({2, plane_polygon(q.polygon_holes.data() + 2 * first, size, z)});
+      first += static_cast<std::size_t>(size);
+    }
     occ::cut(body, holes, out, map);
     body = out;
   }

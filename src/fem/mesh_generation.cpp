@@ -52,6 +52,22 @@ gmsh_mesher::Request request(const geometry::Domain& domain, double size,
   for (const Vec2& p : domain.vertices()) q.polygon.insert(q.polygon.end(), {p.x(), p.y()});
   for (const geometry::Circle& c : domain.holes())
     q.holes.insert(q.holes.end(), {c.center.x(), c.center.y(), c.radius});
+  const auto add_polygon = [&](const std::vector<Vec2>& v) {
+    for (const Vec2& p : v) q.polygon_holes.insert(q.polygon_holes.end(), {p.x(), p.y()});
+    q.polygon_hole_sizes.push_back(static_cast<int>(v.size()));
+  };
+  for (const geometry::OutlineHole& h : domain.outline_holes()) {
+    if (h.kind == geometry::OutlineHole::Kind::Polygon) {
+      add_polygon(h.vertices);
+      continue;
+    }
+    // A slot: the rectangle between its ends' centres, and a disc at each end.
+    for (const Vec2& c : {h.a, h.b}) q.holes.insert(q.holes.end(), {c.x(), c.y(), h.half_width});
+    const Vec2 d = h.b - h.a;
+    if (d.norm() == 0.0) continue;
+    const Vec2 n = h.half_width * Vec2(-d.y(), d.x()) / d.norm();
+    add_polygon({h.a - n, h.b - n, h.b + n, h.a + n});
+  }
   for (const geometry::Refinement& r : refinement)
     q.boxes.insert(q.boxes.end(), {r.box.lo.x(), r.box.lo.y(), r.box.hi.x(), r.box.hi.y(), r.z_lo,
                                    r.z_hi, r.spacing});

@@ -141,13 +141,17 @@ private:
   long flip_budget_ = 0;
 };
 
-/// True where the point p of the edge a-b is in the body, or, a and b on a hole's circle (a
-/// chord of it), no nearer its centre than the chord's midpoint.
+/// True where the point p of the edge a-b is in the body, or, a and b on a hole's circle or a
+/// slot's round end (a chord of it), no nearer its centre than the chord's midpoint.
 bool in_body_or_chord(const Domain& domain, const Vec2& a, const Vec2& b, const Vec2& p,
                       double tol) {
   if (domain.contains(p)) return true;
   if (!domain.within_outline(p)) return false;
-  for (const Circle& h : domain.holes()) {
+  std::vector<Circle> circles = domain.holes(); // and the round ends of slots
+  for (const OutlineHole& h : domain.outline_holes())
+    if (h.kind == OutlineHole::Kind::Slot)
+      circles.insert(circles.end(), {{h.a, h.half_width, h.name}, {h.b, h.half_width, h.name}});
+  for (const Circle& h : circles) {
     const bool chord = std::abs((a - h.center).norm() - h.radius) <= tol &&
                        std::abs((b - h.center).norm() - h.radius) <= tol;
     const double midpoint =

@@ -58,6 +58,25 @@ double segment_parameter(const Curve& c, const Vec2& p) {
 
 } // namespace
 
+namespace {
+
+/// Appends the heights at which the vertical line through x crosses curve c.
+void vertical_crossings(const Curve& c, double x, std::vector<double>& ys) {
+  if (c.kind == Curve::Kind::Segment) {
+    if ((c.a.x() - x) * (c.b.x() - x) < 0.0)
+      ys.push_back(c.a.y() + (x - c.a.x()) / (c.b.x() - c.a.x()) * (c.b.y() - c.a.y()));
+    else if (c.a.x() == x)
+      ys.push_back(c.a.y());
+    return;
+  }
+  const double dx = x - c.center.x(), r2 = c.radius * c.radius - dx * dx;
+  if (r2 < 0.0) return;
+  for (const double y : {c.center.y() - std::sqrt(r2), c.center.y() + std::sqrt(r2)})
+    if (within_sweep(c, Vec2(x, y))) ys.push_back(y);
+}
+
+} // namespace
+
 double Curve::distance_to(const Vec2& p) const {
   if (kind == Kind::Segment) return (p - point(segment_parameter(*this, p))).norm();
   if (within_sweep(*this, p)) return std::abs((p - center).norm() - radius);
@@ -105,7 +124,38 @@ Domain Domain::polygon(std::vector<Vec2> vertices, std::vector<std::string> edge
 void Domain::add_hole(const Circle& hole) {
   MF_REQUIRE(hole.radius > 0.0, "hole radius must be positive, got ", hole.radius);
   holes_.push_back(hole);
-  if (holes_.back().name.empty()) holes_.back().name = "hole" + std::to_string(holes_.size() - 1);
+  if (holes_.back().name.empty())
+    holes_.back().name = "hole" + std::to_string(holes_.size() + outline_holes_.size() - 1);
+}
+
+void Domain::add_hole(const OutlineHole& hole) {
+  outline_holes_.push_back(hole);
+  if (outline_holes_.back().name.empty())
+    outline_holes_.back().name = "hole" + std::to_string(holes_.size() + outline_holes_.size() - 1);
+}
+
+void Domain::add_holes_of(const Domain& other) {
+  for (const Circle& h : other.holes_) add_hole(h);
+  for (const OutlineHole& h : other.outline_holes_) add_hole(h);
+}
+
+double Domain::distance_to_boundary(const Vec2& p) const {
+  double d = distance_to_outline(p);
+  for (const Circle& c : holes_) d = std::min(d, std::abs((p - c.center).norm() - c.radius));
+  for (const OutlineHole& h : outline_holes_) d = std::min(d, h.distance_to(p));
+  return d;
+}
+
+void Domain::hole_crossings(double x, std::vector<double>& ys) const {
+  for (const Circle& h : holes_) {
+    const double dx = x - h.center.x();
+    if (std::abs(dx) >= h.radius) continue;
+    const double half = std::sqrt(h.radius * h.radius - dx * dx);
+    ys.push_back(h.center.y() - half);
+    ys.push_back(h.center.y() + half);
+  }
+  for (const OutlineHole& h : outline_holes_)
+    for (const Curve& c : h.loop()) vertical_crossings(c, x, ys);
 }
 
 std::vector<std::string> Domain::names_selected(const std::string& name) const {
@@ -152,12 +202,12 @@ double signed_area(const std::vector<Vec2>& vertices) {
   return 0.5 * area2;
 }
 
-bool Domain::inside_polygon(const Vec2& p) const {
+bool inside_polygon(const std::vector<Vec2>& vertices, const Vec2& p) {
   bool inside = false; // even-odd crossing rule
-  const std::size_t n = vertices_.size();
+  const std::size_t n = vertices.size();
   for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-    const Vec2& vi = vertices_[i];
-    const Vec2& vj = vertices_[j];
+    const Vec2& vi = vertices[i];
+    const Vec2& vj = vertices[j];
     if ((vi.y() > p.y()) != (vj.y() > p.y()) &&
         p.x() < (vj.x() - vi.x()) * (p.y() - vi.y()) / (vj.y() - vi.y()) + vi.x())
       inside = !inside;
@@ -165,16 +215,147 @@ bool Domain::inside_polygon(const Vec2& p) const {
   return inside;
 }
 
-double Domain::distance_to_outline(const Vec2& p) const {
+bool Domain::inside_polygon(const Vec2& p) const {
+  return geometry::inside_polygon(vertices_, p);
+}
+
+namespace {
+
+/// The distance from p to the closed polygon through `vertices`.
+double distance_to_polygon(const std::vector<Vec2>& vertices, const Vec2& p) {
   double d = std::numeric_limits<double>::max();
-  const std::size_t n = vertices_.size();
+  const std::size_t n = vertices.size();
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec2& a = vertices_[i];
-    const Vec2 ab = vertices_[(i + 1) % n] - a;
+    const Vec2& a = vertices[i];
+    const Vec2 ab = vertices[(i + 1) % n] - a;
     const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
     d = std::min(d, (a + t * ab - p).norm());
   }
   return d;
+}
+
+/// The distance from p to the segment a-b.
+double distance_to_segment(const Vec2& a, const Vec2& b, const Vec2& p) {
+  const Vec2 ab = b - a;
+  const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+  return (a + t * ab - p).norm();
+}
+
+/// True where the segments p-q and r-s share a point.
+bool segments_meet(const Vec2& p, const Vec2& q, const Vec2& r, const Vec2& s) {
+  const auto cross = [](const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); };
+  const double d1 = cross(q - p, r - p), d2 = cross(q - p, s - p);
+  const double d3 = cross(s - r, p - r), d4 = cross(s - r, q - r);
+  if (((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 && d4 != 0)
+    return true;
+  const auto on = [&](const Vec2& a, const Vec2& b, const Vec2& x, double c) {
+    return c == 0.0 && x.x() >= std::min(a.x(), b.x()) && x.x() <= std::max(a.x(), b.x()) &&
+           x.y() >= std::min(a.y(), b.y()) && x.y() <= std::max(a.y(), b.y());
+  };
+  return on(p, q, r, d1) || on(p, q, s, d2) || on(r, s, p, d3) || on(r, s, q, d4);
+}
+
+} // namespace
+
+double Domain::distance_to_outline(const Vec2& p) const {
+  return distance_to_polygon(vertices_, p);
+}
+
+OutlineHole OutlineHole::polygon(std::vector<Vec2> vertices, std::string name) {
+  const std::size_t n = vertices.size();
+  MF_REQUIRE(n >= 3, "a polygon hole needs at least 3 vertices, got ", n);
+  const double area = signed_area(vertices);
+  MF_REQUIRE(std::abs(area) > 0.0, "the polygon hole has zero area");
+  if (area < 0.0) std::reverse(vertices.begin(), vertices.end());
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 2; j < n; ++j) {
+      if (i == 0 && j == n - 1) continue; // adjacent through the closing edge
+      MF_REQUIRE(!segments_meet(vertices[i], vertices[i + 1], vertices[j], vertices[(j + 1) % n]),
+                 "the polygon hole's edges ", i, " and ", j,
+                 " cross: its outline must not cross "
+                 "itself");
+    }
+  OutlineHole h;
+  h.kind = Kind::Polygon;
+  h.vertices = std::move(vertices);
+  h.name = std::move(name);
+  return h;
+}
+
+OutlineHole OutlineHole::slot(const Vec2& a, const Vec2& b, double half_width, std::string name) {
+  MF_REQUIRE(half_width > 0.0, "a slot's width must be positive, got ", 2.0 * half_width);
+  OutlineHole h;
+  h.kind = Kind::Slot;
+  h.a = a;
+  h.b = b;
+  h.half_width = half_width;
+  h.name = std::move(name);
+  return h;
+}
+
+bool OutlineHole::contains(const Vec2& p, double tol) const {
+  if (kind == Kind::Slot) return distance_to_segment(a, b, p) < half_width - tol;
+  return inside_polygon(vertices, p) && distance_to_polygon(vertices, p) > tol;
+}
+
+double OutlineHole::distance_to(const Vec2& p) const {
+  if (kind == Kind::Slot) return std::abs(distance_to_segment(a, b, p) - half_width);
+  return distance_to_polygon(vertices, p);
+}
+
+std::vector<Curve> OutlineHole::loop() const {
+  std::vector<Curve> out;
+  const auto segment = [&](const Vec2& from, const Vec2& to) {
+    Curve c;
+    c.name = name;
+    c.a = from;
+    c.b = to;
+    out.push_back(c);
+  };
+  if (kind == Kind::Polygon) { // clockwise: each edge backwards, the hole on its right
+    for (std::size_t i = vertices.size(); i-- > 0;)
+      segment(vertices[(i + 1) % vertices.size()], vertices[i]);
+    return out;
+  }
+  const double pi = std::acos(-1.0);
+  const Vec2 d = b - a;
+  const double length = d.norm();
+  // The slot's axis, and its side normal n: along +n the side runs from a to b, then the end
+  // round b clockwise from +n to -n, the other side back, the end round a.
+  const Vec2 u = length > 0.0 ? Vec2(d / length) : Vec2(1.0, 0.0);
+  const Vec2 n(-u.y(), u.x());
+  const double at_n = std::atan2(n.y(), n.x());
+  const auto arc = [&](const Vec2& centre, double from) {
+    Curve c;
+    c.kind = Curve::Kind::Arc;
+    c.name = name;
+    c.center = centre;
+    c.radius = half_width;
+    c.theta0 = from;
+    c.theta1 = from - pi;
+    out.push_back(c);
+  };
+  if (length > 0.0) segment(a + half_width * n, b + half_width * n);
+  arc(b, at_n);
+  if (length > 0.0) segment(b - half_width * n, a - half_width * n);
+  arc(a, at_n - pi);
+  return out;
+}
+
+BoundingBox OutlineHole::bounds() const {
+  if (kind == Kind::Slot) {
+    const Vec2 r(half_width, half_width);
+    return {a.cwiseMin(b) - r, a.cwiseMax(b) + r};
+  }
+  BoundingBox bb{vertices[0], vertices[0]};
+  for (const Vec2& v : vertices) bb.lo = bb.lo.cwiseMin(v), bb.hi = bb.hi.cwiseMax(v);
+  return bb;
+}
+
+double OutlineHole::area() const {
+  if (kind == Kind::Slot)
+    return 4.0 * half_width * (b - a).norm() / 2.0 + std::acos(-1.0) * half_width * half_width;
+  return signed_area(vertices);
 }
 
 bool Domain::within_outline(const Vec2& p, double tol) const {
@@ -186,6 +367,8 @@ bool Domain::contains(const Vec2& p, double tol) const {
   if (!within_outline(p, tol)) return false;
   for (const auto& h : holes_)
     if ((p - h.center).norm() < h.radius - abs_tol) return false;
+  for (const auto& h : outline_holes_)
+    if (h.contains(p, abs_tol)) return false;
   return true;
 }
 
@@ -225,9 +408,11 @@ kept_intervals(const Curve& curve, const std::function<bool(const Vec2&)>& keep)
 std::vector<Curve> Domain::boundary() const {
   std::vector<Curve> curves;
   const double tol = 1e-14;
-  auto outside_holes = [&](const Vec2& p, const Circle* except) {
+  auto outside_holes = [&](const Vec2& p, const void* except) {
     for (const auto& h : holes_)
       if (&h != except && (p - h.center).norm() < h.radius * (1.0 - tol)) return false;
+    for (const auto& h : outline_holes_)
+      if (&h != except && h.contains(p, tol * scale_)) return false;
     return true;
   };
   const std::size_t n = vertices_.size();
@@ -254,6 +439,11 @@ std::vector<Curve> Domain::boundary() const {
     };
     for (const auto& [t0, t1] : kept_intervals(c, keep)) curves.push_back(c.piece(t0, t1));
   }
+  for (const auto& h : outline_holes_)
+    for (const Curve& c : h.loop()) {
+      auto keep = [&](const Vec2& p) { return within_outline(p, tol) && outside_holes(p, &h); };
+      for (const auto& [t0, t1] : kept_intervals(c, keep)) curves.push_back(c.piece(t0, t1));
+    }
   // An arc cut at parameter 0/1 appears as two pieces meeting at theta = 0; that is harmless.
   return curves;
 }

@@ -108,14 +108,6 @@ bool on_lattice(const Vec2& p, const Vec2& anchor, double h) {
   return true;
 }
 
-/// Distance from a point of the body to its boundary: the outline or a hole's circle.
-double distance_to_boundary(const Domain& domain, const Vec2& p) {
-  double d = domain.distance_to_outline(p);
-  for (const Circle& c : domain.holes())
-    d = std::min(d, std::abs((p - c.center).norm() - c.radius));
-  return d;
-}
-
 /// True where p lies inside the union of the boxes finer than h: each of the four points a
 /// quarter of `finest` from p diagonally lies in one of them.
 bool inside_finer_union(const Vec2& p, double h, double finest,
@@ -247,7 +239,7 @@ PlacedNodes lattice_nodes(const Domain& domain, double spacing, const Vec2& base
   const std::vector<Refinement> refinements = lattice_extents(bb, spacing, base_step, given);
   PlacedNodes lat;
   auto clear_of_boundary = [&](const Vec2& p, double h) {
-    return domain.contains(p) && distance_to_boundary(domain, p) >= kBoundaryGap * h;
+    return domain.contains(p) && domain.distance_to_boundary(p) >= kBoundaryGap * h;
   };
   add_lattice(
       bb.lo, base_step, bb, spacing,

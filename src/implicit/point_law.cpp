@@ -82,8 +82,7 @@ Vec4 initial_stress_at(const spec::ProblemSpec& spec, const Vec2& x) {
   std::vector<double> ys{x.y(), top};
   for (const spec::MaterialRegion& mr : galerkin.material_regions)
     add_region_crossings(x.x(), mr.region, ys);
-  for (const geometry::Circle& h : spec.domain.holes())
-    add_circle_crossings(x.x(), h.center, h.radius, ys);
+  spec.domain.hole_crossings(x.x(), ys);
   const std::vector<Vec2>& v = spec.domain.vertices();
   for (std::size_t i = 0; i < v.size(); ++i) {
     const Vec2& a = v[i];

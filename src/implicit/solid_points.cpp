@@ -230,7 +230,7 @@ std::optional<geometry::Domain> end_in_box(const geometry::Prism& body, double z
   const std::vector<Vec2> cut = geometry::clip_polygon(v, b);
   if (cut.size() < 3 || std::abs(geometry::signed_area(cut)) <= tol * tol) return std::nullopt;
   geometry::Domain in = geometry::Domain::polygon(cut);
-  for (const geometry::Circle& h : section.holes()) in.add_hole(h);
+  in.add_holes_of(section);
   return in;
 }
 

@@ -18,10 +18,28 @@ template <class F> void for_each_quarter(const BoundingBox& box, F&& f) {
     }
 }
 
+/// True where an outline hole's boundary may pass through `box`: a side crosses its interior, or
+/// an end's circle does.
+bool outline_hole_meets(const geometry::OutlineHole& h, const BoundingBox& box, double tol) {
+  const Vec2 mid = 0.5 * (box.lo + box.hi), half = 0.5 * box.size();
+  for (const geometry::Curve& c : h.loop()) {
+    if (c.kind == geometry::Curve::Kind::Segment) {
+      if (segment_crosses_interior(box, c.a, c.b, tol)) return true;
+      continue;
+    }
+    const Vec2 nearest = c.center.cwiseMax(box.lo).cwiseMin(box.hi);
+    const double far = ((c.center - mid).cwiseAbs() + half).norm();
+    if ((nearest - c.center).norm() < c.radius && far > c.radius) return true;
+  }
+  return false;
+}
+
 /// The one hole that cuts `box` when nothing else of the boundary does (the box lies in the
 /// polygon and meets no other hole), or null.
 const geometry::Circle* only_cutting_hole(const geometry::Domain& domain, const BoundingBox& box) {
   const double tol = 1e-9 * box.size().maxCoeff();
+  for (const auto& h : domain.outline_holes())
+    if (outline_hole_meets(h, box, tol)) return nullptr;
   const geometry::Circle* found = nullptr;
   for (const auto& h : domain.holes()) {
     const Vec2 nearest = h.center.cwiseMax(box.lo).cwiseMin(box.hi);
@@ -69,6 +87,8 @@ void integrate_cell(const geometry::Domain& domain, const BoundingBox& box, cons
     const double far = ((h.center - mid).cwiseAbs() + half).norm(); // farthest corner
     if ((nearest - h.center).norm() < h.radius && far > h.radius) cut = true;
   }
+  for (const auto& h : domain.outline_holes())
+    cut = cut || outline_hole_meets(h, box, 1e-9 * box.size().maxCoeff());
   if (cut && arcs) {
     if (const geometry::Circle* hole = only_cutting_hole(domain, box)) {
       cell_minus_disc(box, hole->center, hole->radius, g, out.x, out.weight);

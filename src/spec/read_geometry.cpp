@@ -1,9 +1,71 @@
-// The geometry of a 2D body in a problem file (a rectangle or a polygon, with circular holes) and
-// the pieces of its boundary a condition names. Every key is checked; errors name the key path.
+// The geometry of a 2D body in a problem file (a rectangle or a polygon, with holes: circles,
+// polygons, rectangles, slots) and the pieces of its boundary a condition names. Every key is
+// checked; errors name the key path.
 #include "meshfree/spec/analysis_read.hpp"
 #include "meshfree/spec/spec_read.hpp"
+#include <algorithm>
 
 namespace mf::spec {
+
+namespace {
+
+/// A hole of outline other than a circle: `polygon: [[x, y], ...]`, `rectangle: {origin, size}`
+/// or `slot: {from: [x, y], to: [x, y], width}`.
+geometry::OutlineHole read_outline_hole(KeyReader& h, const std::string& name) {
+  if (h.has("polygon")) {
+    try {
+      return geometry::OutlineHole::polygon(h.vec2_list("polygon"), name);
+    } catch (const Error& e) {
+      fail(h.path_of("polygon"), ": ", e.what());
+    }
+  }
+  if (h.has("rectangle")) {
+    KeyReader r = h.map("rectangle");
+    const Vec2 origin = r.vec2("origin"), size = r.vec2("size");
+    if (!(size.x() > 0.0 && size.y() > 0.0)) r.error("size", "expected positive width and height");
+    r.finish();
+    return geometry::OutlineHole::polygon(
+        {origin, origin + Vec2(size.x(), 0.0), origin + size, origin + Vec2(0.0, size.y())}, name);
+  }
+  KeyReader r = h.map("slot");
+  const Vec2 from = r.vec2("from"), to = r.vec2("to");
+  const double width = r.positive("width");
+  r.finish();
+  return geometry::OutlineHole::slot(from, to, 0.5 * width, name);
+}
+
+/// One entry of `holes`: a circle (`center`, `radius`) or an outline (read_outline_hole), with
+/// an optional name; refused where it misses the body or leaves nothing of its outline.
+void add_hole(KeyReader& h, geometry::Domain& d) {
+  const char* const kinds[] = {"center", "polygon", "rectangle", "slot"};
+  const int given = static_cast<int>(
+      std::count_if(std::begin(kinds), std::end(kinds), [&](const char* k) { return h.has(k); }));
+  if (given != 1)
+    h.error(given ? "center" : "radius",
+            "give one of a circle (center and radius), a polygon, a rectangle or a slot");
+  const std::string name = h.text("name", "");
+  check_name(h, "name", name, true);
+  const bool circle = h.has("center");
+  if (circle)
+    d.add_hole(geometry::Circle{h.vec2("center"), h.positive("radius"), name});
+  else
+    d.add_hole(read_outline_hole(h, name));
+  h.finish();
+  const std::string key = circle ? "radius"
+                                 : (h.has("slot")      ? "slot"
+                                    : h.has("polygon") ? "polygon"
+                                                       : "rectangle");
+  bool outline_left = false;
+  for (const auto& piece : d.boundary())
+    outline_left = outline_left || piece.kind == geometry::Curve::Kind::Segment;
+  if (!outline_left) h.error(key, "the hole covers the whole body");
+  const std::string& made = circle ? d.holes().back().name : d.outline_holes().back().name;
+  bool cuts = false;
+  for (const auto& piece : d.boundary()) cuts = cuts || piece.name == made;
+  if (!cuts) h.error(circle ? "center" : key, "the hole '" + made + "' does not cut the body");
+}
+
+} // namespace
 
 geometry::Domain read_domain(KeyReader& g) {
   const bool rect = g.has("rectangle"), poly = g.has("polygon");
@@ -42,23 +104,7 @@ geometry::Domain read_domain(KeyReader& g) {
       fail(pr.path_of("vertices"), ": ", e.what());
     }
   }
-  for (KeyReader& h : g.map_list("holes")) {
-    geometry::Circle c;
-    c.center = h.vec2("center");
-    c.radius = h.positive("radius");
-    c.name = h.text("name", "");
-    check_name(h, "name", c.name, true);
-    h.finish();
-    d.add_hole(c);
-    bool outline_left = false;
-    for (const auto& piece : d.boundary())
-      outline_left = outline_left || piece.kind == geometry::Curve::Kind::Segment;
-    if (!outline_left) h.error("radius", "the hole covers the whole body");
-    const std::string name = d.holes().back().name;
-    bool cuts = false;
-    for (const auto& piece : d.boundary()) cuts = cuts || piece.name == name;
-    if (!cuts) h.error("center", "the hole '" + name + "' does not cut the body");
-  }
+  for (KeyReader& h : g.map_list("holes")) add_hole(h, d);
   g.finish();
   return d;
 }

@@ -98,6 +98,11 @@ void read_spheres(std::vector<KeyReader>& list, const geometry::Domain& section,
           s.center.z() + s.radius > solid.z0 && s.center.z() - s.radius < solid.z0 + solid.depth)
         h.error("radius", detail::concat(s.radius, ": the sphere '", s.name,
                                          "' overlaps the cylindrical hole '", c.name, "'"));
+    for (const geometry::OutlineHole& o : section.outline_holes())
+      if ((o.contains(s.center.head<2>()) || o.distance_to(s.center.head<2>()) < s.radius) &&
+          s.center.z() + s.radius > solid.z0 && s.center.z() - s.radius < solid.z0 + solid.depth)
+        h.error("radius", detail::concat(s.radius, ": the sphere '", s.name,
+                                         "' overlaps the hole '", o.name, "'"));
     if (!sphere_cuts(body, s))
       h.error("center", detail::concat("[", s.center.x(), ", ", s.center.y(), ", ", s.center.z(),
                                        "]: the sphere '", s.name, "' does not cut the body"));

@@ -65,6 +65,10 @@ Region read_region(KeyReader& r, int dim, unsigned shapes) {
   if (shapes & kHoles) {
     for (KeyReader& c : r.map_list("holes")) {
       if (dim == 1) c.error("center", "holes need 2D or 3D");
+      for (const char* outline : {"slot", "polygon", "rectangle"})
+        if (c.has(outline))
+          c.error(outline, "a region's holes are circles (center, radius); holes of other "
+                           "outlines are for the geometry of implicit bodies");
       g.holes.push_back(read_circle(c));
     }
   }

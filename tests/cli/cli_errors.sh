@@ -48,6 +48,19 @@ expect_error "output.lines[1].name: another line is named 'y07'" "$P" --set 'out
 expect_error "output.lines[0].from: no sample point of the line lies in the body" "$P" --set 'output.lines.0.from=[5, 5]' --set 'output.lines.0.to=[6, 6]'
 expect_error "geometry.holes[0].center: the hole 'hole0' does not cut the body" "$P" --set 'geometry.holes=[{center: [5, 5], radius: 0.1}]'
 expect_error "geometry.holes[0].radius: the hole covers the whole body" "$P" --set 'geometry.holes=[{center: [0.5, 0.5], radius: 5}]'
+# Holes of other outlines: two kinds at once, none, a polygon that crosses itself or has too few
+# vertices, a slot without a width or with a negative one, a rectangle that misses the body or
+# covers it, a key a slot does not have.
+expect_error "geometry.holes[0].center: give one of a circle (center and radius), a polygon, a rectangle or a slot" "$P" --set 'geometry.holes=[{slot: {from: [0.2, 0.5], to: [0.8, 0.5], width: 0.1}, center: [0.5, 0.5], radius: 0.1}]'
+expect_error "geometry.holes[0].radius: give one of a circle (center and radius), a polygon, a rectangle or a slot" "$P" --set 'geometry.holes=[{name: window}]'
+expect_error "geometry.holes[0].polygon: the polygon hole's edges 0 and 2 cross: its outline must not cross itself" "$P" --set 'geometry.holes=[{polygon: [[0.2, 0.2], [0.8, 0.6], [0.8, 0.2], [0.2, 0.7]]}]'
+expect_error "geometry.holes[0].polygon: a polygon hole needs at least 3 vertices, got 2" "$P" --set 'geometry.holes=[{polygon: [[0.2, 0.2], [0.8, 0.6]]}]'
+expect_error "geometry.holes[0].slot.width: required value is missing" "$P" --set 'geometry.holes=[{slot: {from: [0.2, 0.5], to: [0.8, 0.5]}}]'
+expect_error "geometry.holes[0].slot.width: expected a positive number, got -1" "$P" --set 'geometry.holes=[{slot: {from: [0.2, 0.5], to: [0.8, 0.5], width: -1}}]'
+expect_error "geometry.holes[0].rectangle: the hole 'hole0' does not cut the body" "$P" --set 'geometry.holes=[{rectangle: {origin: [5, 5], size: [1, 1]}}]'
+expect_error "geometry.holes[0].rectangle: the hole covers the whole body" "$P" --set 'geometry.holes=[{rectangle: {origin: [-1, -1], size: [3, 3]}}]'
+expect_error "stages[1].regions[0].holes[0].slot: a region's holes are circles (center, radius); holes of other outlines are for the geometry of implicit bodies" "$ROOT/problems/staged_strip_blast.yaml" --set 'stages.1.regions.0.holes=[{slot: {from: [0, 0], to: [0.01, 0], width: 0.02}}]'
+expect_error "geometry.holes[0].slot.depth: unknown key (known here: from, to, width)" "$P" --set 'geometry.holes=[{slot: {from: [0.2, 0.5], to: [0.8, 0.5], width: 0.1, depth: 2}}]'
 expect_error "discretisation.refinement[0].spacing: nodes in the box: about" "$P" --set 'discretisation.refinement=[{box: [[0, 0], [0.1, 0.1]], spacing: 1e-9}]'
 expect_error "boundary[1].name: 'clamp' is used by boundary[0] already" "$P" --set boundary.1.name=clamp
 expect_error "name: expected a name of letters, digits" "$P" --set name=a/b

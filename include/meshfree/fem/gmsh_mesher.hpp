@@ -13,6 +13,9 @@ namespace mf::fem::gmsh_mesher {
 struct Request {
   std::vector<double> polygon; // x0, y0, x1, y1, ...: the outline, counter-clockwise
   std::vector<double> holes;   // cx, cy, r of each hole
+  // Polygon holes: their vertices x0, y0, x1, y1, ... one after another, and each one's count.
+  std::vector<double> polygon_holes;
+  std::vector<int> polygon_hole_sizes;
   std::vector<double> boxes;   // x0, y0, x1, y1, z0, z1, element size of each refinement box
   double size = 0.0;           // element size elsewhere
   // gmsh's type of the elements wanted: 2 (T3), 3 (Q4), 16 (Q8) of the plane body, or 4 (tet4),

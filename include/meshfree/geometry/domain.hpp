@@ -1,6 +1,7 @@
 #pragma once
-// Plane bodies: a polygon (a rectangle is one) minus circular holes, and their boundary as
-// named pieces (straight segments and circular arcs) for tractions and penalty constraints.
+// Plane bodies: a polygon (a rectangle is one) minus holes (circles, polygons, slots), and their
+// boundary as named pieces (straight segments and circular arcs) for tractions and penalty
+// constraints.
 #include "meshfree/core/types.hpp"
 #include <functional>
 #include <string>
@@ -39,6 +40,32 @@ struct Curve {
   Vec2 closest_point(const Vec2& p) const;
 };
 
+/// A hole of an outline other than a circle: a polygon (a rectangle is one), or a slot, the
+/// points within `half_width` of the segment from `a` to `b` (two straight sides and two round
+/// ends). All its pieces carry its name.
+struct OutlineHole {
+  enum class Kind { Polygon, Slot };
+  Kind kind = Kind::Polygon;
+  std::vector<Vec2> vertices; // a polygon's, counter-clockwise
+  Vec2 a{0.0, 0.0}, b{0.0, 0.0};
+  double half_width = 0.0;
+  std::string name;
+
+  /// A polygon hole; vertices in either orientation, a simple polygon of nonzero area.
+  static OutlineHole polygon(std::vector<Vec2> vertices, std::string name = {});
+  /// A slot from a to b (a == b gives a circle) of width 2 half_width.
+  static OutlineHole slot(const Vec2& a, const Vec2& b, double half_width, std::string name = {});
+  /// True for points strictly inside the hole, farther than `tol` (absolute) from its outline.
+  bool contains(const Vec2& p, double tol = 0.0) const;
+  /// The distance from p to the hole's outline.
+  double distance_to(const Vec2& p) const;
+  /// Its outline as boundary pieces of the body around it: traversed with the body on the left
+  /// (clockwise about the hole), named after the hole.
+  std::vector<Curve> loop() const;
+  BoundingBox bounds() const;
+  double area() const;
+};
+
 class Domain {
 public:
   /// Axis-aligned rectangle with edges named bottom, right, top, left.
@@ -48,6 +75,9 @@ public:
   static Domain polygon(std::vector<Vec2> vertices, std::vector<std::string> edge_names = {});
 
   void add_hole(const Circle& hole);
+  void add_hole(const OutlineHole& hole);
+  /// Adds every hole of `other` (circles and outlines) to this body.
+  void add_holes_of(const Domain& other);
 
   /// True for points of the closed body (boundary included within `tol`).
   bool contains(const Vec2& p, double tol = 1e-12) const;
@@ -56,6 +86,7 @@ public:
   const std::vector<Vec2>& vertices() const { return vertices_; }
   const std::vector<std::string>& edge_names() const { return edge_names_; }
   const std::vector<Circle>& holes() const { return holes_; }
+  const std::vector<OutlineHole>& outline_holes() const { return outline_holes_; }
 
   /// The boundary of the body: polygon edges with the parts inside holes removed, and the
   /// parts of hole circles that lie inside the polygon.
@@ -70,14 +101,23 @@ public:
   bool within_outline(const Vec2& p, double tol = 1e-12) const;
   /// Distance from p to the polygon outline (not the holes).
   double distance_to_outline(const Vec2& p) const;
+  /// Distance from p to the body's boundary: the outline or a hole's.
+  double distance_to_boundary(const Vec2& p) const;
+  /// The heights y at which the vertical line through x crosses a hole's outline (circles and
+  /// outlines), appended to ys.
+  void hole_crossings(double x, std::vector<double>& ys) const;
 
 private:
   bool inside_polygon(const Vec2& p) const;
   std::vector<Vec2> vertices_; // counter-clockwise
   std::vector<std::string> edge_names_;
   std::vector<Circle> holes_;
+  std::vector<OutlineHole> outline_holes_;
   double scale_ = 1.0; // length scale for tolerances
 };
+
+/// True for points inside the polygon (even-odd rule).
+bool inside_polygon(const std::vector<Vec2>& vertices, const Vec2& p);
 
 /// The signed area of a polygon (positive counter-clockwise), by the shoelace formula.
 double signed_area(const std::vector<Vec2>& vertices);
