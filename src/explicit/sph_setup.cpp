@@ -56,7 +56,8 @@ sph::Material to_solver(const spec::MaterialSpec& m) {
   return out;
 }
 
-/// The particles of region k: its lattice (or ring) less its circle's outside and its holes.
+/// The particles of region k: its lattice (or ring) less its circle's outside and its holes (of
+/// any outline).
 void add_region(sph::Hydro& h, const spec::SphSpec& s, std::size_t k) {
   const spec::SphRegion& b = s.regions[k];
   const int mat = b.material;
@@ -71,6 +72,8 @@ void add_region(sph::Hydro& h, const spec::SphSpec& s, std::size_t k) {
       const double dx = x[0] - c.center[0], dy = x[1] - c.center[1];
       if (dx * dx + dy * dy < c.radius * c.radius) return;
     }
+    for (const geometry::OutlineHole& o : g.outline_holes)
+      if (o.contains(Vec2(x[0], x[1]))) return;
     const double spacing = std::pow(volume, 1.0 / s.dimension);
     const double h0 = s.smoothing * spacing;
     const int i = sph::add_particle(h, x, volume, b.density, b.energy, h0, mat, b.fixed);

@@ -58,9 +58,6 @@ double segment_parameter(const Curve& c, const Vec2& p) {
 
 } // namespace
 
-namespace {
-
-/// Appends the heights at which the vertical line through x crosses curve c.
 void vertical_crossings(const Curve& c, double x, std::vector<double>& ys) {
   if (c.kind == Curve::Kind::Segment) {
     if ((c.a.x() - x) * (c.b.x() - x) < 0.0)
@@ -74,8 +71,6 @@ void vertical_crossings(const Curve& c, double x, std::vector<double>& ys) {
   for (const double y : {c.center.y() - std::sqrt(r2), c.center.y() + std::sqrt(r2)})
     if (within_sweep(c, Vec2(x, y))) ys.push_back(y);
 }
-
-} // namespace
 
 double Curve::distance_to(const Vec2& p) const {
   if (kind == Kind::Segment) return (p - point(segment_parameter(*this, p))).norm();

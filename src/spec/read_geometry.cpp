@@ -9,31 +9,6 @@ namespace mf::spec {
 
 namespace {
 
-/// A hole of outline other than a circle: `polygon: [[x, y], ...]`, `rectangle: {origin, size}`
-/// or `slot: {from: [x, y], to: [x, y], width}`.
-geometry::OutlineHole read_outline_hole(KeyReader& h, const std::string& name) {
-  if (h.has("polygon")) {
-    try {
-      return geometry::OutlineHole::polygon(h.vec2_list("polygon"), name);
-    } catch (const Error& e) {
-      fail(h.path_of("polygon"), ": ", e.what());
-    }
-  }
-  if (h.has("rectangle")) {
-    KeyReader r = h.map("rectangle");
-    const Vec2 origin = r.vec2("origin"), size = r.vec2("size");
-    if (!(size.x() > 0.0 && size.y() > 0.0)) r.error("size", "expected positive width and height");
-    r.finish();
-    return geometry::OutlineHole::polygon(
-        {origin, origin + Vec2(size.x(), 0.0), origin + size, origin + Vec2(0.0, size.y())}, name);
-  }
-  KeyReader r = h.map("slot");
-  const Vec2 from = r.vec2("from"), to = r.vec2("to");
-  const double width = r.positive("width");
-  r.finish();
-  return geometry::OutlineHole::slot(from, to, 0.5 * width, name);
-}
-
 /// One entry of `holes`: a circle (`center`, `radius`) or an outline (read_outline_hole), with
 /// an optional name; refused where it misses the body or leaves nothing of its outline.
 void add_hole(KeyReader& h, geometry::Domain& d) {
@@ -49,7 +24,7 @@ void add_hole(KeyReader& h, geometry::Domain& d) {
   if (circle)
     d.add_hole(geometry::Circle{h.vec2("center"), h.positive("radius"), name});
   else
-    d.add_hole(read_outline_hole(h, name));
+    d.add_hole(*read_outline_hole(h, name));
   h.finish();
   const std::string key = circle ? "radius"
                                  : (h.has("slot")      ? "slot"

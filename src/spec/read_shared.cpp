@@ -52,6 +52,30 @@ Circle read_circle(KeyReader& c) {
 }
 } // namespace
 
+std::optional<geometry::OutlineHole> read_outline_hole(KeyReader& h, const std::string& name) {
+  if (h.has("polygon")) {
+    try {
+      return geometry::OutlineHole::polygon(h.vec2_list("polygon"), name);
+    } catch (const Error& e) {
+      fail(h.path_of("polygon"), ": ", e.what());
+    }
+  }
+  if (h.has("rectangle")) {
+    KeyReader r = h.map("rectangle");
+    const Vec2 origin = r.vec2("origin"), size = r.vec2("size");
+    if (!(size.x() > 0.0 && size.y() > 0.0)) r.error("size", "expected positive width and height");
+    r.finish();
+    return geometry::OutlineHole::polygon(
+        {origin, origin + Vec2(size.x(), 0.0), origin + size, origin + Vec2(0.0, size.y())}, name);
+  }
+  if (!h.has("slot")) return std::nullopt;
+  KeyReader r = h.map("slot");
+  const Vec2 from = r.vec2("from"), to = r.vec2("to");
+  const double width = r.positive("width");
+  r.finish();
+  return geometry::OutlineHole::slot(from, to, 0.5 * width, name);
+}
+
 Region read_region(KeyReader& r, int dim, unsigned shapes) {
   Region g;
   if ((shapes & kBox) && r.has("box")) g.box = read_box(r, "box", dim);
@@ -65,11 +89,12 @@ Region read_region(KeyReader& r, int dim, unsigned shapes) {
   if (shapes & kHoles) {
     for (KeyReader& c : r.map_list("holes")) {
       if (dim == 1) c.error("center", "holes need 2D or 3D");
-      for (const char* outline : {"slot", "polygon", "rectangle"})
-        if (c.has(outline))
-          c.error(outline, "a region's holes are circles (center, radius); holes of other "
-                           "outlines are for the geometry of implicit bodies");
-      g.holes.push_back(read_circle(c));
+      if (auto outline = read_outline_hole(c, "")) {
+        c.finish();
+        g.outline_holes.push_back(*outline);
+      } else {
+        g.holes.push_back(read_circle(c));
+      }
     }
   }
   if (shapes & kRing) {

@@ -59,7 +59,6 @@ expect_error "geometry.holes[0].slot.width: required value is missing" "$P" --se
 expect_error "geometry.holes[0].slot.width: expected a positive number, got -1" "$P" --set 'geometry.holes=[{slot: {from: [0.2, 0.5], to: [0.8, 0.5], width: -1}}]'
 expect_error "geometry.holes[0].rectangle: the hole 'hole0' does not cut the body" "$P" --set 'geometry.holes=[{rectangle: {origin: [5, 5], size: [1, 1]}}]'
 expect_error "geometry.holes[0].rectangle: the hole covers the whole body" "$P" --set 'geometry.holes=[{rectangle: {origin: [-1, -1], size: [3, 3]}}]'
-expect_error "stages[1].regions[0].holes[0].slot: a region's holes are circles (center, radius); holes of other outlines are for the geometry of implicit bodies" "$ROOT/problems/staged_strip_blast.yaml" --set 'stages.1.regions.0.holes=[{slot: {from: [0, 0], to: [0.01, 0], width: 0.02}}]'
 expect_error "geometry.holes[0].slot.depth: unknown key (known here: from, to, width)" "$P" --set 'geometry.holes=[{slot: {from: [0.2, 0.5], to: [0.8, 0.5], width: 0.1, depth: 2}}]'
 expect_error "discretisation.refinement[0].spacing: nodes in the box: about" "$P" --set 'discretisation.refinement=[{box: [[0, 0], [0.1, 0.1]], spacing: 1e-9}]'
 expect_error "boundary[1].name: 'clamp' is used by boundary[0] already" "$P" --set boundary.1.name=clamp

@@ -116,6 +116,9 @@ private:
   double scale_ = 1.0; // length scale for tolerances
 };
 
+/// Appends the heights at which the vertical line through x crosses curve c.
+void vertical_crossings(const Curve& c, double x, std::vector<double>& ys);
+
 /// True for points inside the polygon (even-odd rule).
 bool inside_polygon(const std::vector<Vec2>& vertices, const Vec2& p);
 

@@ -7,7 +7,7 @@
 
 namespace mf::spec {
 
-/// geometry: a rectangle or a polygon, with circular holes (2D bodies).
+/// geometry: a rectangle or a polygon, with holes of any outline (2D bodies).
 geometry::Domain read_domain(KeyReader& geometry);
 
 /// elastic_static and elastoplastic_static: the material, discretisation, exact solution, body

@@ -4,6 +4,7 @@
 // of types for every analysis, in 1, 2 and 3 dimensions: unused coordinates of a point are 0 and
 // unused axes of a box are unbounded.
 #include "meshfree/core/types.hpp"
+#include "meshfree/geometry/domain.hpp"
 #include <optional>
 #include <string>
 #include <utility>
@@ -33,16 +34,20 @@ struct Ring {
 };
 
 /// A part of space or of a body's boundary: a box, a circle (only what lies inside it is kept),
-/// a ring, circular holes (what lies inside them is left out), and named boundary pieces of a 2D
-/// body. An empty region is everything.
+/// a ring, holes (circles, or polygons and slots: what lies inside them is left out; cylinders
+/// and prisms along z in 3D), and named boundary pieces of a 2D body. An empty region is
+/// everything.
 struct Region {
   std::optional<Box> box;
   std::optional<Circle> circle;
   std::optional<Ring> ring;
   std::vector<Circle> holes;
+  std::vector<geometry::OutlineHole> outline_holes;
   std::vector<std::string> edges;
 
-  bool everything() const { return !box && !circle && !ring && holes.empty() && edges.empty(); }
+  bool everything() const {
+    return !box && !circle && !ring && holes.empty() && outline_holes.empty() && edges.empty();
+  }
   bool contains(const Point& p, double tol) const {
     if (box && !box->contains(p, tol)) return false;
     const auto r2 = [&p](const Point& c) {
@@ -52,6 +57,8 @@ struct Region {
     if (circle && r2(circle->center) > circle->radius * circle->radius) return false;
     for (const Circle& h : holes)
       if (r2(h.center) < h.radius * h.radius) return false;
+    for (const geometry::OutlineHole& h : outline_holes)
+      if (h.contains(Vec2(p.x(), p.y()))) return false;
     if (ring) {
       const double d2 = r2(ring->center);
       if (d2 < ring->inner_radius * ring->inner_radius ||

@@ -4,6 +4,7 @@
 #include "meshfree/spec/key_reader.hpp"
 #include "meshfree/spec/material_spec.hpp"
 #include "meshfree/spec/region_spec.hpp"
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,7 +26,8 @@ enum RegionShapes : unsigned {
   kBox = 1u,
   kCircle = 2u, // `circle: {center: [x, y], radius}`: only what lies inside is kept
   kRing = 4u,   // `ring: {center, inner_radius, outer_radius}` (2D)
-  kHoles = 8u,  // `holes: [{center: [x, y], radius}]`: what lies inside is left out
+  kHoles = 8u,  // `holes: [{center: [x, y], radius} | {polygon} | {rectangle} | {slot}]`: what
+                //   lies inside is left out
   kEdges = 16u, // `edges: name` or `edges: [names]`: boundary pieces of a 2D body
   kSolids = kBox | kCircle | kRing | kHoles,
 };
@@ -33,6 +35,11 @@ enum RegionShapes : unsigned {
 /// The region keys of a map (box, circle, ring, holes, edges: those `shapes` allows; the others
 /// are left unread, so finish() rejects them).
 Region read_region(KeyReader& r, int dim, unsigned shapes);
+
+/// A hole of outline other than a circle, named `name`: `polygon: [[x, y], ...]`, `rectangle:
+/// {origin, size}` or `slot: {from: [x, y], to: [x, y], width}`; null where the entry gives
+/// none of them.
+std::optional<geometry::OutlineHole> read_outline_hole(KeyReader& h, const std::string& name);
 
 /// output.gauges: [{name, at}], names unique.
 std::vector<GaugeSpec> read_gauges(KeyReader& output, int dim);
