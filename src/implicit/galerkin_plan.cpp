@@ -5,6 +5,8 @@
 #include "meshfree/implicit/galerkin_model.hpp"
 #include "meshfree/implicit/solid_model.hpp"
 #include "meshfree/quadrature/integration_points.hpp"
+#include <algorithm>
+#include <iomanip>
 
 namespace mf::implicit {
 
@@ -41,6 +43,28 @@ void describe_meshfree_nodes(const spec::ProblemSpec& spec, std::ostream& os) {
        << " increments a step), then the analysis on the last cloud\n";
 }
 
+/// The body as the user described it: its area (integrated on cells of a 64th of its bounding
+/// box, cut cells split four levels deep: within about 1e-4 of the exact area) and the length of
+/// each named piece of its boundary, in the order they come.
+void describe_body(const geometry::Domain& domain, std::ostream& os) {
+  const BoundingBox bb = domain.bounds();
+  const quadrature::DomainPoints fine =
+      quadrature::domain_points(domain, bb.size().maxCoeff() / 64.0, 2, 4);
+  double area = 0.0;
+  for (const double w : fine.weight) area += w;
+  std::vector<std::pair<std::string, double>> pieces;
+  for (const geometry::Curve& c : domain.boundary()) {
+    auto at = std::find_if(pieces.begin(), pieces.end(),
+                           [&](const auto& p) { return p.first == c.name; });
+    if (at == pieces.end()) at = pieces.insert(pieces.end(), {c.name, 0.0});
+    at->second += c.length();
+  }
+  os << "  body: area " << std::setprecision(6) << area << ", in the box " << bb.size().x() << " x "
+     << bb.size().y() << "; boundary pieces (length):";
+  for (const auto& [name, length] : pieces) os << " " << name << " " << length;
+  os << "\n" << std::setprecision(6);
+}
+
 } // namespace
 
 double estimated_nodes(const spec::ProblemSpec& spec) {
@@ -53,6 +77,7 @@ double estimated_nodes(const spec::ProblemSpec& spec) {
 void print_galerkin_plan(const spec::ProblemSpec& spec, std::ostream& os) {
   if (spec.is_solid()) return print_solid_plan(spec, os);
   auto& galerkin = spec.galerkin();
+  describe_body(spec.domain, os);
   if (galerkin.discretisation.method == spec::Method::Fem)
     describe_fe_mesh(spec, os);
   else
