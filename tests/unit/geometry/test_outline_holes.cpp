@@ -1,8 +1,9 @@
 // Holes of any closed outline (geometry::OutlineHole): polygons, rectangles and slots, alone, at
-// any angle, crossing the plate's outline or another hole. For each the body's boundary has the
-// exact length and outward normals, points in the hole are outside the body, the distance to the
-// boundary and a vertical line's crossings are exact, the integration points converge to the
-// exact area, and the nodes' shape functions are defined everywhere and reproduce a linear field.
+// any angle, crossing the plate's outline or another hole (then their union is left out). For
+// each the body's boundary has the exact length and outward normals, points in the hole are
+// outside the body, the distance to the boundary and a vertical line's crossings are exact, the
+// integration points converge to the exact area, and the nodes' shape functions are defined
+// everywhere and reproduce a linear field.
 #include "meshfree/geometry/node_generation.hpp"
 #include "meshfree/quadrature/integration_points.hpp"
 #include "shape_reproduction.hpp"
@@ -59,6 +60,13 @@ std::vector<Case> cases() {
        {poly({{0.9, -0.5}, {1.1, -0.5}, {1.1, 0.4}, {0.9, 0.4}})},
        2.0 - 0.2 * 0.4,
        6.0 - 0.2 + 0.2 + 2.0 * 0.4},
+      // The slot's end round b and its last 0.2 lie in the rectangle: the union's area and
+      // outline (the rectangle's less its left edge's 0.2 inside the slot, the slot's sides up
+      // to x = 0.8 and its end round a).
+      {"a slot into a rectangle",
+       {slot({0.5, 0.5}, {1.0, 0.5}, 0.1), poly({{0.8, 0.3}, {1.2, 0.3}, {1.2, 0.7}, {0.8, 0.7}})},
+       2.0 - (0.1 + pi * 0.01 + 0.16 - 0.04 - 0.5 * pi * 0.01),
+       6.0 + 1.4 + 0.6 + pi * 0.1},
       {"a slot and a triangle",
        {slot({0.3, 0.5}, {0.6, 0.5}, 0.15), poly({{0.9, 0.2}, {1.1, 0.2}, {1.0, 0.5}})},
        2.0 - (0.09 + pi * 0.0225) - tri,
