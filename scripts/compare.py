@@ -61,6 +61,13 @@ PROBLEMS = {
         control=("factor_shear", "F", "end shear force F [N]"), driver="shear", check=0.01,
         responses=[("u_y at (48, 60) [mm]", "uy_top_right", "uy_48_60"),
                    ("u_x at (48, 60) [mm]", "ux_top_right", "ux_48_60")]),
+    # A hole of the built-in dialect other than a circle: the slot's round ends and straight
+    # sides, at an angle to the pull, so the grips carry a shear force too.
+    "slotted_plate": dict(
+        control=("factor_pulled_grip", "v", "grip displacement v [mm]"), driver="pulled_grip",
+        check=0.01,
+        responses=[("force along x on the pulled grip [N]", "reaction_pulled_grip_x", "force_x"),
+                   ("force along y on the pulled grip [N]", "reaction_pulled_grip_y", "force_y")]),
     "beam_voce_bending": dict(
         control=("factor_push", "v", "end deflection v [mm]"), driver="push",
         responses=[("force on the end [N]", "reaction_push_y", "force_right")]),

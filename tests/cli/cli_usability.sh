@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # What a user sees on the terminal: unit-sanity warnings (on stderr, the run going on) for a
-# modulus in the wrong units and none for the shipped file; a face box's loaded area in check;
+# modulus in the wrong units and none for the shipped file; a face box's loaded area and a plane
+# body's area and boundary pieces in check;
 # an explicit run's progress lines at every tenth with 3-digit durations, ending at 100%; an
 # elastoplastic run's increments k of N.
 set -u
@@ -29,6 +30,16 @@ grep -qxF -- "$want" "$WORK/box" && ok "a box inside the face: its area" || bad 
 "$MF" check "$T" --set 'boundary.3={name: pull, faces: y_max, box: [[8, 17, 2], [12, 19, 3]], pressure: -1}' >"$WORK/box" 2>&1
 want="  boundary pull: pressure on area 1, its box spans 4 on that plane"
 grep -qxF -- "$want" "$WORK/box" && ok "a box past the face's edges: area 1 of 4" || bad "expected '$want' in: $(cat "$WORK/box")"
+
+# A plane body in check: its area and each named piece's length, a slot and a triangular hole
+# given in the file's dialect: the area within 1e-4 of 200 - (8 + pi) - 1.5 = 187.3584, the
+# slot's outline 8 + 2 pi, the triangle's 2 + 2 sqrt(2.25 + 1).
+S="$ROOT/problems/slotted_plate.yaml"
+"$MF" check "$S" --set 'geometry.holes=[{slot: {from: [8.4, 3.8], to: [11.6, 6.2], width: 2}, name: slot}, {polygon: [[3, 3], [5, 3], [4, 4.5]], name: tri}]' >"$WORK/body" 2>&1
+want="in the box 20 x 10; boundary pieces (length): bottom 20 right 10 top 20 left 10 slot 14.2832 tri 5.60555"
+area="$(sed -n 's/^  body: area \([0-9.]*\), .*/\1/p' "$WORK/body")"
+grep -qF -- "$want" "$WORK/body" && awk -v a="$area" 'BEGIN { exit !(a != "" && (a - 187.3584) ^ 2 < (1e-4 * 187.3584) ^ 2) }' &&
+  ok "a plane body's area ($area) and pieces" || bad "expected area 187.3584 and '$want' in: $(cat "$WORK/body")"
 
 # Progress of an explicit run: ten lines (10%..100%), the last at 100%, durations to 3
 # significant digits ("elapsed 8.42 s, about 1.2 min left").
