@@ -131,6 +131,17 @@ def largest_difference(a, b, column):
     return max(abs(x[column] - y[column]) for x, y in zip(a, b)) / scale
 
 
+def quick_verdict(rows, reference, columns, tolerance):
+    """A recipe's --quick: the remade rows against the committed curve `reference`, column by
+    column after the first (the increment); prints the largest difference and returns the exit
+    status (1 beyond `tolerance` of a column's largest |value|)."""
+    got = [[float(v) for v in r] for r in rows]
+    ref = read_curve(reference)
+    worst = max(largest_difference(got, ref, c) for c in range(1, columns))
+    print("quick check: max relative difference %.3e" % worst)
+    return 0 if worst <= tolerance else 1
+
+
 def full_run(out, work):
     os.makedirs(out, exist_ok=True)
     results = []

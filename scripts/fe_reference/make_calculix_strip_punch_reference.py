@@ -55,7 +55,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import make_calculix_reference as elastic_recipe  # noqa: E402  (run_ccx, deck helpers)
 import make_calculix_plastic_reference as plane_recipe  # noqa: E402  (mesh, parsing, tables)
-from make_calculix_cantilever_3d_reference import largest_difference, read_curve  # noqa: E402
+from make_calculix_cantilever_3d_reference import quick_verdict  # noqa: E402
 from make_calculix_punch_3d_reference import punch_records, write_study  # noqa: E402
 
 NAME = "strip_punch"
@@ -181,11 +181,7 @@ def full_run(out, work, hs):
 
 def quick_run(out, work):
     res = solve(uniform_mesh(0.5), work, "quick")
-    ref = read_curve(os.path.join(out, "strip_h0.5.csv"))
-    got = [[float(v) for v in r] for r in res["rows"]]
-    worst = max(largest_difference(got, ref, c) for c in range(1, len(COLUMNS)))
-    print("quick check: max relative difference %.3e" % worst)
-    return 0 if worst <= QUICK_TOL else 1
+    return quick_verdict(res["rows"], os.path.join(out, "strip_h0.5.csv"), len(COLUMNS), QUICK_TOL)
 
 
 def main():
