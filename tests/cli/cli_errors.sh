@@ -59,6 +59,7 @@ expect_error "geometry.holes[0].slot.width: required value is missing" "$P" --se
 expect_error "geometry.holes[0].slot.width: expected a positive number, got -1" "$P" --set 'geometry.holes=[{slot: {from: [0.2, 0.5], to: [0.8, 0.5], width: -1}}]'
 expect_error "geometry.holes[0].rectangle: the hole 'hole0' does not cut the body" "$P" --set 'geometry.holes=[{rectangle: {origin: [5, 5], size: [1, 1]}}]'
 expect_error "geometry.holes[0].rectangle: the hole covers the whole body" "$P" --set 'geometry.holes=[{rectangle: {origin: [-1, -1], size: [3, 3]}}]'
+expect_error "geometry.spheres[0].radius: 0.3: the sphere 'ball' overlaps the hole 'slot'" "$ROOT/problems/thick_perforated_plate.yaml" --set 'geometry.holes=[{slot: {from: [3, 8], to: [6, 10], width: 1}, name: slot}]' --set 'geometry.spheres=[{center: [4.5, 9, 1], radius: 0.3, name: ball}]' --set 'discretisation.refinement=[]'
 expect_error "geometry.holes[0].slot.depth: unknown key (known here: from, to, width)" "$P" --set 'geometry.holes=[{slot: {from: [0.2, 0.5], to: [0.8, 0.5], width: 0.1, depth: 2}}]'
 expect_error "discretisation.refinement[0].spacing: nodes in the box: about" "$P" --set 'discretisation.refinement=[{box: [[0, 0], [0.1, 0.1]], spacing: 1e-9}]'
 expect_error "boundary[1].name: 'clamp' is used by boundary[0] already" "$P" --set boundary.1.name=clamp
