@@ -200,9 +200,16 @@ bool has_row_between(double a, double b, int d, const Vec2& anchor, const Vec2& 
   return lo < hi && anchor[d] + first * step[d] < hi - tol;
 }
 
+/// True if a lattice of steps `step` from `anchor` has a row along axis d at a.
+bool on_row(double a, int d, const Vec2& anchor, const Vec2& step) {
+  const double k = (a - anchor[d]) / step[d];
+  return std::abs(k - std::round(k)) <= 1e-9;
+}
+
 /// The boxes over which the refinement lattices are laid: each box as given, but taken on to the
 /// body's bounding edge on a side where no row of a coarser lattice can stand between it and that
-/// edge (clear of the box by half its spacing, of the edge by kBoundaryGap of its own). Left
+/// edge (clear of the box by half its spacing, of the edge by kBoundaryGap of its own; or on the
+/// box's side, where both lattices have a row, a whole coarser spacing from the edge). Left
 /// there, the strip beyond the box's outer row would hold the boundary's own nodes alone, a line
 /// on which a linear basis is undefined wherever the box's supports do not reach.
 std::vector<Refinement> lattice_extents(const BoundingBox& bb, double spacing,
@@ -218,7 +225,14 @@ std::vector<Refinement> lattice_extents(const BoundingBox& bb, double spacing,
         if (sign * (edge - side) <= 0.0) continue;
         const auto coarser_row = [&](const Vec2& step, double h, const BoundingBox& extent) {
           const double near = side + sign * 0.5 * r.spacing, far = edge - sign * kBoundaryGap * h;
-          return has_row_between(std::min(near, far), std::max(near, far), d, bb.lo, step, extent);
+          if (has_row_between(std::min(near, far), std::max(near, far), d, bb.lo, step, extent))
+            return true;
+          // or a row of both lattices on the side, a whole cell from the edge
+          const double tol = 1e-9 * h;
+          return side >= extent.lo[d] - tol && side <= extent.hi[d] + tol &&
+                 on_row(side, d, bb.lo, step) &&
+                 on_row(side, d, bb.lo, Vec2::Constant(r.spacing)) &&
+                 sign * (edge - side) >= step[d] - tol;
         };
         bool row = coarser_row(base_step, spacing, bb);
         for (const Refinement& m : refinements)

@@ -43,17 +43,17 @@ EVERY=(--set discretisation.spacing=4 --set "discretisation.adapt={target: 0.01,
        --set steps.0.increments=4)
 "$MF" run "$ROOT/problems/cook_membrane.yaml" --out "$WORK/every-1" "${EVERY[@]}" > /dev/null
 mpirun -n 2 "$MF" run "$ROOT/problems/cook_membrane.yaml" --out "$WORK/every-2" "${EVERY[@]}" > /dev/null
-grep -q '"nodes": \[118, 283, 710\]' "$WORK/every-2/summary.json"
+grep -q '"nodes": \[118, 274, 690\]' "$WORK/every-2/summary.json"
 /usr/bin/python3 "$ROOT/scripts/compare_runs.py" "$WORK/every-1" "$WORK/every-2" --rtol 1e-6
-# Refinement ended by until: increment 1 refined twice and increment 5 once, the estimates
-# stopped after increment 5, the same on two ranks (every rank counts the same increments).
+# Refinement ended by until: increment 1 refined twice, the estimates stopped after increment 5,
+# the same on two ranks (every rank counts the same increments).
 UNTIL=(--set discretisation.spacing=4 --set discretisation.quadrature.order=2
        --set discretisation.quadrature.correction=vci --set steps.0.increments=10
        --set "discretisation.adapt={target: 0.08, passes: 6, every: 1, until: 5}")
 "$MF" run "$ROOT/problems/cook_membrane.yaml" --out "$WORK/until-1" "${UNTIL[@]}" > /dev/null
 mpirun -n 2 "$MF" run "$ROOT/problems/cook_membrane.yaml" --out "$WORK/until-2" "${UNTIL[@]}" > /dev/null
 grep -q '"ended": "until reached"' "$WORK/until-2/summary.json"
-grep -q '"increment": \[1, 1, 1, 2, 3, 4, 5, 5\]' "$WORK/until-2/summary.json"
+grep -q '"increment": \[1, 1, 1, 2, 3, 4, 5\]' "$WORK/until-2/summary.json"
 /usr/bin/python3 "$ROOT/scripts/compare_runs.py" "$WORK/until-1" "$WORK/until-2" --rtol 1e-6
 # Modified Newton: whether a tangent is kept is decided from |R|, the same on every rank, so
 # two ranks (direct and multigrid linear solves) reach one rank's states.
