@@ -4,6 +4,7 @@
 // include/meshfree/fem/gmsh_mesher.hpp for why).
 #include "meshfree/fem/gmsh_mesher.hpp"
 #include <algorithm>
+#include <cmath>
 #include <gmsh.h>
 
 namespace {
@@ -28,12 +29,21 @@ bool volume(const Request& q) {
   return q.element_type == 4 || q.element_type == 11;
 }
 
-/// The plane surface inside the polygon of n vertices xy (x0, y0, x1, y1, ...) at height z.
-int plane_polygon(const double* xy, std::size_t n, double z) {
+/// The plane surface inside the polygon of n vertices xy (x0, y0, x1, y1, ...) at height z; where
+/// `centres` is given (cx, cy of each edge, NaN for a straight one) an edge is the circular arc
+/// about its centre.
+int plane_polygon(const double* xy, std::size_t n, double z, const double* centres = nullptr) {
   namespace occ = gmsh::model::occ;
   std::vector<int> points, lines;
   for (std::size_t i = 0; i < n; ++i) points.push_back(occ::addPoint(xy[2 * i], xy[2 * i + 1], z));
-  for (std::size_t i = 0; i < n; ++i) lines.push_back(occ::addLine(points[i], points[(i + 1) % n]));
+  for (std::size_t i = 0; i < n; ++i) {
+    const int to = points[(i + 1) % n];
+    if (centres && !std::isnan(centres[2 * i]))
+      lines.push_back(
+          occ::addCircleArc(points[i], occ::addPoint(centres[2 * i], centres[2 * i + 1], z), to));
+    else
+      lines.push_back(occ::addLine(points[i], to));
+  }
   return occ::addPlaneSurface({occ::addCurveLoop(lines)});
 }
 
@@ -46,7 +56,9 @@ void build_body(const Request& q) {
   namespace occ = gmsh::model::occ;
   const double z = volume(q) ? q.z0 : 0.0;
   const std::size_t n = q.polygon.size() / 2;
-  gmsh::vectorpair body{{2, plane_polygon(q.polygon.data(), n, z)}};
+  gmsh::vectorpair body{
+      {2, plane_polygon(q.polygon.data(), n, z,
+                        q.polygon_centres.empty() ? nullptr : q.polygon_centres.data())}};
   if (!q.holes.empty() || !q.polygon_hole_sizes.empty()) {
     gmsh::vectorpair holes, out;
     std::vector<gmsh::vectorpair> map;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <dlfcn.h>
 #include <filesystem>
+#include <limits>
 #include <numeric>
 #include <omp.h>
 #include <unordered_map>
@@ -49,7 +50,15 @@ gmsh_mesher::Request request(const geometry::Domain& domain, double size,
                              const std::vector<geometry::Refinement>& refinement) {
   MF_REQUIRE(size > 0.0, "mesh size must be positive");
   gmsh_mesher::Request q;
-  for (const Vec2& p : domain.vertices()) q.polygon.insert(q.polygon.end(), {p.x(), p.y()});
+  for (const geometry::Curve& c : domain.outline()) {
+    const Vec2 p = c.point(0.0);
+    q.polygon.insert(q.polygon.end(), {p.x(), p.y()});
+    if (domain.fillets().empty()) continue;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const bool arc = c.kind == geometry::Curve::Kind::Arc;
+    q.polygon_centres.insert(q.polygon_centres.end(),
+                             {arc ? c.center.x() : nan, arc ? c.center.y() : nan});
+  }
   for (const geometry::Circle& c : domain.holes())
     q.holes.insert(q.holes.end(), {c.center.x(), c.center.y(), c.radius});
   const auto add_polygon = [&](const std::vector<Vec2>& v) {

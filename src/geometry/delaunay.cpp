@@ -141,23 +141,28 @@ private:
   long flip_budget_ = 0;
 };
 
-/// True where the point p of the edge a-b is in the body, or, a and b on a hole's circle or a
-/// slot's round end (a chord of it), no nearer its centre than the chord's midpoint.
+/// True where the point p of the edge a-b is in the body, or, a and b on a hole's circle, a
+/// slot's round end or a re-entrant corner's arc (a chord of it), no nearer its centre than the
+/// chord's midpoint.
 bool in_body_or_chord(const Domain& domain, const Vec2& a, const Vec2& b, const Vec2& p,
                       double tol) {
   if (domain.contains(p)) return true;
-  if (!domain.within_outline(p)) return false;
-  std::vector<Circle> circles = domain.holes(); // and the round ends of slots
-  for (const OutlineHole& h : domain.outline_holes())
-    if (h.kind == OutlineHole::Kind::Slot)
-      circles.insert(circles.end(), {{h.a, h.half_width, h.name}, {h.b, h.half_width, h.name}});
-  for (const Circle& h : circles) {
-    const bool chord = std::abs((a - h.center).norm() - h.radius) <= tol &&
-                       std::abs((b - h.center).norm() - h.radius) <= tol;
+  const auto chord_of = [&](const Vec2& center, double radius) {
+    const bool chord = std::abs((a - center).norm() - radius) <= tol &&
+                       std::abs((b - center).norm() - radius) <= tol;
     const double midpoint =
-        std::sqrt(std::max(0.0, h.radius * h.radius - 0.25 * (b - a).squaredNorm()));
-    if (chord && (p - h.center).norm() >= midpoint - tol) return true;
-  }
+        std::sqrt(std::max(0.0, radius * radius - 0.25 * (b - a).squaredNorm()));
+    return chord && (p - center).norm() >= midpoint - tol;
+  };
+  for (const Fillet& f : domain.fillets()) // its chords leave the outline
+    if (!f.convex && chord_of(f.center, f.radius)) return true;
+  if (!domain.within_outline(p)) return false;
+  for (const Circle& h : domain.holes())
+    if (chord_of(h.center, h.radius)) return true;
+  for (const OutlineHole& h : domain.outline_holes())
+    if (h.kind == OutlineHole::Kind::Slot &&
+        (chord_of(h.a, h.half_width) || chord_of(h.b, h.half_width)))
+      return true;
   return false;
 }
 

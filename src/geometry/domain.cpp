@@ -20,7 +20,9 @@ Vec2 Curve::outward_normal(double t) const {
     const Vec2 d = (b - a).normalized();
     return Vec2(d.y(), -d.x()); // right of a counter-clockwise outline
   }
-  return (center - point(t)) / radius; // body outside the hole
+  // Clockwise (a hole's, a re-entrant corner's): the body outside the circle; counter-clockwise
+  // (a convex corner's): inside.
+  return (theta1 < theta0 ? center - point(t) : point(t) - center) / radius;
 }
 
 Curve Curve::piece(double t0, double t1) const {
@@ -111,6 +113,7 @@ Domain Domain::polygon(std::vector<Vec2> vertices, std::vector<std::string> edge
   Domain d;
   d.vertices_ = std::move(vertices);
   d.edge_names_ = std::move(edge_names);
+  d.make_outline();
   const BoundingBox bb = d.bounds();
   d.scale_ = bb.size().maxCoeff();
   return d;
@@ -164,27 +167,39 @@ std::vector<std::string> Domain::names_selected(const std::string& name) const {
   const double at = (side - sides) % 2 ? b.hi(axis) : b.lo(axis);
   const double tol = 1e-9 * b.size().maxCoeff();
   std::vector<std::string> out;
-  const std::size_t n = vertices_.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const bool on = std::abs(vertices_[i](axis) - at) <= tol &&
-                    std::abs(vertices_[(i + 1) % n](axis) - at) <= tol;
-    if (on && std::find(out.begin(), out.end(), edge_names_[i]) == out.end())
-      out.push_back(edge_names_[i]);
+  for (const Curve& c : outline_) {
+    const bool on = c.kind == Curve::Kind::Segment && std::abs(c.a(axis) - at) <= tol &&
+                    std::abs(c.b(axis) - at) <= tol;
+    if (on && std::find(out.begin(), out.end(), c.name) == out.end()) out.push_back(c.name);
   }
   return out;
 }
 
 BoundingBox Domain::bounds() const {
   BoundingBox bb{vertices_[0], vertices_[0]};
-  for (const auto& v : vertices_) {
+  const auto add = [&](const Vec2& v) {
     bb.lo = bb.lo.cwiseMin(v);
     bb.hi = bb.hi.cwiseMax(v);
+  };
+  if (fillets_.empty()) {
+    for (const auto& v : vertices_) add(v);
+    return bb;
+  }
+  bb = {outline_[0].point(0.0), outline_[0].point(0.0)};
+  for (const Curve& c : outline_) { // the pieces' ends, and the arcs' extreme points
+    add(c.point(1.0));
+    if (c.kind != Curve::Kind::Arc) continue;
+    for (const Vec2& u : {Vec2(1.0, 0.0), Vec2(0.0, 1.0), Vec2(-1.0, 0.0), Vec2(0.0, -1.0)})
+      if (c.distance_to(c.center + c.radius * u) <= 1e-12 * c.radius) add(c.center + c.radius * u);
   }
   return bb;
 }
 
 double Domain::area_estimate() const {
-  return signed_area(vertices_); // holes ignored: used only for sizing estimates
+  double area = signed_area(vertices_); // holes ignored: used only for sizing estimates
+  for (const Fillet& f : fillets_)
+    area += (f.convex ? -1.0 : 1.0) * f.cap_area(vertices_[f.vertex]);
+  return area;
 }
 
 double signed_area(const std::vector<Vec2>& vertices) {
@@ -210,8 +225,11 @@ bool inside_polygon(const std::vector<Vec2>& vertices, const Vec2& p) {
   return inside;
 }
 
-bool Domain::inside_polygon(const Vec2& p) const {
-  return geometry::inside_polygon(vertices_, p);
+bool Domain::inside_outline(const Vec2& p) const {
+  bool inside = geometry::inside_polygon(vertices_, p);
+  for (const Fillet& f : fillets_) // the caps lie inside (convex) or outside the sharp polygon
+    if (f.in_cap(vertices_[f.vertex], p)) inside = !f.convex;
+  return inside;
 }
 
 namespace {
@@ -253,7 +271,10 @@ bool segments_meet(const Vec2& p, const Vec2& q, const Vec2& r, const Vec2& s) {
 } // namespace
 
 double Domain::distance_to_outline(const Vec2& p) const {
-  return distance_to_polygon(vertices_, p);
+  if (fillets_.empty()) return distance_to_polygon(vertices_, p);
+  double d = std::numeric_limits<double>::max();
+  for (const Curve& c : outline_) d = std::min(d, c.distance_to(p));
+  return d;
 }
 
 OutlineHole OutlineHole::polygon(std::vector<Vec2> vertices, std::string name) {
@@ -354,7 +375,7 @@ double OutlineHole::area() const {
 }
 
 bool Domain::within_outline(const Vec2& p, double tol) const {
-  return inside_polygon(p) || distance_to_outline(p) <= tol * scale_;
+  return inside_outline(p) || distance_to_outline(p) <= tol * scale_;
 }
 
 bool Domain::contains(const Vec2& p, double tol) const {
@@ -410,13 +431,7 @@ std::vector<Curve> Domain::boundary() const {
       if (&h != except && h.contains(p, tol * scale_)) return false;
     return true;
   };
-  const std::size_t n = vertices_.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    Curve c;
-    c.kind = Curve::Kind::Segment;
-    c.name = edge_names_[i];
-    c.a = vertices_[i];
-    c.b = vertices_[(i + 1) % n];
+  for (const Curve& c : outline_) {
     for (const auto& [t0, t1] :
          kept_intervals(c, [&](const Vec2& p) { return outside_holes(p, nullptr); }))
       curves.push_back(c.piece(t0, t1));
@@ -430,7 +445,7 @@ std::vector<Curve> Domain::boundary() const {
     c.theta0 = 2.0 * M_PI; // clockwise, so the body stays on the left
     c.theta1 = 0.0;
     auto keep = [&](const Vec2& p) {
-      return (inside_polygon(p) || distance_to_outline(p) <= tol * scale_) && outside_holes(p, &h);
+      return (inside_outline(p) || distance_to_outline(p) <= tol * scale_) && outside_holes(p, &h);
     };
     for (const auto& [t0, t1] : kept_intervals(c, keep)) curves.push_back(c.piece(t0, t1));
   }

@@ -85,15 +85,7 @@ Vec4 initial_stress_at(const spec::ProblemSpec& spec, const Vec2& x) {
   for (const spec::MaterialRegion& mr : galerkin.material_regions)
     add_region_crossings(x.x(), mr.region, ys);
   spec.domain.hole_crossings(x.x(), ys);
-  const std::vector<Vec2>& v = spec.domain.vertices();
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const Vec2& a = v[i];
-    const Vec2& b = v[(i + 1) % v.size()];
-    if ((a.x() - x.x()) * (b.x() - x.x()) < 0.0)
-      ys.push_back(a.y() + (x.x() - a.x()) / (b.x() - a.x()) * (b.y() - a.y()));
-    else if (a.x() == x.x())
-      ys.push_back(a.y());
-  }
+  spec.domain.outline_crossings(x.x(), ys);
   std::sort(ys.begin(), ys.end());
   double weight = 0.0; // int_y^top rho dz
   for (std::size_t i = 0; i + 1 < ys.size(); ++i) {

@@ -230,6 +230,17 @@ std::optional<geometry::Domain> end_in_box(const geometry::Prism& body, double z
   const std::vector<Vec2> cut = geometry::clip_polygon(v, b);
   if (cut.size() < 3 || std::abs(geometry::signed_area(cut)) <= tol * tol) return std::nullopt;
   geometry::Domain in = geometry::Domain::polygon(cut);
+  // A rounded corner stays where the box holds it whole, and is left out where the box misses
+  // the region between the corner and its arc.
+  for (const geometry::Fillet& f : section.fillets()) {
+    const std::vector<Vec2> cap{v[f.vertex], f.from, f.center, f.to};
+    if (std::all_of(cap.begin(), cap.end(), [&](const Vec2& x) { return b.contains(x, tol); }))
+      in.round_corner(v[f.vertex], f.radius, f.name);
+    else
+      MF_REQUIRE(std::abs(geometry::signed_area(geometry::clip_polygon(cap, b))) <= tol * tol,
+                 "a box cuts the rounded corner ", f.name,
+                 " of an end face: a box holds the whole of a fillet or none of it");
+  }
   in.add_holes_of(section);
   return in;
 }

@@ -18,11 +18,11 @@ template <class F> void for_each_quarter(const BoundingBox& box, F&& f) {
     }
 }
 
-/// True where an outline hole's boundary may pass through `box`: a side crosses its interior, or
-/// an end's circle does.
-bool outline_hole_meets(const geometry::OutlineHole& h, const BoundingBox& box, double tol) {
+/// True where one of the curves may pass through `box`: a segment crosses its interior, or an
+/// arc's circle does.
+bool curves_meet(const std::vector<geometry::Curve>& curves, const BoundingBox& box, double tol) {
   const Vec2 mid = 0.5 * (box.lo + box.hi), half = 0.5 * box.size();
-  for (const geometry::Curve& c : h.loop()) {
+  for (const geometry::Curve& c : curves) {
     if (c.kind == geometry::Curve::Kind::Segment) {
       if (segment_crosses_interior(box, c.a, c.b, tol)) return true;
       continue;
@@ -34,12 +34,19 @@ bool outline_hole_meets(const geometry::OutlineHole& h, const BoundingBox& box, 
   return false;
 }
 
+/// True where a rounded corner's arc may pass through `box`.
+bool fillet_meets(const geometry::Domain& domain, const BoundingBox& box, double tol) {
+  for (const geometry::Fillet& f : domain.fillets())
+    if (curves_meet({f.arc()}, box, tol)) return true;
+  return false;
+}
+
 /// The one hole that cuts `box` when nothing else of the boundary does (the box lies in the
 /// polygon and meets no other hole), or null.
 const geometry::Circle* only_cutting_hole(const geometry::Domain& domain, const BoundingBox& box) {
   const double tol = 1e-9 * box.size().maxCoeff();
   for (const auto& h : domain.outline_holes())
-    if (outline_hole_meets(h, box, tol)) return nullptr;
+    if (curves_meet(h.loop(), box, tol)) return nullptr;
   const geometry::Circle* found = nullptr;
   for (const auto& h : domain.holes()) {
     const Vec2 nearest = h.center.cwiseMax(box.lo).cwiseMin(box.hi);
@@ -50,10 +57,7 @@ const geometry::Circle* only_cutting_hole(const geometry::Domain& domain, const 
   if (!found) return nullptr;
   for (const Vec2& p : {box.lo, Vec2(box.hi.x(), box.lo.y()), box.hi, Vec2(box.lo.x(), box.hi.y())})
     if (!domain.within_outline(p, 1e-9)) return nullptr;
-  const auto& v = domain.vertices();
-  for (std::size_t i = 0; i < v.size(); ++i)
-    if (segment_crosses_interior(box, v[i], v[(i + 1) % v.size()], tol)) return nullptr;
-  return found;
+  return curves_meet(domain.outline(), box, tol) ? nullptr : found;
 }
 
 /// Adds the Gauss points of `box` that lie in the body; splits cells the boundary cuts, or
@@ -88,7 +92,8 @@ void integrate_cell(const geometry::Domain& domain, const BoundingBox& box, cons
     if ((nearest - h.center).norm() < h.radius && far > h.radius) cut = true;
   }
   for (const auto& h : domain.outline_holes())
-    cut = cut || outline_hole_meets(h, box, 1e-9 * box.size().maxCoeff());
+    cut = cut || curves_meet(h.loop(), box, 1e-9 * box.size().maxCoeff());
+  cut = cut || fillet_meets(domain, box, 1e-9 * box.size().maxCoeff());
   if (cut && arcs) {
     if (const geometry::Circle* hole = only_cutting_hole(domain, box)) {
       cell_minus_disc(box, hole->center, hole->radius, g, out.x, out.weight);

@@ -1,6 +1,6 @@
-// The geometry of a 2D body in a problem file (a rectangle or a polygon, with holes: circles,
-// polygons, rectangles, slots) and the pieces of its boundary a condition names. Every key is
-// checked; errors name the key path.
+// The geometry of a 2D body in a problem file (a rectangle or a polygon, its corners rounded or
+// not, with holes: circles, polygons, rectangles, slots) and the pieces of its boundary a condition
+// names. Every key is checked; errors name the key path.
 #include "meshfree/spec/analysis_read.hpp"
 #include "meshfree/spec/spec_read.hpp"
 #include <algorithm>
@@ -38,6 +38,24 @@ void add_hole(KeyReader& h, geometry::Domain& d) {
   bool cuts = false;
   for (const auto& piece : d.boundary()) cuts = cuts || piece.name == made;
   if (!cuts) h.error(circle ? "center" : key, "the hole '" + made + "' does not cut the body");
+}
+
+/// One entry of `fillets`: the corner at `at` rounded with `radius`, with an optional name.
+void round_corner(KeyReader& f, geometry::Domain& d) {
+  const Vec2 at = f.vec2("at");
+  const double radius = f.positive("radius");
+  const std::string name = f.text("name", "");
+  check_name(f, "name", name, true);
+  f.finish();
+  try {
+    d.round_corner(at, radius, name);
+  } catch (const Error& e) {
+    const std::string why = e.what();
+    f.error(why.find("radius") != std::string::npos || why.find("needs") != std::string::npos
+                ? "radius"
+                : "at",
+            why);
+  }
 }
 
 } // namespace
@@ -79,6 +97,7 @@ geometry::Domain read_domain(KeyReader& g) {
       fail(pr.path_of("vertices"), ": ", e.what());
     }
   }
+  for (KeyReader& f : g.map_list("fillets")) round_corner(f, d);
   for (KeyReader& h : g.map_list("holes")) add_hole(h, d);
   g.finish();
   return d;

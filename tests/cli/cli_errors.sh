@@ -61,6 +61,15 @@ expect_error "geometry.holes[0].rectangle: the hole 'hole0' does not cut the bod
 expect_error "geometry.holes[0].rectangle: the hole covers the whole body" "$P" --set 'geometry.holes=[{rectangle: {origin: [-1, -1], size: [3, 3]}}]'
 expect_error "geometry.spheres[0].radius: 0.3: the sphere 'ball' overlaps the hole 'slot'" "$ROOT/problems/thick_perforated_plate.yaml" --set 'geometry.holes=[{slot: {from: [3, 8], to: [6, 10], width: 1}, name: slot}]' --set 'geometry.spheres=[{center: [4.5, 9, 1], radius: 0.3, name: ball}]' --set 'discretisation.refinement=[]'
 expect_error "geometry.holes[0].slot.depth: unknown key (known here: from, to, width)" "$P" --set 'geometry.holes=[{slot: {from: [0.2, 0.5], to: [0.8, 0.5], width: 0.1, depth: 2}}]'
+# Rounded corners: a corner that is not there, a straight one, one rounded twice, a radius that
+# does not fit on an edge or is not positive, fillets not given as a list.
+expect_error "geometry.fillets[0].at: no corner of the outline lies at (0.5, 0)" "$P" --set 'geometry.fillets=[{at: [0.5, 0], radius: 0.1}]'
+expect_error "geometry.fillets[0].at: the corner at (0.5, 0) is straight: its edges run on in one line, nothing to round" "$P" --set 'geometry={polygon: {vertices: [[0, 0], [0.5, 0], [1, 0], [1, 1], [0, 1]]}, fillets: [{at: [0.5, 0], radius: 0.1}]}'
+expect_error "geometry.fillets[1].at: the corner at (1, 1) is rounded already" "$P" --set 'geometry.fillets=[{at: [1, 1], radius: 0.1}, {at: [1, 1], radius: 0.2}]'
+expect_error "geometry.fillets[0].radius: a fillet of radius 2 at (1, 1) needs 2 of edge 'right', which is 1 long" "$P" --set 'geometry.fillets=[{at: [1, 1], radius: 2}]'
+expect_error "geometry.fillets[1].radius: a fillet of radius 0.6 at (1, 0) needs 1.1 of edge 'right', which is 1 long" "$P" --set 'geometry.fillets=[{at: [1, 1], radius: 0.5}, {at: [1, 0], radius: 0.6}]'
+expect_error "geometry.fillets[0].radius: expected a positive number, got -1" "$P" --set 'geometry.fillets=[{at: [1, 1], radius: -1}]'
+expect_error "geometry.fillets: expected a list, got {at: [1, 1], radius: 0.1}" "$P" --set 'geometry.fillets={at: [1, 1], radius: 0.1}'
 expect_error "discretisation.refinement[0].spacing: nodes in the box: about" "$P" --set 'discretisation.refinement=[{box: [[0, 0], [0.1, 0.1]], spacing: 1e-9}]'
 expect_error "boundary[1].name: 'clamp' is used by boundary[0] already" "$P" --set boundary.1.name=clamp
 expect_error "name: expected a name of letters, digits" "$P" --set name=a/b

@@ -12,6 +12,9 @@ namespace mf::fem::gmsh_mesher {
 
 struct Request {
   std::vector<double> polygon; // x0, y0, x1, y1, ...: the outline, counter-clockwise
+  // Where the outline has arcs (rounded corners): cx, cy of each of its pieces (from point i to
+  // point i + 1), the centre of the arc it is or NaN, NaN for a straight one; empty: all straight.
+  std::vector<double> polygon_centres;
   std::vector<double> holes;   // cx, cy, r of each hole
   // Polygon holes: their vertices x0, y0, x1, y1, ... one after another, and each one's count.
   std::vector<double> polygon_holes;

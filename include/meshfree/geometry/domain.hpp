@@ -1,7 +1,7 @@
 #pragma once
-// Plane bodies: a polygon (a rectangle is one) minus holes (circles, polygons, slots), and their
-// boundary as named pieces (straight segments and circular arcs) for tractions and penalty
-// constraints.
+// Plane bodies: a polygon (a rectangle is one) whose corners may be rounded (fillets), minus
+// holes (circles, polygons, slots), and their boundary as named pieces (straight segments and
+// circular arcs) for tractions and penalty constraints.
 #include "meshfree/core/types.hpp"
 #include <functional>
 #include <string>
@@ -15,9 +15,11 @@ struct Circle {
   std::string name;
 };
 
-/// A boundary piece parametrised by t in [0, 1]: a segment from a to b, or an arc of a hole
-/// from angle theta0 to theta1. The body lies on the left of a segment (outer boundary
-/// counter-clockwise), and outside the circle of an arc.
+/// A boundary piece parametrised by t in [0, 1]: a segment from a to b, or an arc from angle
+/// theta0 to theta1. The body lies on the left of the direction of travel: a segment of the outer
+/// boundary runs counter-clockwise, an arc that runs clockwise (a hole's, a rounded inner corner)
+/// has the body outside its circle, one that runs counter-clockwise (a rounded outer corner)
+/// inside.
 struct Curve {
   enum class Kind { Segment, Arc };
   Kind kind = Kind::Segment;
@@ -66,6 +68,25 @@ struct OutlineHole {
   double area() const;
 };
 
+/// A rounded corner of the outline: the arc of `radius` about `center` tangent to the two edges
+/// that meet at vertex `vertex`, from `from` on the edge before it to `to` on the edge after.
+/// At a convex corner the rounding takes material away, at a re-entrant one it adds it.
+struct Fillet {
+  std::size_t vertex = 0;
+  double radius = 0.0;
+  std::string name;
+  Vec2 from{0.0, 0.0}, to{0.0, 0.0}, center{0.0, 0.0};
+  bool convex = true;
+
+  /// The arc as a boundary piece, named after the fillet, the body on its left.
+  Curve arc() const;
+  /// True for points between the sharp corner `corner` and the arc: the region the rounding
+  /// removes (convex) or adds (re-entrant).
+  bool in_cap(const Vec2& corner, const Vec2& p) const;
+  /// The area of that region.
+  double cap_area(const Vec2& corner) const;
+};
+
 class Domain {
 public:
   /// Axis-aligned rectangle with edges named bottom, right, top, left.
@@ -74,6 +95,10 @@ public:
   /// to vertex i+1 (default "edge<i>").
   static Domain polygon(std::vector<Vec2> vertices, std::vector<std::string> edge_names = {});
 
+  /// Rounds the corner at vertex `at` (within 1e-9 of the body's size) with an arc of `radius`
+  /// tangent to its edges (default name "fillet<k>"). Refused where no vertex is there, the corner
+  /// is rounded already or straight, or the arcs' tangent points would not fit on an edge.
+  void round_corner(const Vec2& at, double radius, std::string name = {});
   void add_hole(const Circle& hole);
   void add_hole(const OutlineHole& hole);
   /// Adds every hole of `other` (circles and outlines) to this body.
@@ -83,7 +108,13 @@ public:
   bool contains(const Vec2& p, double tol = 1e-12) const;
   BoundingBox bounds() const;
   double area_estimate() const;
+  /// The corners of the outline before any rounding.
   const std::vector<Vec2>& vertices() const { return vertices_; }
+  const std::vector<Fillet>& fillets() const { return fillets_; }
+  /// The outline as boundary pieces, counter-clockwise from vertex 0: each edge's straight part
+  /// (named as the edge; none where fillets take the whole edge), then the arc of the fillet at
+  /// the edge's end, if any. Holes not cut from it.
+  const std::vector<Curve>& outline() const { return outline_; }
   const std::vector<std::string>& edge_names() const { return edge_names_; }
   const std::vector<Circle>& holes() const { return holes_; }
   const std::vector<OutlineHole>& outline_holes() const { return outline_holes_; }
@@ -97,20 +128,25 @@ public:
   /// the name selects nothing.
   std::vector<std::string> names_selected(const std::string& name) const;
 
-  /// True for points inside the polygon or within `tol` (relative) of its outline; holes ignored.
+  /// True for points inside the outline or within `tol` (relative) of it; holes ignored.
   bool within_outline(const Vec2& p, double tol = 1e-12) const;
-  /// Distance from p to the polygon outline (not the holes).
+  /// Distance from p to the outline (not the holes).
   double distance_to_outline(const Vec2& p) const;
   /// Distance from p to the body's boundary: the outline or a hole's.
   double distance_to_boundary(const Vec2& p) const;
   /// The heights y at which the vertical line through x crosses a hole's outline (circles and
   /// outlines), appended to ys.
   void hole_crossings(double x, std::vector<double>& ys) const;
+  /// The heights y at which the vertical line through x crosses the outline, appended to ys.
+  void outline_crossings(double x, std::vector<double>& ys) const;
 
 private:
-  bool inside_polygon(const Vec2& p) const;
+  bool inside_outline(const Vec2& p) const;
+  void make_outline();
   std::vector<Vec2> vertices_; // counter-clockwise
   std::vector<std::string> edge_names_;
+  std::vector<Fillet> fillets_;
+  std::vector<Curve> outline_;
   std::vector<Circle> holes_;
   std::vector<OutlineHole> outline_holes_;
   double scale_ = 1.0; // length scale for tolerances
