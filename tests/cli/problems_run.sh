@@ -5,7 +5,10 @@
 # the largest value at every recorded point, 1% where the table says so, and the first-yield
 # load within 1% where the elastic stress is bounded); the thick perforated plate's too
 # (tests/reference/solid3d_vs_calculix.py).
-#   problems_run.sh MESHFREE ROOT [K/N]   # K/N: only the K-th of every N problems (K from 1)
+#   problems_run.sh MESHFREE ROOT [K/N]   # K/N: only the K-th of N shards (K from 1)
+# The shards are balanced by each problem's measured seconds here (tests/cli/problem_seconds.txt,
+# from a whole run: its line "name: N s"), the longest first onto the least loaded shard; a problem
+# not in the table counts 10 s.
 set -eu
 MF="$1"; ROOT="$2"; SHARD="${3:-1/1}"
 K="${SHARD%/*}"; N="${SHARD#*/}"
@@ -13,11 +16,16 @@ K="${SHARD%/*}"; N="${SHARD#*/}"
   { echo "problems_run.sh: expected K/N with 1 <= K <= N, got '$SHARD'"; exit 2; }
 WORK="$(mktemp -d)"; trap 'rm -rf "$WORK"' EXIT
 compared="$(/usr/bin/python3 "$ROOT/scripts/compare.py" --list)"
-index=0
-for p in "$ROOT"/problems/*.yaml; do
-  index=$((index + 1))
-  [ $(( (index - 1) % N + 1 )) = "$K" ] || continue
+mine="$(for p in "$ROOT"/problems/*.yaml; do
   name="$(basename "$p" .yaml)"
+  cost="$(awk -v n="$name" '$1 == n { print $2 }' "$ROOT/tests/cli/problem_seconds.txt")"
+  echo "${cost:-10} $name"
+done | sort -k1,1nr -k2,2 | awk -v n="$N" -v k="$K" '{
+  best = 1; for (s = 2; s <= n; s++) if (load[s] < load[best]) best = s
+  load[best] += $1; if (best == k) print $2 }')"
+for name in $mine; do
+  p="$ROOT/problems/$name.yaml"
+  started=$SECONDS
   extra=()
   # Explicit dynamics runs take minutes to their end time (scripts/pd_*_study.py and the pd
   # tests run them in full): here the first 2% of it shows that they run as they are.
@@ -93,4 +101,5 @@ for p in "$ROOT"/problems/*.yaml; do
       { cat "$WORK/punch_3d.log"; echo "FAIL: $name does not follow CalculiX"; exit 1; }
     tail -1 "$WORK/punch_3d.log"
   fi
+  echo "$name: $((SECONDS - started)) s"
 done

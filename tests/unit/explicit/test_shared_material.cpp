@@ -187,7 +187,7 @@ TEST_CASE("shared steel, SPH: bulk sound speed and the stress behind an elastic 
   CHECK(sum / count == Approx(-kRho * cl * v0).epsilon(0.01));
 }
 
-TEST_CASE("stages: one stage runs as its analysis; a later stage names where it starts from",
+TEST_CASE("stages: one stage runs as its analysis, and a later stage names where it starts from",
           "[input]") {
   YAML::Node root = YAML::Load(kMaterials + R"(
 name: staged_bar

@@ -159,7 +159,7 @@ TEST_CASE("graded supports: a column left between two boxes no longer leaves poi
   }
 }
 
-TEST_CASE("the refinement stops where the user bounds it: a pass count, a node count; a spacing "
+TEST_CASE("the refinement stops where the user bounds it: a pass count or a node count, and a spacing "
           "that does not divide the body refines as one that does",
           "[adaptivity]") {
   const auto& session = test_session();

@@ -84,7 +84,7 @@ TEST_CASE("node generation: lattice, boundary nodes, no near-duplicates, local r
 }
 
 TEST_CASE("node generation: a coarse node where overlapping finer boxes meet inside their union "
-          "gives way to the finer lattice; on the union's outer border it stays",
+          "gives way to the finer lattice, and on the union's outer border it stays",
           "[geometry]") {
   const auto body = geometry::Domain::rectangle({0, 0}, {8, 8});
   using B = geometry::Refinement;
@@ -149,7 +149,7 @@ double smallest_relative_gap(const geometry::NodeCloud& cloud, double largest_sp
 } // namespace
 
 TEST_CASE("node lattice fits the body at any spacing: no row a sliver from an edge, a hole or a "
-          "finer box; a spacing that divides the body keeps its exact lattice",
+          "finer box, and a spacing that divides the body keeps its exact lattice",
           "[geometry]") {
   // 1/0.0123 = 81.3: the old lattice's last row lay 0.3 h from the edge, kept wherever it was
   // over 0.45 h from the edge's own nodes (smallest gap 0.45 h); the fitted one has 81 intervals.

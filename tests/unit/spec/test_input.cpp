@@ -99,7 +99,7 @@ TEST_CASE("command-line overrides reach nested maps and list items", "[input]") 
                     Catch::Contains("index 7 is out of range"));
 }
 
-TEST_CASE("override paths in either style, a.1.b or a[1].b; empty keys refused", "[input]") {
+TEST_CASE("override paths in either style, a.1.b or a[1].b, and empty keys refused", "[input]") {
   YAML::Node root = YAML::Load(kGood);
   spec::apply_override(root, "boundary[1].traction=[3, 0]");
   CHECK(spec::parse_problem(root).galerkin().boundary[1].traction == Vec2(3, 0));
