@@ -68,6 +68,10 @@ PROBLEMS = {
         check=0.01,
         responses=[("force along x on the pulled grip [N]", "reaction_pulled_grip_x", "force_x"),
                    ("force along y on the pulled grip [N]", "reaction_pulled_grip_y", "force_y")]),
+    "filleted_bar": dict(
+        control=("factor_pulled_end", "v", "end displacement v [mm]"), driver="pulled_end",
+        elastic_limit=True, check=0.01,
+        responses=[("force along x on the pulled end [N]", "reaction_pulled_end_x", "force_x")]),
     "beam_voce_bending": dict(
         control=("factor_push", "v", "end deflection v [mm]"), driver="push",
         responses=[("force on the end [N]", "reaction_push_y", "force_right")]),
