@@ -168,17 +168,12 @@ TEST_CASE("fillets: integration points converge to the body's area", "[geometry]
 
 TEST_CASE("fillets: the nodes' shape functions exist in the body and reproduce a linear field",
           "[geometry][fillets]") {
-  kernels::ShapeSettings shape;
-  shape.dim = 2;
   for (const Case& c : cases())
     for (const double h : {0.05, 0.07}) {
       CAPTURE(c.what, h);
-      const geometry::Domain d = body_of(c, true);
-      const geometry::NodeCloud cloud = geometry::generate_nodes(d, h, {});
-      for (const Vec2& x : cloud.x) CHECK(d.contains(x, 1e-9));
-      const implicit::MeshfreeSpace space(cloud, shape, Vec2(2, 2));
-      const quadrature::DomainPoints q = quadrature::domain_points(d, h, 3, 2);
-      CHECK(linear_reproduction_error(space, q.x) < 1e-10);
+      const CloudCheck k = check_cloud(body_of(c, true), h);
+      CHECK(k.outside == 0);
+      CHECK(k.reproduction < 1e-10);
     }
 }
 
