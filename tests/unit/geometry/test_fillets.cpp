@@ -4,6 +4,7 @@
 // between a corner and its arc are in the body or not as the rounding says, the distance to the
 // boundary and a vertical line's crossings are exact, the integration points converge to the exact
 // area, and the nodes' shape functions are defined everywhere and reproduce a linear field.
+#include "boundary_walk.hpp"
 #include "meshfree/geometry/node_generation.hpp"
 #include "meshfree/quadrature/integration_points.hpp"
 #include "shape_reproduction.hpp"
@@ -95,19 +96,7 @@ TEST_CASE("fillets: the outline's length, bounds and normals, membership and dis
   for (const Case& c : cases()) {
     CAPTURE(c.what);
     const geometry::Domain d = body_of(c);
-    double length = 0.0;
-    for (const geometry::Curve& piece : d.boundary()) {
-      length += piece.length();
-      for (const double s : {0.0, 0.25, 0.5, 0.75, 1.0}) {
-        const Vec2 p = piece.point(s), n = piece.outward_normal(s);
-        if (s > 0.0 && s < 1.0) {
-          CHECK(d.contains(p - 1e-6 * n));
-          CHECK_FALSE(d.contains(p + 1e-6 * n));
-          CHECK(d.distance_to_boundary(p - 1e-3 * n) == Approx(1e-3).margin(1e-12));
-        }
-        CHECK(d.distance_to_boundary(p) < 1e-12);
-      }
-    }
+    const double length = walk_boundary(d, true);
     CHECK(length == Approx(c.perimeter).epsilon(1e-12));
     // The pieces join (a closed loop) and an arc is tangent to the pieces it joins.
     const auto& outline = d.outline();

@@ -4,6 +4,7 @@
 // outside the body, the distance to the boundary and a vertical line's crossings are exact, the
 // integration points converge to the exact area, and the nodes' shape functions are defined
 // everywhere and reproduce a linear field.
+#include "boundary_walk.hpp"
 #include "meshfree/geometry/node_generation.hpp"
 #include "meshfree/quadrature/integration_points.hpp"
 #include "shape_reproduction.hpp"
@@ -87,18 +88,7 @@ TEST_CASE("outline holes: the boundary's length and normals, membership and dist
   for (const Case& c : cases()) {
     CAPTURE(c.what);
     const geometry::Domain d = plate_with(c.holes);
-    double length = 0.0;
-    for (const geometry::Curve& piece : d.boundary()) {
-      length += piece.length();
-      // The outward normal points out of the body: a step along it leaves, one against it stays.
-      for (const double t : {0.25, 0.5, 0.75}) {
-        const Vec2 p = piece.point(t), n = piece.outward_normal(t);
-        CHECK(d.contains(p - 1e-6 * n));
-        CHECK_FALSE(d.contains(p + 1e-6 * n));
-        CHECK(d.distance_to_boundary(p) < 1e-12);
-        CHECK(d.distance_to_boundary(p - 1e-3 * n) == Approx(1e-3).margin(1e-12));
-      }
-    }
+    const double length = walk_boundary(d);
     CHECK(length == Approx(c.perimeter).epsilon(1e-9));
     for (const auto& h : c.holes) {
       const BoundingBox b = h.bounds();
