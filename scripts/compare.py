@@ -72,10 +72,21 @@ PROBLEMS = {
         control=("factor_pulled_end", "v", "end displacement v [mm]"), driver="pulled_end",
         elastic_limit=True, check=0.01,
         responses=[("force along x on the pulled end [N]", "reaction_pulled_end_x", "force_x")]),
+    # The same body read from a STEP file: the same reference.
+    "filleted_bar_from_step": dict(
+        control=("factor_pulled_end", "v", "end displacement v [mm]"), driver="pulled_end",
+        elastic_limit=True, check=0.01, reference="filleted_bar",
+        responses=[("force along x on the pulled end [N]", "reaction_pulled_end_x", "force_x")]),
     "beam_voce_bending": dict(
         control=("factor_push", "v", "end deflection v [mm]"), driver="push",
         responses=[("force on the end [N]", "reaction_push_y", "force_right")]),
 }
+
+
+def reference_dir(problem):
+    """The problem's CalculiX reference: its own, or that of the body it shares (`reference`)."""
+    return os.path.join(ROOT, "reference", "calculix_plastic",
+                        PROBLEMS[problem].get("reference", problem))
 
 
 def read_csv(path):
@@ -114,7 +125,7 @@ def run(problem, method, out_dir, meshfree):
 def compare(problem, runs, out_dir):
     """Prints and returns the largest difference of each run's curves from CalculiX."""
     spec = PROBLEMS[problem]
-    ref = read_csv(os.path.join(ROOT, "reference", "calculix_plastic", problem, "curve.csv"))
+    ref = read_csv(os.path.join(reference_dir(problem), "curve.csv"))
     hist_control, ref_control, control_label = spec["control"]
     worst = {}
     curves = []
@@ -171,7 +182,7 @@ def compare(problem, runs, out_dir):
                     d = max(d, abs(float(h[hist_col]) - other) / scale)
             print(f"{problem}: {label}: meshfree vs in-code FE, largest difference {d:.3e}")
     for line, increment, ref_file in spec.get("lines", []):
-        ref_line = read_csv(os.path.join(ROOT, "reference", "calculix_plastic", problem, ref_file))
+        ref_line = read_csv(os.path.join(reference_dir(problem), ref_file))
         for method, folder in runs.items():
             ours = [r for r in read_csv(os.path.join(folder, f"line_{line}.csv"))
                     if int(float(r["increment"])) == increment]
@@ -186,7 +197,7 @@ def compare(problem, runs, out_dir):
                       f"vs CalculiX, largest difference {d / scale:.3e} of max |CalculiX| = "
                       f"{scale:.6g}")
     if spec.get("elastic_limit"):
-        levels = read_csv(os.path.join(ROOT, "reference", "calculix_plastic", problem,
+        levels = read_csv(os.path.join(reference_dir(problem),
                                        "elastic_limit.csv"))
         expected = float(levels[-1]["first_yield_factor_node"])
         for method, folder in runs.items():

@@ -7,7 +7,7 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 # libopenblas0-pthread replaces the reference BLAS under MUMPS (5x faster factorisations).
 PACKAGES=(build-essential cmake pkg-config petsc-dev libhdf5-openmpi-dev libeigen3-dev
           libsuitesparse-dev libopenblas0-pthread catch2 libyaml-cpp-dev openmpi-bin
-          libgmsh-dev calculix-ccx python3 python3-numpy python3-matplotlib python3-h5py python3-meshio
+          libgmsh-dev gmsh calculix-ccx python3 python3-numpy python3-matplotlib python3-h5py python3-meshio
           python3-yaml)
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -1,8 +1,10 @@
 // libmeshfree_gmsh.so: meshes a plane body, or its prism with tetrahedra, with gmsh's C++ API
 // (Geuzaine & Remacle 2009; gmsh reference manual, "Gmsh application programming interface") for
 // fem/mesh_generation, which loads it when a mesh is to be made (see
-// include/meshfree/fem/gmsh_mesher.hpp for why).
+// include/meshfree/fem/gmsh_mesher.hpp for why); and reads the boundary of a geometry file's
+// surfaces for geometry/outline_file (geometry/gmsh_outline.hpp).
 #include "meshfree/fem/gmsh_mesher.hpp"
+#include "meshfree/geometry/gmsh_outline.hpp"
 #include <algorithm>
 #include <cmath>
 #include <gmsh.h>
@@ -18,6 +20,7 @@ struct Session {
     gmsh::initialize(0, nullptr, false); // no user configuration files: the mesh is reproducible
     gmsh::option::setNumber("General.Terminal", 0);
     gmsh::option::setNumber("General.NumThreads", 1);
+    gmsh::option::setNumber("General.AbortOnError", 0);
     gmsh::model::add("body");
   }
   ~Session() { gmsh::finalize(); }
@@ -67,7 +70,9 @@ void build_body(const Request& q) {
           {2, occ::addDisk(q.holes[h], q.holes[h + 1], z, q.holes[h + 2], q.holes[h + 2])});
     std::size_t first = 0;
     for (const int size : q.polygon_hole_sizes) {
-      holes.push_back({2, plane_polygon(q.polygon_holes.data() + 2 * first, size, z)});
+      const double* centres =
+          q.polygon_hole_centres.empty() ? nullptr : q.polygon_hole_centres.data() + 2 * first;
+      holes.push_back({2, plane_polygon(q.polygon_holes.data() + 2 * first, size, z, centres)});
       first += static_cast<std::size_t>(size);
     }
     occ::cut(body, holes, out, map);
@@ -156,6 +161,210 @@ extern "C" void meshfree_gmsh_mesh(const Request& q, Result& r) {
     } catch (...) {
       gmsh::logger::getLastError(r.error);
       if (r.error.empty()) r.error = "no reason given";
+    }
+  } catch (...) {
+    r.error = "gmsh could not start";
+  }
+}
+
+namespace {
+
+namespace outline = mf::geometry::gmsh_outline;
+using mf::Vec2;
+using mf::geometry::Curve;
+
+/// A piece's point at parameter t (0: its start, 1: its end); the library's Curve functions are
+/// not linked into this one.
+Vec2 at(const Curve& c, double t) {
+  if (c.kind == Curve::Kind::Segment) return c.a + t * (c.b - c.a);
+  const double th = c.theta0 + t * (c.theta1 - c.theta0);
+  return c.center + c.radius * Vec2(std::cos(th), std::sin(th));
+}
+
+/// The pieces in the other sense.
+std::vector<Curve> in_other_sense(std::vector<Curve> pieces) {
+  std::reverse(pieces.begin(), pieces.end());
+  for (Curve& c : pieces) {
+    std::swap(c.a, c.b);
+    std::swap(c.theta0, c.theta1);
+  }
+  return pieces;
+}
+
+/// The points of curve `tag` at parameters `t`, scaled.
+std::vector<Vec2> points_of(int tag, const std::vector<double>& t, double scale) {
+  std::vector<double> xyz;
+  gmsh::model::getValue(1, tag, t, xyz);
+  std::vector<Vec2> p;
+  for (std::size_t i = 0; i + 2 < xyz.size(); i += 3)
+    p.emplace_back(scale * xyz[i], scale * xyz[i + 1]);
+  return p;
+}
+
+/// The centre of the circle through three points.
+Vec2 circle_centre(const Vec2& a, const Vec2& b, const Vec2& c) {
+  const double d =
+      2.0 * (a.x() * (b.y() - c.y()) + b.x() * (c.y() - a.y()) + c.x() * (a.y() - b.y()));
+  const double a2 = a.squaredNorm(), b2 = b.squaredNorm(), c2 = c.squaredNorm();
+  return Vec2((a2 * (b.y() - c.y()) + b2 * (c.y() - a.y()) + c2 * (a.y() - b.y())) / d,
+              (a2 * (c.x() - b.x()) + b2 * (a.x() - c.x()) + c2 * (b.x() - a.x())) / d);
+}
+
+/// A circle's arc from its parameter t0 to t1 as arcs of at most a half turn.
+void add_arcs(int tag, double t0, double t1, const std::string& name, double scale,
+              std::vector<Curve>& out) {
+  const double pi = std::acos(-1.0);
+  const std::vector<Vec2> p =
+      points_of(tag, {t0, t0 + (t1 - t0) / 3.0, t0 + 2.0 * (t1 - t0) / 3.0, t1}, scale);
+  const Vec2 c = circle_centre(p[0], p[1], p[2]);
+  const auto angle = [&](const Vec2& q) { return std::atan2(q.y() - c.y(), q.x() - c.x()); };
+  // Each third of the arc turns less than a half turn, so its sense is that of the wrapped turn.
+  double sweep = 0.0;
+  for (int k = 0; k < 3; ++k) sweep += std::remainder(angle(p[k + 1]) - angle(p[k]), 2.0 * pi);
+  const int pieces = std::max(1, static_cast<int>(std::ceil(std::abs(sweep) / pi - 1e-9)));
+  for (int k = 0; k < pieces; ++k) {
+    Curve a;
+    a.kind = Curve::Kind::Arc;
+    a.name = name;
+    a.center = c;
+    a.radius = (p[0] - c).norm();
+    a.theta0 = angle(p[0]) + sweep * k / pieces;
+    a.theta1 = angle(p[0]) + sweep * (k + 1) / pieces;
+    out.push_back(a);
+  }
+}
+
+/// Curve `tag` as pieces: a line one segment, a circle arcs, any other curve (a spline, an
+/// ellipse, a mesh's polyline) chords through 1,024 samples, each chord as long as the samples'
+/// direction stays within 5 degrees of its first (a straight run is one chord).
+std::vector<Curve> pieces_of(int tag, const std::string& name, double scale) {
+  std::string type;
+  gmsh::model::getType(1, tag, type);
+  std::vector<double> lo, hi;
+  gmsh::model::getParametrizationBounds(1, tag, lo, hi);
+  const double t0 = lo.at(0), t1 = hi.at(0);
+  std::vector<Curve> out;
+  if (type == "Circle") {
+    add_arcs(tag, t0, t1, name, scale, out);
+    return out;
+  }
+  std::vector<Vec2> p = points_of(tag, {t0, t1}, scale);
+  if (type != "Line") { // a chord ends where the samples' direction has turned 5 degrees
+    std::vector<double> t;
+    for (int k = 0; k <= 1024; ++k) t.push_back(t0 + (t1 - t0) * k / 1024.0);
+    const std::vector<Vec2> s = points_of(tag, t, scale);
+    const double most = std::acos(-1.0) / 36.0;
+    p = {s.front()};
+    Vec2 first = Vec2::Zero(); // the direction the chord set out in
+    for (std::size_t k = 1; k < s.size(); ++k) {
+      const Vec2 d = s[k] - s[k - 1];
+      if (d.norm() == 0.0) continue;
+      const double turn = std::atan2(first.x() * d.y() - first.y() * d.x(), first.dot(d));
+      if (first.norm() > 0.0 && std::abs(turn) > most) {
+        p.push_back(s[k - 1]);
+        first = Vec2::Zero();
+      }
+      if (first.norm() == 0.0) first = d;
+    }
+    p.push_back(s.back());
+  }
+  for (std::size_t k = 1; k < p.size(); ++k) {
+    Curve c;
+    c.name = name;
+    c.a = p[k - 1];
+    c.b = p[k];
+    out.push_back(c);
+  }
+  return out;
+}
+
+/// The name of curve `tag`: its first physical group's, else "curve<tag>".
+std::string curve_name(int tag) {
+  std::vector<int> groups;
+  gmsh::model::getPhysicalGroupsForEntity(1, tag, groups);
+  if (groups.empty()) return "curve" + std::to_string(tag);
+  std::string name;
+  gmsh::model::getPhysicalName(1, groups.front(), name);
+  return name.empty() ? "group" + std::to_string(groups.front()) : name;
+}
+
+/// The pieces joined into closed loops, each piece's start on the last one's end; false where
+/// one cannot be closed.
+bool chain(const std::vector<Curve>& pieces, double tol, outline::Result& r) {
+  std::vector<bool> used(pieces.size(), false);
+  for (std::size_t first = 0; first < pieces.size(); ++first) {
+    if (used[first]) continue;
+    std::vector<Curve> loop{pieces[first]};
+    used[first] = true;
+    while ((at(loop.back(), 1.0) - at(loop.front(), 0.0)).norm() > tol) {
+      std::size_t next = 0;
+      while (next < pieces.size() &&
+             (used[next] || (at(pieces[next], 0.0) - at(loop.back(), 1.0)).norm() > tol))
+        ++next;
+      if (next == pieces.size()) {
+        const Vec2 end = at(loop.back(), 1.0);
+        r.error = "the boundary of its surfaces is open at (" + std::to_string(end.x()) + ", " +
+                  std::to_string(end.y()) + ")";
+        return false;
+      }
+      used[next] = true;
+      loop.push_back(pieces[next]);
+    }
+    r.loops.push_back(std::move(loop));
+  }
+  return true;
+}
+
+void read_outline(const outline::Request& q, outline::Result& r) {
+  gmsh::open(q.path);
+  // A mesh file's entities are discrete: parametrised by their mesh, their curves by their nodes.
+  gmsh::model::mesh::createGeometry();
+  gmsh::vectorpair volumes, surfaces, groups;
+  gmsh::model::getEntities(volumes, 3);
+  gmsh::model::getEntities(surfaces, 2);
+  r.dimension = !volumes.empty() ? 3 : !surfaces.empty() ? 2 : 1;
+  gmsh::model::getPhysicalGroups(groups);
+  for (const auto& [dim, tag] : groups) {
+    std::string name;
+    gmsh::model::getPhysicalName(dim, tag, name);
+    r.groups.push_back({dim, name.empty() ? "group" + std::to_string(tag) : name});
+  }
+  if (r.dimension < 2) { // gmsh reads a file it cannot parse as an empty model
+    gmsh::logger::getLastError(r.error);
+    if (!r.error.empty()) r.error = "gmsh cannot read it: " + r.error;
+  }
+  if (r.dimension != 2) return;
+  double x0, y0, z0, x1, y1, z1;
+  gmsh::model::getBoundingBox(-1, -1, x0, y0, z0, x1, y1, z1);
+  const double size = std::max(x1 - x0, y1 - y0);
+  if (z1 - z0 > 1e-6 * size) { // OpenCASCADE widens its boxes by its tolerance, 1e-7
+    r.error = "its surfaces do not lie in one plane z = const (they reach from z = " +
+              std::to_string(z0) + " to " + std::to_string(z1) + ")";
+    return;
+  }
+  gmsh::vectorpair boundary;
+  gmsh::model::getBoundary(surfaces, boundary, true, true, false);
+  std::vector<Curve> pieces;
+  for (const auto& [dim, signed_tag] : boundary) {
+    const int tag = std::abs(signed_tag);
+    std::vector<Curve> p = pieces_of(tag, curve_name(tag), q.scale);
+    if (signed_tag < 0) p = in_other_sense(std::move(p));
+    pieces.insert(pieces.end(), p.begin(), p.end());
+  }
+  chain(pieces, 1e-9 * q.scale * size, r);
+}
+
+} // namespace
+
+extern "C" void meshfree_gmsh_read_outline(const outline::Request& q, outline::Result& r) {
+  r = outline::Result{};
+  try {
+    Session session;
+    try {
+      read_outline(q, r);
+    } catch (...) {
+      gmsh::logger::getLastError(r.error);
+      if (r.error.empty()) r.error = "gmsh gave no reason";
     }
   } catch (...) {
     r.error = "gmsh could not start";

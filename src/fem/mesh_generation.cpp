@@ -1,12 +1,11 @@
 #include "meshfree/fem/mesh_generation.hpp"
 #include "meshfree/core/error.hpp"
 #include "meshfree/core/log.hpp"
+#include "meshfree/core/plugin.hpp"
 #include "meshfree/core/progress.hpp"
 #include "meshfree/fem/gmsh_mesher.hpp"
 #include <chrono>
 #include <cmath>
-#include <dlfcn.h>
-#include <filesystem>
 #include <limits>
 #include <numeric>
 #include <omp.h>
@@ -16,33 +15,31 @@ namespace mf::fem {
 
 namespace {
 
-/// The mesher library: next to the program, else in the build folder it was built in. Loaded
-/// once and kept.
+/// The mesher in gmsh's library (core/plugin.hpp), loaded once and kept.
 gmsh_mesher::Function mesher() {
   static gmsh_mesher::Function function = nullptr;
   if (function) return function;
   std::string tried;
-  std::vector<std::filesystem::path> folders;
-  std::error_code ec;
-  const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) folders.push_back(self.parent_path());
-  if (folders.empty() || folders.front() != std::filesystem::path(MESHFREE_PLUGIN_DIR))
-    folders.emplace_back(MESHFREE_PLUGIN_DIR);
-  for (const auto& folder : folders) {
-    const std::string path = (folder / gmsh_mesher::kLibrary).string();
-    void* library = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (!library) {
-      const char* why = dlerror();
-      tried += "; " + (why ? std::string(why) : path);
-      continue;
-    }
-    function = reinterpret_cast<gmsh_mesher::Function>(dlsym(library, gmsh_mesher::kEntry));
-    if (function) return function;
-    tried += "; " + path + " has no " + gmsh_mesher::kEntry;
-  }
-  fail("discretisation.fem: meshing the geometry needs gmsh's mesher, ", gmsh_mesher::kLibrary,
+  function = reinterpret_cast<gmsh_mesher::Function>(
+      plugin_function(kGmshLibrary, gmsh_mesher::kEntry, tried));
+  if (function) return function;
+  fail("discretisation.fem: meshing the geometry needs gmsh's mesher, ", kGmshLibrary,
        ", which cannot be loaded", tried,
        " (scripts/setup.sh installs gmsh and builds it; or give discretisation.fem.mesh)");
+}
+
+/// Appends the starts of a loop's pieces (x, y) to `points` and, with `arcs`, each piece's arc
+/// centre (cx, cy; NaN, NaN for a segment) to `centres`.
+void add_loop(const std::vector<geometry::Curve>& loop, bool arcs, std::vector<double>& points,
+              std::vector<double>& centres) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const geometry::Curve& c : loop) {
+    const Vec2 p = c.point(0.0);
+    points.insert(points.end(), {p.x(), p.y()});
+    if (!arcs) continue;
+    const bool arc = c.kind == geometry::Curve::Kind::Arc;
+    centres.insert(centres.end(), {arc ? c.center.x() : nan, arc ? c.center.y() : nan});
+  }
 }
 
 /// The request for the body (its outline, holes, refinement boxes and size).
@@ -50,22 +47,25 @@ gmsh_mesher::Request request(const geometry::Domain& domain, double size,
                              const std::vector<geometry::Refinement>& refinement) {
   MF_REQUIRE(size > 0.0, "mesh size must be positive");
   gmsh_mesher::Request q;
-  for (const geometry::Curve& c : domain.outline()) {
-    const Vec2 p = c.point(0.0);
-    q.polygon.insert(q.polygon.end(), {p.x(), p.y()});
-    if (domain.fillets().empty()) continue;
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    const bool arc = c.kind == geometry::Curve::Kind::Arc;
-    q.polygon_centres.insert(q.polygon_centres.end(),
-                             {arc ? c.center.x() : nan, arc ? c.center.y() : nan});
-  }
+  add_loop(domain.outline(), domain.has_arcs(), q.polygon, q.polygon_centres);
   for (const geometry::Circle& c : domain.holes())
     q.holes.insert(q.holes.end(), {c.center.x(), c.center.y(), c.radius});
+  bool curved_holes = false;
+  for (const geometry::OutlineHole& h : domain.outline_holes())
+    curved_holes = curved_holes || h.kind == geometry::OutlineHole::Kind::Loop;
   const auto add_polygon = [&](const std::vector<Vec2>& v) {
     for (const Vec2& p : v) q.polygon_holes.insert(q.polygon_holes.end(), {p.x(), p.y()});
     q.polygon_hole_sizes.push_back(static_cast<int>(v.size()));
+    if (curved_holes) // beside holes with arcs, its edges straight
+      q.polygon_hole_centres.insert(q.polygon_hole_centres.end(), 2 * v.size(),
+                                    std::numeric_limits<double>::quiet_NaN());
   };
   for (const geometry::OutlineHole& h : domain.outline_holes()) {
+    if (h.kind == geometry::OutlineHole::Kind::Loop) {
+      add_loop(h.curves, true, q.polygon_holes, q.polygon_hole_centres);
+      q.polygon_hole_sizes.push_back(static_cast<int>(h.curves.size()));
+      continue;
+    }
     if (h.kind == geometry::OutlineHole::Kind::Polygon) {
       add_polygon(h.vertices);
       continue;

@@ -154,15 +154,15 @@ bool in_body_or_chord(const Domain& domain, const Vec2& a, const Vec2& b, const 
         std::sqrt(std::max(0.0, radius * radius - 0.25 * (b - a).squaredNorm()));
     return chord && (p - center).norm() >= midpoint - tol;
   };
-  for (const Fillet& f : domain.fillets()) // its chords leave the outline
-    if (!f.convex && chord_of(f.center, f.radius)) return true;
+  for (const Curve& c : domain.outline()) // a re-entrant arc's chords leave the outline
+    if (c.kind == Curve::Kind::Arc && c.theta1 < c.theta0 && chord_of(c.center, c.radius))
+      return true;
   if (!domain.within_outline(p)) return false;
   for (const Circle& h : domain.holes())
     if (chord_of(h.center, h.radius)) return true;
   for (const OutlineHole& h : domain.outline_holes())
-    if (h.kind == OutlineHole::Kind::Slot &&
-        (chord_of(h.a, h.half_width) || chord_of(h.b, h.half_width)))
-      return true;
+    for (const Curve& c : h.kind == OutlineHole::Kind::Polygon ? std::vector<Curve>{} : h.loop())
+      if (c.kind == Curve::Kind::Arc && chord_of(c.center, c.radius)) return true;
   return false;
 }
 

@@ -2,6 +2,7 @@
 #include "meshfree/core/error.hpp"
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace mf::geometry {
 
@@ -176,22 +177,9 @@ std::vector<std::string> Domain::names_selected(const std::string& name) const {
 }
 
 BoundingBox Domain::bounds() const {
+  if (has_arcs()) return loop_bounds(outline_);
   BoundingBox bb{vertices_[0], vertices_[0]};
-  const auto add = [&](const Vec2& v) {
-    bb.lo = bb.lo.cwiseMin(v);
-    bb.hi = bb.hi.cwiseMax(v);
-  };
-  if (fillets_.empty()) {
-    for (const auto& v : vertices_) add(v);
-    return bb;
-  }
-  bb = {outline_[0].point(0.0), outline_[0].point(0.0)};
-  for (const Curve& c : outline_) { // the pieces' ends, and the arcs' extreme points
-    add(c.point(1.0));
-    if (c.kind != Curve::Kind::Arc) continue;
-    for (const Vec2& u : {Vec2(1.0, 0.0), Vec2(0.0, 1.0), Vec2(-1.0, 0.0), Vec2(0.0, -1.0)})
-      if (c.distance_to(c.center + c.radius * u) <= 1e-12 * c.radius) add(c.center + c.radius * u);
-  }
+  for (const auto& v : vertices_) bb.lo = bb.lo.cwiseMin(v), bb.hi = bb.hi.cwiseMax(v);
   return bb;
 }
 
@@ -199,7 +187,7 @@ double Domain::area_estimate() const {
   double area = signed_area(vertices_); // holes ignored: used only for sizing estimates
   for (const Fillet& f : fillets_)
     area += (f.convex ? -1.0 : 1.0) * f.cap_area(vertices_[f.vertex]);
-  return area;
+  return arcs_.empty() ? area : loop_area(outline_);
 }
 
 double signed_area(const std::vector<Vec2>& vertices) {
@@ -229,7 +217,7 @@ bool Domain::inside_outline(const Vec2& p) const {
   bool inside = geometry::inside_polygon(vertices_, p);
   for (const Fillet& f : fillets_) // the caps lie inside (convex) or outside the sharp polygon
     if (f.in_cap(vertices_[f.vertex], p)) inside = !f.convex;
-  return inside;
+  return arcs_.empty() ? inside : inside_loop(outline_, p);
 }
 
 namespace {
@@ -271,7 +259,7 @@ bool segments_meet(const Vec2& p, const Vec2& q, const Vec2& r, const Vec2& s) {
 } // namespace
 
 double Domain::distance_to_outline(const Vec2& p) const {
-  if (fillets_.empty()) return distance_to_polygon(vertices_, p);
+  if (!has_arcs()) return distance_to_polygon(vertices_, p);
   double d = std::numeric_limits<double>::max();
   for (const Curve& c : outline_) d = std::min(d, c.distance_to(p));
   return d;
@@ -311,15 +299,22 @@ OutlineHole OutlineHole::slot(const Vec2& a, const Vec2& b, double half_width, s
 
 bool OutlineHole::contains(const Vec2& p, double tol) const {
   if (kind == Kind::Slot) return distance_to_segment(a, b, p) < half_width - tol;
+  if (kind == Kind::Loop) return inside_loop(curves, p) && distance_to(p) > tol;
   return inside_polygon(vertices, p) && distance_to_polygon(vertices, p) > tol;
 }
 
 double OutlineHole::distance_to(const Vec2& p) const {
   if (kind == Kind::Slot) return std::abs(distance_to_segment(a, b, p) - half_width);
+  if (kind == Kind::Loop) {
+    double d = std::numeric_limits<double>::max();
+    for (const Curve& c : curves) d = std::min(d, c.distance_to(p));
+    return d;
+  }
   return distance_to_polygon(vertices, p);
 }
 
 std::vector<Curve> OutlineHole::loop() const {
+  if (kind == Kind::Loop) return curves;
   std::vector<Curve> out;
   const auto segment = [&](const Vec2& from, const Vec2& to) {
     Curve c;
@@ -363,6 +358,7 @@ BoundingBox OutlineHole::bounds() const {
     const Vec2 r(half_width, half_width);
     return {a.cwiseMin(b) - r, a.cwiseMax(b) + r};
   }
+  if (kind == Kind::Loop) return loop_bounds(curves);
   BoundingBox bb{vertices[0], vertices[0]};
   for (const Vec2& v : vertices) bb.lo = bb.lo.cwiseMin(v), bb.hi = bb.hi.cwiseMax(v);
   return bb;
@@ -371,6 +367,7 @@ BoundingBox OutlineHole::bounds() const {
 double OutlineHole::area() const {
   if (kind == Kind::Slot)
     return 4.0 * half_width * (b - a).norm() / 2.0 + std::acos(-1.0) * half_width * half_width;
+  if (kind == Kind::Loop) return -loop_area(curves);
   return signed_area(vertices);
 }
 

@@ -49,6 +49,8 @@ void Domain::round_corner(const Vec2& at, double radius, std::string name) {
   std::size_t i = 0;
   while (i < n && (vertices_[i] - at).norm() > 1e-9 * scale_) ++i;
   MF_REQUIRE(i < n, "no corner of the outline lies at (", at.x(), ", ", at.y(), ")");
+  MF_REQUIRE(arcs_.empty(), "the outline has arcs of its own: its corners are rounded where it "
+                            "is drawn, not by fillets");
   MF_REQUIRE(radius > 0.0, "a fillet's radius must be positive, got ", radius);
   for (const Fillet& f : fillets_)
     MF_REQUIRE(f.vertex != i, "the corner at (", at.x(), ", ", at.y(), ") is rounded already");

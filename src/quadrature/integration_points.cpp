@@ -29,15 +29,18 @@ bool curves_meet(const std::vector<geometry::Curve>& curves, const BoundingBox& 
     }
     const Vec2 nearest = c.center.cwiseMax(box.lo).cwiseMin(box.hi);
     const double far = ((c.center - mid).cwiseAbs() + half).norm();
-    if ((nearest - c.center).norm() < c.radius && far > c.radius) return true;
+    // A circle that only touches the box (a fillet tangent to a cell's side) within `tol` does
+    // not cut it, so that a body read from a file, whose circles carry rounding, is cut as
+    // its drawing is.
+    if ((nearest - c.center).norm() < c.radius - tol && far > c.radius + tol) return true;
   }
   return false;
 }
 
-/// True where a rounded corner's arc may pass through `box`.
-bool fillet_meets(const geometry::Domain& domain, const BoundingBox& box, double tol) {
-  for (const geometry::Fillet& f : domain.fillets())
-    if (curves_meet({f.arc()}, box, tol)) return true;
+/// True where an arc of the outline (a rounded corner's, or one drawn so) may pass through `box`.
+bool outline_arc_meets(const geometry::Domain& domain, const BoundingBox& box, double tol) {
+  for (const geometry::Curve& c : domain.outline())
+    if (c.kind == geometry::Curve::Kind::Arc && curves_meet({c}, box, tol)) return true;
   return false;
 }
 
@@ -93,7 +96,7 @@ void integrate_cell(const geometry::Domain& domain, const BoundingBox& box, cons
   }
   for (const auto& h : domain.outline_holes())
     cut = cut || curves_meet(h.loop(), box, 1e-9 * box.size().maxCoeff());
-  cut = cut || fillet_meets(domain, box, 1e-9 * box.size().maxCoeff());
+  cut = cut || outline_arc_meets(domain, box, 1e-9 * box.size().maxCoeff());
   if (cut && arcs) {
     if (const geometry::Circle* hole = only_cutting_hole(domain, box)) {
       cell_minus_disc(box, hole->center, hole->radius, g, out.x, out.weight);

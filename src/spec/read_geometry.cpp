@@ -1,6 +1,7 @@
-// The geometry of a 2D body in a problem file (a rectangle or a polygon, its corners rounded or
-// not, with holes: circles, polygons, rectangles, slots) and the pieces of its boundary a condition
-// names. Every key is checked; errors name the key path.
+// The geometry of a 2D body in a problem file (a rectangle, a polygon or a geometry file's body,
+// its corners rounded or not, with holes: circles, polygons, rectangles, slots) and the pieces of
+// its boundary a condition names. Every key is checked; errors name the key path.
+#include "meshfree/geometry/outline_file.hpp"
 #include "meshfree/spec/analysis_read.hpp"
 #include "meshfree/spec/spec_read.hpp"
 #include <algorithm>
@@ -58,13 +59,29 @@ void round_corner(KeyReader& f, geometry::Domain& d) {
   }
 }
 
+/// `file` (relative to the problem file's folder) and its `scale`: the plane body it holds.
+geometry::Domain read_file_body(KeyReader& g, const std::string& base_dir) {
+  const std::string file = g.text("file");
+  const std::string path = !file.empty() && file.front() == '/' ? file : base_dir + file;
+  const double scale = g.positive("scale", 1.0);
+  try {
+    geometry::OutlineFile read = geometry::read_outline_file(path, scale);
+    return std::move(read.body);
+  } catch (const Error& e) {
+    fail(g.path_of("file"), ": ", e.what());
+  }
+}
+
 } // namespace
 
-geometry::Domain read_domain(KeyReader& g) {
-  const bool rect = g.has("rectangle"), poly = g.has("polygon");
-  if (rect == poly) g.error("rectangle", "give exactly one of 'rectangle' or 'polygon'");
+geometry::Domain read_domain(KeyReader& g, const std::string& base_dir) {
+  const int given = g.has("rectangle") + g.has("polygon") + g.has("file");
+  if (given != 1) g.error("rectangle", "give exactly one of 'rectangle', 'polygon' or 'file'");
+  const bool rect = g.has("rectangle");
   geometry::Domain d = geometry::Domain::rectangle({0, 0}, {1, 1});
-  if (rect) {
+  if (g.has("file")) {
+    d = read_file_body(g, base_dir);
+  } else if (rect) {
     KeyReader rr = g.map("rectangle");
     const Vec2 origin = rr.has("origin") ? rr.vec2("origin") : Vec2(0.0, 0.0);
     rr.allow("origin");

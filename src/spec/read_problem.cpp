@@ -115,6 +115,9 @@ void read_spheres(std::vector<KeyReader>& list, const geometry::Domain& section,
 /// `spheres: [{center, radius, name}]` (read_spheres).
 void read_solid_geometry(KeyReader& g, ProblemSpec& p) {
   SolidSpec& solid = p.part.emplace<SolidSpec>();
+  if (g.has("file"))
+    g.error("file", "a 3D body is read from a file by the plane models only so far (model.type "
+                    "plane_stress or plane_strain); give a box, or a plane body and extrude");
   std::vector<KeyReader> spheres = g.map_list("spheres");
   if (g.has("box")) {
     p.box = read_body_box(g);
@@ -127,7 +130,7 @@ void read_solid_geometry(KeyReader& g, ProblemSpec& p) {
     solid.z0 = e.number("z0", 0.0);
     solid.depth = e.positive("depth");
     e.finish();
-    p.domain = read_domain(g);
+    p.domain = read_domain(g, "");
     const BoundingBox b = p.domain.bounds();
     p.box =
         Box{Point(b.lo.x(), b.lo.y(), solid.z0), Point(b.hi.x(), b.hi.y(), solid.z0 + solid.depth)};
@@ -136,14 +139,14 @@ void read_solid_geometry(KeyReader& g, ProblemSpec& p) {
 }
 
 /// geometry: a 2D body (rectangle or polygon, with holes) or a 3D box {origin, size}.
-void read_geometry(KeyReader& r, ProblemSpec& p) {
+void read_geometry(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
   KeyReader g = r.map("geometry");
   if (p.dimension == 3 && galerkin(p.analysis))
     read_solid_geometry(g, p);
   else if (p.dimension == 3)
     p.box = read_body_box(g);
   else
-    p.domain = read_domain(g);
+    p.domain = read_domain(g, base_dir);
 }
 
 /// Every scalar under `node` as "path = value" (list items by index), in the file's order.
@@ -209,7 +212,7 @@ ProblemSpec parse_problem(YAML::Node root, const std::string& base_dir, const st
   if (p.analysis == Analysis::Sph) {
     p.part = parse_sph(r, p);
   } else {
-    read_geometry(r, p);
+    read_geometry(r, p, base_dir);
     if (p.analysis == Analysis::Peridynamics)
       p.part = parse_pd(r, p, base_dir);
     else if (p.dimension == 3)

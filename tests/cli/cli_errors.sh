@@ -70,6 +70,32 @@ expect_error "geometry.fillets[0].radius: a fillet of radius 2 at (1, 1) needs 2
 expect_error "geometry.fillets[1].radius: a fillet of radius 0.6 at (1, 0) needs 1.1 of edge 'right', which is 1 long" "$P" --set 'geometry.fillets=[{at: [1, 1], radius: 0.5}, {at: [1, 0], radius: 0.6}]'
 expect_error "geometry.fillets[0].radius: expected a positive number, got -1" "$P" --set 'geometry.fillets=[{at: [1, 1], radius: -1}]'
 expect_error "geometry.fillets: expected a list, got {at: [1, 1], radius: 0.1}" "$P" --set 'geometry.fillets={at: [1, 1], radius: 0.1}'
+# A body from a geometry file: one that is not there, a folder, a kind gmsh does not read as
+# geometry, a file it cannot parse, one without a surface (an open outline), a 3D body, two bodies,
+# surfaces out of their plane; a scale that is not positive, a file beside a polygon, a file
+# for a 3D model, a condition on a name the file does not hold (the message lists those it does),
+# fillets on an outline that has arcs.
+FB="$ROOT/problems/filleted_bar_from_step.yaml"
+GEO="$WORK/geometry"; mkdir -p "$GEO/folder.geo"
+echo "not a STEP file" > "$GEO/bad.step"
+cp "$ROOT/problems/geometry/filleted_bar.geo" "$GEO/part.igs"
+printf 'Point(1) = {0, 0, 0};\nPoint(2) = {1, 0, 0};\nPoint(3) = {1, 1, 0};\nLine(1) = {1, 2};\nLine(2) = {2, 3};\n' > "$GEO/open.geo"
+printf 'SetFactory("OpenCASCADE");\nBox(1) = {0, 0, 0, 1, 1, 1};\n' > "$GEO/box.geo"
+printf 'SetFactory("OpenCASCADE");\nRectangle(1) = {0, 0, 0, 1, 1};\nRectangle(2) = {2, 0, 0, 1, 1};\n' > "$GEO/two.geo"
+printf 'SetFactory("OpenCASCADE");\nRectangle(1) = {0, 0, 0, 1, 1};\nRotate {{1, 0, 0}, {0, 0, 0}, 0.5} { Surface{1}; }\n' > "$GEO/tilted.geo"
+expect_error "geometry.file: $ROOT/problems/nowhere.step: cannot open the geometry file" "$FB" --set 'geometry.file=nowhere.step'
+expect_error "geometry.file: $GEO/folder.geo: is a folder, not a geometry file" "$FB" --set "geometry.file=$GEO/folder.geo"
+expect_error "geometry.file: $GEO/part.igs: not a geometry file meshfree reads (.step, .stp, .brep, .geo or .msh)" "$FB" --set "geometry.file=$GEO/part.igs"
+expect_error "geometry.file: $GEO/bad.step: gmsh cannot read it: Could not read file" "$FB" --set "geometry.file=$GEO/bad.step"
+expect_error "geometry.file: $GEO/open.geo: holds no surface" "$FB" --set "geometry.file=$GEO/open.geo"
+expect_error "geometry.file: $GEO/box.geo: holds volumes, a 3D body: a plane model reads a file of surfaces in one plane" "$FB" --set "geometry.file=$GEO/box.geo"
+expect_error "geometry.file: $GEO/two.geo: its surfaces make more than one body" "$FB" --set "geometry.file=$GEO/two.geo"
+expect_error "geometry.file: $GEO/tilted.geo: its surfaces do not lie in one plane z = const" "$FB" --set "geometry.file=$GEO/tilted.geo"
+expect_error "geometry.scale: expected a positive number, got 0" "$FB" --set geometry.scale=0
+expect_error "geometry.rectangle: give exactly one of 'rectangle', 'polygon' or 'file'" "$FB" --set 'geometry.polygon={vertices: [[0, 0], [1, 0], [1, 1]]}'
+expect_error "geometry.file: a 3D body is read from a file by the plane models only so far" "$FB" --set 'model={type: solid_3d}'
+expect_error "boundary[0].edges: no boundary piece is named 'symmetry' (the body's pieces: curve1, curve2, curve3, curve4, curve5, curve6, curve7;" "$FB" --set boundary.0.edges=symmetry
+expect_error "geometry.fillets[0].at: the outline has arcs of its own" "$FB" --set 'geometry.fillets=[{at: [20, 0], radius: 1}]'
 expect_error "discretisation.refinement[0].spacing: nodes in the box: about" "$P" --set 'discretisation.refinement=[{box: [[0, 0], [0.1, 0.1]], spacing: 1e-9}]'
 expect_error "boundary[1].name: 'clamp' is used by boundary[0] already" "$P" --set boundary.1.name=clamp
 expect_error "name: expected a name of letters, digits" "$P" --set name=a/b

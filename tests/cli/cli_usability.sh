@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # What a user sees on the terminal: unit-sanity warnings (on stderr, the run going on) for a
 # modulus in the wrong units and none for the shipped file; a face box's loaded area and a plane
-# body's area and boundary pieces in check;
+# body's area and boundary pieces in check, built in or read from a geometry file;
 # an explicit run's progress lines at every tenth with 3-digit durations, ending at 100%; an
 # elastoplastic run's increments k of N.
 set -u
@@ -54,6 +54,41 @@ grep -qF -- "$want" "$WORK/fillet" && awk -v a="$area" 'BEGIN { exit !(a != "" &
   --set 'boundary=[{name: grip, faces: [left], displacement: {x: 0, y: 0, z: 0}}, {name: arc, faces: [fillet], traction: [1, 0, 0]}]' >"$WORK/fillet3d" 2>&1
 grep -qx "  boundary arc: traction on area 3.14159" "$WORK/fillet3d" && grep -qx "  boundary grip: displacement on area 10" "$WORK/fillet3d" &&
   ok "a filleted prism's faces" || bad "expected the fillet's face 3.14159 and the grip 10 in: $(cat "$WORK/fillet3d")"
+
+# The same bar from files: gmsh's .geo (its physical groups name the pieces as the built-in
+# file's edges), the STEP and BRep that gmsh's OpenCASCADE writes of it (pieces named curve1 ..
+# curve7), with the built-in body's area and lengths; a mesh of it (.msh), whose body is the
+# polygon of its boundary edges, within 0.2% of that area. The first 8 increments of the run from
+# the .geo and from the STEP equal the built-in run's forces and gauge (relative 1e-6).
+FB="$ROOT/problems/filleted_bar_from_step.yaml"
+gmsh -0 "$ROOT/problems/geometry/filleted_bar.geo" -o "$WORK/bar.brep" -format brep >/dev/null 2>&1
+gmsh -2 "$ROOT/problems/geometry/filleted_bar.geo" -o "$WORK/bar.msh" -format msh >/dev/null 2>&1
+for file in "$ROOT/problems/geometry/filleted_bar.geo" "$ROOT/problems/geometry/filleted_bar.step" "$WORK/bar.brep" "$WORK/bar.msh"; do
+  "$MF" check "$FB" --set "geometry.file=$file" >"$WORK/from_file" 2>&1
+  area="$(sed -n 's/^  body: area \([0-9.]*\), .*/\1/p' "$WORK/from_file")"
+  case "$file" in
+    *.geo) want="$(sed -n 's/^  body: area [0-9.]*, \(.*\)/\1/p' "$WORK/fillet")"; tol=1e-9 ;;
+    *.msh) want="in the box 20 x 5; boundary pieces (length):"; tol=2e-3 ;;
+    *) want="in the box 20 x 5; boundary pieces (length): curve1 20 curve2 2.5 curve3 9 curve4 1.5708 curve5 1.5 curve6 10 curve7 5"; tol=1e-9 ;;
+  esac
+  grep -qF -- "$want" "$WORK/from_file" && awk -v a="$area" -v t="$tol" 'BEGIN { exit !(a != "" && (a - 75.2146) ^ 2 <= ((t + 1e-6) * 75.2146) ^ 2) }' &&
+    ok "the bar from ${file##*/}: area $area and its pieces" || bad "expected area 75.2146 and '$want' in: $(cat "$WORK/from_file")"
+done
+short=(--set 'steps=[{name: pull, load_factor: 0.016, increments: 8}]')
+"$MF" run "$F" --out "$WORK/bar_builtin" "${short[@]}" >/dev/null 2>&1
+"$MF" run "$F" --out "$WORK/bar_geo" --set "geometry={file: $ROOT/problems/geometry/filleted_bar.geo}" "${short[@]}" >/dev/null 2>&1
+"$MF" run "$FB" --out "$WORK/bar_step" "${short[@]}" >/dev/null 2>&1
+for run in bar_geo bar_step; do
+  /usr/bin/python3 - "$WORK/bar_builtin/history.csv" "$WORK/$run/history.csv" <<'PY' && ok "the $run run equals the built-in bar's" || bad "the $run run differs from the built-in bar's"
+import csv, sys
+a, b = (list(csv.DictReader(open(p))) for p in sys.argv[1:3])
+cols = ["reaction_pulled_end_x", "reaction_held_end_x", "ux_narrow_top_middle", "uy_narrow_top_middle"]
+worst = max(abs(float(x[c]) - float(y[c])) / max(abs(float(x[c])), 1e-300)
+            for x, y in zip(a[1:], b[1:]) for c in cols)
+print("  largest relative difference %.2e over %d increments" % (worst, len(a) - 1))
+sys.exit(not (len(a) == len(b) == 9 and worst < 1e-6))
+PY
+done
 
 # Progress of an explicit run: ten lines (10%..100%), the last at 100%, durations to 3
 # significant digits ("elapsed 8.42 s, about 1.2 min left").

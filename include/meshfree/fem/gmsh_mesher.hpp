@@ -4,6 +4,7 @@
 // run, so the meshing lives in a small shared library of its own (libmeshfree_gmsh.so, built
 // from src/fem/gmsh_plugin.cpp), loaded only when a mesh is made. Plain data crosses the
 // boundary, in both directions.
+#include "meshfree/core/plugin.hpp"
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -19,6 +20,8 @@ struct Request {
   // Polygon holes: their vertices x0, y0, x1, y1, ... one after another, and each one's count.
   std::vector<double> polygon_holes;
   std::vector<int> polygon_hole_sizes;
+  // Where they have arcs: cx, cy of each of their pieces as polygon_centres; empty: all straight.
+  std::vector<double> polygon_hole_centres;
   std::vector<double> boxes;   // x0, y0, x1, y1, z0, z1, element size of each refinement box
   double size = 0.0;           // element size elsewhere
   // gmsh's type of the elements wanted: 2 (T3), 3 (Q4), 16 (Q8) of the plane body, or 4 (tet4),
@@ -38,7 +41,6 @@ struct Result {
 };
 
 using Function = void (*)(const Request&, Result&);
-inline constexpr const char* kLibrary = "libmeshfree_gmsh.so";
 inline constexpr const char* kEntry = "meshfree_gmsh_mesh";
 
 } // namespace mf::fem::gmsh_mesher

@@ -42,21 +42,26 @@ struct Curve {
   Vec2 closest_point(const Vec2& p) const;
 };
 
-/// A hole of an outline other than a circle: a polygon (a rectangle is one), or a slot, the
+/// A hole of an outline other than a circle: a polygon (a rectangle is one), a slot, the
 /// points within `half_width` of the segment from `a` to `b` (two straight sides and two round
-/// ends). All its pieces carry its name.
+/// ends), or any closed loop of segments and arcs (a hole read from a file). The pieces of a
+/// polygon or a slot carry its name, those of a loop their own.
 struct OutlineHole {
-  enum class Kind { Polygon, Slot };
+  enum class Kind { Polygon, Slot, Loop };
   Kind kind = Kind::Polygon;
   std::vector<Vec2> vertices; // a polygon's, counter-clockwise
   Vec2 a{0.0, 0.0}, b{0.0, 0.0};
   double half_width = 0.0;
+  std::vector<Curve> curves; // a loop's, clockwise about the hole (the body on their left)
   std::string name;
 
   /// A polygon hole; vertices in either orientation, a simple polygon of nonzero area.
   static OutlineHole polygon(std::vector<Vec2> vertices, std::string name = {});
   /// A slot from a to b (a == b gives a circle) of width 2 half_width.
   static OutlineHole slot(const Vec2& a, const Vec2& b, double half_width, std::string name = {});
+  /// A hole bounded by a closed loop of pieces, in either sense (close_loop); named after its
+  /// first piece.
+  static OutlineHole loop_of(std::vector<Curve> pieces);
   /// True for points strictly inside the hole, farther than `tol` (absolute) from its outline.
   bool contains(const Vec2& p, double tol = 0.0) const;
   /// The distance from p to the hole's outline.
@@ -94,6 +99,11 @@ public:
   /// Simple polygon; vertices in either orientation. edge_names[i] names the edge from vertex i
   /// to vertex i+1 (default "edge<i>").
   static Domain polygon(std::vector<Vec2> vertices, std::vector<std::string> edge_names = {});
+  /// The body inside the closed loop `outline` of named segments and arcs (a body read from a
+  /// file), in either sense, minus the loops `holes`. Its vertices are the pieces' starts, so
+  /// that an arc's chord is an edge of the polygon, and the arcs' caps (between chord and arc)
+  /// are added to it or taken from it.
+  static Domain from_loops(std::vector<Curve> outline, std::vector<std::vector<Curve>> holes);
 
   /// Rounds the corner at vertex `at` (within 1e-9 of the body's size) with an arc of `radius`
   /// tangent to its edges (default name "fillet<k>"). Refused where no vertex is there, the corner
@@ -108,8 +118,10 @@ public:
   bool contains(const Vec2& p, double tol = 1e-12) const;
   BoundingBox bounds() const;
   double area_estimate() const;
-  /// The corners of the outline before any rounding.
+  /// The corners of the outline before any rounding; of a body from loops, the pieces' starts.
   const std::vector<Vec2>& vertices() const { return vertices_; }
+  /// True where the outline has arcs: rounded corners, or arcs of a body from loops.
+  bool has_arcs() const { return !fillets_.empty() || !arcs_.empty(); }
   const std::vector<Fillet>& fillets() const { return fillets_; }
   /// The outline as boundary pieces, counter-clockwise from vertex 0: each edge's straight part
   /// (named as the edge; none where fillets take the whole edge), then the arc of the fillet at
@@ -147,6 +159,7 @@ private:
   std::vector<std::string> edge_names_;
   std::vector<Fillet> fillets_;
   std::vector<Curve> outline_;
+  std::vector<Curve> arcs_; // the arcs of a body from loops, whose caps change the polygon
   std::vector<Circle> holes_;
   std::vector<OutlineHole> outline_holes_;
   double scale_ = 1.0; // length scale for tolerances
@@ -154,6 +167,20 @@ private:
 
 /// Appends the heights at which the vertical line through x crosses curve c.
 void vertical_crossings(const Curve& c, double x, std::vector<double>& ys);
+
+/// The loop of pieces in the other sense: their order and each piece reversed.
+std::vector<Curve> reversed(std::vector<Curve> loop);
+/// Checks that each piece of `loop` ends where the next starts (within `tol`), the last where the
+/// first starts, and that no arc sweeps more than a half turn; returns it counter-clockwise or,
+/// with `clockwise`, clockwise.
+std::vector<Curve> close_loop(std::vector<Curve> loop, bool clockwise, double tol);
+/// The signed area inside a closed loop (positive counter-clockwise): its chords' polygon plus
+/// each arc's cap, r^2 (phi - sin phi) / 2 for a sweep of phi, signed by the arc's sense.
+double loop_area(const std::vector<Curve>& loop);
+/// True for points inside a closed loop: inside its chords' polygon, or else in one arc's cap.
+bool inside_loop(const std::vector<Curve>& loop, const Vec2& p);
+/// The box around a loop: its pieces' ends and its arcs' extreme points.
+BoundingBox loop_bounds(const std::vector<Curve>& loop);
 
 /// True for points inside the polygon (even-odd rule).
 bool inside_polygon(const std::vector<Vec2>& vertices, const Vec2& p);

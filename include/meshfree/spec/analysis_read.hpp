@@ -7,8 +7,9 @@
 
 namespace mf::spec {
 
-/// geometry: a rectangle or a polygon, with holes of any outline (2D bodies).
-geometry::Domain read_domain(KeyReader& geometry);
+/// geometry: a rectangle, a polygon or the plane body of a geometry file (`file`, relative to
+/// `base_dir`, and `scale`), with rounded corners and holes of any outline (2D bodies).
+geometry::Domain read_domain(KeyReader& geometry, const std::string& base_dir);
 
 /// elastic_static and elastoplastic_static: the material, discretisation, exact solution, body
 /// force, boundary, steps, nonlinear and output.
