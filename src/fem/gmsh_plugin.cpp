@@ -210,7 +210,24 @@ Vec2 circle_centre(const Vec2& a, const Vec2& b, const Vec2& c) {
               (a2 * (c.x() - b.x()) + b2 * (a.x() - c.x()) + c2 * (b.x() - a.x())) / d);
 }
 
-/// A circle's arc from its parameter t0 to t1 as arcs of at most a half turn.
+/// True where curve `tag` is an arc of a circle: 17 points along it lie within 1e-9 of its radius
+/// of the circle through its first, middle and last (a circle, or OpenCASCADE's disk, whose
+/// boundary is an ellipse of equal radii, or a rational spline drawn as a circle).
+bool circular(int tag, double t0, double t1, double scale) {
+  std::vector<double> t;
+  for (int k = 0; k <= 16; ++k) t.push_back(t0 + (t1 - t0) * k / 16.0);
+  const std::vector<Vec2> p = points_of(tag, t, scale);
+  const double span = (p[8] - p[0]).norm() + (p[16] - p[8]).norm();
+  const bool closed = (p[16] - p[0]).norm() < 1e-9 * span;
+  const Vec2 c = circle_centre(p[0], p[8], p[closed ? 12 : 16]);
+  const double r = (p[0] - c).norm();
+  if (!std::isfinite(r) || r > 1e6 * span) return false; // a straight curve
+  for (const Vec2& q : p)
+    if (std::abs((q - c).norm() - r) > 1e-9 * r) return false;
+  return true;
+}
+
+/// A circle's arc from its parameter t0 to t1 as arcs of at most a quarter turn.
 void add_arcs(int tag, double t0, double t1, const std::string& name, double scale,
               std::vector<Curve>& out) {
   const double pi = std::acos(-1.0);
@@ -221,7 +238,9 @@ void add_arcs(int tag, double t0, double t1, const std::string& name, double sca
   // Each third of the arc turns less than a half turn, so its sense is that of the wrapped turn.
   double sweep = 0.0;
   for (int k = 0; k < 3; ++k) sweep += std::remainder(angle(p[k + 1]) - angle(p[k]), 2.0 * pi);
-  const int pieces = std::max(1, static_cast<int>(std::ceil(std::abs(sweep) / pi - 1e-9)));
+  // A quarter turn at most: an arc of gmsh's own (the mesher's) is given by its centre, which
+  // leaves a half turn's sense undefined.
+  const int pieces = std::max(1, static_cast<int>(std::ceil(std::abs(sweep) / (0.5 * pi) - 1e-9)));
   for (int k = 0; k < pieces; ++k) {
     Curve a;
     a.kind = Curve::Kind::Arc;
@@ -234,7 +253,7 @@ void add_arcs(int tag, double t0, double t1, const std::string& name, double sca
   }
 }
 
-/// Curve `tag` as pieces: a line one segment, a circle arcs, any other curve (a spline, an
+/// Curve `tag` as pieces: a line one segment, an arc of a circle arcs, any other curve (a spline, an
 /// ellipse, a mesh's polyline) chords through 1,024 samples, each chord as long as the samples'
 /// direction stays within 5 degrees of its first (a straight run is one chord).
 std::vector<Curve> pieces_of(int tag, const std::string& name, double scale) {
@@ -244,7 +263,7 @@ std::vector<Curve> pieces_of(int tag, const std::string& name, double scale) {
   gmsh::model::getParametrizationBounds(1, tag, lo, hi);
   const double t0 = lo.at(0), t1 = hi.at(0);
   std::vector<Curve> out;
-  if (type == "Circle") {
+  if (type != "Line" && circular(tag, t0, t1, scale)) {
     add_arcs(tag, t0, t1, name, scale, out);
     return out;
   }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <optional>
 
 namespace mf::geometry {
 
@@ -31,6 +32,21 @@ void require_geometry_extension(const std::string& path) {
   for (const char* known : {"step", "stp", "brep", "geo", "msh"})
     if (ext == known) return;
   fail(path, ": not a geometry file meshfree reads (.step, .stp, .brep, .geo or .msh)");
+}
+
+/// The circle a loop draws, where it is arcs of one circle only (to 1e-9 of its radius), named
+/// as its first.
+std::optional<Circle> whole_circle(const std::vector<Curve>& loop) {
+  const Curve& first = loop.front();
+  double sweep = 0.0;
+  for (const Curve& c : loop) {
+    if (c.kind != Curve::Kind::Arc || (c.center - first.center).norm() > 1e-9 * first.radius ||
+        std::abs(c.radius - first.radius) > 1e-9 * first.radius)
+      return std::nullopt;
+    sweep += c.theta1 - c.theta0;
+  }
+  if (std::abs(std::abs(sweep) - 2.0 * std::acos(-1.0)) > 1e-9) return std::nullopt;
+  return Circle{first.center, first.radius, first.name};
 }
 
 } // namespace
@@ -62,7 +78,17 @@ OutlineFile read_outline_file(const std::string& path, double scale) {
                  "a plane model reads one body");
     holes.push_back(r.loops[k]);
   }
+  // A round hole is a circle, as in the built-in shapes (integrated on its exact region).
+  std::vector<Circle> circles;
+  holes.erase(std::remove_if(holes.begin(), holes.end(),
+                             [&](const std::vector<Curve>& h) {
+                               const std::optional<Circle> c = whole_circle(h);
+                               if (c) circles.push_back(*c);
+                               return c.has_value();
+                             }),
+              holes.end());
   out.body = Domain::from_loops(r.loops[outer], std::move(holes));
+  for (const Circle& c : circles) out.body.add_hole(c);
   return out;
 }
 
