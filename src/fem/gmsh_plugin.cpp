@@ -201,7 +201,8 @@ std::vector<Vec2> points_of(int tag, const std::vector<double>& t, double scale)
   return p;
 }
 
-/// The centre of the circle through three points.
+/// The centre of the circle through three points (the perpendicular bisectors' meeting point:
+/// [Zwillinger 2018], docs/references.md).
 Vec2 circle_centre(const Vec2& a, const Vec2& b, const Vec2& c) {
   const double d =
       2.0 * (a.x() * (b.y() - c.y()) + b.x() * (c.y() - a.y()) + c.x() * (a.y() - b.y()));

@@ -1,7 +1,8 @@
 // Closed loops of segments and arcs: the outline and the holes of a body read from a file. A
 // loop is its chords' polygon with a cap (the circular segment between chord and arc) added at
 // each arc that bulges out of it and taken away at each that bulges in; no arc sweeps more than
-// a half turn, so that every cap is the smaller segment of its circle, and caps do not overlap.
+// a half turn, so that every cap is the smaller segment of its circle, and caps do not overlap
+// (the segment's area: [Zwillinger 2018], docs/references.md).
 #include "meshfree/core/error.hpp"
 #include "meshfree/geometry/domain.hpp"
 #include <algorithm>
