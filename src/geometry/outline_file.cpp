@@ -64,6 +64,7 @@ OutlineFile read_outline_file(const std::string& path, double scale) {
   OutlineFile out;
   for (const gmsh_outline::Group& g : r.groups)
     (g.dimension == 1 ? out.curve_groups : out.surface_groups).push_back(g.name);
+  if (r.loops.empty()) fail(path, ": its surfaces have no boundary");
   // The outline is the loop of largest area; every other loop must be a hole inside it.
   std::vector<double> area;
   for (const auto& loop : r.loops) area.push_back(std::abs(loop_area(loop)));
