@@ -74,6 +74,15 @@ for file in "$ROOT/problems/geometry/filleted_bar.geo" "$ROOT/problems/geometry/
   grep -qF -- "$want" "$WORK/from_file" && awk -v a="$area" -v t="$tol" 'BEGIN { exit !(a != "" && (a - 75.2146) ^ 2 <= ((t + 1e-6) * 75.2146) ^ 2) }' &&
     ok "the bar from ${file##*/}: area $area and its pieces" || bad "expected area 75.2146 and '$want' in: $(cat "$WORK/from_file")"
 done
+# Curves other than lines and circles: an OpenCASCADE plate of 20 x 10 minus an elliptical hole
+# of semi-axes 3 and 1.5 (chords of at most 5 degrees' turn: the perimeter within 0.1% of
+# Ramanujan's 14.5326) and minus a disk of radius 2 (an ellipse of equal radii to OpenCASCADE,
+# read as a circle hole: 4 pi = 12.5664).
+printf 'SetFactory("OpenCASCADE");\nRectangle(1) = {0, 0, 0, 20, 10};\nDisk(2) = {6, 5, 0, 3, 1.5};\nDisk(3) = {15, 5, 0, 2, 2};\nBooleanDifference(4) = { Surface{1}; Delete; }{ Surface{2, 3}; Delete; };\n' > "$WORK/holes.geo"
+"$MF" check "$FB" --set "geometry.file=$WORK/holes.geo" --set 'output.gauges=[]' >"$WORK/holes" 2>&1
+ellipse="$(grep -o 'curve5 [0-9.]*' "$WORK/holes" | cut -d' ' -f2)"
+awk -v p="$ellipse" 'BEGIN { exit !(p != "" && (p - 14.5326) ^ 2 < (1e-3 * 14.5326) ^ 2) }' && grep -q "curve6 12.5664" "$WORK/holes" &&
+  ok "an elliptical hole's chords ($ellipse) and a disk's circle from OpenCASCADE" || bad "expected the ellipse within 0.1% of 14.5326 and the circle 12.5664 in: $(cat "$WORK/holes")"
 short=(--set 'steps=[{name: pull, load_factor: 0.016, increments: 8}]')
 "$MF" run "$F" --out "$WORK/bar_builtin" "${short[@]}" >/dev/null 2>&1
 "$MF" run "$F" --out "$WORK/bar_geo" --set "geometry={file: $ROOT/problems/geometry/filleted_bar.geo}" "${short[@]}" >/dev/null 2>&1
