@@ -78,6 +78,21 @@ void build_body(const Request& q) {
     occ::cut(body, holes, out, map);
     body = out;
   }
+  if (!q.interfaces.empty()) { // the curves where parts meet, made part of the surface
+    gmsh::vectorpair curves, out;
+    std::vector<gmsh::vectorpair> map;
+    for (std::size_t k = 0; k + 5 < q.interfaces.size(); k += 6) {
+      const double* c = q.interfaces.data() + k;
+      const int from = occ::addPoint(c[0], c[1], z), to = occ::addPoint(c[2], c[3], z);
+      curves.push_back({1, std::isnan(c[4])
+                               ? occ::addLine(from, to)
+                               : occ::addCircleArc(from, occ::addPoint(c[4], c[5], z), to)});
+    }
+    occ::fragment(body, curves, out, map);
+    body.clear();
+    for (const auto& e : out)
+      if (e.first == 2) body.push_back(e);
+  }
   if (volume(q)) {
     gmsh::vectorpair out, solids, balls, cut;
     occ::extrude(body, 0.0, 0.0, q.depth, out);
@@ -308,9 +323,11 @@ std::string curve_name(int tag) {
   return name.empty() ? "group" + std::to_string(groups.front()) : name;
 }
 
-/// The pieces joined into closed loops, each piece's start on the last one's end; false where
-/// one cannot be closed.
-bool chain(const std::vector<Curve>& pieces, double tol, outline::Result& r) {
+/// The pieces joined into closed loops, each piece's start on the last one's end; empty with
+/// `error` set where one cannot be closed.
+std::vector<std::vector<Curve>> chain(const std::vector<Curve>& pieces, double tol,
+                                      std::string& error) {
+  std::vector<std::vector<Curve>> loops;
   std::vector<bool> used(pieces.size(), false);
   for (std::size_t first = 0; first < pieces.size(); ++first) {
     if (used[first]) continue;
@@ -323,16 +340,31 @@ bool chain(const std::vector<Curve>& pieces, double tol, outline::Result& r) {
         ++next;
       if (next == pieces.size()) {
         const Vec2 end = at(loop.back(), 1.0);
-        r.error = "the boundary of its surfaces is open at (" + std::to_string(end.x()) + ", " +
-                  std::to_string(end.y()) + ")";
-        return false;
+        error = "the boundary of its surfaces is open at (" + std::to_string(end.x()) + ", " +
+                std::to_string(end.y()) + ")";
+        return {};
       }
       used[next] = true;
       loop.push_back(pieces[next]);
     }
-    r.loops.push_back(std::move(loop));
+    loops.push_back(std::move(loop));
   }
-  return true;
+  return loops;
+}
+
+/// The boundary of the union of `surfaces` as closed loops of pieces.
+std::vector<std::vector<Curve>> boundary_loops(const gmsh::vectorpair& surfaces, double scale,
+                                               double tol, std::string& error) {
+  gmsh::vectorpair boundary;
+  gmsh::model::getBoundary(surfaces, boundary, true, true, false);
+  std::vector<Curve> pieces;
+  for (const auto& [dim, signed_tag] : boundary) {
+    const int tag = std::abs(signed_tag);
+    std::vector<Curve> p = pieces_of(tag, curve_name(tag), scale);
+    if (signed_tag < 0) p = in_other_sense(std::move(p));
+    pieces.insert(pieces.end(), p.begin(), p.end());
+  }
+  return chain(pieces, tol, error);
 }
 
 void read_outline(const outline::Request& q, outline::Result& r) {
@@ -347,7 +379,7 @@ void read_outline(const outline::Request& q, outline::Result& r) {
   for (const auto& [dim, tag] : groups) {
     std::string name;
     gmsh::model::getPhysicalName(dim, tag, name);
-    r.groups.push_back({dim, name.empty() ? "group" + std::to_string(tag) : name});
+    r.groups.push_back({dim, name.empty() ? "group" + std::to_string(tag) : name, {}});
   }
   if (r.dimension < 2) { // gmsh reads a file it cannot parse as an empty model
     gmsh::logger::getLastError(r.error);
@@ -362,16 +394,16 @@ void read_outline(const outline::Request& q, outline::Result& r) {
               std::to_string(z0) + " to " + std::to_string(z1) + ")";
     return;
   }
-  gmsh::vectorpair boundary;
-  gmsh::model::getBoundary(surfaces, boundary, true, true, false);
-  std::vector<Curve> pieces;
-  for (const auto& [dim, signed_tag] : boundary) {
-    const int tag = std::abs(signed_tag);
-    std::vector<Curve> p = pieces_of(tag, curve_name(tag), q.scale);
-    if (signed_tag < 0) p = in_other_sense(std::move(p));
-    pieces.insert(pieces.end(), p.begin(), p.end());
+  const double tol = 1e-9 * q.scale * size;
+  r.loops = boundary_loops(surfaces, q.scale, tol, r.error);
+  for (std::size_t g = 0; g < groups.size() && r.error.empty(); ++g) {
+    if (groups[g].first != 2) continue;
+    std::vector<int> tags;
+    gmsh::model::getEntitiesForPhysicalGroup(2, groups[g].second, tags);
+    gmsh::vectorpair members;
+    for (int t : tags) members.emplace_back(2, t);
+    r.groups[g].loops = boundary_loops(members, q.scale, tol, r.error);
   }
-  chain(pieces, 1e-9 * q.scale * size, r);
 }
 
 } // namespace

@@ -77,6 +77,13 @@ gmsh_mesher::Request request(const geometry::Domain& domain, double size,
     const Vec2 n = h.half_width * Vec2(-d.y(), d.x()) / d.norm();
     add_polygon({h.a - n, h.b - n, h.b + n, h.a + n});
   }
+  for (const geometry::Curve& c : domain.interfaces()) {
+    const Vec2 a = c.point(0.0), b = c.point(1.0);
+    const bool arc = c.kind == geometry::Curve::Kind::Arc;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    q.interfaces.insert(q.interfaces.end(), {a.x(), a.y(), b.x(), b.y(), arc ? c.center.x() : nan,
+                                             arc ? c.center.y() : nan});
+  }
   for (const geometry::Refinement& r : refinement)
     q.boxes.insert(q.boxes.end(), {r.box.lo.x(), r.box.lo.y(), r.box.hi.x(), r.box.hi.y(), r.z_lo,
                                    r.z_hi, r.spacing});

@@ -49,6 +49,32 @@ std::optional<Circle> whole_circle(const std::vector<Curve>& loop) {
   return Circle{first.center, first.radius, first.name};
 }
 
+/// The body inside `loops`: the loop of largest area its outline, every other a hole inside it
+/// (a whole circle a circle hole, as in the built-in shapes). `what` names it in messages.
+Domain body_of(const std::vector<std::vector<Curve>>& loops, const std::string& path,
+               const std::string& what) {
+  if (loops.empty()) fail(path, ": ", what, " have no boundary");
+  std::vector<double> area;
+  for (const auto& loop : loops) area.push_back(std::abs(loop_area(loop)));
+  const std::size_t outer =
+      static_cast<std::size_t>(std::max_element(area.begin(), area.end()) - area.begin());
+  std::vector<std::vector<Curve>> holes;
+  std::vector<Circle> circles;
+  for (std::size_t k = 0; k < loops.size(); ++k) {
+    if (k == outer) continue;
+    if (!inside_loop(loops[outer], loops[k].front().point(0.5)))
+      fail(path, ": ", what, " make more than one body (a boundary loop lies outside another); ",
+           "one body is read");
+    if (const std::optional<Circle> c = whole_circle(loops[k]))
+      circles.push_back(*c);
+    else
+      holes.push_back(loops[k]);
+  }
+  Domain body = Domain::from_loops(loops[outer], std::move(holes));
+  for (const Circle& c : circles) body.add_hole(c);
+  return body;
+}
+
 } // namespace
 
 OutlineFile read_outline_file(const std::string& path, double scale) {
@@ -62,34 +88,24 @@ OutlineFile read_outline_file(const std::string& path, double scale) {
     fail(path, ": holds volumes, a 3D body: a plane model reads a file of surfaces in one plane");
   if (r.dimension < 2) fail(path, ": holds no surface");
   OutlineFile out;
-  for (const gmsh_outline::Group& g : r.groups)
-    (g.dimension == 1 ? out.curve_groups : out.surface_groups).push_back(g.name);
-  if (r.loops.empty()) fail(path, ": its surfaces have no boundary");
-  // The outline is the loop of largest area; every other loop must be a hole inside it.
-  std::vector<double> area;
-  for (const auto& loop : r.loops) area.push_back(std::abs(loop_area(loop)));
-  const std::size_t outer =
-      static_cast<std::size_t>(std::max_element(area.begin(), area.end()) - area.begin());
-  std::vector<std::vector<Curve>> holes;
-  for (std::size_t k = 0; k < r.loops.size(); ++k) {
-    if (k == outer) continue;
-    const Vec2 p = r.loops[k].front().point(0.5);
-    if (!inside_loop(r.loops[outer], p))
-      fail(path, ": its surfaces make more than one body (a boundary loop lies outside another); "
-                 "a plane model reads one body");
-    holes.push_back(r.loops[k]);
+  out.body = body_of(r.loops, path, "its surfaces");
+  // Where parts meet inside the body: their boundaries' pieces off the body's boundary, once.
+  std::vector<Curve> interfaces;
+  const double tol = 1e-9 * out.body.bounds().size().maxCoeff();
+  for (const gmsh_outline::Group& g : r.groups) {
+    if (g.dimension == 1) out.curve_groups.push_back(g.name);
+    if (g.dimension != 2) continue;
+    out.parts.push_back({g.name, body_of(g.loops, path, "the surfaces of group '" + g.name + "'")});
+    for (const auto& loop : g.loops)
+      for (const Curve& c : loop) {
+        const Vec2 mid = c.point(0.5);
+        const bool seen = std::any_of(interfaces.begin(), interfaces.end(), [&](const Curve& i) {
+          return i.distance_to(mid) <= tol && i.distance_to(c.point(0.0)) <= tol;
+        });
+        if (!seen && out.body.distance_to_boundary(mid) > tol) interfaces.push_back(c);
+      }
   }
-  // A round hole is a circle, as in the built-in shapes (integrated on its exact region).
-  std::vector<Circle> circles;
-  holes.erase(std::remove_if(holes.begin(), holes.end(),
-                             [&](const std::vector<Curve>& h) {
-                               const std::optional<Circle> c = whole_circle(h);
-                               if (c) circles.push_back(*c);
-                               return c.has_value();
-                             }),
-              holes.end());
-  out.body = Domain::from_loops(r.loops[outer], std::move(holes));
-  for (const Circle& c : circles) out.body.add_hole(c);
+  out.body.set_interfaces(std::move(interfaces));
   return out;
 }
 

@@ -149,8 +149,9 @@ bool is_plain_rectangle(const geometry::Domain& domain,
                         const std::vector<geometry::Refinement>& refinement) {
   const BoundingBox b = domain.bounds();
   const double area = b.size().prod();
-  if (domain.vertices().size() != 4 || domain.has_arcs() || !domain.holes().empty() ||
-      !domain.outline_holes().empty() || std::abs(domain.area_estimate() - area) > 1e-12 * area)
+  if (domain.vertices().size() != 4 || domain.has_arcs() || !domain.interfaces().empty() ||
+      !domain.holes().empty() || !domain.outline_holes().empty() ||
+      std::abs(domain.area_estimate() - area) > 1e-12 * area)
     return false;
   for (const geometry::Refinement& r : refinement)
     if ((r.box.hi.array() > b.lo.array()).all() && (r.box.lo.array() < b.hi.array()).all())

@@ -43,15 +43,22 @@ void describe_meshfree_nodes(const spec::ProblemSpec& spec, std::ostream& os) {
        << " increments a step), then the analysis on the last cloud\n";
 }
 
-/// The body as the user described it: its area (integrated on cells of a 64th of its bounding
-/// box, cut cells split four levels deep: within about 1e-4 of the exact area) and the length of
-/// each named piece of its boundary, in the order they come.
-void describe_body(const geometry::Domain& domain, std::ostream& os) {
-  const BoundingBox bb = domain.bounds();
+/// The area of a plane body, integrated on cells of a 64th of its bounding box, cut cells split
+/// four levels deep: within about 1e-4 of the exact area.
+double body_area(const geometry::Domain& domain) {
   const quadrature::DomainPoints fine =
-      quadrature::domain_points(domain, bb.size().maxCoeff() / 64.0, 2, 4);
+      quadrature::domain_points(domain, domain.bounds().size().maxCoeff() / 64.0, 2, 4);
   double area = 0.0;
   for (const double w : fine.weight) area += w;
+  return area;
+}
+
+/// The body as the user described it: its area and the length of each named piece of its
+/// boundary, in the order they come; a geometry file's parts with their areas and materials.
+void describe_body(const spec::ProblemSpec& spec, std::ostream& os) {
+  const geometry::Domain& domain = spec.domain;
+  const BoundingBox bb = domain.bounds();
+  const double area = body_area(domain);
   std::vector<std::pair<std::string, double>> pieces;
   for (const geometry::Curve& c : domain.boundary()) {
     auto at = std::find_if(pieces.begin(), pieces.end(),
@@ -63,6 +70,10 @@ void describe_body(const geometry::Domain& domain, std::ostream& os) {
      << bb.size().y() << "; boundary pieces (length):";
   for (const auto& [name, length] : pieces) os << " " << name << " " << length;
   os << "\n" << std::setprecision(6);
+  for (const spec::MaterialRegion& r : spec.galerkin().material_regions)
+    if (r.region.part)
+      os << "  " << r.key_path << ": area " << body_area(*r.region.part) << ", material "
+         << spec.materials[r.material].name << "\n";
 }
 
 } // namespace
@@ -77,7 +88,7 @@ double estimated_nodes(const spec::ProblemSpec& spec) {
 void print_galerkin_plan(const spec::ProblemSpec& spec, std::ostream& os) {
   if (spec.is_solid()) return print_solid_plan(spec, os);
   auto& galerkin = spec.galerkin();
-  describe_body(spec.domain, os);
+  describe_body(spec, os);
   if (galerkin.discretisation.method == spec::Method::Fem)
     describe_fe_mesh(spec, os);
   else

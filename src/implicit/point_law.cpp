@@ -42,6 +42,10 @@ void add_region_crossings(double x, const spec::Region& g, std::vector<double>& 
   for (const spec::Circle& h : g.holes) add_circle_crossings(x, c2(h.center), h.radius, ys);
   for (const geometry::OutlineHole& h : g.outline_holes)
     for (const geometry::Curve& c : h.loop()) geometry::vertical_crossings(c, x, ys);
+  if (g.part) {
+    g.part->outline_crossings(x, ys);
+    g.part->hole_crossings(x, ys);
+  }
 }
 
 /// The 3D compliance applied to [xx, yy, xy, zz]: the elastic strain of a stress, engineering

@@ -253,6 +253,44 @@ void read_material_regions(KeyReader& r, ProblemSpec& p, const std::string& anal
   }
 }
 
+/// parts: [{group, material}]: each group of the geometry file's surfaces made of its material (a
+/// material region whose region is the group's body, before `material_regions`, which win over
+/// it); every group of the file needs one, and each is named once. The body's `material`, where
+/// not given, is the first part's.
+void read_parts(KeyReader& r, ProblemSpec& p, const std::string& analysis, bool plastic) {
+  if (!r.has("parts")) return;
+  auto& galerkin = p.galerkin();
+  if (p.file_parts.empty())
+    r.error("parts", "names the groups of surfaces of a geometry file (geometry.file), and the "
+                     "body has none");
+  std::string known;
+  for (const geometry::FilePart& f : p.file_parts) known += (known.empty() ? "" : ", ") + f.name;
+  std::vector<std::string> given;
+  for (KeyReader& g : r.map_list("parts")) {
+    const std::string group = g.text("group");
+    const auto part = std::find_if(p.file_parts.begin(), p.file_parts.end(),
+                                   [&](const geometry::FilePart& f) { return f.name == group; });
+    if (part == p.file_parts.end())
+      g.error("group", "the geometry file has no group of surfaces named '" + one_line(group) +
+                           "' (its groups: " + known + ")");
+    if (std::find(given.begin(), given.end(), group) != given.end())
+      g.error("group", "'" + group + "' is given a material already");
+    given.push_back(group);
+    MaterialRegion mr;
+    mr.key_path = g.path();
+    mr.material = find_material(g, "material", p.materials, g.text("material"));
+    mr.region.part = part->body;
+    g.finish();
+    check_body_material(p.materials[mr.material], analysis, plastic);
+    galerkin.material_regions.push_back(std::move(mr));
+  }
+  for (const geometry::FilePart& f : p.file_parts)
+    if (std::find(given.begin(), given.end(), f.name) == given.end())
+      r.error("parts", "the geometry file's group of surfaces '" + f.name +
+                           "' has no material: give {group: " + f.name + ", material: ...}");
+  if (galerkin.material_index < 0) galerkin.material_index = galerkin.material_regions[0].material;
+}
+
 /// gravity: [gx, gy] (an acceleration; every material of the body needs its density) and
 /// initial_stress: {type: geostatic, surface, k0}.
 void read_gravity_and_initial_stress(KeyReader& r, ProblemSpec& p, bool plastic) {
@@ -406,7 +444,9 @@ void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
   const std::string analysis = plastic ? "elastoplastic_static" : "elastic_static";
   if (p.model_type != ModelType::PlaneStress && p.model_type != ModelType::PlaneStrain)
     r.error("model", "analysis " + analysis + " takes model.type plane_stress or plane_strain");
-  galerkin.material_index = take_material(r, p, analysis);
+  // With parts, the body's material may be left to them (read_parts).
+  galerkin.material_index =
+      r.has("parts") && !r.has("material") ? -1 : take_material(r, p, analysis);
   galerkin.linear_solver = read_linear_solver(r);
   galerkin.discretisation =
       read_discretisation(r, 2, p.domain.bounds(), base_dir, galerkin.linear_solver);
@@ -422,6 +462,7 @@ void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
   galerkin.exact = read_exact(r);
   if (r.has("body_force")) galerkin.body_force = r.vec2("body_force");
   r.allow("body_force");
+  read_parts(r, p, analysis, plastic);
   read_material_regions(r, p, analysis, plastic);
   read_gravity_and_initial_stress(r, p, plastic);
   read_boundary(r, p);

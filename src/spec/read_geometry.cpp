@@ -59,13 +59,16 @@ void round_corner(KeyReader& f, geometry::Domain& d) {
   }
 }
 
-/// `file` (relative to the problem file's folder) and its `scale`: the plane body it holds.
-geometry::Domain read_file_body(KeyReader& g, const std::string& base_dir) {
+/// `file` (relative to the problem file's folder) and its `scale`: the plane body it holds, and
+/// its groups of surfaces in `parts`.
+geometry::Domain read_file_body(KeyReader& g, const std::string& base_dir,
+                                std::vector<geometry::FilePart>& parts) {
   const std::string file = g.text("file");
   const std::string path = !file.empty() && file.front() == '/' ? file : base_dir + file;
   const double scale = g.positive("scale", 1.0);
   try {
     geometry::OutlineFile read = geometry::read_outline_file(path, scale);
+    parts = std::move(read.parts);
     return std::move(read.body);
   } catch (const Error& e) {
     fail(g.path_of("file"), ": ", e.what());
@@ -74,13 +77,16 @@ geometry::Domain read_file_body(KeyReader& g, const std::string& base_dir) {
 
 } // namespace
 
-geometry::Domain read_domain(KeyReader& g, const std::string& base_dir) {
+geometry::Domain read_domain(KeyReader& g, const std::string& base_dir,
+                             std::vector<geometry::FilePart>* parts) {
   const int given = g.has("rectangle") + g.has("polygon") + g.has("file");
   if (given != 1) g.error("rectangle", "give exactly one of 'rectangle', 'polygon' or 'file'");
   const bool rect = g.has("rectangle");
   geometry::Domain d = geometry::Domain::rectangle({0, 0}, {1, 1});
   if (g.has("file")) {
-    d = read_file_body(g, base_dir);
+    std::vector<geometry::FilePart> read;
+    d = read_file_body(g, base_dir, read);
+    if (parts) *parts = std::move(read);
   } else if (rect) {
     KeyReader rr = g.map("rectangle");
     const Vec2 origin = rr.has("origin") ? rr.vec2("origin") : Vec2(0.0, 0.0);

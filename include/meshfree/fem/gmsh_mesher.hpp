@@ -22,6 +22,9 @@ struct Request {
   std::vector<int> polygon_hole_sizes;
   // Where they have arcs: cx, cy of each of their pieces as polygon_centres; empty: all straight.
   std::vector<double> polygon_hole_centres;
+  // Curves inside the body that the mesh follows (where parts meet): x0, y0, x1, y1, cx, cy of
+  // each, the centre NaN, NaN for a straight one.
+  std::vector<double> interfaces;
   std::vector<double> boxes;   // x0, y0, x1, y1, z0, z1, element size of each refinement box
   double size = 0.0;           // element size elsewhere
   // gmsh's type of the elements wanted: 2 (T3), 3 (Q4), 16 (Q8) of the plane body, or 4 (tet4),

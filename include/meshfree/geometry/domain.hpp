@@ -134,6 +134,10 @@ public:
   /// The boundary of the body: polygon edges with the parts inside holes removed, and the
   /// parts of hole circles that lie inside the polygon.
   std::vector<Curve> boundary() const;
+  /// Curves inside the body where parts of it meet (a geometry file's groups of surfaces), which
+  /// a mesh of the body follows; none for the built-in shapes.
+  const std::vector<Curve>& interfaces() const { return interfaces_; }
+  void set_interfaces(std::vector<Curve> curves) { interfaces_ = std::move(curves); }
   /// What a boundary name given by a user selects: the piece or pieces of that name, or, for a
   /// side of the bounding box named by its axis (x_min, x_max, y_min, y_max), the names of the
   /// outline's edges that lie wholly on it (a rectangle's left, right, bottom, top). Empty when
@@ -162,6 +166,7 @@ private:
   std::vector<Curve> arcs_; // the arcs of a body from loops, whose caps change the polygon
   std::vector<Circle> holes_;
   std::vector<OutlineHole> outline_holes_;
+  std::vector<Curve> interfaces_;
   double scale_ = 1.0; // length scale for tolerances
 };
 

@@ -13,10 +13,11 @@ struct Request {
 };
 
 /// A named group of the file's entities (gmsh's physical groups): its dimension and name (gmsh's
-/// name, or "group<tag>" where it has none).
+/// name, or "group<tag>" where it has none); of a group of surfaces, the boundary of their union.
 struct Group {
   int dimension = 0;
   std::string name;
+  std::vector<std::vector<Curve>> loops;
 };
 
 struct Result {

@@ -8,18 +8,27 @@
 
 namespace mf::geometry {
 
-/// What a file holds: the body, and the names of its groups of curves and of surfaces.
+/// A physical group of the file's surfaces: its name and the body they make.
+struct FilePart {
+  std::string name;
+  Domain body;
+};
+
+/// What a file holds: the body, its groups of surfaces (the parts a material may be given to) and
+/// the names of its groups of curves.
 struct OutlineFile {
   Domain body;
-  std::vector<std::string> curve_groups, surface_groups;
+  std::vector<FilePart> parts;
+  std::vector<std::string> curve_groups;
 };
 
 /// Reads the plane body of the file at `path`, its coordinates times `scale`. The boundary's
 /// pieces are named after the physical group of curves that holds them (gmsh's name, else
-/// "group<tag>"), or "curve<tag>" outside every group; lines become segments, circles arcs of
-/// at most a half turn, other curves (splines, ellipses) chords of at most a 200th of the body's
-/// size. Error where the file cannot be read, holds volumes or no surface, lies out of a plane
-/// z = const, or makes more than one body.
+/// "group<tag>"), or "curve<tag>" outside every group; lines become segments, curves whose points
+/// lie on one circle arcs of at most a quarter turn (a hole that is a whole circle a circle hole),
+/// other curves (splines, ellipses, a mesh's polylines) chords that turn at most 5 degrees. Error
+/// where the file cannot be read, holds volumes or no surface, lies out of a plane z = const, or
+/// makes more than one body (the whole file, or a group of its surfaces).
 OutlineFile read_outline_file(const std::string& path, double scale);
 
 } // namespace mf::geometry

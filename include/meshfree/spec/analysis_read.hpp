@@ -8,8 +8,10 @@
 namespace mf::spec {
 
 /// geometry: a rectangle, a polygon or the plane body of a geometry file (`file`, relative to
-/// `base_dir`, and `scale`), with rounded corners and holes of any outline (2D bodies).
-geometry::Domain read_domain(KeyReader& geometry, const std::string& base_dir);
+/// `base_dir`, and `scale`), with rounded corners and holes of any outline (2D bodies); a file's
+/// groups of surfaces go to `parts` where given.
+geometry::Domain read_domain(KeyReader& geometry, const std::string& base_dir,
+                             std::vector<geometry::FilePart>* parts = nullptr);
 
 /// elastic_static and elastoplastic_static: the material, discretisation, exact solution, body
 /// force, boundary, steps, nonlinear and output.

@@ -4,6 +4,7 @@
 // analysis. Plain data: no solver header is included.
 #include "meshfree/core/types.hpp"
 #include "meshfree/geometry/domain.hpp"
+#include "meshfree/geometry/outline_file.hpp"
 #include "meshfree/materials/elastic.hpp"
 #include "meshfree/materials/j2_plasticity.hpp"
 #include "meshfree/spec/galerkin_spec.hpp"
@@ -62,6 +63,7 @@ struct ProblemSpec {
   double thickness = 1.0;
   std::vector<MaterialSpec> materials; // the file's `materials:` list
   geometry::Domain domain = geometry::Domain::rectangle({0.0, 0.0}, {1.0, 1.0}); // 2D bodies
+  std::vector<geometry::FilePart> file_parts; // the groups of surfaces of a 2D geometry file
   std::optional<Box> box; // a 3D body (peridynamics, model solid_3d)
   AnalysisPart part;
 

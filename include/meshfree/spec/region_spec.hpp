@@ -44,12 +44,19 @@ struct Region {
   std::vector<Circle> holes;
   std::vector<geometry::OutlineHole> outline_holes;
   std::vector<std::string> edges;
+  // A part of a geometry file's body (a physical group of its surfaces): its points, and those
+  // within tol of its boundary.
+  std::optional<geometry::Domain> part;
 
   bool everything() const {
-    return !box && !circle && !ring && holes.empty() && outline_holes.empty() && edges.empty();
+    return !box && !circle && !ring && holes.empty() && outline_holes.empty() && edges.empty() &&
+           !part;
   }
   bool contains(const Point& p, double tol) const {
     if (box && !box->contains(p, tol)) return false;
+    if (part && !part->contains(Vec2(p.x(), p.y()), 0.0) &&
+        part->distance_to_boundary(Vec2(p.x(), p.y())) > tol)
+      return false;
     const auto r2 = [&p](const Point& c) {
       const double dx = p.x() - c.x(), dy = p.y() - c.y();
       return dx * dx + dy * dy;
