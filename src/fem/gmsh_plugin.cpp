@@ -28,6 +28,21 @@ struct Session {
   Session& operator=(const Session&) = delete;
 };
 
+/// Runs `work` in a gmsh session; what stops it is told in `error` (gmsh's last error).
+template <class Work> void in_session(std::string& error, Work&& work) {
+  try {
+    Session session;
+    try {
+      work();
+    } catch (...) {
+      gmsh::logger::getLastError(error);
+      if (error.empty()) error = "no reason given";
+    }
+  } catch (...) {
+    error = "gmsh could not start";
+  }
+}
+
 bool volume(const Request& q) {
   return q.element_type == 4 || q.element_type == 11;
 }
@@ -169,17 +184,7 @@ void mesh(const Request& q, Result& r) {
 
 extern "C" void meshfree_gmsh_mesh(const Request& q, Result& r) {
   r = Result{};
-  try {
-    Session session;
-    try {
-      mesh(q, r);
-    } catch (...) {
-      gmsh::logger::getLastError(r.error);
-      if (r.error.empty()) r.error = "no reason given";
-    }
-  } catch (...) {
-    r.error = "gmsh could not start";
-  }
+  in_session(r.error, [&] { mesh(q, r); });
 }
 
 namespace {
@@ -194,16 +199,6 @@ Vec2 at(const Curve& c, double t) {
   if (c.kind == Curve::Kind::Segment) return c.a + t * (c.b - c.a);
   const double th = c.theta0 + t * (c.theta1 - c.theta0);
   return c.center + c.radius * Vec2(std::cos(th), std::sin(th));
-}
-
-/// The pieces in the other sense.
-std::vector<Curve> in_other_sense(std::vector<Curve> pieces) {
-  std::reverse(pieces.begin(), pieces.end());
-  for (Curve& c : pieces) {
-    std::swap(c.a, c.b);
-    std::swap(c.theta0, c.theta1);
-  }
-  return pieces;
 }
 
 /// The points of curve `tag` at parameters `t`, scaled.
@@ -361,7 +356,7 @@ std::vector<std::vector<Curve>> boundary_loops(const gmsh::vectorpair& surfaces,
   for (const auto& [dim, signed_tag] : boundary) {
     const int tag = std::abs(signed_tag);
     std::vector<Curve> p = pieces_of(tag, curve_name(tag), scale);
-    if (signed_tag < 0) p = in_other_sense(std::move(p));
+    if (signed_tag < 0) p = mf::geometry::reversed(std::move(p));
     pieces.insert(pieces.end(), p.begin(), p.end());
   }
   return chain(pieces, tol, error);
@@ -410,15 +405,5 @@ void read_outline(const outline::Request& q, outline::Result& r) {
 
 extern "C" void meshfree_gmsh_read_outline(const outline::Request& q, outline::Result& r) {
   r = outline::Result{};
-  try {
-    Session session;
-    try {
-      read_outline(q, r);
-    } catch (...) {
-      gmsh::logger::getLastError(r.error);
-      if (r.error.empty()) r.error = "gmsh gave no reason";
-    }
-  } catch (...) {
-    r.error = "gmsh could not start";
-  }
+  in_session(r.error, [&] { read_outline(q, r); });
 }

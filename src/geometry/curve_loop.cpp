@@ -38,15 +38,6 @@ std::vector<Vec2> chords(const std::vector<Curve>& loop) {
 
 } // namespace
 
-std::vector<Curve> reversed(std::vector<Curve> loop) {
-  std::reverse(loop.begin(), loop.end());
-  for (Curve& c : loop) {
-    std::swap(c.a, c.b);
-    std::swap(c.theta0, c.theta1);
-  }
-  return loop;
-}
-
 std::vector<Curve> close_loop(std::vector<Curve> loop, bool clockwise, double tol) {
   MF_REQUIRE(!loop.empty(), "a loop needs at least one piece");
   const double pi = std::acos(-1.0);

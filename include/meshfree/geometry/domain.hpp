@@ -3,6 +3,7 @@
 // holes (circles, polygons, slots), and their boundary as named pieces (straight segments and
 // circular arcs) for tractions and penalty constraints.
 #include "meshfree/core/types.hpp"
+#include <algorithm>
 #include <functional>
 #include <string>
 #include <vector>
@@ -173,8 +174,16 @@ private:
 /// Appends the heights at which the vertical line through x crosses curve c.
 void vertical_crossings(const Curve& c, double x, std::vector<double>& ys);
 
-/// The loop of pieces in the other sense: their order and each piece reversed.
-std::vector<Curve> reversed(std::vector<Curve> loop);
+/// The loop of pieces in the other sense: their order and each piece reversed (inline: gmsh's
+/// reader, outside the library, uses it too).
+inline std::vector<Curve> reversed(std::vector<Curve> loop) {
+  std::reverse(loop.begin(), loop.end());
+  for (Curve& c : loop) {
+    std::swap(c.a, c.b);
+    std::swap(c.theta0, c.theta1);
+  }
+  return loop;
+}
 /// Checks that each piece of `loop` ends where the next starts (within `tol`), the last where the
 /// first starts, and that no arc sweeps more than a half turn; returns it counter-clockwise or,
 /// with `clockwise`, clockwise.
