@@ -97,13 +97,16 @@ expect_error "geometry.file: a 3D body is read from a file by the plane models o
 expect_error "boundary[0].edges: no boundary piece is named 'symmetry' (the body's pieces: curve1, curve2, curve3, curve4, curve5, curve6, curve7;" "$FB" --set boundary.0.edges=symmetry
 expect_error "geometry.fillets[0].at: the outline has arcs of its own" "$FB" --set 'geometry.fillets=[{at: [20, 0], radius: 1}]'
 # Parts: a group the file does not hold (the message lists those it does), one given twice, a
-# group left without a material, parts of a body that is not from a file, an unknown material.
+# group left without a material, parts of a body that is not from a file, an unknown material,
+# a surface in no group.
 BB="$ROOT/problems/bimaterial_bar.yaml"
 expect_error "parts[1].group: the geometry file has no group of surfaces named 'copper' (its groups: steel, aluminium)" "$BB" --set parts.1.group=copper
 expect_error "parts[1].group: 'steel' is given a material already" "$BB" --set parts.1.group=steel
 expect_error "parts: the geometry file's group of surfaces 'aluminium' has no material: give {group: aluminium, material: ...}" "$BB" --set 'parts=[{group: steel, material: steel}]'
 expect_error "parts: names the groups of surfaces of a geometry file (geometry.file), and the body has none" "$BB" --set 'geometry={rectangle: {size: [20, 2]}}'
 expect_error "parts[0].material: no material is named 'brass' (materials: steel, aluminium)" "$BB" --set parts.0.material=brass
+printf 'SetFactory("OpenCASCADE");\nRectangle(1) = {0, 0, 0, 10, 2};\nRectangle(2) = {10, 0, 0, 10, 2};\nRectangle(3) = {20, 0, 0, 5, 2};\nBooleanFragments{ Surface{1}; Delete; }{ Surface{2, 3}; Delete; }\nPhysical Surface("steel") = {1};\nPhysical Surface("aluminium") = {2};\n' > "$GEO/ungrouped.geo"
+expect_error "parts: the geometry file's groups of surfaces cover an area of 40, the body 50: every surface needs one group (and one only)" "$BB" --set "geometry.file=$GEO/ungrouped.geo"
 expect_error "discretisation.refinement[0].spacing: nodes in the box: about" "$P" --set 'discretisation.refinement=[{box: [[0, 0], [0.1, 0.1]], spacing: 1e-9}]'
 expect_error "boundary[1].name: 'clamp' is used by boundary[0] already" "$P" --set boundary.1.name=clamp
 expect_error "name: expected a name of letters, digits" "$P" --set name=a/b

@@ -108,6 +108,11 @@ ok = max(map(abs, fem)) < 1e-6 and max(map(abs, coarse)) < 5e-3
 ok = ok and all(1.7 < c / f < 2.3 for c, f in zip(coarse, fine))
 sys.exit(not ok)
 PY
+# A file drawn in mm for a problem in m: scale 0.001 makes the bar 0.02 x 0.005, of area
+# 7.52146e-05, its pieces a thousandth as long.
+"$MF" check "$FB" --set "geometry={file: $ROOT/problems/geometry/filleted_bar.geo, scale: 0.001}" --set discretisation.spacing=0.00025 --set 'output.gauges=[]' >"$WORK/scaled" 2>&1
+grep -q "^  body: area 7.5214[0-9]e-05, in the box 0.02 x 0.005; boundary pieces (length): symmetry 0.02 right 0.0025 narrow_top 0.009 fillet 0.0015708" "$WORK/scaled" &&
+  ok "a file scaled from mm to m" || bad "expected the bar a thousandth the size in: $(cat "$WORK/scaled")"
 short=(--set 'steps=[{name: pull, load_factor: 0.016, increments: 8}]')
 "$MF" run "$F" --out "$WORK/bar_builtin" "${short[@]}" >/dev/null 2>&1
 "$MF" run "$F" --out "$WORK/bar_geo" --set "geometry={file: $ROOT/problems/geometry/filleted_bar.geo}" "${short[@]}" >/dev/null 2>&1
