@@ -68,9 +68,11 @@ void print_sph_plan(const spec::ProblemSpec& spec, std::ostream& os) {
   int limiting = -1;
   const double dt = sph::stable_step(h, &limiting);
   require_finite_run(planned_run(spec.sph(), h), "out/" + spec.name);
+  double volume = 0.0;
+  for (const double v : h.particles.volume) volume += v;
   os << "  sph: " << h.particles.size() << " particles in " << spec.sph().dimension
-     << "D, first CFL step " << dt << " (particle " << limiting << "), about "
-     << static_cast<long>(std::ceil(spec.sph().end_time / dt)) << " steps or more\n"
+     << "D of volume " << volume << ", first CFL step " << dt << " (particle " << limiting
+     << "), about " << static_cast<long>(std::ceil(spec.sph().end_time / dt)) << " steps or more\n"
      << "  memory: "
      << describe_bytes(h.particles.size() * bytes_per::sph_particle(spec.sph().dimension))
      << " for the discretisation, besides " << describe_bytes(bytes_per::program)

@@ -2,6 +2,7 @@
 #include "meshfree/core/error.hpp"
 #include "meshfree/explicit/surface_blast.hpp"
 #include "meshfree/geometry/lattice.hpp"
+#include "meshfree/geometry/outline_file.hpp"
 #include "meshfree/sph/detonation.hpp"
 #include "meshfree/sph/held_loads.hpp"
 #include "meshfree/sph/state.hpp"
@@ -74,6 +75,7 @@ void add_region(sph::Hydro& h, const spec::SphSpec& s, std::size_t k) {
     }
     for (const geometry::OutlineHole& o : g.outline_holes)
       if (o.contains(Vec2(x[0], x[1]))) return;
+    if (g.part && !g.part->contains(Vec2(x[0], x[1]), 0.0)) return;
     const double spacing = std::pow(volume, 1.0 / s.dimension);
     const double h0 = s.smoothing * spacing;
     const int i = sph::add_particle(h, x, volume, b.density, b.energy, h0, mat, b.fixed);
@@ -90,7 +92,12 @@ void add_region(sph::Hydro& h, const spec::SphSpec& s, std::size_t k) {
   else {
     const geometry::Lattice grid =
         geometry::Lattice::fitted(g.box->lo, g.box->hi, b.spacing, s.dimension);
-    const double volume = grid.cell_volume(s.dimension);
+    double volume = grid.cell_volume(s.dimension);
+    if (g.part) { // a file's body: its particles share its area
+      int inside = 0;
+      grid.for_each([&](const Vec3& x) { inside += g.part->contains(Vec2(x[0], x[1]), 0.0); });
+      if (inside > 0) volume = geometry::file_body_area(*g.part) / inside;
+    }
     grid.for_each([&](const Vec3& x) { add(x, volume); });
   }
   // A region whose circle or holes leave none of its lattice would make a body without

@@ -109,4 +109,11 @@ OutlineFile read_outline_file(const std::string& path, double scale) {
   return out;
 }
 
+double file_body_area(const Domain& body) {
+  double area = body.area_estimate();
+  for (const OutlineHole& h : body.outline_holes()) area -= h.area();
+  for (const Circle& c : body.holes()) area -= std::acos(-1.0) * c.radius * c.radius;
+  return area;
+}
+
 } // namespace mf::geometry

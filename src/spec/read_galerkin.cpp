@@ -253,15 +253,6 @@ void read_material_regions(KeyReader& r, ProblemSpec& p, const std::string& anal
   }
 }
 
-/// The area of a body read from a geometry file: its outline's less its holes', which lie inside
-/// it (geometry::read_outline_file).
-double file_body_area(const geometry::Domain& d) {
-  double area = d.area_estimate();
-  for (const geometry::OutlineHole& h : d.outline_holes()) area -= h.area();
-  for (const geometry::Circle& c : d.holes()) area -= std::acos(-1.0) * c.radius * c.radius;
-  return area;
-}
-
 /// parts: [{group, material}]: each group of the geometry file's surfaces made of its material (a
 /// material region whose region is the group's body, before `material_regions`, which win over
 /// it); every group of the file needs one, and each is named once. The body's `material`, where
@@ -299,8 +290,8 @@ void read_parts(KeyReader& r, ProblemSpec& p, const std::string& analysis, bool 
                            "' has no material: give {group: " + f.name + ", material: ...}");
   // Every point of the body in one part: the parts' areas add up to the body's.
   double covered = 0.0;
-  for (const geometry::FilePart& f : p.file_parts) covered += file_body_area(f.body);
-  const double whole = file_body_area(p.domain);
+  for (const geometry::FilePart& f : p.file_parts) covered += geometry::file_body_area(f.body);
+  const double whole = geometry::file_body_area(p.domain);
   if (std::abs(covered - whole) > 1e-9 * whole)
     r.error("parts",
             detail::concat("the geometry file's groups of surfaces cover an area of ", covered,

@@ -59,23 +59,18 @@ void round_corner(KeyReader& f, geometry::Domain& d) {
   }
 }
 
-/// `file` (relative to the problem file's folder) and its `scale`: the plane body it holds, and
-/// its groups of surfaces in `parts`.
-geometry::Domain read_file_body(KeyReader& g, const std::string& base_dir,
-                                std::vector<geometry::FilePart>& parts) {
+} // namespace
+
+geometry::OutlineFile read_geometry_file(KeyReader& g, const std::string& base_dir) {
   const std::string file = g.text("file");
   const std::string path = !file.empty() && file.front() == '/' ? file : base_dir + file;
   const double scale = g.positive("scale", 1.0);
   try {
-    geometry::OutlineFile read = geometry::read_outline_file(path, scale);
-    parts = std::move(read.parts);
-    return std::move(read.body);
+    return geometry::read_outline_file(path, scale);
   } catch (const Error& e) {
     fail(g.path_of("file"), ": ", e.what());
   }
 }
-
-} // namespace
 
 geometry::Domain read_domain(KeyReader& g, const std::string& base_dir,
                              std::vector<geometry::FilePart>* parts) {
@@ -84,9 +79,9 @@ geometry::Domain read_domain(KeyReader& g, const std::string& base_dir,
   const bool rect = g.has("rectangle");
   geometry::Domain d = geometry::Domain::rectangle({0, 0}, {1, 1});
   if (g.has("file")) {
-    std::vector<geometry::FilePart> read;
-    d = read_file_body(g, base_dir, read);
-    if (parts) *parts = std::move(read);
+    geometry::OutlineFile read = read_geometry_file(g, base_dir);
+    d = std::move(read.body);
+    if (parts) *parts = std::move(read.parts);
   } else if (rect) {
     KeyReader rr = g.map("rectangle");
     const Vec2 origin = rr.has("origin") ? rr.vec2("origin") : Vec2(0.0, 0.0);

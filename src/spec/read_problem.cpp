@@ -210,7 +210,7 @@ ProblemSpec parse_problem(YAML::Node root, const std::string& base_dir, const st
   read_model(r, p);
   p.materials = read_materials(r);
   if (p.analysis == Analysis::Sph) {
-    p.part = parse_sph(r, p);
+    p.part = parse_sph(r, p, base_dir);
   } else {
     read_geometry(r, p, base_dir);
     if (p.analysis == Analysis::Peridynamics)

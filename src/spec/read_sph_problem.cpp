@@ -57,16 +57,41 @@ SphRegion::VelocityProfile read_velocity_profile(KeyReader& v, int dim) {
   return p;
 }
 
+/// A region of particles from a geometry file (2D): `file` and `scale`, and `group`, one of its
+/// groups of surfaces (else the whole body); the lattice is laid over the body's box and kept
+/// inside the body.
+void read_file_region(KeyReader& b, int dim, const std::string& base_dir, Region& region) {
+  if (dim != 2) b.error("file", "a region of particles is read from a file in 2D only so far");
+  geometry::OutlineFile file = read_geometry_file(b, base_dir);
+  geometry::Domain body = std::move(file.body);
+  if (b.has("group")) {
+    const std::string group = b.text("group");
+    std::string known;
+    for (const geometry::FilePart& f : file.parts) known += (known.empty() ? "" : ", ") + f.name;
+    const auto part = std::find_if(file.parts.begin(), file.parts.end(),
+                                   [&](const geometry::FilePart& f) { return f.name == group; });
+    if (part == file.parts.end())
+      b.error("group", "the geometry file has no group of surfaces named '" + one_line(group) +
+                           "' (its groups: " + (known.empty() ? "none" : known) + ")");
+    body = part->body;
+  }
+  const BoundingBox bb = body.bounds();
+  region.box = Box{Point(bb.lo.x(), bb.lo.y(), 0.0), Point(bb.hi.x(), bb.hi.y(), 0.0)};
+  region.part = std::move(body);
+}
+
 SphRegion read_region_of_particles(KeyReader& b, int dim, double spacing,
                                    const std::vector<MaterialSpec>& materials,
-                                   const SmoothingBounds& bounds) {
+                                   const SmoothingBounds& bounds, const std::string& base_dir) {
   SphRegion block;
   block.key_path = b.path();
   block.material = find_material(b, "material", materials, b.text("material"));
   const MaterialSpec& mat = materials[block.material];
-  if (b.has("box") == b.has("ring")) b.error("box", "give exactly one of 'box' or 'ring'");
+  if (b.has("box") + b.has("ring") + b.has("file") != 1)
+    b.error("box", "give exactly one of 'box', 'ring' or 'file'");
   block.spacing = spacing > 0.0 ? b.positive("spacing", spacing) : b.positive("spacing");
   block.region = read_region(b, dim, kSolids);
+  if (b.has("file")) read_file_region(b, dim, base_dir, block.region);
   const Region& g = block.region;
   double particles = 1.0; // an estimate in floating point, so that no count can overflow
   if (g.ring) {
@@ -198,7 +223,7 @@ double read_discretisation(KeyReader& r, SphSpec& s) {
 
 /// The regions of particles, and the materials they use (checked) in the order of the list.
 void read_regions(KeyReader& r, const std::vector<MaterialSpec>& all, int dim, double spacing,
-                  SphSpec& s) {
+                  const std::string& base_dir, SphSpec& s) {
   std::vector<KeyReader> regions = r.map_list("regions");
   if (regions.empty()) r.error("regions", "at least one region of particles is required");
   std::vector<char> used(all.size(), 0);
@@ -209,7 +234,8 @@ void read_regions(KeyReader& r, const std::vector<MaterialSpec>& all, int dim, d
       s.materials.push_back(all[k]);
     }
   for (KeyReader& b : regions)
-    s.regions.push_back(read_region_of_particles(b, dim, spacing, s.materials, s.smoothing_bounds));
+    s.regions.push_back(
+        read_region_of_particles(b, dim, spacing, s.materials, s.smoothing_bounds, base_dir));
 }
 
 /// detonation: a point, or a plane {at, normal}, and the burn front's width and ignition.
@@ -274,7 +300,7 @@ void read_output(KeyReader& r, int dim, SphSpec& s) {
 
 } // namespace
 
-SphSpec parse_sph(KeyReader& r, const ProblemSpec& front) {
+SphSpec parse_sph(KeyReader& r, const ProblemSpec& front, const std::string& base_dir) {
   SphSpec s;
   if (front.model_type == ModelType::PlaneStress)
     r.error("model", "analysis sph takes model.type uniaxial_strain, plane_strain or solid_3d");
@@ -282,7 +308,7 @@ SphSpec parse_sph(KeyReader& r, const ProblemSpec& front) {
   s.smoothing_bounds = SmoothingBounds::defaults(s.dimension);
   const int dim = s.dimension;
   const double spacing = read_discretisation(r, s);
-  read_regions(r, front.materials, dim, spacing, s);
+  read_regions(r, front.materials, dim, spacing, base_dir, s);
   for (KeyReader& c : r.map_list("boundary")) read_condition(c, dim, s);
   if (r.has("gravity")) s.gravity = read_point(r, "gravity", dim);
   r.allow("gravity");

@@ -107,6 +107,10 @@ expect_error "parts: names the groups of surfaces of a geometry file (geometry.f
 expect_error "parts[0].material: no material is named 'brass' (materials: steel, aluminium)" "$BB" --set parts.0.material=brass
 printf 'SetFactory("OpenCASCADE");\nRectangle(1) = {0, 0, 0, 10, 2};\nRectangle(2) = {10, 0, 0, 10, 2};\nRectangle(3) = {20, 0, 0, 5, 2};\nBooleanFragments{ Surface{1}; Delete; }{ Surface{2, 3}; Delete; }\nPhysical Surface("steel") = {1};\nPhysical Surface("aluminium") = {2};\n' > "$GEO/ungrouped.geo"
 expect_error "parts: the geometry file's groups of surfaces cover an area of 40, the body 50: every surface needs one group (and one only)" "$BB" --set "geometry.file=$GEO/ungrouped.geo"
+# SPH regions from a file: a file beside a box, a group the file does not hold.
+TB="$ROOT/problems/sph_tunnel_blast.yaml"
+expect_error "regions[0].box: give exactly one of 'box', 'ring' or 'file'" "$TB" --set "regions.0.file=$ROOT/problems/geometry/bimaterial_bar.geo"
+expect_error "regions[0].group: the geometry file has no group of surfaces named 'sand' (its groups: steel, aluminium)" "$TB" --set "regions.0={material: sand, file: $ROOT/problems/geometry/bimaterial_bar.geo, group: sand, spacing: 0.25}"
 expect_error "discretisation.refinement[0].spacing: nodes in the box: about" "$P" --set 'discretisation.refinement=[{box: [[0, 0], [0.1, 0.1]], spacing: 1e-9}]'
 expect_error "boundary[1].name: 'clamp' is used by boundary[0] already" "$P" --set boundary.1.name=clamp
 expect_error "name: expected a name of letters, digits" "$P" --set name=a/b
@@ -205,7 +209,7 @@ expect_error "materials[0].strength.shear_modulus_table: give exactly one of the
 expect_error "materials[1].strength: the HJC model needs both 'eos: {type: hjc}' and 'strength: {model: hjc}'" "$T" --set 'materials.1.strength={model: j2}'
 expect_error "materials[1].hjc.P_lock: must exceed P_crush" "$T" --set 'materials.1.hjc={P_lock: 1.0e6}'
 expect_error "regions[1].ring.outer_radius: must exceed inner_radius" "$T" --set 'regions.1.ring.inner_radius=3.5'
-expect_error "regions[0].box: give exactly one of 'box' or 'ring'" "$T" --set 'regions.0.ring={center: [0, 0], inner_radius: 1, outer_radius: 2}'
+expect_error "regions[0].box: give exactly one of 'box', 'ring' or 'file'" "$T" --set 'regions.0.ring={center: [0, 0], inner_radius: 1, outer_radius: 2}'
 expect_error "regions[0].energy: this equation of state does not depend on the internal energy" "$T" --set 'regions.0.energy=1.0'
 expect_error "interface.n2: must be smaller than n1" "$T" --set 'interface={penalty_pressure: 1.0e6, n1: 6, n2: 12}'
 expect_error "boundary[0].blast: particle at (-0.375, -0.125, 0): Kingery-Bulmash: scaled distance" "$T" --set 'boundary.0.blast.near_field=error'

@@ -113,6 +113,16 @@ PY
 "$MF" check "$FB" --set "geometry={file: $ROOT/problems/geometry/filleted_bar.geo, scale: 0.001}" --set discretisation.spacing=0.00025 --set 'output.gauges=[]' >"$WORK/scaled" 2>&1
 grep -q "^  body: area 7.5214[0-9]e-05, in the box 0.02 x 0.005; boundary pieces (length): symmetry 0.02 right 0.0025 narrow_top 0.009 fillet 0.0015708" "$WORK/scaled" &&
   ok "a file scaled from mm to m" || bad "expected the bar a thousandth the size in: $(cat "$WORK/scaled")"
+# SPH particles from a file: the tunnel's ground (32 x 22.5 less the tunnel's bore of radius
+# 3.25) drawn in a .geo as the group `ground`: the same lattice points as the built-in region
+# (box and hole), their volumes adding up to the body's area 686.817 (the built-in lattice's
+# 686.25), none outside it.
+printf 'SetFactory("OpenCASCADE");\nRectangle(1) = {-16, -22.5, 0, 32, 22.5};\nDisk(2) = {0, -13.25, 0, 3.25, 3.25};\nBooleanDifference(3) = { Surface{1}; Delete; }{ Surface{2}; Delete; };\nPhysical Surface("ground") = {3};\n' > "$WORK/ground.geo"
+TB="$ROOT/problems/sph_tunnel_blast.yaml"
+"$MF" check "$TB" --set "regions=[{material: sand, file: $WORK/ground.geo, group: ground, spacing: 0.25}]" >"$WORK/ground_file" 2>&1
+"$MF" check "$TB" --set 'regions=[{material: sand, box: [[-16.0, -22.5], [16.0, 0.0]], spacing: 0.25, holes: [{center: [0.0, -13.25], radius: 3.25}]}]' >"$WORK/ground_box" 2>&1
+grep -q "  sph: 10980 particles in 2D of volume 686.817," "$WORK/ground_file" && grep -q "  sph: 10980 particles in 2D of volume 686.25," "$WORK/ground_box" &&
+  ok "SPH particles filled from a file: the built-in lattice's points, the body's area" || bad "expected 10980 particles of volume 686.817 (file) and 686.25 (box) in: $(cat "$WORK/ground_file" "$WORK/ground_box")"
 short=(--set 'steps=[{name: pull, load_factor: 0.016, increments: 8}]')
 "$MF" run "$F" --out "$WORK/bar_builtin" "${short[@]}" >/dev/null 2>&1
 "$MF" run "$F" --out "$WORK/bar_geo" --set "geometry={file: $ROOT/problems/geometry/filleted_bar.geo}" "${short[@]}" >/dev/null 2>&1

@@ -31,4 +31,7 @@ struct OutlineFile {
 /// makes more than one body (the whole file, or a group of its surfaces).
 OutlineFile read_outline_file(const std::string& path, double scale);
 
+/// The area of a body read from a file: its outline's less its holes', which lie inside it.
+double file_body_area(const Domain& body);
+
 } // namespace mf::geometry

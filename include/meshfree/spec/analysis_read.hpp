@@ -12,6 +12,9 @@ namespace mf::spec {
 /// groups of surfaces go to `parts` where given.
 geometry::Domain read_domain(KeyReader& geometry, const std::string& base_dir,
                              std::vector<geometry::FilePart>* parts = nullptr);
+/// `file` (relative to `base_dir`) and its `scale`: what the geometry file holds (errors name the
+/// key `file`).
+geometry::OutlineFile read_geometry_file(KeyReader& r, const std::string& base_dir);
 
 /// elastic_static and elastoplastic_static: the material, discretisation, exact solution, body
 /// force, boundary, steps, nonlinear and output.
@@ -27,7 +30,7 @@ void parse_model_1d(KeyReader& r, ProblemSpec& p, const std::string& base_dir);
 PdSpec parse_pd(KeyReader& r, const ProblemSpec& front, const std::string& base_dir);
 /// sph: discretisation, regions (the bodies of particles), boundary, detonation, viscosity,
 /// artificial stress, interface, time and output.
-SphSpec parse_sph(KeyReader& r, const ProblemSpec& front);
+SphSpec parse_sph(KeyReader& r, const ProblemSpec& front, const std::string& base_dir);
 /// staged: the `stages:` list, each stage a problem of the shared keys and its own, and how each
 /// starts from an earlier one (ProblemSpec::stages and ::links).
 void parse_stages(KeyReader& r, ProblemSpec& p, const std::string& base_dir);
