@@ -107,8 +107,10 @@ expect_error "parts: names the groups of surfaces of a geometry file (geometry.f
 expect_error "parts[0].material: no material is named 'brass' (materials: steel, aluminium)" "$BB" --set parts.0.material=brass
 printf 'SetFactory("OpenCASCADE");\nRectangle(1) = {0, 0, 0, 10, 2};\nRectangle(2) = {10, 0, 0, 10, 2};\nRectangle(3) = {20, 0, 0, 5, 2};\nBooleanFragments{ Surface{1}; Delete; }{ Surface{2, 3}; Delete; }\nPhysical Surface("steel") = {1};\nPhysical Surface("aluminium") = {2};\n' > "$GEO/ungrouped.geo"
 expect_error "parts: the geometry file's groups of surfaces cover an area of 40, the body 50: every surface needs one group (and one only)" "$BB" --set "geometry.file=$GEO/ungrouped.geo"
-# SPH regions from a file: a file beside a box, a group the file does not hold.
+# SPH regions from a file: a file beside a box, a group the file does not hold, a file for a
+# body of another dimension than 2.
 TB="$ROOT/problems/sph_tunnel_blast.yaml"
+expect_error "regions[0].file: a region of particles is read from a file in 2D only so far" "$ROOT/problems/sph_bar_impact.yaml" --set "regions.0={material: aluminium, file: $ROOT/problems/geometry/bimaterial_bar.geo, spacing: 0.000125}"
 expect_error "regions[0].box: give exactly one of 'box', 'ring' or 'file'" "$TB" --set "regions.0.file=$ROOT/problems/geometry/bimaterial_bar.geo"
 expect_error "regions[0].group: the geometry file has no group of surfaces named 'sand' (its groups: steel, aluminium)" "$TB" --set "regions.0={material: sand, file: $ROOT/problems/geometry/bimaterial_bar.geo, group: sand, spacing: 0.25}"
 expect_error "discretisation.refinement[0].spacing: nodes in the box: about" "$P" --set 'discretisation.refinement=[{box: [[0, 0], [0.1, 0.1]], spacing: 1e-9}]'
