@@ -1,4 +1,5 @@
 #include "meshfree/core/plugin.hpp"
+#include "meshfree/core/error.hpp"
 #include <dlfcn.h>
 #include <filesystem>
 #include <vector>
@@ -25,6 +26,13 @@ void* plugin_function(const char* library, const char* entry, std::string& why) 
     why += "; " + path + " has no " + entry;
   }
   return nullptr;
+}
+
+void* gmsh_function(const char* entry, const std::string& what, const std::string& remedy) {
+  std::string tried;
+  if (void* function = plugin_function(kGmshLibrary, entry, tried)) return function;
+  fail(what, " needs gmsh's library ", kGmshLibrary, ", which cannot be loaded", tried, " (",
+       remedy, ")");
 }
 
 } // namespace mf

@@ -15,17 +15,11 @@ namespace mf::fem {
 
 namespace {
 
-/// The mesher in gmsh's library (core/plugin.hpp), loaded once and kept.
+/// The mesher in gmsh's library (core/plugin.hpp).
 gmsh_mesher::Function mesher() {
-  static gmsh_mesher::Function function = nullptr;
-  if (function) return function;
-  std::string tried;
-  function = reinterpret_cast<gmsh_mesher::Function>(
-      plugin_function(kGmshLibrary, gmsh_mesher::kEntry, tried));
-  if (function) return function;
-  fail("discretisation.fem: meshing the geometry needs gmsh's mesher, ", kGmshLibrary,
-       ", which cannot be loaded", tried,
-       " (scripts/setup.sh installs gmsh and builds it; or give discretisation.fem.mesh)");
+  return reinterpret_cast<gmsh_mesher::Function>(gmsh_function(
+      gmsh_mesher::kEntry, "discretisation.fem: meshing the geometry",
+      "scripts/setup.sh installs gmsh and builds it; or give discretisation.fem.mesh"));
 }
 
 /// Appends the starts of a loop's pieces (x, y) to `points` and, with `arcs`, each piece's arc

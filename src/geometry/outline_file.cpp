@@ -12,15 +12,11 @@ namespace mf::geometry {
 
 namespace {
 
+/// The reader in gmsh's library (core/plugin.hpp).
 gmsh_outline::Function reader() {
-  static gmsh_outline::Function function = nullptr;
-  if (function) return function;
-  std::string tried;
-  function = reinterpret_cast<gmsh_outline::Function>(
-      plugin_function(kGmshLibrary, gmsh_outline::kEntry, tried));
-  if (function) return function;
-  fail("reading a geometry file needs gmsh's reader, ", kGmshLibrary, ", which cannot be loaded",
-       tried, " (scripts/setup.sh installs gmsh and builds it)");
+  return reinterpret_cast<gmsh_outline::Function>(
+      gmsh_function(gmsh_outline::kEntry, "reading a geometry file",
+                    "scripts/setup.sh installs gmsh and builds it"));
 }
 
 /// The file's extension in lower case, which must be one gmsh reads as geometry.

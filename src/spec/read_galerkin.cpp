@@ -263,23 +263,16 @@ void read_parts(KeyReader& r, ProblemSpec& p, const std::string& analysis, bool 
   if (p.file_parts.empty())
     r.error("parts", "names the groups of surfaces of a geometry file (geometry.file), and the "
                      "body has none");
-  std::string known;
-  for (const geometry::FilePart& f : p.file_parts) known += (known.empty() ? "" : ", ") + f.name;
   std::vector<std::string> given;
   for (KeyReader& g : r.map_list("parts")) {
-    const std::string group = g.text("group");
-    const auto part = std::find_if(p.file_parts.begin(), p.file_parts.end(),
-                                   [&](const geometry::FilePart& f) { return f.name == group; });
-    if (part == p.file_parts.end())
-      g.error("group", "the geometry file has no group of surfaces named '" + one_line(group) +
-                           "' (its groups: " + known + ")");
-    if (std::find(given.begin(), given.end(), group) != given.end())
-      g.error("group", "'" + group + "' is given a material already");
-    given.push_back(group);
+    const geometry::FilePart& part = file_part(g, p.file_parts);
+    if (std::find(given.begin(), given.end(), part.name) != given.end())
+      g.error("group", "'" + part.name + "' is given a material already");
+    given.push_back(part.name);
     MaterialRegion mr;
     mr.key_path = g.path();
     mr.material = find_material(g, "material", p.materials, g.text("material"));
-    mr.region.part = part->body;
+    mr.region.part = part.body;
     g.finish();
     check_body_material(p.materials[mr.material], analysis, plastic);
     galerkin.material_regions.push_back(std::move(mr));

@@ -72,6 +72,17 @@ geometry::OutlineFile read_geometry_file(KeyReader& g, const std::string& base_d
   }
 }
 
+const geometry::FilePart& file_part(KeyReader& r, const std::vector<geometry::FilePart>& parts) {
+  const std::string group = r.text("group");
+  std::string known;
+  for (const geometry::FilePart& f : parts) {
+    if (f.name == group) return f;
+    known += (known.empty() ? "" : ", ") + f.name;
+  }
+  r.error("group", "the geometry file has no group of surfaces named '" + one_line(group) +
+                       "' (its groups: " + (known.empty() ? "none" : known) + ")");
+}
+
 geometry::Domain read_domain(KeyReader& g, const std::string& base_dir,
                              std::vector<geometry::FilePart>* parts) {
   const int given = g.has("rectangle") + g.has("polygon") + g.has("file");

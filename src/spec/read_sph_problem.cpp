@@ -63,18 +63,7 @@ SphRegion::VelocityProfile read_velocity_profile(KeyReader& v, int dim) {
 void read_file_region(KeyReader& b, int dim, const std::string& base_dir, Region& region) {
   if (dim != 2) b.error("file", "a region of particles is read from a file in 2D only so far");
   geometry::OutlineFile file = read_geometry_file(b, base_dir);
-  geometry::Domain body = std::move(file.body);
-  if (b.has("group")) {
-    const std::string group = b.text("group");
-    std::string known;
-    for (const geometry::FilePart& f : file.parts) known += (known.empty() ? "" : ", ") + f.name;
-    const auto part = std::find_if(file.parts.begin(), file.parts.end(),
-                                   [&](const geometry::FilePart& f) { return f.name == group; });
-    if (part == file.parts.end())
-      b.error("group", "the geometry file has no group of surfaces named '" + one_line(group) +
-                           "' (its groups: " + (known.empty() ? "none" : known) + ")");
-    body = part->body;
-  }
+  geometry::Domain body = b.has("group") ? file_part(b, file.parts).body : std::move(file.body);
   const BoundingBox bb = body.bounds();
   region.box = Box{Point(bb.lo.x(), bb.lo.y(), 0.0), Point(bb.hi.x(), bb.hi.y(), 0.0)};
   region.part = std::move(body);

@@ -13,4 +13,8 @@ inline constexpr const char* kGmshLibrary = "libmeshfree_gmsh.so";
 /// each attempt's reason in `why`.
 void* plugin_function(const char* library, const char* entry, std::string& why);
 
+/// The function `entry` of gmsh's library; stops with "<what> needs gmsh's library ..., which
+/// cannot be loaded; <reasons> (<remedy>)" where it cannot be had.
+void* gmsh_function(const char* entry, const std::string& what, const std::string& remedy);
+
 } // namespace mf

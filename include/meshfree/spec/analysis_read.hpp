@@ -15,6 +15,9 @@ geometry::Domain read_domain(KeyReader& geometry, const std::string& base_dir,
 /// `file` (relative to `base_dir`) and its `scale`: what the geometry file holds (errors name the
 /// key `file`).
 geometry::OutlineFile read_geometry_file(KeyReader& r, const std::string& base_dir);
+/// The part named by `group` among a geometry file's groups of surfaces; an error naming `group`
+/// lists them where it is not one of them.
+const geometry::FilePart& file_part(KeyReader& r, const std::vector<geometry::FilePart>& parts);
 
 /// elastic_static and elastoplastic_static: the material, discretisation, exact solution, body
 /// force, boundary, steps, nonlinear and output.
