@@ -8,6 +8,7 @@
 #include "meshfree/sph/decomposition.hpp"
 #include "meshfree/sph/step.hpp"
 #include <iostream>
+#include <omp.h>
 
 namespace mf::app {
 
@@ -41,6 +42,7 @@ void write_sph_outputs(const spec::ProblemSpec& spec, const explicit_dynamics::S
   r.history.write(out);
   io::Summary summary({spec.name, spec.description, spec.units, "sph", ""});
   summary.set_status(r.status, r.stop_reason);
+  summary.set("openmp_threads", omp_get_max_threads());
   summary.set("mpi_ranks", r.mpi_ranks);
   io::Json& counts = summary.section("counts");
   io::Json& time_step = summary.section("time_step");

@@ -8,14 +8,19 @@
 #include <algorithm>
 #include <cmath>
 #include <gmsh.h>
+#include <omp.h>
 
 namespace {
 
 using mf::fem::gmsh_mesher::Request;
 using mf::fem::gmsh_mesher::Result;
 
-/// gmsh's API is one global model: initialised here and finalised on every way out.
+/// gmsh's API is one global model: initialised here and finalised on every way out. gmsh sets
+/// OpenMP's thread count for the whole process (General.NumThreads calls omp_set_num_threads, and
+/// so does its initialisation), so the session gives the program its own count back when it
+/// ends: without that, every run that had read or meshed a geometry went on with one thread.
 struct Session {
+  const int threads = omp_get_max_threads();
   Session() {
     gmsh::initialize(0, nullptr, false); // no user configuration files: the mesh is reproducible
     gmsh::option::setNumber("General.Terminal", 0);
@@ -23,7 +28,10 @@ struct Session {
     gmsh::option::setNumber("General.AbortOnError", 0);
     gmsh::model::add("body");
   }
-  ~Session() { gmsh::finalize(); }
+  ~Session() {
+    gmsh::finalize();
+    omp_set_num_threads(threads);
+  }
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
 };

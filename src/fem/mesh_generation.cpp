@@ -8,7 +8,6 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
-#include <omp.h>
 #include <unordered_map>
 
 namespace mf::fem {
@@ -88,16 +87,12 @@ gmsh_mesher::Request request(const geometry::Domain& domain, double size,
 /// Runs gmsh on the request, `nodes` the expected node count for the log of a large mesh.
 gmsh_mesher::Result run_gmsh(const gmsh_mesher::Request& q, double nodes) {
   const gmsh_mesher::Function mesh_with_gmsh = mesher();
-  // gmsh's thread option sets OpenMP's thread count for the whole process: the caller's is
-  // restored.
-  const int threads = omp_get_max_threads();
   // gmsh tells no share done: a large mesh gets a line before and one after, with its time.
   const bool report = 2.0 * nodes >= log::kProgressUnknowns;
   if (report) log::info("meshing the body with gmsh: about ", std::lround(nodes), " nodes or more");
   const auto began = std::chrono::steady_clock::now();
   gmsh_mesher::Result r;
   mesh_with_gmsh(q, r);
-  omp_set_num_threads(threads);
   if (!r.error.empty()) fail("discretisation.fem: gmsh could not mesh the body: ", r.error);
   if (report)
     log::info("meshed the body: ", r.node_tags.size(), " nodes, ",

@@ -112,4 +112,23 @@ double file_body_area(const Domain& body) {
   return area;
 }
 
+std::optional<Annulus> annulus_of(const Domain& body) {
+  const std::vector<Curve>& outline = body.outline();
+  if (outline.empty() || body.holes().size() != 1 || !body.outline_holes().empty()) return {};
+  const Curve& first = outline.front();
+  const Circle& hole = body.holes().front();
+  const double tol = 1e-9 * first.radius;
+  double turn = 0.0;
+  for (const Curve& c : outline) {
+    if (c.kind != Curve::Kind::Arc || (c.center - first.center).norm() > tol ||
+        std::abs(c.radius - first.radius) > tol)
+      return {};
+    turn += std::abs(c.theta1 - c.theta0);
+  }
+  if (std::abs(turn - 2.0 * std::acos(-1.0)) > 1e-9 || (hole.center - first.center).norm() > tol ||
+      !(hole.radius < first.radius))
+    return {};
+  return Annulus{first.center, hole.radius, first.radius};
+}
+
 } // namespace mf::geometry

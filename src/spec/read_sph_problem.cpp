@@ -64,6 +64,10 @@ void read_file_region(KeyReader& b, int dim, const std::string& base_dir, Region
   if (dim != 2) b.error("file", "a region of particles is read from a file in 2D only so far");
   geometry::OutlineFile file = read_geometry_file(b, base_dir);
   geometry::Domain body = b.has("group") ? file_part(b, file.parts).body : std::move(file.body);
+  if (const std::optional<geometry::Annulus> ring = geometry::annulus_of(body)) {
+    region.ring = Ring{Point(ring->center.x(), ring->center.y(), 0.0), ring->inner, ring->outer};
+    return;
+  }
   const BoundingBox bb = body.bounds();
   region.box = Box{Point(bb.lo.x(), bb.lo.y(), 0.0), Point(bb.hi.x(), bb.hi.y(), 0.0)};
   region.part = std::move(body);

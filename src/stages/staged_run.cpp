@@ -7,6 +7,7 @@
 #include "meshfree/solvers/parallel.hpp"
 #include "meshfree/stages/explicit_stage.hpp"
 #include <memory>
+#include <omp.h>
 
 namespace mf::stages {
 
@@ -136,6 +137,7 @@ StagedOutcome run_staged(const spec::ProblemSpec& spec, const solvers::PetscSess
     }
   }
   summary.set_status(outcome.status, outcome.stop_reason);
+  summary.set("openmp_threads", omp_get_max_threads()); // what the run ends with
   if (out) summary.write(*out, timer);
   return outcome;
 }

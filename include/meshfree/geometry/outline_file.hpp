@@ -3,6 +3,7 @@
 // the boundary of the file's surfaces as loops of named segments and arcs, a Domain like the
 // built-in shapes (Domain::from_loops).
 #include "meshfree/geometry/domain.hpp"
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,5 +34,15 @@ OutlineFile read_outline_file(const std::string& path, double scale);
 
 /// The area of a body read from a file: its outline's less its holes', which lie inside it.
 double file_body_area(const Domain& body);
+
+/// A ring between two concentric circles.
+struct Annulus {
+  Vec2 center{0.0, 0.0};
+  double inner = 0.0, outer = 0.0;
+};
+/// The ring a body is, where its outline is one whole circle (arcs about one centre, of one
+/// radius, within 1e-9 of it) and its one hole a circle about the same centre: a tunnel's lining
+/// drawn in a file, which particles fill in concentric rings as the built-in ring's.
+std::optional<Annulus> annulus_of(const Domain& body);
 
 } // namespace mf::geometry

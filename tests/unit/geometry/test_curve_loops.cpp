@@ -4,9 +4,11 @@
 // the built-in body: the same points inside at a grid of points off the boundary and on the
 // arcs' chords, the same area, bounds, boundary length and distances, the same selections by
 // name, and a cloud whose shape functions reproduce a linear field. Loops that are open, sweep an
-// arc past a half turn or enclose nothing are refused.
+// arc past a half turn or enclose nothing are refused. A body of one whole circle about a
+// concentric circle hole is known as a ring (annulus_of), which particle layers fill by rings.
 #include "boundary_walk.hpp"
 #include "meshfree/core/error.hpp"
+#include "meshfree/geometry/outline_file.hpp"
 #include "shape_reproduction.hpp"
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -142,4 +144,49 @@ TEST_CASE("curve loops: open loops, arcs past a half turn and loops of no area a
   CHECK(d.contains({1.45, 0.5}));
   CHECK_FALSE(d.contains({1.45, 0.9}));
   CHECK(walk_boundary(d, true) == Approx(3.0 + 0.5 * pi).epsilon(1e-14));
+}
+
+TEST_CASE("curve loops: a body of one whole circle about a concentric circle hole is a ring",
+          "[loops][geometry]") {
+  // The outline in quarter turns, as a file's circle is read; the ring of a tunnel's lining.
+  const auto circle = [](Vec2 centre, double radius) {
+    std::vector<Curve> loop;
+    for (int k = 0; k < 4; ++k) {
+      Curve c;
+      c.kind = Curve::Kind::Arc;
+      c.name = "outer";
+      c.center = centre;
+      c.radius = radius;
+      c.theta0 = 0.5 * pi * k;
+      c.theta1 = 0.5 * pi * (k + 1);
+      loop.push_back(c);
+    }
+    return loop;
+  };
+  const Vec2 c(0.0, -13.25);
+  Domain lining = Domain::from_loops(circle(c, 3.25), {});
+  lining.add_hole(geometry::Circle{c, 2.75, "bore"});
+  const auto ring = geometry::annulus_of(lining);
+  REQUIRE(ring);
+  CHECK((ring->center - c).norm() < 1e-12);
+  CHECK(ring->inner == 2.75);
+  CHECK(ring->outer == 3.25);
+  // Not rings: no hole, a hole off the centre, two holes, an outline with a chord.
+  CHECK_FALSE(geometry::annulus_of(Domain::from_loops(circle(c, 3.25), {})));
+  Domain off = Domain::from_loops(circle(c, 3.25), {});
+  off.add_hole(geometry::Circle{c + Vec2(0.1, 0.0), 2.75, "bore"});
+  CHECK_FALSE(geometry::annulus_of(off));
+  Domain two = lining;
+  two.add_hole(geometry::Circle{c + Vec2(0.0, 3.0), 0.1, "drain"});
+  CHECK_FALSE(geometry::annulus_of(two));
+  std::vector<Curve> flattened = circle(c, 3.25);
+  Curve chord;
+  chord.name = "flat";
+  chord.a = flattened[3].point(0.0);
+  chord.b = flattened[3].point(1.0);
+  flattened[3] = chord;
+  Domain cut = Domain::from_loops(flattened, {});
+  cut.add_hole(geometry::Circle{c, 2.75, "bore"});
+  CHECK_FALSE(geometry::annulus_of(cut));
+  CHECK_FALSE(geometry::annulus_of(Domain::rectangle({0, 0}, {1, 1})));
 }
