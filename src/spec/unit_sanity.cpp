@@ -29,6 +29,7 @@ constexpr Range kLoad{0.0, 1e11, "Pa"};      // a traction or pressure (blasts r
 constexpr Range kGravity{0.1, 1e3, "m/s^2"}; // the Moon to a geotechnical centrifuge
 constexpr Range kWaveSpeed{10.0, 3e4, "m/s"};
 constexpr Range kStep{1e-11, 1e-1, "s"}; // spacing / wave speed of an explicit run
+constexpr Range kBodySize{1e-4, 1e4, "m"}; // a tenth of a millimetre to 10 km across
 constexpr double kMaxYieldStrain = 0.1;  // sigma_y / E of metals, polymers, rock: < 0.05
 constexpr double kMaxLoadStrain = 1.0;   // load / E: a strain beyond 100%
 constexpr double kMaxSteps = 1e9;        // end time / step
@@ -185,12 +186,39 @@ void check_step(Report& r, const ProblemSpec& p) {
           num(dt) + " (spacing / wave speed): check the end time's units");
 }
 
-void check_problem(Report& r, const ProblemSpec& p) {
+/// A body's extent (its largest side) at `key`: a drawing in mm read into a model in m, or a
+/// `scale` given twice, makes a body a thousand or a million times too large or too small.
+void check_size(Report& r, const std::string& key, double extent) {
+  const double si = extent * r.units().length;
+  if (si >= kBodySize.lo && si <= kBodySize.hi) return;
+  r.add(key + ": the body is " + num(extent) + " across, " + num(si) +
+        " m in the declared units ('" + r.name() + "'): bodies usually lie within " +
+        num(kBodySize.lo) + ".." + num(kBodySize.hi) +
+        " m; check the drawing's units and its scale");
+}
+
+/// The extent of the body an implicit analysis reads from `geometry:` (built in or from a file),
+/// and each SPH region's.
+void check_sizes(Report& r, const ProblemSpec& p, bool front) {
+  if (front && (p.is_galerkin() || p.is_solid() || std::holds_alternative<StagedSpec>(p.part)))
+    check_size(r, "geometry", p.domain.bounds().size().maxCoeff());
+  if (!p.is_sph()) return;
+  for (const SphRegion& reg : p.sph().regions) {
+    const Region& g = reg.region;
+    const std::string key = p.sph().key_prefix + reg.key_path;
+    if (g.ring) check_size(r, key, 2.0 * g.ring->outer_radius);
+    if (g.box) // a plane region's box spans all of z
+      check_size(r, key, (g.box->hi - g.box->lo).head(p.sph().dimension).maxCoeff());
+  }
+}
+
+void check_problem(Report& r, const ProblemSpec& p, bool front) {
   for (const auto& m : p.materials) check_material(r, m);
+  check_sizes(r, p, front);
   check_loads(r, p);
   check_step(r, p);
   if (const StagedSpec* staged = std::get_if<StagedSpec>(&p.part))
-    for (const auto& s : staged->stages) check_problem(r, s);
+    for (const auto& s : staged->stages) check_problem(r, s, false);
 }
 
 } // namespace
@@ -239,7 +267,7 @@ std::vector<std::string> unit_sanity_warnings(const ProblemSpec& spec) {
     r.add("units = '" + spec.units + "' is not a consistent set: force x time^2 / length is " +
           num(consistent) + " kg, the mass unit " + num(u->mass) +
           " kg; the solver assumes consistent units");
-  check_problem(r, spec);
+  check_problem(r, spec, true);
   return r.lines();
 }
 

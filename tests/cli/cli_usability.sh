@@ -113,6 +113,11 @@ PY
 "$MF" check "$FB" --set "geometry={file: $ROOT/problems/geometry/filleted_bar.geo, scale: 0.001}" --set discretisation.spacing=0.00025 --set 'output.gauges=[]' >"$WORK/scaled" 2>&1
 grep -q "^  body: area 7.5214[0-9]e-05, in the box 0.02 x 0.005; boundary pieces (length): symmetry 0.02 right 0.0025 narrow_top 0.009 fillet 0.0015708" "$WORK/scaled" &&
   ok "a file scaled from mm to m" || bad "expected the bar a thousandth the size in: $(cat "$WORK/scaled")"
+# The bar's problem is in N, mm: the scaled bar is 0.02 mm across, which check warns of (a body
+# below 0.1 mm), naming the key; the unscaled bar is not.
+want="[meshfree] warning: geometry: the body is 0.02 across, 2e-05 m in the declared units ('N, mm, MPa'): bodies usually lie within 0.0001..1e+04 m; check the drawing's units and its scale"
+grep -qxF -- "$want" "$WORK/scaled" && ! "$MF" check "$FB" 2>&1 | grep -q warning &&
+  ok "a body scaled to 0.02 mm warns" || bad "expected '$want' in: $(cat "$WORK/scaled")"
 # SPH particles from a file: the tunnel's ground (32 x 22.5 less the tunnel's bore of radius
 # 3.25) drawn in a .geo as the group `ground`: the same lattice points as the built-in region
 # (box and hole), their volumes adding up to the body's area 686.817 (the built-in lattice's

@@ -116,6 +116,8 @@ TEST_CASE("values in the wrong units warn with the key and the range", "[unit_sa
       {"N, mm, MPa", "E: 2.1e5", "[1.0e8, 0]", "times the stiffest modulus"},
       // A mass unit that does not match force, length and time.
       {"N, mm, kg, s", "E: 2.1e5", "[100, 0]", "not a consistent set"},
+      // A body 2 x 1 read in micrometres: 2e-6 m across.
+      {"N, um, kg, s", "E: 2.1e5", "[1, 0]", "geometry: the body is 2 across, 2e-06 m"},
   };
   for (const Case& c : cases) {
     INFO(c.units << " / " << c.material << " / " << c.traction << " -> " << c.key);
@@ -134,6 +136,9 @@ TEST_CASE("an explicit run's time step and step count are checked", "[unit_sanit
   CHECK(any_names(sph_warnings("N, m, kg, s", "1.0e4"), "time.end = 1e+04"));
   // The same numbers read in mm: a 1 um spacing, moduli of 70 GPa x 1e6.
   CHECK(any_names(sph_warnings("N, mm, tonne, s", "1.0e-4"), "shear_modulus"));
+  // A region 0.1 across: 1e-4 m in mm (the smallest body that passes), 1e-7 m in um.
+  CHECK_FALSE(any_names(sph_warnings("N, mm, tonne, s", "1.0e-4"), "the body is"));
+  CHECK(any_names(sph_warnings("N, um, kg, s", "1.0e-4"), "regions[0]: the body is 0.1 across"));
 }
 
 TEST_CASE("no shipped problem warns", "[unit_sanity]") {
