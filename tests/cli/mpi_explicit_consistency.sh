@@ -17,7 +17,7 @@
 # detonation (ZND front), the tunnel's blast loads and transmitting boundaries, the Taylor bar's
 # three symmetry planes (mirror images of other ranks' particles) and J2 plasticity, and a shear
 # layer whose particles cross the ranks' slabs and migrate at every list build. Staged runs: the
-# tunnel (blast loads from t = 0), the strip (elastoplastic preload) and the PMMA beam
+# tunnel (blast loads from t = 0; built in, and read from a geometry file), the strip (elastoplastic preload) and the PMMA beam
 # (peridynamic stage), to 1e-12 with deterministic sums and to 1e-8 with the default ones.
 set -eu
 MF="$1"; ROOT="$2"
@@ -169,6 +169,9 @@ run_staged_both staged-tunnel staged_tunnel_blast $tunnel --set stages.1.discret
 same_staged_run "$WORK/staged-tunnel-1" "$WORK/staged-tunnel-2" 1e-12 1
 run_staged_both staged-tunnel-fast staged_tunnel_blast $tunnel
 same_staged_run "$WORK/staged-tunnel-fast-1" "$WORK/staged-tunnel-fast-2" 1e-8 0
+# The same tunnel with its section, ground layers and lining read from a .geo on every rank.
+run_staged_both staged-tunnel-layered staged_tunnel_layered $tunnel --set stages.1.discretisation.deterministic=true
+same_staged_run "$WORK/staged-tunnel-layered-1" "$WORK/staged-tunnel-layered-2" 1e-12 1
 # The strip with its preload at twice the spacing, and the charge brought to 0.1 m of the free
 # edge so that the blast wave is inside the strip before the (shortened) stage ends.
 strip="--set stages.1.time.end=2.0e-5 --set stages.0.discretisation.spacing=0.01
