@@ -258,38 +258,17 @@ void read_material_regions(KeyReader& r, ProblemSpec& p, const std::string& anal
 /// it); every group of the file needs one, and each is named once. The body's `material`, where
 /// not given, is the first part's.
 void read_parts(KeyReader& r, ProblemSpec& p, const std::string& analysis, bool plastic) {
-  if (!r.has("parts")) return;
   auto& galerkin = p.galerkin();
-  if (p.file_parts.empty())
-    r.error("parts", "names the groups of surfaces of a geometry file (geometry.file), and the "
-                     "body has none");
-  std::vector<std::string> given;
-  for (KeyReader& g : r.map_list("parts")) {
-    const geometry::FilePart& part = file_part(g, p.file_parts);
-    if (std::find(given.begin(), given.end(), part.name) != given.end())
-      g.error("group", "'" + part.name + "' is given a material already");
-    given.push_back(part.name);
+  for (const PartMaterial& part : read_part_materials(r, p)) {
     MaterialRegion mr;
-    mr.key_path = g.path();
-    mr.material = find_material(g, "material", p.materials, g.text("material"));
-    mr.region.part = part.body;
-    g.finish();
+    mr.key_path = part.key_path;
+    mr.material = part.material;
+    mr.region.part = part.part->body;
     check_body_material(p.materials[mr.material], analysis, plastic);
     galerkin.material_regions.push_back(std::move(mr));
   }
-  for (const geometry::FilePart& f : p.file_parts)
-    if (std::find(given.begin(), given.end(), f.name) == given.end())
-      r.error("parts", "the geometry file's group of surfaces '" + f.name +
-                           "' has no material: give {group: " + f.name + ", material: ...}");
-  // Every point of the body in one part: the parts' areas add up to the body's.
-  double covered = 0.0;
-  for (const geometry::FilePart& f : p.file_parts) covered += geometry::file_body_area(f.body);
-  const double whole = geometry::file_body_area(p.domain);
-  if (std::abs(covered - whole) > 1e-9 * whole)
-    r.error("parts",
-            detail::concat("the geometry file's groups of surfaces cover an area of ", covered,
-                           ", the body ", whole, ": every surface needs one group (and one only)"));
-  if (galerkin.material_index < 0) galerkin.material_index = galerkin.material_regions[0].material;
+  if (galerkin.material_index < 0 && !galerkin.material_regions.empty())
+    galerkin.material_index = galerkin.material_regions[0].material;
 }
 
 /// gravity: [gx, gy] (an acceleration; every material of the body needs its density) and

@@ -83,6 +83,36 @@ const geometry::FilePart& file_part(KeyReader& r, const std::vector<geometry::Fi
                        "' (its groups: " + (known.empty() ? "none" : known) + ")");
 }
 
+std::vector<PartMaterial> read_part_materials(KeyReader& r, const ProblemSpec& p) {
+  if (!r.has("parts")) return {};
+  if (p.file_parts.empty())
+    r.error("parts", "names the groups of surfaces of a geometry file (geometry.file), and the "
+                     "body has none");
+  std::vector<PartMaterial> out;
+  std::vector<std::string> given;
+  for (KeyReader& g : r.map_list("parts")) {
+    const geometry::FilePart& part = file_part(g, p.file_parts);
+    if (std::find(given.begin(), given.end(), part.name) != given.end())
+      g.error("group", "'" + part.name + "' is given a material already");
+    given.push_back(part.name);
+    out.push_back({g.path(), &part, find_material(g, "material", p.materials, g.text("material"))});
+    g.finish();
+  }
+  for (const geometry::FilePart& f : p.file_parts)
+    if (std::find(given.begin(), given.end(), f.name) == given.end())
+      r.error("parts", "the geometry file's group of surfaces '" + f.name +
+                           "' has no material: give {group: " + f.name + ", material: ...}");
+  // Every point of the body in one part: the parts' areas add up to the body's.
+  double covered = 0.0;
+  for (const geometry::FilePart& f : p.file_parts) covered += geometry::file_body_area(f.body);
+  const double whole = geometry::file_body_area(p.domain);
+  if (std::abs(covered - whole) > 1e-9 * whole)
+    r.error("parts",
+            detail::concat("the geometry file's groups of surfaces cover an area of ", covered,
+                           ", the body ", whole, ": every surface needs one group (and one only)"));
+  return out;
+}
+
 geometry::Domain read_domain(KeyReader& g, const std::string& base_dir,
                              std::vector<geometry::FilePart>* parts) {
   const int given = g.has("rectangle") + g.has("polygon") + g.has("file");

@@ -152,9 +152,12 @@ materials::PdDimension read_pd_dimension(KeyReader& r, const ProblemSpec& front)
 }
 
 /// The body's own material: a `material:` reference, or the single entry of the file.
-void read_body_material(KeyReader& r, const std::vector<MaterialSpec>& all, PdSpec& s) {
+void read_body_material(KeyReader& r, const std::vector<MaterialSpec>& all,
+                        const std::vector<PartMaterial>& parts, PdSpec& s) {
   if (r.has("material")) {
     s.body_material = find_material(r, "material", all, r.text("material"));
+  } else if (!parts.empty()) {
+    s.body_material = parts.front().material; // every particle lies in a part
   } else if (all.size() != 1) {
     r.error("material", "name the material of the body (the file lists " +
                             std::to_string(all.size()) + " materials)");
@@ -377,8 +380,17 @@ PdSpec parse_pd(KeyReader& r, const ProblemSpec& front, const std::string& base_
   // The materials the body uses: its own (a `material:` reference or the single entry), those
   // of its regions and those of the interfaces; indices below are into `all` until the end.
   std::vector<char> used(all.size(), 0);
-  read_body_material(r, all, s);
+  const std::vector<PartMaterial> parts = read_part_materials(r, front);
+  read_body_material(r, all, parts, s);
   used[s.body_material] = 1;
+  // Each part of a geometry file is a region of its material, before `regions`, which win.
+  for (const PartMaterial& part : parts) {
+    PdRegion reg;
+    reg.region.part = part.part->body;
+    reg.material = part.material;
+    used[reg.material] = 1;
+    s.regions.push_back(std::move(reg));
+  }
   for (KeyReader& i : r.map_list("interfaces"))
     s.interfaces.push_back(read_interface(i, all, used));
   read_discretisation(r, s);

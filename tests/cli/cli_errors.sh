@@ -107,6 +107,11 @@ expect_error "parts: names the groups of surfaces of a geometry file (geometry.f
 expect_error "parts[0].material: no material is named 'brass' (materials: steel, aluminium)" "$BB" --set parts.0.material=brass
 printf 'SetFactory("OpenCASCADE");\nRectangle(1) = {0, 0, 0, 10, 2};\nRectangle(2) = {10, 0, 0, 10, 2};\nRectangle(3) = {20, 0, 0, 5, 2};\nBooleanFragments{ Surface{1}; Delete; }{ Surface{2, 3}; Delete; }\nPhysical Surface("steel") = {1};\nPhysical Surface("aluminium") = {2};\n' > "$GEO/ungrouped.geo"
 expect_error "parts: the geometry file's groups of surfaces cover an area of 40, the body 50: every surface needs one group (and one only)" "$BB" --set "geometry.file=$GEO/ungrouped.geo"
+# Peridynamic parts: the same reader and messages; a body material, where given, is the default.
+PB="$ROOT/tests/data/pd_bimaterial_bar.yaml"
+expect_error "parts[1].group: the geometry file has no group of surfaces named 'copper' (its groups: steel, aluminium)" "$PB" --set parts.1.group=copper
+expect_error "parts: the geometry file's group of surfaces 'aluminium' has no material: give {group: aluminium, material: ...}" "$PB" --set 'parts=[{group: steel, material: steel}]'
+expect_error "parts: names the groups of surfaces of a geometry file (geometry.file), and the body has none" "$PB" --set 'geometry={rectangle: {size: [20, 2]}}'
 # SPH regions from a file: a file beside a box, a group the file does not hold, a file for a
 # body of another dimension than 2.
 TB="$ROOT/problems/sph_tunnel_blast.yaml"

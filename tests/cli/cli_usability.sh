@@ -108,6 +108,22 @@ ok = max(map(abs, fem)) < 1e-6 and max(map(abs, coarse)) < 5e-3
 ok = ok and all(1.7 < c / f < 2.3 for c, f in zip(coarse, fine))
 sys.exit(not ok)
 PY
+# Peridynamic parts (tests/data/pd_bimaterial_bar.yaml): each part's particles carry its
+# material, 320 of the bar's 640 each (its lattice of 80 x 8 at spacing 0.25), and the parts'
+# materials swapped swap them.
+PB="$ROOT/tests/data/pd_bimaterial_bar.yaml"
+"$MF" run "$PB" --out "$WORK/pd_parts" >/dev/null 2>&1
+"$MF" run "$PB" --out "$WORK/pd_swapped" --set parts.0.material=aluminium --set parts.1.material=steel >/dev/null 2>&1
+/usr/bin/python3 - "$WORK" <<'PY' && ok "peridynamic parts: each its material" || bad "peridynamic parts: particles of the wrong material"
+import h5py, numpy as np, sys
+def materials(run):
+    with h5py.File(f"{sys.argv[1]}/{run}/fields.h5") as f:
+        x, m = f["geometry/coordinates"][:], f["step_000000/material"][:]
+    return sorted(set(m[x[:, 0] < 10])), sorted(set(m[x[:, 0] > 10])), len(m)
+a, b = materials("pd_parts"), materials("pd_swapped")
+print(f"  steel part {a[0]}, aluminium part {a[1]}, {a[2]} particles; swapped {b[0]}, {b[1]}")
+sys.exit(not (a == ([0.0], [1.0], 640) and b == ([1.0], [0.0], 640)))
+PY
 # A file drawn in mm for a problem in m: scale 0.001 makes the bar 0.02 x 0.005, of area
 # 7.52146e-05, its pieces a thousandth as long.
 "$MF" check "$FB" --set "geometry={file: $ROOT/problems/geometry/filleted_bar.geo, scale: 0.001}" --set discretisation.spacing=0.00025 --set 'output.gauges=[]' >"$WORK/scaled" 2>&1

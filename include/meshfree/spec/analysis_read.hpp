@@ -19,6 +19,17 @@ geometry::OutlineFile read_geometry_file(KeyReader& r, const std::string& base_d
 /// lists them where it is not one of them.
 const geometry::FilePart& file_part(KeyReader& r, const std::vector<geometry::FilePart>& parts);
 
+/// One entry of `parts:` (a group of the geometry file's surfaces and its material).
+struct PartMaterial {
+  std::string key_path; // parts[k]
+  const geometry::FilePart* part = nullptr;
+  int material = 0; // into p.materials
+};
+/// parts: [{group, material}] of a body read from a geometry file (p.file_parts): every group
+/// once, each with a material of the file; refused where the body has no groups, a group is
+/// given twice or not at all, or the groups do not cover the body. Empty without the key.
+std::vector<PartMaterial> read_part_materials(KeyReader& r, const ProblemSpec& p);
+
 /// elastic_static and elastoplastic_static: the material, discretisation, exact solution, body
 /// force, boundary, steps, nonlinear and output.
 void parse_galerkin(KeyReader& r, ProblemSpec& p, const std::string& base_dir);
