@@ -400,9 +400,11 @@ void read_outline(const outline::Request& q, outline::Result& r) {
   const double tol = 1e-9 * q.scale * size;
   r.loops = boundary_loops(surfaces, q.scale, tol, r.error);
   for (std::size_t g = 0; g < groups.size() && r.error.empty(); ++g) {
-    if (groups[g].first != 2) continue;
     std::vector<int> tags;
-    gmsh::model::getEntitiesForPhysicalGroup(2, groups[g].second, tags);
+    gmsh::model::getEntitiesForPhysicalGroup(groups[g].first, groups[g].second, tags);
+    if (groups[g].first == 1)
+      for (int t : tags) r.groups[g].loops.push_back(pieces_of(t, r.groups[g].name, q.scale));
+    if (groups[g].first != 2) continue;
     gmsh::vectorpair members;
     for (int t : tags) members.emplace_back(2, t);
     r.groups[g].loops = boundary_loops(members, q.scale, tol, r.error);

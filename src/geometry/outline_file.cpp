@@ -89,7 +89,12 @@ OutlineFile read_outline_file(const std::string& path, double scale) {
   std::vector<Curve> interfaces;
   const double tol = 1e-9 * out.body.bounds().size().maxCoeff();
   for (const gmsh_outline::Group& g : r.groups) {
-    if (g.dimension == 1) out.curve_groups.push_back(g.name);
+    if (g.dimension == 1) {
+      FileCurve curve{g.name, {}};
+      for (const auto& pieces : g.loops)
+        curve.pieces.insert(curve.pieces.end(), pieces.begin(), pieces.end());
+      out.curves.push_back(std::move(curve));
+    }
     if (g.dimension != 2) continue;
     out.parts.push_back({g.name, body_of(g.loops, path, "the surfaces of group '" + g.name + "'")});
     for (const auto& loop : g.loops)

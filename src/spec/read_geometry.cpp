@@ -113,8 +113,7 @@ std::vector<PartMaterial> read_part_materials(KeyReader& r, const ProblemSpec& p
   return out;
 }
 
-geometry::Domain read_domain(KeyReader& g, const std::string& base_dir,
-                             std::vector<geometry::FilePart>* parts) {
+geometry::Domain read_domain(KeyReader& g, const std::string& base_dir, ProblemSpec* p) {
   const int given = g.has("rectangle") + g.has("polygon") + g.has("file");
   if (given != 1) g.error("rectangle", "give exactly one of 'rectangle', 'polygon' or 'file'");
   const bool rect = g.has("rectangle");
@@ -122,7 +121,10 @@ geometry::Domain read_domain(KeyReader& g, const std::string& base_dir,
   if (g.has("file")) {
     geometry::OutlineFile read = read_geometry_file(g, base_dir);
     d = std::move(read.body);
-    if (parts) *parts = std::move(read.parts);
+    if (p) {
+      p->file_parts = std::move(read.parts);
+      p->file_curves = std::move(read.curves);
+    }
   } else if (rect) {
     KeyReader rr = g.map("rectangle");
     const Vec2 origin = rr.has("origin") ? rr.vec2("origin") : Vec2(0.0, 0.0);

@@ -269,6 +269,42 @@ PdCrack read_crack(KeyReader& c, int dim) {
   return k;
 }
 
+/// cracks: [{curve: name}]: a group of the geometry file's curves (2D) as pre-cracks, each
+/// segment one crack and each arc its chords, each turning at most 5 degrees (the reader's bound
+/// for curves it draws as chords).
+std::vector<PdCrack> read_curve_cracks(KeyReader& c, int dim, const ProblemSpec& front) {
+  const std::string name = c.text("curve");
+  if (dim != 2 || front.file_curves.empty())
+    c.error("curve", "names a group of curves of a plane geometry file (geometry.file), and the "
+                     "body has none");
+  const geometry::FileCurve* curve = nullptr;
+  std::string known;
+  for (const geometry::FileCurve& f : front.file_curves) {
+    if (f.name == name) curve = &f;
+    known += (known.empty() ? "" : ", ") + f.name;
+  }
+  if (!curve)
+    c.error("curve", "the geometry file has no group of curves named '" + one_line(name) +
+                         "' (its groups of curves: " + known + ")");
+  c.finish();
+  std::vector<PdCrack> out;
+  for (const geometry::Curve& piece : curve->pieces) {
+    const double turn = std::abs(piece.theta1 - piece.theta0);
+    const int chords = piece.kind == geometry::Curve::Kind::Arc
+                           ? std::max(1, static_cast<int>(std::ceil(turn / (M_PI / 36.0) - 1e-9)))
+                           : 1;
+    for (int k = 0; k < chords; ++k) {
+      const Vec2 a = piece.point(static_cast<double>(k) / chords);
+      const Vec2 b = piece.point(static_cast<double>(k + 1) / chords);
+      PdCrack crack;
+      crack.a = Point(a.x(), a.y(), 0.0);
+      crack.b = Point(b.x(), b.y(), 0.0);
+      out.push_back(crack);
+    }
+  }
+  return out;
+}
+
 /// An impactor's shape: a sphere of a radius, or a flat box of a size.
 void read_impactor_shape(KeyReader& k, int dim, PdImpactor& imp) {
   imp.sphere = k.choice("shape", {"sphere", "flat"}, "") == "sphere";
@@ -402,7 +438,13 @@ PdSpec parse_pd(KeyReader& r, const ProblemSpec& front, const std::string& base_
     if (s.removed.back().everything()) g.error("box", "a notch needs the region it removes");
     g.finish();
   }
-  for (KeyReader& c : r.map_list("cracks")) s.cracks.push_back(read_crack(c, dim));
+  for (KeyReader& c : r.map_list("cracks"))
+    if (c.has("curve")) {
+      const std::vector<PdCrack> pieces = read_curve_cracks(c, dim, front);
+      s.cracks.insert(s.cracks.end(), pieces.begin(), pieces.end());
+    } else {
+      s.cracks.push_back(read_crack(c, dim));
+    }
   for (KeyReader& f : r.map_list("functions")) s.functions.push_back(read_function(f, base_dir, s));
   for (KeyReader& c : r.map_list("boundary")) s.conditions.push_back(read_condition(c, s, dim));
   for (KeyReader& k : r.map_list("impactors")) s.impactors.push_back(read_impactor(k, dim));

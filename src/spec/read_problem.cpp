@@ -146,7 +146,7 @@ void read_geometry(KeyReader& r, ProblemSpec& p, const std::string& base_dir) {
   else if (p.dimension == 3)
     p.box = read_body_box(g);
   else
-    p.domain = read_domain(g, base_dir, &p.file_parts);
+    p.domain = read_domain(g, base_dir, &p);
 }
 
 /// Every scalar under `node` as "path = value" (list items by index), in the file's order.

@@ -13,7 +13,8 @@ struct Request {
 };
 
 /// A named group of the file's entities (gmsh's physical groups): its dimension and name (gmsh's
-/// name, or "group<tag>" where it has none); of a group of surfaces, the boundary of their union.
+/// name, or "group<tag>" where it has none); of a group of surfaces, the boundary of their union;
+/// of a group of curves, each curve's pieces (a crack drawn in the file).
 struct Group {
   int dimension = 0;
   std::string name;

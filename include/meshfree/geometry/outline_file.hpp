@@ -15,12 +15,19 @@ struct FilePart {
   Domain body;
 };
 
+/// A physical group of the file's curves: its name and its curves' pieces (each curve's in its
+/// own sense), whether they bound the body or lie inside it (a crack drawn in the file).
+struct FileCurve {
+  std::string name;
+  std::vector<Curve> pieces;
+};
+
 /// What a file holds: the body, its groups of surfaces (the parts a material may be given to) and
-/// the names of its groups of curves.
+/// its groups of curves.
 struct OutlineFile {
   Domain body;
   std::vector<FilePart> parts;
-  std::vector<std::string> curve_groups;
+  std::vector<FileCurve> curves;
 };
 
 /// Reads the plane body of the file at `path`, its coordinates times `scale`. The boundary's

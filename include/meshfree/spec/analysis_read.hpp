@@ -9,9 +9,9 @@ namespace mf::spec {
 
 /// geometry: a rectangle, a polygon or the plane body of a geometry file (`file`, relative to
 /// `base_dir`, and `scale`), with rounded corners and holes of any outline (2D bodies); a file's
-/// groups of surfaces go to `parts` where given.
+/// groups of surfaces and of curves go to `p`'s file_parts and file_curves where given.
 geometry::Domain read_domain(KeyReader& geometry, const std::string& base_dir,
-                             std::vector<geometry::FilePart>* parts = nullptr);
+                             ProblemSpec* p = nullptr);
 /// `file` (relative to `base_dir`) and its `scale`: what the geometry file holds (errors name the
 /// key `file`).
 geometry::OutlineFile read_geometry_file(KeyReader& r, const std::string& base_dir);

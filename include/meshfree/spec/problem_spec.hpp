@@ -63,7 +63,8 @@ struct ProblemSpec {
   double thickness = 1.0;
   std::vector<MaterialSpec> materials; // the file's `materials:` list
   geometry::Domain domain = geometry::Domain::rectangle({0.0, 0.0}, {1.0, 1.0}); // 2D bodies
-  std::vector<geometry::FilePart> file_parts; // the groups of surfaces of a 2D geometry file
+  std::vector<geometry::FilePart> file_parts;   // the groups of surfaces of a 2D geometry file
+  std::vector<geometry::FileCurve> file_curves; // and its groups of curves
   std::optional<Box> box; // a 3D body (peridynamics, model solid_3d)
   AnalysisPart part;
 
