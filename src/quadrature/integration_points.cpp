@@ -18,13 +18,11 @@ template <class F> void for_each_quarter(const BoundingBox& box, F&& f) {
     }
 }
 
-/// True where one of the curves may pass through `box`: a segment crosses its interior, or an
-/// arc's circle does by more than `arc_tol`. A drawn curve (a body from loops: a file's) carries
-/// rounding, so that its circle may cross a cell's side it is tangent to by 1e-14 and cut the cell
-/// where the drawing does not; its arcs are given the segments' `tol`. The built-in shapes' arcs
-/// are given none, which keeps their cells as they were.
-bool curves_meet(const std::vector<geometry::Curve>& curves, const BoundingBox& box, double tol,
-                 double arc_tol = 0.0) {
+/// True where one of the curves may pass through `box`: a segment crosses its interior by more
+/// than `tol`, or an arc's circle does. An arc tangent to a cell's side (a fillet or a slot's end
+/// drawn on the cells' lines, or a curve read from a file, whose rounding may cross the side by
+/// 1e-14) does not cut the cell.
+bool curves_meet(const std::vector<geometry::Curve>& curves, const BoundingBox& box, double tol) {
   const Vec2 mid = 0.5 * (box.lo + box.hi), half = 0.5 * box.size();
   for (const geometry::Curve& c : curves) {
     if (c.kind == geometry::Curve::Kind::Segment) {
@@ -33,22 +31,16 @@ bool curves_meet(const std::vector<geometry::Curve>& curves, const BoundingBox& 
     }
     const Vec2 nearest = c.center.cwiseMax(box.lo).cwiseMin(box.hi);
     const double far = ((c.center - mid).cwiseAbs() + half).norm();
-    if ((nearest - c.center).norm() < c.radius - arc_tol && far > c.radius + arc_tol) return true;
+    if ((nearest - c.center).norm() < c.radius - tol && far > c.radius + tol) return true;
   }
   return false;
 }
 
 /// True where an arc of the outline (a rounded corner's, or one drawn so) may pass through `box`.
 bool outline_arc_meets(const geometry::Domain& domain, const BoundingBox& box, double tol) {
-  const double arc_tol = domain.fillets().empty() ? tol : 0.0; // drawn arcs, or fillets'
   for (const geometry::Curve& c : domain.outline())
-    if (c.kind == geometry::Curve::Kind::Arc && curves_meet({c}, box, tol, arc_tol)) return true;
+    if (c.kind == geometry::Curve::Kind::Arc && curves_meet({c}, box, tol)) return true;
   return false;
-}
-
-/// The tolerance of a hole's arcs in curves_meet: a loop's are drawn.
-double hole_arc_tol(const geometry::OutlineHole& h, double tol) {
-  return h.kind == geometry::OutlineHole::Kind::Loop ? tol : 0.0;
 }
 
 /// The one hole that cuts `box` when nothing else of the boundary does (the box lies in the
@@ -56,7 +48,7 @@ double hole_arc_tol(const geometry::OutlineHole& h, double tol) {
 const geometry::Circle* only_cutting_hole(const geometry::Domain& domain, const BoundingBox& box) {
   const double tol = 1e-9 * box.size().maxCoeff();
   for (const auto& h : domain.outline_holes())
-    if (curves_meet(h.loop(), box, tol, hole_arc_tol(h, tol))) return nullptr;
+    if (curves_meet(h.loop(), box, tol)) return nullptr;
   const geometry::Circle* found = nullptr;
   for (const auto& h : domain.holes()) {
     const Vec2 nearest = h.center.cwiseMax(box.lo).cwiseMin(box.hi);
@@ -67,8 +59,7 @@ const geometry::Circle* only_cutting_hole(const geometry::Domain& domain, const 
   if (!found) return nullptr;
   for (const Vec2& p : {box.lo, Vec2(box.hi.x(), box.lo.y()), box.hi, Vec2(box.lo.x(), box.hi.y())})
     if (!domain.within_outline(p, 1e-9)) return nullptr;
-  return curves_meet(domain.outline(), box, tol, domain.fillets().empty() ? tol : 0.0) ? nullptr
-                                                                                       : found;
+  return curves_meet(domain.outline(), box, tol) ? nullptr : found;
 }
 
 /// Adds the Gauss points of `box` that lie in the body; splits cells the boundary cuts, or
@@ -103,8 +94,7 @@ void integrate_cell(const geometry::Domain& domain, const BoundingBox& box, cons
     if ((nearest - h.center).norm() < h.radius && far > h.radius) cut = true;
   }
   for (const auto& h : domain.outline_holes())
-    cut = cut || curves_meet(h.loop(), box, 1e-9 * box.size().maxCoeff(),
-                             hole_arc_tol(h, 1e-9 * box.size().maxCoeff()));
+    cut = cut || curves_meet(h.loop(), box, 1e-9 * box.size().maxCoeff());
   cut = cut || outline_arc_meets(domain, box, 1e-9 * box.size().maxCoeff());
   if (cut && arcs) {
     if (const geometry::Circle* hole = only_cutting_hole(domain, box)) {
