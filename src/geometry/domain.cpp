@@ -88,6 +88,35 @@ Vec2 Curve::closest_point(const Vec2& p) const {
   return (p - point(0.0)).norm() <= (p - point(1.0)).norm() ? point(0.0) : point(1.0);
 }
 
+bool Curve::crossed_by(const Vec2& a, const Vec2& b, double tol) const {
+  const Vec2 d = b - a;
+  const double length = d.norm();
+  if (!(length > 2.0 * tol)) return false;
+  const double lo = tol / length, hi = 1.0 - tol / length; // the open part of a..b
+  const auto cross = [](const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); };
+  if (kind == Kind::Segment) {
+    const Vec2 e = this->b - this->a;
+    const double den = cross(d, e);
+    if (den == 0.0) return false; // parallel: touching along it hides nothing behind
+    const Vec2 w = this->a - a;
+    const double t = cross(w, e) / den, s = cross(w, d) / den;
+    return t > lo && t < hi && s >= 0.0 && s <= 1.0;
+  }
+  // |a + t d - c| = r: d.d t^2 + 2 d.(a - c) t + |a - c|^2 - r^2 = 0.
+  const Vec2 f = a - center;
+  const double A = d.squaredNorm(), B = 2.0 * d.dot(f), C = f.squaredNorm() - radius * radius;
+  const double disc = B * B - 4.0 * A * C;
+  if (disc < 0.0) return false;
+  for (const double t : {(-B - std::sqrt(disc)) / (2.0 * A), (-B + std::sqrt(disc)) / (2.0 * A)})
+    if (t > lo && t < hi && within_sweep(*this, a + t * d)) return true;
+  return false;
+}
+
+BoundingBox Curve::bounds() const {
+  if (kind == Kind::Segment) return {a.cwiseMin(b), a.cwiseMax(b)};
+  return {center - Vec2::Constant(radius), center + Vec2::Constant(radius)};
+}
+
 Domain Domain::rectangle(const Vec2& origin, const Vec2& size) {
   MF_REQUIRE(size.x() > 0.0 && size.y() > 0.0, "rectangle size must be positive");
   return polygon(

@@ -147,6 +147,10 @@ void read_shape_functions(KeyReader& d, int dim, DiscretisationSpec& s) {
   if (s.dilation.minCoeff() <= min_dilation)
     d.error("dilation", "must exceed " + std::to_string(min_dilation) +
                             " so that every point is covered by enough nodes for the basis");
+  s.visibility = d.choice("visibility", {"false", "true"}, "false") == "true";
+  if (s.visibility && dim != 2)
+    d.error("visibility", "hides nodes behind a plane body's boundary; a " + std::to_string(dim) +
+                              "D body has none to hide them");
 }
 
 void read_quadrature(KeyReader& d, int dim, DiscretisationSpec& s) {

@@ -2,10 +2,12 @@
 // The discrete function space of a meshfree Galerkin model: the nodes, their supports, the
 // shape-function settings, and a search grid to find the nodes that cover a point.
 #include "meshfree/core/types.hpp"
+#include "meshfree/geometry/domain.hpp"
 #include "meshfree/geometry/node_generation.hpp"
 #include "meshfree/implicit/shape_table.hpp"
 #include "meshfree/kernels/shape_functions.hpp"
 #include "meshfree/neighbors/point_grid.hpp"
+#include <optional>
 #include <vector>
 
 namespace mf::implicit {
@@ -30,7 +32,12 @@ public:
   const kernels::ShapeSettings& settings() const { return settings_; }
   kernels::NodeView view() const { return {cloud_.x.data(), radius_.data(), cloud_.volume.data()}; }
 
-  /// Nodes whose support covers x, in increasing index order.
+  /// From now on a node does not cover a point that `body`'s boundary hides from it: the
+  /// segment between them crosses a boundary piece strictly between its ends, or its middle lies
+  /// outside the body (the visibility criterion, [Belytschko et al. 1996]; docs/references.md).
+  void hide_behind_boundary(const geometry::Domain& body);
+  /// Nodes whose support covers x (and that see it, where hidden_behind_boundary asked), in
+  /// increasing index order.
   void nodes_covering(const Vec2& x, std::vector<int>& out) const;
   /// Support lists of many points (OpenMP-parallel).
   Csr support_lists(const std::vector<Vec2>& points) const;
@@ -49,8 +56,15 @@ private:
     neighbors::PointGrid grid;
   };
 
+  /// True where `body_`'s boundary hides node I from x.
+  bool hidden(const Vec2& x, int I, const std::vector<const geometry::Curve*>& near) const;
+
   geometry::NodeCloud cloud_;
   std::vector<Vec2> radius_;
+  double largest_radius_ = 0.0;
+  std::optional<geometry::Domain> body_; // with the visibility criterion
+  std::vector<geometry::Curve> boundary_;
+  std::vector<BoundingBox> boundary_box_;
   kernels::ShapeSettings settings_;
   std::vector<RadiusGroup> groups_;
 };

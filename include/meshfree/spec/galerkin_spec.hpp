@@ -59,6 +59,9 @@ struct DiscretisationSpec {
   std::vector<geometry::Refinement> refinement;
   kernels::ShapeSettings shape;
   Vec2 dilation{2.0, 2.0}; // support radius = dilation * local spacing
+  // Plane meshfree bodies: a node's support ends where the body's boundary hides it (the
+  // visibility criterion), so that supports do not reach across a slit, a notch or a thin wall.
+  bool visibility = false;
   int order = 3;           // Gauss points per direction in a background cell
   double cell_size = 0.0;  // background cell size (default: spacing)
   int cut_levels = 2;      // subdivisions of cells cut by the boundary

@@ -1,0 +1,73 @@
+// The visibility criterion (MeshfreeSpace::hide_behind_boundary): a segment is crossed by a
+// boundary piece only strictly between its ends (a segment or an arc within its sweep); over a
+// plate with an edge notch narrower than the supports, no node on one side of the notch covers
+// a point on the other, every point of the body still has shape functions that reproduce 1 and
+// x, and away from the notch the supports are those without the criterion.
+#include "meshfree/quadrature/integration_points.hpp"
+#include "shape_reproduction.hpp"
+#include <catch2/catch.hpp>
+#include <cmath>
+
+using namespace mf;
+using geometry::Curve;
+
+TEST_CASE("visibility: a curve stands between two points only when crossed inside both",
+          "[visibility][geometry]") {
+  Curve wall;
+  wall.a = Vec2(0.0, -1.0);
+  wall.b = Vec2(0.0, 1.0);
+  const double tol = 1e-9;
+  CHECK(wall.crossed_by({-1.0, 0.0}, {1.0, 0.0}, tol));
+  CHECK_FALSE(wall.crossed_by({-1.0, 0.0}, {-0.5, 0.0}, tol)); // stops short
+  CHECK_FALSE(wall.crossed_by({-1.0, 0.0}, {0.0, 0.0}, tol));  // ends on it
+  CHECK_FALSE(wall.crossed_by({0.0, 0.5}, {1.0, 0.5}, tol));   // starts on it
+  CHECK_FALSE(wall.crossed_by({-1.0, 2.0}, {1.0, 2.0}, tol));  // passes beyond its end
+  CHECK_FALSE(wall.crossed_by({0.0, -2.0}, {0.0, 2.0}, tol));  // along it
+  Curve arc; // the upper half of the unit circle
+  arc.kind = Curve::Kind::Arc;
+  arc.center = Vec2(0.0, 0.0);
+  arc.radius = 1.0;
+  arc.theta0 = 0.0;
+  arc.theta1 = std::acos(-1.0);
+  CHECK(arc.crossed_by({0.0, 0.0}, {0.0, 2.0}, tol));
+  CHECK_FALSE(arc.crossed_by({0.0, 0.0}, {0.0, -2.0}, tol)); // the circle, not the arc
+  CHECK(arc.crossed_by({-2.0, 0.5}, {2.0, 0.5}, tol));
+  CHECK_FALSE(arc.crossed_by({-0.5, 0.5}, {0.5, 0.5}, tol)); // inside the circle
+  const BoundingBox b = arc.bounds();
+  CHECK((b.lo.array() <= -1.0).all());
+  CHECK((b.hi.array() >= 1.0).all());
+}
+
+TEST_CASE("visibility: supports do not reach across a notch narrower than themselves",
+          "[visibility][implicit]") {
+  geometry::Domain plate = geometry::Domain::rectangle({0.0, 0.0}, {20.0, 20.0});
+  plate.add_hole(geometry::OutlineHole::polygon({{-1, 9.95}, {8, 9.95}, {8, 10.05}, {-1, 10.05}},
+                                                "notch"));
+  kernels::ShapeSettings shape;
+  shape.dim = 2;
+  const double h = 0.25;
+  const geometry::NodeCloud cloud = geometry::generate_nodes(plate, h, {});
+  const implicit::MeshfreeSpace plain(cloud, shape, Vec2(2, 2));
+  implicit::MeshfreeSpace seeing(cloud, shape, Vec2(2, 2));
+  seeing.hide_behind_boundary(plate);
+  const std::vector<Vec2> points = quadrature::domain_points(plate, h, 3, 2).x;
+  const implicit::Csr hidden = seeing.support_lists(points), all = plain.support_lists(points);
+  int across_plain = 0, across = 0, changed_far = 0;
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    const Vec2& x = points[p];
+    const auto across_notch = [&](int I) {
+      const Vec2& y = cloud.x[I];
+      return std::min(x.x(), y.x()) < 8.0 && (x.y() - 10.0) * (y.y() - 10.0) < 0.0 &&
+             std::abs(x.y() - 10.0) > 0.05 - 1e-12 && std::abs(y.y() - 10.0) > 0.05 - 1e-12 &&
+             std::max(x.x(), y.x()) < 7.5;
+    };
+    for (int k = all.offset[p]; k < all.offset[p + 1]; ++k) across_plain += across_notch(all.index[k]);
+    for (int k = hidden.offset[p]; k < hidden.offset[p + 1]; ++k) across += across_notch(hidden.index[k]);
+    const bool far = (x - Vec2(8.0, 10.0)).norm() > 1.0 && std::abs(x.y() - 10.0) > 1.0;
+    if (far && (hidden.size(p) != all.size(p))) ++changed_far;
+  }
+  CHECK(across_plain > 1000); // the plain supports tie the notch's faces
+  CHECK(across == 0);
+  CHECK(changed_far == 0);
+  CHECK(linear_reproduction_error(seeing, points) < 1e-10);
+}
