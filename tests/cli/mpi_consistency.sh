@@ -19,6 +19,14 @@ for name in plate_tension plate_hole_kirsch; do
     /usr/bin/python3 "$ROOT/scripts/compare_runs.py" "$WORK/$name-1" "$WORK/$name-$other" --rtol 1e-8
   done
 done
+# A body of two parts read from a .geo file on every rank, and supports hidden behind a notch's
+# faces (the visibility criterion), on 2 ranks.
+for name in compound_cylinder edge_notched_plate; do
+  "$MF" run "$ROOT/problems/$name.yaml" --out "$WORK/$name-1" > /dev/null
+  mpirun -n 2 "$MF" run "$ROOT/problems/$name.yaml" --out "$WORK/$name-2" > /dev/null
+  grep -q '"mpi_ranks": 2' "$WORK/$name-2/summary.json"
+  /usr/bin/python3 "$ROOT/scripts/compare_runs.py" "$WORK/$name-1" "$WORK/$name-2" --rtol 1e-8
+done
 # The variationally consistent correction exchanges its nodal vectors between the ranks.
 VCI=(--set discretisation.quadrature.order=2 --set discretisation.quadrature.correction=vci)
 "$MF" run "$ROOT/problems/plate_hole_kirsch.yaml" --out "$WORK/vci-1" "${VCI[@]}" > /dev/null
