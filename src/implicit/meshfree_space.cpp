@@ -53,7 +53,7 @@ bool MeshfreeSpace::hidden(const Vec2& x, int I,
   const double tol = 1e-9 * radius_[I].maxCoeff();
   for (const geometry::Curve* c : near)
     if (c->crossed_by(x, y, tol)) return true;
-  return !body_->contains(0.5 * (x + y), tol);
+  return !body_->contains(0.5 * (x + y), 1e-9); // a tolerance relative to the body's size
 }
 
 void MeshfreeSpace::nodes_covering(const Vec2& x, std::vector<int>& out) const {
@@ -61,7 +61,8 @@ void MeshfreeSpace::nodes_covering(const Vec2& x, std::vector<int>& out) const {
   const auto v = view();
   // The boundary pieces within the largest support's reach of x: the only ones that can hide a
   // node that covers x.
-  std::vector<const geometry::Curve*> near;
+  thread_local std::vector<const geometry::Curve*> near; // kept between calls: no allocation
+  near.clear();
   if (body_) {
     const BoundingBox reach{x - Vec2::Constant(largest_radius_),
                             x + Vec2::Constant(largest_radius_)};
