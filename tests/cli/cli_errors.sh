@@ -116,10 +116,9 @@ expect_error "parts: the geometry file's group of surfaces 'aluminium' has no ma
 expect_error "parts: names the groups of surfaces of a geometry file (geometry.file), and the body has none" "$PB" --set 'geometry={rectangle: {size: [20, 2]}}'
 # Pre-cracks drawn in a file (cracks: [{curve}]): a group of curves the file does not hold (the
 # message lists those it does), a curve of a body that is not from a file.
-printf 'SetFactory("OpenCASCADE");\nRectangle(1) = {0, 0, 0, 220, 45};\nPoint(10) = {120, -1, 0};\nPoint(11) = {120, 6, 0};\nLine(10) = {10, 11};\nPhysical Surface("beam") = {1};\nPhysical Curve("notch") = {10};\n' > "$GEO/beam.geo"
-PM="$ROOT/problems/pd_pmma_beam_impact.yaml"
-expect_error "cracks[0].curve: the geometry file has no group of curves named 'slit' (its groups of curves: notch)" "$PM" --set "geometry={file: $GEO/beam.geo, scale: 0.001}" --set 'cracks=[{curve: slit}]'
-expect_error "cracks[0].curve: names a group of curves of a plane geometry file (geometry.file), and the body has none" "$PM" --set 'cracks=[{curve: notch}]'
+PM="$ROOT/problems/pd_pmma_beam_from_geo.yaml"
+expect_error "cracks[0].curve: the geometry file has no group of curves named 'slit' (its groups of curves: crack)" "$PM" --set 'cracks=[{curve: slit}]'
+expect_error "cracks[0].curve: names a group of curves of a plane geometry file (geometry.file), and the body has none" "$PM" --set 'geometry={rectangle: {size: [0.22, 0.045]}}'
 # SPH regions from a file: a file beside a box, a group the file does not hold, a file for a
 # body of another dimension than 2.
 TB="$ROOT/problems/sph_tunnel_blast.yaml"
