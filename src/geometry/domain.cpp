@@ -92,17 +92,22 @@ bool Curve::crossed_by(const Vec2& a, const Vec2& b, double tol) const {
   const Vec2 d = b - a;
   const double length = d.norm();
   if (!(length > 2.0 * tol)) return false;
-  const double lo = tol / length, hi = 1.0 - tol / length; // the open part of a..b
-  const auto cross = [](const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); };
+  const auto side = [](const Vec2& p, const Vec2& q, const Vec2& x) { // signed distance to p-q
+    const Vec2 e = q - p;
+    return (e.x() * (x.y() - p.y()) - e.y() * (x.x() - p.x())) / e.norm();
+  };
   if (kind == Kind::Segment) {
-    const Vec2 e = this->b - this->a;
-    const double den = cross(d, e);
-    if (den == 0.0) return false; // parallel: touching along it hides nothing behind
-    const Vec2 w = this->a - a;
-    const double t = cross(w, e) / den, s = cross(w, d) / den;
-    return t > lo && t < hi && s >= 0.0 && s <= 1.0;
+    // By the signs of distances, not a quotient of them: a and b each off the piece's line by
+    // more than tol and on either side of it (so a point on the piece hides nothing), and the
+    // piece's ends not both strictly on one side of a-b.
+    if (!((this->b - this->a).norm() > 0.0)) return false;
+    const double da = side(this->a, this->b, a), db = side(this->a, this->b, b);
+    if (!(std::abs(da) > tol && std::abs(db) > tol && (da > 0.0) != (db > 0.0))) return false;
+    const double ea = side(a, b, this->a), eb = side(a, b, this->b);
+    return !(ea > 0.0 && eb > 0.0) && !(ea < 0.0 && eb < 0.0);
   }
   // |a + t d - c| = r: d.d t^2 + 2 d.(a - c) t + |a - c|^2 - r^2 = 0.
+  const double lo = tol / length, hi = 1.0 - tol / length; // the open part of a..b
   const Vec2 f = a - center;
   const double A = d.squaredNorm(), B = 2.0 * d.dot(f), C = f.squaredNorm() - radius * radius;
   const double disc = B * B - 4.0 * A * C;
@@ -110,11 +115,6 @@ bool Curve::crossed_by(const Vec2& a, const Vec2& b, double tol) const {
   for (const double t : {(-B - std::sqrt(disc)) / (2.0 * A), (-B + std::sqrt(disc)) / (2.0 * A)})
     if (t > lo && t < hi && within_sweep(*this, a + t * d)) return true;
   return false;
-}
-
-BoundingBox Curve::bounds() const {
-  if (kind == Kind::Segment) return {a.cwiseMin(b), a.cwiseMax(b)};
-  return {center - Vec2::Constant(radius), center + Vec2::Constant(radius)};
 }
 
 Domain Domain::rectangle(const Vec2& origin, const Vec2& size) {

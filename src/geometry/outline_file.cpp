@@ -118,22 +118,14 @@ double file_body_area(const Domain& body) {
 }
 
 std::optional<Annulus> annulus_of(const Domain& body) {
-  const std::vector<Curve>& outline = body.outline();
-  if (outline.empty() || body.holes().size() != 1 || !body.outline_holes().empty()) return {};
-  const Curve& first = outline.front();
-  const Circle& hole = body.holes().front();
-  const double tol = 1e-9 * first.radius;
-  double turn = 0.0;
-  for (const Curve& c : outline) {
-    if (c.kind != Curve::Kind::Arc || (c.center - first.center).norm() > tol ||
-        std::abs(c.radius - first.radius) > tol)
-      return {};
-    turn += std::abs(c.theta1 - c.theta0);
-  }
-  if (std::abs(turn - 2.0 * std::acos(-1.0)) > 1e-9 || (hole.center - first.center).norm() > tol ||
-      !(hole.radius < first.radius))
+  if (body.outline().empty() || body.holes().size() != 1 || !body.outline_holes().empty())
     return {};
-  return Annulus{first.center, hole.radius, first.radius};
+  const std::optional<Circle> outer = whole_circle(body.outline());
+  const Circle& hole = body.holes().front();
+  if (!outer || (hole.center - outer->center).norm() > 1e-9 * outer->radius ||
+      !(hole.radius < outer->radius))
+    return {};
+  return Annulus{outer->center, hole.radius, outer->radius};
 }
 
 } // namespace mf::geometry

@@ -67,7 +67,7 @@ GalerkinModel build_meshfree_model(const spec::ProblemSpec& spec,
         geometry::generate_nodes(spec.domain, disc.spacing, disc.refinement);
     if (disc.adapt) geometry::grade_spacing(cloud);
     m.space = std::make_unique<MeshfreeSpace>(std::move(cloud), disc.shape, disc.dilation);
-    if (disc.visibility) m.space->hide_behind_boundary(spec.domain);
+    if (disc.visibility) m.space->hide_behind_holes(spec.domain);
   }
   const int N = m.node_count();
   log::info("nodes: ", N, " (", 2 * N, " DOFs), ",

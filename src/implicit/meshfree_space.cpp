@@ -17,7 +17,6 @@ MeshfreeSpace::MeshfreeSpace(geometry::NodeCloud cloud, const kernels::ShapeSett
     radius_[i] = cloud_.spacing[i] * dilation;
     largest = std::max(largest, radius_[i].maxCoeff());
   }
-  largest_radius_ = largest;
   std::vector<int> group_of(cloud_.x.size());
   int groups = 1;
   for (std::size_t i = 0; i < cloud_.x.size(); ++i) {
@@ -40,42 +39,39 @@ MeshfreeSpace::MeshfreeSpace(geometry::NodeCloud cloud, const kernels::ShapeSett
   }
 }
 
-void MeshfreeSpace::hide_behind_boundary(const geometry::Domain& body) {
-  body_ = body;
-  boundary_ = body.boundary();
-  boundary_box_.clear();
-  for (const geometry::Curve& c : boundary_) boundary_box_.push_back(c.bounds());
+void MeshfreeSpace::hide_behind_holes(const geometry::Domain& body) {
+  holes_ = body.outline_holes();
+  hole_box_.clear();
+  for (const geometry::OutlineHole& h : holes_) hole_box_.push_back(h.bounds());
 }
 
-bool MeshfreeSpace::hidden(const Vec2& x, int I,
-                           const std::vector<const geometry::Curve*>& near) const {
+bool MeshfreeSpace::hidden(const Vec2& x, int I, const std::vector<int>& near) const {
   const Vec2& y = cloud_.x[I];
   const double tol = 1e-9 * radius_[I].maxCoeff();
-  for (const geometry::Curve* c : near)
-    if (c->crossed_by(x, y, tol)) return true;
-  return !body_->contains(0.5 * (x + y), 1e-9); // a tolerance relative to the body's size
+  for (int h : near) {
+    if (holes_[h].contains(0.5 * (x + y), tol)) return true; // a face's point to the other face
+    for (const geometry::Curve& c : holes_[h].loop())
+      if (c.crossed_by(x, y, tol)) return true;
+  }
+  return false;
 }
 
 void MeshfreeSpace::nodes_covering(const Vec2& x, std::vector<int>& out) const {
   out.clear();
   const auto v = view();
-  // The boundary pieces within the largest support's reach of x: the only ones that can hide a
-  // node that covers x.
-  thread_local std::vector<const geometry::Curve*> near; // kept between calls: no allocation
+  // The holes within the largest support's reach of x: the only ones that can hide a node that
+  // covers x (none, for most points).
+  thread_local std::vector<int> near; // kept between calls: no allocation
   near.clear();
-  if (body_) {
-    const BoundingBox reach{x - Vec2::Constant(largest_radius_),
-                            x + Vec2::Constant(largest_radius_)};
-    for (std::size_t c = 0; c < boundary_.size(); ++c)
-      if ((reach.lo.array() <= boundary_box_[c].hi.array()).all() &&
-          (boundary_box_[c].lo.array() <= reach.hi.array()).all())
-        near.push_back(&boundary_[c]);
-  }
+  const double reach = groups_.empty() ? 0.0 : groups_.front().max_radius;
+  for (std::size_t h = 0; h < holes_.size(); ++h)
+    if (hole_box_[h].contains(x, reach)) near.push_back(static_cast<int>(h));
   for (const RadiusGroup& g : groups_) {
     const Vec2 reach(g.max_radius, g.max_radius);
     g.grid.for_each_in_box(x - reach, x + reach, [&](int k) {
       const int I = g.node[k];
-      if (kernels::covers(settings_, v, I, x) && !(body_ && hidden(x, I, near))) out.push_back(I);
+      if (kernels::covers(settings_, v, I, x) && !(!near.empty() && hidden(x, I, near)))
+        out.push_back(I);
     });
   }
   std::sort(out.begin(), out.end());

@@ -149,7 +149,7 @@ void read_shape_functions(KeyReader& d, int dim, DiscretisationSpec& s) {
                             " so that every point is covered by enough nodes for the basis");
   s.visibility = d.choice("visibility", {"false", "true"}, "false") == "true";
   if (s.visibility && dim != 2)
-    d.error("visibility", "hides nodes behind a plane body's boundary; a " + std::to_string(dim) +
+    d.error("visibility", "hides nodes behind a plane body's holes; a " + std::to_string(dim) +
                               "D body has none to hide them");
 }
 

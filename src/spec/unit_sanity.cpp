@@ -200,8 +200,12 @@ void check_size(Report& r, const std::string& key, double extent) {
 /// The extent of the body an implicit analysis reads from `geometry:` (built in or from a file),
 /// and each SPH region's.
 void check_sizes(Report& r, const ProblemSpec& p, bool front) {
-  if (front && (p.is_galerkin() || p.is_solid() || std::holds_alternative<StagedSpec>(p.part)))
-    check_size(r, "geometry", p.domain.bounds().size().maxCoeff());
+  // The plane body of `geometry:`: the analysis's own, a staged run's preload's, a plane
+  // peridynamic body's.
+  const ProblemSpec* body = &p;
+  if (const StagedSpec* staged = std::get_if<StagedSpec>(&p.part)) body = &staged->stages.front();
+  if (front && (body->is_galerkin() || body->is_solid() || (body->is_pd() && p.dimension == 2)))
+    check_size(r, "geometry", body->domain.bounds().size().maxCoeff());
   if (!p.is_sph()) return;
   for (const SphRegion& reg : p.sph().regions) {
     const Region& g = reg.region;

@@ -41,11 +41,9 @@ struct Curve {
   double distance_to(const Vec2& p) const;
   /// The nearest point of the curve to p (its ends included).
   Vec2 closest_point(const Vec2& p) const;
-  /// True where the segment from a to b meets the curve more than `tol` (a length) from both of
-  /// its own ends: the curve stands between a and b.
+  /// True where the curve stands between a and b: the segment from a to b passes through it
+  /// with both of its ends more than `tol` (a length) off it.
   bool crossed_by(const Vec2& a, const Vec2& b, double tol) const;
-  /// A box holding the curve (an arc's: its circle's, cut to its chord's box where that is all).
-  BoundingBox bounds() const;
 };
 
 /// A hole of an outline other than a circle: a polygon (a rectangle is one), a slot, the

@@ -7,7 +7,6 @@
 #include "meshfree/implicit/shape_table.hpp"
 #include "meshfree/kernels/shape_functions.hpp"
 #include "meshfree/neighbors/point_grid.hpp"
-#include <optional>
 #include <vector>
 
 namespace mf::implicit {
@@ -32,11 +31,14 @@ public:
   const kernels::ShapeSettings& settings() const { return settings_; }
   kernels::NodeView view() const { return {cloud_.x.data(), radius_.data(), cloud_.volume.data()}; }
 
-  /// From now on a node does not cover a point that `body`'s boundary hides from it: the
-  /// segment between them crosses a boundary piece strictly between its ends, or its middle lies
-  /// outside the body (the visibility criterion, [Belytschko et al. 1996]; docs/references.md).
-  void hide_behind_boundary(const geometry::Domain& body);
-  /// Nodes whose support covers x (and that see it, where hidden_behind_boundary asked), in
+  /// From now on a node does not cover a point that one of `body`'s holes of an outline (a
+  /// polygon, a slot, a loop: a notch or a slit) hides from it: the segment between them
+  /// crosses the hole's outline, or its middle lies in the hole. The visibility criterion of
+  /// [Belytschko, Lu & Gu 1994] (docs/references.md), kept to such holes: along a circular hole's
+  /// wall or the outline's concave arcs it would hide neighbours from each other and leave
+  /// points with too few nodes.
+  void hide_behind_holes(const geometry::Domain& body);
+  /// Nodes whose support covers x (and that see it, where hide_behind_holes asked), in
   /// increasing index order.
   void nodes_covering(const Vec2& x, std::vector<int>& out) const;
   /// Support lists of many points (OpenMP-parallel).
@@ -56,15 +58,13 @@ private:
     neighbors::PointGrid grid;
   };
 
-  /// True where `body_`'s boundary hides node I from x.
-  bool hidden(const Vec2& x, int I, const std::vector<const geometry::Curve*>& near) const;
+  /// True where one of the holes `near` (indices into holes_) hides node I from x.
+  bool hidden(const Vec2& x, int I, const std::vector<int>& near) const;
 
   geometry::NodeCloud cloud_;
   std::vector<Vec2> radius_;
-  double largest_radius_ = 0.0;
-  std::optional<geometry::Domain> body_; // with the visibility criterion
-  std::vector<geometry::Curve> boundary_;
-  std::vector<BoundingBox> boundary_box_;
+  std::vector<geometry::OutlineHole> holes_; // that hide nodes (hide_behind_holes)
+  std::vector<BoundingBox> hole_box_;
   kernels::ShapeSettings settings_;
   std::vector<RadiusGroup> groups_;
 };
