@@ -99,8 +99,12 @@ std::vector<std::string> faces_selected(KeyReader& r, const std::string& key,
                                         const std::string& name, const geometry::Prism& body) {
   std::vector<std::string> named = body.names_selected(name);
   if (named.empty()) {
+    // The first 12 names: a polygon of many edges must not make the message a page long.
+    const std::vector<std::string> faces = body.face_names();
     std::string list;
-    for (const auto& k : body.face_names()) list += (list.empty() ? "" : ", ") + k;
+    for (std::size_t k = 0; k < std::min<std::size_t>(faces.size(), 12); ++k)
+      list += (list.empty() ? "" : ", ") + one_line(faces[k], 30);
+    if (faces.size() > 12) list += ", ... (" + std::to_string(faces.size()) + " faces)";
     r.error(key, "no face is named '" + one_line(name) + "' (the body's faces: " + list +
                      "; x_min, x_max, y_min, y_max, z_min and z_max name the faces on the sides "
                      "of its bounding box)");

@@ -107,8 +107,8 @@ expect_error "parts: names the groups of surfaces of a geometry file (geometry.f
 expect_error "parts[0].material: no material is named 'brass' (materials: steel, aluminium)" "$BB" --set parts.0.material=brass
 printf 'SetFactory("OpenCASCADE");\nRectangle(1) = {0, 0, 0, 10, 2};\nRectangle(2) = {10, 0, 0, 10, 2};\nRectangle(3) = {20, 0, 0, 5, 2};\nBooleanFragments{ Surface{1}; Delete; }{ Surface{2, 3}; Delete; }\nPhysical Surface("steel") = {1};\nPhysical Surface("aluminium") = {2};\n' > "$GEO/ungrouped.geo"
 expect_error "parts: the geometry file's groups of surfaces cover an area of 40, the body 50: every surface needs one group (and one only)" "$BB" --set "geometry.file=$GEO/ungrouped.geo"
-# The visibility criterion hides nodes behind a plane body's boundary only.
-expect_error "discretisation.visibility: hides nodes behind a plane body's boundary; a 3D body has none to hide them" "$ROOT/problems/block_uniaxial_3d.yaml" --set discretisation.visibility=true
+# The visibility criterion hides nodes behind a plane body's holes only.
+expect_error "discretisation.visibility: hides nodes behind a plane body's holes; a 3D body has none to hide them" "$ROOT/problems/block_uniaxial_3d.yaml" --set discretisation.visibility=true
 # Peridynamic parts: the same reader and messages; a body material, where given, is the default.
 PB="$ROOT/tests/data/pd_bimaterial_bar.yaml"
 expect_error "parts[1].group: the geometry file has no group of surfaces named 'copper' (its groups: steel, aluminium)" "$PB" --set parts.1.group=copper
