@@ -9,9 +9,36 @@
 #include "shape_reproduction.hpp"
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <memory>
 
 using namespace mf;
 using geometry::Curve;
+
+namespace {
+
+/// A body's cloud at spacing h, its points' supports without and with the criterion, and the
+/// space that hides nodes behind the body's holes.
+struct Supports {
+  geometry::NodeCloud cloud;
+  std::vector<Vec2> points;
+  implicit::Csr plain, hidden;
+  std::unique_ptr<implicit::MeshfreeSpace> seeing;
+};
+
+Supports supports(const geometry::Domain& body, double h) {
+  kernels::ShapeSettings shape;
+  shape.dim = 2;
+  Supports s;
+  s.cloud = geometry::generate_nodes(body, h, {});
+  s.points = quadrature::domain_points(body, h, 3, 2).x;
+  s.plain = implicit::MeshfreeSpace(s.cloud, shape, Vec2(2, 2)).support_lists(s.points);
+  s.seeing = std::make_unique<implicit::MeshfreeSpace>(s.cloud, shape, Vec2(2, 2));
+  s.seeing->hide_behind_holes(body);
+  s.hidden = s.seeing->support_lists(s.points);
+  return s;
+}
+
+} // namespace
 
 TEST_CASE("visibility: a curve stands between two points only when crossed inside both",
           "[visibility][geometry]") {
@@ -52,20 +79,14 @@ TEST_CASE("visibility: supports do not reach across a notch narrower than themse
   geometry::Domain plate = geometry::Domain::rectangle({0.0, 0.0}, {20.0, 20.0});
   plate.add_hole(geometry::OutlineHole::polygon({{-1, 9.95}, {8, 9.95}, {8, 10.05}, {-1, 10.05}},
                                                 "notch"));
-  kernels::ShapeSettings shape;
-  shape.dim = 2;
-  const double h = 0.25;
-  const geometry::NodeCloud cloud = geometry::generate_nodes(plate, h, {});
-  const implicit::MeshfreeSpace plain(cloud, shape, Vec2(2, 2));
-  implicit::MeshfreeSpace seeing(cloud, shape, Vec2(2, 2));
-  seeing.hide_behind_holes(plate);
-  const std::vector<Vec2> points = quadrature::domain_points(plate, h, 3, 2).x;
-  const implicit::Csr hidden = seeing.support_lists(points), all = plain.support_lists(points);
+  const Supports s = supports(plate, 0.25);
+  const std::vector<Vec2>& points = s.points;
+  const implicit::Csr &hidden = s.hidden, &all = s.plain;
   int across_plain = 0, across = 0, changed_far = 0;
   for (std::size_t p = 0; p < points.size(); ++p) {
     const Vec2& x = points[p];
     const auto across_notch = [&](int I) {
-      const Vec2& y = cloud.x[I];
+      const Vec2& y = s.cloud.x[I];
       return (x.y() - 10.0) * (y.y() - 10.0) < 0.0 && std::abs(x.y() - 10.0) > 0.05 - 1e-12 &&
              std::abs(y.y() - 10.0) > 0.05 - 1e-12 && std::max(x.x(), y.x()) < 7.5;
     };
@@ -77,7 +98,7 @@ TEST_CASE("visibility: supports do not reach across a notch narrower than themse
   CHECK(across_plain > 1000); // the plain supports tie the notch's faces
   CHECK(across == 0);
   CHECK(changed_far == 0);
-  CHECK(linear_reproduction_error(seeing, points) < 1e-10);
+  CHECK(linear_reproduction_error(*s.seeing, points) < 1e-10);
 }
 
 TEST_CASE("visibility: bodies without holes of an outline keep every support",
@@ -86,14 +107,8 @@ TEST_CASE("visibility: bodies without holes of an outline keep every support",
   geometry::Domain kirsch = geometry::Domain::rectangle({0.0, 0.0}, {5.0, 5.0});
   kirsch.add_hole(geometry::Circle{{0.0, 0.0}, 1.0, "hole"});
   for (const auto& [body, h] : {std::pair{cook, 2.0}, std::pair{kirsch, 0.2}}) {
-    kernels::ShapeSettings shape;
-    shape.dim = 2;
-    const geometry::NodeCloud cloud = geometry::generate_nodes(body, h, {});
-    const implicit::MeshfreeSpace plain(cloud, shape, Vec2(2, 2));
-    implicit::MeshfreeSpace seeing(cloud, shape, Vec2(2, 2));
-    seeing.hide_behind_holes(body);
-    const std::vector<Vec2> points = quadrature::domain_points(body, h, 3, 2).x;
-    const implicit::Csr a = plain.support_lists(points), b = seeing.support_lists(points);
+    const Supports s = supports(body, h);
+    const implicit::Csr &a = s.plain, &b = s.hidden;
     CHECK(a.offset == b.offset);
     CHECK(a.index == b.index);
   }
